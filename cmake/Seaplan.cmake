@@ -1,0 +1,46 @@
+# Helpers shared by every folder: warnings, libraries, tests.
+
+# Where the shared benchmark/chart data lives (../shared beside the clone by
+# default). Tests read it from the SEAPLAN_SHARED environment variable, which
+# ctest sets from this cache entry; tests skip with a reason when it is absent.
+set(SEAPLAN_SHARED "$ENV{SEAPLAN_SHARED}" CACHE PATH "Path to the shared data folder")
+if(NOT SEAPLAN_SHARED)
+  get_filename_component(SEAPLAN_SHARED "${CMAKE_SOURCE_DIR}/../shared" ABSOLUTE)
+endif()
+
+function(seaplan_warnings target)
+  target_compile_options(${target} PRIVATE -Wall -Wextra -Wpedantic -Wshadow
+    -Wnon-virtual-dtor -Wcast-align -Wunused -Woverloaded-virtual -Wnull-dereference
+    -Wno-missing-field-initializers)
+endfunction()
+
+# seaplan_library(name SOURCES a.cc ... DEPS lib ... [PUBLIC_INCLUDE dir])
+function(seaplan_library name)
+  cmake_parse_arguments(ARG "" "" "SOURCES;DEPS;PRIVATE_DEPS" ${ARGN})
+  add_library(${name} STATIC ${ARG_SOURCES})
+  target_include_directories(${name} PUBLIC ${CMAKE_CURRENT_SOURCE_DIR}/include
+                                     PRIVATE ${CMAKE_CURRENT_SOURCE_DIR}/src)
+  target_link_libraries(${name} PUBLIC ${ARG_DEPS} PRIVATE ${ARG_PRIVATE_DEPS})
+  set_target_properties(${name} PROPERTIES POSITION_INDEPENDENT_CODE ON)
+  seaplan_warnings(${name})
+endfunction()
+
+# seaplan_test(name SOURCES a_test.cc ... DEPS lib ...): one GoogleTest binary,
+# each TEST registered with ctest. Labels let `ctest -L unit` pick fast ones.
+function(seaplan_test name)
+  if(NOT SEAPLAN_BUILD_TESTS)
+    return()
+  endif()
+  cmake_parse_arguments(ARG "" "LABEL" "SOURCES;DEPS" ${ARGN})
+  if(NOT ARG_LABEL)
+    set(ARG_LABEL unit)
+  endif()
+  add_executable(${name} ${ARG_SOURCES})
+  target_link_libraries(${name} PRIVATE ${ARG_DEPS} seaplan_testing GTest::gtest GTest::gmock GTest::gtest_main)
+  set_target_properties(${name} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR}/tests)
+  seaplan_warnings(${name})
+  gtest_discover_tests(${name}
+    DISCOVERY_TIMEOUT 60
+    PROPERTIES LABELS ${ARG_LABEL} TIMEOUT 600
+               ENVIRONMENT "SEAPLAN_SHARED=${SEAPLAN_SHARED};SEAPLAN_SOURCE_DIR=${CMAKE_SOURCE_DIR};SEAPLAN_BIN_DIR=${CMAKE_BINARY_DIR}/bin")
+endfunction()

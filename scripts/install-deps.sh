@@ -1,0 +1,43 @@
+#!/usr/bin/env bash
+# Installs every Debian 12 package needed to build, test and run seaplan.
+# Non-interactive and idempotent: packages already present are skipped by apt.
+# Used by the README, .ci/run and the Dockerfile, so all three agree.
+#
+#   scripts/install-deps.sh            build + test + demo dependencies
+#   scripts/install-deps.sh --runtime  only the shared libraries the binaries need
+set -euo pipefail
+
+runtime_packages=(
+  libgrpc++1.51 libprotobuf32 libsqlite3-0 libgeos-c1v5 libgdal32 libnlopt-cxx0
+  libpagmo9 libspdlog1.10 ca-certificates
+)
+build_packages=(
+  build-essential cmake ninja-build pkg-config git
+  libgrpc++-dev protobuf-compiler-grpc libprotobuf-dev protobuf-compiler grpc-proto
+  libabsl-dev libsqlite3-dev sqlite3
+  libeigen3-dev libnlopt-cxx-dev libgeos-dev libgdal-dev gdal-bin libpagmo-dev
+  libcli11-dev libcpp-httplib-dev libspdlog-dev libfmt-dev
+  libgtest-dev libgmock-dev libbenchmark-dev
+  clang libclang-rt-14-dev clang-format curl
+)
+
+packages=("${build_packages[@]}")
+if [[ "${1:-}" == "--runtime" ]]; then packages=("${runtime_packages[@]}"); fi
+
+missing=()
+for p in "${packages[@]}"; do
+  if ! dpkg-query -W -f='${Status}' "$p" 2>/dev/null | grep -q "install ok installed"; then
+    missing+=("$p")
+  fi
+done
+if [[ ${#missing[@]} -eq 0 ]]; then
+  echo "install-deps: all ${#packages[@]} packages present"
+  exit 0
+fi
+
+SUDO=""
+if [[ $(id -u) -ne 0 ]]; then SUDO="sudo"; fi
+export DEBIAN_FRONTEND=noninteractive
+echo "install-deps: installing ${#missing[@]} packages: ${missing[*]}"
+$SUDO apt-get update -qq
+$SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"

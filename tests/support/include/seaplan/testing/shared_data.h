@@ -1,0 +1,32 @@
+// Locating test data: the repository (examples/, tests/data) and the shared
+// benchmark/chart folder (SEAPLAN_SHARED, ../shared beside the clone). Tests
+// that need shared data skip with a visible reason when it is absent.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <optional>
+#include <string>
+
+namespace seaplan::testing {
+
+// The repository root (SEAPLAN_SOURCE_DIR, set by ctest).
+std::filesystem::path SourceDir();
+// build/bin, where the binaries are (SEAPLAN_BIN_DIR, set by ctest).
+std::filesystem::path BinDir();
+// The shared folder if it exists.
+std::optional<std::filesystem::path> SharedDir();
+// Reads a whole file; fails the test (returns "") if it cannot.
+std::string ReadFile(const std::filesystem::path& path);
+
+}  // namespace seaplan::testing
+
+// Binds `var` to SharedDir()/relative or skips the test with the reason.
+#define SEAPLAN_REQUIRE_SHARED(var, relative)                                              \
+  auto var##_shared_root = ::seaplan::testing::SharedDir();                                \
+  if (!var##_shared_root || !std::filesystem::exists(*var##_shared_root / (relative))) {   \
+    GTEST_SKIP() << "shared data '" << (relative)                                          \
+                 << "' not found (set SEAPLAN_SHARED to the shared folder)";               \
+  }                                                                                        \
+  const std::filesystem::path var = *var##_shared_root / (relative)
