@@ -1,0 +1,108 @@
+// From parsed PDDL to a GroundTask: the one entry point every component uses.
+//
+//   auto loaded = seaplan::task::LoadTask(domain_text, problem_text);
+//   if (!loaded.ok()) { /* loaded.diagnostics says what and where */ }
+//   const GroundTask& task = *loaded.task;
+//
+// Grounding is driven by relaxed reachability (a Datalog-style fixpoint, as
+// Fast Downward's translator): an action instance is generated only when all
+// its positive fact preconditions are reachable, found by joining the
+// precondition atoms most-selective-first, never by enumerating all parameter
+// combinations. Static predicates (changed by no effect and no timed literal)
+// are folded away, static fluents are folded into constants, quantifiers and
+// conditional effects are expanded, disjunctions are compiled into DNF copies
+// (Action::variant), equality is evaluated. Numeric conditions are treated
+// optimistically during reachability unless they are fully static. Facts
+// added by timed initial literals count as reachable. A goal that is
+// statically false is kept (as a fact nothing achieves) so that the planner
+// proves unsolvability instead of the grounder silently dropping it; a
+// warning says so.
+//
+// Generated names (e.g. the never-true fact standing for a statically false
+// goal) contain '@', which no PDDL name can, so they never clash.
+//
+// Thread-safety: all functions are pure; the result task is immutable.
+#pragma once
+
+#include <cstddef>
+#include <memory>
+#include <span>
+#include <string>
+#include <string_view>
+#include <unordered_map>
+#include <vector>
+
+#include "seaplan/common/status.h"
+#include "seaplan/pddl/diagnostic.h"
+#include "seaplan/pddl/parser.h"
+#include "seaplan/task/ground_task.h"
+
+namespace seaplan::task {
+
+struct GroundingOptions {
+  // Budgets: exceeding one ends grounding with an error diagnostic instead of
+  // unbounded memory use.
+  std::size_t max_actions = 5'000'000;
+  std::size_t max_facts = 5'000'000;
+
+  absl::Status Validate() const;
+};
+
+struct GroundingStats {
+  double parse_ms = 0.0;   // both files (LoadTask only)
+  double ground_ms = 0.0;  // reachability + instantiation + task building
+  std::size_t reachable_atoms = 0;  // incl. static ones
+  std::size_t static_atoms = 0;     // true static atoms (folded away)
+  TaskSize size;                    // same as task->Size()
+};
+
+struct LoadResult {
+  std::shared_ptr<const GroundTask> task;  // null when grounding failed
+  std::vector<pddl::Diagnostic> diagnostics;  // errors and warnings of every stage
+  GroundingStats stats;
+  // The parsed inputs (set by LoadTask when parsing succeeded), for callers
+  // that need to explain things in PDDL terms (ExplainMissingAction).
+  std::shared_ptr<const pddl::Domain> domain;
+  std::shared_ptr<const pddl::Problem> problem;
+
+  bool ok() const { return task != nullptr && !pddl::HasErrors(diagnostics); }
+  bool unsupported() const { return pddl::HasUnsupported(diagnostics); }
+  // Every diagnostic, one per line (empty when none).
+  std::string ErrorText() const { return pddl::FormatDiagnostics(diagnostics); }
+};
+
+// Grounds a parsed, checked domain and problem.
+LoadResult Ground(const pddl::Domain& domain, const pddl::Problem& problem,
+                  const GroundingOptions& options = {});
+
+// Parses both texts (diagnostics name them "domain" and "problem") and grounds.
+LoadResult LoadTask(std::string_view domain_text, std::string_view problem_text,
+                    const GroundingOptions& options = {});
+
+// Finds ground actions by (name, args) in O(1) (names lower case). Build once
+// per task; holds a reference to the task's names (the task must outlive it).
+class ActionIndex {
+ public:
+  explicit ActionIndex(const GroundTask& task);
+
+  // Every ground action (all DNF variants) with this name and these
+  // arguments; empty when none. Case-insensitive.
+  std::vector<ActionId> Find(std::string_view name, std::span<const std::string> args) const;
+
+ private:
+  static std::string Key(std::string_view name, std::span<const std::string> args);
+  std::unordered_map<std::string, std::vector<ActionId>> by_key_;
+};
+
+// Why (name args) is not an action of the ground task, in one sentence for a
+// user: unknown action, wrong number of arguments, unknown object, an
+// argument of the wrong type, a static precondition that is false (which
+// one, e.g. "(connects r1 port-a port-b) is false and never changes"), an
+// equality that fails, or "its preconditions are not reachable from the
+// initial state" (e.g. (at ship0 port-x) is never true). Returns "" when the
+// action is in fact grounded (when `task` is given) or no reason is found.
+std::string ExplainMissingAction(const pddl::Domain& domain, const pddl::Problem& problem,
+                                 std::string_view name, std::span<const std::string> args,
+                                 const GroundTask* task = nullptr);
+
+}  // namespace seaplan::task
