@@ -1,0 +1,65 @@
+// Level-1 route planning (MISSION.md 3.2, Algorithm A1; SHIP_MODEL.md 9):
+// alternative routes start -> goal around the obstacles of an ObstacleMap.
+//
+// A1 as in the paper: H = convex hulls of the obstacle components, I = H
+// dilated by margin_m, J = unions of overlapping members of I, K = their
+// convex hulls (repeated until no two overlap). The straight segment is split
+// around the largest hull it crosses: the hull vertices visible from the
+// segment start, split into left and right of the segment, the farthest from
+// it on each side becomes a waypoint; recursion on every new segment that
+// still crosses a hull (depth limit max_depth, at most max_alternatives).
+//
+// Why a fallback: on real charts a hull of a large concave land polygon (a
+// fjord!) often swallows start or goal, or hulls merge into one that covers
+// the whole chart. Then (and when A1 yields no crossing-free alternative)
+// we fall back to a shortest path in the visibility graph of the obstacle
+// polygons dilated by margin_m (nodes: their convex vertices within a
+// corridor around start-goal, grown until a path is found), which avoids
+// every obstacle exactly but yields a single route. `used_fallback` says so.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "seaplan/chart/geodesy.h"
+#include "seaplan/chart/obstacle_map.h"
+#include "seaplan/common/status.h"
+
+namespace seaplan::chart {
+
+struct AlternativesOptions {
+  // Margin on top of the chart's safety buffer, metres (paper: 50 m).
+  double margin_m = 50.0;
+  // Recursion depth limit of A1 (each level adds one waypoint per branch).
+  int max_depth = 12;
+  // Stop after this many finished alternatives.
+  int max_alternatives = 16;
+  // Use the visibility-graph fallback when A1 cannot answer.
+  bool allow_fallback = true;
+  // Visibility-graph size limit (nodes); exceeding it is ResourceExhausted.
+  int max_graph_nodes = 4000;
+
+  absl::Status Validate() const;
+};
+
+struct Alternative {
+  std::vector<LocalPoint> waypoints;  // start .. goal
+  double length_m = 0.0;
+};
+
+struct AlternativesResult {
+  // Free of hull crossings (A1) or of obstacle crossings (fallback); sorted
+  // by length, shortest first; duplicates removed.
+  std::vector<Alternative> alternatives;
+  bool used_fallback = false;
+  std::string note;  // why the fallback was used, limits hit, ...
+};
+
+// Errors: InvalidArgument when start or goal lies inside an obstacle (the
+// message names which, and the obstacle index) or outside chart coverage;
+// NotFound when no obstacle-free route exists; ResourceExhausted on limits.
+StatusOr<AlternativesResult> PlanAlternatives(const ObstacleMap& map, LocalPoint start,
+                                              LocalPoint goal,
+                                              const AlternativesOptions& options = {});
+
+}  // namespace seaplan::chart

@@ -1,0 +1,231 @@
+// Charts -> grounding obstacles, in a local metric frame, with fast queries.
+//
+// Overview
+//   LoadChartFile / LoadChartBytes read a chart with GDAL (IHO S-57 cells and
+//   their updates, Kartverket FileGDB, shapefiles / GeoJSON / zipped sets),
+//   pick every feature that grounds a ship of the operator's minimum depth,
+//   project it to a UTM frame (geodesy.h), buffer it by the safety distance,
+//   simplify and union it with GEOS. The result is an immutable ObstacleMap.
+//   Queries (distance, inside, segment / polygon intersection) go through an
+//   ObstacleQuery, one per thread.
+//
+// What is an obstacle (min depth D = ChartOptions::min_depth_m)
+//   S-57:  LNDARE (areas; points buffered by point_hazard_radius_m),
+//          DEPARE with DRVAL1 < D (DRVAL1 missing: obstacle),
+//          OBSTRN / WRECKS / UWTROC with VALSOU < D; VALSOU unknown is an
+//          obstacle too (a rock or wreck of unknown depth is charted as
+//          dangerous: IHO S-4 / S-52 symbolise it as such), points and lines
+//          buffered by point_hazard_radius_m.
+//          Opened with UPDATES=APPLY (the .001.. files beside the .000 are
+//          applied), SPLIT_MULTIPOINT=ON, ADD_SOUNDG_DEPTH=ON,
+//          RETURN_PRIMITIVES=OFF, RETURN_LINKAGES=OFF, LNAM_REFS=OFF.
+//   Kartverket FileGDB (Sjokart - Dybdedata): landareal, torrfall (drying),
+//          dybdeareal with minimumsdybde < D, grunne with dybde < D (points,
+//          buffered), skjer (rocks, no depth: always).
+//   Other vector sets (shapefile folders, GeoJSON): a layer named land*,
+//          shore*, torrfall*, landareal* or obstacle* is an obstacle as a
+//          whole. Layers named seabed<N>m (N metres: "sea deeper than N m",
+//          the Alesund set) give obstacles = chart box minus the seabed<N>m
+//          polygon with the largest N <= D (the sea that is deep enough for
+//          sure; a larger N would close water that is navigable, a smaller N
+//          would allow water shallower than D... we choose safety: the largest
+//          N <= D). If no N <= D exists the load fails. Layers with a numeric
+//          field "depth"/"DRVAL1"/"minimumsdybde" are treated like DEPARE.
+//
+// Thread-safety
+//   ObstacleMap is immutable after construction: every const method may be
+//   called from any thread. GEOS objects are never shared between threads:
+//   an ObstacleQuery owns its own GEOS context, a private copy of the
+//   geometry, its STR-tree and its prepared geometries. Create one
+//   ObstacleQuery per worker thread (construction is O(vertices), ~ms for a
+//   harbour cell) and reuse it; an ObstacleQuery itself is NOT thread-safe.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <map>
+#include <memory>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "seaplan/chart/geodesy.h"
+#include "seaplan/common/status.h"
+
+namespace seaplan::chart {
+
+struct ChartOptions {
+  // Operator's minimum depth (draught + under-keel clearance), metres. The
+  // paper uses 10 m. Areas and hazards shallower than this are obstacles.
+  double min_depth_m = 5.0;
+  // Safety buffer added around every obstacle, metres (paper: 10 m).
+  double safety_buffer_m = 10.0;
+  // Radius of the area a point (or line) hazard becomes, before the safety
+  // buffer, metres.
+  double point_hazard_radius_m = 20.0;
+  // Douglas-Peucker tolerance applied after buffering, metres (0 = none).
+  // The simplified outline may cut into the buffer by at most this much, so
+  // keep it below safety_buffer_m.
+  double simplify_tolerance_m = 5.0;
+  // Local frame: 0 = the WGS84 UTM zone of the chart centre; otherwise an
+  // EPSG code accepted by LocalFrame::FromEpsg (e.g. 25833 to keep the
+  // Alesund data in its own UTM33 coordinates).
+  int frame_epsg = 0;
+  // Treat hazards whose depth (VALSOU, dybde) is unknown as obstacles.
+  bool unknown_depth_is_obstacle = true;
+
+  absl::Status Validate() const;
+};
+
+// A ring of local points, not repeated closing point, any orientation.
+using Ring = std::vector<LocalPoint>;
+
+// A polygon in the local frame: one outer ring and its holes.
+struct Polygon {
+  Ring outer;
+  std::vector<Ring> holes;
+};
+
+// Axis-aligned box in the local frame.
+struct LocalBox {
+  LocalPoint min;
+  LocalPoint max;
+  bool Contains(LocalPoint p) const {
+    return p.x_m >= min.x_m && p.x_m <= max.x_m && p.y_m >= min.y_m && p.y_m <= max.y_m;
+  }
+};
+
+struct ObstacleSummary {
+  // GDAL driver short name ("S57", "OpenFileGDB", "ESRI Shapefile",
+  // "GeoJSON") or "polygons" for FromPolygons; kept through serialization.
+  std::string source_format;
+  // Number of source features taken as obstacles, per source layer name
+  // (e.g. "LNDARE": 183). Synthetic layers: "chart_box-minus-seabed5m".
+  std::map<std::string, int> features_per_layer;
+  int polygon_count = 0;  // polygons after buffer + union
+  int vertex_count = 0;   // vertices of those polygons
+  double total_area_m2 = 0.0;
+  // Bounding box of the obstacles (geographic, WGS84).
+  LatLon bbox_min;
+  LatLon bbox_max;
+  // Chart coverage box in the local frame (all features' extent, or the
+  // S-57 M_COVR coverage extent when present).
+  LocalBox coverage;
+  int frame_epsg = 0;
+  ChartOptions options;
+  // Non-fatal problems (repaired invalid polygons, skipped features...).
+  std::vector<std::string> warnings;
+};
+
+class ObstacleQuery;
+
+// The grounding obstacles of one chart. Move-only (heavy); share as
+// std::shared_ptr<const ObstacleMap>. Immutable: all methods thread-safe.
+class ObstacleMap {
+ public:
+  // Builds a map straight from polygons already in `frame` (tests, synthetic
+  // scenarios, other libraries): buffers by options.safety_buffer_m,
+  // simplifies, repairs and unions. `coverage` defaults to the obstacles'
+  // box grown by 1 km when empty.
+  static StatusOr<ObstacleMap> FromPolygons(std::vector<Polygon> obstacles, LocalFrame frame,
+                                            const ChartOptions& options,
+                                            std::string layer_name = "polygons",
+                                            std::optional<LocalBox> coverage = std::nullopt);
+
+  ObstacleMap(ObstacleMap&&) noexcept;
+  ObstacleMap& operator=(ObstacleMap&&) noexcept;
+  ObstacleMap(const ObstacleMap&) = delete;
+  ObstacleMap& operator=(const ObstacleMap&) = delete;
+  ~ObstacleMap();
+
+  const LocalFrame& frame() const;
+  const ObstacleSummary& summary() const;
+  // Buffered, simplified, unioned obstacle polygons (plain data export).
+  const std::vector<Polygon>& polygons() const;
+  // Bounding box of all obstacles in the local frame (empty map: coverage).
+  LocalBox bounds() const;
+  // True when p lies inside the chart's coverage box.
+  bool Covers(LocalPoint p) const { return summary().coverage.Contains(p); }
+  // The unioned obstacle geometry as ISO WKB (MultiPolygon, local frame).
+  const std::string& wkb() const;
+
+  // Internal (engine/chart/src): the GEOS side of the map.
+  struct Impl;
+  explicit ObstacleMap(std::unique_ptr<Impl> impl);
+  const Impl& impl() const { return *impl_; }
+
+ private:
+  std::unique_ptr<Impl> impl_;
+};
+
+// Nearest-obstacle answer.
+struct NearestObstacle {
+  // Distance from the query point to the obstacle, metres; 0 inside;
+  // +infinity when the map has no obstacle.
+  double distance_m = std::numeric_limits<double>::infinity();
+  LocalPoint nearest;  // closest point on that obstacle (the query point if inside)
+  int polygon_index = -1;  // index into ObstacleMap::polygons()
+};
+
+// Per-thread query object over an ObstacleMap (which must outlive it).
+// Not thread-safe: one per thread. Queries are O(log n) via an STR-tree and
+// GEOS prepared geometries (built lazily per polygon, per query object).
+class ObstacleQuery {
+ public:
+  explicit ObstacleQuery(const ObstacleMap& map);
+  ObstacleQuery(ObstacleQuery&&) noexcept;
+  ObstacleQuery& operator=(ObstacleQuery&&) noexcept;
+  ObstacleQuery(const ObstacleQuery&) = delete;
+  ObstacleQuery& operator=(const ObstacleQuery&) = delete;
+  ~ObstacleQuery();
+
+  // Distance to the nearest obstacle, metres; 0 inside one; +inf if none.
+  double DistanceM(LocalPoint p);
+  // Like DistanceM outside; inside an obstacle, minus the distance to its
+  // boundary (so a barrier cost can push a point out).
+  double SignedDistanceM(LocalPoint p);
+  NearestObstacle Nearest(LocalPoint p);
+  // True when p lies in (or on the boundary of) an obstacle.
+  bool Inside(LocalPoint p);
+  // True when segment a-b touches an obstacle.
+  bool SegmentHits(LocalPoint a, LocalPoint b);
+  // True when the polyline touches an obstacle.
+  bool PolylineHits(std::span<const LocalPoint> polyline);
+  // True when the closed polygon `ring` (e.g. a drifting hull footprint)
+  // overlaps or touches an obstacle.
+  bool PolygonHits(std::span<const LocalPoint> ring);
+
+ private:
+  struct State;
+  std::unique_ptr<State> state_;
+};
+
+// One input file given as bytes: `name` carries the extension that selects
+// the reader ("US4MD81M.000", "US4MD81M.001", "land.geojson", "chart.zip",
+// "x.shp" + "x.shx" + "x.dbf" + "x.prj").
+struct ChartFile {
+  std::string name;
+  std::string bytes;
+};
+
+// Reads a chart from a path: an S-57 .000 (updates beside it are applied), a
+// .gdb folder, a shapefile, a folder of shapefiles (each subfolder too, like
+// the Alesund set), a GeoJSON file, or a .zip of any of these.
+// Errors: NotFound (no such file), InvalidArgument (not a chart GDAL can read,
+// no obstacle layer, empty chart, bad options) naming the file and problem.
+StatusOr<ObstacleMap> LoadChartFile(const std::string& path, const ChartOptions& options);
+
+// Same from bytes (server uploads). Files are written to a private /vsimem/
+// folder (zips are opened through /vsizip/), never to disk.
+StatusOr<ObstacleMap> LoadChartBytes(const std::vector<ChartFile>& files,
+                                     const ChartOptions& options);
+
+// A compact binary blob (magic, version, frame, summary, WKB of the unioned
+// obstacles) for storage; DeserializeObstacleMap rebuilds the map without
+// GDAL in a few ms. Corrupt / foreign bytes -> InvalidArgument (never a crash).
+std::string SerializeObstacleMap(const ObstacleMap& map);
+StatusOr<ObstacleMap> DeserializeObstacleMap(std::string_view bytes);
+
+}  // namespace seaplan::chart
