@@ -1,0 +1,60 @@
+// The operator CLI talks to seaplan through a Backend: either a server over
+// gRPC (RemoteBackend) or the server's own transport-agnostic core linked
+// in-process (LocalBackend, for plan/validate/route/risk without a server).
+// Both speak the seaplan.v1 messages, so the CLI's output code is shared.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+
+#include "absl/status/status.h"
+#include "seaplan/v1/chart.pb.h"
+#include "seaplan/v1/mission.pb.h"
+#include "seaplan/v1/planning.pb.h"
+#include "seaplan/v1/route.pb.h"
+
+namespace seaplan::cli {
+
+namespace v1 = ::seaplan::v1;
+
+class Backend {
+ public:
+  virtual ~Backend() = default;
+
+  virtual absl::Status Plan(const v1::PlanRequest& request, v1::PlanResponse* response) = 0;
+  virtual absl::Status PlanStream(const v1::PlanRequest& request,
+                                  const std::function<void(const v1::PlanStreamEvent&)>& on_event) = 0;
+  virtual absl::Status Validate(const v1::ValidateRequest& request,
+                                v1::ValidateResponse* response) = 0;
+  virtual absl::Status UploadChart(const v1::UploadChartRequest& request,
+                                   v1::UploadChartResponse* response) = 0;
+  virtual absl::Status GetChart(const v1::GetChartRequest& request,
+                                v1::GetChartResponse* response) = 0;
+  virtual absl::Status ListCharts(const v1::ListChartsRequest& request,
+                                  v1::ListChartsResponse* response) = 0;
+  virtual absl::Status PlanRoute(const v1::PlanRouteRequest& request,
+                                 v1::PlanRouteResponse* response) = 0;
+  virtual absl::Status EstimateRisk(const v1::EstimateRiskRequest& request,
+                                    v1::EstimateRiskResponse* response) = 0;
+  virtual absl::Status CreateMission(const v1::CreateMissionRequest& request,
+                                     v1::Mission* response) = 0;
+  virtual absl::Status GetMission(const v1::GetMissionRequest& request, v1::Mission* response) = 0;
+  virtual absl::Status ListMissions(const v1::ListMissionsRequest& request,
+                                    v1::ListMissionsResponse* response) = 0;
+  // Calls `on_event` for each event; stops when it returns false or the stream ends.
+  virtual absl::Status WatchMission(const v1::WatchMissionRequest& request,
+                                    const std::function<bool(const v1::MissionEvent&)>& on_event) = 0;
+  virtual absl::Status RequestReplan(const v1::RequestReplanRequest& request,
+                                     v1::RequestReplanResponse* response) = 0;
+  virtual absl::Status CancelMission(const v1::CancelMissionRequest& request,
+                                     v1::Mission* response) = 0;
+};
+
+// A server at `address` (host:port). `timeout_s` <= 0 means no deadline.
+std::unique_ptr<Backend> MakeRemoteBackend(const std::string& address, double timeout_s);
+
+// The server core in-process, with charts kept in memory for the call.
+std::unique_ptr<Backend> MakeLocalBackend();
+
+}  // namespace seaplan::cli

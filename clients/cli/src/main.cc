@@ -1,0 +1,570 @@
+// seaplan: the operator's command line. Subcommands mirror the API; plan,
+// validate, route and risk run in-process when no --server is given.
+//
+// Exit codes: 0 success, 1 no plan / plan invalid, 2 bad input or usage,
+// 3 the server is unreachable or failed.
+#include <cstdlib>
+#include <fstream>
+#include <iostream>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "CLI/CLI.hpp"
+#include "backend.h"
+#include "google/protobuf/util/json_util.h"
+#include "output.h"
+#include "seaplan/common/status.h"
+
+
+namespace seaplan::cli {
+namespace {
+
+struct GlobalOptions {
+  std::string server;  // empty: in-process
+  bool json = false;
+  double timeout_s = 0;
+};
+
+absl::Status ReadFile(const std::string& path, std::string* content) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return absl::InvalidArgumentError("cannot read file '" + path + "'");
+  std::ostringstream buffer;
+  buffer << in.rdbuf();
+  *content = buffer.str();
+  return absl::OkStatus();
+}
+
+absl::Status WriteFile(const std::string& path, const std::string& content) {
+  std::ofstream out(path, std::ios::binary);
+  if (!out || !(out << content)) return absl::InvalidArgumentError("cannot write file '" + path + "'");
+  return absl::OkStatus();
+}
+
+// "63.44,10.39" -> LatLon.
+absl::Status ParseLatLon(const std::string& text, v1::LatLon* position) {
+  const auto comma = text.find(',');
+  char* end = nullptr;
+  if (comma == std::string::npos) {
+    return absl::InvalidArgumentError("position '" + text + "': expected LAT,LON in degrees");
+  }
+  const std::string lat_text = text.substr(0, comma), lon_text = text.substr(comma + 1);
+  const double lat = std::strtod(lat_text.c_str(), &end);
+  if (end == lat_text.c_str() || *end != '\0' || lat < -90 || lat > 90) {
+    return absl::InvalidArgumentError("position '" + text + "': latitude must be in [-90, 90]");
+  }
+  const double lon = std::strtod(lon_text.c_str(), &end);
+  if (end == lon_text.c_str() || *end != '\0' || lon < -180 || lon > 180) {
+    return absl::InvalidArgumentError("position '" + text + "': longitude must be in [-180, 180]");
+  }
+  position->set_latitude_deg(lat);
+  position->set_longitude_deg(lon);
+  return absl::OkStatus();
+}
+
+std::unique_ptr<Backend> MakeBackend(const GlobalOptions& options) {
+  if (options.server.empty()) return MakeLocalBackend();
+  return MakeRemoteBackend(options.server, options.timeout_s);
+}
+
+void PrintJsonOr(const GlobalOptions& options, const google::protobuf::Message& message,
+                 const std::function<void()>& human) {
+  if (options.json) {
+    std::cout << ToJson(message) << "\n";
+  } else {
+    human();
+  }
+}
+
+// ---- plan -----------------------------------------------------------------
+
+struct PlanArgs {
+  std::string domain, problem, output;
+  double time_limit_s = 60;
+  std::uint64_t memory_limit_mb = 0;
+  int max_concurrent = 0;
+  bool no_anytime = false;
+  bool stream = false;
+  std::uint64_t seed = 1;
+  double epsilon_s = 0;
+};
+
+int RunPlan(const GlobalOptions& options, const PlanArgs& args) {
+  v1::PlanRequest request;
+  if (auto s = ReadFile(args.domain, request.mutable_domain()); !s.ok()) return ReportError(std::cerr, s);
+  if (auto s = ReadFile(args.problem, request.mutable_problem()); !s.ok()) return ReportError(std::cerr, s);
+  auto* planner = request.mutable_options();
+  const auto limit_ms = static_cast<std::int64_t>(args.time_limit_s * 1000);
+  planner->mutable_time_limit()->set_seconds(limit_ms / 1000);
+  planner->mutable_time_limit()->set_nanos(static_cast<int>((limit_ms % 1000) * 1000000));
+  planner->set_memory_limit_mb(args.memory_limit_mb);
+  planner->set_max_concurrent_actions(args.max_concurrent);
+  planner->set_anytime(!args.no_anytime);
+  planner->set_random_seed(args.seed);
+  planner->set_epsilon_s(args.epsilon_s);
+
+  auto backend = MakeBackend(options);
+  v1::PlanResponse response;
+  absl::Status status;
+  if (args.stream) {
+    status = backend->PlanStream(request, [&](const v1::PlanStreamEvent& event) {
+      if (options.json) {
+        std::cout << ToJson(event) << "\n" << std::flush;
+      } else if (event.has_improved_plan()) {
+        std::cerr << "improved plan: makespan " << event.improved_plan().makespan_s() << " s after "
+                  << event.improved_plan().statistics().search_time_s() << " s\n";
+      } else if (event.has_progress()) {
+        std::cerr << "searching: " << event.progress().statistics().expanded() << " expanded, "
+                  << event.progress().elapsed_s() << " s\n";
+      }
+      if (event.has_final_result()) response = event.final_result();
+    });
+  } else {
+    status = backend->Plan(request, &response);
+  }
+  if (!status.ok()) return ReportError(std::cerr, status);
+  if (!args.stream || !options.json) {
+    PrintJsonOr(options, response, [&] { PrintPlanResponse(std::cout, response); });
+  }
+  if (!args.output.empty() && response.plan_size() > 0) {
+    if (auto s = WriteFile(args.output, FormatPlanText(response)); !s.ok()) return ReportError(std::cerr, s);
+  }
+  switch (response.status()) {
+    case v1::SOLVED_SATISFICING:
+    case v1::SOLVED_OPTIMALLY: return kExitSuccess;
+    case v1::UNSUPPORTED: return kExitBadInput;
+    default: return kExitNoPlan;
+  }
+}
+
+// ---- validate -------------------------------------------------------------
+
+int RunValidate(const GlobalOptions& options, const std::string& domain, const std::string& problem,
+                const std::string& plan, double epsilon_s) {
+  v1::ValidateRequest request;
+  if (auto s = ReadFile(domain, request.mutable_domain()); !s.ok()) return ReportError(std::cerr, s);
+  if (auto s = ReadFile(problem, request.mutable_problem()); !s.ok()) return ReportError(std::cerr, s);
+  if (auto s = ReadFile(plan, request.mutable_plan()); !s.ok()) return ReportError(std::cerr, s);
+  request.set_epsilon_s(epsilon_s);
+  v1::ValidateResponse response;
+  if (auto s = MakeBackend(options)->Validate(request, &response); !s.ok()) {
+    return ReportError(std::cerr, s);
+  }
+  PrintJsonOr(options, response, [&] { PrintValidateResponse(std::cout, response); });
+  return response.valid() ? kExitSuccess : kExitNoPlan;
+}
+
+// ---- charts ---------------------------------------------------------------
+
+struct ChartArgs {
+  std::vector<std::string> files;
+  std::string name, format;
+  double minimum_depth_m = 0, safety_buffer_m = 0;
+};
+
+absl::Status BuildUpload(const ChartArgs& args, v1::UploadChartRequest* request) {
+  if (args.files.empty()) return absl::InvalidArgumentError("no chart file given");
+  for (const auto& path : args.files) {
+    auto* file = request->add_files();
+    file->set_name(path.substr(path.find_last_of('/') + 1));
+    SEAPLAN_RETURN_IF_ERROR(ReadFile(path, file->mutable_content()));
+  }
+  request->set_name(args.name.empty() ? request->files(0).name() : args.name);
+  if (args.format == "s57") request->set_format(v1::CHART_FORMAT_S57);
+  else if (args.format == "geojson") request->set_format(v1::CHART_FORMAT_GEOJSON);
+  else if (args.format == "zip") request->set_format(v1::CHART_FORMAT_ZIP);
+  else if (!args.format.empty() && args.format != "auto") {
+    return absl::InvalidArgumentError("unknown chart format '" + args.format +
+                                      "' (expected auto, s57, geojson or zip)");
+  }
+  request->set_minimum_depth_m(args.minimum_depth_m);
+  request->set_safety_buffer_m(args.safety_buffer_m);
+  return absl::OkStatus();
+}
+
+int RunChartUpload(const GlobalOptions& options, const ChartArgs& args) {
+  v1::UploadChartRequest request;
+  if (auto s = BuildUpload(args, &request); !s.ok()) return ReportError(std::cerr, s);
+  v1::UploadChartResponse response;
+  if (auto s = MakeBackend(options)->UploadChart(request, &response); !s.ok()) {
+    return ReportError(std::cerr, s);
+  }
+  PrintJsonOr(options, response, [&] {
+    PrintChart(std::cout, response.chart());
+    for (const auto& w : response.warnings()) std::cerr << "warning: " << w << "\n";
+  });
+  return kExitSuccess;
+}
+
+int RunChartList(const GlobalOptions& options) {
+  v1::ListChartsRequest request;
+  auto backend = MakeBackend(options);
+  v1::ListChartsResponse all;
+  do {
+    v1::ListChartsResponse page;
+    if (auto s = backend->ListCharts(request, &page); !s.ok()) return ReportError(std::cerr, s);
+    for (const auto& chart : page.charts()) *all.add_charts() = chart;
+    request.set_page_token(page.next_page_token());
+  } while (!request.page_token().empty());
+  PrintJsonOr(options, all, [&] {
+    if (all.charts_size() == 0) std::cout << "no charts\n";
+    for (const auto& chart : all.charts()) PrintChart(std::cout, chart);
+  });
+  return kExitSuccess;
+}
+
+int RunChartGet(const GlobalOptions& options, const std::string& id, const std::string& geojson) {
+  v1::GetChartRequest request;
+  request.set_chart_id(id);
+  request.set_include_obstacles_geojson(!geojson.empty());
+  v1::GetChartResponse response;
+  if (auto s = MakeBackend(options)->GetChart(request, &response); !s.ok()) return ReportError(std::cerr, s);
+  if (!geojson.empty()) {
+    if (auto s = WriteFile(geojson, response.obstacles_geojson()); !s.ok()) return ReportError(std::cerr, s);
+  }
+  PrintJsonOr(options, response.chart(), [&] { PrintChart(std::cout, response.chart()); });
+  return kExitSuccess;
+}
+
+// ---- route and risk ---------------------------------------------------------
+
+struct RouteArgs {
+  std::string chart_id;
+  ChartArgs chart_file;  // in-process or upload-then-route
+  std::string from, to, geojson, track;
+  double wind_speed_mps = 0, wind_from_deg = 0, current_speed_mps = 0, current_from_deg = 0;
+  int particles = 0, iterations = 0, segments = 0;
+  std::uint64_t seed = 0;
+  double horizon_s = 0, safety_distance_m = 0, speed_mps = 0;
+};
+
+// Resolves the chart: an id on the server, or files uploaded into the backend first.
+absl::Status ResolveChart(Backend& backend, const RouteArgs& args, std::string* chart_id) {
+  if (!args.chart_id.empty()) {
+    *chart_id = args.chart_id;
+    return absl::OkStatus();
+  }
+  if (args.chart_file.files.empty()) {
+    return absl::InvalidArgumentError("give --chart ID (a chart on the server) or --chart-file FILE");
+  }
+  v1::UploadChartRequest upload;
+  SEAPLAN_RETURN_IF_ERROR(BuildUpload(args.chart_file, &upload));
+  v1::UploadChartResponse uploaded;
+  SEAPLAN_RETURN_IF_ERROR(backend.UploadChart(upload, &uploaded));
+  *chart_id = uploaded.chart().chart_id();
+  return absl::OkStatus();
+}
+
+void FillEnvironment(const RouteArgs& args, v1::Environment* env) {
+  env->set_wind_speed_mps(args.wind_speed_mps);
+  env->set_wind_from_deg(args.wind_from_deg);
+  env->set_current_speed_mps(args.current_speed_mps);
+  env->set_current_from_deg(args.current_from_deg);
+}
+
+int RunRoute(const GlobalOptions& options, const RouteArgs& args) {
+  auto backend = MakeBackend(options);
+  v1::PlanRouteRequest request;
+  if (auto s = ParseLatLon(args.from, request.mutable_start()); !s.ok()) return ReportError(std::cerr, s);
+  if (auto s = ParseLatLon(args.to, request.mutable_goal()); !s.ok()) return ReportError(std::cerr, s);
+  if (auto s = ResolveChart(*backend, args, request.mutable_chart_id()); !s.ok()) {
+    return ReportError(std::cerr, s);
+  }
+  FillEnvironment(args, request.mutable_environment());
+  request.mutable_ship()->set_service_speed_mps(args.speed_mps);
+  auto* opt = request.mutable_options();
+  opt->set_particles(args.particles);
+  opt->set_iterations(args.iterations);
+  opt->set_segments(args.segments);
+  opt->set_random_seed(args.seed);
+  opt->set_ttg_horizon_s(args.horizon_s);
+  opt->set_safety_distance_m(args.safety_distance_m);
+  opt->set_include_obstacles_geojson(!args.geojson.empty());
+  v1::PlanRouteResponse response;
+  if (auto s = backend->PlanRoute(request, &response); !s.ok()) return ReportError(std::cerr, s);
+  if (!args.geojson.empty()) {
+    if (auto s = WriteFile(args.geojson, response.obstacles_geojson()); !s.ok()) return ReportError(std::cerr, s);
+  }
+  PrintJsonOr(options, response, [&] { PrintRoute(std::cout, response); });
+  return kExitSuccess;
+}
+
+// Track file: one "lat,lon[,heading_deg[,speed_mps[,mode]]]" per line; '#' comments.
+absl::Status ReadTrack(const std::string& path, v1::EstimateRiskRequest* request) {
+  std::string content;
+  SEAPLAN_RETURN_IF_ERROR(ReadFile(path, &content));
+  std::istringstream lines(content);
+  std::string line;
+  int number = 0;
+  while (std::getline(lines, line)) {
+    ++number;
+    if (line.empty() || line[0] == '#') continue;
+    std::vector<std::string> fields;
+    std::stringstream fs(line);
+    for (std::string field; std::getline(fs, field, ',');) fields.push_back(field);
+    auto* point = request->add_track();
+    if (fields.size() < 2) {
+      return absl::InvalidArgumentError(path + ":" + std::to_string(number) +
+                                        ": expected lat,lon[,heading_deg[,speed_mps[,mode]]]");
+    }
+    auto s = ParseLatLon(fields[0] + "," + fields[1], point->mutable_position());
+    if (!s.ok()) return absl::InvalidArgumentError(path + ":" + std::to_string(number) + ": " + std::string(s.message()));
+    if (fields.size() > 2 && !fields[2].empty()) point->set_heading_deg(std::atof(fields[2].c_str()));
+    if (fields.size() > 3 && !fields[3].empty()) point->set_speed_mps(std::atof(fields[3].c_str()));
+    if (fields.size() > 4) {
+      v1::MsoMode mode = v1::MSO_MODE_UNSPECIFIED;
+      if (!v1::MsoMode_Parse("MSO_MODE_" + fields[4], &mode)) {
+        return absl::InvalidArgumentError(path + ":" + std::to_string(number) + ": unknown mode '" +
+                                          fields[4] + "' (expected PTO, MEC or PTI)");
+      }
+      point->set_mode(mode);
+    }
+  }
+  if (request->track_size() == 0) return absl::InvalidArgumentError(path + ": the track has no points");
+  return absl::OkStatus();
+}
+
+int RunRisk(const GlobalOptions& options, const RouteArgs& args) {
+  auto backend = MakeBackend(options);
+  v1::EstimateRiskRequest request;
+  if (auto s = ReadTrack(args.track, &request); !s.ok()) return ReportError(std::cerr, s);
+  if (auto s = ResolveChart(*backend, args, request.mutable_chart_id()); !s.ok()) {
+    return ReportError(std::cerr, s);
+  }
+  FillEnvironment(args, request.mutable_environment());
+  request.set_ttg_horizon_s(args.horizon_s);
+  v1::EstimateRiskResponse response;
+  if (auto s = backend->EstimateRisk(request, &response); !s.ok()) return ReportError(std::cerr, s);
+  PrintJsonOr(options, response, [&] { PrintRisk(std::cout, response); });
+  return kExitSuccess;
+}
+
+// ---- missions -------------------------------------------------------------
+
+struct MissionArgs {
+  std::string spec, domain, problem, id, reason;
+  int after_version = 0;
+  std::int64_t after_event = 0;
+  bool follow = true;
+};
+
+int RunMissionCreate(const GlobalOptions& options, const MissionArgs& args) {
+  v1::CreateMissionRequest request;
+  if (!args.spec.empty()) {
+    std::string json;
+    if (auto s = ReadFile(args.spec, &json); !s.ok()) return ReportError(std::cerr, s);
+    auto parsed = google::protobuf::util::JsonStringToMessage(json, request.mutable_spec());
+    if (!parsed.ok()) {
+      return ReportError(std::cerr, absl::InvalidArgumentError(args.spec + ": not a MissionSpec in JSON: " +
+                                                               std::string(parsed.message())));
+    }
+  }
+  if (!args.domain.empty()) {
+    if (auto s = ReadFile(args.domain, request.mutable_spec()->mutable_domain()); !s.ok()) return ReportError(std::cerr, s);
+  }
+  if (!args.problem.empty()) {
+    if (auto s = ReadFile(args.problem, request.mutable_spec()->mutable_problem()); !s.ok()) return ReportError(std::cerr, s);
+  }
+  v1::Mission mission;
+  if (auto s = MakeBackend(options)->CreateMission(request, &mission); !s.ok()) return ReportError(std::cerr, s);
+  PrintJsonOr(options, mission, [&] { PrintMission(std::cout, mission); });
+  return kExitSuccess;
+}
+
+int RunMissionGet(const GlobalOptions& options, const std::string& id) {
+  v1::GetMissionRequest request;
+  request.set_mission_id(id);
+  v1::Mission mission;
+  if (auto s = MakeBackend(options)->GetMission(request, &mission); !s.ok()) return ReportError(std::cerr, s);
+  PrintJsonOr(options, mission, [&] { PrintMission(std::cout, mission); });
+  return kExitSuccess;
+}
+
+int RunMissionList(const GlobalOptions& options) {
+  v1::ListMissionsRequest request;
+  auto backend = MakeBackend(options);
+  v1::ListMissionsResponse all;
+  do {
+    v1::ListMissionsResponse page;
+    if (auto s = backend->ListMissions(request, &page); !s.ok()) return ReportError(std::cerr, s);
+    for (const auto& m : page.missions()) *all.add_missions() = m;
+    request.set_page_token(page.next_page_token());
+  } while (!request.page_token().empty());
+  PrintJsonOr(options, all, [&] {
+    if (all.missions_size() == 0) std::cout << "no missions\n";
+    for (const auto& m : all.missions()) PrintMission(std::cout, m);
+  });
+  return kExitSuccess;
+}
+
+bool IsFinal(v1::MissionState state) {
+  return state == v1::MISSION_STATE_COMPLETED || state == v1::MISSION_STATE_FAILED ||
+         state == v1::MISSION_STATE_CANCELLED;
+}
+
+int RunMissionWatch(const GlobalOptions& options, const MissionArgs& args) {
+  v1::WatchMissionRequest request;
+  request.set_mission_id(args.id);
+  request.set_after_version(args.after_version);
+  request.set_after_event_id(args.after_event);
+  auto status = MakeBackend(options)->WatchMission(request, [&](const v1::MissionEvent& event) {
+    if (options.json) {
+      std::cout << ToJson(event) << "\n" << std::flush;
+    } else if (event.has_plan_version()) {
+      PrintPlanVersion(std::cout, event.plan_version());
+    } else if (event.has_log()) {
+      PrintLogEvent(std::cout, event.log());
+    } else if (event.has_mission()) {
+      PrintMission(std::cout, event.mission());
+    }
+    std::cout << std::flush;
+    return args.follow && !(event.has_mission() && IsFinal(event.mission().state()));
+  });
+  if (!status.ok()) return ReportError(std::cerr, status);
+  return kExitSuccess;
+}
+
+int RunMissionReplan(const GlobalOptions& options, const MissionArgs& args) {
+  v1::RequestReplanRequest request;
+  request.set_mission_id(args.id);
+  request.set_reason(args.reason.empty() ? "operator request" : args.reason);
+  v1::RequestReplanResponse response;
+  if (auto s = MakeBackend(options)->RequestReplan(request, &response); !s.ok()) return ReportError(std::cerr, s);
+  PrintJsonOr(options, response, [&] { PrintPlanVersion(std::cout, response.version()); });
+  return kExitSuccess;
+}
+
+int RunMissionCancel(const GlobalOptions& options, const MissionArgs& args) {
+  v1::CancelMissionRequest request;
+  request.set_mission_id(args.id);
+  request.set_reason(args.reason.empty() ? "cancelled by operator" : args.reason);
+  v1::Mission mission;
+  if (auto s = MakeBackend(options)->CancelMission(request, &mission); !s.ok()) return ReportError(std::cerr, s);
+  PrintJsonOr(options, mission, [&] { PrintMission(std::cout, mission); });
+  return kExitSuccess;
+}
+
+void AddRouteOptions(CLI::App* command, RouteArgs& args) {
+  command->add_option("--chart", args.chart_id, "Chart id on the server");
+  command->add_option("--chart-file", args.chart_file.files, "Chart file(s) to load (S-57 .000 + updates, GeoJSON, zip)");
+  command->add_option("--min-depth", args.chart_file.minimum_depth_m, "Minimum depth for --chart-file (m)");
+  command->add_option("--buffer", args.chart_file.safety_buffer_m, "Safety buffer for --chart-file (m)");
+  command->add_option("--wind-speed", args.wind_speed_mps, "Wind speed (m/s)");
+  command->add_option("--wind-from", args.wind_from_deg, "Direction the wind comes from (deg)");
+  command->add_option("--current-speed", args.current_speed_mps, "Current speed (m/s)");
+  command->add_option("--current-from", args.current_from_deg, "Direction the current comes from (deg)");
+  command->add_option("--horizon", args.horizon_s, "Time-to-grounding horizon (s), default 600");
+}
+
+}  // namespace
+
+int Main(int argc, char** argv) {
+  CLI::App app{"seaplan: mission planning for autonomous ships (operator CLI)"};
+  app.require_subcommand(1);
+  GlobalOptions options;
+  if (const char* env = std::getenv("SEAPLAN_SERVER")) options.server = env;
+  app.add_option("--server", options.server,
+                 "Server address host:port (env SEAPLAN_SERVER); in-process when empty");
+  app.add_flag("--json", options.json, "Machine-readable JSON output");
+  app.add_option("--timeout", options.timeout_s, "RPC deadline in seconds (0: none)");
+
+  int exit_code = kExitSuccess;
+
+  PlanArgs plan;
+  auto* plan_cmd = app.add_subcommand("plan", "Plan a PDDL 2.1 temporal problem");
+  plan_cmd->add_option("domain", plan.domain, "Domain file")->required();
+  plan_cmd->add_option("problem", plan.problem, "Problem file")->required();
+  plan_cmd->add_option("--time-limit", plan.time_limit_s, "Time limit (s)")->capture_default_str();
+  plan_cmd->add_option("--memory-limit", plan.memory_limit_mb, "Memory limit (MB), default 2048");
+  plan_cmd->add_option("--max-concurrent", plan.max_concurrent, "Most actions running at once (0: any)");
+  plan_cmd->add_flag("--no-anytime", plan.no_anytime, "Stop at the first plan");
+  plan_cmd->add_option("--seed", plan.seed, "Random seed")->capture_default_str();
+  plan_cmd->add_option("--epsilon", plan.epsilon_s, "Separation of interfering events (s), default 0.001");
+  plan_cmd->add_flag("--stream", plan.stream, "Show progress and each improved plan");
+  plan_cmd->add_option("-o,--output", plan.output, "Write the plan to this file");
+  plan_cmd->callback([&] { exit_code = RunPlan(options, plan); });
+
+  std::string v_domain, v_problem, v_plan;
+  double v_epsilon = 0;
+  auto* validate_cmd = app.add_subcommand("validate", "Validate a temporal plan");
+  validate_cmd->add_option("domain", v_domain, "Domain file")->required();
+  validate_cmd->add_option("problem", v_problem, "Problem file")->required();
+  validate_cmd->add_option("plan", v_plan, "Plan file (IPC format)")->required();
+  validate_cmd->add_option("--epsilon", v_epsilon, "Separation of interfering events (s), default 0.001");
+  validate_cmd->callback([&] { exit_code = RunValidate(options, v_domain, v_problem, v_plan, v_epsilon); });
+
+  auto* chart_cmd = app.add_subcommand("chart", "Upload, list and show charts");
+  chart_cmd->require_subcommand(1);
+  ChartArgs chart;
+  auto* upload_cmd = chart_cmd->add_subcommand("upload", "Upload a chart");
+  upload_cmd->add_option("files", chart.files, "S-57 .000 (+ .001 ...), GeoJSON, or zip")->required();
+  upload_cmd->add_option("--name", chart.name, "Chart name");
+  upload_cmd->add_option("--format", chart.format, "auto, s57, geojson or zip");
+  upload_cmd->add_option("--min-depth", chart.minimum_depth_m, "Minimum depth (m), default 10");
+  upload_cmd->add_option("--buffer", chart.safety_buffer_m, "Safety buffer (m), default 10");
+  upload_cmd->callback([&] { exit_code = RunChartUpload(options, chart); });
+  chart_cmd->add_subcommand("list", "List charts")->callback([&] { exit_code = RunChartList(options); });
+  std::string chart_id, chart_geojson;
+  auto* get_cmd = chart_cmd->add_subcommand("get", "Show a chart");
+  get_cmd->add_option("id", chart_id, "Chart id")->required();
+  get_cmd->add_option("--geojson", chart_geojson, "Write the obstacles as GeoJSON to this file");
+  get_cmd->callback([&] { exit_code = RunChartGet(options, chart_id, chart_geojson); });
+
+  RouteArgs route;
+  auto* route_cmd = app.add_subcommand("route", "Plan a risk-aware route with its MSO mode schedule");
+  AddRouteOptions(route_cmd, route);
+  route_cmd->add_option("--from", route.from, "Start LAT,LON")->required();
+  route_cmd->add_option("--to", route.to, "Goal LAT,LON")->required();
+  route_cmd->add_option("--particles", route.particles, "PSO particles, default 30");
+  route_cmd->add_option("--iterations", route.iterations, "PSO iterations, default 100");
+  route_cmd->add_option("--segments", route.segments, "Segments per alternative, default 20");
+  route_cmd->add_option("--seed", route.seed, "Random seed");
+  route_cmd->add_option("--safety-distance", route.safety_distance_m, "Level-1 margin (m), default 50");
+  route_cmd->add_option("--speed", route.speed_mps, "Planning speed (m/s)");
+  route_cmd->add_option("--geojson", route.geojson, "Write routes and obstacles as GeoJSON");
+  route_cmd->callback([&] { exit_code = RunRoute(options, route); });
+
+  RouteArgs risk;
+  auto* risk_cmd = app.add_subcommand("risk", "Grounding risk along a route or track");
+  AddRouteOptions(risk_cmd, risk);
+  risk_cmd->add_option("--track", risk.track, "CSV: lat,lon[,heading_deg[,speed_mps[,mode]]] per line")->required();
+  risk_cmd->callback([&] { exit_code = RunRisk(options, risk); });
+
+  auto* mission_cmd = app.add_subcommand("mission", "Create, watch and steer missions");
+  mission_cmd->require_subcommand(1);
+  MissionArgs mission;
+  auto* create_cmd = mission_cmd->add_subcommand("create", "Create a mission");
+  create_cmd->add_option("--spec", mission.spec, "MissionSpec as JSON");
+  create_cmd->add_option("--domain", mission.domain, "PDDL domain (overrides the spec's)");
+  create_cmd->add_option("--problem", mission.problem, "PDDL problem (overrides the spec's)");
+  create_cmd->callback([&] { exit_code = RunMissionCreate(options, mission); });
+  auto* mget_cmd = mission_cmd->add_subcommand("get", "Show a mission");
+  mget_cmd->add_option("id", mission.id, "Mission id")->required();
+  mget_cmd->callback([&] { exit_code = RunMissionGet(options, mission.id); });
+  mission_cmd->add_subcommand("list", "List missions")->callback([&] { exit_code = RunMissionList(options); });
+  auto* watch_cmd = mission_cmd->add_subcommand("watch", "Follow a mission's plan versions and log");
+  watch_cmd->add_option("id", mission.id, "Mission id")->required();
+  watch_cmd->add_option("--after-version", mission.after_version, "Resume after this plan version");
+  watch_cmd->add_option("--after-event", mission.after_event, "Resume after this log event id");
+  watch_cmd->callback([&] { exit_code = RunMissionWatch(options, mission); });
+  auto* replan_cmd = mission_cmd->add_subcommand("replan", "Ask for a new plan");
+  replan_cmd->add_option("id", mission.id, "Mission id")->required();
+  replan_cmd->add_option("--reason", mission.reason, "Why");
+  replan_cmd->callback([&] { exit_code = RunMissionReplan(options, mission); });
+  auto* cancel_cmd = mission_cmd->add_subcommand("cancel", "Cancel a mission");
+  cancel_cmd->add_option("id", mission.id, "Mission id")->required();
+  cancel_cmd->add_option("--reason", mission.reason, "Why");
+  cancel_cmd->callback([&] { exit_code = RunMissionCancel(options, mission); });
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    const int code = app.exit(e);
+    return code == 0 ? kExitSuccess : kExitBadInput;
+  }
+  return exit_code;
+}
+
+}  // namespace seaplan::cli
+
+int main(int argc, char** argv) { return seaplan::cli::Main(argc, argv); }

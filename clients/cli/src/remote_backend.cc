@@ -1,0 +1,137 @@
+#include <chrono>
+
+#include "absl/strings/cord.h"
+#include "backend.h"
+#include "output.h"
+#include "grpcpp/grpcpp.h"
+#include "seaplan/v1/chart.grpc.pb.h"
+#include "seaplan/v1/mission.grpc.pb.h"
+#include "seaplan/v1/planning.grpc.pb.h"
+#include "seaplan/v1/route.grpc.pb.h"
+
+namespace seaplan::cli {
+namespace {
+
+absl::Status FromGrpc(const grpc::Status& status) {
+  if (status.ok()) return absl::OkStatus();
+  // gRPC and absl share the canonical code numbering.
+  absl::Status result(static_cast<absl::StatusCode>(status.error_code()), status.error_message());
+  // The server puts a serialized DiagnosticList into error_details.
+  if (!status.error_details().empty()) {
+    result.SetPayload(kDiagnosticsPayloadUrl, absl::Cord(status.error_details()));
+  }
+  return result;
+}
+
+class RemoteBackend final : public Backend {
+ public:
+  RemoteBackend(const std::string& address, double timeout_s)
+      : channel_(grpc::CreateChannel(address, grpc::InsecureChannelCredentials())),
+        planning_(v1::PlanningService::NewStub(channel_)),
+        charts_(v1::ChartService::NewStub(channel_)),
+        routes_(v1::RouteService::NewStub(channel_)),
+        missions_(v1::MissionService::NewStub(channel_)),
+        timeout_s_(timeout_s) {}
+
+  absl::Status Plan(const v1::PlanRequest& request, v1::PlanResponse* response) override {
+    auto context = MakeContext();
+    return FromGrpc(planning_->Plan(context.get(), request, response));
+  }
+  absl::Status PlanStream(const v1::PlanRequest& request,
+                          const std::function<void(const v1::PlanStreamEvent&)>& on_event) override {
+    auto context = MakeContext();
+    auto reader = planning_->PlanStream(context.get(), request);
+    v1::PlanStreamEvent event;
+    while (reader->Read(&event)) on_event(event);
+    return FromGrpc(reader->Finish());
+  }
+  absl::Status Validate(const v1::ValidateRequest& request, v1::ValidateResponse* response) override {
+    auto context = MakeContext();
+    return FromGrpc(planning_->Validate(context.get(), request, response));
+  }
+  absl::Status UploadChart(const v1::UploadChartRequest& request,
+                           v1::UploadChartResponse* response) override {
+    auto context = MakeContext();
+    return FromGrpc(charts_->UploadChart(context.get(), request, response));
+  }
+  absl::Status GetChart(const v1::GetChartRequest& request, v1::GetChartResponse* response) override {
+    auto context = MakeContext();
+    return FromGrpc(charts_->GetChart(context.get(), request, response));
+  }
+  absl::Status ListCharts(const v1::ListChartsRequest& request,
+                          v1::ListChartsResponse* response) override {
+    auto context = MakeContext();
+    return FromGrpc(charts_->ListCharts(context.get(), request, response));
+  }
+  absl::Status PlanRoute(const v1::PlanRouteRequest& request,
+                         v1::PlanRouteResponse* response) override {
+    auto context = MakeContext();
+    return FromGrpc(routes_->PlanRoute(context.get(), request, response));
+  }
+  absl::Status EstimateRisk(const v1::EstimateRiskRequest& request,
+                            v1::EstimateRiskResponse* response) override {
+    auto context = MakeContext();
+    return FromGrpc(routes_->EstimateRisk(context.get(), request, response));
+  }
+  absl::Status CreateMission(const v1::CreateMissionRequest& request, v1::Mission* response) override {
+    auto context = MakeContext();
+    return FromGrpc(missions_->CreateMission(context.get(), request, response));
+  }
+  absl::Status GetMission(const v1::GetMissionRequest& request, v1::Mission* response) override {
+    auto context = MakeContext();
+    return FromGrpc(missions_->GetMission(context.get(), request, response));
+  }
+  absl::Status ListMissions(const v1::ListMissionsRequest& request,
+                            v1::ListMissionsResponse* response) override {
+    auto context = MakeContext();
+    return FromGrpc(missions_->ListMissions(context.get(), request, response));
+  }
+  absl::Status WatchMission(const v1::WatchMissionRequest& request,
+                            const std::function<bool(const v1::MissionEvent&)>& on_event) override {
+    grpc::ClientContext context;  // a watch has no deadline: it follows the mission
+    auto reader = missions_->WatchMission(&context, request);
+    v1::MissionEvent event;
+    while (reader->Read(&event)) {
+      if (!on_event(event)) {
+        context.TryCancel();
+        reader->Finish();
+        return absl::OkStatus();
+      }
+    }
+    return FromGrpc(reader->Finish());
+  }
+  absl::Status RequestReplan(const v1::RequestReplanRequest& request,
+                             v1::RequestReplanResponse* response) override {
+    auto context = MakeContext();
+    return FromGrpc(missions_->RequestReplan(context.get(), request, response));
+  }
+  absl::Status CancelMission(const v1::CancelMissionRequest& request, v1::Mission* response) override {
+    auto context = MakeContext();
+    return FromGrpc(missions_->CancelMission(context.get(), request, response));
+  }
+
+ private:
+  std::unique_ptr<grpc::ClientContext> MakeContext() const {
+    auto context = std::make_unique<grpc::ClientContext>();
+    if (timeout_s_ > 0) {
+      context->set_deadline(std::chrono::system_clock::now() +
+                            std::chrono::milliseconds(static_cast<long long>(timeout_s_ * 1000)));
+    }
+    return context;
+  }
+
+  std::shared_ptr<grpc::Channel> channel_;
+  std::unique_ptr<v1::PlanningService::Stub> planning_;
+  std::unique_ptr<v1::ChartService::Stub> charts_;
+  std::unique_ptr<v1::RouteService::Stub> routes_;
+  std::unique_ptr<v1::MissionService::Stub> missions_;
+  double timeout_s_;
+};
+
+}  // namespace
+
+std::unique_ptr<Backend> MakeRemoteBackend(const std::string& address, double timeout_s) {
+  return std::make_unique<RemoteBackend>(address, timeout_s);
+}
+
+}  // namespace seaplan::cli
