@@ -9,7 +9,7 @@ set -euo pipefail
 
 runtime_packages=(
   libgrpc++1.51 libprotobuf32 libsqlite3-0 libgeos-c1v5 libgdal32 libnlopt-cxx0
-  libpagmo9 libspdlog1.10 ca-certificates
+  libpagmo8 libspdlog1.10 libabsl20220623 libfmt9 ca-certificates
 )
 build_packages=(
   build-essential cmake ninja-build pkg-config git

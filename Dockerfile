@@ -1,0 +1,20 @@
+# seaplan server image: a thin wrapper over the tested scripts.
+#   docker build -t seaplan .
+#   docker run -p 50051:50051 -p 8080:8080 -v seaplan-data:/data seaplan
+FROM debian:12 AS build
+WORKDIR /src
+COPY scripts/install-deps.sh scripts/install-deps.sh
+RUN bash scripts/install-deps.sh
+COPY . .
+RUN CMAKE_ARGS="-DSEAPLAN_BUILD_TESTS=OFF -DSEAPLAN_BUILD_BENCH=OFF" BUILD_TYPE=Release bash scripts/build.sh
+
+FROM debian:12 AS runtime
+COPY scripts/install-deps.sh /tmp/install-deps.sh
+RUN bash /tmp/install-deps.sh --runtime && rm -rf /var/lib/apt/lists/* /tmp/install-deps.sh
+COPY --from=build /src/build/bin/seaplan-server /src/build/bin/seaplan /src/build/bin/seaplan-sim /usr/local/bin/
+COPY --from=build /src/examples /usr/share/seaplan/examples
+VOLUME /data
+EXPOSE 50051 8080
+# Listen on all interfaces inside the container; the host decides what to publish.
+ENV SEAPLAN_GRPC_ADDR=0.0.0.0:50051 SEAPLAN_HTTP_ADDR=0.0.0.0:8080 SEAPLAN_DATA_DIR=/data
+ENTRYPOINT ["/usr/local/bin/seaplan-server"]
