@@ -1,0 +1,197 @@
+// Persistence interfaces of the seaplan server: charts, missions, plan
+// versions, feedback and the mission log.
+//
+// Overview
+//   The server talks to storage only through these abstract repositories, so
+//   another backend (PostgreSQL, an in-memory fake) can be added without
+//   touching the service layer. The SQLite implementation is in
+//   sqlite_store.h. Records are plain structs; structured payloads (the
+//   mission spec, a plan version, a feedback report, chart summaries) are
+//   opaque byte blobs that the caller serialises (the server stores
+//   serialised seaplan.v1 protos), so storage never interprets them.
+//
+// Durability and atomicity
+//   Every method that writes commits before it returns OK: when a caller has
+//   an OK it may acknowledge the write to its client. Every method that
+//   writes several rows (a mission with its first version and log events, a
+//   feedback report with its log events and the mission update) does so in
+//   one transaction: on any error nothing of it is stored.
+//
+// Errors
+//   NotFound (no such mission / chart / version), AlreadyExists (duplicate
+//   id or request id), Aborted (a concurrent writer got there first, e.g. the
+//   expected plan version is no longer next), InvalidArgument (bad page
+//   token, a value a constraint rejects), Internal / Unavailable (the
+//   database itself failed).
+//
+// Thread-safety: implementations must be safe to call from any thread.
+#pragma once
+
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "seaplan/common/status.h"
+
+namespace seaplan::storage {
+
+// Milliseconds since the Unix epoch (UTC).
+using TimestampMs = std::int64_t;
+
+// A page of a listing. `next_after` is the cursor to pass as `after` for the
+// next page; 0 when this page is the last one.
+template <typename T>
+struct Page {
+  std::vector<T> items;
+  std::int64_t next_after = 0;
+};
+
+struct ChartRecord {
+  std::int64_t seq = 0;  // insertion order (assigned by storage; listing cursor)
+  std::string id;
+  std::string name;
+  int format = 0;               // seaplan.v1.ChartFormat value
+  std::string options;          // opaque blob (load options)
+  std::string summary;          // opaque blob (obstacle summary)
+  std::string obstacles;        // opaque blob (serialised obstacle map); may be large
+  std::string source_files;     // opaque blob (original upload); may be empty
+  TimestampMs created_at_ms = 0;
+};
+
+class ChartRepository {
+ public:
+  virtual ~ChartRepository() = default;
+  // Stores a new chart (seq is assigned). AlreadyExists when the id is taken.
+  virtual absl::StatusOr<ChartRecord> Insert(ChartRecord chart) = 0;
+  // NotFound when absent. `with_blobs` false leaves obstacles and
+  // source_files empty (listing screens do not need megabytes).
+  virtual absl::StatusOr<ChartRecord> Get(const std::string& id, bool with_blobs) = 0;
+  // Charts with seq > after, oldest first, at most page_size (1..1000), without blobs.
+  virtual absl::StatusOr<Page<ChartRecord>> List(int page_size, std::int64_t after) = 0;
+};
+
+struct MissionRecord {
+  std::int64_t seq = 0;  // insertion order (assigned by storage)
+  std::string id;
+  std::string name;
+  std::string vessel_id;
+  std::string request_id;       // client idempotency key; empty = none
+  std::string spec;             // opaque blob (the mission spec)
+  int state = 0;                // seaplan.v1.MissionState value
+  int current_version = 0;      // 0 = no plan yet
+  TimestampMs created_at_ms = 0;
+  TimestampMs updated_at_ms = 0;
+  std::string last_state;       // opaque blob (last reported ship state); may be empty
+  std::vector<std::string> completed_tasks;
+  std::string failure_reason;
+};
+
+// A partial update of a mission; unset fields keep their value.
+struct MissionUpdate {
+  std::optional<int> state;
+  std::optional<std::string> last_state;
+  std::optional<std::vector<std::string>> completed_tasks;
+  std::optional<std::string> failure_reason;
+};
+
+struct PlanVersionRecord {
+  std::string mission_id;
+  int version = 0;  // 1, 2, 3 ... per mission, never reused, never changed
+  std::string reason;
+  TimestampMs created_at_ms = 0;
+  std::string content;  // opaque blob (the plan version)
+  // Opaque state the mission engine keeps with a version (e.g. locations a
+  // replan added); empty when it keeps none.
+  std::string engine_state;
+};
+
+struct FeedbackRecord {
+  std::string mission_id;
+  std::string vessel_id;
+  std::int64_t sequence_number = 0;  // unique per vessel
+  int kind = 0;                      // seaplan.v1.Feedback.Kind value
+  std::string payload;               // opaque blob (the report)
+  TimestampMs received_at_ms = 0;
+};
+
+// A log event to append; the event id is assigned by storage.
+struct NewLogEvent {
+  TimestampMs time_ms = 0;
+  double mission_time_s = 0.0;
+  std::string source;  // "server" or a vessel id; must not be empty
+  std::string message;
+};
+
+struct LogEventRecord {
+  std::string mission_id;
+  std::int64_t event_id = 0;  // 1, 2, 3 ... per mission
+  TimestampMs time_ms = 0;
+  double mission_time_s = 0.0;
+  std::string source;
+  std::string message;
+};
+
+class MissionRepository {
+ public:
+  virtual ~MissionRepository() = default;
+
+  // Stores a new mission together with its first plan version (version must
+  // be 1; mission.current_version is set to 1) and log events, atomically.
+  // AlreadyExists when the id or the non-empty request_id is taken.
+  virtual absl::Status Create(const MissionRecord& mission, const PlanVersionRecord& first_version,
+                              const std::vector<NewLogEvent>& events) = 0;
+  virtual absl::StatusOr<MissionRecord> Get(const std::string& id) = 0;
+  // The mission created with this idempotency key, if any.
+  virtual absl::StatusOr<std::optional<MissionRecord>> FindByRequestId(const std::string& request_id) = 0;
+  // Missions with seq > after (oldest first), optionally only in `state`
+  // (0 = all), at most page_size (1..1000).
+  virtual absl::StatusOr<Page<MissionRecord>> List(int state, int page_size, std::int64_t after) = 0;
+
+  // Applies `update` and appends `events` atomically. NotFound when absent.
+  virtual absl::Status Update(const std::string& id, const MissionUpdate& update,
+                              const std::vector<NewLogEvent>& events) = 0;
+
+  // Appends plan version `version.version`, which must be the mission's
+  // current_version + 1 (Aborted otherwise: someone else appended first),
+  // sets current_version to it, applies `update` and appends `events`, all
+  // in one transaction. Versions are immutable once stored.
+  virtual absl::Status AppendVersion(const PlanVersionRecord& version, const MissionUpdate& update,
+                                     const std::vector<NewLogEvent>& events) = 0;
+  virtual absl::StatusOr<PlanVersionRecord> GetVersion(const std::string& mission_id, int version) = 0;
+  // Versions > after_version in order, at most `limit`.
+  virtual absl::StatusOr<std::vector<PlanVersionRecord>> ListVersions(const std::string& mission_id,
+                                                                       int after_version, int limit) = 0;
+
+  // Stores a feedback report unless (vessel_id, sequence_number) is already
+  // stored. When new: also applies `update` and appends `events` in the same
+  // transaction, and returns true. When already stored: changes nothing and
+  // returns false (the caller answers "duplicate").
+  virtual absl::StatusOr<bool> RecordFeedback(const FeedbackRecord& feedback, const MissionUpdate& update,
+                                              const std::vector<NewLogEvent>& events) = 0;
+  virtual absl::StatusOr<std::optional<FeedbackRecord>> FindFeedback(const std::string& vessel_id,
+                                                                      std::int64_t sequence_number) = 0;
+  // Feedback of a mission in arrival order, at most `limit`.
+  virtual absl::StatusOr<std::vector<FeedbackRecord>> ListFeedback(const std::string& mission_id,
+                                                                   int limit) = 0;
+
+  // Appends log events (ids assigned in order) and returns them.
+  virtual absl::StatusOr<std::vector<LogEventRecord>> AppendEvents(const std::string& mission_id,
+                                                                   const std::vector<NewLogEvent>& events) = 0;
+  // Events with id > after_event_id in order, at most `limit`.
+  virtual absl::StatusOr<std::vector<LogEventRecord>> ListEvents(const std::string& mission_id,
+                                                                 std::int64_t after_event_id, int limit) = 0;
+};
+
+// One open database: the repositories over it.
+class Store {
+ public:
+  virtual ~Store() = default;
+  virtual ChartRepository& charts() = 0;
+  virtual MissionRepository& missions() = 0;
+  // Flushes and closes; later calls fail with FailedPrecondition. Also done
+  // by the destructor.
+  virtual absl::Status Close() = 0;
+};
+
+}  // namespace seaplan::storage

@@ -1,0 +1,679 @@
+#include "seaplan/storage/sqlite_store.h"
+
+#include <sqlite3.h>
+
+#include <mutex>
+#include <string_view>
+
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_join.h"
+#include "absl/strings/str_split.h"
+#include "seaplan/common/log.h"
+
+namespace seaplan::storage {
+namespace {
+
+// The migration list. NEVER edit a released entry: add a new one. Each runs
+// in one transaction with the bump of PRAGMA user_version to `version`.
+struct Migration {
+  int version;
+  const char* description;
+  const char* sql;
+};
+
+constexpr Migration kMigrations[] = {
+    {1, "charts, missions, plan versions, feedback, log events", R"sql(
+CREATE TABLE charts (
+  seq INTEGER PRIMARY KEY AUTOINCREMENT,
+  id TEXT NOT NULL UNIQUE,
+  name TEXT NOT NULL,
+  format INTEGER NOT NULL,
+  options BLOB NOT NULL,
+  summary BLOB NOT NULL,
+  obstacles BLOB NOT NULL,
+  created_at_ms INTEGER NOT NULL);
+CREATE TABLE missions (
+  seq INTEGER PRIMARY KEY AUTOINCREMENT,
+  id TEXT NOT NULL UNIQUE,
+  name TEXT NOT NULL,
+  vessel_id TEXT NOT NULL,
+  spec BLOB NOT NULL,
+  state INTEGER NOT NULL,
+  current_version INTEGER NOT NULL DEFAULT 0,
+  created_at_ms INTEGER NOT NULL,
+  updated_at_ms INTEGER NOT NULL,
+  last_state BLOB NOT NULL DEFAULT x'',
+  failure_reason TEXT NOT NULL DEFAULT '');
+CREATE INDEX missions_by_state ON missions(state, seq);
+CREATE TABLE plan_versions (
+  mission_id TEXT NOT NULL REFERENCES missions(id),
+  version INTEGER NOT NULL CHECK (version >= 1),
+  reason TEXT NOT NULL,
+  created_at_ms INTEGER NOT NULL,
+  content BLOB NOT NULL,
+  PRIMARY KEY (mission_id, version)) WITHOUT ROWID;
+CREATE TRIGGER plan_versions_no_update BEFORE UPDATE ON plan_versions
+  BEGIN SELECT RAISE(ABORT, 'plan versions are immutable'); END;
+CREATE TRIGGER plan_versions_no_delete BEFORE DELETE ON plan_versions
+  BEGIN SELECT RAISE(ABORT, 'plan versions are immutable'); END;
+CREATE TABLE feedback (
+  seq INTEGER PRIMARY KEY AUTOINCREMENT,
+  mission_id TEXT NOT NULL REFERENCES missions(id),
+  vessel_id TEXT NOT NULL,
+  sequence_number INTEGER NOT NULL,
+  kind INTEGER NOT NULL,
+  payload BLOB NOT NULL,
+  received_at_ms INTEGER NOT NULL,
+  UNIQUE (vessel_id, sequence_number));
+CREATE INDEX feedback_by_mission ON feedback(mission_id, seq);
+CREATE TABLE log_events (
+  mission_id TEXT NOT NULL REFERENCES missions(id),
+  event_id INTEGER NOT NULL CHECK (event_id >= 1),
+  time_ms INTEGER NOT NULL,
+  mission_time_s REAL NOT NULL,
+  source TEXT NOT NULL CHECK (length(source) > 0),
+  message TEXT NOT NULL,
+  PRIMARY KEY (mission_id, event_id)) WITHOUT ROWID;
+)sql"},
+    {2, "mission idempotency keys and completed tasks; charts keep the uploaded files", R"sql(
+ALTER TABLE missions ADD COLUMN request_id TEXT;
+CREATE UNIQUE INDEX missions_by_request_id ON missions(request_id) WHERE request_id IS NOT NULL;
+ALTER TABLE missions ADD COLUMN completed_tasks TEXT NOT NULL DEFAULT '';
+ALTER TABLE charts ADD COLUMN source_files BLOB NOT NULL DEFAULT x'';
+ALTER TABLE plan_versions ADD COLUMN engine_state BLOB NOT NULL DEFAULT x'';
+)sql"},
+};
+
+absl::Status SqliteError(sqlite3* db, int rc, const char* what) {
+  const std::string msg = absl::StrCat(what, ": ", db ? sqlite3_errmsg(db) : sqlite3_errstr(rc));
+  switch (rc & 0xff) {
+    case SQLITE_CONSTRAINT:
+      if (rc == SQLITE_CONSTRAINT_UNIQUE || rc == SQLITE_CONSTRAINT_PRIMARYKEY) {
+        return absl::AlreadyExistsError(msg);
+      }
+      return absl::InvalidArgumentError(msg);
+    case SQLITE_BUSY:
+    case SQLITE_LOCKED:
+      return absl::UnavailableError(msg);
+    case SQLITE_FULL:
+      return absl::ResourceExhaustedError(msg);
+    default:
+      return absl::InternalError(msg);
+  }
+}
+
+// A prepared statement (RAII). Bind indexes are 1-based, columns 0-based.
+class Stmt {
+ public:
+  Stmt(sqlite3* db, std::string_view sql) : db_(db) {
+    const int rc = sqlite3_prepare_v2(db, sql.data(), static_cast<int>(sql.size()), &stmt_, nullptr);
+    if (rc != SQLITE_OK) status_ = SqliteError(db, rc, "prepare");
+  }
+  ~Stmt() { sqlite3_finalize(stmt_); }
+  Stmt(const Stmt&) = delete;
+  Stmt& operator=(const Stmt&) = delete;
+
+  const absl::Status& status() const { return status_; }
+
+  Stmt& Int(int i, std::int64_t v) { return Check(sqlite3_bind_int64(stmt_, i, v)); }
+  Stmt& Real(int i, double v) { return Check(sqlite3_bind_double(stmt_, i, v)); }
+  Stmt& Text(int i, std::string_view v) {
+    return Check(sqlite3_bind_text(stmt_, i, v.data(), static_cast<int>(v.size()), SQLITE_TRANSIENT));
+  }
+  Stmt& Blob(int i, std::string_view v) {
+    // A zero-length blob must not bind as NULL (NOT NULL columns).
+    if (v.empty()) return Check(sqlite3_bind_zeroblob(stmt_, i, 0));
+    return Check(sqlite3_bind_blob64(stmt_, i, v.data(), v.size(), SQLITE_TRANSIENT));
+  }
+  Stmt& Null(int i) { return Check(sqlite3_bind_null(stmt_, i)); }
+
+  // True when a row is available, false when done.
+  absl::StatusOr<bool> Step() {
+    if (!status_.ok()) return status_;
+    const int rc = sqlite3_step(stmt_);
+    if (rc == SQLITE_ROW) return true;
+    if (rc == SQLITE_DONE) return false;
+    status_ = SqliteError(db_, sqlite3_extended_errcode(db_), "step");
+    return status_;
+  }
+  // Runs a statement that returns no rows.
+  absl::Status Run() { return Step().status(); }
+
+  std::int64_t ColInt(int c) const { return sqlite3_column_int64(stmt_, c); }
+  double ColReal(int c) const { return sqlite3_column_double(stmt_, c); }
+  std::string ColText(int c) const {
+    const auto* p = reinterpret_cast<const char*>(sqlite3_column_text(stmt_, c));
+    return p ? std::string(p, static_cast<std::size_t>(sqlite3_column_bytes(stmt_, c))) : std::string();
+  }
+  std::string ColBlob(int c) const {
+    const auto* p = static_cast<const char*>(sqlite3_column_blob(stmt_, c));
+    return p ? std::string(p, static_cast<std::size_t>(sqlite3_column_bytes(stmt_, c))) : std::string();
+  }
+
+ private:
+  Stmt& Check(int rc) {
+    if (rc != SQLITE_OK && status_.ok()) status_ = SqliteError(db_, rc, "bind");
+    return *this;
+  }
+  sqlite3* db_;
+  sqlite3_stmt* stmt_ = nullptr;
+  absl::Status status_;
+};
+
+absl::Status Exec(sqlite3* db, const char* sql) {
+  char* err = nullptr;
+  const int rc = sqlite3_exec(db, sql, nullptr, nullptr, &err);
+  if (rc == SQLITE_OK) return absl::OkStatus();
+  std::string msg = err ? err : sqlite3_errstr(rc);
+  sqlite3_free(err);
+  absl::Status base = SqliteError(nullptr, sqlite3_extended_errcode(db), "exec");
+  return absl::Status(base.code(), absl::StrCat("sqlite: ", msg));
+}
+
+// Runs `body` inside BEGIN IMMEDIATE ... COMMIT; rolls back on any error so
+// nothing of a failed multi-statement write remains.
+template <typename F>
+absl::Status InTransaction(sqlite3* db, F&& body) {
+  SEAPLAN_RETURN_IF_ERROR(Exec(db, "BEGIN IMMEDIATE"));
+  absl::Status status = body();
+  if (status.ok()) status = Exec(db, "COMMIT");
+  if (!status.ok()) {
+    // ROLLBACK may fail if SQLite already rolled back (e.g. on SQLITE_FULL);
+    // that is fine: the transaction is gone either way.
+    (void)Exec(db, "ROLLBACK");
+  }
+  return status;
+}
+
+std::string JoinTasks(const std::vector<std::string>& tasks) { return absl::StrJoin(tasks, "\n"); }
+std::vector<std::string> SplitTasks(const std::string& text) {
+  if (text.empty()) return {};
+  return absl::StrSplit(text, '\n');
+}
+
+absl::Status CheckPageSize(int page_size) {
+  if (page_size < 1 || page_size > 1000) {
+    return absl::InvalidArgumentError(absl::StrCat("page size must be 1..1000, got ", page_size));
+  }
+  return absl::OkStatus();
+}
+
+}  // namespace
+
+int LatestSchemaVersion() { return kMigrations[std::size(kMigrations) - 1].version; }
+
+struct SqliteStore::Impl final : ChartRepository, MissionRepository {
+  sqlite3* db = nullptr;
+  std::mutex mu;
+
+  ~Impl() override { CloseLocked(); }
+
+  void CloseLocked() {
+    if (db == nullptr) return;
+    // Checkpoint so the main file holds everything and the -wal file is
+    // truncated: a clean close leaves one self-contained file.
+    sqlite3_wal_checkpoint_v2(db, nullptr, SQLITE_CHECKPOINT_TRUNCATE, nullptr, nullptr);
+    sqlite3_close_v2(db);
+    db = nullptr;
+  }
+
+  absl::Status Usable() const {
+    if (db == nullptr) return absl::FailedPreconditionError("database is closed");
+    return absl::OkStatus();
+  }
+
+  absl::StatusOr<int> UserVersion() {
+    Stmt s(db, "PRAGMA user_version");
+    SEAPLAN_ASSIGN_OR_RETURN(bool row, s.Step());
+    if (!row) return absl::InternalError("PRAGMA user_version returned nothing");
+    return static_cast<int>(s.ColInt(0));
+  }
+
+  absl::Status Migrate() {
+    SEAPLAN_ASSIGN_OR_RETURN(int current, UserVersion());
+    if (current > LatestSchemaVersion()) {
+      return absl::FailedPreconditionError(absl::StrCat(
+          "database schema version ", current, " is newer than this server knows (",
+          LatestSchemaVersion(), "); refusing to touch it"));
+    }
+    for (const Migration& m : kMigrations) {
+      if (m.version <= current) continue;
+      absl::Status st = InTransaction(db, [&]() -> absl::Status {
+        SEAPLAN_RETURN_IF_ERROR(Exec(db, m.sql));
+        return Exec(db, absl::StrCat("PRAGMA user_version = ", m.version).c_str());
+      });
+      if (!st.ok()) {
+        return absl::Status(st.code(), absl::StrCat("schema migration to version ", m.version, " (",
+                                                    m.description, ") failed: ", st.message()));
+      }
+      log::Info("storage: migrated schema to version {} ({})", m.version, m.description);
+    }
+    return absl::OkStatus();
+  }
+
+  // ---- log events (caller holds mu and is inside a transaction) ----
+  absl::StatusOr<std::vector<LogEventRecord>> AppendEventsLocked(const std::string& mission_id,
+                                                                 const std::vector<NewLogEvent>& events) {
+    std::vector<LogEventRecord> out;
+    if (events.empty()) return out;
+    Stmt next(db, "SELECT COALESCE(MAX(event_id), 0) FROM log_events WHERE mission_id = ?1");
+    next.Text(1, mission_id);
+    SEAPLAN_ASSIGN_OR_RETURN(bool row, next.Step());
+    std::int64_t id = row ? next.ColInt(0) : 0;
+    for (const NewLogEvent& e : events) {
+      Stmt ins(db,
+               "INSERT INTO log_events(mission_id, event_id, time_ms, mission_time_s, source, message) "
+               "VALUES (?1, ?2, ?3, ?4, ?5, ?6)");
+      ins.Text(1, mission_id).Int(2, ++id).Int(3, e.time_ms).Real(4, e.mission_time_s).Text(5, e.source).Text(6, e.message);
+      SEAPLAN_RETURN_IF_ERROR(ins.Run());
+      out.push_back({mission_id, id, e.time_ms, e.mission_time_s, e.source, e.message});
+    }
+    return out;
+  }
+
+  absl::Status ApplyUpdateLocked(const std::string& id, const MissionUpdate& u, TimestampMs now_ms) {
+    Stmt s(db,
+           "UPDATE missions SET state = COALESCE(?2, state), last_state = COALESCE(?3, last_state), "
+           "completed_tasks = COALESCE(?4, completed_tasks), failure_reason = COALESCE(?5, failure_reason), "
+           "updated_at_ms = ?6 WHERE id = ?1");
+    s.Text(1, id);
+    if (u.state) s.Int(2, *u.state); else s.Null(2);
+    if (u.last_state) s.Blob(3, *u.last_state); else s.Null(3);
+    if (u.completed_tasks) s.Text(4, JoinTasks(*u.completed_tasks)); else s.Null(4);
+    if (u.failure_reason) s.Text(5, *u.failure_reason); else s.Null(5);
+    s.Int(6, now_ms);
+    SEAPLAN_RETURN_IF_ERROR(s.Run());
+    if (sqlite3_changes(db) == 0) return absl::NotFoundError(absl::StrCat("mission '", id, "' not found"));
+    return absl::OkStatus();
+  }
+
+  static TimestampMs LatestTime(const std::vector<NewLogEvent>& events, TimestampMs fallback) {
+    TimestampMs t = fallback;
+    for (const auto& e : events) t = std::max(t, e.time_ms);
+    return t;
+  }
+
+  // ---- ChartRepository ----
+  absl::StatusOr<ChartRecord> Insert(ChartRecord c) override {
+    std::lock_guard lock(mu);
+    SEAPLAN_RETURN_IF_ERROR(Usable());
+    Stmt s(db,
+           "INSERT INTO charts(id, name, format, options, summary, obstacles, source_files, created_at_ms) "
+           "VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8)");
+    s.Text(1, c.id).Text(2, c.name).Int(3, c.format).Blob(4, c.options).Blob(5, c.summary)
+        .Blob(6, c.obstacles).Blob(7, c.source_files).Int(8, c.created_at_ms);
+    absl::Status st = s.Run();
+    if (absl::IsAlreadyExists(st)) return absl::AlreadyExistsError(absl::StrCat("chart '", c.id, "' exists"));
+    SEAPLAN_RETURN_IF_ERROR(st);
+    c.seq = sqlite3_last_insert_rowid(db);
+    return c;
+  }
+
+  static ChartRecord ReadChart(const Stmt& s, bool with_blobs) {
+    ChartRecord c;
+    c.seq = s.ColInt(0);
+    c.id = s.ColText(1);
+    c.name = s.ColText(2);
+    c.format = static_cast<int>(s.ColInt(3));
+    c.options = s.ColBlob(4);
+    c.summary = s.ColBlob(5);
+    c.created_at_ms = s.ColInt(6);
+    if (with_blobs) {
+      c.obstacles = s.ColBlob(7);
+      c.source_files = s.ColBlob(8);
+    }
+    return c;
+  }
+
+  absl::StatusOr<ChartRecord> Get(const std::string& id, bool with_blobs) override {
+    std::lock_guard lock(mu);
+    SEAPLAN_RETURN_IF_ERROR(Usable());
+    Stmt s(db, with_blobs ? "SELECT seq, id, name, format, options, summary, created_at_ms, obstacles, "
+                            "source_files FROM charts WHERE id = ?1"
+                          : "SELECT seq, id, name, format, options, summary, created_at_ms FROM charts "
+                            "WHERE id = ?1");
+    s.Text(1, id);
+    SEAPLAN_ASSIGN_OR_RETURN(bool row, s.Step());
+    if (!row) return absl::NotFoundError(absl::StrCat("chart '", id, "' not found"));
+    return ReadChart(s, with_blobs);
+  }
+
+  absl::StatusOr<Page<ChartRecord>> List(int page_size, std::int64_t after) override {
+    SEAPLAN_RETURN_IF_ERROR(CheckPageSize(page_size));
+    std::lock_guard lock(mu);
+    SEAPLAN_RETURN_IF_ERROR(Usable());
+    Stmt s(db, "SELECT seq, id, name, format, options, summary, created_at_ms FROM charts "
+               "WHERE seq > ?1 ORDER BY seq LIMIT ?2");
+    s.Int(1, after).Int(2, page_size + 1);
+    Page<ChartRecord> page;
+    while (true) {
+      SEAPLAN_ASSIGN_OR_RETURN(bool row, s.Step());
+      if (!row) break;
+      if (static_cast<int>(page.items.size()) == page_size) {
+        page.next_after = page.items.back().seq;
+        break;
+      }
+      page.items.push_back(ReadChart(s, false));
+    }
+    return page;
+  }
+
+  // ---- MissionRepository ----
+  static constexpr const char* kMissionColumns =
+      "seq, id, name, vessel_id, COALESCE(request_id, ''), spec, state, current_version, created_at_ms, "
+      "updated_at_ms, last_state, completed_tasks, failure_reason";
+
+  static MissionRecord ReadMission(const Stmt& s) {
+    MissionRecord m;
+    m.seq = s.ColInt(0);
+    m.id = s.ColText(1);
+    m.name = s.ColText(2);
+    m.vessel_id = s.ColText(3);
+    m.request_id = s.ColText(4);
+    m.spec = s.ColBlob(5);
+    m.state = static_cast<int>(s.ColInt(6));
+    m.current_version = static_cast<int>(s.ColInt(7));
+    m.created_at_ms = s.ColInt(8);
+    m.updated_at_ms = s.ColInt(9);
+    m.last_state = s.ColBlob(10);
+    m.completed_tasks = SplitTasks(s.ColText(11));
+    m.failure_reason = s.ColText(12);
+    return m;
+  }
+
+  absl::Status InsertVersionLocked(const PlanVersionRecord& v) {
+    Stmt s(db, "INSERT INTO plan_versions(mission_id, version, reason, created_at_ms, content, engine_state) "
+               "VALUES (?1, ?2, ?3, ?4, ?5, ?6)");
+    s.Text(1, v.mission_id).Int(2, v.version).Text(3, v.reason).Int(4, v.created_at_ms).Blob(5, v.content)
+        .Blob(6, v.engine_state);
+    return s.Run();
+  }
+
+  absl::Status Create(const MissionRecord& m, const PlanVersionRecord& first,
+                      const std::vector<NewLogEvent>& events) override {
+    if (first.version != 1 || first.mission_id != m.id) {
+      return absl::InvalidArgumentError("the first plan version must be version 1 of the same mission");
+    }
+    std::lock_guard lock(mu);
+    SEAPLAN_RETURN_IF_ERROR(Usable());
+    return InTransaction(db, [&]() -> absl::Status {
+      Stmt s(db,
+             "INSERT INTO missions(id, name, vessel_id, request_id, spec, state, current_version, created_at_ms, "
+             "updated_at_ms, last_state, completed_tasks, failure_reason) "
+             "VALUES (?1, ?2, ?3, ?4, ?5, ?6, 1, ?7, ?8, ?9, ?10, ?11)");
+      s.Text(1, m.id).Text(2, m.name).Text(3, m.vessel_id);
+      if (m.request_id.empty()) s.Null(4); else s.Text(4, m.request_id);
+      s.Blob(5, m.spec).Int(6, m.state).Int(7, m.created_at_ms).Int(8, m.updated_at_ms).Blob(9, m.last_state)
+          .Text(10, JoinTasks(m.completed_tasks)).Text(11, m.failure_reason);
+      absl::Status st = s.Run();
+      if (absl::IsAlreadyExists(st)) {
+        return absl::AlreadyExistsError(absl::StrCat("mission '", m.id, "' or request id '", m.request_id, "' exists"));
+      }
+      SEAPLAN_RETURN_IF_ERROR(st);
+      SEAPLAN_RETURN_IF_ERROR(InsertVersionLocked(first));
+      return AppendEventsLocked(m.id, events).status();
+    });
+  }
+
+  absl::StatusOr<MissionRecord> Get(const std::string& id) override {
+    std::lock_guard lock(mu);
+    SEAPLAN_RETURN_IF_ERROR(Usable());
+    Stmt s(db, absl::StrCat("SELECT ", kMissionColumns, " FROM missions WHERE id = ?1"));
+    s.Text(1, id);
+    SEAPLAN_ASSIGN_OR_RETURN(bool row, s.Step());
+    if (!row) return absl::NotFoundError(absl::StrCat("mission '", id, "' not found"));
+    return ReadMission(s);
+  }
+
+  absl::StatusOr<std::optional<MissionRecord>> FindByRequestId(const std::string& request_id) override {
+    std::lock_guard lock(mu);
+    SEAPLAN_RETURN_IF_ERROR(Usable());
+    Stmt s(db, absl::StrCat("SELECT ", kMissionColumns, " FROM missions WHERE request_id = ?1"));
+    s.Text(1, request_id);
+    SEAPLAN_ASSIGN_OR_RETURN(bool row, s.Step());
+    if (!row) return std::optional<MissionRecord>();
+    return std::optional<MissionRecord>(ReadMission(s));
+  }
+
+  absl::StatusOr<Page<MissionRecord>> List(int state, int page_size, std::int64_t after) override {
+    SEAPLAN_RETURN_IF_ERROR(CheckPageSize(page_size));
+    std::lock_guard lock(mu);
+    SEAPLAN_RETURN_IF_ERROR(Usable());
+    Stmt s(db, absl::StrCat("SELECT ", kMissionColumns,
+                            " FROM missions WHERE seq > ?1 AND (?2 = 0 OR state = ?2) ORDER BY seq LIMIT ?3"));
+    s.Int(1, after).Int(2, state).Int(3, page_size + 1);
+    Page<MissionRecord> page;
+    while (true) {
+      SEAPLAN_ASSIGN_OR_RETURN(bool row, s.Step());
+      if (!row) break;
+      if (static_cast<int>(page.items.size()) == page_size) {
+        page.next_after = page.items.back().seq;
+        break;
+      }
+      page.items.push_back(ReadMission(s));
+    }
+    return page;
+  }
+
+  absl::Status Update(const std::string& id, const MissionUpdate& update,
+                      const std::vector<NewLogEvent>& events) override {
+    std::lock_guard lock(mu);
+    SEAPLAN_RETURN_IF_ERROR(Usable());
+    return InTransaction(db, [&]() -> absl::Status {
+      SEAPLAN_RETURN_IF_ERROR(ApplyUpdateLocked(id, update, LatestTime(events, NowMs())));
+      return AppendEventsLocked(id, events).status();
+    });
+  }
+
+  absl::Status AppendVersion(const PlanVersionRecord& v, const MissionUpdate& update,
+                             const std::vector<NewLogEvent>& events) override {
+    std::lock_guard lock(mu);
+    SEAPLAN_RETURN_IF_ERROR(Usable());
+    return InTransaction(db, [&]() -> absl::Status {
+      Stmt cur(db, "SELECT current_version FROM missions WHERE id = ?1");
+      cur.Text(1, v.mission_id);
+      SEAPLAN_ASSIGN_OR_RETURN(bool row, cur.Step());
+      if (!row) return absl::NotFoundError(absl::StrCat("mission '", v.mission_id, "' not found"));
+      const std::int64_t current = cur.ColInt(0);
+      if (v.version != current + 1) {
+        return absl::AbortedError(absl::StrCat("plan version ", v.version, " of mission '", v.mission_id,
+                                               "' is not next (current is ", current, ")"));
+      }
+      SEAPLAN_RETURN_IF_ERROR(InsertVersionLocked(v));
+      Stmt bump(db, "UPDATE missions SET current_version = ?2 WHERE id = ?1");
+      bump.Text(1, v.mission_id).Int(2, v.version);
+      SEAPLAN_RETURN_IF_ERROR(bump.Run());
+      SEAPLAN_RETURN_IF_ERROR(AppendEventsLocked(v.mission_id, events).status());
+      return ApplyUpdateLocked(v.mission_id, update, std::max(v.created_at_ms, LatestTime(events, 0)));
+    });
+  }
+
+  static PlanVersionRecord ReadVersion(const Stmt& s) {
+    return {s.ColText(0), static_cast<int>(s.ColInt(1)), s.ColText(2), s.ColInt(3), s.ColBlob(4), s.ColBlob(5)};
+  }
+
+  absl::StatusOr<PlanVersionRecord> GetVersion(const std::string& mission_id, int version) override {
+    std::lock_guard lock(mu);
+    SEAPLAN_RETURN_IF_ERROR(Usable());
+    Stmt s(db, "SELECT mission_id, version, reason, created_at_ms, content, engine_state FROM plan_versions "
+               "WHERE mission_id = ?1 AND version = ?2");
+    s.Text(1, mission_id).Int(2, version);
+    SEAPLAN_ASSIGN_OR_RETURN(bool row, s.Step());
+    if (!row) return absl::NotFoundError(absl::StrCat("plan version ", version, " of mission '", mission_id, "' not found"));
+    return ReadVersion(s);
+  }
+
+  absl::StatusOr<std::vector<PlanVersionRecord>> ListVersions(const std::string& mission_id, int after_version,
+                                                              int limit) override {
+    std::lock_guard lock(mu);
+    SEAPLAN_RETURN_IF_ERROR(Usable());
+    Stmt s(db, "SELECT mission_id, version, reason, created_at_ms, content, engine_state FROM plan_versions "
+               "WHERE mission_id = ?1 AND version > ?2 ORDER BY version LIMIT ?3");
+    s.Text(1, mission_id).Int(2, after_version).Int(3, limit);
+    std::vector<PlanVersionRecord> out;
+    while (true) {
+      SEAPLAN_ASSIGN_OR_RETURN(bool row, s.Step());
+      if (!row) break;
+      out.push_back(ReadVersion(s));
+    }
+    return out;
+  }
+
+  absl::StatusOr<bool> RecordFeedback(const FeedbackRecord& f, const MissionUpdate& update,
+                                      const std::vector<NewLogEvent>& events) override {
+    std::lock_guard lock(mu);
+    SEAPLAN_RETURN_IF_ERROR(Usable());
+    bool inserted = false;
+    absl::Status result = InTransaction(db, [&]() -> absl::Status {
+      Stmt s(db,
+             "INSERT INTO feedback(mission_id, vessel_id, sequence_number, kind, payload, received_at_ms) "
+             "VALUES (?1, ?2, ?3, ?4, ?5, ?6) ON CONFLICT(vessel_id, sequence_number) DO NOTHING");
+      s.Text(1, f.mission_id).Text(2, f.vessel_id).Int(3, f.sequence_number).Int(4, f.kind).Blob(5, f.payload)
+          .Int(6, f.received_at_ms);
+      absl::Status st = s.Run();
+      if (!st.ok()) {
+        // A foreign-key failure here means the mission does not exist.
+        if (sqlite3_extended_errcode(db) == SQLITE_CONSTRAINT_FOREIGNKEY) {
+          return absl::NotFoundError(absl::StrCat("mission '", f.mission_id, "' not found"));
+        }
+        return st;
+      }
+      inserted = sqlite3_changes(db) == 1;
+      if (!inserted) return absl::OkStatus();  // duplicate: change nothing
+      SEAPLAN_RETURN_IF_ERROR(AppendEventsLocked(f.mission_id, events).status());
+      return ApplyUpdateLocked(f.mission_id, update, std::max(f.received_at_ms, LatestTime(events, 0)));
+    });
+    if (!result.ok()) return result;
+    return inserted;
+  }
+
+  static FeedbackRecord ReadFeedback(const Stmt& s) {
+    return {s.ColText(0), s.ColText(1), s.ColInt(2), static_cast<int>(s.ColInt(3)), s.ColBlob(4), s.ColInt(5)};
+  }
+
+  absl::StatusOr<std::optional<FeedbackRecord>> FindFeedback(const std::string& vessel_id,
+                                                             std::int64_t sequence_number) override {
+    std::lock_guard lock(mu);
+    SEAPLAN_RETURN_IF_ERROR(Usable());
+    Stmt s(db, "SELECT mission_id, vessel_id, sequence_number, kind, payload, received_at_ms FROM feedback "
+               "WHERE vessel_id = ?1 AND sequence_number = ?2");
+    s.Text(1, vessel_id).Int(2, sequence_number);
+    SEAPLAN_ASSIGN_OR_RETURN(bool row, s.Step());
+    if (!row) return std::optional<FeedbackRecord>();
+    return std::optional<FeedbackRecord>(ReadFeedback(s));
+  }
+
+  absl::StatusOr<std::vector<FeedbackRecord>> ListFeedback(const std::string& mission_id, int limit) override {
+    std::lock_guard lock(mu);
+    SEAPLAN_RETURN_IF_ERROR(Usable());
+    Stmt s(db, "SELECT mission_id, vessel_id, sequence_number, kind, payload, received_at_ms FROM feedback "
+               "WHERE mission_id = ?1 ORDER BY seq LIMIT ?2");
+    s.Text(1, mission_id).Int(2, limit);
+    std::vector<FeedbackRecord> out;
+    while (true) {
+      SEAPLAN_ASSIGN_OR_RETURN(bool row, s.Step());
+      if (!row) break;
+      out.push_back(ReadFeedback(s));
+    }
+    return out;
+  }
+
+  absl::StatusOr<std::vector<LogEventRecord>> AppendEvents(const std::string& mission_id,
+                                                           const std::vector<NewLogEvent>& events) override {
+    std::lock_guard lock(mu);
+    SEAPLAN_RETURN_IF_ERROR(Usable());
+    std::vector<LogEventRecord> out;
+    absl::Status result = InTransaction(db, [&]() -> absl::Status {
+      Stmt exists(db, "SELECT 1 FROM missions WHERE id = ?1");
+      exists.Text(1, mission_id);
+      SEAPLAN_ASSIGN_OR_RETURN(bool row, exists.Step());
+      if (!row) return absl::NotFoundError(absl::StrCat("mission '", mission_id, "' not found"));
+      SEAPLAN_ASSIGN_OR_RETURN(out, AppendEventsLocked(mission_id, events));
+      return absl::OkStatus();
+    });
+    if (!result.ok()) return result;
+    return out;
+  }
+
+  absl::StatusOr<std::vector<LogEventRecord>> ListEvents(const std::string& mission_id, std::int64_t after_event_id,
+                                                         int limit) override {
+    std::lock_guard lock(mu);
+    SEAPLAN_RETURN_IF_ERROR(Usable());
+    Stmt s(db, "SELECT mission_id, event_id, time_ms, mission_time_s, source, message FROM log_events "
+               "WHERE mission_id = ?1 AND event_id > ?2 ORDER BY event_id LIMIT ?3");
+    s.Text(1, mission_id).Int(2, after_event_id).Int(3, limit);
+    std::vector<LogEventRecord> out;
+    while (true) {
+      SEAPLAN_ASSIGN_OR_RETURN(bool row, s.Step());
+      if (!row) break;
+      out.push_back({s.ColText(0), s.ColInt(1), s.ColInt(2), s.ColReal(3), s.ColText(4), s.ColText(5)});
+    }
+    return out;
+  }
+
+  static TimestampMs NowMs() {
+    return std::chrono::duration_cast<std::chrono::milliseconds>(
+               std::chrono::system_clock::now().time_since_epoch())
+        .count();
+  }
+};
+
+SqliteStore::SqliteStore(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+SqliteStore::~SqliteStore() = default;
+
+absl::StatusOr<std::unique_ptr<SqliteStore>> SqliteStore::Open(const std::string& path,
+                                                               const SqliteOptions& options) {
+  auto impl = std::make_unique<Impl>();
+  const int rc = sqlite3_open_v2(path.c_str(), &impl->db,
+                                 SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE | SQLITE_OPEN_FULLMUTEX, nullptr);
+  if (rc != SQLITE_OK) {
+    absl::Status st = absl::UnavailableError(absl::StrCat("cannot open database '", path, "': ",
+                                                          impl->db ? sqlite3_errmsg(impl->db) : sqlite3_errstr(rc)));
+    sqlite3_close_v2(impl->db);
+    impl->db = nullptr;
+    return st;
+  }
+  sqlite3_extended_result_codes(impl->db, 1);
+  sqlite3_busy_timeout(impl->db, options.busy_timeout_ms);
+  auto fail = [&](const absl::Status& st) {
+    return absl::Status(st.code(), absl::StrCat("database '", path, "': ", st.message()));
+  };
+  // journal_mode returns a row; an in-memory database stays "memory".
+  {
+    Stmt wal(impl->db, "PRAGMA journal_mode = WAL");
+    auto row = wal.Step();
+    if (!row.ok()) return fail(row.status());
+  }
+  absl::Status st = Exec(impl->db, options.synchronous_full ? "PRAGMA synchronous = FULL; PRAGMA foreign_keys = ON"
+                                                            : "PRAGMA synchronous = NORMAL; PRAGMA foreign_keys = ON");
+  if (!st.ok()) return fail(st);
+  st = impl->Migrate();
+  if (!st.ok()) return fail(st);
+  return std::unique_ptr<SqliteStore>(new SqliteStore(std::move(impl)));
+}
+
+ChartRepository& SqliteStore::charts() { return *impl_; }
+MissionRepository& SqliteStore::missions() { return *impl_; }
+
+absl::Status SqliteStore::Close() {
+  std::lock_guard lock(impl_->mu);
+  impl_->CloseLocked();
+  return absl::OkStatus();
+}
+
+absl::StatusOr<int> SqliteStore::SchemaVersion() {
+  std::lock_guard lock(impl_->mu);
+  SEAPLAN_RETURN_IF_ERROR(impl_->Usable());
+  return impl_->UserVersion();
+}
+
+absl::Status SqliteStore::CheckIntegrity() {
+  std::lock_guard lock(impl_->mu);
+  SEAPLAN_RETURN_IF_ERROR(impl_->Usable());
+  Stmt s(impl_->db, "PRAGMA integrity_check");
+  SEAPLAN_ASSIGN_OR_RETURN(bool row, s.Step());
+  if (!row || s.ColText(0) != "ok") return absl::DataLossError(absl::StrCat("integrity_check: ", row ? s.ColText(0) : ""));
+  return absl::OkStatus();
+}
+
+}  // namespace seaplan::storage
