@@ -1,0 +1,184 @@
+// Level-2 route optimisation (MISSION.md 3.3, paper 002 eq. 11-14): move the
+// waypoints of each Level-1 alternative and choose an MSO mode per segment.
+//
+// Per alternative the polyline is cut into `segments` equal parts; the
+// references r_0..r_N (N = segments) are the cut points, r_0 = start and
+// r_N = goal stay fixed, r_1..r_{N-1} are moved. Waypoint k costs
+//   C_k(w, m) = C_path + C_grounding + C_mso
+//   C_path      = mu1 |w - r_k|^2 + mu2 (|w - r_{k-1}| - |w - r_{k+1}|)^6
+//   C_grounding = C_G (mu3 sum_obstacles exp(-zeta1 d_i(w)) + mu4 P_m(G | w))
+//   C_mso       = consumption(m) mu5 |w - r_{k+1}|
+// where P_m(G | w) comes from a time-to-grounding (TTG) drift simulation that
+// starts at w with heading along r_{k-1} -> r_{k+1} and surge 2 m/s (as the
+// public code), fed to the mode's event trees (grounding_risk.h).
+//
+// Search, per movable waypoint (independent: the cost depends on references
+// only, so waypoints run in parallel):
+//  1. PSO over (x, y); the mode of a candidate is the argmin of its cost over
+//     the modes (as the public code does; a continuous swarm over a 3-valued
+//     variable would only add noise). Personal bests are copies, no early stop
+//     on "fitness < 1" (both are bugs of the public code).
+//  2. Mode assignment with switching cost: the paper has no cost for changing
+//     mode, so the per-waypoint argmin can flip PTO/MEC from one segment to the
+//     next. Because waypoints are independent, the switching cost cannot live
+//     in the per-waypoint PSO; it is applied afterwards by dynamic programming
+//     (Viterbi) over the per-segment mode costs C_grounding + C_mso along the
+//     route: minimise sum_k cost_k(m_k) + mode_switch_cost * [m_k != m_{k-1}].
+//  3. NLopt local polish (LN_BOBYQA) of each waypoint's position with its DP
+//     mode fixed; accepted only if it lowers that waypoint's cost. Then the DP
+//     runs again on the polished positions.
+// The chosen alternative is the obstacle-free one with the lowest expected
+// cost (sum of C_grounding + C_mso + switching; C_path only shapes the route
+// and is not a cost of sailing it, so it is reported but not compared).
+//
+// Fast and exact risk evaluation (RiskEvaluation): the drifting ship's motion
+// does not depend on where it starts (uniform wind and current), so kFast
+// simulates the drift ONCE per waypoint (its heading is fixed per waypoint)
+// and tests the hull at w + offset_i; P(G) depends on the TTG only, which the
+// Euler loop quantises to multiples of the step, so it is tabulated once.
+// Both are the same numbers the per-evaluation simulation gives (up to
+// floating-point rounding of the offsets), not approximations. kExact
+// simulates the drift, tests the hull by brute force over every obstacle edge
+// and evaluates the event trees at every cost evaluation: the baseline of
+// bench/route.
+//
+// Determinism: each waypoint's swarm has its own RNG seeded from
+// (seed, alternative, waypoint); results are written to fixed slots, so any
+// thread count gives identical results.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "seaplan/common/status.h"
+#include "seaplan/common/stop_token.h"
+#include "seaplan/route/grounding_risk.h"
+#include "seaplan/route/obstacle_field.h"
+#include "seaplan/ship/ship_params.h"
+
+namespace seaplan::route {
+
+// Weights of eq. 11-14 plus the mode-switching cost. Cost unit: the public
+// code's (its mso scale 1e-4 x probability scale 5e10 gives C_G = 5e6), so
+// that results compare with the paper's figures. Defaults and why:
+struct CostWeights {
+  // Path deviation: 100 m off the reference costs 1.
+  double mu1_per_m2 = 1e-4;
+  // Spacing (|w-r_{k-1}| - |w-r_{k+1}|)^6: a 50 m along-track shift
+  // (difference 100 m) costs 1; keeps waypoints evenly spread.
+  double mu2_per_m6 = 1e-12;
+  // Grounding consequence C_G (public code: 5e10 x 1e-4).
+  double grounding_cost = 5e6;
+  // Obstacle proximity: C_G mu3 = 100, so a shore 50 m away costs 13.5,
+  // 100 m costs 1.8, 200 m costs 0.03 (the public code's version 12 used
+  // 1e4 exp(-0.04 d); 100 balances it against the path terms above).
+  double mu3 = 2e-5;
+  double zeta1_per_m = 0.04;  // public code: 0.04
+  // Probability term: C_G mu4 P(G) (public code: 5e6 P).
+  double mu4 = 1.0;
+  // MSO: consumption(m) mu5 |w - r_{k+1}|; public code's relative fuel rates
+  // PTO 1.5, MEC 2.5, PTI 2.0 and scale 1e-4 per metre.
+  double mu5_per_m = 1e-4;
+  ModeArray consumption = {1.5, 2.5, 2.0};
+  // Cost of one mode change (start/stop of an engine). 0.02 ~ the MEC-PTO
+  // fuel difference over one 200 m segment: a change must pay for itself
+  // over at least a segment.
+  double mode_switch_cost = 0.02;
+
+  absl::Status Validate() const;
+};
+
+struct PsoOptions {
+  int particles = 30;
+  int iterations = 100;
+  double inertia = 0.75;
+  double cognitive = 1.0;
+  double social = 2.0;
+  // Velocity limit in units of the waypoint's search scale s (half the
+  // distance r_{k-1} -> r_{k+1}, i.e. one segment length, which is also the
+  // initial perpendicular spread): |v_x|, |v_y| <= velocity_limit * s metres
+  // per iteration. The public code's V_LIMIT = 1 multiplied the attraction
+  // terms in metres, i.e. no limit at all; a limit of one segment per
+  // iteration keeps particles from leaping across islands.
+  double velocity_limit = 1.0;
+  uint64_t seed = 0;
+
+  absl::Status Validate() const;
+};
+
+struct PolishOptions {
+  int max_evaluations = 150;  // 0 disables the NLopt polish
+  double initial_step_m = 10.0;
+  double xtol_m = 0.05;
+};
+
+enum class RiskEvaluation {
+  kFast,   // one drift simulation per waypoint + tabulated P(G), indexed field
+  kExact,  // drift simulation, brute-force hull test, event trees per evaluation
+};
+
+struct Level2Options {
+  int segments = 20;  // 19 movable waypoints
+  PsoOptions pso;
+  PolishOptions polish;
+  CostWeights weights;
+  // TTG simulation (public code: 2 m/s, 600 s, 30 s steps).
+  double drift_initial_speed_mps = 2.0;
+  double ttg_horizon_s = 600.0;
+  double ttg_step_s = 30.0;
+  int threads = 2;
+  RiskEvaluation risk_evaluation = RiskEvaluation::kFast;
+
+  absl::Status Validate() const;
+};
+
+struct Level2Problem {
+  // Not owned; must outlive the call. The field's hull is the drifting hull.
+  const ObstacleField* field = nullptr;
+  const ModeGroundingModel* grounding = nullptr;
+  ship::ShipParams drift_ship;       // hull dynamics of the drifting ship
+  ship::Environment environment;     // wind and current
+  // Level-1 alternatives, each a polyline start..goal (>= 2 points).
+  std::vector<std::vector<Vec2>> alternatives;
+};
+
+struct WaypointResult {
+  Vec2 position;
+  Vec2 reference;
+  double heading_rad = 0.0;  // drift heading (r_{k-1} -> r_{k+1})
+  // Segment k -> k+1 (unset for the goal, the last waypoint).
+  MsoMode mode = MsoMode::kPto;
+  double ttg_s = 0.0;
+  ModeArray grounding_probability{};  // P(G) per mode
+  double proximity = 0.0;             // sum_i exp(-zeta1 d_i)
+  ModeArray mode_cost{};              // C_grounding + C_mso per mode
+  double path_cost = 0.0;             // C_path
+};
+
+struct AlternativeResult {
+  std::vector<WaypointResult> waypoints;  // segments + 1: start .. goal
+  double expected_cost = 0.0;  // sum of mode_cost[mode] + switching
+  double grounding_cost = 0.0; // sum of C_grounding at the chosen modes
+  double mso_cost = 0.0;
+  double switching_cost = 0.0;
+  double path_cost = 0.0;
+  double objective = 0.0;      // expected_cost + path_cost
+  int mode_switches = 0;
+  bool crosses_obstacle = false;  // a waypoint or segment touches an obstacle
+  int64_t evaluations = 0;
+};
+
+struct Level2Result {
+  std::vector<AlternativeResult> alternatives;
+  int chosen = -1;  // -1: every alternative crosses an obstacle
+  bool stopped = false;  // the StopToken fired: results are partial
+  int64_t evaluations = 0;
+  double wall_s = 0.0;
+};
+
+// Errors: InvalidArgument for bad options or problem (null field/model, an
+// alternative with < 2 points or non-finite coordinates).
+StatusOr<Level2Result> OptimizeLevel2(const Level2Problem& problem, const Level2Options& options,
+                                      const StopToken& stop = StopToken());
+
+}  // namespace seaplan::route

@@ -1,0 +1,583 @@
+#include "seaplan/route/level2_optimizer.h"
+
+#include <algorithm>
+#include <atomic>
+#include <chrono>
+#include <cmath>
+#include <exception>
+#include <functional>
+#include <limits>
+#include <memory>
+#include <thread>
+
+#include "absl/strings/str_cat.h"
+#include "nlopt.hpp"
+#include "seaplan/common/log.h"
+#include "seaplan/ship/hull_dynamics.h"
+
+namespace seaplan::route {
+namespace {
+
+double Dist(Vec2 a, Vec2 b) { return std::hypot(a.x - b.x, a.y - b.y); }
+
+// Points at fractions k/n (k = 0..n) of the polyline's length.
+std::vector<Vec2> Resample(const std::vector<Vec2>& line, int n) {
+  std::vector<double> cum(line.size(), 0.0);
+  for (size_t i = 1; i < line.size(); ++i) cum[i] = cum[i - 1] + Dist(line[i - 1], line[i]);
+  const double total = cum.back();
+  std::vector<Vec2> out(n + 1);
+  size_t seg = 1;
+  for (int k = 0; k <= n; ++k) {
+    const double s = total * k / n;
+    while (seg + 1 < line.size() && cum[seg] < s) ++seg;
+    const double len = cum[seg] - cum[seg - 1];
+    const double t = len > 0 ? std::clamp((s - cum[seg - 1]) / len, 0.0, 1.0) : 0.0;
+    out[k] = {line[seg - 1].x + t * (line[seg].x - line[seg - 1].x),
+              line[seg - 1].y + t * (line[seg].y - line[seg - 1].y)};
+  }
+  out[0] = line.front();
+  out[n] = line.back();
+  return out;
+}
+
+struct Refs {
+  Vec2 prev, ref, next;
+  double heading_rad = 0.0;  // drift heading, from north clockwise
+  double scale_m = 1.0;      // search scale: half of |next - prev|
+  bool movable = true;
+};
+
+struct RiskSample {
+  double ttg_s = 0.0;
+  ModeArray p{};
+  double proximity = 0.0;
+};
+
+class RiskEvaluator {
+ public:
+  virtual ~RiskEvaluator() = default;
+  virtual void Evaluate(Vec2 w, RiskSample* out) = 0;
+};
+
+// The drift of an unpowered ship relative to its start point.
+struct DriftTrack {
+  std::vector<Vec2> offset;      // after each Euler step
+  std::vector<double> heading;   // rad
+  std::vector<double> time_s;    // model time after each step
+};
+
+DriftTrack SimulateDrift(const ship::HullDynamics& dyn, const ship::Environment& env, double heading,
+                         double speed, double horizon_s, double dt_s) {
+  DriftTrack t;
+  ship::ShipModelWithoutPropulsion model(dyn, env, ship::ShipState::At(0.0, 0.0, heading, speed));
+  while (model.time_s() <= horizon_s) {  // SITS loop convention
+    model.Step(dt_s);
+    t.offset.push_back({model.state().east_m(), model.state().north_m()});
+    t.heading.push_back(model.state().heading_rad());
+    t.time_s.push_back(model.time_s());
+  }
+  return t;
+}
+
+// kFast: one drift track per waypoint (translation invariance), tabulated P(G).
+class FastEvaluator final : public RiskEvaluator {
+ public:
+  FastEvaluator(const ObstacleField& field, DriftTrack track, const std::vector<ModeArray>& table,
+                double zeta)
+      : field_(field), track_(std::move(track)), table_(table), zeta_(zeta) {}
+  void Evaluate(Vec2 w, RiskSample* out) override {
+    out->proximity = field_.SumExpDistance(w, zeta_);
+    const size_t n = track_.offset.size();
+    size_t k = 0;
+    for (; k < n; ++k) {
+      if (field_.HullHits({w.x + track_.offset[k].x, w.y + track_.offset[k].y}, track_.heading[k])) break;
+    }
+    if (k == n) k = n - 1;
+    out->ttg_s = track_.time_s[k];
+    out->p = table_[k];
+  }
+
+ private:
+  const ObstacleField& field_;
+  DriftTrack track_;
+  const std::vector<ModeArray>& table_;
+  double zeta_;
+};
+
+// kExact: everything from scratch at every evaluation.
+class ExactEvaluator final : public RiskEvaluator {
+ public:
+  ExactEvaluator(const ObstacleField& field, const ship::HullDynamics& dyn, const ship::Environment& env,
+                 const ModeGroundingModel& grounding, double heading, const Level2Options& o)
+      : field_(field), dyn_(dyn), env_(env), grounding_(grounding), heading_(heading),
+        speed_(o.drift_initial_speed_mps), horizon_(o.ttg_horizon_s), dt_(o.ttg_step_s),
+        zeta_(o.weights.zeta1_per_m) {}
+  void Evaluate(Vec2 w, RiskSample* out) override {
+    out->proximity = field_.SumExpDistanceBruteForce(w, zeta_);
+    ship::ShipModelWithoutPropulsion model(dyn_, env_, ship::ShipState::At(w.y, w.x, heading_, speed_));
+    while (model.time_s() <= horizon_) {
+      model.Step(dt_);
+      const auto& s = model.state();
+      if (field_.HullHitsBruteForce({s.east_m(), s.north_m()}, s.heading_rad())) break;
+    }
+    out->ttg_s = model.time_s();
+    out->p = grounding_.Probabilities(out->ttg_s);
+  }
+
+ private:
+  const ObstacleField& field_;
+  const ship::HullDynamics& dyn_;
+  ship::Environment env_;
+  const ModeGroundingModel& grounding_;
+  double heading_, speed_, horizon_, dt_, zeta_;
+};
+
+struct CostTerms {
+  double path = 0.0;
+  ModeArray mode_cost{};
+  int best_mode = 0;
+  double total = 0.0;
+};
+
+void ComputeCost(const CostWeights& w, const Refs& r, Vec2 p, const RiskSample& s, CostTerms* out) {
+  out->path = 0.0;
+  if (r.movable) {
+    const double dr = Dist(p, r.ref);
+    const double spacing = Dist(p, r.prev) - Dist(p, r.next);
+    const double s2 = spacing * spacing;
+    out->path = w.mu1_per_m2 * dr * dr + w.mu2_per_m6 * s2 * s2 * s2;
+  }
+  const double ground = w.grounding_cost * w.mu3 * s.proximity;
+  const double to_next = Dist(p, r.next);
+  int best = 0;
+  for (int m = 0; m < kModeCount; ++m) {
+    out->mode_cost[m] = ground + w.grounding_cost * w.mu4 * s.p[m] + w.consumption[m] * w.mu5_per_m * to_next;
+    if (out->mode_cost[m] < out->mode_cost[best]) best = m;
+  }
+  out->best_mode = best;
+  out->total = out->path + out->mode_cost[best];
+}
+
+uint64_t SplitMix64(uint64_t x) {
+  x += 0x9E3779B97F4A7C15ull;
+  x = (x ^ (x >> 30)) * 0xBF58476D1CE4E5B9ull;
+  x = (x ^ (x >> 27)) * 0x94D049BB133111EBull;
+  return x ^ (x >> 31);
+}
+
+// Small xoshiro256** generator: fixed algorithm (std::uniform_real_distribution
+// is implementation-defined), a few ns per draw, no allocation.
+class Rng {
+ public:
+  explicit Rng(uint64_t seed) {
+    for (auto& s : s_) s = seed = SplitMix64(seed);
+  }
+  double Uniform() { return static_cast<double>(Next() >> 11) * 0x1.0p-53; }
+
+ private:
+  static uint64_t Rotl(uint64_t x, int k) { return (x << k) | (x >> (64 - k)); }
+  uint64_t Next() {
+    const uint64_t result = Rotl(s_[1] * 5, 7) * 9;
+    const uint64_t t = s_[1] << 17;
+    s_[2] ^= s_[0];
+    s_[3] ^= s_[1];
+    s_[1] ^= s_[2];
+    s_[0] ^= s_[3];
+    s_[2] ^= t;
+    s_[3] = Rotl(s_[3], 45);
+    return result;
+  }
+  uint64_t s_[4];
+};
+
+struct WaypointTask {
+  int alt = 0;
+  int k = 0;
+  Refs refs;
+  Vec2 position;
+  int64_t evaluations = 0;
+};
+
+// Our own PSO rather than pagmo2's: pagmo evaluates through a type-erased
+// problem with std::vector decision/fitness vectors (allocations per
+// evaluation) and seeds per population/island, not per swarm of a thread
+// pool; here one evaluation is a few hundred ns, so that overhead would
+// dominate, and per-waypoint seeding keeps results independent of threads.
+Vec2 RunPso(const PsoOptions& o, const CostWeights& w, const Refs& r, RiskEvaluator& eval, Vec2 lo,
+            Vec2 hi, uint64_t seed, const StopToken& stop, int64_t* evaluations) {
+  const int n = o.particles;
+  struct Particle {
+    Vec2 x, v, best;
+    double best_cost;
+  };
+  std::vector<Particle> ps(n);
+  Rng rng(seed);
+  const double vmax = o.velocity_limit * r.scale_m;
+  double tx = r.next.x - r.prev.x, ty = r.next.y - r.prev.y;
+  const double tl = std::hypot(tx, ty);
+  if (tl > 0) {
+    tx /= tl;
+    ty /= tl;
+  } else {
+    tx = 1;
+    ty = 0;
+  }
+  const Vec2 left{-ty, tx};
+  const int pairs = std::max(1, n / 2);
+  auto clamp_pos = [&](Vec2 p) {
+    return Vec2{std::clamp(p.x, lo.x, hi.x), std::clamp(p.y, lo.y, hi.y)};
+  };
+  // Particle 0 on the reference, then alternately left and right of the
+  // reference line, out to one search scale.
+  for (int j = 0; j < n; ++j) {
+    const int i = (j + 1) / 2;
+    const double side = (j % 2 == 1) ? 1.0 : -1.0;
+    const double off = r.scale_m * static_cast<double>(i) / pairs * side;
+    ps[j].x = clamp_pos({r.ref.x + left.x * off, r.ref.y + left.y * off});
+    ps[j].v = {(2 * rng.Uniform() - 1) * 0.1 * vmax, (2 * rng.Uniform() - 1) * 0.1 * vmax};
+    ps[j].best_cost = std::numeric_limits<double>::infinity();
+  }
+  Vec2 gbest = r.ref;
+  double gbest_cost = std::numeric_limits<double>::infinity();
+  RiskSample sample;
+  CostTerms terms;
+  auto evaluate_all = [&] {
+    for (auto& p : ps) {
+      eval.Evaluate(p.x, &sample);
+      ComputeCost(w, r, p.x, sample, &terms);
+      ++*evaluations;
+      if (terms.total < p.best_cost) {
+        p.best_cost = terms.total;
+        p.best = p.x;  // a copy, not an alias of the moving position
+      }
+    }
+    for (const auto& p : ps) {
+      if (p.best_cost < gbest_cost) {
+        gbest_cost = p.best_cost;
+        gbest = p.best;
+      }
+    }
+  };
+  evaluate_all();
+  for (int it = 0; it < o.iterations; ++it) {
+    if (stop.StopRequested()) break;
+    for (auto& p : ps) {
+      const double r1x = rng.Uniform(), r1y = rng.Uniform(), r2x = rng.Uniform(), r2y = rng.Uniform();
+      p.v.x = o.inertia * p.v.x + o.cognitive * r1x * (p.best.x - p.x.x) + o.social * r2x * (gbest.x - p.x.x);
+      p.v.y = o.inertia * p.v.y + o.cognitive * r1y * (p.best.y - p.x.y) + o.social * r2y * (gbest.y - p.x.y);
+      p.v.x = std::clamp(p.v.x, -vmax, vmax);
+      p.v.y = std::clamp(p.v.y, -vmax, vmax);
+      p.x = clamp_pos({p.x.x + p.v.x, p.x.y + p.v.y});
+    }
+    evaluate_all();
+  }
+  return gbest;
+}
+
+struct PolishData {
+  const CostWeights* w;
+  const Refs* r;
+  RiskEvaluator* eval;
+  int mode;
+  int64_t* evaluations;
+};
+
+double PolishObjective(unsigned /*n*/, const double* x, double* /*grad*/, void* data) {
+  auto* d = static_cast<PolishData*>(data);
+  RiskSample s;
+  CostTerms t;
+  const Vec2 p{x[0], x[1]};
+  d->eval->Evaluate(p, &s);
+  ComputeCost(*d->w, *d->r, p, s, &t);
+  ++*d->evaluations;
+  return t.path + t.mode_cost[d->mode];
+}
+
+Vec2 Polish(const PolishOptions& o, const CostWeights& w, const Refs& r, RiskEvaluator& eval, Vec2 start,
+            int mode, Vec2 lo, Vec2 hi, int64_t* evaluations) {
+  PolishData data{&w, &r, &eval, mode, evaluations};
+  double x0[2] = {start.x, start.y};
+  const double f0 = PolishObjective(2, x0, nullptr, &data);
+  try {
+    nlopt::opt opt(nlopt::LN_BOBYQA, 2);
+    const double reach = r.scale_m;
+    std::vector<double> lb = {std::max(lo.x, start.x - reach), std::max(lo.y, start.y - reach)};
+    std::vector<double> ub = {std::min(hi.x, start.x + reach), std::min(hi.y, start.y + reach)};
+    opt.set_lower_bounds(lb);
+    opt.set_upper_bounds(ub);
+    opt.set_min_objective(PolishObjective, &data);
+    opt.set_maxeval(o.max_evaluations);
+    opt.set_xtol_abs(o.xtol_m);
+    opt.set_initial_step(o.initial_step_m);
+    std::vector<double> x = {start.x, start.y};
+    double f = f0;
+    opt.optimize(x, f);
+    if (f < f0) return {x[0], x[1]};
+  } catch (const std::exception& e) {
+    // NLopt reports roundoff / bound trouble by throwing: keep the PSO point.
+  }
+  return start;
+}
+
+// Viterbi over modes with a switching cost; ties go to the lower mode index.
+std::vector<int> AssignModes(const std::vector<ModeArray>& cost, double switch_cost) {
+  const size_t n = cost.size();
+  std::vector<std::array<int, kModeCount>> from(n);
+  ModeArray acc = n ? cost[0] : ModeArray{};
+  for (size_t k = 1; k < n; ++k) {
+    ModeArray next;
+    for (int m = 0; m < kModeCount; ++m) {
+      int best = 0;
+      double best_v = std::numeric_limits<double>::infinity();
+      for (int q = 0; q < kModeCount; ++q) {
+        const double v = acc[q] + (q == m ? 0.0 : switch_cost);
+        if (v < best_v) {
+          best_v = v;
+          best = q;
+        }
+      }
+      from[k][m] = best;
+      next[m] = best_v + cost[k][m];
+    }
+    acc = next;
+  }
+  std::vector<int> modes(n, 0);
+  if (n == 0) return modes;
+  int m = 0;
+  for (int q = 1; q < kModeCount; ++q) {
+    if (acc[q] < acc[m]) m = q;
+  }
+  for (size_t k = n; k-- > 0;) {
+    modes[k] = m;
+    if (k > 0) m = from[k][m];
+  }
+  return modes;
+}
+
+void RunParallel(int count, int threads, const std::function<void(int)>& fn) {
+  const int t = std::max(1, std::min(threads, count));
+  if (t == 1) {
+    for (int i = 0; i < count; ++i) fn(i);
+    return;
+  }
+  std::atomic<int> next{0};
+  std::vector<std::thread> pool;
+  pool.reserve(t);
+  for (int i = 0; i < t; ++i) {
+    pool.emplace_back([&] {
+      for (int j = next.fetch_add(1); j < count; j = next.fetch_add(1)) fn(j);
+    });
+  }
+  for (auto& th : pool) th.join();
+}
+
+}  // namespace
+
+absl::Status CostWeights::Validate() const {
+  for (double v : {mu1_per_m2, mu2_per_m6, grounding_cost, mu3, zeta1_per_m, mu4, mu5_per_m,
+                   mode_switch_cost, consumption[0], consumption[1], consumption[2]}) {
+    if (!(v >= 0.0 && std::isfinite(v))) {
+      return absl::InvalidArgumentError(absl::StrCat("cost weights must be finite and >= 0, got ", v));
+    }
+  }
+  if (!(zeta1_per_m > 0.0)) return absl::InvalidArgumentError("zeta1_per_m must be > 0");
+  return absl::OkStatus();
+}
+
+absl::Status PsoOptions::Validate() const {
+  if (particles < 1 || particles > 10000) {
+    return absl::InvalidArgumentError(absl::StrCat("pso.particles must be in [1, 10000], got ", particles));
+  }
+  if (iterations < 0 || iterations > 100000) {
+    return absl::InvalidArgumentError(absl::StrCat("pso.iterations must be in [0, 100000], got ", iterations));
+  }
+  for (double v : {inertia, cognitive, social}) {
+    if (!(v >= 0.0 && v <= 10.0)) return absl::InvalidArgumentError("pso weights must be in [0, 10]");
+  }
+  if (!(velocity_limit > 0.0 && velocity_limit <= 100.0)) {
+    return absl::InvalidArgumentError("pso.velocity_limit must be in (0, 100]");
+  }
+  return absl::OkStatus();
+}
+
+absl::Status Level2Options::Validate() const {
+  if (segments < 2 || segments > 1000) {
+    return absl::InvalidArgumentError(absl::StrCat("segments must be in [2, 1000], got ", segments));
+  }
+  SEAPLAN_RETURN_IF_ERROR(pso.Validate());
+  SEAPLAN_RETURN_IF_ERROR(weights.Validate());
+  if (polish.max_evaluations < 0 || !(polish.initial_step_m > 0) || !(polish.xtol_m > 0)) {
+    return absl::InvalidArgumentError("polish needs max_evaluations >= 0, initial_step_m > 0, xtol_m > 0");
+  }
+  if (!(ttg_step_s > 0.0) || !(ttg_horizon_s > 0.0) || ttg_horizon_s / ttg_step_s > 100000) {
+    return absl::InvalidArgumentError("TTG needs step > 0, horizon > 0 and at most 1e5 steps");
+  }
+  if (!(drift_initial_speed_mps >= 0.0 && drift_initial_speed_mps < 50.0)) {
+    return absl::InvalidArgumentError("drift_initial_speed_mps must be in [0, 50)");
+  }
+  if (threads < 1 || threads > 256) return absl::InvalidArgumentError("threads must be in [1, 256]");
+  return absl::OkStatus();
+}
+
+StatusOr<Level2Result> OptimizeLevel2(const Level2Problem& problem, const Level2Options& options,
+                                      const StopToken& stop) {
+  const auto t0 = std::chrono::steady_clock::now();
+  SEAPLAN_RETURN_IF_ERROR(options.Validate());
+  if (problem.field == nullptr || problem.grounding == nullptr) {
+    return absl::InvalidArgumentError("Level2Problem needs a field and a grounding model");
+  }
+  for (size_t a = 0; a < problem.alternatives.size(); ++a) {
+    const auto& alt = problem.alternatives[a];
+    if (alt.size() < 2) {
+      return absl::InvalidArgumentError(absl::StrCat("alternative ", a, " has ", alt.size(), " points (need >= 2)"));
+    }
+    for (const Vec2& p : alt) {
+      if (!std::isfinite(p.x) || !std::isfinite(p.y)) {
+        return absl::InvalidArgumentError(absl::StrCat("alternative ", a, " has a non-finite point"));
+      }
+    }
+  }
+  SEAPLAN_ASSIGN_OR_RETURN(ship::HullDynamics dyn, ship::HullDynamics::Create(problem.drift_ship));
+  const ObstacleField& field = *problem.field;
+  const CostWeights& w = options.weights;
+  const int n = options.segments;
+  const Vec2 lo = field.area_min(), hi = field.area_max();
+
+  // P(G) per Euler step of the TTG loop (the only TTG values it produces).
+  std::vector<ModeArray> table;
+  {
+    const DriftTrack probe = SimulateDrift(dyn, problem.environment, 0.0, 0.0, options.ttg_horizon_s,
+                                           options.ttg_step_s);
+    for (double t : probe.time_s) table.push_back(problem.grounding->Probabilities(t));
+  }
+
+  // Tasks: every waypoint 0..n of every alternative (0 and n fixed).
+  std::vector<WaypointTask> tasks;
+  for (size_t a = 0; a < problem.alternatives.size(); ++a) {
+    const std::vector<Vec2> refs = Resample(problem.alternatives[a], n);
+    for (int k = 0; k <= n; ++k) {
+      WaypointTask t;
+      t.alt = static_cast<int>(a);
+      t.k = k;
+      t.refs.prev = refs[std::max(k - 1, 0)];
+      t.refs.ref = refs[k];
+      t.refs.next = refs[std::min(k + 1, n)];
+      const Vec2 d{t.refs.next.x - t.refs.prev.x, t.refs.next.y - t.refs.prev.y};
+      t.refs.heading_rad = std::atan2(d.x, d.y);
+      t.refs.scale_m = std::max(1.0, Dist(t.refs.prev, t.refs.next) / (k == 0 || k == n ? 1.0 : 2.0));
+      t.refs.movable = k > 0 && k < n;
+      t.position = refs[k];
+      tasks.push_back(t);
+    }
+  }
+  auto make_evaluator = [&](const Refs& r) -> std::unique_ptr<RiskEvaluator> {
+    if (options.risk_evaluation == RiskEvaluation::kExact) {
+      return std::make_unique<ExactEvaluator>(field, dyn, problem.environment, *problem.grounding,
+                                              r.heading_rad, options);
+    }
+    return std::make_unique<FastEvaluator>(
+        field,
+        SimulateDrift(dyn, problem.environment, r.heading_rad, options.drift_initial_speed_mps,
+                      options.ttg_horizon_s, options.ttg_step_s),
+        table, w.zeta1_per_m);
+  };
+
+  // Phase 1: PSO per movable waypoint.
+  RunParallel(static_cast<int>(tasks.size()), options.threads, [&](int i) {
+    WaypointTask& t = tasks[i];
+    if (!t.refs.movable) return;
+    auto eval = make_evaluator(t.refs);
+    const uint64_t seed = SplitMix64(options.pso.seed ^ SplitMix64((static_cast<uint64_t>(t.alt) << 32) |
+                                                                   static_cast<uint64_t>(t.k)));
+    t.position = RunPso(options.pso, w, t.refs, *eval, lo, hi, seed, stop, &t.evaluations);
+  });
+
+  // Mode costs at the current positions, DP per alternative.
+  const size_t alt_count = problem.alternatives.size();
+  auto evaluate_all = [&](std::vector<RiskSample>* samples, std::vector<CostTerms>* terms) {
+    samples->assign(tasks.size(), {});
+    terms->assign(tasks.size(), {});
+    RunParallel(static_cast<int>(tasks.size()), options.threads, [&](int i) {
+      auto eval = make_evaluator(tasks[i].refs);
+      eval->Evaluate(tasks[i].position, &(*samples)[i]);
+      ComputeCost(w, tasks[i].refs, tasks[i].position, (*samples)[i], &(*terms)[i]);
+      ++tasks[i].evaluations;
+    });
+  };
+  auto assign = [&](const std::vector<CostTerms>& terms) {
+    std::vector<int> modes(tasks.size(), 0);
+    for (size_t a = 0; a < alt_count; ++a) {
+      std::vector<ModeArray> costs(n);
+      const size_t base = a * (n + 1);
+      for (int k = 0; k < n; ++k) costs[k] = terms[base + k].mode_cost;
+      const std::vector<int> m = AssignModes(costs, w.mode_switch_cost);
+      for (int k = 0; k < n; ++k) modes[base + k] = m[k];
+      modes[base + n] = m[n - 1];
+    }
+    return modes;
+  };
+  std::vector<RiskSample> samples;
+  std::vector<CostTerms> terms;
+  evaluate_all(&samples, &terms);
+  std::vector<int> modes = assign(terms);
+
+  // Phase 2: polish with the mode fixed, then re-assign.
+  if (options.polish.max_evaluations > 0 && !stop.StopRequested()) {
+    RunParallel(static_cast<int>(tasks.size()), options.threads, [&](int i) {
+      WaypointTask& t = tasks[i];
+      if (!t.refs.movable) return;
+      auto eval = make_evaluator(t.refs);
+      t.position = Polish(options.polish, w, t.refs, *eval, t.position, modes[i], lo, hi, &t.evaluations);
+    });
+    evaluate_all(&samples, &terms);
+    modes = assign(terms);
+  }
+
+  Level2Result result;
+  result.stopped = stop.StopRequested();
+  result.alternatives.resize(alt_count);
+  double best = std::numeric_limits<double>::infinity();
+  for (size_t a = 0; a < alt_count; ++a) {
+    AlternativeResult& out = result.alternatives[a];
+    const size_t base = a * (n + 1);
+    for (int k = 0; k <= n; ++k) {
+      const WaypointTask& t = tasks[base + k];
+      WaypointResult wr;
+      wr.position = t.position;
+      wr.reference = t.refs.ref;
+      wr.heading_rad = t.refs.heading_rad;
+      wr.mode = static_cast<MsoMode>(modes[base + k]);
+      wr.ttg_s = samples[base + k].ttg_s;
+      wr.grounding_probability = samples[base + k].p;
+      wr.proximity = samples[base + k].proximity;
+      wr.mode_cost = terms[base + k].mode_cost;
+      wr.path_cost = terms[base + k].path;
+      out.evaluations += t.evaluations;
+      if (k < n) {
+        const int m = modes[base + k];
+        const double ground = w.grounding_cost * (w.mu3 * wr.proximity + w.mu4 * wr.grounding_probability[m]);
+        out.grounding_cost += ground;
+        out.mso_cost += wr.mode_cost[m] - ground;
+        if (k > 0 && modes[base + k - 1] != m) {
+          ++out.mode_switches;
+          out.switching_cost += w.mode_switch_cost;
+        }
+      }
+      out.path_cost += wr.path_cost;
+      if (field.Inside(wr.position)) out.crosses_obstacle = true;
+      if (k > 0 && field.SegmentHits(out.waypoints.back().position, wr.position)) out.crosses_obstacle = true;
+      out.waypoints.push_back(wr);
+    }
+    out.expected_cost = out.grounding_cost + out.mso_cost + out.switching_cost;
+    out.objective = out.expected_cost + out.path_cost;
+    result.evaluations += out.evaluations;
+    if (!out.crosses_obstacle && out.expected_cost < best) {
+      best = out.expected_cost;
+      result.chosen = static_cast<int>(a);
+    }
+  }
+  result.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
+  return result;
+}
+
+}  // namespace seaplan::route

@@ -1,0 +1,171 @@
+#include "seaplan/route/level2_optimizer.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace seaplan::route {
+namespace {
+
+// One long island between start (-2000, 0) and goal (2000, 0); alternatives
+// pass it 100 m off its north and south shores. Wind 20 m/s from the south
+// and a 1 m/s current toward the north push a drifting ship north: the
+// island is the downwind shore of the SOUTH alternative only.
+ObstaclePolygon Island() {
+  // A long island, x in [-800, 800], y in [-200, 200].
+  return ObstaclePolygon{{{{-800, -200}, {800, -200}, {800, 200}, {-800, 200}}}};
+}
+
+struct Scenario {
+  ObstacleField field;
+  EventTreeGroundingModel grounding;
+  Level2Problem problem;
+};
+
+std::unique_ptr<Scenario> MakeScenario() {
+  ObstacleFieldOptions fo;
+  fo.far_cutoff_m = 750;
+  auto field = ObstacleField::Build({Island()}, {-2500, -1500}, {2500, 1500}, fo);
+  EXPECT_TRUE(field.ok()) << field.status();
+  auto s = std::unique_ptr<Scenario>(new Scenario{std::move(field).value(), EventTreeGroundingModel(), {}});
+  s->problem.field = &s->field;
+  s->problem.grounding = &s->grounding;
+  s->problem.environment.wind_speed_mps = 20.0;
+  s->problem.environment.wind_direction_from_rad = M_PI;  // from the south
+  s->problem.environment.current_north_mps = 1.0;
+  s->problem.alternatives = {{{-2000, 0}, {-1000, 300}, {1000, 300}, {2000, 0}},    // north
+                             {{-2000, 0}, {-1000, -300}, {1000, -300}, {2000, 0}}};  // south
+  return s;
+}
+
+Level2Options SmallOptions() {
+  Level2Options o;
+  o.pso.particles = 12;
+  o.pso.iterations = 25;
+  o.polish.max_evaluations = 40;
+  return o;
+}
+
+TEST(Level2OptimizerTest, RobustModeOnDownwindShoreSegmentAndSaferAlternativeChosen) {
+  auto s = MakeScenario();
+  auto r = OptimizeLevel2(s->problem, Level2Options{});
+  ASSERT_TRUE(r.ok()) << r.status();
+  ASSERT_EQ(r->alternatives.size(), 2u);
+  const AlternativeResult& north = r->alternatives[0];
+  const AlternativeResult& south = r->alternatives[1];
+  EXPECT_FALSE(north.crosses_obstacle);
+  EXPECT_FALSE(south.crosses_obstacle);
+  // The south route's drift runs onto the island: higher P(G) there.
+  double max_p_south = 0, max_p_north = 0;
+  for (const auto& w : south.waypoints) max_p_south = std::max(max_p_south, w.grounding_probability[0]);
+  for (const auto& w : north.waypoints) max_p_north = std::max(max_p_north, w.grounding_probability[0]);
+  EXPECT_GT(max_p_south, 10 * max_p_north);
+  // MEC on the segments passing south of (upwind of) the island, PTO at the
+  // open-water ends and everywhere on the north route.
+  int mec_south = 0;
+  for (int k = 0; k < 20; ++k) {
+    const auto& w = south.waypoints[k];
+    if (w.mode == MsoMode::kMec) {
+      ++mec_south;
+      EXPECT_LT(std::abs(w.position.x), 1200) << "MEC far from the island at waypoint " << k;
+      EXPECT_LT(w.ttg_s, 630) << k;
+    }
+  }
+  EXPECT_GE(mec_south, 1);
+  EXPECT_EQ(south.waypoints[0].mode, MsoMode::kPto);
+  EXPECT_EQ(south.waypoints[19].mode, MsoMode::kPto);
+  for (int k = 0; k < 20; ++k) EXPECT_EQ(north.waypoints[k].mode, MsoMode::kPto) << k;
+  // Chosen: the one with the lower expected cost (the north one).
+  EXPECT_LT(north.expected_cost, south.expected_cost);
+  EXPECT_EQ(r->chosen, 0);
+  // A waypoint moved by the optimiser stays out of the island.
+  for (const auto& w : south.waypoints) EXPECT_GT(s->field.SignedDistance(w.position), 0.0);
+}
+
+TEST(Level2OptimizerTest, DeterministicForASeedAndIndependentOfThreads) {
+  auto s = MakeScenario();
+  Level2Options o = SmallOptions();
+  o.threads = 2;
+  auto a = OptimizeLevel2(s->problem, o);
+  auto b = OptimizeLevel2(s->problem, o);
+  o.threads = 1;
+  auto c = OptimizeLevel2(s->problem, o);
+  ASSERT_TRUE(a.ok() && b.ok() && c.ok());
+  for (size_t i = 0; i < 2; ++i) {
+    for (size_t k = 0; k < a->alternatives[i].waypoints.size(); ++k) {
+      const auto& wa = a->alternatives[i].waypoints[k];
+      for (const auto* other : {&b->alternatives[i].waypoints[k], &c->alternatives[i].waypoints[k]}) {
+        EXPECT_EQ(wa.position.x, other->position.x);
+        EXPECT_EQ(wa.position.y, other->position.y);
+        EXPECT_EQ(wa.mode, other->mode);
+      }
+    }
+    EXPECT_EQ(a->alternatives[i].expected_cost, c->alternatives[i].expected_cost);
+  }
+  // Another seed explores differently.
+  o.pso.seed = 99;
+  auto d = OptimizeLevel2(s->problem, o);
+  ASSERT_TRUE(d.ok());
+  bool differs = false;
+  for (size_t k = 1; k < 20; ++k) {
+    differs |= d->alternatives[1].waypoints[k].position.x != a->alternatives[1].waypoints[k].position.x;
+  }
+  EXPECT_TRUE(differs);
+}
+
+TEST(Level2OptimizerTest, FastEvaluationEqualsExactEvaluation) {
+  auto s = MakeScenario();
+  Level2Options o = SmallOptions();
+  o.pso.iterations = 8;
+  auto fast = OptimizeLevel2(s->problem, o);
+  o.risk_evaluation = RiskEvaluation::kExact;
+  auto exact = OptimizeLevel2(s->problem, o);
+  ASSERT_TRUE(fast.ok() && exact.ok());
+  for (size_t i = 0; i < 2; ++i) {
+    EXPECT_NEAR(fast->alternatives[i].expected_cost, exact->alternatives[i].expected_cost,
+                1e-6 * exact->alternatives[i].expected_cost);
+    for (size_t k = 0; k < fast->alternatives[i].waypoints.size(); ++k) {
+      EXPECT_EQ(fast->alternatives[i].waypoints[k].ttg_s, exact->alternatives[i].waypoints[k].ttg_s);
+    }
+  }
+  EXPECT_EQ(fast->chosen, exact->chosen);
+}
+
+TEST(Level2OptimizerTest, SwitchingCostSmoothsModes) {
+  auto s = MakeScenario();
+  Level2Options o = SmallOptions();
+  o.weights.mode_switch_cost = 1e3;  // never worth switching
+  auto r = OptimizeLevel2(s->problem, o);
+  ASSERT_TRUE(r.ok());
+  for (const auto& alt : r->alternatives) EXPECT_EQ(alt.mode_switches, 0);
+  o.weights.mode_switch_cost = 0.0;
+  auto free_switch = OptimizeLevel2(s->problem, o);
+  ASSERT_TRUE(free_switch.ok());
+  EXPECT_GE(free_switch->alternatives[1].mode_switches, 1);
+}
+
+TEST(Level2OptimizerTest, RejectsBadInput) {
+  auto s = MakeScenario();
+  Level2Options o;
+  o.pso.particles = 0;
+  EXPECT_EQ(OptimizeLevel2(s->problem, o).status().code(), absl::StatusCode::kInvalidArgument);
+  Level2Problem p = s->problem;
+  p.alternatives = {{{0, 0}}};
+  EXPECT_EQ(OptimizeLevel2(p, {}).status().code(), absl::StatusCode::kInvalidArgument);
+  p = s->problem;
+  p.field = nullptr;
+  EXPECT_EQ(OptimizeLevel2(p, {}).status().code(), absl::StatusCode::kInvalidArgument);
+}
+
+TEST(Level2OptimizerTest, StopTokenEndsEarlyWithPartialResult) {
+  auto s = MakeScenario();
+  StopToken stop;
+  stop.Cancel();
+  auto r = OptimizeLevel2(s->problem, Level2Options{}, stop);
+  ASSERT_TRUE(r.ok());
+  EXPECT_TRUE(r->stopped);
+  EXPECT_LT(r->evaluations, 2 * 19 * 30 * 3);
+}
+
+}  // namespace
+}  // namespace seaplan::route

@@ -1,0 +1,341 @@
+#include "seaplan/route/obstacle_field.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <string>
+
+#include "absl/strings/str_cat.h"
+
+namespace seaplan::route {
+namespace {
+
+constexpr double kMaxExponent = 50.0;
+
+double Cross(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
+Vec2 Sub(Vec2 a, Vec2 b) { return {a.x - b.x, a.y - b.y}; }
+
+int Orientation(Vec2 a, Vec2 b, Vec2 c) {
+  const double v = Cross(Sub(b, a), Sub(c, a));
+  return (v > 0) - (v < 0);
+}
+bool OnSegment(Vec2 a, Vec2 b, Vec2 p) {
+  return std::min(a.x, b.x) <= p.x && p.x <= std::max(a.x, b.x) && std::min(a.y, b.y) <= p.y &&
+         p.y <= std::max(a.y, b.y);
+}
+// Closed segments a-b and c-d share a point.
+bool SegmentsIntersect(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
+  const int o1 = Orientation(a, b, c), o2 = Orientation(a, b, d);
+  const int o3 = Orientation(c, d, a), o4 = Orientation(c, d, b);
+  if (o1 != o2 && o3 != o4) return true;
+  if (o1 == 0 && OnSegment(a, b, c)) return true;
+  if (o2 == 0 && OnSegment(a, b, d)) return true;
+  if (o3 == 0 && OnSegment(c, d, a)) return true;
+  if (o4 == 0 && OnSegment(c, d, b)) return true;
+  return false;
+}
+// p inside or on the convex polygon v[0..n).
+bool InConvex(const Vec2* v, int n, Vec2 p) {
+  bool pos = false, neg = false;
+  for (int i = 0; i < n; ++i) {
+    const double c = Cross(Sub(v[(i + 1) % n], v[i]), Sub(p, v[i]));
+    pos |= c > 0;
+    neg |= c < 0;
+  }
+  return !(pos && neg);
+}
+double BoxDistance(Vec2 p, Vec2 lo, Vec2 hi) {
+  const double dx = std::max({lo.x - p.x, 0.0, p.x - hi.x});
+  const double dy = std::max({lo.y - p.y, 0.0, p.y - hi.y});
+  return std::sqrt(dx * dx + dy * dy);
+}
+
+}  // namespace
+
+absl::Status ObstacleFieldOptions::Validate() const {
+  if (!(cell_m >= 1.0 && cell_m <= 10000.0)) {
+    return absl::InvalidArgumentError(absl::StrCat("cell_m must be in [1, 10000], got ", cell_m));
+  }
+  if (!(far_cutoff_m > 0.0 && far_cutoff_m <= 1e5)) {
+    return absl::InvalidArgumentError(absl::StrCat("far_cutoff_m must be in (0, 1e5], got ", far_cutoff_m));
+  }
+  if (!(margin_m >= 0.0 && margin_m <= 1e5)) {
+    return absl::InvalidArgumentError(absl::StrCat("margin_m must be in [0, 1e5], got ", margin_m));
+  }
+  if (!(hull.length_m > 0.0 && hull.beam_m > 0.0 && hull.beam_m <= hull.length_m &&
+        hull.length_m < 1000.0)) {
+    return absl::InvalidArgumentError(absl::StrCat("hull must have 0 < beam <= length < 1000 m, got ",
+                                                   hull.length_m, " x ", hull.beam_m));
+  }
+  return absl::OkStatus();
+}
+
+StatusOr<ObstacleField> ObstacleField::Build(std::vector<ObstaclePolygon> obstacles, Vec2 area_min,
+                                             Vec2 area_max, const ObstacleFieldOptions& options) {
+  SEAPLAN_RETURN_IF_ERROR(options.Validate());
+  if (!(area_max.x > area_min.x && area_max.y > area_min.y) ||
+      !std::isfinite(area_min.x + area_min.y + area_max.x + area_max.y)) {
+    return absl::InvalidArgumentError("obstacle field area must be a non-empty finite box");
+  }
+  const double width = area_max.x - area_min.x + 2 * options.margin_m;
+  const double height = area_max.y - area_min.y + 2 * options.margin_m;
+  const double cells = (width / options.cell_m + 1) * (height / options.cell_m + 1);
+  if (cells > 4e6) {
+    return absl::ResourceExhaustedError(absl::StrCat(
+        "obstacle field grid would need ", cells, " cells (area ", width, " x ", height,
+        " m at ", options.cell_m, " m); use a larger cell_m or a smaller area"));
+  }
+
+  ObstacleField f;
+  f.options_ = options;
+  f.area_min_ = area_min;
+  f.area_max_ = area_max;
+  const double half_l = options.hull.length_m / 2, half_b = options.hull.beam_m / 2;
+  f.hull_outer_radius_ = std::hypot(half_l, half_b);
+  f.hull_inner_radius_ = std::min(half_b, half_l / std::sqrt(2.0));
+  f.obstacle_edge_begin_.push_back(0);
+  for (size_t i = 0; i < obstacles.size(); ++i) {
+    Vec2 lo{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+    Vec2 hi{-lo.x, -lo.y};
+    for (const auto& ring : obstacles[i].rings) {
+      const size_t n = ring.size();
+      if (n < 3) {
+        return absl::InvalidArgumentError(
+            absl::StrCat("obstacle ", i, " has a ring with ", n, " points (need >= 3)"));
+      }
+      for (size_t k = 0; k < n; ++k) {
+        const Vec2 a = ring[k], b = ring[(k + 1) % n];
+        if (!std::isfinite(a.x) || !std::isfinite(a.y)) {
+          return absl::InvalidArgumentError(absl::StrCat("obstacle ", i, " has a non-finite vertex"));
+        }
+        const Vec2 d = Sub(b, a);
+        const double len2 = d.x * d.x + d.y * d.y;
+        f.edges_.push_back({a, d, len2 > 0 ? 1.0 / len2 : 0.0});
+        lo = {std::min(lo.x, a.x), std::min(lo.y, a.y)};
+        hi = {std::max(hi.x, a.x), std::max(hi.y, a.y)};
+      }
+    }
+    if (f.edges_.size() == static_cast<size_t>(f.obstacle_edge_begin_.back())) {
+      return absl::InvalidArgumentError(absl::StrCat("obstacle ", i, " has no ring"));
+    }
+    f.obstacle_edge_begin_.push_back(static_cast<int32_t>(f.edges_.size()));
+    f.obstacle_box_min_.push_back(lo);
+    f.obstacle_box_max_.push_back(hi);
+  }
+  f.all_edges_.resize(f.edges_.size());
+  for (size_t e = 0; e < f.edges_.size(); ++e) f.all_edges_[e] = static_cast<int32_t>(e);
+
+  // The grid. Every cell keeps, per obstacle near enough to matter, the edges
+  // that can be the nearest for some point of the cell: for p in the cell,
+  // |d_e(p) - d_e(c)| <= hd (hd = half diagonal), so only edges with
+  // d_e(c) <= min_e d_e(c) + 2 hd can win. Likewise the edges that a hull
+  // centred in the cell can touch have d_e(c) <= R_outer + hd.
+  f.cell_ = options.cell_m;
+  f.inv_cell_ = 1.0 / options.cell_m;
+  f.grid_origin_ = {area_min.x - options.margin_m, area_min.y - options.margin_m};
+  f.nx_ = static_cast<int>(std::ceil(width / options.cell_m));
+  f.ny_ = static_cast<int>(std::ceil(height / options.cell_m));
+  const double hd = options.cell_m * std::sqrt(0.5);
+  // Every obstacle a hull may touch must have an entry (HullHits relies on it).
+  const double cutoff = std::max(options.far_cutoff_m, f.hull_outer_radius_ + 2 * hd);
+  const double hull_reach = f.hull_outer_radius_ + hd;
+  f.cells_.resize(static_cast<size_t>(f.nx_) * f.ny_);
+  std::vector<double> d2;
+  for (int iy = 0; iy < f.ny_; ++iy) {
+    for (int ix = 0; ix < f.nx_; ++ix) {
+      Cell& cell = f.cells_[static_cast<size_t>(iy) * f.nx_ + ix];
+      const Vec2 c{f.grid_origin_.x + (ix + 0.5) * f.cell_, f.grid_origin_.y + (iy + 0.5) * f.cell_};
+      cell.entries_begin = static_cast<int32_t>(f.entries_.size());
+      cell.hull_begin = static_cast<int32_t>(f.hull_candidates_.size());
+      double clear = std::numeric_limits<double>::infinity();
+      for (int i = 0; i < f.obstacle_count(); ++i) {
+        const double bd = BoxDistance(c, f.obstacle_box_min_[i], f.obstacle_box_max_[i]);
+        if (bd - hd >= cutoff) {
+          clear = std::min(clear, bd - hd);
+          continue;
+        }
+        const int b = f.obstacle_edge_begin_[i], e = f.obstacle_edge_begin_[i + 1];
+        d2.resize(e - b);
+        double min2 = std::numeric_limits<double>::infinity();
+        for (int k = b; k < e; ++k) {
+          d2[k - b] = f.EdgeDistance2(f.edges_[k], c);
+          min2 = std::min(min2, d2[k - b]);
+        }
+        const double dmin = std::sqrt(min2);
+        const int8_t inside = dmin > hd ? (f.PointInObstacle(i, c) ? 1 : 0) : -1;
+        // Signed: a cell wholly inside an obstacle is never clear.
+        clear = std::min(clear, inside == 1 ? -(dmin - hd) : dmin - hd);
+        if (dmin - hd >= cutoff && inside != 1) continue;
+        CellObstacle entry;
+        entry.obstacle = i;
+        entry.inside = inside;
+        entry.cand_begin = static_cast<int32_t>(f.candidates_.size());
+        const double keep = (dmin + 2 * hd) * (dmin + 2 * hd);
+        const double hull_keep = hull_reach * hull_reach;
+        for (int k = b; k < e; ++k) {
+          if (d2[k - b] <= keep) f.candidates_.push_back(k);
+          if (d2[k - b] <= hull_keep) f.hull_candidates_.push_back(k);
+        }
+        entry.cand_end = static_cast<int32_t>(f.candidates_.size());
+        f.entries_.push_back(entry);
+      }
+      cell.entries_end = static_cast<int32_t>(f.entries_.size());
+      cell.hull_end = static_cast<int32_t>(f.hull_candidates_.size());
+      cell.clear_lb_m = static_cast<float>(std::min(clear, 1e30));
+      cell.inside_any = -1;
+    }
+  }
+  return f;
+}
+
+double ObstacleField::EdgeDistance2(const Edge& e, Vec2 p) const {
+  const double px = p.x - e.a.x, py = p.y - e.a.y;
+  double t = (px * e.d.x + py * e.d.y) * e.inv_len2;
+  t = std::clamp(t, 0.0, 1.0);
+  const double dx = px - t * e.d.x, dy = py - t * e.d.y;
+  return dx * dx + dy * dy;
+}
+
+bool ObstacleField::PointInObstacle(int obstacle, Vec2 p) const {
+  bool inside = false;
+  for (int k = obstacle_edge_begin_[obstacle]; k < obstacle_edge_begin_[obstacle + 1]; ++k) {
+    const Edge& e = edges_[k];
+    const double by = e.a.y + e.d.y;
+    if ((e.a.y > p.y) != (by > p.y)) {
+      const double x = e.a.x + (p.y - e.a.y) * e.d.x / e.d.y;
+      if (p.x < x) inside = !inside;
+    }
+  }
+  return inside;
+}
+
+double ObstacleField::ObstacleDistanceBruteForce(int obstacle, Vec2 p) const {
+  double min2 = std::numeric_limits<double>::infinity();
+  for (int k = obstacle_edge_begin_[obstacle]; k < obstacle_edge_begin_[obstacle + 1]; ++k) {
+    min2 = std::min(min2, EdgeDistance2(edges_[k], p));
+  }
+  return std::sqrt(min2);
+}
+
+const ObstacleField::Cell* ObstacleField::CellAt(Vec2 p) const {
+  const double fx = (p.x - grid_origin_.x) * inv_cell_, fy = (p.y - grid_origin_.y) * inv_cell_;
+  if (!(fx >= 0 && fy >= 0 && fx < nx_ && fy < ny_)) return nullptr;
+  return &cells_[static_cast<size_t>(static_cast<int>(fy)) * nx_ + static_cast<int>(fx)];
+}
+
+double ObstacleField::SumExpDistance(Vec2 p, double zeta) const {
+  const Cell* cell = CellAt(p);
+  if (cell == nullptr) return SumExpDistanceBruteForce(p, zeta);
+  double sum = 0.0;
+  for (int32_t j = cell->entries_begin; j < cell->entries_end; ++j) {
+    const CellObstacle& entry = entries_[j];
+    double min2 = std::numeric_limits<double>::infinity();
+    for (int32_t k = entry.cand_begin; k < entry.cand_end; ++k) {
+      min2 = std::min(min2, EdgeDistance2(edges_[candidates_[k]], p));
+    }
+    double d = std::sqrt(min2);
+    const bool inside = entry.inside < 0 ? PointInObstacle(entry.obstacle, p) : entry.inside == 1;
+    if (inside) d = -d;
+    sum += std::exp(std::min(kMaxExponent, -zeta * d));
+  }
+  return sum;
+}
+
+double ObstacleField::SumExpDistanceBruteForce(Vec2 p, double zeta) const {
+  double sum = 0.0;
+  for (int i = 0; i < obstacle_count(); ++i) {
+    double d = ObstacleDistanceBruteForce(i, p);
+    if (PointInObstacle(i, p)) d = -d;
+    sum += std::exp(std::min(kMaxExponent, -zeta * d));
+  }
+  return sum;
+}
+
+double ObstacleField::SignedDistance(Vec2 p) const {
+  const Cell* cell = CellAt(p);
+  if (cell == nullptr) return SignedDistanceBruteForce(p);
+  double best = std::numeric_limits<double>::infinity();
+  for (int32_t j = cell->entries_begin; j < cell->entries_end; ++j) {
+    const CellObstacle& entry = entries_[j];
+    double min2 = std::numeric_limits<double>::infinity();
+    for (int32_t k = entry.cand_begin; k < entry.cand_end; ++k) {
+      min2 = std::min(min2, EdgeDistance2(edges_[candidates_[k]], p));
+    }
+    double d = std::sqrt(min2);
+    const bool inside = entry.inside < 0 ? PointInObstacle(entry.obstacle, p) : entry.inside == 1;
+    if (inside) d = -d;
+    best = std::min(best, d);
+  }
+  if (cell->entries_begin == cell->entries_end) return std::max<double>(cell->clear_lb_m, 0.0);
+  return best;
+}
+
+double ObstacleField::SignedDistanceBruteForce(Vec2 p) const {
+  double best = std::numeric_limits<double>::infinity();
+  for (int i = 0; i < obstacle_count(); ++i) {
+    double d = ObstacleDistanceBruteForce(i, p);
+    if (PointInObstacle(i, p)) d = -d;
+    best = std::min(best, d);
+  }
+  return best;
+}
+
+bool ObstacleField::Inside(Vec2 p) const { return SignedDistance(p) <= 0.0; }
+
+void ObstacleField::HullVertices(Vec2 c, double heading_rad, Vec2 out[5]) const {
+  const double half_l = options_.hull.length_m / 2, half_b = options_.hull.beam_m / 2;
+  const double fx = std::sin(heading_rad), fy = std::cos(heading_rad);  // forward
+  const double sx = fy, sy = -fx;                                        // starboard
+  const double pts[5][2] = {{-half_l, -half_b}, {half_l - half_b, -half_b}, {half_l, 0.0},
+                            {half_l - half_b, half_b}, {-half_l, half_b}};
+  for (int i = 0; i < 5; ++i) {
+    out[i] = {c.x + pts[i][0] * fx + pts[i][1] * sx, c.y + pts[i][0] * fy + pts[i][1] * sy};
+  }
+}
+
+bool ObstacleField::HullHitsEdges(const Vec2 hull[5], const int32_t* edges, int n) const {
+  for (int j = 0; j < n; ++j) {
+    const Edge& e = edges_[edges[j]];
+    const Vec2 b{e.a.x + e.d.x, e.a.y + e.d.y};
+    // An obstacle ring lying wholly inside the hull has its vertices inside.
+    if (InConvex(hull, 5, e.a)) return true;
+    for (int i = 0; i < 5; ++i) {
+      if (SegmentsIntersect(hull[i], hull[(i + 1) % 5], e.a, b)) return true;
+    }
+  }
+  return false;
+}
+
+bool ObstacleField::HullHits(Vec2 centre, double heading_rad) const {
+  const Cell* cell = CellAt(centre);
+  if (cell == nullptr) return HullHitsBruteForce(centre, heading_rad);
+  if (cell->clear_lb_m > hull_outer_radius_) return false;
+  const double sd = SignedDistance(centre);
+  if (sd <= hull_inner_radius_) return true;  // centre inside, or the inscribed disc touches
+  if (sd > hull_outer_radius_) return false;
+  Vec2 hull[5];
+  HullVertices(centre, heading_rad, hull);
+  return HullHitsEdges(hull, hull_candidates_.data() + cell->hull_begin,
+                       cell->hull_end - cell->hull_begin);
+}
+
+bool ObstacleField::HullHitsBruteForce(Vec2 centre, double heading_rad) const {
+  for (int i = 0; i < obstacle_count(); ++i) {
+    if (PointInObstacle(i, centre)) return true;
+  }
+  Vec2 hull[5];
+  HullVertices(centre, heading_rad, hull);
+  return HullHitsEdges(hull, all_edges_.data(), static_cast<int>(all_edges_.size()));
+}
+
+bool ObstacleField::SegmentHits(Vec2 a, Vec2 b) const {
+  for (int i = 0; i < obstacle_count(); ++i) {
+    if (PointInObstacle(i, a)) return true;
+  }
+  for (const Edge& e : edges_) {
+    if (SegmentsIntersect(a, b, e.a, {e.a.x + e.d.x, e.a.y + e.d.y})) return true;
+  }
+  return false;
+}
+
+}  // namespace seaplan::route
