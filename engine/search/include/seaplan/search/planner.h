@@ -1,0 +1,114 @@
+// The seaplan temporal planner: PDDL 2.1 durative actions (with numeric
+// fluents, timed initial literals, duration inequalities, conditional
+// effects), required concurrency included.
+//
+//   seaplan::search::PlannerOptions options;
+//   options.time_limit_s = 10;
+//   auto stop = seaplan::StopToken::WithTimeout(std::chrono::seconds(30));
+//   seaplan::search::PlanResult r = seaplan::search::Solve(domain, problem, options, stop);
+//   if (r.status == PlanStatus::kSolvedSatisficing) { ... r.plan ... }
+//
+// How it works (POPF/OPTIC style forward search over snap actions):
+//   - every durative action is a start and an end event; a state holds the
+//     facts, numeric values, running actions and the next timed literal;
+//   - a simple temporal network over the path's events keeps the schedule
+//     consistent: interfering events are at least epsilon apart, ends lie
+//     within the [min, max] duration of their start, timed literals are
+//     fixed-time events; an inconsistent network prunes the successor;
+//   - first plan: lazy greedy best-first search with an FF relaxed-plan
+//     heuristic on the snap actions (numeric fluents as intervals) and
+//     helpful actions in a second, boosted open list;
+//   - anytime: restarting weighted A* on makespan, pruned by the incumbent,
+//     until the time limit or an exhausted space;
+//   - every plan is scheduled at its earliest STN times, printed with
+//     validate::FormatPlan, parsed back and checked by validate::ValidatePlan
+//     before anyone sees it; a plan that fails is logged and dropped.
+//
+// Thread-safety: SolveTask/Solve are reentrant (no shared state); the
+// observer callbacks run on the calling thread.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+
+#include "seaplan/common/status.h"
+#include "seaplan/common/stop_token.h"
+#include "seaplan/task/ground_task.h"
+#include "seaplan/validate/plan.h"
+
+namespace seaplan::search {
+
+enum class PlanStatus {
+  kSolvedSatisficing,  // a valid plan; better ones may exist
+  kSolvedOptimally,    // a valid plan of minimal makespan (proven)
+  kUnsolvableProven,   // the complete search space holds no plan
+  kTimeout,            // time limit or deadline reached before any plan
+  kMemout,             // memory limit reached before any plan
+  kUnsupported,        // the input uses PDDL the planner does not handle
+  kCancelled,          // StopToken cancelled before any plan
+  kError,              // bad options or input (message says what)
+};
+
+// "solved", "solved-optimally", "unsolvable", "timeout", "memout",
+// "unsupported", "cancelled", "error".
+const char* ToString(PlanStatus status);
+
+struct PlannerOptions {
+  // Wall-clock budget of the search, seconds (> 0). The StopToken may stop earlier.
+  double time_limit_s = 60;
+  // Budget for the planner's own data (states, open lists, side tables), MB (> 0).
+  std::size_t memory_limit_mb = 2048;
+  // Most actions running at once; 0 = unbounded. Smaller values shrink the
+  // search space but can make required-concurrency tasks unsolvable.
+  int max_concurrent_actions = 0;
+  // Keep improving the makespan after the first plan (until the limit).
+  bool anytime = true;
+  // Tie-breaking among equally good successors; same seed, same plan.
+  std::uint64_t random_seed = 1;
+  // Separation of interfering events, seconds (> 0, the validator's epsilon).
+  double epsilon_s = 0.001;
+
+  absl::Status Validate() const;
+};
+
+struct SearchStatistics {
+  std::size_t expanded = 0, generated = 0, evaluated = 0;
+  double search_time_s = 0, first_plan_time_s = -1, best_plan_time_s = -1;
+  std::size_t peak_memory_mb = 0;
+  int plans_found = 0;
+};
+
+struct PlanResult {
+  PlanStatus status = PlanStatus::kError;
+  validate::Plan plan;  // empty unless solved
+  double makespan_s = 0;
+  std::optional<double> metric_value;  // the task's metric on the plan, when defined
+  SearchStatistics stats;
+  std::string message;  // one line: what happened (error text for kError/kUnsupported)
+};
+
+// Called for every strictly better VALIDATED plan as soon as it is found
+// (anytime), and for progress about every 0.5 s. Either may be empty.
+struct PlanObserver {
+  std::function<void(const PlanResult&)> on_plan;
+  std::function<void(const SearchStatistics&)> on_progress;
+};
+
+// Plans for a ground task. Polls `stop` (deadline, cancellation) at least
+// every millisecond of work; the result keeps the best plan found so far
+// (status kSolvedSatisficing) when stopped after a plan.
+PlanResult SolveTask(const task::GroundTask& task, const PlannerOptions& options,
+                     const StopToken& stop, const PlanObserver* observer = nullptr);
+
+// Parses and grounds (task::LoadTask), then SolveTask. Parse or grounding
+// errors give kError, unsupported PDDL gives kUnsupported, with the
+// diagnostics in `message`.
+PlanResult Solve(std::string_view domain_text, std::string_view problem_text,
+                 const PlannerOptions& options, const StopToken& stop,
+                 const PlanObserver* observer = nullptr);
+
+}  // namespace seaplan::search

@@ -1,0 +1,433 @@
+#include "relaxed_plan_heuristic.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace seaplan::search {
+namespace {
+
+constexpr double kInf = std::numeric_limits<double>::infinity();
+// Layers in which only numeric intervals widen before giving up: enough
+// for counters that must be raised a few dozen times.
+constexpr int kMaxStagnantLayers = 64;
+
+void AddConditionFacts(const task::Condition& c, std::vector<std::int32_t>& out) {
+  out.insert(out.end(), c.positive.begin(), c.positive.end());
+}
+
+bool ConditionHoldsNumeric(const task::NumericCondition& c, const StateData& state) {
+  auto l = c.lhs.Evaluate(state.values);
+  auto r = c.rhs.Evaluate(state.values);
+  return l && r && !std::isnan(*l) && !std::isnan(*r) && task::Compare(*l, c.comparator, *r);
+}
+
+}  // namespace
+
+RelaxedPlanHeuristic::RelaxedPlanHeuristic(const SnapTask& task)
+    : task_(task), num_facts_(task.num_facts()), num_ops_(2 * task.num_actions()) {
+  const int total_facts = num_facts_ + task.num_actions();
+  const auto& actions = task.task().actions;
+  pre_begin_.push_back(0);
+  add_begin_.push_back(0);
+  num_pre_.resize(static_cast<std::size_t>(num_ops_));
+  num_eff_.resize(static_cast<std::size_t>(num_ops_));
+  op_exists_.assign(static_cast<std::size_t>(num_ops_), false);
+  std::vector<std::int32_t> tmp;
+  for (int op = 0; op < num_ops_; ++op) {
+    const int a = op / 2;
+    const bool is_end = op % 2 == 1;
+    const task::Action& action = actions[static_cast<std::size_t>(a)];
+    op_exists_[op] = !is_end || action.is_durative;
+    tmp.clear();
+    if (op_exists_[op]) {
+      AddConditionFacts(is_end ? action.at_end : action.at_start, tmp);
+      if (action.is_durative) AddConditionFacts(action.over_all, tmp);
+      if (is_end) tmp.push_back(num_facts_ + a);
+      std::sort(tmp.begin(), tmp.end());
+      tmp.erase(std::unique(tmp.begin(), tmp.end()), tmp.end());
+    }
+    pre_.insert(pre_.end(), tmp.begin(), tmp.end());
+    pre_begin_.push_back(static_cast<std::int32_t>(pre_.size()));
+    tmp.clear();
+    if (op_exists_[op]) {
+      const task::Effects& eff = is_end ? action.end_effects : action.start_effects;
+      tmp.insert(tmp.end(), eff.add.begin(), eff.add.end());
+      for (const auto& ce : eff.conditional) tmp.insert(tmp.end(), ce.add.begin(), ce.add.end());
+      if (!is_end && action.is_durative) tmp.push_back(num_facts_ + a);
+      std::sort(tmp.begin(), tmp.end());
+      tmp.erase(std::unique(tmp.begin(), tmp.end()), tmp.end());
+      for (const auto& c : (is_end ? action.at_end : action.at_start).numeric) num_pre_[op].push_back(&c);
+      if (action.is_durative) {
+        for (const auto& c : action.over_all.numeric) num_pre_[op].push_back(&c);
+      }
+      for (const auto& e : eff.numeric) num_eff_[op].push_back(&e);
+      for (const auto& ce : eff.conditional) {
+        for (const auto& e : ce.numeric) num_eff_[op].push_back(&e);
+      }
+    }
+    add_.insert(add_.end(), tmp.begin(), tmp.end());
+    add_begin_.push_back(static_cast<std::int32_t>(add_.size()));
+  }
+  // fact -> ops needing it.
+  std::vector<std::int32_t> count(static_cast<std::size_t>(total_facts) + 1, 0);
+  for (auto f : pre_) ++count[f + 1];
+  for (std::size_t i = 1; i < count.size(); ++i) count[i] += count[i - 1];
+  fact_ops_begin_ = count;
+  fact_ops_.resize(pre_.size());
+  std::vector<std::int32_t> fill(count.begin(), count.end() - 1);
+  for (int op = 0; op < num_ops_; ++op) {
+    for (int i = pre_begin_[op]; i < pre_begin_[op + 1]; ++i) fact_ops_[fill[pre_[i]]++] = op;
+  }
+  fact_layer_.resize(static_cast<std::size_t>(total_facts));
+  fact_achiever_.resize(static_cast<std::size_t>(total_facts));
+  fact_marked_.resize(static_cast<std::size_t>(total_facts));
+  op_layer_.resize(static_cast<std::size_t>(num_ops_));
+  op_missing_.resize(static_cast<std::size_t>(num_ops_));
+  op_marked_.resize(static_cast<std::size_t>(num_ops_));
+  interval_.resize(static_cast<std::size_t>(task.num_vars()));
+  next_interval_.resize(static_cast<std::size_t>(task.num_vars()));
+  var_changer_.resize(static_cast<std::size_t>(task.num_vars()));
+  var_change_layer_.resize(static_cast<std::size_t>(task.num_vars()));
+  til_fact_.resize(static_cast<std::size_t>(num_facts_));
+}
+
+RelaxedPlanHeuristic::Interval RelaxedPlanHeuristic::EvalInterval(const task::NumericExpr& expr,
+                                                                  const StateData& state,
+                                                                  task::ActionId a) {
+  using Op = task::NumericExpr::Op;
+  eval_stack_.resize(expr.nodes.size());
+  for (std::size_t i = 0; i < expr.nodes.size(); ++i) {
+    const auto& n = expr.nodes[i];
+    Interval r{0, 0};
+    switch (n.op) {
+      case Op::kConstant: r = {n.value, n.value}; break;
+      case Op::kVariable: r = interval_[n.var]; break;
+      case Op::kTotalTime: r = {0, kInf}; break;
+      case Op::kDuration: {
+        // The duration as it would be in this state (rovers' recharge).
+        double lo = 0, hi = kInf;
+        if (a >= 0) {
+          for (const auto& d : task_.task().actions[a].duration) {
+            auto v = d.value.Evaluate(state.values);
+            if (!v) continue;
+            if (d.comparator == task::Comparator::kEqual) {
+              lo = std::max(lo, *v);
+              hi = std::min(hi, *v);
+            } else if (d.comparator == task::Comparator::kGreaterEqual || d.comparator == task::Comparator::kGreater) {
+              lo = std::max(lo, *v);
+            } else {
+              hi = std::min(hi, *v);
+            }
+          }
+        }
+        if (hi < lo) hi = lo;
+        r = {lo, hi};
+        break;
+      }
+      case Op::kAdd: {
+        const auto& x = eval_stack_[n.lhs];
+        const auto& y = eval_stack_[n.rhs];
+        r = {x.lo + y.lo, x.hi + y.hi};
+        break;
+      }
+      case Op::kSub: {
+        const auto& x = eval_stack_[n.lhs];
+        const auto& y = eval_stack_[n.rhs];
+        r = {x.lo - y.hi, x.hi - y.lo};
+        break;
+      }
+      case Op::kMul: {
+        const auto& x = eval_stack_[n.lhs];
+        const auto& y = eval_stack_[n.rhs];
+        double p[4] = {x.lo * y.lo, x.lo * y.hi, x.hi * y.lo, x.hi * y.hi};
+        r = {kInf, -kInf};
+        for (double v : p) {
+          if (std::isnan(v)) v = 0;  // 0 * inf
+          r.lo = std::min(r.lo, v);
+          r.hi = std::max(r.hi, v);
+        }
+        break;
+      }
+      case Op::kDiv: {
+        const auto& x = eval_stack_[n.lhs];
+        const auto& y = eval_stack_[n.rhs];
+        if (y.lo <= 0 && y.hi >= 0) {
+          if (y.lo == 0 && y.hi == 0) {
+            r = {std::nan(""), std::nan("")};
+          } else {
+            r = {-kInf, kInf};
+          }
+        } else {
+          double p[4] = {x.lo / y.lo, x.lo / y.hi, x.hi / y.lo, x.hi / y.hi};
+          r = {kInf, -kInf};
+          for (double v : p) {
+            if (std::isnan(v)) v = 0;
+            r.lo = std::min(r.lo, v);
+            r.hi = std::max(r.hi, v);
+          }
+        }
+        break;
+      }
+      case Op::kNeg: {
+        const auto& x = eval_stack_[n.lhs];
+        r = {-x.hi, -x.lo};
+        break;
+      }
+    }
+    eval_stack_[i] = r;
+  }
+  if (expr.nodes.empty()) return {std::nan(""), std::nan("")};
+  return eval_stack_.back();
+}
+
+bool RelaxedPlanHeuristic::Satisfiable(const task::NumericCondition& c, const StateData& state,
+                                       task::ActionId a) {
+  const Interval l = EvalInterval(c.lhs, state, a);
+  const Interval r = EvalInterval(c.rhs, state, a);
+  if (std::isnan(l.lo) || std::isnan(r.lo) || std::isnan(l.hi) || std::isnan(r.hi)) return false;
+  constexpr double kTol = 1e-9;
+  switch (c.comparator) {
+    case task::Comparator::kLess: return l.lo < r.hi - kTol;
+    case task::Comparator::kLessEqual: return l.lo <= r.hi + kTol;
+    case task::Comparator::kEqual: return l.lo <= r.hi + kTol && r.lo <= l.hi + kTol;
+    case task::Comparator::kGreaterEqual: return l.hi >= r.lo - kTol;
+    case task::Comparator::kGreater: return l.hi > r.lo + kTol;
+  }
+  return false;
+}
+
+void RelaxedPlanHeuristic::MarkOp(int op) {
+  if (op < 0 || op_marked_[op]) return;
+  op_marked_[op] = true;
+  marked_ops_.push_back(op);
+  stack_.push_back(op);
+}
+
+void RelaxedPlanHeuristic::MarkFact(int fact) {
+  if (fact_marked_[fact]) return;
+  fact_marked_[fact] = true;
+  marked_facts_.push_back(fact);
+  if (fact_layer_[fact] <= 0) return;
+  MarkOp(fact_achiever_[fact]);
+}
+
+void RelaxedPlanHeuristic::MarkNumeric(const task::NumericCondition& c, int layer) {
+  for (const auto* expr : {&c.lhs, &c.rhs}) {
+    for (const auto& n : expr->nodes) {
+      if (n.op != task::NumericExpr::Op::kVariable) continue;
+      if (var_changer_[n.var] >= 0 && var_change_layer_[n.var] < layer) MarkOp(var_changer_[n.var]);
+    }
+  }
+}
+
+int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* preferred) {
+  std::fill(fact_layer_.begin(), fact_layer_.end(), -1);
+  std::fill(op_layer_.begin(), op_layer_.end(), -1);
+  for (int op = 0; op < num_ops_; ++op) {
+    op_missing_[op] = op_exists_[op] ? pre_begin_[op + 1] - pre_begin_[op] : (1 << 30);
+  }
+  for (std::size_t v = 0; v < interval_.size(); ++v) {
+    interval_[v] = {state.values[v], state.values[v]};
+    var_changer_[v] = -1;
+    var_change_layer_[v] = -1;
+  }
+  applicable_.clear();
+  numeric_waiting_.clear();
+  new_facts_.clear();
+  auto reach = [&](int f, int layer, int achiever) {
+    if (fact_layer_[f] >= 0) return;
+    fact_layer_[f] = layer;
+    fact_achiever_[f] = achiever;
+    new_facts_.push_back(f);
+  };
+  for (std::size_t w = 0; w < state.facts.size(); ++w) {
+    std::uint64_t bits = state.facts[w];
+    while (bits) {
+      const int b = __builtin_ctzll(bits);
+      bits &= bits - 1;
+      reach(static_cast<int>(w * 64) + b, 0, -1);
+    }
+  }
+  const auto& tils = task_.tils();
+  for (std::size_t k = static_cast<std::size_t>(state.next_til); k < tils.size(); ++k) {
+    for (auto f : tils[k].add) reach(f, 0, -1);
+  }
+  for (const auto& r : state.running) reach(num_facts_ + r.action, 0, -1);
+
+  const task::Condition& goal = task_.task().goal;
+  int layer = 0;
+  int stagnant = 0;
+  std::size_t processed_applicable = 0;
+  std::vector<std::int32_t>& numeric_ops = layer_ops_;  // applicable ops with numeric effects
+  numeric_ops.clear();
+  int goal_layer = -1;
+  while (true) {
+    // Facts new at this layer enable operators.
+    for (auto f : new_facts_) {
+      for (int i = fact_ops_begin_[f]; i < fact_ops_begin_[f + 1]; ++i) {
+        const int op = fact_ops_[i];
+        if (--op_missing_[op] == 0) {
+          if (num_pre_[op].empty()) {
+            op_layer_[op] = layer;
+            applicable_.push_back(op);
+          } else {
+            numeric_waiting_.push_back(op);
+          }
+        }
+      }
+    }
+    for (std::size_t i = 0; i < numeric_waiting_.size();) {
+      const int op = numeric_waiting_[i];
+      bool ok = true;
+      for (const auto* c : num_pre_[op]) {
+        if (!Satisfiable(*c, state, op / 2)) {
+          ok = false;
+          break;
+        }
+      }
+      if (ok) {
+        op_layer_[op] = layer;
+        applicable_.push_back(op);
+        numeric_waiting_[i] = numeric_waiting_.back();
+        numeric_waiting_.pop_back();
+      } else {
+        ++i;
+      }
+    }
+    // Goal reached?
+    bool goal_ok = true;
+    for (auto f : goal.positive) {
+      if (fact_layer_[f] < 0) {
+        goal_ok = false;
+        break;
+      }
+    }
+    if (goal_ok) {
+      for (const auto& c : goal.numeric) {
+        if (!Satisfiable(c, state, -1)) {
+          goal_ok = false;
+          break;
+        }
+      }
+    }
+    if (goal_ok) {
+      goal_layer = layer;
+      break;
+    }
+    // Apply this layer's new operators (facts) and all numeric effects.
+    new_facts_.clear();
+    const bool new_ops = processed_applicable < applicable_.size();
+    for (; processed_applicable < applicable_.size(); ++processed_applicable) {
+      const int op = applicable_[processed_applicable];
+      for (int i = add_begin_[op]; i < add_begin_[op + 1]; ++i) reach(add_[i], layer + 1, op);
+      if (!num_eff_[op].empty()) numeric_ops.push_back(op);
+    }
+    bool widened = false;
+    if (!numeric_ops.empty()) {
+      next_interval_ = interval_;
+      for (auto op : numeric_ops) {
+        for (const auto* e : num_eff_[op]) {
+          const Interval v = EvalInterval(e->value, state, op / 2);
+          Interval& t = next_interval_[e->var];
+          const Interval cur = interval_[e->var];
+          Interval cand = cur;
+          switch (e->op) {
+            case task::AssignOp::kAssign: cand = v; break;
+            case task::AssignOp::kIncrease: cand = {cur.lo + v.lo, cur.hi + v.hi}; break;
+            case task::AssignOp::kDecrease: cand = {cur.lo - v.hi, cur.hi - v.lo}; break;
+            case task::AssignOp::kScaleUp:
+            case task::AssignOp::kScaleDown: {
+              const bool up = e->op == task::AssignOp::kScaleUp;
+              double p[4];
+              if (up) {
+                p[0] = cur.lo * v.lo; p[1] = cur.lo * v.hi; p[2] = cur.hi * v.lo; p[3] = cur.hi * v.hi;
+              } else if (v.lo > 0 || v.hi < 0) {
+                p[0] = cur.lo / v.lo; p[1] = cur.lo / v.hi; p[2] = cur.hi / v.lo; p[3] = cur.hi / v.hi;
+              } else {
+                p[0] = -kInf; p[1] = kInf; p[2] = -kInf; p[3] = kInf;
+              }
+              cand = {*std::min_element(p, p + 4), *std::max_element(p, p + 4)};
+              break;
+            }
+          }
+          if (std::isnan(cand.lo) || std::isnan(cand.hi)) continue;
+          if (std::isnan(t.lo)) {
+            t = cand;
+          } else {
+            t.lo = std::min(t.lo, cand.lo);
+            t.hi = std::max(t.hi, cand.hi);
+          }
+        }
+      }
+      for (std::size_t v = 0; v < interval_.size(); ++v) {
+        const Interval& a = interval_[v];
+        const Interval& b = next_interval_[v];
+        const bool same = (a.lo == b.lo || (std::isnan(a.lo) && std::isnan(b.lo))) &&
+                          (a.hi == b.hi || (std::isnan(a.hi) && std::isnan(b.hi)));
+        if (!same) {
+          widened = true;
+          if (var_changer_[v] < 0) {
+            // First operator (in this layer) that has an effect on v.
+            for (auto op : numeric_ops) {
+              for (const auto* e : num_eff_[op]) {
+                if (e->var == static_cast<task::NumericVarId>(v)) {
+                  var_changer_[v] = op;
+                  break;
+                }
+              }
+              if (var_changer_[v] >= 0) break;
+            }
+            var_change_layer_[v] = layer + 1;
+          }
+        }
+      }
+      interval_.swap(next_interval_);
+    }
+    if (new_facts_.empty() && !new_ops) {
+      if (!widened || (numeric_waiting_.empty() && goal.numeric.empty())) {
+        dead_end_proven_ = true;
+        return kDeadEnd;
+      }
+      if (++stagnant > kMaxStagnantLayers) {
+        dead_end_proven_ = false;
+        return kDeadEnd;
+      }
+    } else {
+      stagnant = 0;
+    }
+    ++layer;
+  }
+
+  // Extract a relaxed plan backwards from the goal.
+  for (auto op : marked_ops_) op_marked_[op] = false;
+  for (auto f : marked_facts_) fact_marked_[f] = false;
+  marked_ops_.clear();
+  marked_facts_.clear();
+  stack_.clear();
+  for (auto f : goal.positive) MarkFact(f);
+  for (const auto& c : goal.numeric) {
+    if (!ConditionHoldsNumeric(c, state)) MarkNumeric(c, goal_layer);
+  }
+  while (!stack_.empty()) {
+    const int op = stack_.back();
+    stack_.pop_back();
+    for (int i = pre_begin_[op]; i < pre_begin_[op + 1]; ++i) MarkFact(pre_[i]);
+    for (const auto* c : num_pre_[op]) {
+      if (!ConditionHoldsNumeric(*c, state)) MarkNumeric(*c, op_layer_[op]);
+    }
+  }
+  int h = static_cast<int>(marked_ops_.size());
+  for (const auto& r : state.running) {
+    if (!op_marked_[2 * r.action + 1]) ++h;
+  }
+  if (preferred) {
+    preferred->clear();
+    for (auto op : marked_ops_) {
+      if (op_layer_[op] == 0) preferred->push_back(op);
+    }
+    std::sort(preferred->begin(), preferred->end());
+  }
+  return h;
+}
+
+}  // namespace seaplan::search

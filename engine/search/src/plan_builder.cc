@@ -1,0 +1,85 @@
+#include "plan_builder.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace seaplan::search {
+
+std::optional<BuiltPlan> BuildValidatedPlan(const SnapTask& task, std::span<const Event> events,
+                                            Timeline& timeline, double epsilon_s,
+                                            std::string* error) {
+  if (!timeline.Build(events)) {
+    *error = "schedule of the plan is inconsistent";
+    return std::nullopt;
+  }
+  struct Pending {
+    double start_s;
+    std::size_t event;
+  };
+  std::vector<std::pair<double, validate::PlanStep>> steps;
+  std::vector<std::int32_t> open(static_cast<std::size_t>(task.num_actions()), -1);
+  for (std::size_t i = 0; i < events.size(); ++i) {
+    const Event& e = events[i];
+    if (e.is_til()) continue;
+    const SnapAction& snap = task.snap(e.snap);
+    const task::Action& action = task.task().actions[snap.action];
+    if (!snap.is_end) {
+      if (!action.is_durative) {
+        validate::PlanStep step;
+        step.start_s = timeline.EventTime(i);
+        step.name = action.name;
+        step.args = action.args;
+        step.duration_s = 0;
+        steps.emplace_back(step.start_s, std::move(step));
+      } else {
+        open[snap.action] = static_cast<std::int32_t>(i);
+      }
+      continue;
+    }
+    const std::int32_t start = open[snap.action];
+    if (start < 0) {
+      *error = "end event without start";
+      return std::nullopt;
+    }
+    open[snap.action] = -1;
+    validate::PlanStep step;
+    step.start_s = timeline.EventTime(static_cast<std::size_t>(start));
+    double duration = timeline.EventTime(i) - step.start_s;
+    const Event& se = events[static_cast<std::size_t>(start)];
+    // Keep fixed durations exact (the STN sums may differ in the last bit).
+    if (se.min_duration_s == se.max_duration_s || std::abs(duration - se.min_duration_s) < 1e-7) {
+      duration = se.min_duration_s;
+    } else if (std::abs(duration - se.max_duration_s) < 1e-7) {
+      duration = se.max_duration_s;
+    }
+    step.duration_s = duration;
+    step.name = action.name;
+    step.args = action.args;
+    steps.emplace_back(step.start_s, std::move(step));
+  }
+  std::stable_sort(steps.begin(), steps.end(),
+                   [](const auto& a, const auto& b) { return a.first < b.first; });
+  validate::Plan plan;
+  for (auto& [t, step] : steps) plan.steps.push_back(std::move(step));
+
+  const std::string text = validate::FormatPlan(plan);
+  auto parsed = validate::ParsePlan(text);
+  if (!parsed.ok()) {
+    *error = "printed plan does not parse: " + std::string(parsed.status().message());
+    return std::nullopt;
+  }
+  validate::ValidationOptions options;
+  options.epsilon_s = epsilon_s;
+  const validate::ValidationResult result = validate::ValidatePlan(task.task(), *parsed, options);
+  if (!result.valid) {
+    *error = result.ToString() + "\n" + text;
+    return std::nullopt;
+  }
+  BuiltPlan built;
+  built.plan = std::move(*parsed);
+  built.makespan_s = result.makespan_s;
+  built.metric_value = result.metric_value;
+  return built;
+}
+
+}  // namespace seaplan::search

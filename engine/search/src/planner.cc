@@ -1,0 +1,302 @@
+#include "seaplan/search/planner.h"
+
+#include <chrono>
+#include <cmath>
+#include <memory>
+
+#include "absl/strings/str_cat.h"
+#include "heuristics/relaxed_plan_heuristic.h"
+#include "plan_builder.h"
+#include "search_engine.h"
+#include "seaplan/common/log.h"
+#include "seaplan/task/grounder.h"
+#include "snap_task.h"
+#include "state_registry.h"
+#include "timeline.h"
+#include "transitions.h"
+
+namespace seaplan::search {
+
+const char* ToString(PlanStatus status) {
+  switch (status) {
+    case PlanStatus::kSolvedSatisficing: return "solved";
+    case PlanStatus::kSolvedOptimally: return "solved-optimally";
+    case PlanStatus::kUnsolvableProven: return "unsolvable";
+    case PlanStatus::kTimeout: return "timeout";
+    case PlanStatus::kMemout: return "memout";
+    case PlanStatus::kUnsupported: return "unsupported";
+    case PlanStatus::kCancelled: return "cancelled";
+    case PlanStatus::kError: return "error";
+  }
+  return "unknown";
+}
+
+absl::Status PlannerOptions::Validate() const {
+  if (!(time_limit_s > 0) || !std::isfinite(time_limit_s)) {
+    return absl::InvalidArgumentError(
+        absl::StrCat("time_limit_s must be a positive finite number of seconds, got ", time_limit_s));
+  }
+  if (memory_limit_mb == 0) return absl::InvalidArgumentError("memory_limit_mb must be > 0");
+  if (max_concurrent_actions < 0) {
+    return absl::InvalidArgumentError(
+        absl::StrCat("max_concurrent_actions must be >= 0 (0 = unbounded), got ", max_concurrent_actions));
+  }
+  if (!(epsilon_s > 0) || !(epsilon_s < 1)) {
+    return absl::InvalidArgumentError(absl::StrCat("epsilon_s must be in (0, 1) seconds, got ", epsilon_s));
+  }
+  return absl::OkStatus();
+}
+
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double Seconds(Clock::time_point since) {
+  return std::chrono::duration<double>(Clock::now() - since).count();
+}
+
+// Drives the phases (greedy first plan, then weighted A* with a bound) and
+// owns the per-call components. One instance per SolveTask call.
+class PlannerRun {
+ public:
+  PlannerRun(const task::GroundTask& task, const PlannerOptions& options, const StopToken& stop,
+             const PlanObserver* observer)
+      : task_(task),
+        options_(options),
+        stop_(stop.Child(Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                            std::chrono::duration<double>(options.time_limit_s)))),
+        observer_(observer),
+        snap_(task),
+        registry_(snap_.num_facts(), snap_.num_vars()),
+        heuristic_(snap_),
+        transitions_(snap_, options.max_concurrent_actions, options.epsilon_s),
+        timeline_(snap_, options.epsilon_s, options.max_concurrent_actions > 0),
+        plan_timeline_(snap_, options.epsilon_s, options.max_concurrent_actions > 0) {}
+
+  PlanResult Run();
+
+ private:
+  enum class Outcome { kContinue, kStop, kMemout };
+  // Polls stop/memory/progress; called once per search step.
+  Outcome Poll(const LazySearch& search);
+  void AddCounters(const LazySearch& search);
+  // Builds and validates; true when it is a new incumbent.
+  bool Offer(const LazySearch& search);
+  StateData InitialState() const;
+
+  const task::GroundTask& task_;
+  PlannerOptions options_;
+  StopToken stop_;
+  const PlanObserver* observer_;
+  Clock::time_point start_ = Clock::now();
+  Clock::time_point last_progress_ = Clock::now();
+  SnapTask snap_;
+  StateRegistry registry_;
+  RelaxedPlanHeuristic heuristic_;
+  Transitions transitions_;
+  Timeline timeline_;
+  Timeline plan_timeline_;
+  PlanResult best_;
+  bool has_plan_ = false;
+  std::size_t plan_events_ = 0;
+  SearchCounters done_counters_;  // of finished phases
+  std::size_t steps_ = 0;
+};
+
+StateData PlannerRun::InitialState() const {
+  StateData s = registry_.MakeEmpty();
+  for (auto f : task_.initial_facts) s.Set(f);
+  for (std::size_t v = 0; v < s.values.size() && v < task_.initial_values.size(); ++v) {
+    s.values[v] = task_.initial_values[v];
+  }
+  return s;
+}
+
+void PlannerRun::AddCounters(const LazySearch& search) {
+  done_counters_.expanded += search.counters().expanded;
+  done_counters_.generated += search.counters().generated;
+  done_counters_.evaluated += search.counters().evaluated;
+}
+
+PlannerRun::Outcome PlannerRun::Poll(const LazySearch& search) {
+  ++steps_;
+  if (stop_.StopRequested()) return Outcome::kStop;
+  if ((steps_ & 63) == 0) {
+    const std::size_t bytes = registry_.MemoryBytes() + search.MemoryBytes();
+    const std::size_t mb = bytes >> 20;
+    best_.stats.peak_memory_mb = std::max(best_.stats.peak_memory_mb, mb);
+    if (mb >= options_.memory_limit_mb) return Outcome::kMemout;
+    if (observer_ && observer_->on_progress &&
+        std::chrono::duration<double>(Clock::now() - last_progress_).count() >= 0.5) {
+      last_progress_ = Clock::now();
+      SearchStatistics stats = best_.stats;
+      stats.expanded = done_counters_.expanded + search.counters().expanded;
+      stats.generated = done_counters_.generated + search.counters().generated;
+      stats.evaluated = done_counters_.evaluated + search.counters().evaluated;
+      stats.search_time_s = Seconds(start_);
+      observer_->on_progress(stats);
+    }
+  }
+  return Outcome::kContinue;
+}
+
+bool PlannerRun::Offer(const LazySearch& search) {
+  std::string error;
+  auto built = BuildValidatedPlan(snap_, search.plan(), plan_timeline_, options_.epsilon_s, &error);
+  if (!built) {
+    log::Error("planner: dropping a plan that fails validation (planner bug): {}", error);
+    return false;
+  }
+  if (has_plan_ && built->makespan_s >= best_.makespan_s - options_.epsilon_s / 2) return false;
+  const double now = Seconds(start_);
+  has_plan_ = true;
+  plan_events_ = search.plan().size();
+  best_.status = PlanStatus::kSolvedSatisficing;
+  best_.plan = std::move(built->plan);
+  best_.makespan_s = built->makespan_s;
+  best_.metric_value = built->metric_value;
+  best_.stats.plans_found++;
+  if (best_.stats.first_plan_time_s < 0) best_.stats.first_plan_time_s = now;
+  best_.stats.best_plan_time_s = now;
+  if (observer_ && observer_->on_plan) {
+    PlanResult copy = best_;
+    copy.stats.expanded = done_counters_.expanded + search.counters().expanded;
+    copy.stats.generated = done_counters_.generated + search.counters().generated;
+    copy.stats.evaluated = done_counters_.evaluated + search.counters().evaluated;
+    copy.stats.search_time_s = now;
+    copy.message = absl::StrCat("plan ", best_.stats.plans_found, ", makespan ", best_.makespan_s);
+    observer_->on_plan(copy);
+  }
+  return true;
+}
+
+PlanResult PlannerRun::Run() {
+  const StateData initial = InitialState();
+  best_.status = PlanStatus::kTimeout;
+  auto finish = [&](PlanStatus status_if_no_plan, std::string message) {
+    best_.stats.expanded = done_counters_.expanded;
+    best_.stats.generated = done_counters_.generated;
+    best_.stats.evaluated = done_counters_.evaluated;
+    best_.stats.search_time_s = Seconds(start_);
+    if (!has_plan_) {
+      best_.status = status_if_no_plan;
+      best_.message = std::move(message);
+    } else if (best_.message.empty()) {
+      best_.message = absl::StrCat(best_.stats.plans_found, " plan(s), best makespan ", best_.makespan_s);
+    }
+    return best_;
+  };
+  auto stopped_status = [&]() {
+    return stop_.Reason() == StopReason::kCancelled ? PlanStatus::kCancelled : PlanStatus::kTimeout;
+  };
+
+  // Phase 1: greedy best-first search for a first plan.
+  {
+    SearchParams params;
+    params.weight = -1;
+    params.epsilon_s = options_.epsilon_s;
+    params.seed = options_.random_seed;
+    LazySearch search(snap_, registry_, heuristic_, transitions_, timeline_, params);
+    search.Initialize(initial);
+    while (true) {
+      const Outcome poll = Poll(search);
+      if (poll != Outcome::kContinue) {
+        AddCounters(search);
+        if (poll == Outcome::kMemout) return finish(PlanStatus::kMemout, "memory limit reached before a plan");
+        return finish(stopped_status(), stop_.Reason() == StopReason::kCancelled
+                                            ? "cancelled before a plan was found"
+                                            : "time limit reached before a plan was found");
+      }
+      const LazySearch::Status status = search.Step();
+      if (status == LazySearch::Status::kSolved) {
+        if (Offer(search)) break;
+        continue;  // invalid plan: logged, keep searching
+      }
+      if (status == LazySearch::Status::kExhausted) {
+        AddCounters(search);
+        if (search.complete()) {
+          return finish(PlanStatus::kUnsolvableProven, "search space exhausted: no plan exists");
+        }
+        return finish(PlanStatus::kError,
+                      "search space exhausted without a plan, but duplicate states with running "
+                      "actions or timed literals were merged, so this is no proof");
+      }
+    }
+    AddCounters(search);
+  }
+  if (!options_.anytime) return finish(PlanStatus::kSolvedSatisficing, "");
+
+  // Phase 2: restarting weighted A* on makespan, pruned by the incumbent.
+  bool proven = false;
+  const double weights[] = {3, 2, 1.5, 1.2, 1};
+  for (double w : weights) {
+    SearchParams params;
+    params.weight = w;
+    params.scale_s = best_.makespan_s / std::max<double>(1.0, static_cast<double>(plan_events_));
+    params.bound_s = best_.makespan_s;
+    params.epsilon_s = options_.epsilon_s;
+    params.seed = options_.random_seed;
+    LazySearch search(snap_, registry_, heuristic_, transitions_, timeline_, params);
+    search.Initialize(initial);
+    bool stop = false;
+    while (true) {
+      if (Poll(search) != Outcome::kContinue) {
+        stop = true;
+        break;
+      }
+      const LazySearch::Status status = search.Step();
+      if (status == LazySearch::Status::kSolved) {
+        if (Offer(search)) search.SetBound(best_.makespan_s);
+        continue;
+      }
+      if (status == LazySearch::Status::kExhausted) break;
+    }
+    AddCounters(search);
+    if (stop) break;
+    if (search.exhaustive_without_merges()) {
+      proven = true;
+      break;
+    }
+  }
+  if (proven) {
+    best_.status = PlanStatus::kSolvedOptimally;
+    best_.message = absl::StrCat("makespan ", best_.makespan_s,
+                                 " is optimal (no better plan in the exhausted search space)");
+  }
+  return finish(PlanStatus::kSolvedSatisficing, "");
+}
+
+}  // namespace
+
+PlanResult SolveTask(const task::GroundTask& task, const PlannerOptions& options,
+                     const StopToken& stop, const PlanObserver* observer) {
+  if (absl::Status s = options.Validate(); !s.ok()) {
+    PlanResult r;
+    r.status = PlanStatus::kError;
+    r.message = std::string(s.message());
+    return r;
+  }
+  auto run = std::make_unique<PlannerRun>(task, options, stop, observer);
+  return run->Run();
+}
+
+PlanResult Solve(std::string_view domain_text, std::string_view problem_text,
+                 const PlannerOptions& options, const StopToken& stop,
+                 const PlanObserver* observer) {
+  const auto start = Clock::now();
+  task::LoadResult loaded = task::LoadTask(domain_text, problem_text);
+  if (!loaded.ok()) {
+    PlanResult r;
+    r.status = loaded.unsupported() ? PlanStatus::kUnsupported : PlanStatus::kError;
+    r.message = loaded.ErrorText();
+    if (r.message.empty()) r.message = "the task could not be loaded";
+    return r;
+  }
+  PlannerOptions rest = options;
+  rest.time_limit_s = std::max(1e-3, options.time_limit_s - Seconds(start));
+  PlanResult r = SolveTask(*loaded.task, rest, stop, observer);
+  r.stats.search_time_s = Seconds(start);
+  return r;
+}
+
+}  // namespace seaplan::search

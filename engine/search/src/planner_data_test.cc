@@ -1,0 +1,59 @@
+// Solves the project's example missions (examples/fjord) when present.
+#include <gtest/gtest.h>
+
+#include <filesystem>
+
+#include "seaplan/search/planner.h"
+#include "seaplan/task/grounder.h"
+#include "seaplan/testing/shared_data.h"
+#include "seaplan/validate/validator.h"
+
+namespace seaplan::search {
+namespace {
+
+PlanResult SolveFiles(const std::filesystem::path& domain, const std::filesystem::path& problem,
+                      double seconds, std::shared_ptr<const task::GroundTask>* task) {
+  auto loaded = task::LoadTask(testing::ReadFile(domain), testing::ReadFile(problem));
+  EXPECT_TRUE(loaded.ok()) << loaded.ErrorText();
+  *task = loaded.task;
+  if (!loaded.ok()) return {};
+  PlannerOptions o;
+  o.time_limit_s = seconds;
+  return SolveTask(*loaded.task, o, StopToken());
+}
+
+TEST(PlannerDataTest, FjordCaseA) {
+  const auto dir = testing::SourceDir() / "examples/fjord";
+  if (!std::filesystem::exists(dir / "case-a.pddl")) GTEST_SKIP() << "examples/fjord/case-a.pddl absent";
+  std::shared_ptr<const task::GroundTask> task;
+  const PlanResult r = SolveFiles(dir / "domain.pddl", dir / "case-a.pddl", 5, &task);
+  ASSERT_FALSE(r.plan.steps.empty()) << ToString(r.status) << ": " << r.message;
+  const auto v = validate::ValidatePlan(*task, *validate::ParsePlan(validate::FormatPlan(r.plan)));
+  EXPECT_TRUE(v.valid) << v.ToString();
+  EXPECT_LE(r.makespan_s, 2403.34);
+}
+
+TEST(PlannerDataTest, FjordCaseCNumericRefuels) {
+  const auto dir = testing::SourceDir() / "examples/fjord";
+  if (!std::filesystem::exists(dir / "case-c-numeric.pddl")) GTEST_SKIP() << "case-c-numeric absent";
+  std::shared_ptr<const task::GroundTask> task;
+  const PlanResult r = SolveFiles(dir / "domain-numeric.pddl", dir / "case-c-numeric.pddl", 10, &task);
+  ASSERT_FALSE(r.plan.steps.empty()) << ToString(r.status) << ": " << r.message;
+  const auto v = validate::ValidatePlan(*task, *validate::ParsePlan(validate::FormatPlan(r.plan)));
+  EXPECT_TRUE(v.valid) << v.ToString();
+  int refuels = 0;
+  for (const auto& s : r.plan.steps) refuels += s.name.find("fuel") != std::string::npos;
+  EXPECT_GE(refuels, 1);
+}
+
+TEST(PlannerDataTest, SharedMatchCellarP01) {
+  SEAPLAN_REQUIRE_SHARED(dir, "bench/matchcellar-2011");
+  std::shared_ptr<const task::GroundTask> task;
+  const PlanResult r = SolveFiles(dir / "domain.pddl", dir / "p01.pddl", 10, &task);
+  ASSERT_FALSE(r.plan.steps.empty()) << ToString(r.status) << ": " << r.message;
+  const auto v = validate::ValidatePlan(*task, *validate::ParsePlan(validate::FormatPlan(r.plan)));
+  EXPECT_TRUE(v.valid) << v.ToString();
+}
+
+}  // namespace
+}  // namespace seaplan::search

@@ -1,0 +1,233 @@
+#include "seaplan/search/planner.h"
+
+#include <gtest/gtest.h>
+
+#include <chrono>
+#include <filesystem>
+#include <thread>
+
+#include "seaplan/task/grounder.h"
+#include "seaplan/testing/shared_data.h"
+#include "seaplan/validate/validator.h"
+
+namespace seaplan::search {
+namespace {
+
+std::filesystem::path TestData(const std::string& name) {
+  return testing::SourceDir() / "engine/search/testdata" / name;
+}
+
+struct Loaded {
+  std::shared_ptr<const task::GroundTask> task;
+};
+
+Loaded Load(const std::string& domain, const std::string& problem) {
+  auto loaded = task::LoadTask(testing::ReadFile(TestData(domain)), testing::ReadFile(TestData(problem)));
+  EXPECT_TRUE(loaded.ok()) << loaded.ErrorText();
+  return {loaded.task};
+}
+
+// Every plan the planner returns must pass the validator on its printed form.
+void ExpectValid(const task::GroundTask& task, const PlanResult& r) {
+  auto parsed = validate::ParsePlan(validate::FormatPlan(r.plan));
+  ASSERT_TRUE(parsed.ok()) << parsed.status();
+  const auto v = validate::ValidatePlan(task, *parsed);
+  EXPECT_TRUE(v.valid) << v.ToString() << "\n" << validate::FormatPlan(r.plan);
+  EXPECT_NEAR(v.makespan_s, r.makespan_s, 1e-6);
+}
+
+PlannerOptions Quick(double seconds = 5) {
+  PlannerOptions o;
+  o.time_limit_s = seconds;
+  return o;
+}
+
+bool Overlap(const validate::PlanStep& a, const validate::PlanStep& b) {
+  return a.start_s < b.end_s() && b.start_s < a.end_s();
+}
+
+TEST(PlannerTest, ToStringNamesEveryStatus) {
+  EXPECT_STREQ(ToString(PlanStatus::kSolvedSatisficing), "solved");
+  EXPECT_STREQ(ToString(PlanStatus::kUnsolvableProven), "unsolvable");
+  EXPECT_STREQ(ToString(PlanStatus::kCancelled), "cancelled");
+}
+
+TEST(PlannerTest, OptionsAreValidated) {
+  PlannerOptions o;
+  EXPECT_TRUE(o.Validate().ok());
+  o.time_limit_s = 0;
+  EXPECT_FALSE(o.Validate().ok());
+  o = {};
+  o.epsilon_s = -1;
+  EXPECT_FALSE(o.Validate().ok());
+  o = {};
+  o.max_concurrent_actions = -2;
+  EXPECT_FALSE(o.Validate().ok());
+  auto loaded = Load("match-domain.pddl", "match-problem.pddl");
+  ASSERT_TRUE(loaded.task);
+  o = {};
+  o.memory_limit_mb = 0;
+  EXPECT_EQ(SolveTask(*loaded.task, o, StopToken()).status, PlanStatus::kError);
+}
+
+TEST(PlannerTest, RequiredConcurrencyMatchCellar) {
+  auto loaded = Load("match-domain.pddl", "match-problem.pddl");
+  ASSERT_TRUE(loaded.task);
+  const PlanResult r = SolveTask(*loaded.task, Quick(2), StopToken());
+  ASSERT_TRUE(r.status == PlanStatus::kSolvedSatisficing || r.status == PlanStatus::kSolvedOptimally)
+      << ToString(r.status) << ": " << r.message;
+  ExpectValid(*loaded.task, r);
+  // Every mend overlaps a light.
+  int mends = 0;
+  for (const auto& s : r.plan.steps) {
+    if (s.name != "mend-fuse") continue;
+    ++mends;
+    bool covered = false;
+    for (const auto& t : r.plan.steps) covered |= t.name == "light-match" && Overlap(s, t);
+    EXPECT_TRUE(covered);
+  }
+  EXPECT_EQ(mends, 3);
+  // Two matches of 5 s, three mends of 2 s: at best 3 mends in two matches.
+  EXPECT_LT(r.makespan_s, 10.5);
+  EXPECT_GE(r.stats.plans_found, 1);
+  EXPECT_GT(r.stats.expanded, 0u);
+}
+
+TEST(PlannerTest, NumericFuelNeedsRefuelling) {
+  auto loaded = Load("fuel-domain.pddl", "fuel-problem.pddl");
+  ASSERT_TRUE(loaded.task);
+  const PlanResult r = SolveTask(*loaded.task, Quick(2), StopToken());
+  ASSERT_TRUE(r.status == PlanStatus::kSolvedSatisficing || r.status == PlanStatus::kSolvedOptimally)
+      << r.message;
+  ExpectValid(*loaded.task, r);
+  int refuels = 0;
+  for (const auto& s : r.plan.steps) refuels += s.name == "refuel";
+  EXPECT_GE(refuels, 2);  // 50 fuel for 210 distance with tanks of 100
+}
+
+TEST(PlannerTest, TimedInitialLiteralsWindow) {
+  auto loaded = Load("til-domain.pddl", "til-problem.pddl");
+  ASSERT_TRUE(loaded.task);
+  const PlanResult r = SolveTask(*loaded.task, Quick(2), StopToken());
+  ASSERT_TRUE(r.status == PlanStatus::kSolvedSatisficing || r.status == PlanStatus::kSolvedOptimally)
+      << r.message;
+  ExpectValid(*loaded.task, r);
+  for (const auto& s : r.plan.steps) {
+    if (s.name == "pass") {
+      EXPECT_GT(s.start_s, 10.0 - 1e-9);
+      EXPECT_LT(s.end_s(), 30.0);
+    }
+  }
+}
+
+TEST(PlannerTest, MissedTimedWindowIsNoPlan) {
+  auto loaded = Load("til-domain.pddl", "til-missed-problem.pddl");
+  ASSERT_TRUE(loaded.task);
+  const PlanResult r = SolveTask(*loaded.task, Quick(2), StopToken());
+  EXPECT_TRUE(r.plan.steps.empty());
+  EXPECT_TRUE(r.status == PlanStatus::kUnsolvableProven || r.status == PlanStatus::kError)
+      << ToString(r.status);
+}
+
+TEST(PlannerTest, DurationInequalitiesChooseShortDurations) {
+  auto loaded = Load("ineq-domain.pddl", "ineq-problem.pddl");
+  ASSERT_TRUE(loaded.task);
+  const PlanResult r = SolveTask(*loaded.task, Quick(2), StopToken());
+  ASSERT_TRUE(r.status == PlanStatus::kSolvedSatisficing || r.status == PlanStatus::kSolvedOptimally)
+      << r.message;
+  ExpectValid(*loaded.task, r);
+  // Two mends of >= 2 s inside one 5 s match.
+  EXPECT_LE(r.makespan_s, 5.0 + 1e-6);
+}
+
+TEST(PlannerTest, ConditionalEffects) {
+  auto loaded = Load("cond-domain.pddl", "cond-problem.pddl");
+  ASSERT_TRUE(loaded.task);
+  const PlanResult r = SolveTask(*loaded.task, Quick(2), StopToken());
+  ASSERT_TRUE(r.status == PlanStatus::kSolvedSatisficing || r.status == PlanStatus::kSolvedOptimally)
+      << r.message;
+  ExpectValid(*loaded.task, r);
+}
+
+TEST(PlannerTest, UnsolvableIsProven) {
+  auto loaded = Load("toggle-domain.pddl", "toggle-3.pddl");
+  ASSERT_TRUE(loaded.task);
+  const PlanResult r = SolveTask(*loaded.task, Quick(5), StopToken());
+  EXPECT_EQ(r.status, PlanStatus::kUnsolvableProven) << r.message;
+  EXPECT_TRUE(r.plan.steps.empty());
+}
+
+TEST(PlannerTest, TinyTimeLimitTimesOutQuickly) {
+  auto loaded = Load("toggle-domain.pddl", "toggle-22.pddl");
+  ASSERT_TRUE(loaded.task);
+  const auto start = std::chrono::steady_clock::now();
+  const PlanResult r = SolveTask(*loaded.task, Quick(0.05), StopToken());
+  const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  EXPECT_EQ(r.status, PlanStatus::kTimeout);
+  EXPECT_LT(elapsed, 0.5);
+}
+
+TEST(PlannerTest, CancellationStopsWithin50ms) {
+  auto loaded = Load("toggle-domain.pddl", "toggle-22.pddl");
+  ASSERT_TRUE(loaded.task);
+  StopToken stop;
+  std::chrono::steady_clock::time_point cancelled_at;
+  std::thread canceller([&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(100));
+    cancelled_at = std::chrono::steady_clock::now();
+    stop.Cancel();
+  });
+  const PlanResult r = SolveTask(*loaded.task, Quick(30), stop);
+  const auto returned = std::chrono::steady_clock::now();
+  canceller.join();
+  EXPECT_EQ(r.status, PlanStatus::kCancelled);
+  EXPECT_LT(std::chrono::duration<double>(returned - cancelled_at).count(), 0.05);
+}
+
+TEST(PlannerTest, SameSeedSamePlan) {
+  auto loaded = Load("match-domain.pddl", "match-problem.pddl");
+  ASSERT_TRUE(loaded.task);
+  PlannerOptions o = Quick(1);
+  o.anytime = false;
+  o.random_seed = 7;
+  const PlanResult a = SolveTask(*loaded.task, o, StopToken());
+  const PlanResult b = SolveTask(*loaded.task, o, StopToken());
+  ASSERT_FALSE(a.plan.steps.empty());
+  EXPECT_EQ(validate::FormatPlan(a.plan), validate::FormatPlan(b.plan));
+}
+
+TEST(PlannerTest, ConcurrencyBoundIsRespected) {
+  auto loaded = Load("match-domain.pddl", "match-problem.pddl");
+  ASSERT_TRUE(loaded.task);
+  PlannerOptions o = Quick(1);
+  o.max_concurrent_actions = 2;
+  const PlanResult r = SolveTask(*loaded.task, o, StopToken());
+  ASSERT_FALSE(r.plan.steps.empty()) << r.message;
+  ExpectValid(*loaded.task, r);
+  for (const auto& s : r.plan.steps) {
+    int running = 0;
+    for (const auto& t : r.plan.steps) running += t.start_s <= s.start_s && s.start_s < t.end_s();
+    EXPECT_LE(running, 2);
+  }
+}
+
+TEST(PlannerTest, ObserverSeesEveryImprovement) {
+  auto loaded = Load("match-domain.pddl", "match-problem.pddl");
+  ASSERT_TRUE(loaded.task);
+  std::vector<double> makespans;
+  PlanObserver observer;
+  observer.on_plan = [&](const PlanResult& p) { makespans.push_back(p.makespan_s); };
+  const PlanResult r = SolveTask(*loaded.task, Quick(1), StopToken(), &observer);
+  ASSERT_FALSE(makespans.empty());
+  for (std::size_t i = 1; i < makespans.size(); ++i) EXPECT_LT(makespans[i], makespans[i - 1]);
+  EXPECT_DOUBLE_EQ(makespans.back(), r.makespan_s);
+}
+
+TEST(PlannerTest, SolveReportsParseErrors) {
+  const PlanResult r = Solve("(define (domain x", "(define (problem y)", Quick(1), StopToken());
+  EXPECT_EQ(r.status, PlanStatus::kError);
+  EXPECT_FALSE(r.message.empty());
+}
+
+}  // namespace
+}  // namespace seaplan::search

@@ -1,0 +1,110 @@
+// Step-wise lazy best-first search over snap-action states (Fast Downward's
+// search_algorithm shape: Initialize(), then Step() until it says stop).
+//
+// Successors are generated, scheduled (Timeline) and registered when their
+// parent is expanded; the heuristic runs when a state is expanded (lazy
+// evaluation), giving its helpful events at the same time. Two open lists:
+// all successors, and those reached by helpful events (boosted after
+// progress, as in LAMA). Ordering:
+//   - greedy (weight < 0): (parent h, makespan so far);
+//   - weighted A* (weight >= 0): makespan lower bound + weight * scale * h.
+// A bound prunes successors whose makespan lower bound cannot beat it.
+//
+// Owns nothing shared: the registry, heuristic, transitions and timeline are
+// borrowed and must outlive the search. Not thread-safe.
+#pragma once
+
+#include <cstdint>
+#include <random>
+#include <vector>
+
+#include "heuristics/relaxed_plan_heuristic.h"
+#include "open_lists/tie_breaking_open_list.h"
+#include "snap_task.h"
+#include "state_registry.h"
+#include "timeline.h"
+#include "transitions.h"
+
+namespace seaplan::search {
+
+struct SearchParams {
+  double weight = -1;         // < 0: greedy
+  double scale_s = 1;         // seconds per heuristic unit (weighted A*)
+  double bound_s = kInfinity; // only plans with makespan < bound - epsilon/2
+  double epsilon_s = 0.001;
+  std::uint64_t seed = 1;
+};
+
+struct SearchCounters {
+  std::size_t expanded = 0, generated = 0, evaluated = 0;
+};
+
+class LazySearch {
+ public:
+  enum class Status { kInProgress, kSolved, kExhausted };
+
+  LazySearch(const SnapTask& task, StateRegistry& registry, RelaxedPlanHeuristic& heuristic,
+             const Transitions& transitions, Timeline& timeline, const SearchParams& params);
+
+  void Initialize(const StateData& initial);
+  Status Step();
+
+  // After kSolved: the events of the plan (in search order) and its makespan.
+  const std::vector<Event>& plan() const { return plan_; }
+  double plan_makespan_s() const { return plan_makespan_s_; }
+  // Tightens the bound (after an incumbent); the search may then continue.
+  void SetBound(double bound_s) { params_.bound_s = bound_s; }
+  // False when a merge of duplicate states or a bound may have hidden plans,
+  // so exhaustion proves nothing.
+  // Exhaustion proves no plan exists when no dead end was guessed and the
+  // explored states are the whole untimed reachable set: either no schedule
+  // was ever inconsistent, or no two paths with timing-sensitive states
+  // (running actions, timed literals) were merged.
+  bool complete() const { return !unsafe_dead_end_ && !(stn_pruned_ && merged_timed_); }
+  // Exhaustion under a bound proves the incumbent optimal only when no
+  // duplicate was ever merged (merging ignores the schedule).
+  bool exhaustive_without_merges() const { return complete() && !merged_any_; }
+  const SearchCounters& counters() const { return counters_; }
+  std::size_t MemoryBytes() const;
+  int best_h() const { return best_h_; }
+
+ private:
+  struct NodeInfo {
+    std::int32_t parent = -1;
+    Event event{};
+    double g_s = 0;    // makespan of the path's schedule
+    double lb_s = 0;   // lower bound on any completion's makespan
+    std::int32_t h = -1;
+    std::uint8_t status = 0;  // 0 new, 1 open, 2 closed
+  };
+  enum : std::uint8_t { kNew = 0, kOpen = 1, kClosed = 2 };
+
+  NodeInfo& Info(StateId id);
+  void ExtractPath(std::int32_t state, std::vector<Event>* out) const;
+  void Push(std::int32_t state, bool preferred, double parent_h);
+  bool Pop(std::int32_t* state);
+
+  const SnapTask& task_;
+  StateRegistry& registry_;
+  RelaxedPlanHeuristic& heuristic_;
+  const Transitions& transitions_;
+  Timeline& timeline_;
+  SearchParams params_;
+  std::mt19937_64 rng_;
+
+  std::vector<NodeInfo> info_;
+  TieBreakingOpenList open_all_, open_preferred_;
+  int priority_all_ = 0, priority_preferred_ = 0;
+  int best_h_ = RelaxedPlanHeuristic::kDeadEnd;
+  bool stn_pruned_ = false, merged_timed_ = false, merged_any_ = false, unsafe_dead_end_ = false;
+  SearchCounters counters_;
+  std::vector<Event> plan_;
+  double plan_makespan_s_ = 0;
+
+  // Scratch reused by every expansion.
+  StateData current_, next_;
+  std::vector<Event> path_, candidates_;
+  std::vector<SnapId> preferred_;
+};
+
+}  // namespace seaplan::search

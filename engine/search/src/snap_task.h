@@ -1,0 +1,73 @@
+// The snap-action view of a GroundTask (internal to the search).
+//
+// Every durative action a becomes two snap actions: start(a) = 2a and
+// end(a) = 2a + 1 (instantaneous actions only use 2a). Timed initial
+// literals are extra events the search applies in time order. For each snap
+// the read and write sets (facts and numeric variables) drive the
+// interference orderings of the schedule: a later event that writes what an
+// earlier one reads or writes, or reads what it writes, is ordered at least
+// epsilon after it (VAL's mutex rule). Over-all conditions count as reads of
+// both the start and the end, so an invariant is never broken by an
+// unordered event.
+#pragma once
+
+#include <cstdint>
+#include <limits>
+#include <vector>
+
+#include "seaplan/task/ground_task.h"
+
+namespace seaplan::search {
+
+using SnapId = std::int32_t;  // 2 * action (+1 for the end)
+
+inline constexpr double kInfinity = std::numeric_limits<double>::infinity();
+
+struct SnapAction {
+  task::ActionId action = -1;
+  bool is_end = false;
+  const task::Condition* condition = nullptr;  // at start / at end
+  const task::Effects* effects = nullptr;
+  std::vector<task::FactId> reads;   // sorted, unique
+  std::vector<task::FactId> writes;  // sorted, unique
+  std::vector<task::NumericVarId> num_reads;   // sorted, unique
+  std::vector<task::NumericVarId> num_writes;  // sorted, unique
+};
+
+struct TilEvent {
+  double time_s = 0.0;
+  std::vector<task::FactId> add, del;
+  std::vector<std::pair<task::NumericVarId, double>> assign;
+  std::vector<task::FactId> writes;            // sorted
+  std::vector<task::NumericVarId> num_writes;  // sorted
+};
+
+class SnapTask {
+ public:
+  explicit SnapTask(const task::GroundTask& task);
+
+  const task::GroundTask& task() const { return task_; }
+  int num_actions() const { return static_cast<int>(task_.actions.size()); }
+  int num_facts() const { return static_cast<int>(task_.facts.size()); }
+  int num_vars() const { return static_cast<int>(task_.numeric_vars.size()); }
+  const SnapAction& snap(SnapId id) const { return snaps_[static_cast<std::size_t>(id)]; }
+  const std::vector<TilEvent>& tils() const { return tils_; }
+  // TIL indices (ascending) that write each fact / variable.
+  const std::vector<int>& TilsWritingFact(task::FactId f) const { return tils_by_fact_[f]; }
+  const std::vector<int>& TilsWritingVar(task::NumericVarId v) const { return tils_by_var_[v]; }
+  // True when any effect of the action reads ?duration (its duration is then fixed to one value).
+  bool EffectsReadDuration(task::ActionId a) const { return effects_read_duration_[a]; }
+  // Facts (positive or negative in the goal) for the goal-after-TILs rule.
+  const std::vector<bool>& goal_fact_mask() const { return goal_fact_mask_; }
+
+ private:
+  const task::GroundTask& task_;
+  std::vector<SnapAction> snaps_;
+  std::vector<TilEvent> tils_;
+  std::vector<std::vector<int>> tils_by_fact_;
+  std::vector<std::vector<int>> tils_by_var_;
+  std::vector<bool> effects_read_duration_;
+  std::vector<bool> goal_fact_mask_;
+};
+
+}  // namespace seaplan::search

@@ -1,0 +1,105 @@
+#include "stn.h"
+
+namespace seaplan::search {
+namespace {
+constexpr double kTolerance = 1e-9;
+}
+
+void Stn::Reset() {
+  time_.assign(1, 0.0);
+  fixed_.assign(1, true);
+  out_.resize(1);
+  in_.resize(1);
+  out_[0].clear();
+  in_[0].clear();
+  trail_.clear();
+  edge_log_.clear();
+}
+
+int Stn::AddFixedNode(double time_s) {
+  const int v = num_nodes();
+  time_.push_back(time_s);
+  fixed_.push_back(true);
+  if (out_.size() <= static_cast<std::size_t>(v)) {
+    out_.emplace_back();
+    in_.emplace_back();
+  }
+  out_[v].clear();
+  in_[v].clear();
+  return v;
+}
+
+int Stn::BeginNode() {
+  const int v = num_nodes();
+  time_.push_back(0.0);
+  fixed_.push_back(false);
+  if (out_.size() <= static_cast<std::size_t>(v)) {
+    out_.emplace_back();
+    in_.emplace_back();
+  }
+  out_[v].clear();
+  in_[v].clear();
+  return v;
+}
+
+void Stn::AddIncoming(int from, double weight) {
+  const int v = num_nodes() - 1;
+  out_[from].push_back({v, weight});
+  edge_log_.push_back(from);
+  in_[v].push_back({from, weight});
+  if (time_[from] + weight > time_[v]) time_[v] = time_[from] + weight;
+}
+
+void Stn::AddOutgoing(int to, double weight) {
+  const int v = num_nodes() - 1;
+  out_[v].push_back({to, weight});
+  in_[to].push_back({v, weight});
+  edge_log_.push_back(~to);
+}
+
+bool Stn::FinishNode() {
+  const int v = num_nodes() - 1;
+  // time_[v] already holds the max over incoming edges (and >= 0).
+  queue_.clear();
+  queue_.push_back(v);
+  // A label-correcting pass; a positive cycle must run through v, so any
+  // attempt to raise v, time zero or a fixed node is a contradiction. The
+  // relaxation budget guards against pathological float drift.
+  std::size_t budget = 64 + 4 * static_cast<std::size_t>(num_nodes()) * static_cast<std::size_t>(num_nodes());
+  for (std::size_t head = 0; head < queue_.size(); ++head) {
+    const int u = queue_[head];
+    const double tu = time_[u];
+    for (const Edge& e : out_[u]) {
+      const double candidate = tu + e.weight;
+      if (candidate > time_[e.to] + kTolerance) {
+        if (e.to == v || fixed_[e.to]) return false;
+        if (--budget == 0) return false;
+        trail_.push_back({e.to, time_[e.to]});
+        time_[e.to] = candidate;
+        queue_.push_back(e.to);
+      }
+    }
+    if (queue_.size() > 1'000'000) return false;
+  }
+  return true;
+}
+
+void Stn::Undo(const Mark& mark) {
+  while (trail_.size() > mark.trail) {
+    time_[trail_.back().node] = trail_.back().old_time;
+    trail_.pop_back();
+  }
+  while (edge_log_.size() > mark.edge_log) {
+    const std::int32_t n = edge_log_.back();
+    edge_log_.pop_back();
+    if (n >= 0) {
+      out_[n].pop_back();
+    } else {
+      in_[~n].pop_back();
+    }
+  }
+  time_.resize(mark.nodes);
+  fixed_.resize(mark.nodes);
+}
+
+}  // namespace seaplan::search

@@ -1,0 +1,61 @@
+#include "stn.h"
+
+#include <gtest/gtest.h>
+
+namespace seaplan::search {
+namespace {
+
+TEST(StnTest, EarliestTimesFollowLowerBounds) {
+  Stn stn;
+  stn.Reset();
+  const int a = stn.BeginNode();
+  ASSERT_TRUE(stn.FinishNode());
+  const int b = stn.BeginNode();
+  stn.AddIncoming(a, 5.0);
+  ASSERT_TRUE(stn.FinishNode());
+  EXPECT_DOUBLE_EQ(stn.time(a), 0.0);
+  EXPECT_DOUBLE_EQ(stn.time(b), 5.0);
+}
+
+TEST(StnTest, UpperBoundPushesEarlierNodeLater) {
+  // start s, another event x at >= 3, end e of s with duration exactly 2 must follow x.
+  Stn stn;
+  stn.Reset();
+  const int s = stn.BeginNode();
+  ASSERT_TRUE(stn.FinishNode());
+  const int x = stn.BeginNode();
+  stn.AddIncoming(0, 3.0);
+  ASSERT_TRUE(stn.FinishNode());
+  const int e = stn.BeginNode();
+  stn.AddIncoming(s, 2.0);
+  stn.AddIncoming(x, 0.5);
+  stn.AddOutgoing(s, -2.0);
+  ASSERT_TRUE(stn.FinishNode());
+  EXPECT_DOUBLE_EQ(stn.time(e), 3.5);
+  EXPECT_DOUBLE_EQ(stn.time(s), 1.5);
+}
+
+TEST(StnTest, PositiveCycleIsInconsistentAndUndoRestores) {
+  Stn stn;
+  stn.Reset();
+  const int deadline = stn.AddFixedNode(4.0);
+  const int s = stn.BeginNode();
+  ASSERT_TRUE(stn.FinishNode());
+  const auto mark = stn.GetMark();
+  stn.BeginNode();
+  stn.AddIncoming(s, 5.0);
+  stn.AddOutgoing(deadline, 0.001);  // must happen before the fixed node at 4
+  EXPECT_FALSE(stn.FinishNode());
+  stn.Undo(mark);
+  EXPECT_EQ(stn.num_nodes(), 3);
+  EXPECT_DOUBLE_EQ(stn.time(s), 0.0);
+  EXPECT_DOUBLE_EQ(stn.time(deadline), 4.0);
+  // A feasible one still fits afterwards.
+  stn.BeginNode();
+  stn.AddIncoming(s, 3.0);
+  stn.AddOutgoing(deadline, 0.001);
+  EXPECT_TRUE(stn.FinishNode());
+}
+
+}  // namespace
+}  // namespace seaplan::search

@@ -1,0 +1,198 @@
+#include "timeline.h"
+
+#include <algorithm>
+
+namespace seaplan::search {
+
+Timeline::Timeline(const SnapTask& task, double epsilon_s, bool bound_concurrency)
+    : task_(task),
+      epsilon_s_(epsilon_s),
+      last_writer_(static_cast<std::size_t>(task.num_facts()), -1),
+      readers_(static_cast<std::size_t>(task.num_facts())),
+      var_last_writer_(static_cast<std::size_t>(task.num_vars()), -1),
+      var_readers_(static_cast<std::size_t>(task.num_vars())),
+      open_start_(static_cast<std::size_t>(task.num_actions()), -1),
+      open_min_duration_(static_cast<std::size_t>(task.num_actions()), 0.0),
+      bound_concurrency_(bound_concurrency) {}
+
+void Timeline::ResetTables() {
+  for (auto f : touched_facts_) {
+    last_writer_[f] = -1;
+    readers_[f].clear();
+  }
+  for (auto v : touched_vars_) {
+    var_last_writer_[v] = -1;
+    var_readers_[v].clear();
+  }
+  touched_facts_.clear();
+  touched_vars_.clear();
+  for (auto a : open_actions_) open_start_[a] = -1;
+  open_actions_.clear();
+  end_nodes_.clear();
+}
+
+bool Timeline::Build(std::span<const Event> events) {
+  ResetTables();
+  stn_.Reset();
+  is_action_node_.assign(1, false);
+  for (const auto& til : task_.tils()) {
+    stn_.AddFixedNode(til.time_s);
+    is_action_node_.push_back(false);
+  }
+  num_events_ = 0;
+  next_til_ = 0;
+  bool ok = true;
+  for (const Event& e : events) {
+    if (!AddToStn(e)) ok = false;  // keep going so tables stay coherent
+    Commit(e, EventNode(num_events_));
+    ++num_events_;
+  }
+  return ok;
+}
+
+bool Timeline::AddToStn(const Event& event) {
+  if (event.is_til()) {
+    // Already a fixed node; its orderings were added when the earlier
+    // events were (the pending-literal rule). Keep node numbering dense.
+    const int node = stn_.BeginNode();
+    is_action_node_.resize(static_cast<std::size_t>(node) + 1);
+    is_action_node_[node] = false;
+    // Alias node: equal to the literal's fixed node.
+    stn_.AddIncoming(TilNode(event.til()), 0.0);
+    stn_.AddOutgoing(TilNode(event.til()), 0.0);
+    return stn_.FinishNode();
+  }
+  const SnapAction& snap = task_.snap(event.snap);
+  const int node = stn_.BeginNode();
+  is_action_node_.resize(static_cast<std::size_t>(node) + 1);
+  is_action_node_[node] = true;
+  const double eps = epsilon_s_;
+  for (auto f : snap.reads) {
+    if (last_writer_[f] >= 0) stn_.AddIncoming(last_writer_[f], eps);
+  }
+  for (auto f : snap.writes) {
+    if (last_writer_[f] >= 0) stn_.AddIncoming(last_writer_[f], eps);
+    for (auto r : readers_[f]) stn_.AddIncoming(r, eps);
+  }
+  for (auto v : snap.num_reads) {
+    if (var_last_writer_[v] >= 0) stn_.AddIncoming(var_last_writer_[v], eps);
+  }
+  for (auto v : snap.num_writes) {
+    if (var_last_writer_[v] >= 0) stn_.AddIncoming(var_last_writer_[v], eps);
+    for (auto r : var_readers_[v]) stn_.AddIncoming(r, eps);
+  }
+  // Literals not yet applied come after this event when they interfere.
+  const auto& tils = task_.tils();
+  if (!tils.empty()) {
+    auto pending = [&](const std::vector<int>& list) {
+      for (auto k : list) {
+        if (k >= next_til_) stn_.AddOutgoing(TilNode(k), eps);
+      }
+    };
+    for (auto f : snap.reads) pending(task_.TilsWritingFact(f));
+    for (auto f : snap.writes) pending(task_.TilsWritingFact(f));
+    for (auto v : snap.num_reads) pending(task_.TilsWritingVar(v));
+    for (auto v : snap.num_writes) pending(task_.TilsWritingVar(v));
+  }
+  if (bound_concurrency_ && !snap.is_end) {
+    for (auto n : end_nodes_) stn_.AddIncoming(n, eps);
+  }
+  if (snap.is_end) {
+    const int start = open_start_[snap.action];
+    if (start >= 0) {
+      // The start's bounds were recorded with the start event.
+      stn_.AddIncoming(start, open_min_duration_[snap.action]);
+      const double max_d = event.max_duration_s;
+      if (max_d < kInfinity) stn_.AddOutgoing(start, -max_d);
+    }
+  }
+  return stn_.FinishNode();
+}
+
+void Timeline::Commit(const Event& event, int node) {
+  auto write_fact = [&](task::FactId f) {
+    if (last_writer_[f] < 0 && readers_[f].empty()) touched_facts_.push_back(f);
+    last_writer_[f] = node;
+    readers_[f].clear();
+  };
+  auto write_var = [&](task::NumericVarId v) {
+    if (var_last_writer_[v] < 0 && var_readers_[v].empty()) touched_vars_.push_back(v);
+    var_last_writer_[v] = node;
+    var_readers_[v].clear();
+  };
+  if (event.is_til()) {
+    const TilEvent& til = task_.tils()[static_cast<std::size_t>(event.til())];
+    for (auto f : til.writes) write_fact(f);
+    for (auto v : til.num_writes) write_var(v);
+    next_til_ = event.til() + 1;
+    return;
+  }
+  const SnapAction& snap = task_.snap(event.snap);
+  for (auto f : snap.reads) {
+    if (std::binary_search(snap.writes.begin(), snap.writes.end(), f)) continue;
+    if (last_writer_[f] < 0 && readers_[f].empty()) touched_facts_.push_back(f);
+    readers_[f].push_back(node);
+  }
+  for (auto v : snap.num_reads) {
+    if (std::binary_search(snap.num_writes.begin(), snap.num_writes.end(), v)) continue;
+    if (var_last_writer_[v] < 0 && var_readers_[v].empty()) touched_vars_.push_back(v);
+    var_readers_[v].push_back(node);
+  }
+  for (auto f : snap.writes) write_fact(f);
+  for (auto v : snap.num_writes) write_var(v);
+  if (!snap.is_end) {
+    if (task_.task().actions[snap.action].is_durative) {
+      open_start_[snap.action] = node;
+      open_min_duration_[snap.action] = event.min_duration_s;
+      open_actions_.push_back(snap.action);
+    }
+  } else {
+    open_start_[snap.action] = -1;
+    if (bound_concurrency_) end_nodes_.push_back(node);
+    open_actions_.erase(std::find(open_actions_.begin(), open_actions_.end(), snap.action));
+  }
+}
+
+Timeline::Outcome Timeline::Current() const {
+  Outcome out;
+  for (int n = 0; n < stn_.num_nodes(); ++n) {
+    if (is_action_node_[n]) out.makespan_s = std::max(out.makespan_s, stn_.time(n));
+  }
+  out.lower_bound_s = out.makespan_s;
+  for (auto a : open_actions_) {
+    out.lower_bound_s = std::max(out.lower_bound_s, stn_.time(open_start_[a]) + open_min_duration_[a]);
+  }
+  return out;
+}
+
+bool Timeline::TryAdd(const Event& event, Outcome* outcome) {
+  mark_ = stn_.GetMark();
+  if (!AddToStn(event)) return false;
+  *outcome = Current();
+  if (!event.is_til()) {
+    const SnapAction& snap = task_.snap(event.snap);
+    if (!snap.is_end && task_.task().actions[snap.action].is_durative) {
+      const int node = stn_.num_nodes() - 1;
+      outcome->lower_bound_s =
+          std::max(outcome->lower_bound_s, stn_.time(node) + event.min_duration_s);
+    } else if (snap.is_end) {
+      // The ended action no longer bounds from below beyond its end node.
+      Outcome recomputed = *outcome;
+      recomputed.lower_bound_s = recomputed.makespan_s;
+      for (auto a : open_actions_) {
+        if (a == snap.action) continue;
+        recomputed.lower_bound_s =
+            std::max(recomputed.lower_bound_s, stn_.time(open_start_[a]) + open_min_duration_[a]);
+      }
+      *outcome = recomputed;
+    }
+  }
+  return true;
+}
+
+void Timeline::Undo() {
+  stn_.Undo(mark_);
+  is_action_node_.resize(static_cast<std::size_t>(stn_.num_nodes()));
+}
+
+}  // namespace seaplan::search

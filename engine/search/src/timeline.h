@@ -1,0 +1,86 @@
+// The partial-order schedule of a search path (POPF style).
+//
+// Built from the path's event sequence (snap actions and applied timed
+// initial literals). Each event becomes an STN node ordered epsilon after
+// every earlier event it interferes with: after the last writer of anything
+// it reads or writes, and after the readers (since that writer) of anything
+// it writes. Start and end of an action are tied by [min, max] duration
+// edges; timed literals are nodes fixed at their time, and an event that
+// interferes with a literal not yet applied must precede it by epsilon. The
+// earliest STN solution is the schedule; an inconsistent network prunes the
+// path (a deadline passed, or a duration window cannot be met).
+//
+// Usage per expansion: Build(path), then for each candidate successor
+// TryAdd(event) + Undo(). One Timeline is reused across the whole search
+// (no allocation per expansion once warmed up).
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+#include "snap_task.h"
+#include "stn.h"
+
+namespace seaplan::search {
+
+struct Event {
+  // >= 0: a SnapId; < 0: timed initial literal event ~snap.
+  SnapId snap = 0;
+  double min_duration_s = 0.0;  // starts of durative actions only
+  double max_duration_s = 0.0;
+  bool is_til() const { return snap < 0; }
+  int til() const { return ~snap; }
+};
+
+class Timeline {
+ public:
+  // With `bound_concurrency`, every start is ordered after every earlier end
+  // of the path, so the schedule never runs more actions at once than the
+  // search had running (max_concurrent_actions).
+  Timeline(const SnapTask& task, double epsilon_s, bool bound_concurrency = false);
+
+  // Rebuilds the network for `events`; false when it is inconsistent.
+  bool Build(std::span<const Event> events);
+
+  struct Outcome {
+    double makespan_s = 0.0;     // latest action event time
+    double lower_bound_s = 0.0;  // makespan, or later when running actions must still end
+  };
+  // Adds `event` on top of the built path tentatively. Returns false when
+  // inconsistent. Always call Undo() afterwards.
+  bool TryAdd(const Event& event, Outcome* outcome);
+  void Undo();
+
+  // After Build: time of event i of the path.
+  double EventTime(std::size_t i) const { return stn_.time(EventNode(i)); }
+  Outcome Current() const;
+
+ private:
+  int EventNode(std::size_t i) const { return 1 + static_cast<int>(task_.tils().size()) + static_cast<int>(i); }
+  int TilNode(int k) const { return 1 + k; }
+  bool AddToStn(const Event& event);
+  void Commit(const Event& event, int node);
+  void ResetTables();
+
+  const SnapTask& task_;
+  double epsilon_s_;
+  Stn stn_;
+  Stn::Mark mark_{};
+  std::size_t num_events_ = 0;
+  int next_til_ = 0;
+  std::vector<std::int32_t> last_writer_;                 // per fact, STN node or -1
+  std::vector<std::vector<std::int32_t>> readers_;        // per fact, since last writer
+  std::vector<std::int32_t> var_last_writer_;
+  std::vector<std::vector<std::int32_t>> var_readers_;
+  std::vector<std::int32_t> touched_facts_, touched_vars_;
+  std::vector<std::int32_t> open_start_;  // per action: STN node of the running start, or -1
+  std::vector<std::int32_t> open_actions_;
+  std::vector<double> open_min_duration_;  // per action
+  std::vector<std::int32_t> scratch_preds_;
+  std::vector<bool> is_action_node_;
+  bool bound_concurrency_ = false;
+  std::vector<std::int32_t> end_nodes_;
+};
+
+}  // namespace seaplan::search

@@ -1,0 +1,51 @@
+// State semantics of snap actions: which events apply in a state and what
+// state they lead to (the successor generator of the search).
+//
+// Start of a: at-start conditions hold, the duration constraints (evaluated
+// in the state) leave a non-empty window, a is not already running, the
+// concurrency bound is respected; after the start effects the over-all
+// conditions of a and of every running action hold. End of a running a:
+// at-end and over-all conditions hold; after the end effects the invariants
+// of the other running actions hold. Timed literals apply in time order.
+// Effects of one event read the state before it (deletes, then adds).
+#pragma once
+
+#include <vector>
+
+#include "snap_task.h"
+#include "state_registry.h"
+#include "timeline.h"
+
+namespace seaplan::search {
+
+bool ConditionHolds(const task::Condition& condition, const StateData& state,
+                    double duration = task::NumericExpr::kUndefined);
+
+class Transitions {
+ public:
+  Transitions(const SnapTask& task, int max_concurrent_actions, double epsilon_s);
+
+  // Appends the events whose preconditions hold in `state` (starts, ends of
+  // running actions, the next timed literal); Apply may still reject them.
+  void Candidates(const StateData& state, std::vector<Event>* out) const;
+  // Applies `event` (as produced by Candidates) to `state`. Returns false if
+  // it is not applicable; `next` is scratch then. Fills the duration bounds
+  // of `event` for starts.
+  bool Apply(const StateData& state, Event* event, StateData* next) const;
+  bool IsGoal(const StateData& state) const;
+
+ private:
+  bool DurationWindow(task::ActionId a, const StateData& state, double* min_d, double* max_d) const;
+  void ApplyEffects(const task::Effects& effects, const StateData& before, double duration,
+                    StateData* next) const;
+  bool RunningInvariantsHold(const StateData& state) const;
+
+  const SnapTask& task_;
+  int max_concurrent_;
+  double epsilon_s_;
+  std::vector<std::vector<task::ActionId>> by_first_fact_;
+  std::vector<task::ActionId> without_fact_pre_;
+  mutable std::vector<double> scratch_values_;
+};
+
+}  // namespace seaplan::search

@@ -1,0 +1,5 @@
+(define (problem tiny1) (:domain tiny-match)
+  (:objects m1 - match f1 f2 - fuse)
+  (:init (handfree) (unused m1) (= (burn-time) 5) (= (mended-count) 0))
+  (:goal (and (mended f1) (mended f2) (>= (mended-count) 2)))
+  (:metric minimize (total-time)))

@@ -1,0 +1,5 @@
+(define (problem match-small-1) (:domain match-small)
+  (:objects m1 m2 - match f1 f2 f3 - fuse)
+  (:init (handfree) (unused m1) (unused m2))
+  (:goal (and (mended f1) (mended f2) (mended f3)))
+  (:metric minimize (total-time)))
