@@ -1,0 +1,54 @@
+// When does feedback from the ship require a new plan (paper 000 fig. 5,
+// "plan still valid?"): a failed task, a position off the route by more than
+// a threshold, fuel under a threshold with no refuelling left in the plan,
+// a task finishing much later than planned, or an explicit request (the
+// RequestReplan RPC, which needs no decision).
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "seaplan/common/status.h"
+#include "seaplan/mission/types.h"
+
+namespace seaplan::mission {
+
+struct ReplanPolicy {
+  double fuel_threshold_fraction = 0.3;  // replan when fuel <= this
+  double position_deviation_m = 200.0;   // off the current move's route by more
+  double delay_tolerance_s = 120.0;      // a task completes later than planned by more
+  Status Validate() const;
+};
+
+enum class FeedbackKind {
+  kTaskStarted,
+  kTaskCompleted,
+  kTaskFailed,
+  kPosition,
+  kGnssFault,
+  kMachineryFault,
+  kOperatorChange,
+  kCollisionAvoidance,
+};
+
+struct Feedback {
+  FeedbackKind kind = FeedbackKind::kPosition;
+  std::string task_id;
+  int plan_version = 0;
+  double mission_time_s = 0.0;
+  std::optional<Point> position;
+  std::optional<double> fuel_fraction;
+  std::string detail;
+};
+
+// Returns the reason for a replan, or nullopt when the current version still
+// holds. `active_task` is the task the feedback is about or the task under
+// way (may be null). Fuel: only when no refuel task remains at or after the
+// feedback time and a move does (otherwise the plan already handles it, or
+// nothing is left to burn fuel on); this is what keeps a plan with fuel
+// planned up front (numeric fluents) from being replanned for fuel.
+// Feedback about an older plan version never triggers a replan.
+std::optional<std::string> DecideReplan(const Feedback& feedback, const PlanVersion& current,
+                                        const Task* active_task, const ReplanPolicy& policy);
+
+}  // namespace seaplan::mission

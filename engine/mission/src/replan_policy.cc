@@ -1,0 +1,70 @@
+#include "seaplan/mission/replan_policy.h"
+
+#include <cmath>
+
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_format.h"
+#include "seaplan/mission/tasks.h"
+
+namespace seaplan::mission {
+
+Status ReplanPolicy::Validate() const {
+  if (!(fuel_threshold_fraction >= 0 && fuel_threshold_fraction <= 1)) {
+    return absl::InvalidArgumentError("replan policy: fuel_threshold_fraction must be in [0, 1]");
+  }
+  if (!(position_deviation_m > 0)) {
+    return absl::InvalidArgumentError("replan policy: position_deviation_m must be > 0");
+  }
+  if (!(delay_tolerance_s > 0)) {
+    return absl::InvalidArgumentError("replan policy: delay_tolerance_s must be > 0");
+  }
+  return absl::OkStatus();
+}
+
+std::optional<std::string> DecideReplan(const Feedback& feedback, const PlanVersion& current,
+                                        const Task* active_task, const ReplanPolicy& policy) {
+  if (feedback.plan_version != 0 && feedback.plan_version != current.version) return std::nullopt;
+  if (feedback.kind == FeedbackKind::kTaskFailed) {
+    std::string what = active_task ? absl::StrCat(active_task->id, " ", active_task->action.name)
+                                   : feedback.task_id;
+    std::string reason = absl::StrCat("task ", what, " failed");
+    if (!feedback.detail.empty()) absl::StrAppend(&reason, ": ", feedback.detail);
+    return reason;
+  }
+  if (feedback.kind == FeedbackKind::kGnssFault || feedback.kind == FeedbackKind::kMachineryFault ||
+      feedback.kind == FeedbackKind::kOperatorChange) {
+    // Reported on their own these are information; the executor reports the
+    // task failure (or the deviation) that makes the plan invalid.
+  }
+  if (feedback.position && active_task && active_task->kind == TaskKind::kMove &&
+      active_task->route && feedback.kind != FeedbackKind::kTaskCompleted) {
+    double off = CrossTrackDistance(*active_task->route, *feedback.position);
+    if (off > policy.position_deviation_m) {
+      return absl::StrFormat("position %.0f m off the route of %s (limit %.0f m)", off,
+                             active_task->id, policy.position_deviation_m);
+    }
+  }
+  if (feedback.fuel_fraction && *feedback.fuel_fraction <= policy.fuel_threshold_fraction) {
+    bool refuel_left = false, move_left = false;
+    for (const Task& t : current.tasks) {
+      if (t.end_s() < feedback.mission_time_s - 1e-6) continue;
+      if (active_task && t.id == active_task->id && feedback.kind == FeedbackKind::kTaskCompleted) {
+        continue;
+      }
+      refuel_left |= t.kind == TaskKind::kRefuel;
+      move_left |= t.kind == TaskKind::kMove;
+    }
+    if (!refuel_left && move_left) {
+      return absl::StrFormat("fuel %.0f%% <= %.0f%%", *feedback.fuel_fraction * 100,
+                             policy.fuel_threshold_fraction * 100);
+    }
+  }
+  if (feedback.kind == FeedbackKind::kTaskCompleted && active_task &&
+      feedback.mission_time_s > active_task->end_s() + policy.delay_tolerance_s) {
+    return absl::StrFormat("task %s completed %.0f s late (tolerance %.0f s)", active_task->id,
+                           feedback.mission_time_s - active_task->end_s(), policy.delay_tolerance_s);
+  }
+  return std::nullopt;
+}
+
+}  // namespace seaplan::mission

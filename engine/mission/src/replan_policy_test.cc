@@ -1,0 +1,75 @@
+#include "seaplan/mission/replan_policy.h"
+
+#include <gtest/gtest.h>
+
+namespace seaplan::mission {
+namespace {
+
+PlanVersion TwoTaskVersion(TaskKind second_kind) {
+  PlanVersion v;
+  v.version = 2;
+  Task move;
+  move.id = "v2-t1";
+  move.kind = TaskKind::kMove;
+  move.start_s = 0;
+  move.duration_s = 100;
+  move.action.name = "move-ship";
+  Route r;
+  RouteWaypoint a, b;
+  a.position = {0, 0};
+  b.position = {1000, 0};
+  r.waypoints = {a, b};
+  move.route = r;
+  Task second;
+  second.id = "v2-t2";
+  second.kind = second_kind;
+  second.start_s = 100.001;
+  second.duration_s = 80;
+  Task third = move;
+  third.id = "v2-t3";
+  third.start_s = 200;
+  v.tasks = {move, second, third};
+  return v;
+}
+
+TEST(ReplanPolicyTest, FailedTaskTriggers) {
+  PlanVersion v = TwoTaskVersion(TaskKind::kLoad);
+  Feedback f{FeedbackKind::kTaskFailed, "v2-t1", 2, 50, Point{500, 0}, 0.8, "gnss jump"};
+  auto reason = DecideReplan(f, v, &v.tasks[0], ReplanPolicy{});
+  ASSERT_TRUE(reason);
+  EXPECT_NE(reason->find("v2-t1 move-ship failed"), std::string::npos) << *reason;
+}
+
+TEST(ReplanPolicyTest, DeviationBeyondThresholdTriggers) {
+  PlanVersion v = TwoTaskVersion(TaskKind::kLoad);
+  Feedback near{FeedbackKind::kPosition, "v2-t1", 2, 50, Point{500, 150}, std::nullopt, ""};
+  EXPECT_FALSE(DecideReplan(near, v, &v.tasks[0], ReplanPolicy{}));
+  Feedback far{FeedbackKind::kPosition, "v2-t1", 2, 50, Point{500, 250}, std::nullopt, ""};
+  auto reason = DecideReplan(far, v, &v.tasks[0], ReplanPolicy{});
+  ASSERT_TRUE(reason);
+  EXPECT_NE(reason->find("250 m off the route"), std::string::npos) << *reason;
+}
+
+TEST(ReplanPolicyTest, LowFuelTriggersOnlyWithoutRefuelAhead) {
+  Feedback f{FeedbackKind::kTaskCompleted, "v2-t1", 2, 100, Point{1000, 0}, 0.28, ""};
+  PlanVersion with_refuel = TwoTaskVersion(TaskKind::kRefuel);
+  EXPECT_FALSE(DecideReplan(f, with_refuel, &with_refuel.tasks[0], ReplanPolicy{}));
+  PlanVersion without = TwoTaskVersion(TaskKind::kLoad);
+  auto reason = DecideReplan(f, without, &without.tasks[0], ReplanPolicy{});
+  ASSERT_TRUE(reason);
+  EXPECT_EQ(*reason, "fuel 28% <= 30%");
+  f.fuel_fraction = 0.31;
+  EXPECT_FALSE(DecideReplan(f, without, &without.tasks[0], ReplanPolicy{}));
+}
+
+TEST(ReplanPolicyTest, LateCompletionAndStaleVersion) {
+  PlanVersion v = TwoTaskVersion(TaskKind::kLoad);
+  Feedback late{FeedbackKind::kTaskCompleted, "v2-t1", 2, 300, Point{1000, 0}, 0.9, ""};
+  EXPECT_TRUE(DecideReplan(late, v, &v.tasks[0], ReplanPolicy{}));
+  late.plan_version = 1;  // about an older version: ignored
+  EXPECT_FALSE(DecideReplan(late, v, &v.tasks[0], ReplanPolicy{}));
+  EXPECT_FALSE((ReplanPolicy{-1, 1, 1}.Validate().ok()));
+}
+
+}  // namespace
+}  // namespace seaplan::mission
