@@ -1,0 +1,20 @@
+; Required concurrency: a fuse can only be mended while a match burns.
+(define (domain match-cellar)
+  (:requirements :typing :durative-actions)
+  (:types match fuse)
+  (:predicates (handfree) (unused ?m - match) (light ?m - match) (mended ?f - fuse))
+  (:durative-action light-match
+    :parameters (?m - match)
+    :duration (= ?duration 8)
+    :condition (at start (unused ?m))
+    :effect (and (at start (not (unused ?m)))
+                 (at start (light ?m))
+                 (at end (not (light ?m)))))
+  (:durative-action mend-fuse
+    :parameters (?f - fuse ?m - match)
+    :duration (= ?duration 5)
+    :condition (and (at start (handfree))
+                    (over all (light ?m)))
+    :effect (and (at start (not (handfree)))
+                 (at end (mended ?f))
+                 (at end (handfree)))))

@@ -1,0 +1,5 @@
+(define (problem two-fuses)
+  (:domain match-cellar)
+  (:objects m1 m2 - match f1 f2 - fuse)
+  (:init (handfree) (unused m1) (unused m2))
+  (:goal (and (mended f1) (mended f2))))

@@ -1,0 +1,56 @@
+; Case C with fuel in the planner (domain-numeric.pddl): the tank is a
+; numeric fluent, initially 30 (% of a full tank). Every move costs 15, every
+; (un)load and the repair 10, refuelling fills it to 100, and no action may
+; start without enough fuel, so the refuelling stops are planned up front
+; instead of being found by replanning at run time (the paper's section 4.6).
+; Same ports, routes, containers and teams as case-c.pddl.
+(define (problem fjord-case-c-numeric)
+  (:domain fjord-numeric)
+  (:objects
+    ship0 - ship
+    port-s port-a port-b port-c port-d port-e - port
+    cont-x cont-y cont-w cont-z - cont
+    teamr0 - team_rep
+    teamf0 teamf1 - team_refuel)
+  (:init
+    (at ship0 port-s) (available ship0) (no_rep ship0)
+    (= (speed ship0) 0.18)
+    (= (fuel-level ship0) 30)
+    (at cont-x port-b) (at cont-y port-a) (at cont-w port-c) (at cont-z port-d)
+    (at teamf0 port-b) (at teamf1 port-d) (at teamr0 port-e)
+    (connected port-s port-a) (connected port-a port-s)
+    (= (distance port-s port-a) 70) (= (distance port-a port-s) 70)
+    (connected port-s port-b) (connected port-b port-s)
+    (= (distance port-s port-b) 120) (= (distance port-b port-s) 120)
+    (connected port-s port-c) (connected port-c port-s)
+    (= (distance port-s port-c) 219) (= (distance port-c port-s) 219)
+    (connected port-s port-d) (connected port-d port-s)
+    (= (distance port-s port-d) 317) (= (distance port-d port-s) 317)
+    (connected port-s port-e) (connected port-e port-s)
+    (= (distance port-s port-e) 394) (= (distance port-e port-s) 394)
+    (connected port-a port-b) (connected port-b port-a)
+    (= (distance port-a port-b) 52) (= (distance port-b port-a) 52)
+    (connected port-a port-c) (connected port-c port-a)
+    (= (distance port-a port-c) 149) (= (distance port-c port-a) 149)
+    (connected port-a port-d) (connected port-d port-a)
+    (= (distance port-a port-d) 248) (= (distance port-d port-a) 248)
+    (connected port-a port-e) (connected port-e port-a)
+    (= (distance port-a port-e) 325) (= (distance port-e port-a) 325)
+    (connected port-b port-c) (connected port-c port-b)
+    (= (distance port-b port-c) 102) (= (distance port-c port-b) 102)
+    (connected port-b port-d) (connected port-d port-b)
+    (= (distance port-b port-d) 196) (= (distance port-d port-b) 196)
+    (connected port-b port-e) (connected port-e port-b)
+    (= (distance port-b port-e) 275) (= (distance port-e port-b) 275)
+    (connected port-c port-d) (connected port-d port-c)
+    (= (distance port-c port-d) 107) (= (distance port-d port-c) 107)
+    (connected port-c port-e) (connected port-e port-c)
+    (= (distance port-c port-e) 176) (= (distance port-e port-c) 176)
+    (connected port-d port-e) (connected port-e port-d)
+    (= (distance port-d port-e) 87) (= (distance port-e port-d) 87))
+  (:goal (and
+    (at ship0 port-e)
+    (at cont-x port-c) (at cont-y port-b) (at cont-w port-d)
+    (loaded cont-z ship0)
+    (repaired ship0)))
+  (:metric minimize (total-time)))
