@@ -1,0 +1,47 @@
+#!/usr/bin/env bash
+# The main job: set up and build, start seaplan-server on loopback with its
+# SQLite database in ./data, and run the demo mission through it:
+#   1. plan the paper's case A (examples/fjord) through the server and print the plan;
+#   2. run case C (fuel-triggered replanning) end to end with the simulation
+#      client: the server plans, refines and replans, seaplan-sim executes and
+#      reports; prints the navigation log and where the mission report is.
+# Environment: DATA_DIR (default ./data), OUT_DIR (default ./out), SCENARIO
+# (default examples/scenarios/case-c.json).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+bash scripts/build.sh
+
+BIN=build/bin
+DATA_DIR=${DATA_DIR:-data}
+OUT_DIR=${OUT_DIR:-out}
+SCENARIO=${SCENARIO:-examples/scenarios/case-c.json}
+mkdir -p "$DATA_DIR" "$OUT_DIR"
+PORT_FILE=$(mktemp)
+
+"$BIN/seaplan-server" --grpc-addr 127.0.0.1:0 --http-addr 127.0.0.1:0 --data-dir "$DATA_DIR" \
+  --port-file "$PORT_FILE" --log-level warn &
+SERVER_PID=$!
+cleanup() {
+  kill -TERM "$SERVER_PID" 2>/dev/null || true
+  wait "$SERVER_PID" 2>/dev/null || true
+  rm -f "$PORT_FILE"
+}
+trap cleanup EXIT
+
+for _ in $(seq 1 100); do
+  grep -q '^grpc=' "$PORT_FILE" 2>/dev/null && break
+  kill -0 "$SERVER_PID" 2>/dev/null || { echo "demo: seaplan-server exited early" >&2; exit 1; }
+  sleep 0.1
+done
+GRPC_PORT=$(sed -n 's/^grpc=//p' "$PORT_FILE")
+HTTP_PORT=$(sed -n 's/^http=//p' "$PORT_FILE")
+SERVER=127.0.0.1:$GRPC_PORT
+echo "== seaplan-server on $SERVER (gRPC) and 127.0.0.1:$HTTP_PORT (HTTP), database in $DATA_DIR"
+
+echo
+echo "== Case A: temporal plan from the server"
+"$BIN/seaplan" --server "$SERVER" plan examples/fjord/domain.pddl examples/fjord/case-a.pddl --time-limit 5
+
+echo
+echo "== Mission loop: $SCENARIO through seaplan-server and seaplan-sim"
+"$BIN/seaplan-sim" --server "$SERVER" --scenario "$SCENARIO" --report-dir "$OUT_DIR"
