@@ -97,7 +97,7 @@ TEST(FjordExamplesTest, RepairedCaseAPlanIsAccepted) {
   const ValidationResult r = validator->Validate(plan);
   EXPECT_TRUE(r.valid) << r.ToString();
   EXPECT_EQ(r.action_count, 13u);
-  // 2403.333 of forced sequence + 10 separations of 1 ms + 1 ms start offset.
+  // 2403.333 s of forced sequence + 11 separations of 1 ms.
   EXPECT_NEAR(r.makespan_s, 2403.344, 0.001);
   ASSERT_TRUE(r.metric_value.has_value());
   EXPECT_DOUBLE_EQ(*r.metric_value, r.makespan_s);
@@ -115,6 +115,22 @@ TEST(FjordExamplesTest, RepairedCaseAPlanIsAccepted) {
   EXPECT_EQ(t.first_failure->kind, Kind::kMutex) << t.ToString();
   EXPECT_EQ(t.first_failure->step_index, 10);
   EXPECT_EQ(t.first_failure->condition, "(at ship0 port-e)");
+}
+
+TEST(FjordExamplesTest, CaseBReplanIsAccepted) {
+  const task::LoadResult loaded = LoadExample("domain.pddl", "case-b.pddl");
+  ASSERT_TRUE(loaded.ok());
+  const Plan plan = PlanFile("case-b.plan");
+  const ValidationResult r = ValidatePlan(*loaded.task, plan);
+  EXPECT_TRUE(r.valid) << r.ToString();
+  EXPECT_EQ(r.action_count, 12u);  // the paper: 12 actions after the replan
+  EXPECT_NEAR(plan.steps[0].duration_s, 66.67, 0.01);  // port-s -> port-b, 12 / 0.18
+  // Case A's first move does not exist any more: the ship is not at port-a.
+  Plan stale = plan;
+  stale.steps[0].args = {"ship0", "port-a", "port-b"};
+  const ValidationResult s = ValidatePlan(*loaded.task, stale);
+  ASSERT_FALSE(s.valid);
+  EXPECT_EQ(s.first_failure->step_index, 0) << s.ToString();
 }
 
 TEST(FjordExamplesTest, StepsOutsideTheTaskAreExplainedByTheGrounder) {
