@@ -103,6 +103,14 @@ TEST_F(MatchCellarTest, ActionsOutsideTheTaskAreExplained) {
   EXPECT_FAILS(wrong_arity, Kind::kUnknownAction, 0);
 }
 
+TEST_F(MatchCellarTest, AMatchBurnsOnce) {
+  const auto r = Validate(
+      "0: (light-match m1) [8]\n0.001: (mend-fuse f1 m1) [5]\n"
+      "8.001: (light-match m1) [8]\n8.002: (mend-fuse f2 m1) [5]\n");
+  EXPECT_FAILS(r, Kind::kAtStart, 2);
+  EXPECT_EQ(r.first_failure->condition, "(unused m1)");
+}
+
 TEST_F(MatchCellarTest, TheGoalMustHold) {
   EXPECT_FAILS(Validate("0: (light-match m1) [8]\n0.001: (mend-fuse f1 m1) [5]\n"), Kind::kGoal, -1);
 }
@@ -148,8 +156,35 @@ TEST_F(HarbourTest, NumericConditionsAndEffects) {
       "27.003: (inspect b1 x1)\n");
   EXPECT_FAILS(r, Kind::kGoal, -1);
   EXPECT_EQ(r.first_failure->condition, "(>= (fuel b1) 20)");
-  // A second entry attempt finds too little fuel (and the berth taken): the
-  // numeric condition is the one reported when the berth is free again.
+}
+
+TEST_F(HarbourTest, NumericPreconditions) {
+  // With 4 units of fuel the boat cannot enter (it needs 5).
+  Load("harbour-domain.pddl", "harbour-problem-low-fuel.pddl");
+  const auto r = Validate("10.001: (enter b1 x1) [10]\n");
+  EXPECT_FAILS(r, Kind::kAtStart, 0);
+  EXPECT_EQ(r.first_failure->condition, "(>= (fuel b1) 5)");
+  EXPECT_THAT(r.first_failure->reason, HasSubstr("4 vs 5"));
+}
+
+TEST_F(HarbourTest, AtEndConditions) {
+  // Charging must end while the tide is still high (before 100).
+  EXPECT_VALID(Validate(
+      "10.001: (enter b1 x1) [10]\n79.9: (charge b1 x1) [20]\n"
+      "99.901: (inspect b1 x1)\n"));
+  const auto r = Validate(
+      "10.001: (enter b1 x1) [10]\n85: (charge b1 x1) [20]\n"
+      "105.001: (inspect b1 x1)\n");
+  EXPECT_FAILS(r, Kind::kAtEnd, 1);
+  EXPECT_EQ(r.first_failure->condition, "(tide-high)");
+  EXPECT_DOUBLE_EQ(r.first_failure->time_s, 105.0);
+}
+
+TEST_F(HarbourTest, DurativeAtStartConditions) {
+  // The berth is taken after the first entry.
+  const auto r = Validate("10.001: (enter b1 x1) [10]\n30: (enter b1 x1) [10]\n");
+  EXPECT_FAILS(r, Kind::kAtStart, 1);
+  EXPECT_EQ(r.first_failure->condition, "(at-sea b1)");
 }
 
 TEST_F(HarbourTest, DurationInequalities) {

@@ -21,7 +21,8 @@
   (:durative-action charge
     :parameters (?b - boat ?x - berth)
     :duration (and (>= ?duration 5) (<= ?duration (max-charge ?b)))
-    :condition (over all (moored ?b ?x))
+    :condition (and (over all (moored ?b ?x))
+                    (at end (tide-high)))      ; shore power is cut at low tide
     :effect (and (at end (increase (fuel ?b) (* 2 ?duration)))
                  (at end (increase (charged-time) ?duration))))
   (:action inspect
