@@ -566,8 +566,9 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
   absl::StatusOr<std::vector<FeedbackRecord>> ListFeedback(const std::string& mission_id, int limit) override {
     std::lock_guard lock(mu);
     SEAPLAN_RETURN_IF_ERROR(Usable());
-    Stmt s(db, "SELECT mission_id, vessel_id, sequence_number, kind, payload, received_at_ms FROM feedback "
-               "WHERE mission_id = ?1 ORDER BY seq LIMIT ?2");
+    // The latest `limit` rows, returned oldest first.
+    Stmt s(db, "SELECT * FROM (SELECT mission_id, vessel_id, sequence_number, kind, payload, received_at_ms, seq "
+               "FROM feedback WHERE mission_id = ?1 ORDER BY seq DESC LIMIT ?2) ORDER BY seq");
     s.Text(1, mission_id).Int(2, limit);
     std::vector<FeedbackRecord> out;
     while (true) {

@@ -171,7 +171,7 @@ class MissionRepository {
                                               const std::vector<NewLogEvent>& events) = 0;
   virtual absl::StatusOr<std::optional<FeedbackRecord>> FindFeedback(const std::string& vessel_id,
                                                                       std::int64_t sequence_number) = 0;
-  // Feedback of a mission in arrival order, at most `limit`.
+  // The latest `limit` feedback reports of a mission, in arrival order.
   virtual absl::StatusOr<std::vector<FeedbackRecord>> ListFeedback(const std::string& mission_id,
                                                                    int limit) = 0;
 

@@ -1,0 +1,48 @@
+// Every setting of seaplan-server in one place: command-line flags, with
+// environment variables as fallbacks (a flag given wins over its variable,
+// the variable over the default). Only main() calls ParseConfig; the rest of
+// the server gets plain option structs.
+//
+//   flag                   env                         default
+//   --grpc-addr            SEAPLAN_GRPC_ADDR           127.0.0.1:50051
+//   --http-addr            SEAPLAN_HTTP_ADDR           127.0.0.1:8080 ("" disables HTTP)
+//   --data-dir             SEAPLAN_DATA_DIR            ./data   (database: <dir>/seaplan.db)
+//   --worker-threads       SEAPLAN_WORKER_THREADS      16
+//   --max-request-bytes    SEAPLAN_MAX_REQUEST_BYTES   67108864 (64 MiB: charts)
+//   --planning-threads     SEAPLAN_PLANNING_THREADS    2        (pool size; more -> RESOURCE_EXHAUSTED)
+//   --log-level            SEAPLAN_LOG_LEVEL           info     (debug, info, warn, error, off)
+//   --port-file            SEAPLAN_PORT_FILE           none     (writes "grpc=P\nhttp=P\n" once listening)
+//   --shutdown-grace-ms    SEAPLAN_SHUTDOWN_GRACE_MS   2000
+//
+// Port 0 in an address picks a free port; the bound ports are logged and
+// written to the port file.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include "seaplan/common/log.h"
+#include "seaplan/common/status.h"
+#include "server/server.h"
+
+namespace seaplan::server {
+
+struct ServerConfig {
+  ServerOptions server;
+  std::string data_dir = "./data";
+  std::string port_file;
+  log::Level log_level = log::Level::kInfo;
+};
+
+struct ParsedConfig {
+  ServerConfig config;
+  // Set when main should exit at once (--help, --version, or a bad flag)
+  // with this code after printing `message`.
+  bool exit = false;
+  int exit_code = 0;
+  std::string message;
+};
+
+ParsedConfig ParseConfig(int argc, const char* const* argv);
+
+}  // namespace seaplan::server

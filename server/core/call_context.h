@@ -1,0 +1,38 @@
+// What a transport tells the core about one call, and the helpers the core
+// uses to honour deadlines and cancellation.
+#pragma once
+
+#include <functional>
+#include <string>
+
+#include "seaplan/common/status.h"
+#include "seaplan/common/stop_token.h"
+
+namespace seaplan::server {
+
+struct CallContext {
+  // "grpc" or "http" (for logs).
+  std::string transport;
+  // Carries the client's deadline and is cancelled when the client goes
+  // away or the server shuts down. A child of the server's root token.
+  StopToken stop;
+  // Polled by the core while it waits for work; true when the client is
+  // gone (gRPC: ServerContext::IsCancelled()). May be empty.
+  std::function<bool()> client_gone;
+
+  // Cancels `stop` when the client is gone. Cheap; call it often.
+  void ForwardCancellation() const {
+    if (client_gone && client_gone()) stop.Cancel();
+  }
+};
+
+// A stream's sink: writes one message; false when the client is gone.
+template <typename Message>
+using StreamSink = std::function<bool(const Message&)>;
+
+// The error for work that `stop` ended: DeadlineExceeded for the client's
+// deadline, Unavailable when the server is shutting down (`shutting_down`),
+// Cancelled otherwise (the client went away).
+absl::Status StopStatus(const StopToken& stop, bool shutting_down, const std::string& what);
+
+}  // namespace seaplan::server

@@ -1,0 +1,145 @@
+#include "server/core/chart_handlers.h"
+
+#include "absl/strings/str_cat.h"
+#include "server/core/convert.h"
+
+#if SEAPLAN_SERVER_HAS_CHART
+#include "seaplan/chart/geojson.h"
+#include "seaplan/chart/obstacle_map.h"
+#endif
+
+namespace seaplan::server {
+namespace {
+
+// Defaults documented in chart.proto.
+constexpr double kDefaultMinimumDepthM = 10.0;
+constexpr double kDefaultSafetyBufferM = 10.0;
+
+#if SEAPLAN_SERVER_HAS_CHART
+v1::ObstacleSummary ToProto(const chart::ObstacleSummary& s) {
+  v1::ObstacleSummary out;
+  out.set_obstacle_count(s.polygon_count);
+  for (const auto& [layer, count] : s.features_per_layer) (*out.mutable_count_by_layer())[layer] = count;
+  out.set_total_area_m2(s.total_area_m2);
+  out.mutable_south_west()->set_latitude_deg(s.bbox_min.lat_deg);
+  out.mutable_south_west()->set_longitude_deg(s.bbox_min.lon_deg);
+  out.mutable_north_east()->set_latitude_deg(s.bbox_max.lat_deg);
+  out.mutable_north_east()->set_longitude_deg(s.bbox_max.lon_deg);
+  out.set_frame(absl::StrCat("EPSG:", s.frame_epsg));
+  return out;
+}
+#endif
+
+}  // namespace
+
+v1::Chart ChartFromRecord(const storage::ChartRecord& record) {
+  v1::Chart chart;
+  chart.set_chart_id(record.id);
+  chart.set_name(record.name);
+  chart.set_format(static_cast<v1::ChartFormat>(record.format));
+  v1::UploadChartRequest options;  // stored without the files
+  if (options.ParseFromString(record.options)) {
+    chart.set_minimum_depth_m(options.minimum_depth_m());
+    chart.set_safety_buffer_m(options.safety_buffer_m());
+  }
+  chart.mutable_summary()->ParseFromString(record.summary);
+  *chart.mutable_created_at() = ToTimestamp(record.created_at_ms);
+  return chart;
+}
+
+absl::StatusOr<v1::UploadChartResponse> ChartHandlers::UploadChart(const v1::UploadChartRequest& request,
+                                                                   const CallContext& ctx) {
+  if (request.name().empty()) return absl::InvalidArgumentError("name: a chart needs a name");
+  if (request.files_size() == 0) return absl::InvalidArgumentError("files: no chart file uploaded");
+  for (int i = 0; i < request.files_size(); ++i) {
+    if (request.files(i).name().empty()) return absl::InvalidArgumentError(absl::StrCat("files[", i, "].name is empty"));
+  }
+  if (request.minimum_depth_m() < 0 || request.safety_buffer_m() < 0) {
+    return absl::InvalidArgumentError("minimum_depth_m and safety_buffer_m must not be negative");
+  }
+#if SEAPLAN_SERVER_HAS_CHART
+  chart::ChartOptions options;
+  options.min_depth_m = request.minimum_depth_m() > 0 ? request.minimum_depth_m() : kDefaultMinimumDepthM;
+  options.safety_buffer_m = request.safety_buffer_m() > 0 ? request.safety_buffer_m() : kDefaultSafetyBufferM;
+  // Keep the simplification inside the buffer (ChartOptions' invariant).
+  options.simplify_tolerance_m = std::min(options.simplify_tolerance_m, options.safety_buffer_m / 2);
+  if (absl::Status valid = options.Validate(); !valid.ok()) {
+    return absl::InvalidArgumentError(absl::StrCat("chart options: ", valid.message()));
+  }
+  std::vector<chart::ChartFile> files;
+  files.reserve(static_cast<std::size_t>(request.files_size()));
+  for (const auto& f : request.files()) files.push_back({f.name(), f.content()});
+
+  absl::StatusOr<chart::ObstacleMap> map = absl::UnknownError("chart loader did not run");
+  std::string serialized;
+  SEAPLAN_RETURN_IF_ERROR(pool_.Run(
+      [&] {
+        map = chart::LoadChartBytes(files, options);
+        if (map.ok()) serialized = chart::SerializeObstacleMap(*map);
+      },
+      [&] { ctx.ForwardCancellation(); }));
+  if (ctx.stop.StopRequested()) return StopStatus(ctx.stop, root_.StopRequested(), "chart upload");
+  if (!map.ok()) return map.status();
+
+  v1::UploadChartRequest stored_options = request;
+  stored_options.clear_files();
+  stored_options.set_minimum_depth_m(options.min_depth_m);
+  stored_options.set_safety_buffer_m(options.safety_buffer_m);
+  v1::UploadChartRequest stored_files;
+  *stored_files.mutable_files() = request.files();
+
+  storage::ChartRecord record;
+  record.id = NewId("c-");
+  record.name = request.name();
+  record.format = request.format();
+  record.options = stored_options.SerializeAsString();
+  record.summary = ToProto(map->summary()).SerializeAsString();
+  record.obstacles = std::move(serialized);
+  record.source_files = stored_files.SerializeAsString();
+  record.created_at_ms = NowMs();
+  SEAPLAN_ASSIGN_OR_RETURN(storage::ChartRecord stored, charts_.Insert(std::move(record)));
+  v1::UploadChartResponse response;
+  *response.mutable_chart() = ChartFromRecord(stored);
+  for (const auto& w : map->summary().warnings) response.add_warnings(w);
+  return response;
+#else
+  (void)ctx;
+  return absl::UnimplementedError(
+      "ChartService.UploadChart: the chart loader (engine/chart, seaplan_chart) is not built into this server yet");
+#endif
+}
+
+absl::StatusOr<v1::GetChartResponse> ChartHandlers::GetChart(const v1::GetChartRequest& request,
+                                                             const CallContext& ctx) {
+  (void)ctx;
+  if (request.chart_id().empty()) return absl::InvalidArgumentError("chart_id is empty");
+  SEAPLAN_ASSIGN_OR_RETURN(storage::ChartRecord record,
+                           charts_.Get(request.chart_id(), request.include_obstacles_geojson()));
+  v1::GetChartResponse response;
+  *response.mutable_chart() = ChartFromRecord(record);
+  if (request.include_obstacles_geojson()) {
+#if SEAPLAN_SERVER_HAS_CHART
+    SEAPLAN_ASSIGN_OR_RETURN(chart::ObstacleMap map, chart::DeserializeObstacleMap(record.obstacles));
+    response.set_obstacles_geojson(chart::ToGeoJson(map));
+#else
+    return absl::UnimplementedError(
+        "ChartService.GetChart: include_obstacles_geojson needs engine/chart (seaplan_chart), not built into this "
+        "server yet");
+#endif
+  }
+  return response;
+}
+
+absl::StatusOr<v1::ListChartsResponse> ChartHandlers::ListCharts(const v1::ListChartsRequest& request,
+                                                                 const CallContext& ctx) {
+  (void)ctx;
+  SEAPLAN_ASSIGN_OR_RETURN(int page_size, PageSize(request.page_size()));
+  SEAPLAN_ASSIGN_OR_RETURN(std::int64_t after, ParsePageToken(request.page_token()));
+  SEAPLAN_ASSIGN_OR_RETURN(auto page, charts_.List(page_size, after));
+  v1::ListChartsResponse response;
+  for (const auto& record : page.items) *response.add_charts() = ChartFromRecord(record);
+  response.set_next_page_token(MakePageToken(page.next_after));
+  return response;
+}
+
+}  // namespace seaplan::server

@@ -1,0 +1,32 @@
+// ChartService handlers: UploadChart loads the chart with engine/chart on
+// the WorkPool and stores it (summary, serialized obstacles, the uploaded
+// files) in the ChartRepository; GetChart / ListCharts read storage only.
+#pragma once
+
+#include "seaplan/common/stop_token.h"
+#include "seaplan/storage/repositories.h"
+#include "seaplan/v1/chart.pb.h"
+#include "server/core/call_context.h"
+#include "server/core/work_pool.h"
+
+namespace seaplan::server {
+
+class ChartHandlers {
+ public:
+  ChartHandlers(storage::ChartRepository& charts, WorkPool& pool, StopToken root)
+      : charts_(charts), pool_(pool), root_(std::move(root)) {}
+
+  absl::StatusOr<v1::UploadChartResponse> UploadChart(const v1::UploadChartRequest& request, const CallContext& ctx);
+  absl::StatusOr<v1::GetChartResponse> GetChart(const v1::GetChartRequest& request, const CallContext& ctx);
+  absl::StatusOr<v1::ListChartsResponse> ListCharts(const v1::ListChartsRequest& request, const CallContext& ctx);
+
+ private:
+  storage::ChartRepository& charts_;
+  WorkPool& pool_;
+  StopToken root_;
+};
+
+// The stored chart as the API shows it (summary decoded from the record).
+v1::Chart ChartFromRecord(const storage::ChartRecord& record);
+
+}  // namespace seaplan::server

@@ -1,0 +1,300 @@
+#include "server/core/planning_handlers.h"
+
+#include <cstdio>
+#include <deque>
+#include <mutex>
+
+#include "absl/strings/str_cat.h"
+#include "server/core/convert.h"
+#include "server/core/status_details.h"
+
+#if SEAPLAN_SERVER_HAS_VALIDATE
+#include "seaplan/task/grounder.h"
+#include "seaplan/validate/plan.h"
+#include "seaplan/validate/validator.h"
+#endif
+#if SEAPLAN_SERVER_HAS_SEARCH
+#include "seaplan/search/planner.h"
+#endif
+
+namespace seaplan::server {
+namespace {
+
+absl::Status CheckPddlInputs(const std::string& domain, const std::string& problem) {
+  if (domain.empty()) return absl::InvalidArgumentError("domain: the PDDL domain text is empty");
+  if (problem.empty()) return absl::InvalidArgumentError("problem: the PDDL problem text is empty");
+  return absl::OkStatus();
+}
+
+#if SEAPLAN_SERVER_HAS_VALIDATE
+bool HasInputErrors(const std::vector<pddl::Diagnostic>& diagnostics) {
+  for (const auto& d : diagnostics) {
+    if (d.severity == pddl::Severity::kError && d.kind != pddl::DiagnosticKind::kUnsupported) return true;
+  }
+  return false;
+}
+
+// INVALID_ARGUMENT naming the first error, with every diagnostic attached.
+absl::Status MalformedPddl(const task::LoadResult& loaded) {
+  std::string first;
+  int errors = 0;
+  for (const auto& d : loaded.diagnostics) {
+    if (d.severity != pddl::Severity::kError) continue;
+    if (errors++ == 0) first = d.ToString();
+  }
+  return WithDiagnostics(
+      absl::InvalidArgumentError(absl::StrCat("malformed PDDL (", errors, errors == 1 ? " error): " : " errors), first: ",
+                                 first)),
+      ToProto(loaded.diagnostics));
+}
+
+// ParsePlan says "plan line L, column C: ..."; keep the location structured.
+v1::Diagnostic PlanDiagnostic(const absl::Status& status) {
+  v1::Diagnostic d;
+  d.set_severity(v1::Diagnostic::ERROR);
+  d.set_kind(v1::Diagnostic::SYNTAX);
+  d.set_file("plan");
+  int line = 0, column = 0;
+  const std::string message(status.message());
+  if (std::sscanf(message.c_str(), "plan line %d, column %d", &line, &column) >= 1) {
+    d.set_line(line);
+    d.set_column(column);
+  }
+  d.set_message(message);
+  return d;
+}
+#endif
+
+#if SEAPLAN_SERVER_HAS_SEARCH
+absl::StatusOr<search::PlannerOptions> ToEngine(const v1::PlannerOptions& o) {
+  search::PlannerOptions p;
+  if (o.has_time_limit()) {
+    SEAPLAN_ASSIGN_OR_RETURN(double s, DurationSeconds(o.time_limit(), "options.time_limit"));
+    if (s > 0) p.time_limit_s = s;
+  }
+  if (o.memory_limit_mb() != 0) p.memory_limit_mb = o.memory_limit_mb();
+  if (o.max_concurrent_actions() < 0) {
+    return absl::InvalidArgumentError("options.max_concurrent_actions must not be negative");
+  }
+  p.max_concurrent_actions = o.max_concurrent_actions();
+  if (o.has_anytime()) p.anytime = o.anytime();
+  if (o.random_seed() != 0) p.random_seed = o.random_seed();
+  if (o.epsilon_s() != 0) p.epsilon_s = o.epsilon_s();
+  absl::Status valid = p.Validate();
+  if (!valid.ok()) return absl::InvalidArgumentError(absl::StrCat("options: ", valid.message()));
+  return p;
+}
+
+v1::PlanStatus ToProto(search::PlanStatus s) {
+  switch (s) {
+    case search::PlanStatus::kSolvedSatisficing: return v1::SOLVED_SATISFICING;
+    case search::PlanStatus::kSolvedOptimally: return v1::SOLVED_OPTIMALLY;
+    case search::PlanStatus::kUnsolvableProven: return v1::UNSOLVABLE_PROVEN;
+    case search::PlanStatus::kTimeout: return v1::TIMEOUT;
+    case search::PlanStatus::kMemout: return v1::MEMOUT;
+    case search::PlanStatus::kUnsupported: return v1::UNSUPPORTED;
+    case search::PlanStatus::kCancelled: return v1::CANCELLED;
+    case search::PlanStatus::kError: return v1::PLAN_STATUS_UNSPECIFIED;
+  }
+  return v1::PLAN_STATUS_UNSPECIFIED;
+}
+
+void ToProto(const search::SearchStatistics& s, v1::SearchStatistics* out) {
+  out->set_expanded(s.expanded);
+  out->set_generated(s.generated);
+  out->set_evaluated(s.evaluated);
+  out->set_search_time_s(s.search_time_s);
+  out->set_first_plan_time_s(s.first_plan_time_s);
+  out->set_best_plan_time_s(s.best_plan_time_s);
+  out->set_peak_memory_mb(s.peak_memory_mb);
+  out->set_plans_found(s.plans_found);
+}
+
+void FillPlan(const search::PlanResult& r, v1::PlanResponse* out) {
+  out->set_status(ToProto(r.status));
+  out->clear_plan();
+  for (const auto& step : r.plan.steps) {
+    v1::TimedAction* a = out->add_plan();
+    a->set_start_s(step.start_s);
+    a->set_duration_s(step.duration_s);
+    a->set_name(step.name);
+    for (const auto& arg : step.args) a->add_arguments(arg);
+  }
+  out->set_makespan_s(r.makespan_s);
+  if (r.metric_value) out->set_metric_value(*r.metric_value); else out->clear_metric_value();
+  ToProto(r.stats, out->mutable_statistics());
+  out->set_plan_text(r.plan.steps.empty() ? std::string() : validate::FormatPlan(r.plan));
+  out->set_message(r.message);
+}
+
+// One planning run on a worker thread. `observer` may be null.
+struct PlanRun {
+  absl::Status status;
+  v1::PlanResponse response;
+};
+
+PlanRun RunPlanner(const v1::PlanRequest& request, const search::PlannerOptions& options, const StopToken& stop,
+                   const search::PlanObserver* observer) {
+  PlanRun run;
+  task::LoadResult loaded = task::LoadTask(request.domain(), request.problem());
+  v1::SearchStatistics* stats = run.response.mutable_statistics();
+  stats->set_grounding_time_s((loaded.stats.parse_ms + loaded.stats.ground_ms) / 1000.0);
+  stats->set_ground_facts(loaded.stats.size.facts);
+  stats->set_ground_numeric_variables(loaded.stats.size.numeric_vars);
+  stats->set_ground_actions(loaded.stats.size.actions);
+  for (const auto& d : loaded.diagnostics) *run.response.add_diagnostics() = ToProto(d);
+  if (HasInputErrors(loaded.diagnostics)) {
+    run.status = MalformedPddl(loaded);
+    return run;
+  }
+  if (!loaded.ok()) {  // only unsupported features: a result, not an error
+    run.response.set_status(v1::UNSUPPORTED);
+    run.response.set_message(loaded.ErrorText());
+    return run;
+  }
+  const v1::SearchStatistics grounding = *stats;
+  search::PlanResult result = search::SolveTask(*loaded.task, options, stop, observer);
+  FillPlan(result, &run.response);
+  stats->set_grounding_time_s(grounding.grounding_time_s());
+  stats->set_ground_facts(grounding.ground_facts());
+  stats->set_ground_numeric_variables(grounding.ground_numeric_variables());
+  stats->set_ground_actions(grounding.ground_actions());
+  if (result.status == search::PlanStatus::kError) {
+    run.status = absl::InvalidArgumentError(absl::StrCat("planner: ", result.message));
+  }
+  return run;
+}
+#endif
+
+}  // namespace
+
+absl::StatusOr<v1::PlanResponse> PlanningHandlers::Plan(const v1::PlanRequest& request, const CallContext& ctx) {
+  SEAPLAN_RETURN_IF_ERROR(CheckPddlInputs(request.domain(), request.problem()));
+#if SEAPLAN_SERVER_HAS_SEARCH
+  SEAPLAN_ASSIGN_OR_RETURN(search::PlannerOptions options, ToEngine(request.options()));
+  PlanRun run;
+  SEAPLAN_RETURN_IF_ERROR(pool_.Run([&] { run = RunPlanner(request, options, ctx.stop, nullptr); },
+                                    [&] { ctx.ForwardCancellation(); }));
+  if (ctx.stop.StopRequested()) return StopStatus(ctx.stop, root_.StopRequested(), "planning");
+  if (!run.status.ok()) return run.status;
+  return run.response;
+#else
+  (void)ctx;
+  return absl::UnimplementedError(
+      "PlanningService.Plan: the temporal planner (engine/search, seaplan_search) is not built into this server yet");
+#endif
+}
+
+absl::Status PlanningHandlers::PlanStream(const v1::PlanRequest& request, const CallContext& ctx,
+                                          const StreamSink<v1::PlanStreamEvent>& sink) {
+  SEAPLAN_RETURN_IF_ERROR(CheckPddlInputs(request.domain(), request.problem()));
+#if SEAPLAN_SERVER_HAS_SEARCH
+  SEAPLAN_ASSIGN_OR_RETURN(search::PlannerOptions options, ToEngine(request.options()));
+  // The planner's callbacks run on the worker; they queue events and the
+  // RPC thread writes them (tick), so only one thread writes to the client.
+  std::mutex mu;
+  std::deque<v1::PlanStreamEvent> pending;
+  const auto started = std::chrono::steady_clock::now();
+  search::PlanObserver observer;
+  observer.on_plan = [&](const search::PlanResult& r) {
+    v1::PlanStreamEvent event;
+    FillPlan(r, event.mutable_improved_plan());
+    std::lock_guard lock(mu);
+    pending.push_back(std::move(event));
+  };
+  observer.on_progress = [&](const search::SearchStatistics& s) {
+    v1::PlanStreamEvent event;
+    ToProto(s, event.mutable_progress()->mutable_statistics());
+    event.mutable_progress()->set_elapsed_s(
+        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count());
+    std::lock_guard lock(mu);
+    pending.push_back(std::move(event));
+  };
+  bool client_ok = true;
+  auto drain = [&] {
+    ctx.ForwardCancellation();
+    std::deque<v1::PlanStreamEvent> batch;
+    {
+      std::lock_guard lock(mu);
+      batch.swap(pending);
+    }
+    for (const auto& event : batch) {
+      if (client_ok && !sink(event)) {
+        client_ok = false;
+        ctx.stop.Cancel();
+      }
+    }
+  };
+  PlanRun run;
+  SEAPLAN_RETURN_IF_ERROR(pool_.Run([&] { run = RunPlanner(request, options, ctx.stop, &observer); }, drain));
+  if (ctx.stop.StopRequested()) return StopStatus(ctx.stop, root_.StopRequested(), "planning");
+  if (!run.status.ok()) return run.status;
+  v1::PlanStreamEvent final_event;
+  *final_event.mutable_final_result() = std::move(run.response);
+  if (!sink(final_event)) return absl::CancelledError("planning stream: the client went away");
+  return absl::OkStatus();
+#else
+  (void)ctx;
+  (void)sink;
+  return absl::UnimplementedError(
+      "PlanningService.PlanStream: the temporal planner (engine/search, seaplan_search) is not built into this "
+      "server yet");
+#endif
+}
+
+absl::StatusOr<v1::ValidateResponse> PlanningHandlers::Validate(const v1::ValidateRequest& request,
+                                                                const CallContext& ctx) {
+  SEAPLAN_RETURN_IF_ERROR(CheckPddlInputs(request.domain(), request.problem()));
+  if (request.epsilon_s() < 0) return absl::InvalidArgumentError("epsilon_s must not be negative");
+#if SEAPLAN_SERVER_HAS_VALIDATE
+  auto plan = validate::ParsePlan(request.plan());
+  if (!plan.ok()) {
+    v1::DiagnosticList list;
+    *list.add_diagnostics() = PlanDiagnostic(plan.status());
+    return WithDiagnostics(absl::InvalidArgumentError(plan.status().message()), list);
+  }
+  absl::Status status;
+  v1::ValidateResponse response;
+  SEAPLAN_RETURN_IF_ERROR(pool_.Run(
+      [&] {
+        task::LoadResult loaded = task::LoadTask(request.domain(), request.problem());
+        for (const auto& d : loaded.diagnostics) *response.add_diagnostics() = ToProto(d);
+        if (HasInputErrors(loaded.diagnostics)) {
+          status = MalformedPddl(loaded);
+          return;
+        }
+        if (!loaded.ok()) {
+          status = WithDiagnostics(
+              absl::UnimplementedError(absl::StrCat("the input uses PDDL seaplan does not support: ", loaded.ErrorText())),
+              ToProto(loaded.diagnostics));
+          return;
+        }
+        validate::ValidationOptions options;
+        if (request.epsilon_s() > 0) options.epsilon_s = request.epsilon_s();
+        options.explain_missing_action = validate::ExplainerFor(loaded);
+        const validate::ValidationResult r = validate::ValidatePlan(*loaded.task, *plan, options);
+        response.set_valid(r.valid);
+        response.set_makespan_s(r.makespan_s);
+        response.set_action_count(static_cast<std::int32_t>(r.action_count));
+        if (r.metric_value) response.set_metric_value(*r.metric_value);
+        if (r.first_failure) {
+          v1::ValidationFailure* f = response.mutable_first_failure();
+          f->set_time_s(r.first_failure->time_s);
+          f->set_step_index(r.first_failure->step_index);
+          f->set_action(r.first_failure->action);
+          f->set_condition(r.first_failure->condition);
+          f->set_reason(absl::StrCat(validate::KindName(r.first_failure->kind), ": ", r.first_failure->reason));
+        }
+      },
+      [&] { ctx.ForwardCancellation(); }));
+  if (!status.ok()) return status;
+  return response;
+#else
+  (void)ctx;
+  return absl::UnimplementedError(
+      "PlanningService.Validate: the plan validator (engine/validate, seaplan_validate) is not built into this "
+      "server yet");
+#endif
+}
+
+}  // namespace seaplan::server

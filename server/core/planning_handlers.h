@@ -1,0 +1,36 @@
+// PlanningService handlers (transport-agnostic): Plan, PlanStream, Validate.
+//
+// Each translates the request to engine values, runs the engine on the
+// bounded WorkPool with the call's StopToken, and translates back. Parse
+// errors are INVALID_ARGUMENT with a DiagnosticList attached
+// (status_details.h); "no plan", "timeout" and "unsupported PDDL" are
+// result statuses. When an engine library is not built into this server the
+// RPC answers UNIMPLEMENTED saying which.
+#pragma once
+
+#include "seaplan/common/status.h"
+#include "seaplan/common/stop_token.h"
+#include "seaplan/v1/planning.pb.h"
+#include "server/core/call_context.h"
+#include "server/core/work_pool.h"
+
+namespace seaplan::server {
+
+class PlanningHandlers {
+ public:
+  // `pool` and `root` outlive this; root is cancelled at shutdown.
+  PlanningHandlers(WorkPool& pool, StopToken root) : pool_(pool), root_(std::move(root)) {}
+
+  absl::StatusOr<v1::PlanResponse> Plan(const v1::PlanRequest& request, const CallContext& ctx);
+  // Writes progress and improved plans, then exactly one final_result
+  // (unless an error status is returned instead).
+  absl::Status PlanStream(const v1::PlanRequest& request, const CallContext& ctx,
+                          const StreamSink<v1::PlanStreamEvent>& sink);
+  absl::StatusOr<v1::ValidateResponse> Validate(const v1::ValidateRequest& request, const CallContext& ctx);
+
+ private:
+  WorkPool& pool_;
+  StopToken root_;
+};
+
+}  // namespace seaplan::server

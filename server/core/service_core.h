@@ -1,0 +1,73 @@
+// The transport-agnostic core of seaplan-server: one handler object per
+// service, the bounded WorkPool and the root StopToken, shared by the gRPC
+// services (server/grpc) and the HTTP/JSON gateway (server/http) so that no
+// logic is written twice.
+#pragma once
+
+#include <chrono>
+#include <memory>
+#include <string>
+
+#include "seaplan/common/stop_token.h"
+#include "seaplan/storage/repositories.h"
+#include "server/core/call_context.h"
+#include "server/core/chart_handlers.h"
+#include "server/core/mission_coordinator.h"
+#include "server/core/mission_engine.h"
+#include "server/core/planning_handlers.h"
+#include "server/core/route_handlers.h"
+#include "server/core/work_pool.h"
+
+namespace seaplan::server {
+
+struct CoreOptions {
+  // Planning / route / chart-loading jobs running at once; more get
+  // RESOURCE_EXHAUSTED.
+  int planning_threads = 2;
+  MissionCoordinator::Options missions;
+};
+
+// Which engine libraries this binary was built with ("validate", "search", ...).
+std::string BuiltEngines();
+
+class ServiceCore {
+ public:
+  // `store` must outlive the core. `mission_engine` may be null.
+  ServiceCore(storage::Store& store, const CoreOptions& options, std::shared_ptr<MissionEngine> mission_engine);
+  ~ServiceCore();
+  ServiceCore(const ServiceCore&) = delete;
+  ServiceCore& operator=(const ServiceCore&) = delete;
+
+  PlanningHandlers& planning() { return planning_; }
+  ChartHandlers& charts() { return charts_; }
+  RouteHandlers& routes() { return routes_; }
+  MissionCoordinator& missions() { return missions_; }
+  WorkPool& pool() { return pool_; }
+
+  // A call's context: its token stops at `deadline` (steady clock; max() =
+  // none), when `client_gone` says so, or when the server cancels all work.
+  CallContext NewCall(std::string transport, StopToken::Clock::time_point deadline,
+                      std::function<bool()> client_gone) const;
+
+  // Shutdown, step 1: ends watch streams (clients resume elsewhere).
+  void CloseStreams();
+  // Shutdown, step 2 (after the grace period): stops all running work.
+  void CancelAllWork();
+  bool shutting_down() const { return root_.StopRequested(); }
+  // Shutdown, step 3: joins the pool and the mission thread.
+  void Stop();
+
+ private:
+  StopToken root_;
+  WorkPool pool_;
+  PlanningHandlers planning_;
+  ChartHandlers charts_;
+  RouteHandlers routes_;
+  MissionCoordinator missions_;
+};
+
+// One log line per request: transport, method, status code, latency.
+void LogCall(const std::string& transport, const std::string& method, const absl::Status& status,
+             StopToken::Clock::time_point started);
+
+}  // namespace seaplan::server

@@ -1,0 +1,171 @@
+#include "server/grpc/services.h"
+
+#include "server/grpc/status_mapping.h"
+
+namespace seaplan::server {
+namespace {
+
+// The client's deadline on the steady clock (max() when there is none).
+StopToken::Clock::time_point Deadline(const grpc::ServerContext* ctx) {
+  const auto deadline = ctx->deadline();
+  const auto now = std::chrono::system_clock::now();
+  // No deadline is "infinite future"; treat anything beyond a year as none.
+  if (deadline - now > std::chrono::hours(24 * 365)) return StopToken::Clock::time_point::max();
+  return StopToken::Clock::now() + std::chrono::duration_cast<StopToken::Clock::duration>(deadline - now);
+}
+
+CallContext MakeCall(ServiceCore& core, grpc::ServerContext* ctx) {
+  return core.NewCall("grpc", Deadline(ctx), [ctx] { return ctx->IsCancelled(); });
+}
+
+template <typename Response, typename Fn>
+grpc::Status Unary(ServiceCore& core, const char* method, grpc::ServerContext* ctx, Response* out, Fn&& fn) {
+  const auto started = StopToken::Clock::now();
+  CallContext call = MakeCall(core, ctx);
+  absl::StatusOr<Response> result = fn(call);
+  absl::Status status = result.status();
+  if (result.ok()) *out = std::move(*result);
+  LogCall("grpc", method, status, started);
+  return ToGrpcStatus(status);
+}
+
+template <typename Event, typename Fn>
+grpc::Status Stream(ServiceCore& core, const char* method, grpc::ServerContext* ctx,
+                    grpc::ServerWriter<Event>* writer, Fn&& fn) {
+  const auto started = StopToken::Clock::now();
+  CallContext call = MakeCall(core, ctx);
+  StreamSink<Event> sink = [writer](const Event& event) { return writer->Write(event); };
+  absl::Status status = fn(call, sink);
+  LogCall("grpc", method, status, started);
+  return ToGrpcStatus(status);
+}
+
+}  // namespace
+
+class GrpcServices::Planning final : public v1::PlanningService::Service {
+ public:
+  explicit Planning(ServiceCore& core) : core_(core) {}
+  grpc::Status Plan(grpc::ServerContext* ctx, const v1::PlanRequest* req, v1::PlanResponse* resp) override {
+    return Unary(core_, "PlanningService/Plan", ctx, resp,
+                 [&](const CallContext& c) { return core_.planning().Plan(*req, c); });
+  }
+  grpc::Status PlanStream(grpc::ServerContext* ctx, const v1::PlanRequest* req,
+                          grpc::ServerWriter<v1::PlanStreamEvent>* writer) override {
+    return Stream(core_, "PlanningService/PlanStream", ctx, writer,
+                  [&](const CallContext& c, const StreamSink<v1::PlanStreamEvent>& sink) {
+                    return core_.planning().PlanStream(*req, c, sink);
+                  });
+  }
+  grpc::Status Validate(grpc::ServerContext* ctx, const v1::ValidateRequest* req,
+                        v1::ValidateResponse* resp) override {
+    return Unary(core_, "PlanningService/Validate", ctx, resp,
+                 [&](const CallContext& c) { return core_.planning().Validate(*req, c); });
+  }
+
+ private:
+  ServiceCore& core_;
+};
+
+class GrpcServices::Charts final : public v1::ChartService::Service {
+ public:
+  explicit Charts(ServiceCore& core) : core_(core) {}
+  grpc::Status UploadChart(grpc::ServerContext* ctx, const v1::UploadChartRequest* req,
+                           v1::UploadChartResponse* resp) override {
+    return Unary(core_, "ChartService/UploadChart", ctx, resp,
+                 [&](const CallContext& c) { return core_.charts().UploadChart(*req, c); });
+  }
+  grpc::Status GetChart(grpc::ServerContext* ctx, const v1::GetChartRequest* req,
+                        v1::GetChartResponse* resp) override {
+    return Unary(core_, "ChartService/GetChart", ctx, resp,
+                 [&](const CallContext& c) { return core_.charts().GetChart(*req, c); });
+  }
+  grpc::Status ListCharts(grpc::ServerContext* ctx, const v1::ListChartsRequest* req,
+                          v1::ListChartsResponse* resp) override {
+    return Unary(core_, "ChartService/ListCharts", ctx, resp,
+                 [&](const CallContext& c) { return core_.charts().ListCharts(*req, c); });
+  }
+
+ private:
+  ServiceCore& core_;
+};
+
+class GrpcServices::Routes final : public v1::RouteService::Service {
+ public:
+  explicit Routes(ServiceCore& core) : core_(core) {}
+  grpc::Status PlanRoute(grpc::ServerContext* ctx, const v1::PlanRouteRequest* req,
+                         v1::PlanRouteResponse* resp) override {
+    return Unary(core_, "RouteService/PlanRoute", ctx, resp,
+                 [&](const CallContext& c) { return core_.routes().PlanRoute(*req, c); });
+  }
+  grpc::Status EstimateRisk(grpc::ServerContext* ctx, const v1::EstimateRiskRequest* req,
+                            v1::EstimateRiskResponse* resp) override {
+    return Unary(core_, "RouteService/EstimateRisk", ctx, resp,
+                 [&](const CallContext& c) { return core_.routes().EstimateRisk(*req, c); });
+  }
+
+ private:
+  ServiceCore& core_;
+};
+
+class GrpcServices::Missions final : public v1::MissionService::Service {
+ public:
+  explicit Missions(ServiceCore& core) : core_(core) {}
+  grpc::Status CreateMission(grpc::ServerContext* ctx, const v1::CreateMissionRequest* req,
+                             v1::Mission* resp) override {
+    return Unary(core_, "MissionService/CreateMission", ctx, resp,
+                 [&](const CallContext& c) { return core_.missions().CreateMission(*req, c); });
+  }
+  grpc::Status GetMission(grpc::ServerContext* ctx, const v1::GetMissionRequest* req, v1::Mission* resp) override {
+    return Unary(core_, "MissionService/GetMission", ctx, resp,
+                 [&](const CallContext& c) { return core_.missions().GetMission(*req, c); });
+  }
+  grpc::Status ListMissions(grpc::ServerContext* ctx, const v1::ListMissionsRequest* req,
+                            v1::ListMissionsResponse* resp) override {
+    return Unary(core_, "MissionService/ListMissions", ctx, resp,
+                 [&](const CallContext& c) { return core_.missions().ListMissions(*req, c); });
+  }
+  grpc::Status WatchMission(grpc::ServerContext* ctx, const v1::WatchMissionRequest* req,
+                            grpc::ServerWriter<v1::MissionEvent>* writer) override {
+    return Stream(core_, "MissionService/WatchMission", ctx, writer,
+                  [&](const CallContext& c, const StreamSink<v1::MissionEvent>& sink) {
+                    return core_.missions().WatchMission(*req, c, sink);
+                  });
+  }
+  grpc::Status ReportFeedback(grpc::ServerContext* ctx, const v1::ReportFeedbackRequest* req,
+                              v1::ReportFeedbackResponse* resp) override {
+    return Unary(core_, "MissionService/ReportFeedback", ctx, resp,
+                 [&](const CallContext& c) { return core_.missions().ReportFeedback(*req, c); });
+  }
+  grpc::Status RequestReplan(grpc::ServerContext* ctx, const v1::RequestReplanRequest* req,
+                             v1::RequestReplanResponse* resp) override {
+    return Unary(core_, "MissionService/RequestReplan", ctx, resp,
+                 [&](const CallContext& c) { return core_.missions().RequestReplan(*req, c); });
+  }
+  grpc::Status CancelMission(grpc::ServerContext* ctx, const v1::CancelMissionRequest* req,
+                             v1::Mission* resp) override {
+    return Unary(core_, "MissionService/CancelMission", ctx, resp,
+                 [&](const CallContext& c) { return core_.missions().CancelMission(*req, c); });
+  }
+
+ private:
+  ServiceCore& core_;
+};
+
+GrpcServices::GrpcServices(ServiceCore& core)
+    : planning_(std::make_unique<Planning>(core)),
+      charts_(std::make_unique<Charts>(core)),
+      routes_(std::make_unique<Routes>(core)),
+      missions_(std::make_unique<Missions>(core)) {}
+
+GrpcServices::~GrpcServices() = default;
+
+std::vector<std::string> GrpcServices::ServiceNames() {
+  return {v1::PlanningService::service_full_name(), v1::ChartService::service_full_name(),
+          v1::RouteService::service_full_name(), v1::MissionService::service_full_name()};
+}
+
+std::vector<grpc::Service*> GrpcServices::services() {
+  return {planning_.get(), charts_.get(), routes_.get(), missions_.get()};
+}
+
+}  // namespace seaplan::server

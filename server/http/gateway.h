@@ -1,0 +1,66 @@
+// The HTTP/JSON gateway: every RPC of seaplan.v1 as
+//   POST /v1/<Service>/<Method>     e.g. POST /v1/PlanningService/Plan
+// with the request and response in Protobuf's canonical JSON mapping
+// (lowerCamelCase names; unknown fields are an error; fields at their
+// default are printed too). Server-streaming RPCs answer
+// application/x-ndjson, one JSON message per line, chunked; an error after
+// the stream started ends it with a last line {"error": {...}}. Errors
+// before any message are a plain error response (status_mapping.h).
+//   GET /healthz  200 {"status":"SERVING"} / 503 {"status":"NOT_SERVING"}
+// A client deadline may be given as header "X-Seaplan-Timeout-Ms: <ms>"
+// (the gRPC deadline's equivalent; without it a request has no deadline).
+// Bodies are limited to max_body_bytes (413 beyond).
+//
+// The gateway only parses, calls the same core handlers as the gRPC
+// services (server/core) and prints.
+#pragma once
+
+#include <atomic>
+#include <memory>
+#include <string>
+#include <thread>
+
+#include "seaplan/common/status.h"
+#include "server/core/service_core.h"
+
+namespace httplib {
+class Server;
+}
+
+namespace seaplan::server {
+
+class HttpGateway {
+ public:
+  struct Options {
+    std::size_t max_body_bytes = 64u << 20;
+    int threads = 16;
+  };
+
+  HttpGateway(ServiceCore& core, const Options& options);
+  ~HttpGateway();  // Stop()
+  HttpGateway(const HttpGateway&) = delete;
+  HttpGateway& operator=(const HttpGateway&) = delete;
+
+  // Binds "host:port" (port 0 = ephemeral) and returns the bound port.
+  absl::StatusOr<int> Bind(const std::string& address);
+  // Serves on a background thread.
+  void Start();
+  // /healthz answers NOT_SERVING after SetServing(false).
+  void SetServing(bool serving) { serving_ = serving; }
+  // Stops accepting, waits for running handlers.
+  void Stop();
+
+ private:
+  void RegisterRoutes();
+
+  ServiceCore& core_;
+  Options options_;
+  std::unique_ptr<httplib::Server> server_;
+  std::thread thread_;
+  std::atomic<bool> serving_{true};
+};
+
+// Splits "host:port" ("[::1]:80" too); InvalidArgument when malformed.
+absl::Status SplitHostPort(const std::string& address, std::string* host, int* port);
+
+}  // namespace seaplan::server

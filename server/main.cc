@@ -1,0 +1,78 @@
+// seaplan-server: reads the configuration (flags, env), opens the database,
+// serves gRPC and HTTP/JSON until SIGTERM or SIGINT, then drains and exits 0.
+#include <signal.h>
+
+#include <cstdio>
+#include <filesystem>
+#include <fstream>
+
+#include "seaplan/common/log.h"
+#include "seaplan/storage/sqlite_store.h"
+#include "server/config/config.h"
+#include "server/server.h"
+
+int main(int argc, char** argv) {
+  using namespace seaplan;
+  // Block the stop signals in every thread (the ones gRPC and httplib start
+  // inherit the mask); the main thread takes them with sigwait.
+  sigset_t stop_signals;
+  sigemptyset(&stop_signals);
+  sigaddset(&stop_signals, SIGTERM);
+  sigaddset(&stop_signals, SIGINT);
+  pthread_sigmask(SIG_BLOCK, &stop_signals, nullptr);
+  signal(SIGPIPE, SIG_IGN);  // a client that hangs up must not kill the server
+
+  server::ParsedConfig parsed = server::ParseConfig(argc, argv);
+  if (parsed.exit) {
+    std::fputs(parsed.message.c_str(), parsed.exit_code == 0 ? stdout : stderr);
+    return parsed.exit_code;
+  }
+  const server::ServerConfig& config = parsed.config;
+  log::SetLevel(config.log_level);
+
+  std::error_code ec;
+  std::filesystem::create_directories(config.data_dir, ec);
+  if (ec) {
+    log::Error("cannot create data dir '{}': {}", config.data_dir, ec.message());
+    return 1;
+  }
+  const std::string db_path = (std::filesystem::path(config.data_dir) / "seaplan.db").string();
+  auto store = storage::SqliteStore::Open(db_path);
+  if (!store.ok()) {
+    log::Error("{}", store.status().ToString());
+    return 1;
+  }
+  log::Info("database {} (schema version {})", db_path, storage::LatestSchemaVersion());
+
+  auto server = server::Server::Start(config.server, **store);
+  if (!server.ok()) {
+    log::Error("cannot start: {}", server.status().ToString());
+    return 1;
+  }
+  if (!config.port_file.empty()) {
+    // Written to a temporary name and renamed: a reader never sees half a file.
+    const std::string tmp = config.port_file + ".tmp";
+    {
+      std::ofstream out(tmp, std::ios::trunc);
+      out << "grpc=" << (*server)->grpc_port() << "\nhttp=" << (*server)->http_port() << "\n";
+    }
+    std::filesystem::rename(tmp, config.port_file, ec);
+    if (ec) {
+      log::Error("cannot write port file '{}': {}", config.port_file, ec.message());
+      return 1;
+    }
+  }
+
+  int signal_number = 0;
+  sigwait(&stop_signals, &signal_number);
+  log::Info("received signal {}", signal_number);
+  (*server)->Shutdown();
+  server->reset();
+  absl::Status closed = (*store)->Close();
+  if (!closed.ok()) {
+    log::Error("closing the database: {}", closed.ToString());
+    return 1;
+  }
+  log::Info("database closed; bye");
+  return 0;
+}

@@ -1,0 +1,103 @@
+#include "server/server.h"
+
+#include <grpcpp/ext/proto_server_reflection_plugin.h>
+#include <grpcpp/grpcpp.h>
+#include <grpcpp/health_check_service_interface.h>
+
+#include <condition_variable>
+#include <thread>
+
+#include "absl/strings/str_cat.h"
+#include "seaplan/common/log.h"
+#include "server/grpc/services.h"
+#include "server/http/gateway.h"
+
+namespace seaplan::server {
+
+absl::StatusOr<std::unique_ptr<Server>> Server::Start(const ServerOptions& options, storage::Store& store,
+                                                      std::shared_ptr<MissionEngine> mission_engine) {
+  if (options.max_request_bytes == 0 || options.max_request_bytes > (1u << 31) - 1) {
+    return absl::InvalidArgumentError("max request bytes must be in 1..2^31-1");
+  }
+  std::unique_ptr<Server> server(new Server());
+  server->options_ = options;
+  server->core_ = std::make_unique<ServiceCore>(store, options.core, std::move(mission_engine));
+  server->services_ = std::make_unique<GrpcServices>(*server->core_);
+
+  grpc::EnableDefaultHealthCheckService(true);
+  grpc::reflection::InitProtoReflectionServerBuilderPlugin();
+  grpc::ServerBuilder builder;
+  builder.AddListeningPort(options.grpc_address, grpc::InsecureServerCredentials(), &server->grpc_port_);
+  builder.SetMaxReceiveMessageSize(static_cast<int>(options.max_request_bytes));
+  grpc::ResourceQuota quota("seaplan-server");
+  // Streams hold a thread each in the sync server; leave room beyond the
+  // HTTP worker count so watchers cannot starve unary calls.
+  quota.SetMaxThreads(std::max(8, options.worker_threads * 4));
+  builder.SetResourceQuota(quota);
+  for (grpc::Service* service : server->services_->services()) builder.RegisterService(service);
+  server->grpc_ = builder.BuildAndStart();
+  if (!server->grpc_ || server->grpc_port_ == 0) {
+    server->core_->Stop();
+    return absl::UnavailableError(absl::StrCat("gRPC: cannot listen on ", options.grpc_address, " (in use?)"));
+  }
+  grpc::HealthCheckServiceInterface* health = server->grpc_->GetHealthCheckService();
+  if (health != nullptr) {
+    health->SetServingStatus("", true);
+    for (const auto& name : GrpcServices::ServiceNames()) health->SetServingStatus(name, true);
+  }
+
+  if (!options.http_address.empty()) {
+    server->http_ = std::make_unique<HttpGateway>(
+        *server->core_, HttpGateway::Options{
+                            // JSON carries bytes as base64 (4/3 larger) plus syntax.
+                            options.max_request_bytes / 3 * 4 + (1u << 20), options.worker_threads});
+    auto port = server->http_->Bind(options.http_address);
+    if (!port.ok()) {
+      server->Shutdown();
+      return port.status();
+    }
+    server->http_port_ = *port;
+    server->http_->Start();
+  }
+  log::Info("seaplan-server listening: grpc={} (port {}), http={} (port {}); engines: {}; planning workers: {}",
+            options.grpc_address, server->grpc_port_, options.http_address, server->http_port_, BuiltEngines(),
+            options.core.planning_threads);
+  return server;
+}
+
+Server::~Server() { Shutdown(); }
+
+void Server::Shutdown() {
+  std::call_once(shutdown_once_, [this] {
+    log::Info("shutting down: NOT_SERVING, draining for up to {} ms", options_.shutdown_grace.count());
+    if (grpc_) {
+      if (auto* health = grpc_->GetHealthCheckService()) health->Shutdown();  // every service NOT_SERVING
+    }
+    if (http_) http_->SetServing(false);
+    core_->CloseStreams();
+    // After the grace period, stop whatever is still running.
+    std::mutex mu;
+    std::condition_variable cv;
+    bool drained = false;
+    std::thread canceller([&] {
+      std::unique_lock lock(mu);
+      if (!cv.wait_for(lock, options_.shutdown_grace, [&] { return drained; })) {
+        log::Warn("grace period over: cancelling running work");
+        core_->CancelAllWork();
+      }
+    });
+    if (grpc_) grpc_->Shutdown(std::chrono::system_clock::now() + options_.shutdown_grace);
+    if (http_) http_->Stop();
+    {
+      std::lock_guard lock(mu);
+      drained = true;
+    }
+    cv.notify_all();
+    canceller.join();
+    if (grpc_) grpc_->Wait();
+    core_->Stop();
+    log::Info("shutdown complete");
+  });
+}
+
+}  // namespace seaplan::server

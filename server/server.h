@@ -1,0 +1,71 @@
+// seaplan-server assembled: the core, the gRPC server (four services, the
+// standard health service, reflection) and the HTTP/JSON gateway, with a
+// graceful shutdown. main.cc and the in-process tests use this class; it
+// reads no flags or environment (config/ does, only in main).
+//
+// Shutdown(grace):
+//   1. health NOT_SERVING for every service and "" (gRPC) and /healthz 503;
+//   2. watch streams end (UNAVAILABLE: resume elsewhere / later);
+//   3. both transports stop accepting; running requests get `grace` to
+//      finish, then their work is cancelled through the StopTokens;
+//   4. the pool and the mission thread are joined. The caller then closes
+//      the database.
+#pragma once
+
+#include <chrono>
+#include <memory>
+#include <mutex>
+#include <string>
+
+#include "seaplan/common/status.h"
+#include "seaplan/storage/repositories.h"
+#include "server/core/service_core.h"
+
+namespace grpc {
+class Server;
+}
+
+namespace seaplan::server {
+
+class GrpcServices;
+class HttpGateway;
+
+struct ServerOptions {
+  std::string grpc_address = "127.0.0.1:50051";  // port 0 = ephemeral
+  std::string http_address = "127.0.0.1:8080";   // port 0 = ephemeral; "" = no HTTP gateway
+  int worker_threads = 16;                       // HTTP handler threads; gRPC sync-server thread cap
+  std::size_t max_request_bytes = 64u << 20;     // one request message
+  CoreOptions core;
+  std::chrono::milliseconds shutdown_grace{2000};
+};
+
+class Server {
+ public:
+  // Binds both ports and starts serving. `store` must outlive the server.
+  static absl::StatusOr<std::unique_ptr<Server>> Start(const ServerOptions& options, storage::Store& store,
+                                                       std::shared_ptr<MissionEngine> mission_engine = nullptr);
+  ~Server();  // Shutdown()
+  Server(const Server&) = delete;
+  Server& operator=(const Server&) = delete;
+
+  int grpc_port() const { return grpc_port_; }
+  int http_port() const { return http_port_; }
+  ServiceCore& core() { return *core_; }
+
+  // Graceful and idempotent (see the file comment).
+  void Shutdown();
+
+ private:
+  Server() = default;
+
+  ServerOptions options_;
+  std::unique_ptr<ServiceCore> core_;
+  std::unique_ptr<GrpcServices> services_;
+  std::unique_ptr<grpc::Server> grpc_;
+  std::unique_ptr<HttpGateway> http_;
+  int grpc_port_ = 0;
+  int http_port_ = 0;
+  std::once_flag shutdown_once_;
+};
+
+}  // namespace seaplan::server
