@@ -190,6 +190,18 @@ class Grounder {
                       std::move(message), ""});
   }
 
+  // Counts one elementary step; false once the work budget is spent.
+  bool Tick() {
+    if (++work_ <= options_.max_work) return true;
+    if (!budget_exceeded_) {
+      Error(pddl::DiagnosticKind::kSemantic, problem_.location, "",
+            "grounding exceeds the work budget of " + std::to_string(options_.max_work) + " steps",
+            "a smaller problem or a larger GroundingOptions::max_work");
+    }
+    budget_exceeded_ = true;
+    return false;
+  }
+
   // ---- step 1: symbols ---------------------------------------------------------
   int TypeId(const std::string& name) const {
     auto it = type_index_.find(name);
@@ -212,17 +224,43 @@ class Grounder {
     for (const auto& c : domain_.constants) add_object(c);
     for (const auto& o : problem_.objects) add_object(o);
     const std::size_t n_types = type_names_.size();
+    // Ancestors of every type once (types x types), then each object's
+    // membership from its declared types: linear in objects.
+    std::vector<std::vector<int>> parents(n_types);
+    for (const auto& t : domain_.types) {
+      const int child = TypeId(t.name);
+      for (const auto& p : t.parents) {
+        const int parent = TypeId(p);
+        if (child >= 0 && parent >= 0 && parent != child) parents[static_cast<std::size_t>(child)].push_back(parent);
+      }
+    }
+    std::vector<std::vector<std::uint8_t>> ancestor(n_types, std::vector<std::uint8_t>(n_types, 0));
+    for (std::size_t t = 0; t < n_types; ++t) {
+      std::vector<int> todo{static_cast<int>(t)};
+      ancestor[t][t] = 1;
+      ancestor[t][0] = 1;  // everything is an object
+      while (!todo.empty()) {
+        const auto u = static_cast<std::size_t>(todo.back());
+        todo.pop_back();
+        for (int p : parents[u]) {
+          if (!ancestor[t][static_cast<std::size_t>(p)]) {
+            ancestor[t][static_cast<std::size_t>(p)] = 1;
+            todo.push_back(p);
+          }
+        }
+      }
+    }
     objects_of_type_.assign(n_types, {});
     type_member_.assign(n_types, std::vector<std::uint8_t>(object_names_.size(), 0));
     for (std::size_t o = 0; o < object_names_.size(); ++o) {
-      for (std::size_t t = 0; t < n_types; ++t) {
-        bool member = false;
-        for (const auto& declared : object_types_[o]) {
-          if (domain_.IsSubtype(declared, type_names_[t])) member = true;
-        }
-        if (member) {
-          type_member_[t][o] = 1;
-          objects_of_type_[t].push_back(static_cast<Obj>(o));
+      for (const auto& declared : object_types_[o]) {
+        const int d = TypeId(declared);
+        if (d < 0) continue;
+        for (std::size_t t = 0; t < n_types; ++t) {
+          if (ancestor[static_cast<std::size_t>(d)][t] && !type_member_[t][o]) {
+            type_member_[t][o] = 1;
+            objects_of_type_[t].push_back(static_cast<Obj>(o));
+          }
         }
       }
     }
@@ -428,15 +466,23 @@ class Grounder {
                            : e.kind == pddl::NumExpr::Kind::kSub ? NExpr::K::kSub
                            : e.kind == pddl::NumExpr::Kind::kMul ? NExpr::K::kMul
                                                                  : NExpr::K::kDiv;
-        // n-ary + and * fold left into binary nodes.
-        out = ConvertExpr(e.children[0]);
-        for (std::size_t i = 1; i < e.children.size(); ++i) {
-          NExpr parent;
-          parent.k = k;
-          parent.kids.push_back(std::move(out));
-          parent.kids.push_back(ConvertExpr(e.children[i]));
-          out = std::move(parent);
+        // n-ary + and * become a balanced tree (depth log n, so recursion
+        // stays shallow on inputs with thousands of operands).
+        std::vector<NExpr> level;
+        for (const auto& child : e.children) level.push_back(ConvertExpr(child));
+        while (level.size() > 1) {
+          std::vector<NExpr> next;
+          for (std::size_t i = 0; i + 1 < level.size(); i += 2) {
+            NExpr parent;
+            parent.k = k;
+            parent.kids.push_back(std::move(level[i]));
+            parent.kids.push_back(std::move(level[i + 1]));
+            next.push_back(std::move(parent));
+          }
+          if (level.size() % 2 == 1) next.push_back(std::move(level.back()));
+          level = std::move(next);
         }
+        out = std::move(level[0]);
         return out;
       }
     }
@@ -830,6 +876,10 @@ class Grounder {
       // The list may grow while we iterate (Pop during effects is deferred,
       // so it does not); iterate by index for safety.
       for (std::size_t j = 0; j < best_list->size() && ok; ++j) {
+        if (!Tick()) {
+          ok = false;
+          break;
+        }
         const std::size_t mark = bound.size();
         if (Unify(s, item, (*best_list)[j], b, bound)) ok = Join(spec, b, bound, done, remaining - 1);
         Unbind(b, bound, mark);
@@ -846,7 +896,7 @@ class Grounder {
     const auto slot = static_cast<std::size_t>(spec.free_vars[i]);
     for (Obj o : s.vars[slot].objects) {
       b[slot] = o;
-      if (!EnumerateFree(spec, b, i + 1)) {
+      if (!Tick() || !EnumerateFree(spec, b, i + 1)) {
         b[slot] = -1;
         return false;
       }
@@ -894,7 +944,7 @@ class Grounder {
     const auto slot = static_cast<std::size_t>(eff.forall_vars[i]);
     for (Obj o : s.vars[slot].objects) {
       b[slot] = o;
-      if (!ReachEffect(s, eff, b, i + 1)) return false;
+      if (!Tick() || !ReachEffect(s, eff, b, i + 1)) return false;
     }
     b[slot] = -1;
     return true;
@@ -1170,7 +1220,7 @@ class Grounder {
     const auto slot = static_cast<std::size_t>(f.vars[i]);
     for (Obj o : s.vars[slot].objects) {
       b[slot] = o;
-      if (!Quantify(f, i + 1, b, s, goal_mode, out, is_and)) return false;
+      if (!Tick() || !Quantify(f, i + 1, b, s, goal_mode, out, is_and)) return false;
     }
     return true;
   }
@@ -1255,7 +1305,7 @@ class Grounder {
       const auto slot = static_cast<std::size_t>(eff.forall_vars[i]);
       for (Obj o : s.vars[slot].objects) {
         b[slot] = o;
-        if (!GroundEffect(s, eff, b, i + 1, a)) return false;
+        if (!Tick() || !GroundEffect(s, eff, b, i + 1, a)) return false;
       }
       b[slot] = -1;
       return true;
@@ -1372,6 +1422,7 @@ class Grounder {
         if (!AddKid(cond, GroundF(*item, b, s, false), true)) break;
       }
       cond = Collapse(std::move(cond), true);
+      if (budget_exceeded_) return false;
       if (cond.k == GF::K::kFalse) continue;
       std::vector<GroundLits> dnf;
       if (!GroundDnf(cond, dnf)) {
@@ -1428,6 +1479,7 @@ class Grounder {
     scope_.clear();
     std::vector<Obj> b(goal_schema.vars.size(), -1);
     GF g = GroundF(goal, b, goal_schema, true);
+    if (budget_exceeded_) return false;
     if (g.k == GF::K::kFalse) {
       Warn(problem_.goal.location, "",
            "the goal is statically false (it contradicts facts that never change); the task has no solution");
@@ -1521,6 +1573,7 @@ class Grounder {
   std::vector<Obj> args_scratch_;
   std::vector<Obj> fargs_scratch_;
   bool budget_exceeded_ = false;
+  std::size_t work_ = 0;
   bool effect_undefined_ = false;
   std::size_t reachable_facts_ = 0;
   std::shared_ptr<GroundTask> task_;
@@ -1706,8 +1759,8 @@ std::string Grounder::Explain(std::string_view name, std::span<const std::string
 }  // namespace
 
 absl::Status GroundingOptions::Validate() const {
-  if (max_actions == 0 || max_facts == 0) {
-    return absl::InvalidArgumentError("GroundingOptions: max_actions and max_facts must be > 0");
+  if (max_actions == 0 || max_facts == 0 || max_work == 0) {
+    return absl::InvalidArgumentError("GroundingOptions: max_actions, max_facts and max_work must be > 0");
   }
   return absl::OkStatus();
 }

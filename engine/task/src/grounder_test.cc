@@ -298,6 +298,14 @@ TEST(GrounderTest, BudgetsEndInAnErrorNotUnboundedMemory) {
   auto r = LoadTask(domain, problem, options);
   EXPECT_FALSE(r.ok());
   EXPECT_NE(r.ErrorText().find("budget"), std::string::npos) << r.ErrorText();
+  // A universally quantified goal over 60^4 combinations hits the work budget.
+  GroundingOptions small_work;
+  small_work.max_work = 1'000'000;
+  auto q = LoadTask(domain, "(define (problem q) (:domain big) (:objects" + objects +
+                                " - obj) (:init) (:goal (forall (?a ?b ?c ?d - obj) (p ?a ?b ?c))))",
+                    small_work);
+  EXPECT_FALSE(q.ok());
+  EXPECT_NE(q.ErrorText().find("work budget"), std::string::npos) << q.ErrorText();
   options.max_actions = 0;
   EXPECT_FALSE(options.Validate().ok());
 }

@@ -44,6 +44,10 @@ struct GroundingOptions {
   // unbounded memory use.
   std::size_t max_actions = 5'000'000;
   std::size_t max_facts = 5'000'000;
+  // Elementary grounding steps (join candidates, quantifier and forall
+  // expansions) before giving up with an error: bounds time and memory on
+  // inputs such as a forall over many variables. About 1e8 steps per second.
+  std::size_t max_work = 400'000'000;
 
   absl::Status Validate() const;
 };
