@@ -170,6 +170,14 @@ TEST(ParseDomainTest, ReportsEveryErrorWithPosition) {
   EXPECT_EQ(var->ToString().rfind("domain:5:18: error: undeclared variable (found '?z'", 0), 0u) << var->ToString();
 }
 
+TEST(ParseDomainTest, ToleratesByteOrderMarkCrlfAndTabs) {
+  auto result = ParseDomain("\xEF\xBB\xBF(define (domain D)\r\n\t(:predicates (P ?X)))\r\n");
+  ASSERT_TRUE(result.domain.has_value()) << FormatDiagnostics(result.diagnostics);
+  ASSERT_NE(result.domain->FindPredicate("p"), nullptr);
+  EXPECT_EQ(result.domain->predicates[0].location.line, 2);
+  EXPECT_EQ(result.domain->predicates[0].parameters[0].name, "?x");
+}
+
 TEST(ParseDomainTest, SyntaxErrorsHaveClearPositions) {
   auto unmatched = ParseDomain("(define (domain d))\n)");
   const Diagnostic* d = FindDiag(unmatched.diagnostics, "unmatched ')'");

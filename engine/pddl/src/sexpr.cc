@@ -21,6 +21,8 @@ ReadResult ReadSExprs(std::string_view text, const std::string& file,
   int line = 1;
   int column = 1;
   std::size_t i = 0;
+  // A UTF-8 byte order mark (files saved by some Windows editors) is skipped.
+  if (text.substr(0, 3) == "\xEF\xBB\xBF") i = 3;
   int bad_chars_reported = 0;
   const std::size_t n = text.size();
   while (i < n) {
