@@ -48,6 +48,13 @@ void LazySearch::ExtractPath(std::int32_t state, std::vector<Event>* out) const 
   std::reverse(out->begin(), out->end());
 }
 
+bool LazySearch::IsAncestor(std::int32_t maybe_ancestor, std::int32_t state) const {
+  for (std::int32_t x = state; x >= 0; x = info_[static_cast<std::size_t>(x)].parent) {
+    if (x == maybe_ancestor) return true;
+  }
+  return false;
+}
+
 void LazySearch::Push(std::int32_t state, bool preferred, double parent_h) {
   const NodeInfo& n = info_[static_cast<std::size_t>(state)];
   double primary, secondary;
@@ -135,6 +142,9 @@ LazySearch::Status LazySearch::Step() {
       if (!next_.running.empty() || !task_.tils().empty()) merged_timed_ = true;
       if (!improved) continue;
       if (greedy && n.status == kClosed) continue;
+      // Stored bounds of descendants can be stale after an ancestor improved;
+      // never let a state become its own ancestor.
+      if (IsAncestor(id.value(), s)) continue;
     }
     const bool was_new = n.status == kNew;
     n.parent = s;

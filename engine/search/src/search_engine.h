@@ -81,6 +81,7 @@ class LazySearch {
 
   NodeInfo& Info(StateId id);
   void ExtractPath(std::int32_t state, std::vector<Event>* out) const;
+  bool IsAncestor(std::int32_t maybe_ancestor, std::int32_t state) const;
   void Push(std::int32_t state, bool preferred, double parent_h);
   bool Pop(std::int32_t* state);
 

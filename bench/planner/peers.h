@@ -1,0 +1,25 @@
+// Parses the "Every run" table of peers.md and computes IPC scores.
+#pragma once
+
+#include <map>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace seaplan::bench {
+
+struct Run {
+  std::string domain, problem, planner;
+  bool solved = false;
+  double time_s = -1;      // first plan if given, else wall time
+  double makespan = -1;
+  int actions = -1;
+};
+
+// Rows of the "## Every run" table; unknown or malformed rows are skipped.
+std::vector<Run> ParsePeerRuns(const std::string& markdown);
+
+// IPC time score of one run: 1 if t <= 1 s, else 1 - log(t)/log(limit); 0 if unsolved or t > limit.
+double TimeScore(const Run& run, double limit_s);
+
+}  // namespace seaplan::bench
