@@ -9,6 +9,7 @@
 #include <cmath>
 #include <cstdio>
 #include <map>
+#include <numbers>
 #include <string>
 #include <vector>
 
@@ -35,14 +36,14 @@ const Scenario& GetScenario() {
   static const Scenario* s = [] {
     std::vector<Eigen::Vector2d> island;
     for (int i = 0; i < 128; ++i) {
-      const double a = 2 * M_PI * i / 128;
+      const double a = 2 * std::numbers::pi * i / 128;
       island.push_back({150 + 300 * std::cos(a), -650 + 300 * std::sin(a)});
     }
     auto obs = risk::PolygonObstacles::Create({island});
-    auto* sc = new Scenario{ship::ShipParams{}, ship::Environment::WithCurrentToward(1.0, -110 * M_PI / 180),
+    auto* sc = new Scenario{ship::ShipParams{}, ship::Environment::WithCurrentToward(1.0, -110 * std::numbers::pi / 180),
                             *std::move(obs), {}, {}};
     sc->env.wind_speed_mps = 10;
-    sc->env.wind_direction_from_rad = -110 * M_PI / 180;
+    sc->env.wind_direction_from_rad = -110 * std::numbers::pi / 180;
     for (int i = 0; i < 16; ++i) {
       sc->starts.push_back(ship::ShipState::At(-150 + 20 * i, 40.0 * (i % 4), 0.3, 2.0));
     }

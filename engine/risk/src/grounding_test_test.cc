@@ -1,6 +1,7 @@
 #include "seaplan/risk/grounding_test.h"
 
 #include <cmath>
+#include <numbers>
 
 #include "gtest/gtest.h"
 
@@ -17,7 +18,7 @@ TEST(HullPolygonTest, RectangleCornersFollowHeading) {
   EXPECT_TRUE(h.corners_ne[2].isApprox(Vec(60, 208)));
   EXPECT_DOUBLE_EQ(h.bounds.max[0], 140);
   // Heading east: bow at E = +40.
-  h = HullPolygon::Rectangle(0, 0, M_PI / 2, 80, 16);
+  h = HullPolygon::Rectangle(0, 0, std::numbers::pi / 2, 80, 16);
   EXPECT_NEAR(h.bounds.max[1], 40, 1e-9);
   EXPECT_NEAR(h.bounds.max[0], 8, 1e-9);
 }
@@ -44,7 +45,7 @@ TEST(PolygonObstaclesTest, IntersectionCases) {
   EXPECT_TRUE(rock.HullIntersects(HullPolygon::Rectangle(0, 0, 0.3, 80, 16)));
   // Rotation matters: a ship pointing east reaches 40 m east, pointing north 8 m.
   const PolygonObstacles east_rock = Square(-1, 30, 2);
-  EXPECT_TRUE(east_rock.HullIntersects(HullPolygon::Rectangle(0, 0, M_PI / 2, 80, 16)));
+  EXPECT_TRUE(east_rock.HullIntersects(HullPolygon::Rectangle(0, 0, std::numbers::pi / 2, 80, 16)));
   EXPECT_FALSE(east_rock.HullIntersects(HullPolygon::Rectangle(0, 0, 0, 80, 16)));
 }
 

@@ -1,6 +1,7 @@
 #include "seaplan/risk/time_to_grounding.h"
 
 #include <cmath>
+#include <numbers>
 #include <vector>
 
 #include "gtest/gtest.h"
@@ -59,9 +60,9 @@ TEST(TimeToGroundingTest, StartingFromRestLagsButGrounds) {
 TEST(TimeToGroundingTest, NoObstacleRunsWholeHorizon) {
   auto empty = PolygonObstacles::Create({});
   ASSERT_TRUE(empty.ok());
-  Environment env = Environment::WithCurrentToward(1.0, -110 * M_PI / 180);
+  Environment env = Environment::WithCurrentToward(1.0, -110 * std::numbers::pi / 180);
   env.wind_speed_mps = 10;
-  env.wind_direction_from_rad = -110 * M_PI / 180;
+  env.wind_direction_from_rad = -110 * std::numbers::pi / 180;
   std::vector<DriftTrackPoint> track;
   const TtgResult r = Simulator().Run(ShipState::At(0, 0, 0.3, 2.0), env, *empty, &track);
   EXPECT_FALSE(r.grounded);
@@ -77,7 +78,7 @@ TEST(TimeToGroundingTest, UpwindShoreIsNotReached) {
   // Wind 20 m/s from the west pushes the ship east: a shore to the west is safe.
   Environment env;
   env.wind_speed_mps = 20;
-  env.wind_direction_from_rad = -M_PI / 2;
+  env.wind_direction_from_rad = -std::numbers::pi / 2;
   auto west = PolygonObstacles::Create({{{-5000, -400}, {5000, -400}, {5000, -3000}, {-5000, -3000}}});
   ASSERT_TRUE(west.ok());
   EXPECT_FALSE(Simulator().Run(ShipState::At(0, 0, 0), env, *west).grounded);
@@ -100,10 +101,10 @@ TEST(TimeToGroundingTest, HullSizeComesFromOptions) {
   env.current_east_mps = 1.0;
   TtgOptions fine;
   fine.dt_s = 1.0;
-  const TtgResult across = Simulator(fine).Run(ShipState::At(0, 0, M_PI / 2, 1.0), env, shore);
+  const TtgResult across = Simulator(fine).Run(ShipState::At(0, 0, std::numbers::pi / 2, 1.0), env, shore);
   EXPECT_NEAR(across.ttg_s, 260.0, 1.5);
   fine.hull_length_m = 200;
-  const TtgResult longer = Simulator(fine).Run(ShipState::At(0, 0, M_PI / 2, 1.0), env, shore);
+  const TtgResult longer = Simulator(fine).Run(ShipState::At(0, 0, std::numbers::pi / 2, 1.0), env, shore);
   EXPECT_NEAR(longer.ttg_s, 200.0, 1.5);
 }
 

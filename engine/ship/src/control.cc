@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 #include <utility>
 
 #include "absl/strings/str_cat.h"
@@ -9,8 +10,8 @@
 namespace seaplan::ship {
 
 double WrapToPi(double a) {
-  a = std::remainder(a, 2.0 * M_PI);  // in [-pi, pi]
-  if (a <= -M_PI) a += 2.0 * M_PI;
+  a = std::remainder(a, 2.0 * std::numbers::pi);  // in [-pi, pi]
+  if (a <= -std::numbers::pi) a += 2.0 * std::numbers::pi;
   return a;
 }
 

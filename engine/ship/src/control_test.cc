@@ -1,6 +1,7 @@
 #include "seaplan/ship/control.h"
 
 #include <cmath>
+#include <numbers>
 #include <vector>
 
 #include "gtest/gtest.h"
@@ -10,9 +11,9 @@ namespace seaplan::ship {
 namespace {
 
 TEST(ControlTest, WrapToPi) {
-  EXPECT_NEAR(WrapToPi(3 * M_PI / 2), -M_PI / 2, 1e-12);
-  EXPECT_NEAR(WrapToPi(-3 * M_PI / 2), M_PI / 2, 1e-12);
-  EXPECT_NEAR(WrapToPi(-M_PI), M_PI, 1e-12);
+  EXPECT_NEAR(WrapToPi(3 * std::numbers::pi / 2), -std::numbers::pi / 2, 1e-12);
+  EXPECT_NEAR(WrapToPi(-3 * std::numbers::pi / 2), std::numbers::pi / 2, 1e-12);
+  EXPECT_NEAR(WrapToPi(-std::numbers::pi), std::numbers::pi, 1e-12);
   EXPECT_NEAR(WrapToPi(0.3), 0.3, 1e-15);
 }
 
@@ -22,7 +23,7 @@ TEST(ControlTest, HeadingControllerSignConvention) {
   HeadingController hc(HeadingControllerOptions{}, 0.5);
   const double delta = hc.RudderAngle(0.2, 0.0);
   EXPECT_LT(delta, 0.0);
-  EXPECT_GE(delta, -30 * M_PI / 180 - 1e-12);
+  EXPECT_GE(delta, -30 * std::numbers::pi / 180 - 1e-12);
 }
 
 TEST(ControlTest, LosRejectsBadRoutes) {
@@ -36,10 +37,10 @@ TEST(ControlTest, LosRejectsBadRoutes) {
 TEST(ControlTest, LosOnTrackPointsAlongLeg) {
   auto los = LosGuidance::Create({{0, 0}, {0, 5000}}, LosOptions{});  // leg due east
   ASSERT_TRUE(los.ok());
-  EXPECT_NEAR(los->Update(0, 1000), M_PI / 2, 1e-12);
+  EXPECT_NEAR(los->Update(0, 1000), std::numbers::pi / 2, 1e-12);
   // Ship 100 m north (port side of an eastbound leg): e = -100 -> steer south of east.
   auto los2 = LosGuidance::Create({{0, 0}, {0, 5000}}, LosOptions{});
-  EXPECT_GT(los2->Update(100, 1000), M_PI / 2);
+  EXPECT_GT(los2->Update(100, 1000), std::numbers::pi / 2);
 }
 
 // Closed loop: the ship follows a dog-leg route with LOS + heading PID +

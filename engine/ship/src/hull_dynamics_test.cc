@@ -2,6 +2,7 @@
 #include "seaplan/ship/hull_dynamics.h"
 
 #include <cmath>
+#include <numbers>
 
 #include <cstdio>
 
@@ -10,7 +11,7 @@
 namespace seaplan::ship {
 namespace {
 
-constexpr double kDeg = M_PI / 180.0;
+constexpr double kDeg = std::numbers::pi / 180.0;
 
 // |actual - expected| <= 1 % of |expected| (or `abs_floor` for values near 0).
 void ExpectWithin1Percent(double actual, double expected, const char* what,

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <numbers>
 
 #include "absl/strings/str_cat.h"
 
@@ -138,12 +139,12 @@ double ShaftPropulsion::ThrustN() const {
 
 double ShaftPropulsion::MainEngineTorque(MsoMode mode, double load) const {
   const double p = AvailablePower(machinery_, mode).main_engine_w;
-  return std::min(load * p / (omega_radps_ + 0.1), p / 5.0 * M_PI / 30.0);
+  return std::min(load * p / (omega_radps_ + 0.1), p / 5.0 * std::numbers::pi / 30.0);
 }
 
 double ShaftPropulsion::HsgTorque(MsoMode mode, double load) const {
   const double p = AvailablePower(machinery_, mode).electrical_w;
-  return std::min(load * p / (omega_radps_ + 0.1), p / 5.0 * M_PI / 30.0);
+  return std::min(load * p / (omega_radps_ + 0.1), p / 5.0 * std::numbers::pi / 30.0);
 }
 
 double ShaftPropulsion::OmegaDerivative(MsoMode mode, double load) const {

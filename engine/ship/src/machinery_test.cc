@@ -54,7 +54,7 @@ TEST(MachineryTest, ShaftModelSpinsUpAndMakesThrust) {
   const MachineryParams p;
   ShaftPropulsion shaft(p, ShaftParams{});
   const double w0 = shaft.omega_radps();
-  EXPECT_NEAR(w0, 400 * M_PI / 30, 1e-12);
+  EXPECT_NEAR(w0, 400 * std::numbers::pi / 30, 1e-12);
   for (int i = 0; i < 4000; ++i) shaft.Integrate(shaft.OmegaDerivative(MsoMode::kMec, 1.0), 0.5);
   // Steady: torque balance, positive thrust, below the max shaft speed.
   EXPECT_GT(shaft.ThrustN(), 0.0);

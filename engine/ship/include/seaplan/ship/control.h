@@ -19,6 +19,7 @@
 #pragma once
 
 #include <cmath>
+#include <numbers>
 #include <vector>
 
 #include "Eigen/Core"
@@ -85,7 +86,7 @@ struct ShaftSpeedControllerOptions {
   double kp_shaft_speed = 0.05;
   double ki_shaft_speed = 0.005;
   double initial_shaft_integral = 114.0;
-  double max_shaft_speed_radps = 1.1 * 1000.0 * M_PI / 30.0 * 0.6;
+  double max_shaft_speed_radps = 1.1 * 1000.0 * std::numbers::pi / 30.0 * 0.6;
 };
 
 class ShaftSpeedController {
@@ -103,7 +104,7 @@ struct HeadingControllerOptions {
   double kp = 4.0;
   double kd = 90.0;
   double ki = 0.01;
-  double max_rudder_angle_rad = 30.0 * M_PI / 180.0;
+  double max_rudder_angle_rad = 30.0 * std::numbers::pi / 180.0;
   bool wrap_heading_error = true;  // SITS: false (see header comment)
   Status Validate() const;
 };

@@ -16,6 +16,7 @@
 #pragma once
 
 #include <array>
+#include <numbers>
 #include <string_view>
 
 #include "seaplan/common/status.h"
@@ -131,7 +132,7 @@ struct ShaftParams {
   double initial_shaft_speed_rpm = 400.0;
   // Max shaft speed = 1.1 * rated ME speed [rad/s] * r_ME.
   double MaxShaftSpeedRadps() const {
-    return 1.1 * rated_main_engine_speed_rpm * M_PI / 30.0 * main_engine_gear_ratio;
+    return 1.1 * rated_main_engine_speed_rpm * std::numbers::pi / 30.0 * main_engine_gear_ratio;
   }
   Status Validate() const;
 };
@@ -141,7 +142,7 @@ class ShaftPropulsion {
   ShaftPropulsion(const MachineryParams& machinery, const ShaftParams& shaft)
       : machinery_(machinery),
         shaft_(shaft),
-        omega_radps_(shaft.initial_shaft_speed_rpm * M_PI / 30.0) {}
+        omega_radps_(shaft.initial_shaft_speed_rpm * std::numbers::pi / 30.0) {}
   double omega_radps() const { return omega_radps_; }
   void set_omega_radps(double w) { omega_radps_ = w; }
   double ThrustN() const;

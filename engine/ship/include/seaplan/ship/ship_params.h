@@ -24,6 +24,7 @@
 #pragma once
 
 #include <cmath>
+#include <numbers>
 
 #include "Eigen/Core"
 #include "seaplan/common/status.h"
@@ -77,7 +78,7 @@ struct ShipParams {
   // --- rudder: tau = [0, -c_v delta u_r, -c_r delta u_r] ---
   double rudder_sway_coefficient = 50e3;
   double rudder_yaw_coefficient = 500e3;
-  double max_rudder_angle_rad = 30.0 * M_PI / 180.0;
+  double max_rudder_angle_rad = 30.0 * std::numbers::pi / 180.0;
 
   // Derived quantities.
   double Mass() const;
