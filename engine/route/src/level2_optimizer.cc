@@ -373,6 +373,22 @@ void RunParallel(int count, int threads, const std::function<void(int)>& fn) {
 
 }  // namespace
 
+StatusOr<double> SimulateTimeToGrounding(const ObstacleField& field, const ship::ShipParams& ship,
+                                         const ship::Environment& env, Vec2 start, double heading_rad,
+                                         double speed_mps, double horizon_s, double step_s) {
+  if (!(step_s > 0.0) || !(horizon_s > 0.0) || horizon_s / step_s > 1e5) {
+    return absl::InvalidArgumentError("TTG needs step > 0, horizon > 0 and at most 1e5 steps");
+  }
+  SEAPLAN_ASSIGN_OR_RETURN(ship::HullDynamics dyn, ship::HullDynamics::Create(ship));
+  ship::ShipModelWithoutPropulsion model(dyn, env, ship::ShipState::At(start.y, start.x, heading_rad, speed_mps));
+  while (model.time_s() <= horizon_s) {
+    model.Step(step_s);
+    const auto& s = model.state();
+    if (field.HullHits({s.east_m(), s.north_m()}, s.heading_rad())) break;
+  }
+  return model.time_s();
+}
+
 absl::Status CostWeights::Validate() const {
   for (double v : {mu1_per_m2, mu2_per_m6, grounding_cost, mu3, zeta1_per_m, mu4, mu5_per_m,
                    mode_switch_cost, consumption[0], consumption[1], consumption[2]}) {

@@ -1,0 +1,278 @@
+#include "seaplan/route/route_planner.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "absl/strings/str_cat.h"
+#include "seaplan/common/log.h"
+#include "seaplan/ship/steady_state.h"
+
+namespace seaplan::route {
+namespace {
+
+constexpr double kDegToRad = M_PI / 180.0;
+
+Vec2 ToVec(chart::LocalPoint p) { return {p.x_m, p.y_m}; }
+chart::LocalPoint ToLocal(Vec2 p) { return {p.x, p.y}; }
+
+std::vector<ObstaclePolygon> ToObstacles(const std::vector<chart::Polygon>& polygons) {
+  std::vector<ObstaclePolygon> out;
+  out.reserve(polygons.size());
+  for (const chart::Polygon& poly : polygons) {
+    ObstaclePolygon o;
+    auto add = [&](const chart::Ring& ring) {
+      if (ring.size() < 3) return;
+      std::vector<Vec2> r;
+      r.reserve(ring.size());
+      for (const auto& p : ring) r.push_back(ToVec(p));
+      o.rings.push_back(std::move(r));
+    };
+    add(poly.outer);
+    for (const auto& h : poly.holes) add(h);
+    if (!o.rings.empty()) out.push_back(std::move(o));
+  }
+  return out;
+}
+
+absl::Status CheckEndpoint(const chart::ObstacleMap& map, const ObstacleField& field, chart::LocalPoint p,
+                           const char* name) {
+  if (!std::isfinite(p.x_m) || !std::isfinite(p.y_m)) {
+    return absl::InvalidArgumentError(absl::StrCat(name, " is not a finite position"));
+  }
+  if (!map.Covers(p)) {
+    return absl::InvalidArgumentError(absl::StrCat(name, " (", p.x_m, ", ", p.y_m,
+                                                   ") is outside the chart coverage"));
+  }
+  if (field.Inside(ToVec(p))) {
+    return absl::InvalidArgumentError(absl::StrCat(name, " (", p.x_m, ", ", p.y_m,
+                                                   ") lies inside a grounding obstacle"));
+  }
+  return absl::OkStatus();
+}
+
+}  // namespace
+
+absl::Status Environment::Validate() const {
+  for (double v : {wind_speed_mps, wind_from_deg, current_speed_mps, current_toward_deg}) {
+    if (!std::isfinite(v)) return absl::InvalidArgumentError("environment values must be finite");
+  }
+  if (wind_speed_mps < 0 || wind_speed_mps > 100) {
+    return absl::InvalidArgumentError(absl::StrCat("wind_speed_mps must be in [0, 100], got ", wind_speed_mps));
+  }
+  if (current_speed_mps < 0 || current_speed_mps > 20) {
+    return absl::InvalidArgumentError(absl::StrCat("current_speed_mps must be in [0, 20], got ", current_speed_mps));
+  }
+  return absl::OkStatus();
+}
+
+absl::Status ShipParticulars::Validate() const {
+  SEAPLAN_RETURN_IF_ERROR(hull.Validate());
+  if (!(service_throttle > 0.0 && service_throttle <= 1.1)) {
+    return absl::InvalidArgumentError(absl::StrCat("service_throttle must be in (0, 1.1], got ", service_throttle));
+  }
+  return absl::OkStatus();
+}
+
+absl::Status RouteOptions::Validate() const {
+  SEAPLAN_RETURN_IF_ERROR(level2.Validate());
+  SEAPLAN_RETURN_IF_ERROR(alternatives.Validate());
+  SEAPLAN_RETURN_IF_ERROR(risk.Validate());
+  if (max_alternatives < 1 || max_alternatives > 64) {
+    return absl::InvalidArgumentError(absl::StrCat("max_alternatives must be in [1, 64], got ", max_alternatives));
+  }
+  if (!(min_depth_m >= 0.0 && min_depth_m < 1000.0)) {
+    return absl::InvalidArgumentError("min_depth_m must be in [0, 1000)");
+  }
+  if (!(field_cell_m >= 5.0 && field_cell_m <= 1000.0)) {
+    return absl::InvalidArgumentError("field_cell_m must be in [5, 1000]");
+  }
+  return absl::OkStatus();
+}
+
+ship::Environment ToShipEnvironment(const Environment& env) {
+  ship::Environment e = ship::Environment::WithCurrentToward(env.current_speed_mps,
+                                                             env.current_toward_deg * kDegToRad);
+  e.wind_speed_mps = env.wind_speed_mps;
+  e.wind_direction_from_rad = env.wind_from_deg * kDegToRad;
+  return e;
+}
+
+StatusOr<RoutePlanner> RoutePlanner::Create(std::shared_ptr<const chart::ObstacleMap> map,
+                                            const ShipParticulars& ship, const RouteOptions& options) {
+  if (map == nullptr) return absl::InvalidArgumentError("RoutePlanner needs a chart");
+  SEAPLAN_RETURN_IF_ERROR(ship.Validate());
+  SEAPLAN_RETURN_IF_ERROR(options.Validate());
+  const double chart_depth = map->summary().options.min_depth_m;
+  if (options.min_depth_m > chart_depth) {
+    return absl::FailedPreconditionError(absl::StrCat(
+        "the chart's obstacles were built for a minimum depth of ", chart_depth, " m but the route needs ",
+        options.min_depth_m, " m: reload the chart with min_depth_m >= ", options.min_depth_m));
+  }
+  RoutePlanner p;
+  p.map_ = std::move(map);
+  p.ship_ = ship;
+  p.options_ = options;
+  for (int m = 0; m < kModeCount; ++m) {
+    const ship::OperatingPoint op = ship::CalmWaterOperatingPoint(
+        ship.hull, ship.machinery, static_cast<ship::MsoMode>(m), ship.service_throttle);
+    p.speed_mps_[m] = op.speed_mps;
+    p.fuel_kgps_[m] = op.fuel_rate.total_kgps();
+    if (!(op.speed_mps > 0.1)) {
+      return absl::InvalidArgumentError(absl::StrCat("mode ", MsoModeName(static_cast<MsoMode>(m)),
+                                                     " has no service speed at throttle ", ship.service_throttle));
+    }
+  }
+  ObstacleFieldOptions fo;
+  fo.cell_m = options.field_cell_m;
+  fo.far_cutoff_m = std::min(3000.0, 30.0 / options.level2.weights.zeta1_per_m);
+  fo.hull = {ship.hull.length_m, ship.hull.beam_m};
+  const chart::LocalBox cov = p.map_->summary().coverage;
+  SEAPLAN_ASSIGN_OR_RETURN(
+      ObstacleField field,
+      ObstacleField::Build(ToObstacles(p.map_->polygons()), ToVec(cov.min), ToVec(cov.max), fo));
+  p.field_ = std::make_shared<const ObstacleField>(std::move(field));
+  return p;
+}
+
+StatusOr<RouteResult> RoutePlanner::Plan(chart::LatLon start, chart::LatLon goal, const Environment& env,
+                                         const StopToken& stop) const {
+  return Plan(map_->frame().ToLocal(start), map_->frame().ToLocal(goal), env, stop);
+}
+
+StatusOr<RouteResult> RoutePlanner::Plan(chart::LocalPoint start, chart::LocalPoint goal,
+                                         const Environment& env, const StopToken& stop) const {
+  SEAPLAN_RETURN_IF_ERROR(env.Validate());
+  SEAPLAN_RETURN_IF_ERROR(CheckEndpoint(*map_, *field_, start, "start"));
+  SEAPLAN_RETURN_IF_ERROR(CheckEndpoint(*map_, *field_, goal, "goal"));
+  auto level1 = chart::PlanAlternatives(*map_, start, goal, options_.alternatives);
+  if (!level1.ok()) {
+    if (level1.status().code() == absl::StatusCode::kNotFound) {
+      return absl::FailedPreconditionError(absl::StrCat("no safe route: ", level1.status().message()));
+    }
+    return level1.status();
+  }
+  if (level1->alternatives.empty()) return absl::FailedPreconditionError("no safe route: Level 1 found none");
+
+  EventTreeGroundingModel grounding(options_.risk);
+  Level2Problem problem;
+  problem.field = field_.get();
+  problem.grounding = &grounding;
+  problem.drift_ship = ship_.hull;
+  problem.environment = ToShipEnvironment(env);
+  const size_t count = std::min<size_t>(options_.max_alternatives, level1->alternatives.size());
+  for (size_t a = 0; a < count; ++a) {
+    std::vector<Vec2> line;
+    for (const auto& p : level1->alternatives[a].waypoints) line.push_back(ToVec(p));
+    problem.alternatives.push_back(std::move(line));
+  }
+  SEAPLAN_ASSIGN_OR_RETURN(Level2Result l2, OptimizeLevel2(problem, options_.level2, stop));
+
+  RouteResult out;
+  out.used_level1_fallback = level1->used_fallback;
+  out.stopped = l2.stopped;
+  out.evaluations = l2.evaluations;
+  out.level2_wall_s = l2.wall_s;
+  out.chosen = l2.chosen;
+  const CostWeights& w = options_.level2.weights;
+  for (size_t a = 0; a < l2.alternatives.size(); ++a) {
+    const AlternativeResult& src = l2.alternatives[a];
+    RouteAlternative alt;
+    alt.level1 = level1->alternatives[a].waypoints;
+    alt.expected_cost = src.expected_cost;
+    alt.mode_switches = src.mode_switches;
+    alt.safe = !src.crosses_obstacle;
+    for (size_t k = 0; k < src.waypoints.size(); ++k) {
+      const WaypointResult& wr = src.waypoints[k];
+      RouteWaypoint rw;
+      rw.local = ToLocal(wr.position);
+      rw.latlon = map_->frame().ToLatLon(rw.local);
+      rw.mode = wr.mode;
+      rw.ttg_s = wr.ttg_s;
+      const int m = static_cast<int>(wr.mode);
+      rw.grounding_probability = wr.grounding_probability[m];
+      rw.expected_grounding_cost = w.grounding_cost * rw.grounding_probability;
+      if (k + 1 < src.waypoints.size()) {
+        const Vec2 a0 = wr.position, a1 = src.waypoints[k + 1].position;
+        rw.segment_length_m = std::hypot(a1.x - a0.x, a1.y - a0.y);
+        rw.segment_time_s = rw.segment_length_m / speed_mps_[m];
+        rw.segment_fuel_kg = rw.segment_time_s * fuel_kgps_[m];
+        alt.expected_grounding_cost += rw.expected_grounding_cost;
+      }
+      alt.length_m += rw.segment_length_m;
+      alt.sailing_time_s += rw.segment_time_s;
+      alt.fuel_kg += rw.segment_fuel_kg;
+      alt.waypoints.push_back(rw);
+    }
+    out.alternatives.push_back(std::move(alt));
+  }
+  log::Info("route: {} alternatives, chosen {}, {} evaluations, level-2 {:.3f} s", out.alternatives.size(),
+            out.chosen, out.evaluations, out.level2_wall_s);
+  if (out.chosen < 0 && !out.stopped) {
+    return absl::FailedPreconditionError(
+        "no safe route: every optimised alternative touches a grounding obstacle");
+  }
+  return out;
+}
+
+StatusOr<std::vector<PointRisk>> RoutePlanner::EstimateRisk(const std::vector<TrackPoint>& track,
+                                                            const Environment& env) const {
+  SEAPLAN_RETURN_IF_ERROR(env.Validate());
+  const ship::Environment senv = ToShipEnvironment(env);
+  EventTreeGroundingModel grounding(options_.risk);
+  std::vector<Vec2> local;
+  for (size_t i = 0; i < track.size(); ++i) {
+    const chart::LocalPoint p = map_->frame().ToLocal(track[i].latlon);
+    if (!std::isfinite(p.x_m) || !std::isfinite(p.y_m)) {
+      return absl::InvalidArgumentError(absl::StrCat("track point ", i, " is not a valid position"));
+    }
+    local.push_back(ToVec(p));
+  }
+  std::vector<PointRisk> out;
+  for (size_t i = 0; i < track.size(); ++i) {
+    const TrackPoint& t = track[i];
+    double heading = 0.0;
+    if (t.heading_deg) {
+      heading = *t.heading_deg * kDegToRad;
+    } else if (track.size() > 1) {
+      const Vec2 a = local[i + 1 < local.size() ? i : i - 1], b = local[i + 1 < local.size() ? i + 1 : i];
+      heading = std::atan2(b.x - a.x, b.y - a.y);
+    }
+    const double speed = t.speed_mps.value_or(options_.level2.drift_initial_speed_mps);
+    if (!(speed >= 0 && speed < 50)) {
+      return absl::InvalidArgumentError(absl::StrCat("track point ", i, " speed must be in [0, 50) m/s"));
+    }
+    SEAPLAN_ASSIGN_OR_RETURN(
+        double ttg, SimulateTimeToGrounding(*field_, ship_.hull, senv, local[i], heading, speed,
+                                            options_.level2.ttg_horizon_s, options_.level2.ttg_step_s));
+    PointRisk r;
+    r.mode = t.mode.value_or(MsoMode::kPto);
+    r.ttg_s = ttg;
+    r.grounding_probability = grounding.Probabilities(ttg)[static_cast<int>(r.mode)];
+    r.expected_cost = options_.level2.weights.grounding_cost * r.grounding_probability;
+    out.push_back(r);
+  }
+  return out;
+}
+
+namespace {
+std::shared_ptr<const chart::ObstacleMap> Borrow(const chart::ObstacleMap& map) {
+  return std::shared_ptr<const chart::ObstacleMap>(&map, [](const chart::ObstacleMap*) {});
+}
+}  // namespace
+
+StatusOr<RouteResult> PlanRoute(const chart::ObstacleMap& map, chart::LatLon start, chart::LatLon goal,
+                                const ShipParticulars& ship, const Environment& env,
+                                const RouteOptions& options, const StopToken& stop) {
+  SEAPLAN_ASSIGN_OR_RETURN(RoutePlanner planner, RoutePlanner::Create(Borrow(map), ship, options));
+  return planner.Plan(start, goal, env, stop);
+}
+
+StatusOr<std::vector<PointRisk>> EstimateRisk(const chart::ObstacleMap& map,
+                                              const std::vector<TrackPoint>& track,
+                                              const ShipParticulars& ship, const Environment& env,
+                                              const RouteOptions& options) {
+  SEAPLAN_ASSIGN_OR_RETURN(RoutePlanner planner, RoutePlanner::Create(Borrow(map), ship, options));
+  return planner.EstimateRisk(track, env);
+}
+
+}  // namespace seaplan::route
