@@ -416,11 +416,18 @@ void Run::FootprintOf(std::size_t event_index) {
 }
 
 std::optional<ValidationFailure> Run::CheckMutex(std::size_t i) {
-  // Exactly simultaneous events are always checked, even with epsilon 0.
-  const std::int64_t window = std::max<std::int64_t>(ToNs(options_.epsilon_s), 1);
   const Event& a = events_[i];
-  for (std::size_t k = i + 1; k < events_.size() && events_[k].t_ns - a.t_ns < window; ++k) {
+  // Closer than epsilon, judged on the real times with a slack of a few
+  // rounding errors (1 ns, more for huge times) so that a separation of
+  // exactly epsilon computed in floating point (10.001 - 10 =
+  // 0.00099999999999945) counts as epsilon. Comparing rounded nanoseconds
+  // here instead could turn such a gap into 999999 ns when the two times sit
+  // on either side of a half-nanosecond. Exactly simultaneous events (same
+  // nanosecond) are always checked, even with epsilon 0.
+  const double limit = options_.epsilon_s - (1e-9 + std::fabs(a.t) * 1e-15);
+  for (std::size_t k = i + 1; k < events_.size(); ++k) {
     const Event& b = events_[k];
+    if (b.t_ns != a.t_ns && !(b.t - a.t < limit)) break;  // events are sorted by time
     if (a.IsStep() && b.IsStep() && a.index == b.index) continue;  // a step never conflicts with itself
     if (!a.IsStep() && !b.IsStep()) continue;  // timed literals are the task's own business
     // FootprintOf may grow footprints_, so take both references afterwards.
@@ -441,7 +448,7 @@ std::optional<ValidationFailure> Run::CheckMutex(std::size_t i) {
                       ? task_.numeric_vars[static_cast<std::size_t>(conflict->id)].DisplayName()
                       : task_.facts[static_cast<std::size_t>(conflict->id)].DisplayName();
     f.reason = absl::StrCat(DescribeEvent(a), " and ", DescribeEvent(b), " are ",
-                            Secs(static_cast<double>(b.t_ns - a.t_ns) / kNsPerS),
+                            Secs(b.t - a.t),
                             " s apart (less than epsilon ", Secs(options_.epsilon_s),
                             " s) and interfere: ", f.condition, " is ", conflict->how);
     return f;

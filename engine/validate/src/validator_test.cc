@@ -407,6 +407,35 @@ TEST(ValidatorTest, EpsilonSeparationOfInterferingEvents) {
   EXPECT_VALID(Check(b.task(), MakePlan({Step(0, "(weld)", 1), Step(0.2, "(cut)")}), wide));
 }
 
+TEST(ValidatorTest, SeparationsOfEpsilonComputedInFloatingPointCount) {
+  // A long chain whose every start touches the previous end, scheduled the
+  // way a planner does it: start = previous start + duration + epsilon, with
+  // durations off the decimal grid. No gap may be judged below epsilon.
+  TaskBuilder b;
+  constexpr int kMoves = 300;
+  b.Init("(at p0)");
+  Plan plan;
+  double t = 0.0;
+  for (int i = 0; i < kMoves; ++i) {
+    const std::string from = "p" + std::to_string(i);
+    const std::string to = "p" + std::to_string(i + 1);
+    const double d = (37.0 * i + 11.0) / 0.18;
+    b.Add(Move(b, from, to, d));
+    plan.steps.push_back({t, "move", {from, to}, d, 0});
+    t = t + d + 0.001;
+  }
+  b.Goal("(at p" + std::to_string(kMoves) + ")");
+  EXPECT_VALID(Check(b.task(), plan));
+  // And through printing, as the planner returns it.
+  const auto reparsed = ParsePlan(FormatPlan(plan));
+  ASSERT_TRUE(reparsed.ok());
+  EXPECT_VALID(Check(b.task(), *reparsed));
+  // One microsecond less than epsilon anywhere is a mutex.
+  plan.steps[kMoves / 2].start_s -= 1e-6;
+  EXPECT_FAILS(Check(b.task(), plan), Kind::kMutex, kMoves / 2 - 1,
+               "(at p" + std::to_string(kMoves / 2) + ")");
+}
+
 TEST(ValidatorTest, SimultaneousNonInterferingEventsAreFine) {
   TaskBuilder b = Interfering();
   b.Goal("(painted)");

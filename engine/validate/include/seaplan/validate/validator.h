@@ -40,9 +40,11 @@
 //     DNF variants of one (name, args) count with the union of what they touch.
 //   - The goal must hold after the last event (including every timed literal,
 //     also those after the last action).
-//   - Event times are compared on a 1 ns grid (times are rounded to whole
-//     nanoseconds first), so "0.001 apart" parsed from decimal text is exactly
-//     epsilon and not 0.000999999..., and ordering is transitive.
+//   - Event times are ordered on a 1 ns grid (rounded to whole nanoseconds:
+//     "the same time" and "strictly inside" are exact and transitive).
+//     Separations are compared with epsilon on the real times less a slack of
+//     1 ns (plus 1e-15 of the time), so "0.001 apart" computed or parsed in
+//     floating point (0.000999999999999) counts as epsilon.
 //   - A durative step needs a duration of at least 1 ns (PDDL 2.1: start and
 //     end are distinct happenings); an instantaneous step must have none.
 //
