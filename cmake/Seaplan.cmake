@@ -2,7 +2,8 @@
 
 # Where the shared benchmark/chart data lives (../shared beside the clone by
 # default). Tests read it from the SEAPLAN_SHARED environment variable, which
-# ctest sets from this cache entry; tests skip with a reason when it is absent.
+# the test support library bakes in as its default (the environment variable
+# still wins at run time); tests skip with a reason when it is absent.
 set(SEAPLAN_SHARED "$ENV{SEAPLAN_SHARED}" CACHE PATH "Path to the shared data folder")
 if(NOT SEAPLAN_SHARED)
   get_filename_component(SEAPLAN_SHARED "${CMAKE_SOURCE_DIR}/../shared" ABSOLUTE)
@@ -48,6 +49,5 @@ function(seaplan_test name)
   seaplan_warnings(${name})
   gtest_discover_tests(${name}
     DISCOVERY_TIMEOUT 60
-    PROPERTIES LABELS ${ARG_LABEL} TIMEOUT 600
-               ENVIRONMENT "SEAPLAN_SHARED=${SEAPLAN_SHARED};SEAPLAN_SOURCE_DIR=${CMAKE_SOURCE_DIR};SEAPLAN_BIN_DIR=${CMAKE_BINARY_DIR}/bin")
+    PROPERTIES LABELS ${ARG_LABEL} TIMEOUT 600)
 endfunction()

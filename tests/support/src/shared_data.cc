@@ -15,13 +15,13 @@ std::filesystem::path FromEnv(const char* name, const std::filesystem::path& fal
 }  // namespace
 
 std::filesystem::path SourceDir() {
-  return FromEnv("SEAPLAN_SOURCE_DIR", std::filesystem::current_path());
+  return FromEnv("SEAPLAN_SOURCE_DIR", SEAPLAN_DEFAULT_SOURCE_DIR);
 }
 
-std::filesystem::path BinDir() { return FromEnv("SEAPLAN_BIN_DIR", SourceDir() / "build/bin"); }
+std::filesystem::path BinDir() { return FromEnv("SEAPLAN_BIN_DIR", SEAPLAN_DEFAULT_BIN_DIR); }
 
 std::optional<std::filesystem::path> SharedDir() {
-  const auto dir = FromEnv("SEAPLAN_SHARED", SourceDir() / ".." / "shared");
+  const auto dir = FromEnv("SEAPLAN_SHARED", SEAPLAN_DEFAULT_SHARED_DIR);
   if (std::filesystem::is_directory(dir)) return dir;
   return std::nullopt;
 }

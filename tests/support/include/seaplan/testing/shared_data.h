@@ -11,9 +11,9 @@
 
 namespace seaplan::testing {
 
-// The repository root (SEAPLAN_SOURCE_DIR, set by ctest).
+// The repository root (SEAPLAN_SOURCE_DIR overrides the configured one).
 std::filesystem::path SourceDir();
-// build/bin, where the binaries are (SEAPLAN_BIN_DIR, set by ctest).
+// build/bin, where the binaries are (SEAPLAN_BIN_DIR overrides).
 std::filesystem::path BinDir();
 // The shared folder if it exists.
 std::optional<std::filesystem::path> SharedDir();
