@@ -4,7 +4,9 @@
 // reports every independent problem.
 #include "seaplan/pddl/parser.h"
 
+#include <algorithm>
 #include <cmath>
+#include <tuple>
 #include <cstdlib>
 #include <unordered_map>
 #include <unordered_set>
@@ -1375,6 +1377,13 @@ class ProblemBuilder : public Builder {
   const Domain& domain_;
 };
 
+// Reading order, so a user fixes them top to bottom.
+void SortByPosition(std::vector<Diagnostic>& diagnostics) {
+  std::stable_sort(diagnostics.begin(), diagnostics.end(), [](const Diagnostic& a, const Diagnostic& b) {
+    return std::tie(a.location.line, a.location.column) < std::tie(b.location.line, b.location.column);
+  });
+}
+
 }  // namespace
 
 const PredicateDecl* Domain::FindPredicate(std::string_view wanted) const {
@@ -1426,6 +1435,7 @@ DomainParseResult ParseDomain(std::string_view text, std::string_view file_name)
   DomainBuilder builder(file, result.diagnostics);
   auto domain = builder.Build(read.top_level, read);
   if (domain && !HasErrors(result.diagnostics)) result.domain = std::move(domain);
+  SortByPosition(result.diagnostics);
   return result;
 }
 
@@ -1437,6 +1447,7 @@ ProblemParseResult ParseProblem(std::string_view text, const Domain& domain, std
   ProblemBuilder builder(file, result.diagnostics, domain);
   auto problem = builder.Build(read.top_level, read);
   if (problem && !HasErrors(result.diagnostics)) result.problem = std::move(problem);
+  SortByPosition(result.diagnostics);
   return result;
 }
 
