@@ -229,19 +229,19 @@ double DriftingGroundingModel::Exact(MsoMode mode,
 }
 
 double DriftingGroundingModel::GroundingProbabilityExact(MsoMode mode, double ttg_s) const {
+  if (!(ttg_s > 0.0)) ttg_s = 0.0;
   std::array<double, kNumRecoveryEvents> p;
   for (int i = 0; i < kNumRecoveryEvents; ++i) p[i] = EventProbability(static_cast<E>(i), ttg_s);
   return Exact(mode, p);
 }
 
 double DriftingGroundingModel::GroundingProbability(MsoMode mode, double ttg_s) const {
-  const double x = std::max(ttg_s, 0.0) * inv_step_;
-  const size_t k = static_cast<size_t>(x);
+  if (!(ttg_s > 0.0)) ttg_s = 0.0;  // negative or NaN: no time to recover
   const int m = static_cast<int>(mode);
-  if (k + 1 >= table_.size()) {
-    return k + 1 == table_.size() && x == static_cast<double>(k) ? table_[k][m]
-                                                                 : GroundingProbabilityExact(mode, ttg_s);
-  }
+  const double x = ttg_s * inv_step_;
+  const double last = static_cast<double>(table_.size() - 1);
+  if (x >= last) return x == last ? table_.back()[m] : GroundingProbabilityExact(mode, ttg_s);
+  const size_t k = static_cast<size_t>(x);
   const double f = x - static_cast<double>(k);
   return table_[k][m] + f * (table_[k + 1][m] - table_[k][m]);
 }

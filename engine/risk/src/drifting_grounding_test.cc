@@ -167,6 +167,19 @@ TEST(DriftingGroundingTest, TableMatchesExact) {
   RecordProperty("table_worst_abs_error", std::to_string(worst_abs));
 }
 
+TEST(DriftingGroundingTest, OddTtgValues) {
+  const DriftingGroundingModel m = Model();
+  for (MsoMode mode : ship::kAllMsoModes) {
+    EXPECT_EQ(m.GroundingProbability(mode, -5.0), m.GroundingProbability(mode, 0.0));
+    EXPECT_EQ(m.GroundingProbability(mode, NAN), m.GroundingProbability(mode, 0.0));
+    EXPECT_GE(m.GroundingProbability(mode, INFINITY), 0.0);
+    EXPECT_LE(m.GroundingProbability(mode, INFINITY), m.GroundingProbability(mode, 1800.0));
+    // Beyond the table: exact evaluation.
+    EXPECT_EQ(m.GroundingProbability(mode, 2500.0), m.GroundingProbabilityExact(mode, 2500.0));
+    EXPECT_EQ(m.GroundingProbability(mode, 1800.0), m.GroundingProbabilityExact(mode, 1800.0));
+  }
+}
+
 TEST(DriftingGroundingTest, ValidateRejectsBadParams) {
   DriftingGroundingParams p;
   p.events[0].nominal_probability = 1.5;

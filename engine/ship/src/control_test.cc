@@ -71,5 +71,28 @@ TEST(ControlTest, ClosedLoopRouteFollowing) {
   EXPECT_GT(model->fuel_consumed_kg(), 0.0);
 }
 
+// The shaft-dynamics ship with the cascaded speed controller of §5 (ship-speed
+// PI -> shaft-speed setpoint -> throttle PI) and heading hold reaches a speed
+// setpoint.
+TEST(ControlTest, ShaftModelWithCascadedSpeedController) {
+  const double dt = 0.5;
+  auto model = ShaftShipModel::Create(ShipParams{}, MachineryParams{}, ShaftParams{}, Environment{},
+                                      ShipState::At(0, 0, 0, 7.0), MsoMode::kMec);
+  ASSERT_TRUE(model.ok()) << model.status();
+  ShaftSpeedControllerOptions so;
+  so.max_shaft_speed_radps = ShaftParams{}.MaxShaftSpeedRadps();
+  ShaftSpeedController speed(so, dt);
+  HeadingController heading(HeadingControllerOptions{}, dt);
+  while (model->time_s() < 3000) {
+    const ShipState& s = model->state();
+    model->Step(speed.Throttle(8.0, s.nu[0], model->shaft_speed_radps()),
+                heading.RudderAngle(0.0, s.eta[2]), dt);
+  }
+  EXPECT_NEAR(model->state().nu[0], 8.0, 0.1);
+  EXPECT_NEAR(model->state().eta[2], 0.0, 1e-3);
+  EXPECT_GT(model->thrust_n(), 0.0);
+  EXPECT_GT(model->fuel_consumed_kg(), 0.0);
+}
+
 }  // namespace
 }  // namespace seaplan::ship

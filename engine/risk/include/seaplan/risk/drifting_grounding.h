@@ -160,8 +160,9 @@ class DriftingGroundingModel {
  public:
   static StatusOr<DriftingGroundingModel> Create(const DriftingGroundingParams& params = {});
 
-  // P(grounding in the risk interval | mode, TTG), table lookup. ttg_s < 0 is
-  // treated as 0 (grounding is certain once a LOPP occurs).
+  // P(grounding in the risk interval | mode, TTG), table lookup. ttg_s < 0 or
+  // NaN is treated as 0 (no time to recover: P = P(LOPP), the worst case);
+  // +inf gives the fully recovered limit.
   double GroundingProbability(MsoMode mode, double ttg_s) const;
   ModeProbabilities GroundingProbabilities(double ttg_s) const;
   // Same, computed directly (no table).

@@ -7,7 +7,9 @@
 //   2. derivatives are evaluated at the current state with the CURRENT thrust
 //      (the thrust state is integrated in the same Euler step),
 //   3. all states are integrated with forward Euler.
-// The rudder angle is saturated to +-max_rudder_angle_rad here. The mode can
+// The rudder angle is saturated to +-max_rudder_angle_rad here. Step's
+// arguments come from controllers, not users: a non-finite throttle/rudder or
+// dt <= 0 is a programming error and aborts (callers validate user input). The mode can
 // be switched at any step (the paper adds no switching cost or delay; callers
 // that want one model it outside).
 //
