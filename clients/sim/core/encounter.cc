@@ -1,0 +1,188 @@
+#include "encounter.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace seaplan::sim {
+namespace {
+
+constexpr double kTwoPi = 2.0 * M_PI;
+
+double Wrap(double a) {  // (-pi, pi]
+  a = std::fmod(a + M_PI, kTwoPi);
+  if (a < 0) a += kTwoPi;
+  return a - M_PI;
+}
+
+// Relative bearing of `to` seen from `from` with heading `course`, (-pi, pi], starboard positive.
+double RelativeBearing(Vec2 from, double course, Vec2 to) {
+  Vec2 d = to - from;
+  return Wrap(std::atan2(d.x, d.y) - course);
+}
+
+// Does relative motion (p_rel of the other from us, v_rel = ours - theirs)
+// bring us within `r` of it within the horizon?
+bool Collides(Vec2 p_rel, Vec2 v_rel, double r, double horizon) {
+  double c = p_rel.Dot(p_rel) - r * r;
+  if (c <= 0) return v_rel.Dot(p_rel) > 0;  // inside already: only closing velocities collide
+  double a = v_rel.Dot(v_rel);
+  if (a < 1e-12) return false;
+  double t = p_rel.Dot(v_rel) / a;  // time of closest approach
+  if (t <= 0) return false;
+  double tc = std::min(t, horizon);
+  Vec2 closest = p_rel - v_rel * tc;
+  return closest.Dot(closest) < r * r;
+}
+
+}  // namespace
+
+double Vec2::Norm() const { return std::hypot(x, y); }
+
+Vec2 VelocityOf(double course_rad, double speed_mps) {
+  return {std::sin(course_rad) * speed_mps, std::cos(course_rad) * speed_mps};
+}
+
+double CourseOf(Vec2 v) {
+  double c = std::atan2(v.x, v.y);
+  return c < 0 ? c + kTwoPi : c;
+}
+
+Cpa ComputeCpa(const Kinematics& own, const Kinematics& other) {
+  Vec2 p = other.position - own.position;
+  Vec2 v = other.velocity - own.velocity;
+  double vv = v.Dot(v);
+  if (vv < 1e-12) return {0.0, p.Norm()};
+  double t = -p.Dot(v) / vv;
+  if (t <= 0) return {0.0, p.Norm()};
+  return {t, (p + v * t).Norm()};
+}
+
+std::string_view RoleName(Role role) {
+  switch (role) {
+    case Role::kNone: return "none";
+    case Role::kHeadOn: return "head-on";
+    case Role::kCrossingGiveWay: return "crossing give-way";
+    case Role::kCrossingStandOn: return "crossing stand-on";
+    case Role::kOvertaking: return "overtaking";
+    case Role::kOvertaken: return "overtaken";
+  }
+  return "none";
+}
+
+bool IsGiveWay(Role role) {
+  return role == Role::kHeadOn || role == Role::kCrossingGiveWay || role == Role::kOvertaking;
+}
+
+Role ClassifyEncounter(const Kinematics& own, const Kinematics& other, const ColregOptions& o) {
+  double own_speed = own.velocity.Norm(), other_speed = other.velocity.Norm();
+  double own_course = own_speed > 1e-6 ? CourseOf(own.velocity) : 0.0;
+  double other_course = other_speed > 1e-6 ? CourseOf(other.velocity) : 0.0;
+  double bearing_to_other = RelativeBearing(own.position, own_course, other.position);
+  double bearing_to_own = RelativeBearing(other.position, other_course, own.position);
+  // Rule 13: a vessel coming up from more than 22.5 deg abaft the beam of
+  // the other, and faster along that course.
+  if (std::abs(bearing_to_own) > o.overtaking_sector_rad && own_speed > other_speed) {
+    return Role::kOvertaking;
+  }
+  if (std::abs(bearing_to_other) > o.overtaking_sector_rad && other_speed > own_speed) {
+    return Role::kOvertaken;
+  }
+  // Rule 14: nearly reciprocal courses, each ahead of the other.
+  if (std::abs(bearing_to_other) < o.head_on_sector_rad &&
+      std::abs(bearing_to_own) < o.head_on_sector_rad) {
+    return Role::kHeadOn;
+  }
+  // Rule 15: the vessel with the other on its starboard side gives way.
+  return bearing_to_other > 0 ? Role::kCrossingGiveWay : Role::kCrossingStandOn;
+}
+
+AvoidanceDecision ChooseVelocity(const Kinematics& own, Vec2 desired,
+                                 const std::vector<Obstacle>& others,
+                                 const AvoidanceOptions& options) {
+  AvoidanceDecision decision;
+  decision.velocity = desired;
+  const double r = options.safety_distance_m;
+  struct Active {
+    const Obstacle* o;
+    Role role;
+    double tcpa;
+  };
+  std::vector<Active> active;
+  Kinematics own_desired{own.position, desired};
+  for (const Obstacle& o : others) {
+    Cpa cpa = ComputeCpa(own_desired, o.kinematics);
+    Cpa now = ComputeCpa(own, o.kinematics);
+    bool dangerous = (cpa.dcpa_m < r && cpa.tcpa_s < options.horizon_s) ||
+                     (now.dcpa_m < r && now.tcpa_s < options.horizon_s);
+    if (!dangerous) continue;
+    Role role = ClassifyEncounter(own, o.kinematics, options.colreg);
+    bool must_act = IsGiveWay(role) || std::min(cpa.tcpa_s, now.tcpa_s) < options.stand_on_action_tcpa_s;
+    if (!must_act) {
+      if (decision.role == Role::kNone) {
+        decision.role = role;
+        decision.vessel_id = o.id;
+      }
+      continue;  // stand-on: keep course and speed (rule 17 a i)
+    }
+    active.push_back({&o, role, cpa.tcpa_s});
+  }
+  if (active.empty()) return decision;
+
+  const double desired_speed = desired.Norm();
+  const double desired_course = desired_speed > 1e-6 ? CourseOf(desired) : CourseOf(own.velocity);
+  double best_cost = std::numeric_limits<double>::infinity();
+  Vec2 best = desired;
+  bool found = false;
+  double least_violation = std::numeric_limits<double>::infinity();
+  Vec2 least_bad = desired;
+  const int steps = static_cast<int>(std::round(options.max_course_change_rad / options.course_step_rad));
+  for (double f : options.speed_factors) {
+    for (int k = -steps; k <= steps; ++k) {
+      double course = desired_course + k * options.course_step_rad;
+      Vec2 v = VelocityOf(course, desired_speed * f);
+      bool ok = true;
+      double violation = 0;
+      for (const Active& a : active) {
+        Vec2 p_rel = a.o->kinematics.position - own.position;
+        Vec2 v_rel = v - a.o->kinematics.velocity;
+        if (Collides(p_rel, v_rel, r, options.horizon_s)) {
+          ok = false;
+          Cpa c = ComputeCpa({own.position, v}, a.o->kinematics);
+          violation += r - c.dcpa_m;
+        }
+        // COLREG: give way to starboard (rules 14, 15): the relative
+        // velocity must pass the other with it on our port side.
+        if ((a.role == Role::kHeadOn || a.role == Role::kCrossingGiveWay) && p_rel.Cross(v_rel) > 0) {
+          ok = false;
+          violation += 1.0;
+        }
+      }
+      // Prefer small deviations, starboard turns over port, course changes over speed loss.
+      double dev = v.x - desired.x, dev_y = v.y - desired.y;
+      double cost = dev * dev + dev_y * dev_y + (k < 0 ? 0.5 : 0.0) * desired_speed * desired_speed * 0.01 +
+                    (1.0 - f) * desired_speed * desired_speed * 0.5;
+      if (ok && cost < best_cost) {
+        best_cost = cost;
+        best = v;
+        found = true;
+      }
+      if (!ok && violation < least_violation) {
+        least_violation = violation;
+        least_bad = v;
+      }
+    }
+  }
+  const Active* main = &active.front();
+  for (const Active& a : active) {
+    if (a.tcpa < main->tcpa) main = &a;
+  }
+  decision.vessel_id = main->o->id;
+  decision.role = main->role;
+  decision.feasible = found;
+  decision.velocity = found ? best : least_bad;
+  decision.manoeuvring = (decision.velocity - desired).Norm() > 1e-6;
+  return decision;
+}
+
+}  // namespace seaplan::sim

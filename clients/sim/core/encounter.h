@@ -1,0 +1,106 @@
+// Ship encounters for the simulation client: closest point of approach,
+// COLREG role classification (rules 13-17) and collision avoidance with
+// velocity obstacles under COLREG constraints (Kuwata et al., "Safe maritime
+// autonomous navigation with COLREGS, using velocity obstacles", IEEE JOE
+// 2014).
+//
+// Frame: local metric, x east, y north. Courses/headings are radians
+// clockwise from north (navigation convention), so a course c has the
+// velocity (sin c, cos c) * speed.
+//
+// Why velocity obstacles and not the paper's fuzzy logic: a VO gives a
+// guarantee the fuzzy rule base does not (a velocity outside every
+// safety-inflated obstacle keeps the CPA above the safety distance for as
+// long as the others hold their velocities), and COLREG roles map onto it as
+// simple half-plane constraints. All functions are pure.
+#pragma once
+
+#include <optional>
+#include <string_view>
+#include <vector>
+
+namespace seaplan::sim {
+
+struct Vec2 {
+  double x = 0.0;  // east
+  double y = 0.0;  // north
+  Vec2 operator+(Vec2 o) const { return {x + o.x, y + o.y}; }
+  Vec2 operator-(Vec2 o) const { return {x - o.x, y - o.y}; }
+  Vec2 operator*(double s) const { return {x * s, y * s}; }
+  double Dot(Vec2 o) const { return x * o.x + y * o.y; }
+  double Cross(Vec2 o) const { return x * o.y - y * o.x; }
+  double Norm() const;
+};
+
+// Velocity of `speed_mps` along course `course_rad` (clockwise from north).
+Vec2 VelocityOf(double course_rad, double speed_mps);
+double CourseOf(Vec2 velocity);  // in [0, 2 pi)
+
+struct Kinematics {
+  Vec2 position;
+  Vec2 velocity;
+};
+
+struct Cpa {
+  double tcpa_s = 0.0;  // time to the closest point; 0 when diverging or equal velocities
+  double dcpa_m = 0.0;  // distance at that time
+};
+// CPA of straight-line motion from now on (times before now are not
+// considered: a diverging pair has tcpa 0 and dcpa = current distance).
+Cpa ComputeCpa(const Kinematics& own, const Kinematics& other);
+
+enum class Role {
+  kNone,             // no COLREG situation (far, diverging, or safe CPA)
+  kHeadOn,           // rule 14: both alter to starboard
+  kCrossingGiveWay,  // rule 15: the other is on our starboard side; we keep out of its way
+  kCrossingStandOn,  // rule 15/17: the other is on our port side; we keep course and speed
+  kOvertaking,       // rule 13: we overtake; we keep out of its way
+  kOvertaken,        // rule 13/17: we are overtaken; we keep course and speed
+};
+std::string_view RoleName(Role role);  // "head-on", "crossing give-way", ...
+bool IsGiveWay(Role role);             // head-on, crossing give-way, overtaking
+
+struct ColregOptions {
+  double head_on_sector_rad = 0.2618;      // +-15 deg about the bow, both ways
+  double overtaking_sector_rad = 1.9635;   // abaft 112.5 deg from the bow (rule 13)
+};
+// The role of `own` towards `other` from geometry alone (the caller decides
+// whether the encounter is dangerous, e.g. by CPA).
+Role ClassifyEncounter(const Kinematics& own, const Kinematics& other, const ColregOptions& options = {});
+
+struct AvoidanceOptions {
+  double safety_distance_m = 150.0;  // keep every CPA above this
+  double horizon_s = 600.0;          // look this far ahead
+  // Stand-on vessels act only when the give-way vessel evidently does not
+  // (rule 17 a ii): CPA under safety and TCPA under this.
+  double stand_on_action_tcpa_s = 120.0;
+  double max_course_change_rad = 1.5708;  // candidate courses within +-90 deg of desired
+  double course_step_rad = 0.0436;        // 2.5 deg
+  std::vector<double> speed_factors = {1.0, 0.8, 0.6, 0.4, 0.2};
+  ColregOptions colreg;
+};
+
+struct Obstacle {
+  Kinematics kinematics;
+  int id = 0;
+};
+
+struct AvoidanceDecision {
+  Vec2 velocity;          // the velocity to steer for
+  bool manoeuvring = false;  // differs from the desired velocity because of another vessel
+  int vessel_id = -1;     // the most constraining vessel when manoeuvring
+  Role role = Role::kNone;
+  bool feasible = true;   // false: no candidate clears every vessel (best effort returned)
+};
+
+// Chooses the velocity closest to `desired` that is outside every dangerous
+// vessel's velocity obstacle (inflated by the safety distance, within the
+// horizon) and respects COLREG: against a head-on or crossing-from-starboard
+// vessel only passes that leave it on our port side (we go to starboard /
+// astern of it) are allowed; as stand-on the desired velocity is kept unless
+// rule 17 applies. Only vessels with a dangerous CPA are considered.
+AvoidanceDecision ChooseVelocity(const Kinematics& own, Vec2 desired,
+                                 const std::vector<Obstacle>& others,
+                                 const AvoidanceOptions& options = {});
+
+}  // namespace seaplan::sim

@@ -1,0 +1,94 @@
+#include "encounter.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace seaplan::sim {
+namespace {
+
+constexpr double kNorth = 0.0, kEast = M_PI / 2, kSouth = M_PI, kWest = 3 * M_PI / 2;
+
+TEST(CpaTest, HandComputedCrossing) {
+  Kinematics own{{0, 0}, VelocityOf(kNorth, 5)};
+  // Relative position (1000, 500), relative velocity (-5, -5):
+  // t = (5000 + 2500) / 50 = 150 s, closest (1000-750, 500-750) = (250, -250).
+  Kinematics other{{1000, 500}, VelocityOf(kWest, 5)};
+  Cpa c = ComputeCpa(own, other);
+  EXPECT_NEAR(c.tcpa_s, 150.0, 1e-9);
+  EXPECT_NEAR(c.dcpa_m, std::hypot(250, 250), 1e-9);
+  // Collision course: they meet at (0, 1000) after 200 s.
+  Cpa hit = ComputeCpa(own, {{1000, 1000}, VelocityOf(kWest, 5)});
+  EXPECT_NEAR(hit.tcpa_s, 200.0, 1e-9);
+  EXPECT_NEAR(hit.dcpa_m, 0.0, 1e-9);
+  // Diverging: CPA is now.
+  Cpa away = ComputeCpa(own, {{0, -300}, VelocityOf(kSouth, 2)});
+  EXPECT_DOUBLE_EQ(away.tcpa_s, 0.0);
+  EXPECT_NEAR(away.dcpa_m, 300.0, 1e-9);
+}
+
+TEST(ColregTest, HeadOnCrossingOvertaking) {
+  Kinematics own{{0, 0}, VelocityOf(kNorth, 5)};
+  EXPECT_EQ(ClassifyEncounter(own, {{50, 2000}, VelocityOf(kSouth, 5)}), Role::kHeadOn);
+  Kinematics from_starboard{{1000, 1000}, VelocityOf(kWest, 5)};
+  EXPECT_EQ(ClassifyEncounter(own, from_starboard), Role::kCrossingGiveWay);
+  EXPECT_EQ(ClassifyEncounter(from_starboard, own), Role::kCrossingStandOn);
+  Kinematics slow_ahead{{0, 500}, VelocityOf(kNorth, 3)};
+  Kinematics fast{{0, 0}, VelocityOf(kNorth, 6)};
+  EXPECT_EQ(ClassifyEncounter(fast, slow_ahead), Role::kOvertaking);
+  EXPECT_EQ(ClassifyEncounter(slow_ahead, fast), Role::kOvertaken);
+  EXPECT_TRUE(IsGiveWay(Role::kHeadOn));
+  EXPECT_FALSE(IsGiveWay(Role::kCrossingStandOn));
+}
+
+// Kinematic ships (velocity changes at once) stepping 1 s.
+double RunEncounter(Kinematics own, Vec2 desired, Kinematics other, const AvoidanceOptions& o,
+                    Vec2* first_manoeuvre) {
+  double min_d = 1e9;
+  bool first = true;
+  for (int t = 0; t < 800; ++t) {
+    AvoidanceDecision d = ChooseVelocity(own, desired, {{other, 7}}, o);
+    if (d.manoeuvring && first) {
+      *first_manoeuvre = d.velocity;
+      first = false;
+    }
+    own.velocity = d.velocity;
+    own.position = own.position + own.velocity;
+    other.position = other.position + other.velocity;
+    min_d = std::min(min_d, (own.position - other.position).Norm());
+  }
+  return min_d;
+}
+
+TEST(AvoidanceTest, CrossingGiveWayKeepsCpaAboveSafetyAndTurnsToStarboard) {
+  AvoidanceOptions o;
+  o.safety_distance_m = 200;
+  Vec2 manoeuvre{0, 0};
+  double min_d = RunEncounter({{0, 0}, VelocityOf(kNorth, 5)}, VelocityOf(kNorth, 5),
+                              {{1000, 1000}, VelocityOf(kWest, 5)}, o, &manoeuvre);
+  EXPECT_GE(min_d, o.safety_distance_m * 0.97);
+  EXPECT_GT(manoeuvre.x, 0.0) << "give way by turning to starboard (east)";
+  // Without avoidance they would collide.
+  EXPECT_NEAR(ComputeCpa({{0, 0}, VelocityOf(kNorth, 5)}, {{1000, 1000}, VelocityOf(kWest, 5)}).dcpa_m, 0, 1e-9);
+}
+
+TEST(AvoidanceTest, HeadOnBothStarboardAndStandOnKeepsCourse) {
+  AvoidanceOptions o;
+  o.safety_distance_m = 150;
+  Vec2 manoeuvre{0, 0};
+  double min_d = RunEncounter({{0, 0}, VelocityOf(kNorth, 5)}, VelocityOf(kNorth, 5),
+                              {{20, 3000}, VelocityOf(kSouth, 5)}, o, &manoeuvre);
+  EXPECT_GE(min_d, o.safety_distance_m * 0.97);
+  EXPECT_GT(manoeuvre.x, 0.0);
+  // Crossing from port, far enough: stand on (no manoeuvre yet).
+  Kinematics own{{0, 0}, VelocityOf(kNorth, 5)};
+  AvoidanceDecision d = ChooseVelocity(own, own.velocity, {{{{-1000, 1000}, VelocityOf(kEast, 5)}, 3}}, o);
+  EXPECT_FALSE(d.manoeuvring);
+  EXPECT_EQ(d.role, Role::kCrossingStandOn);
+  // Rule 17: close and still on collision course, the stand-on vessel acts.
+  AvoidanceDecision late = ChooseVelocity(own, own.velocity, {{{{-400, 400}, VelocityOf(kEast, 5)}, 3}}, o);
+  EXPECT_TRUE(late.manoeuvring);
+}
+
+}  // namespace
+}  // namespace seaplan::sim

@@ -1,0 +1,322 @@
+#include "executor.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "absl/strings/str_format.h"
+#include "seaplan/mission/tasks.h"
+
+namespace seaplan::sim {
+namespace {
+
+using mission::FeedbackKind;
+using mission::TaskKind;
+
+ship::MsoMode ToShipMode(mission::MsoMode m) {
+  switch (m) {
+    case mission::MsoMode::kMec: return ship::MsoMode::kMec;
+    case mission::MsoMode::kPti: return ship::MsoMode::kPti;
+    default: return ship::MsoMode::kPto;
+  }
+}
+
+}  // namespace
+
+StatusOr<Executor> Executor::Create(const ExecutorConfig& config) {
+  if (!(config.dt_s > 0)) return absl::InvalidArgumentError("executor: dt_s must be > 0");
+  if (!(config.service_speed_mps > 0)) {
+    return absl::InvalidArgumentError("executor: service_speed_mps must be > 0");
+  }
+  SEAPLAN_RETURN_IF_ERROR(config.los.Validate());
+  ship::ShipState s = ship::ShipState::At(config.start.y, config.start.x, config.start_heading_rad);
+  SEAPLAN_ASSIGN_OR_RETURN(auto model, ship::ShipModel::Create(ship::ShipParams{}, ship::MachineryParams{},
+                                                               config.environment, s,
+                                                               ship::MsoMode::kPto));
+  return Executor(config, std::move(model));
+}
+
+Executor::Executor(const ExecutorConfig& config, ship::ShipModel model)
+    : config_(config),
+      model_(std::move(model)),
+      heading_(ship::HeadingControllerOptions{}, config.dt_s),
+      speed_(ship::SpeedControllerOptions{}, config.dt_s),
+      tank_(config.fuel, config.initial_fuel_fraction) {
+  report_.safety_distance_m = config.avoidance.safety_distance_m;
+  for (const TrafficVessel& v : config.traffic) report_.cpa[v.id].vessel = v.name;
+  report_.min_fuel_fraction = config.initial_fuel_fraction;
+}
+
+Vec2 Executor::position() const { return {model_.state().east_m(), model_.state().north_m()}; }
+
+FeedbackOut Executor::MakeFeedback(FeedbackKind kind, const std::string& task_id, int version,
+                                   std::string detail) const {
+  FeedbackOut f;
+  f.kind = kind;
+  f.task_id = task_id;
+  f.plan_version = version;
+  f.mission_time_s = time_s_;
+  f.position = position();
+  f.heading_rad = model_.state().heading_rad();
+  f.speed_mps = std::hypot(model_.state().surge_mps(), model_.state().sway_mps());
+  f.fuel_fraction = tank_.fraction();
+  f.mode = model_.mode() == ship::MsoMode::kMec   ? mission::MsoMode::kMec
+           : model_.mode() == ship::MsoMode::kPti ? mission::MsoMode::kPti
+                                                  : mission::MsoMode::kPto;
+  f.detail = std::move(detail);
+  return f;
+}
+
+void Executor::SetPlan(const mission::PlanVersion& version) {
+  version_ = version;
+  report_.versions.push_back(version);
+  pending_ = version.tasks;
+  std::sort(pending_.begin(), pending_.end(),
+            [](const mission::Task& a, const mission::Task& b) { return a.start_s < b.start_s; });
+  // A move under way is abandoned; port operations are let finish.
+  running_.erase(std::remove_if(running_.begin(), running_.end(),
+                                [](const Running& r) { return r.task.kind == TaskKind::kMove; }),
+                 running_.end());
+  los_.reset();
+  route_.clear();
+  waiting_ = false;
+  Log(absl::StrFormat("plan version %d received (%s): %d tasks", version.version, version.reason,
+                      static_cast<int>(version.tasks.size())));
+}
+
+bool Executor::Finished() const { return pending_.empty() && running_.empty() && !waiting_; }
+
+void Executor::StartTasks(std::vector<FeedbackOut>* out) {
+  bool moving = std::any_of(running_.begin(), running_.end(),
+                            [](const Running& r) { return r.task.kind == TaskKind::kMove; });
+  for (auto it = pending_.begin(); it != pending_.end();) {
+    const mission::Task& t = *it;
+    bool ready = time_s_ + 1e-9 >= t.start_s;
+    // Everything planned to end before this starts must be done.
+    for (const mission::Task& other : version_.tasks) {
+      if (!ready) break;
+      if (other.id == t.id || other.end_s() > t.start_s + 1e-6) continue;
+      if (!completed_.contains(other.id)) ready = false;
+    }
+    if (ready && t.kind == TaskKind::kMove) {
+      bool port_op_running = !running_.empty();
+      if (moving || port_op_running) ready = false;
+    }
+    if (!ready) {
+      ++it;
+      continue;
+    }
+    Running r{t, version_.version, time_s_};
+    Log(mission::TaskStartedMessage(t.kind));
+    out->push_back(MakeFeedback(FeedbackKind::kTaskStarted, t.id, version_.version, t.action.DisplayName()));
+    if (t.kind == TaskKind::kMove) {
+      StartMove(t);
+      moving = true;
+    }
+    running_.push_back(std::move(r));
+    it = pending_.erase(it);
+  }
+}
+
+void Executor::StartMove(const mission::Task& task) {
+  route_.clear();
+  if (task.route) route_ = task.route->waypoints;
+  std::vector<Eigen::Vector2d> ne;
+  Vec2 here = position();
+  ne.emplace_back(here.y, here.x);
+  for (size_t i = 0; i < route_.size(); ++i) {
+    const auto& p = route_[i].position;
+    // Skip waypoints we are already at (the route's start is usually here).
+    if (std::hypot(p.x_m - here.x, p.y_m - here.y) < config_.arrival_radius_m && i + 1 < route_.size()) continue;
+    ne.emplace_back(p.y_m, p.x_m);
+  }
+  if (ne.size() < 2) ne.emplace_back(here.y + 1.0, here.x);
+  auto los = ship::LosGuidance::Create(ne, config_.los);
+  if (los.ok()) los_.emplace(std::move(*los));
+  double length = task.route ? task.route->length_m : 0.0;
+  double time = task.route ? task.route->sailing_time_s : 0.0;
+  move_speed_mps_ = (length > 0 && time > 0) ? length / time : config_.service_speed_mps;
+}
+
+void Executor::StepMove(std::vector<FeedbackOut>* out) {
+  auto it = std::find_if(running_.begin(), running_.end(),
+                         [](const Running& r) { return r.task.kind == TaskKind::kMove; });
+  if (it == running_.end() || !los_) return;
+  const ship::ShipState& s = model_.state();
+  Vec2 here = position();
+  const auto& goal_ne = los_->waypoints().back();
+  double to_goal = std::hypot(goal_ne[0] - here.y, goal_ne[1] - here.x);
+  if (to_goal < config_.arrival_radius_m) {
+    // Berthing is not modelled: the ship stops at the berth.
+    ship::ShipState moored = s;
+    moored.nu.setZero();
+    model_.set_state(moored);
+    Running done = *it;
+    running_.erase(it);
+    los_.reset();
+    Complete(done, out);
+    return;
+  }
+  // Deviation from the route (e.g. after a GNSS jump): the move fails.
+  if (!route_.empty()) {
+    mission::Route r;
+    r.waypoints = route_;
+    double off = mission::CrossTrackDistance(r, {here.x, here.y});
+    if (off > config_.deviation_limit_m) {
+      Log(mission::TaskFailedMessage(TaskKind::kMove));
+      out->push_back(MakeFeedback(FeedbackKind::kTaskFailed, it->task.id, it->version,
+                                  absl::StrFormat("%.0f m off the route (limit %.0f m)", off,
+                                                  config_.deviation_limit_m)));
+      ship::ShipState hold = s;
+      hold.nu.setZero();
+      model_.set_state(hold);
+      running_.erase(it);
+      los_.reset();
+      waiting_ = true;
+      return;
+    }
+  }
+  double psi_d = los_->Update(s.north_m(), s.east_m());
+  double speed = move_speed_mps_;
+  if (to_goal < config_.slow_down_distance_m) {
+    speed = std::max(config_.min_approach_speed_mps, speed * to_goal / config_.slow_down_distance_m);
+  }
+  // MSO mode of the segment steered along.
+  int seg = std::clamp(los_->target_index() - 1, 0, static_cast<int>(route_.size()) - 1);
+  if (!route_.empty()) model_.set_mode(ToShipMode(route_[seg].mode));
+
+  // Collision avoidance.
+  Vec2 vel = VelocityOf(s.heading_rad(), s.surge_mps());
+  Kinematics own{here, vel};
+  std::vector<Obstacle> others;
+  for (const TrafficVessel& v : config_.traffic) others.push_back({v.At(time_s_), v.id});
+  AvoidanceDecision d = ChooseVelocity(own, VelocityOf(psi_d, speed), others, config_.avoidance);
+  std::set<int> dangerous_now;
+  for (const Obstacle& o : others) {
+    Cpa cpa = ComputeCpa(own, o.kinematics);
+    if (cpa.dcpa_m < config_.avoidance.safety_distance_m && cpa.tcpa_s < config_.avoidance.horizon_s) {
+      dangerous_now.insert(o.id);
+    }
+  }
+  if (d.role != Role::kNone) dangerous_now.insert(d.vessel_id);
+  for (int id : dangerous_now) {
+    if (!dangerous_.contains(id)) {
+      const std::string& name = report_.cpa[id].vessel;
+      Role role = ClassifyEncounter(own, others[0].kinematics);
+      for (const Obstacle& o : others) {
+        if (o.id == id) role = ClassifyEncounter(own, o.kinematics);
+      }
+      Log(absl::StrFormat("%s with %s (%s)", std::string(mission::messages::kPotentialCollision), name, std::string(RoleName(role))));
+    }
+  }
+  dangerous_ = dangerous_now;
+  if (d.manoeuvring && !manoeuvring_) {
+    manoeuvring_ = true;
+    manoeuvre_vessel_ = d.vessel_id;
+    std::string what = absl::StrFormat("collision avoidance manoeuvre started (%s, %s)",
+                                       report_.cpa[d.vessel_id].vessel, std::string(RoleName(d.role)));
+    Log(what);
+    out->push_back(MakeFeedback(FeedbackKind::kCollisionAvoidance, it->task.id, it->version, what));
+  } else if (!d.manoeuvring && manoeuvring_) {
+    manoeuvring_ = false;
+    std::string what = absl::StrFormat("collision avoidance manoeuvre ended (%s)",
+                                       report_.cpa[manoeuvre_vessel_].vessel);
+    Log(what);
+    out->push_back(MakeFeedback(FeedbackKind::kCollisionAvoidance, it->task.id, it->version, what));
+  }
+  double heading_sp = d.manoeuvring ? CourseOf(d.velocity) : psi_d;
+  double speed_sp = d.manoeuvring ? d.velocity.Norm() : speed;
+  double rudder = heading_.RudderAngle(heading_sp, s.heading_rad());
+  double throttle = speed_.Throttle(speed_sp, s.surge_mps());
+  ship::StepReport rep = model_.Step(throttle, rudder, config_.dt_s);
+  tank_.Burn(rep.fuel_rate.total_kgps() * config_.dt_s);
+
+  if (time_s_ - last_position_report_s_ >= config_.position_report_interval_s) {
+    last_position_report_s_ = time_s_;
+    out->push_back(MakeFeedback(FeedbackKind::kPosition, it->task.id, it->version));
+  }
+}
+
+void Executor::Complete(const Running& r, std::vector<FeedbackOut>* out) {
+  completed_.insert(r.task.id);
+  tank_.OnTaskCompleted(r.task.kind);
+  Log(mission::TaskCompletedMessage(r.task.kind));
+  if (tank_.fraction() <= config_.fuel_threshold_fraction && !fuel_low_logged_) {
+    Log(absl::StrFormat("fuel %.0f%% <= %.0f%%", tank_.fraction() * 100,
+                        config_.fuel_threshold_fraction * 100));
+    fuel_low_logged_ = true;
+  }
+  if (tank_.fraction() > config_.fuel_threshold_fraction) fuel_low_logged_ = false;
+  out->push_back(MakeFeedback(FeedbackKind::kTaskCompleted, r.task.id, r.version, r.task.action.DisplayName()));
+}
+
+void Executor::InjectEvents(std::vector<FeedbackOut>* out) {
+  (void)out;
+  for (size_t i = 0; i < config_.gnss_jumps.size(); ++i) {
+    const GnssJump& j = config_.gnss_jumps[i];
+    if (!jumps_done_.contains(i) && time_s_ >= j.start_s) {
+      jumps_done_.insert(i);
+      Vec2 expected = config_.grid.Cell(j.from_cell.x, j.from_cell.y);
+      Vec2 to = config_.grid.Cell(j.to_cell.x, j.to_cell.y);
+      Vec2 here = position();
+      Log(absl::StrFormat("GNSS fault: position jumps from grid (%g, %g) to (%g, %g) (%.0f m; ship was %.0f m from the first cell)",
+                          j.from_cell.x, j.from_cell.y, j.to_cell.x, j.to_cell.y, (to - here).Norm(),
+                          (expected - here).Norm()));
+      ship::ShipState s = model_.state();
+      s.eta[0] = to.y;
+      s.eta[1] = to.x;
+      model_.set_state(s);
+    }
+    if (jumps_done_.contains(i) && !jumps_cleared_.contains(i) && time_s_ >= j.end_s) {
+      jumps_cleared_.insert(i);
+      Log("GNSS fault cleared");
+    }
+  }
+}
+
+void Executor::TrackTraffic() {
+  Vec2 here = position();
+  for (const TrafficVessel& v : config_.traffic) {
+    Kinematics k = v.At(time_s_);
+    double d = (k.position - here).Norm();
+    CpaRecord& rec = report_.cpa[v.id];
+    if (d < rec.min_distance_m) {
+      rec.min_distance_m = d;
+      rec.time_s = time_s_;
+    }
+  }
+  if (time_s_ - last_track_sample_s_ >= 10.0) {
+    last_track_sample_s_ = time_s_;
+    report_.trajectory.push_back({time_s_, here});
+    for (const TrafficVessel& v : config_.traffic) {
+      report_.traffic_tracks[v.name].push_back({time_s_, v.At(time_s_).position});
+    }
+  }
+  if (time_s_ - last_fuel_sample_s_ >= 10.0) {
+    last_fuel_sample_s_ = time_s_;
+    report_.fuel.emplace_back(time_s_, tank_.fraction());
+  }
+  report_.min_fuel_fraction = std::min(report_.min_fuel_fraction, tank_.fraction());
+  report_.tank_ran_dry = report_.tank_ran_dry || tank_.ran_dry();
+}
+
+void Executor::Step(std::vector<FeedbackOut>* out) {
+  if (waiting_) return;
+  InjectEvents(out);
+  StartTasks(out);
+  // Port operations complete by time.
+  for (auto it = running_.begin(); it != running_.end();) {
+    if (it->task.kind != TaskKind::kMove && time_s_ + 1e-9 >= it->started_s + it->task.duration_s) {
+      Running done = *it;
+      it = running_.erase(it);
+      Complete(done, out);
+    } else {
+      ++it;
+    }
+  }
+  StepMove(out);
+  TrackTraffic();
+  report_.end_time_s = time_s_;
+  if (!waiting_) time_s_ += config_.dt_s;
+}
+
+}  // namespace seaplan::sim

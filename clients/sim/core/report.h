@@ -1,0 +1,62 @@
+// The mission report the simulation client writes: navigation log, closest
+// point of approach per traffic vessel, fuel over time, the trajectory, and
+// every plan version with its reason; as JSON, and as two SVG plots (the
+// trajectory over the chart's obstacles with the traffic, and the plan
+// versions as a Gantt chart).
+#pragma once
+
+#include <map>
+#include <string>
+#include <vector>
+
+#include "encounter.h"
+#include "seaplan/common/status.h"
+#include "seaplan/mission/navigation_log.h"
+#include "seaplan/mission/types.h"
+
+namespace seaplan::sim {
+
+struct CpaRecord {
+  std::string vessel;
+  double min_distance_m = 1e18;  // true distance, every simulation step
+  double time_s = 0.0;
+};
+
+struct TimedPoint {
+  double time_s = 0.0;
+  Vec2 position;
+};
+
+struct MissionReport {
+  std::string mission_id;
+  std::string scenario;
+  mission::NavigationLog log;
+  std::map<int, CpaRecord> cpa;  // by traffic id
+  std::vector<std::pair<double, double>> fuel;  // (mission time, fraction)
+  std::vector<TimedPoint> trajectory;
+  std::map<std::string, std::vector<TimedPoint>> traffic_tracks;
+  std::vector<mission::PlanVersion> versions;
+  double safety_distance_m = 0.0;
+  double end_time_s = 0.0;
+  bool completed = false;
+  bool tank_ran_dry = false;
+  double min_fuel_fraction = 1.0;
+  int fuel_triggered_replans = 0;
+};
+
+std::string ToJson(const MissionReport& report);
+
+// Obstacles as outer rings in the local frame (for the plot only).
+using Rings = std::vector<std::vector<Vec2>>;
+std::string TrajectorySvg(const MissionReport& report, const Rings& obstacles,
+                          const mission::LocationTable& locations);
+std::string GanttSvg(const MissionReport& report);
+
+// Writes <dir>/report.json, trajectory.svg and gantt.svg.
+Status WriteReport(const std::string& dir, const MissionReport& report, const Rings& obstacles,
+                   const mission::LocationTable& locations);
+
+// JSON string escaping (quotes included).
+std::string JsonString(std::string_view s);
+
+}  // namespace seaplan::sim

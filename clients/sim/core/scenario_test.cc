@@ -1,0 +1,57 @@
+#include "scenario.h"
+
+#include <gtest/gtest.h>
+
+namespace seaplan::sim {
+namespace {
+
+TEST(ScenarioTest, ParsesEveryKey) {
+  auto s = ParseScenario(R"(# case B
+name = case-b
+domain = ../fjord/domain.pddl
+problem = ../fjord/case-a.pddl
+location = port-a 63.44 10.35   # comment
+location = PORT-B 63.445 10.37
+service_speed_mps = 3.6
+grid = 63.43 10.33 25
+gnss_jump = 100 170 38 35 30 50
+traffic = ferry ferry 0 63.45 10.36 ; 900 63.43 10.40
+port_operation = load-cont 60
+wind = 10 250
+fuel_model = machinery
+)", "/x/scenarios/b.scenario");
+  ASSERT_TRUE(s.ok()) << s.status();
+  EXPECT_EQ(s->locations.size(), 2u);
+  EXPECT_EQ(s->locations[1].first, "port-b");
+  ASSERT_EQ(s->gnss_jumps.size(), 1u);
+  EXPECT_DOUBLE_EQ(s->gnss_jumps[0].to_cell.y, 50);
+  ASSERT_EQ(s->traffic.size(), 1u);
+  EXPECT_EQ(s->traffic[0].track.size(), 2u);
+  EXPECT_EQ(s->fuel_model, FuelModelKind::kMachinery);
+  EXPECT_EQ(*ResolvePath(*s, s->domain_path, ""), "/x/fjord/domain.pddl");
+  EXPECT_EQ(*ResolvePath(*s, "shared:enc/t.geojson", "/sh"), "/sh/enc/t.geojson");
+  EXPECT_FALSE(ResolvePath(*s, "shared:enc/t.geojson", "").ok());
+
+  auto frame = chart::LocalFrame::ForCentre({63.44, 10.35});
+  auto cfg = MakeExecutorConfig(*s, frame, "port-b");
+  ASSERT_TRUE(cfg.ok());
+  auto locs = LocalLocations(*s, frame);
+  EXPECT_NEAR(cfg->start.x, locs["port-b"].x_m, 1e-9);
+  // (38,35) and (30,50) are 8 cells west and 15 north apart.
+  Vec2 d = cfg->grid.Cell(30, 50) - cfg->grid.Cell(38, 35);
+  EXPECT_NEAR(d.x, -200, 1e-9);
+  EXPECT_NEAR(d.y, 375, 1e-9);
+}
+
+TEST(ScenarioTest, BadLinesNameTheLine) {
+  auto s = ParseScenario("domain = d\nproblem = p\nlocation = a 91 10\n", "f.scenario");
+  ASSERT_FALSE(s.ok());
+  EXPECT_NE(s.status().message().find("f.scenario:3"), std::string::npos) << s.status();
+  auto u = ParseScenario("domain = d\nproblem = p\nfoo = 1\n", "f");
+  EXPECT_NE(u.status().message().find("unknown key 'foo'"), std::string::npos);
+  auto g = ParseScenario("domain = d\nproblem = p\nlocation = a 1 2\ngnss_jump = 1 2 3 4 5 6\n", "f");
+  EXPECT_NE(g.status().message().find("grid"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace seaplan::sim
