@@ -196,6 +196,9 @@ class ObstacleQuery {
   // True when the closed polygon `ring` (e.g. a drifting hull footprint)
   // overlaps or touches an obstacle.
   bool PolygonHits(std::span<const LocalPoint> ring);
+  // Distance from the closed polygon `ring` to the nearest obstacle, metres;
+  // 0 when they touch or overlap; +inf if the map has no obstacle.
+  double PolygonDistanceM(std::span<const LocalPoint> ring);
 
  private:
   struct State;

@@ -1,0 +1,93 @@
+#include "seaplan/chart/geojson.h"
+
+#include <cstdio>
+#include <string>
+
+#include "absl/strings/str_cat.h"
+
+namespace seaplan::chart {
+namespace {
+
+void AppendCoord(const LocalFrame& frame, LocalPoint p, std::string* out) {
+  const LatLon ll = frame.ToLatLon(p);
+  char buf[64];
+  std::snprintf(buf, sizeof(buf), "[%.7f,%.7f]", ll.lon_deg, ll.lat_deg);
+  out->append(buf);
+}
+
+// RFC 7946: exterior rings counter-clockwise, holes clockwise, closed.
+void AppendRing(const LocalFrame& frame, const Ring& ring, bool ccw, std::string* out) {
+  double area2 = 0.0;
+  for (size_t i = 0; i < ring.size(); ++i) {
+    const LocalPoint& a = ring[i];
+    const LocalPoint& b = ring[(i + 1) % ring.size()];
+    area2 += (a.x_m - ring[0].x_m) * (b.y_m - ring[0].y_m) - (b.x_m - ring[0].x_m) * (a.y_m - ring[0].y_m);
+  }
+  const bool reverse = (area2 > 0) != ccw;
+  out->push_back('[');
+  for (size_t k = 0; k <= ring.size(); ++k) {
+    const size_t i = k % ring.size();
+    const size_t j = reverse ? (ring.size() - i) % ring.size() : i;
+    if (k > 0) out->push_back(',');
+    AppendCoord(frame, ring[j], out);
+  }
+  out->push_back(']');
+}
+
+std::string JsonString(const std::string& s) {
+  std::string out = "\"";
+  for (char ch : s) {
+    switch (ch) {
+      case '"': out += "\\\""; break;
+      case '\\': out += "\\\\"; break;
+      case '\n': out += "\\n"; break;
+      case '\t': out += "\\t"; break;
+      default:
+        if (static_cast<unsigned char>(ch) < 0x20) {
+          char buf[8];
+          std::snprintf(buf, sizeof(buf), "\\u%04x", ch);
+          out += buf;
+        } else {
+          out.push_back(ch);
+        }
+    }
+  }
+  out.push_back('"');
+  return out;
+}
+
+}  // namespace
+
+std::string ToGeoJson(const ObstacleMap& map, const std::vector<NamedRoute>& routes) {
+  const LocalFrame& frame = map.frame();
+  std::string out = "{\"type\":\"FeatureCollection\",\"features\":[";
+  bool first = true;
+  const auto& polygons = map.polygons();
+  for (size_t i = 0; i < polygons.size(); ++i) {
+    if (!first) out.push_back(',');
+    first = false;
+    absl::StrAppend(&out, "{\"type\":\"Feature\",\"properties\":{\"kind\":\"obstacle\",\"index\":", i,
+                    "},\"geometry\":{\"type\":\"Polygon\",\"coordinates\":[");
+    AppendRing(frame, polygons[i].outer, true, &out);
+    for (const Ring& h : polygons[i].holes) {
+      out.push_back(',');
+      AppendRing(frame, h, false, &out);
+    }
+    out += "]}}";
+  }
+  for (const NamedRoute& r : routes) {
+    if (!first) out.push_back(',');
+    first = false;
+    absl::StrAppend(&out, "{\"type\":\"Feature\",\"properties\":{\"kind\":\"route\",\"name\":", JsonString(r.name),
+                    "},\"geometry\":{\"type\":\"LineString\",\"coordinates\":[");
+    for (size_t i = 0; i < r.waypoints.size(); ++i) {
+      if (i > 0) out.push_back(',');
+      AppendCoord(frame, r.waypoints[i], &out);
+    }
+    out += "]}}";
+  }
+  out += "]}";
+  return out;
+}
+
+}  // namespace seaplan::chart

@@ -1,0 +1,235 @@
+#include "seaplan/chart/obstacle_map.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <thread>
+#include <vector>
+
+#include "seaplan/chart/geojson.h"
+
+namespace seaplan::chart {
+namespace {
+
+// A 100 m square island centred on (cx, cy), in WGS84 UTM 33N coordinates.
+constexpr double kCx = 500000.0, kCy = 6900000.0;
+Polygon Square(double cx, double cy, double half) {
+  return {{{cx - half, cy - half}, {cx + half, cy - half}, {cx + half, cy + half}, {cx - half, cy + half}}, {}};
+}
+LocalFrame Utm33() { return *LocalFrame::FromEpsg(32633); }
+
+ChartOptions Buffer10NoSimplify() {
+  ChartOptions o;
+  o.safety_buffer_m = 10.0;
+  o.simplify_tolerance_m = 0.0;
+  return o;
+}
+
+TEST(ObstacleMap, SquareIslandBufferedArea) {
+  auto map = ObstacleMap::FromPolygons({Square(kCx, kCy, 50)}, Utm33(), Buffer10NoSimplify());
+  ASSERT_TRUE(map.ok()) << map.status();
+  ASSERT_EQ(map->polygons().size(), 1u);
+  // 100x100 square + four 100x10 strips + four quarter discs of radius 10
+  // (polygonised with 8 chords per quarter: area slightly below pi r^2).
+  const double exact = 100.0 * 100.0 + 4 * 100.0 * 10.0 + M_PI * 100.0;
+  EXPECT_NEAR(map->summary().total_area_m2, exact, 0.005 * exact);
+  EXPECT_LT(map->summary().total_area_m2, exact);
+  EXPECT_EQ(map->summary().features_per_layer.at("polygons"), 1);
+  EXPECT_EQ(map->summary().frame_epsg, 32633);
+  EXPECT_NEAR(map->bounds().min.x_m, kCx - 60, 1e-6);
+  EXPECT_NEAR(map->bounds().max.y_m, kCy + 60, 1e-6);
+  // Bounding box in lat/lon contains the island's centre.
+  const LatLon c = map->frame().ToLatLon({kCx, kCy});
+  EXPECT_LT(map->summary().bbox_min.lat_deg, c.lat_deg);
+  EXPECT_GT(map->summary().bbox_max.lon_deg, c.lon_deg);
+}
+
+TEST(ObstacleMap, DistanceQueriesByHand) {
+  auto map = ObstacleMap::FromPolygons({Square(kCx, kCy, 50)}, Utm33(), Buffer10NoSimplify());
+  ASSERT_TRUE(map.ok());
+  ObstacleQuery q(*map);
+  // East of the island: the buffered edge is at x = cx + 60.
+  EXPECT_NEAR(q.DistanceM({kCx + 150, kCy}), 90.0, 1e-6);
+  const NearestObstacle n = q.Nearest({kCx + 150, kCy + 10});
+  EXPECT_NEAR(n.distance_m, 90.0, 1e-6);
+  EXPECT_NEAR(n.nearest.x_m, kCx + 60, 1e-6);
+  EXPECT_NEAR(n.nearest.y_m, kCy + 10, 1e-6);
+  EXPECT_EQ(n.polygon_index, 0);
+  // Diagonal from the corner: |(100,100)| - 10 (45 degrees is a chord vertex).
+  EXPECT_NEAR(q.DistanceM({kCx + 150, kCy + 150}), std::sqrt(2.0) * 100.0 - 10.0, 1e-6);
+  // Inside: 0, and the signed distance is minus the distance to the edge.
+  EXPECT_TRUE(q.Inside({kCx, kCy}));
+  EXPECT_DOUBLE_EQ(q.DistanceM({kCx, kCy}), 0.0);
+  EXPECT_NEAR(q.SignedDistanceM({kCx, kCy}), -60.0, 1e-6);
+  EXPECT_NEAR(q.SignedDistanceM({kCx + 150, kCy}), 90.0, 1e-6);
+  EXPECT_FALSE(q.Inside({kCx + 61, kCy}));
+}
+
+TEST(ObstacleMap, SegmentAndPolygonIntersection) {
+  auto map = ObstacleMap::FromPolygons({Square(kCx, kCy, 50)}, Utm33(), Buffer10NoSimplify());
+  ASSERT_TRUE(map.ok());
+  ObstacleQuery q(*map);
+  EXPECT_TRUE(q.SegmentHits({kCx - 200, kCy}, {kCx + 200, kCy}));
+  EXPECT_FALSE(q.SegmentHits({kCx - 200, kCy + 61}, {kCx + 200, kCy + 61}));
+  EXPECT_TRUE(q.SegmentHits({kCx - 200, kCy + 59}, {kCx + 200, kCy + 59}));
+  const std::vector<LocalPoint> route = {{kCx - 200, kCy}, {kCx - 200, kCy + 100}, {kCx + 200, kCy + 100}};
+  EXPECT_FALSE(q.PolylineHits(route));
+  const std::vector<LocalPoint> touching = {{kCx + 55, kCy - 5}, {kCx + 65, kCy - 5}, {kCx + 65, kCy + 5},
+                                            {kCx + 55, kCy + 5}};
+  EXPECT_TRUE(q.PolygonHits(touching));
+  EXPECT_DOUBLE_EQ(q.PolygonDistanceM(touching), 0.0);
+  const std::vector<LocalPoint> away = {{kCx + 100, kCy - 5}, {kCx + 110, kCy - 5}, {kCx + 110, kCy + 5},
+                                        {kCx + 100, kCy + 5}};
+  EXPECT_FALSE(q.PolygonHits(away));
+  EXPECT_NEAR(q.PolygonDistanceM(away), 40.0, 1e-6);
+}
+
+TEST(ObstacleMap, NearestPicksTheCloserIsland) {
+  auto map = ObstacleMap::FromPolygons({Square(kCx, kCy, 50), Square(kCx + 1000, kCy, 50)}, Utm33(),
+                                       Buffer10NoSimplify());
+  ASSERT_TRUE(map.ok());
+  ASSERT_EQ(map->polygons().size(), 2u);
+  ObstacleQuery q(*map);
+  EXPECT_NEAR(q.DistanceM({kCx + 800, kCy}), 140.0, 1e-6);
+  EXPECT_NEAR(q.DistanceM({kCx + 300, kCy}), 240.0, 1e-6);
+  const NearestObstacle n = q.Nearest({kCx + 800, kCy});
+  EXPECT_NEAR(map->polygons()[n.polygon_index].outer[0].x_m, kCx + 1000, 70.0);
+}
+
+TEST(ObstacleMap, OverlappingObstaclesAreUnioned) {
+  auto map = ObstacleMap::FromPolygons({Square(kCx, kCy, 50), Square(kCx + 80, kCy, 50)}, Utm33(),
+                                       Buffer10NoSimplify());
+  ASSERT_TRUE(map.ok());
+  EXPECT_EQ(map->polygons().size(), 1u);
+  EXPECT_EQ(map->summary().polygon_count, 1);
+}
+
+TEST(ObstacleMap, EmptyMapHasInfiniteDistance) {
+  const LocalBox box{{kCx - 1000, kCy - 1000}, {kCx + 1000, kCy + 1000}};
+  auto map = ObstacleMap::FromPolygons({}, Utm33(), Buffer10NoSimplify(), "none", box);
+  ASSERT_TRUE(map.ok()) << map.status();
+  ObstacleQuery q(*map);
+  EXPECT_TRUE(std::isinf(q.DistanceM({kCx, kCy})));
+  EXPECT_FALSE(q.Inside({kCx, kCy}));
+  EXPECT_FALSE(q.SegmentHits({kCx - 10, kCy}, {kCx + 10, kCy}));
+  EXPECT_TRUE(map->Covers({kCx, kCy}));
+  EXPECT_FALSE(map->Covers({kCx + 2000, kCy}));
+}
+
+TEST(ObstacleMap, SelfIntersectingPolygonIsRepairedWithWarning) {
+  // A bow tie: two triangles meeting at the centre.
+  Polygon bowtie{{{kCx, kCy}, {kCx + 100, kCy + 100}, {kCx + 100, kCy}, {kCx, kCy + 100}}, {}};
+  auto map = ObstacleMap::FromPolygons({bowtie}, Utm33(), Buffer10NoSimplify());
+  ASSERT_TRUE(map.ok()) << map.status();
+  ASSERT_FALSE(map->summary().warnings.empty());
+  EXPECT_NE(map->summary().warnings[0].find("repaired"), std::string::npos);
+  ObstacleQuery q(*map);
+  EXPECT_TRUE(q.Inside({kCx + 10, kCy + 50}));  // left triangle
+  EXPECT_TRUE(q.Inside({kCx + 90, kCy + 50}));  // right triangle
+}
+
+TEST(ObstacleMap, BadInputIsAnError) {
+  ChartOptions bad;
+  bad.safety_buffer_m = -1;
+  EXPECT_EQ(ObstacleMap::FromPolygons({Square(kCx, kCy, 50)}, Utm33(), bad).status().code(),
+            absl::StatusCode::kInvalidArgument);
+  ChartOptions nan_depth;
+  nan_depth.min_depth_m = std::nan("");
+  EXPECT_FALSE(nan_depth.Validate().ok());
+  Polygon degenerate{{{kCx, kCy}, {kCx + 1, kCy}}, {}};
+  EXPECT_EQ(ObstacleMap::FromPolygons({degenerate}, Utm33(), ChartOptions{}).status().code(),
+            absl::StatusCode::kInvalidArgument);
+  Polygon inf{{{kCx, kCy}, {HUGE_VAL, kCy}, {kCx, kCy + 1}}, {}};
+  EXPECT_FALSE(ObstacleMap::FromPolygons({inf}, Utm33(), ChartOptions{}).ok());
+}
+
+TEST(ObstacleMap, SerializationRoundTrip) {
+  Polygon with_hole = Square(kCx + 3000, kCy, 500);
+  with_hole.holes.push_back(Square(kCx + 3000, kCy, 300).outer);
+  auto map = ObstacleMap::FromPolygons({Square(kCx, kCy, 50), with_hole}, Utm33(), Buffer10NoSimplify(), "test");
+  ASSERT_TRUE(map.ok());
+  const std::string blob = SerializeObstacleMap(*map);
+  auto back = DeserializeObstacleMap(blob);
+  ASSERT_TRUE(back.ok()) << back.status();
+  EXPECT_EQ(back->frame().epsg(), 32633);
+  EXPECT_EQ(back->polygons().size(), map->polygons().size());
+  EXPECT_DOUBLE_EQ(back->summary().total_area_m2, map->summary().total_area_m2);
+  EXPECT_EQ(back->summary().features_per_layer, map->summary().features_per_layer);
+  EXPECT_EQ(back->summary().source_format, "polygons");
+  EXPECT_DOUBLE_EQ(back->summary().options.safety_buffer_m, 10.0);
+  EXPECT_DOUBLE_EQ(back->summary().coverage.max.x_m, map->summary().coverage.max.x_m);
+  ObstacleQuery q1(*map), q2(*back);
+  for (const LocalPoint p : {LocalPoint{kCx + 150, kCy}, LocalPoint{kCx + 3000, kCy}, LocalPoint{kCx + 3000, kCy + 400}}) {
+    EXPECT_DOUBLE_EQ(q1.SignedDistanceM(p), q2.SignedDistanceM(p));
+  }
+  EXPECT_FALSE(q2.Inside({kCx + 3000, kCy}));  // in the hole
+  EXPECT_EQ(SerializeObstacleMap(*back), blob);
+}
+
+TEST(ObstacleMap, CorruptBlobsAreRejected) {
+  auto map = ObstacleMap::FromPolygons({Square(kCx, kCy, 50)}, Utm33(), Buffer10NoSimplify());
+  ASSERT_TRUE(map.ok());
+  const std::string blob = SerializeObstacleMap(*map);
+  EXPECT_EQ(DeserializeObstacleMap("").status().code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_EQ(DeserializeObstacleMap("garbage bytes, not a chart").status().code(),
+            absl::StatusCode::kInvalidArgument);
+  EXPECT_FALSE(DeserializeObstacleMap(blob.substr(0, blob.size() / 2)).ok());
+  for (size_t i = 0; i < blob.size(); i += 7) {
+    std::string bad = blob;
+    bad[i] = static_cast<char>(bad[i] ^ 0x5a);
+    EXPECT_FALSE(DeserializeObstacleMap(bad).ok()) << "byte " << i;
+  }
+}
+
+TEST(ObstacleMap, QueriesFromSeveralThreadsAgree) {
+  std::vector<Polygon> islands;
+  for (int i = 0; i < 20; ++i) islands.push_back(Square(kCx + 300.0 * i, kCy + 100.0 * (i % 3), 40));
+  auto map = ObstacleMap::FromPolygons(islands, Utm33(), ChartOptions{});
+  ASSERT_TRUE(map.ok());
+  std::vector<LocalPoint> points;
+  for (int i = 0; i < 400; ++i) points.push_back({kCx - 500 + 17.3 * i, kCy - 300 + 1.7 * i});
+  std::vector<double> expected;
+  {
+    ObstacleQuery q(*map);
+    for (const LocalPoint& p : points) expected.push_back(q.SignedDistanceM(p));
+  }
+  std::vector<std::vector<double>> got(4);
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 4; ++t) {
+    threads.emplace_back([&, t] {
+      ObstacleQuery q(*map);  // one query object per thread
+      for (int rep = 0; rep < 5; ++rep) {
+        got[t].clear();
+        for (const LocalPoint& p : points) got[t].push_back(q.SignedDistanceM(p));
+      }
+    });
+  }
+  for (auto& th : threads) th.join();
+  for (int t = 0; t < 4; ++t) EXPECT_EQ(got[t], expected);
+}
+
+TEST(GeoJson, ObstaclesAndRoutes) {
+  auto map = ObstacleMap::FromPolygons({Square(kCx, kCy, 50)}, Utm33(), Buffer10NoSimplify());
+  ASSERT_TRUE(map.ok());
+  const std::string json = ToGeoJson(*map, {{"alt \"0\"", {{kCx - 200, kCy}, {kCx + 200, kCy + 100}}}});
+  EXPECT_EQ(json.rfind("{\"type\":\"FeatureCollection\"", 0), 0u);
+  EXPECT_NE(json.find("\"kind\":\"obstacle\""), std::string::npos);
+  EXPECT_NE(json.find("\"name\":\"alt \\\"0\\\"\""), std::string::npos);
+  // Coordinates are lon,lat: the island is at 15 E (central meridian), ~62.2 N.
+  const LatLon c = Utm33().ToLatLon({kCx, kCy});
+  char expect[32];
+  std::snprintf(expect, sizeof(expect), "[15.00");
+  EXPECT_NE(json.find(expect), std::string::npos);
+  EXPECT_NEAR(c.lon_deg, 15.0, 1e-9);
+  // Read back as a chart: the obstacle (already buffered) has the same area.
+  ChartOptions o;
+  o.safety_buffer_m = 0;
+  o.simplify_tolerance_m = 0;
+  o.frame_epsg = 32633;
+  auto back = LoadChartBytes({{"export.geojson", ToGeoJson(*map)}}, o);
+  ASSERT_TRUE(back.ok()) << back.status();
+  EXPECT_NEAR(back->summary().total_area_m2, map->summary().total_area_m2, 1.0);
+}
+
+}  // namespace
+}  // namespace seaplan::chart
