@@ -1,1 +1,204 @@
+// Tests on the real charts in the shared folder (LABEL data; skipped with a
+// reason when the folder is absent). Licences: NOAA ENC User Agreement,
+// Kartverket CC BY 4.0 ("© Kartverket"); see /work/shared/enc/README.md.
 #include <gtest/gtest.h>
+
+#include <cmath>
+#include <fstream>
+#include <sstream>
+#include <string>
+
+#include "gdal_priv.h"
+#include "ogrsf_frmts.h"
+#include "seaplan/chart/alternatives.h"
+#include "seaplan/chart/obstacle_map.h"
+#include "seaplan/testing/shared_data.h"
+
+namespace seaplan::chart {
+namespace {
+
+// Independent count with plain OGR: features of `layer` whose `field` is
+// below `limit` (or null, when count_null), optionally areas only.
+int CountBelow(const std::string& path, const char* layer, const char* field, double limit, bool count_null,
+               bool areas_only, const char* const* open_options = nullptr) {
+  GDALAllRegister();
+  std::unique_ptr<GDALDataset> ds(
+      GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, open_options, nullptr));
+  if (!ds) return -1;
+  OGRLayer* l = ds->GetLayerByName(layer);
+  if (l == nullptr) return -1;
+  const int idx = field == nullptr ? -1 : l->GetLayerDefn()->GetFieldIndex(field);
+  int n = 0;
+  for (auto& f : *l) {
+    const OGRGeometry* g = f->GetGeometryRef();
+    if (g == nullptr) continue;
+    const auto t = wkbFlatten(g->getGeometryType());
+    if (areas_only && t != wkbPolygon && t != wkbMultiPolygon) continue;
+    if (idx < 0) {
+      ++n;
+    } else if (!f->IsFieldSetAndNotNull(idx)) {
+      n += count_null ? 1 : 0;
+    } else if (f->GetFieldAsDouble(idx) < limit) {
+      ++n;
+    }
+  }
+  return n;
+}
+
+void ExpectRouteAvoidsEverything(const ObstacleMap& map, const AlternativesResult& result) {
+  ObstacleQuery q(map);
+  ASSERT_FALSE(result.alternatives.empty());
+  for (const Alternative& alt : result.alternatives) {
+    EXPECT_FALSE(q.PolylineHits(alt.waypoints));
+    for (const LocalPoint& p : alt.waypoints) EXPECT_TRUE(map.Covers(p));
+    // Sample the route densely too (independent of GEOS' segment test).
+    for (size_t i = 1; i < alt.waypoints.size(); ++i) {
+      const LocalPoint a = alt.waypoints[i - 1], b = alt.waypoints[i];
+      for (int s = 0; s <= 200; ++s) {
+        const LocalPoint p{a.x_m + (b.x_m - a.x_m) * s / 200, a.y_m + (b.y_m - a.y_m) * s / 200};
+        ASSERT_GT(q.DistanceM(p), 0.0) << "route touches an obstacle at " << p.x_m << ", " << p.y_m;
+      }
+    }
+  }
+}
+
+TEST(NoaaUS4MD81M, ObstacleCountsPerLayer) {
+  SEAPLAN_REQUIRE_SHARED(cell, "enc/noaa-US4MD81M/US4MD81M.000");
+  ChartOptions o;
+  o.min_depth_m = 5.0;
+  auto map = LoadChartFile(cell.string(), o);
+  ASSERT_TRUE(map.ok()) << map.status();
+  const auto& layers = map->summary().features_per_layer;
+  static const char* const kOpen[] = {"UPDATES=APPLY", nullptr};
+  const std::string p = cell.string();
+  EXPECT_EQ(layers.at("LNDARE"), CountBelow(p, "LNDARE", nullptr, 0, true, false, kOpen));
+  EXPECT_EQ(layers.at("LNDARE"), 183);  // README: 183 (polygons and points)
+  EXPECT_EQ(layers.at("DEPARE"), CountBelow(p, "DEPARE", "DRVAL1", 5.0, true, true, kOpen));
+  EXPECT_EQ(layers.at("OBSTRN"), CountBelow(p, "OBSTRN", "VALSOU", 5.0, true, false, kOpen));
+  EXPECT_EQ(layers.at("WRECKS"), CountBelow(p, "WRECKS", "VALSOU", 5.0, true, false, kOpen));
+  EXPECT_EQ(layers.at("UWTROC"), CountBelow(p, "UWTROC", "VALSOU", 5.0, true, false, kOpen));
+  EXPECT_GT(layers.at("DEPARE"), 100);
+  EXPECT_LT(layers.at("DEPARE"), 525);
+  EXPECT_EQ(map->frame().epsg(), 32618);
+  EXPECT_EQ(map->summary().source_format, "S57");
+  // Obstacles inside the cell's extent (README: lon -76.622..-75.998, lat 38.347..39.053).
+  EXPECT_GT(map->summary().bbox_min.lon_deg, -76.63);
+  EXPECT_LT(map->summary().bbox_max.lon_deg, -75.99);
+  EXPECT_GT(map->summary().bbox_min.lat_deg, 38.34);
+  EXPECT_LT(map->summary().bbox_max.lat_deg, 39.06);
+  EXPECT_GT(map->summary().total_area_m2, 1e8);
+
+  // A deeper minimum depth can only add obstacles.
+  o.min_depth_m = 10.0;
+  auto deeper = LoadChartFile(cell.string(), o);
+  ASSERT_TRUE(deeper.ok());
+  EXPECT_GT(deeper->summary().features_per_layer.at("DEPARE"), layers.at("DEPARE"));
+  EXPECT_GT(deeper->summary().total_area_m2, map->summary().total_area_m2);
+}
+
+TEST(NoaaUS4MD81M, UploadedBytesWithUpdatesMatchTheFile) {
+  SEAPLAN_REQUIRE_SHARED(dir, "enc/noaa-US4MD81M");
+  std::vector<ChartFile> files;
+  for (const char* ext : {"000", "001", "002", "003"}) {
+    const std::string name = std::string("US4MD81M.") + ext;
+    files.push_back({name, testing::ReadFile(dir / name)});
+  }
+  auto from_bytes = LoadChartBytes(files, ChartOptions{});
+  auto from_file = LoadChartFile((dir / "US4MD81M.000").string(), ChartOptions{});
+  ASSERT_TRUE(from_bytes.ok()) << from_bytes.status();
+  ASSERT_TRUE(from_file.ok()) << from_file.status();
+  EXPECT_EQ(from_bytes->summary().features_per_layer, from_file->summary().features_per_layer);
+  EXPECT_DOUBLE_EQ(from_bytes->summary().total_area_m2, from_file->summary().total_area_m2);
+  // And the stored blob reloads to the same map.
+  auto reloaded = DeserializeObstacleMap(SerializeObstacleMap(*from_file));
+  ASSERT_TRUE(reloaded.ok()) << reloaded.status();
+  EXPECT_EQ(reloaded->polygons().size(), from_file->polygons().size());
+  EXPECT_DOUBLE_EQ(reloaded->summary().total_area_m2, from_file->summary().total_area_m2);
+}
+
+TEST(NoaaUS4MD81M, RouteDownTheBayAvoidsEveryObstacle) {
+  SEAPLAN_REQUIRE_SHARED(cell, "enc/noaa-US4MD81M/US4MD81M.000");
+  auto map = LoadChartFile(cell.string(), ChartOptions{});
+  ASSERT_TRUE(map.ok()) << map.status();
+  // Chesapeake Bay south of the Bay Bridge, off Annapolis -> east of Cove Point.
+  const LocalPoint annapolis = map->frame().ToLocal({38.950, -76.405});
+  const LocalPoint cove_point = map->frame().ToLocal({38.400, -76.330});
+  auto result = PlanAlternatives(*map, annapolis, cove_point);
+  ASSERT_TRUE(result.ok()) << result.status();
+  ExpectRouteAvoidsEverything(*map, *result);
+  const double straight = std::hypot(cove_point.x_m - annapolis.x_m, cove_point.y_m - annapolis.y_m);
+  EXPECT_LT(result->alternatives[0].length_m, 1.5 * straight);
+  // A point on land (Kent Island) is refused with a clear message.
+  auto on_land = PlanAlternatives(*map, map->frame().ToLocal({38.93, -76.25}), cove_point);
+  EXPECT_EQ(on_land.status().code(), absl::StatusCode::kInvalidArgument) << on_land.status();
+}
+
+TEST(TrondheimGdb, ObstacleCountsAndRoute) {
+  SEAPLAN_REQUIRE_SHARED(gdb, "enc/trondheim/Trondheim.gdb");
+  ChartOptions o;
+  o.min_depth_m = 5.0;
+  auto map = LoadChartFile(gdb.string(), o);
+  ASSERT_TRUE(map.ok()) << map.status();
+  const auto& layers = map->summary().features_per_layer;
+  EXPECT_EQ(layers.at("landareal"), 98);
+  EXPECT_EQ(layers.at("torrfall"), 126);
+  EXPECT_EQ(layers.at("skjer"), 12);
+  EXPECT_EQ(layers.at("dybdeareal"), CountBelow(gdb.string(), "dybdeareal", "minimumsdybde", 5.0, true, true));
+  EXPECT_EQ(layers.at("grunne"), CountBelow(gdb.string(), "grunne", "dybde", 5.0, true, false));
+  EXPECT_EQ(map->frame().epsg(), 32632);
+  // Off Trondheim harbour (Ila) -> the fjord off Stjordal: around Lade.
+  const LocalPoint harbour = map->frame().ToLocal({63.4417, 10.3794});
+  const LocalPoint stjordal = map->frame().ToLocal({63.4837, 10.6114});
+  const LocalPoint fjord_west = map->frame().ToLocal({63.5011, 10.1243});
+  for (const auto& [from, to] : {std::pair{harbour, stjordal}, std::pair{fjord_west, harbour}}) {
+    auto result = PlanAlternatives(*map, from, to);
+    ASSERT_TRUE(result.ok()) << result.status();
+    ExpectRouteAvoidsEverything(*map, *result);
+  }
+}
+
+TEST(AlesundShapefiles, TwoAlternativesAroundTheIsland) {
+  SEAPLAN_REQUIRE_SHARED(dir, "enc/alesund/shapefiles");
+  SEAPLAN_REQUIRE_SHARED(route_csv, "enc/alesund/config/routes/route1.csv");
+  ChartOptions o;
+  o.min_depth_m = 5.0;
+  o.frame_epsg = 25833;  // the set's own UTM33 coordinates, as route1.csv
+  auto map = LoadChartFile(dir.string(), o);
+  ASSERT_TRUE(map.ok()) << map.status();
+  const auto& layers = map->summary().features_per_layer;
+  EXPECT_EQ(layers.at("land"), 1);
+  EXPECT_EQ(layers.at("shore"), 1);
+  EXPECT_EQ(layers.count("chart_box-minus-seabed5m"), 1u);
+  // Chart box: centre (39600, 6960500), 5040 x 2835 m.
+  EXPECT_NEAR(map->summary().coverage.min.x_m, 39600 - 2520, 1.0);
+  EXPECT_NEAR(map->summary().coverage.max.y_m, 6960500 + 1417.5, 1.0);
+
+  std::ifstream in(route_csv);
+  std::vector<LocalPoint> route;
+  double e = 0, n = 0;
+  char comma = 0;
+  while (in >> e >> comma >> n) route.push_back({e, n});
+  ASSERT_EQ(route.size(), 4u);
+  // route1.csv starts and ends outside the 5 x 3 km chart box: refused.
+  auto outside = PlanAlternatives(*map, route.front(), route.back());
+  EXPECT_EQ(outside.status().code(), absl::StatusCode::kInvalidArgument);
+  // Its inner waypoints are in the box, on either side of the island.
+  auto result = PlanAlternatives(*map, route[1], route[2]);
+  ASSERT_TRUE(result.ok()) << result.status();
+  EXPECT_FALSE(result->used_fallback) << result->note;
+  ASSERT_GE(result->alternatives.size(), 2u);
+  ExpectRouteAvoidsEverything(*map, *result);
+  // The two shortest pass on opposite sides of the straight line.
+  auto side = [&](const Alternative& alt) {
+    double s = 0;
+    const LocalPoint a = route[1], b = route[2];
+    for (const LocalPoint& p : alt.waypoints) {
+      s += (b.x_m - a.x_m) * (p.y_m - a.y_m) - (b.y_m - a.y_m) * (p.x_m - a.x_m);
+    }
+    return s;
+  };
+  EXPECT_LT(side(result->alternatives[0]) * side(result->alternatives[1]), 0.0);
+}
+
+}  // namespace
+}  // namespace seaplan::chart
