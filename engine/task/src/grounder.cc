@@ -164,6 +164,7 @@ class Grounder {
   // Steps 1-3. False when grounding cannot go on (diagnostics say why).
   bool Explore() {
     InternSymbols();
+    if (!CheckProblemMatchesDomain()) return false;
     FindStatics();
     if (!LoadInit()) return false;
     for (const auto& action : domain_.actions) {
@@ -277,6 +278,83 @@ class Grounder {
     func_static_.assign(func_names_.size(), true);
     by_pred_.assign(pred_names_.size(), {});
     by_arg_.assign(pred_names_.size(), {});
+  }
+
+  // Ground() accepts ASTs built or edited by code (e.g. a replanning loop
+  // updating :init), not only parser output: check what the grounder indexes
+  // by, so a mismatch is a diagnostic rather than an out-of-range access.
+  bool CheckProblemMatchesDomain() {
+    bool ok = true;
+    auto check_atom = [&](const pddl::Atom& atom) {
+      auto it = pred_index_.find(atom.predicate);
+      if (it == pred_index_.end() || pred_arity_[static_cast<std::size_t>(it->second)] != static_cast<int>(atom.args.size())) {
+        Error(pddl::DiagnosticKind::kSemantic, atom.location, atom.predicate,
+              "initial atom does not match a predicate of the domain", "a declared predicate with its arity");
+        ok = false;
+        return;
+      }
+      for (const auto& t : atom.args) {
+        if (ObjectId(t.name) < 0) {
+          Error(pddl::DiagnosticKind::kSemantic, t.location, t.name, "unknown object", "a declared object");
+          ok = false;
+        }
+      }
+    };
+    auto check_numeric = [&](const pddl::NumericInit& n) {
+      auto it = func_index_.find(n.function);
+      if (it == func_index_.end() ||
+          domain_.functions[static_cast<std::size_t>(it->second)].parameters.size() != n.args.size()) {
+        Error(pddl::DiagnosticKind::kSemantic, n.location, n.function,
+              "numeric initialisation does not match a function of the domain", "a declared function");
+        ok = false;
+        return;
+      }
+      for (const auto& a : n.args) {
+        if (ObjectId(a) < 0) {
+          Error(pddl::DiagnosticKind::kSemantic, n.location, a, "unknown object", "a declared object");
+          ok = false;
+        }
+      }
+    };
+    for (const auto& atom : problem_.init) check_atom(atom);
+    for (const auto& til : problem_.timed_literals) check_atom(til.atom);
+    // Goal and metric: names must exist (variables are bound by quantifiers).
+    std::vector<const pddl::NumExpr*> exprs;
+    std::vector<const pddl::Condition*> todo{&problem_.goal};
+    if (problem_.metric.present) exprs.push_back(&problem_.metric.expression);
+    while (!todo.empty()) {
+      const pddl::Condition* c = todo.back();
+      todo.pop_back();
+      if (c->kind == pddl::Condition::Kind::kAtom) {
+        if (c->atom.predicate != "=" && pred_index_.count(c->atom.predicate) == 0) {
+          Error(pddl::DiagnosticKind::kSemantic, c->atom.location, c->atom.predicate, "goal uses an unknown predicate",
+                "a declared predicate");
+          ok = false;
+        }
+        for (const auto& t : c->atom.args) {
+          if (!t.IsVariable() && ObjectId(t.name) < 0) {
+            Error(pddl::DiagnosticKind::kSemantic, t.location, t.name, "unknown object", "a declared object");
+            ok = false;
+          }
+        }
+      } else if (c->kind == pddl::Condition::Kind::kCompare) {
+        exprs.push_back(&c->lhs);
+        exprs.push_back(&c->rhs);
+      }
+      for (const auto& kid : c->children) todo.push_back(&kid);
+    }
+    while (!exprs.empty()) {
+      const pddl::NumExpr* e = exprs.back();
+      exprs.pop_back();
+      if (e->kind == pddl::NumExpr::Kind::kFluent && func_index_.count(e->function) == 0) {
+        Error(pddl::DiagnosticKind::kSemantic, e->location, e->function, "unknown function", "a declared function");
+        ok = false;
+      }
+      for (const auto& kid : e->children) exprs.push_back(&kid);
+    }
+    for (const auto& n : problem_.numeric_init) check_numeric(n);
+    for (const auto& n : problem_.timed_numeric_init) check_numeric(n.init);
+    return ok;
   }
 
   Obj ObjectId(const std::string& name) const {
@@ -1654,6 +1732,7 @@ std::string Grounder::Explain(std::string_view name, std::span<const std::string
            "' takes " + std::to_string(action->parameters.size()) + " (" + params + ")";
   }
   InternSymbols();
+  if (!CheckProblemMatchesDomain()) return call + ": the problem does not match the domain";
   FindStatics();
   std::vector<Obj> objs;
   for (std::size_t i = 0; i < args.size(); ++i) {

@@ -336,6 +336,20 @@ TEST(GrounderTest, ActionIndexAndExplainMissingAction) {
   EXPECT_NE(u.find("(at r1 p3) can never become true"), std::string::npos) << u;
 }
 
+TEST(GrounderTest, EditedProblemThatNoLongerMatchesTheDomainIsADiagnostic) {
+  auto r = MustLoad(kNav, R"(
+(define (problem p) (:domain nav) (:objects p1 p2 - place r1 - robot)
+ (:init (at r1 p1) (road p1 p2)) (:goal (visited p2))))");
+  ASSERT_TRUE(r.domain && r.problem);
+  pddl::Problem edited = *r.problem;  // as a replanning loop might do
+  edited.init.push_back({"at", {{"r1", {}}, {"port-x", {}}}, {}});
+  edited.init.push_back({"teleported", {{"r1", {}}}, {}});
+  auto g = Ground(*r.domain, edited);
+  EXPECT_FALSE(g.ok());
+  EXPECT_NE(g.ErrorText().find("unknown object (found 'port-x'"), std::string::npos) << g.ErrorText();
+  EXPECT_NE(g.ErrorText().find("teleported"), std::string::npos) << g.ErrorText();
+}
+
 std::string ReadTestData(const std::string& name) {
   return seaplan::testing::ReadFile(std::filesystem::path(SEAPLAN_PDDL_TESTDATA) / name);
 }
