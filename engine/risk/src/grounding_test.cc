@@ -74,7 +74,11 @@ bool PointInConvexQuad(const Vec& p, const std::array<Vec, 4>& q) {
 
 HullPolygon HullPolygon::Rectangle(double north, double east, double psi, double length,
                                    double beam) {
-  const double c = std::cos(psi), s = std::sin(psi);
+  return Rectangle(north, east, std::cos(psi), std::sin(psi), length, beam);
+}
+
+HullPolygon HullPolygon::Rectangle(double north, double east, double c, double s, double length,
+                                   double beam) {
   const double hl = 0.5 * length, hb = 0.5 * beam;
   // Body (x fwd, y stbd) -> NE: N = x c - y s, E = x s + y c.
   const std::array<std::pair<double, double>, 4> body = {

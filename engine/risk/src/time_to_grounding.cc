@@ -53,20 +53,24 @@ TtgResult TimeToGroundingSimulator::Run(const ship::ShipState& start, const ship
     track->clear();
     track->push_back({0.0, s});
   }
-  auto hull_at = [&](const ship::ShipState& st) {
-    return HullPolygon::Rectangle(st.eta[0], st.eta[1], st.eta[2], length_m_, beam_m_);
-  };
-  if (options_.check_initial_pose && obstacles.HullIntersects(hull_at(s))) {
+  // One cos/sin pair per step serves both the hull outline and the next
+  // derivative; the environment's trigonometry is done once.
+  const ship::PreparedEnvironment penv = ship::PreparedEnvironment::From(env);
+  double c = std::cos(s.eta[2]), sn = std::sin(s.eta[2]);
+  if (options_.check_initial_pose &&
+      obstacles.HullIntersects(HullPolygon::Rectangle(s.eta[0], s.eta[1], c, sn, length_m_, beam_m_))) {
     result.grounded = true;
     return result;
   }
   const Eigen::Vector3d no_control = Eigen::Vector3d::Zero();
   while (t <= options_.horizon_s) {
-    dynamics_.EulerStep(s, env, no_control, options_.dt_s);
+    dynamics_.EulerStep(s, c, sn, penv, no_control, options_.dt_s);
     t += options_.dt_s;
     ++result.steps;
     if (track != nullptr) track->push_back({t, s});
-    if (obstacles.HullIntersects(hull_at(s))) {
+    c = std::cos(s.eta[2]);
+    sn = std::sin(s.eta[2]);
+    if (obstacles.HullIntersects(HullPolygon::Rectangle(s.eta[0], s.eta[1], c, sn, length_m_, beam_m_))) {
       result.grounded = true;
       break;
     }

@@ -29,10 +29,7 @@ StatusOr<HullDynamics> HullDynamics::Create(const ShipParams& params) {
   return HullDynamics(params);
 }
 
-Eigen::Vector3d HullDynamics::WindForce(const ShipState& s, const Environment& env) const {
-  const double rel_dir = env.wind_direction_from_rad - s.eta[2];
-  const double u_rw = env.wind_speed_mps * std::cos(rel_dir) - s.nu[0];
-  const double v_rw = env.wind_speed_mps * std::sin(rel_dir) - s.nu[1];
+Eigen::Vector3d HullDynamics::WindForceBody(double u_rw, double v_rw) const {
   const double v2 = u_rw * u_rw + v_rw * v_rw;
   if (v2 == 0.0) return Eigen::Vector3d::Zero();
   // gamma = -atan2(v_rw, u_rw): cos(gamma) = u_rw/|V|, sin(gamma) = -v_rw/|V|.
@@ -44,6 +41,12 @@ Eigen::Vector3d HullDynamics::WindForce(const ShipState& s, const Environment& e
   return {q * (-params_.wind_coefficient_x * cos_g) * area_front_m2_,
           q * (params_.wind_coefficient_y * sin_g) * area_side_m2_,
           q * (params_.wind_coefficient_n * sin_2g) * area_side_m2_ * params_.length_m};
+}
+
+Eigen::Vector3d HullDynamics::WindForce(const ShipState& s, const Environment& env) const {
+  const double rel_dir = env.wind_direction_from_rad - s.eta[2];
+  return WindForceBody(env.wind_speed_mps * std::cos(rel_dir) - s.nu[0],
+                       env.wind_speed_mps * std::sin(rel_dir) - s.nu[1]);
 }
 
 Eigen::Vector3d HullDynamics::RudderForce(const ShipState& s, const Environment& env,
@@ -58,9 +61,13 @@ Eigen::Vector3d HullDynamics::RudderForce(const ShipState& s, const Environment&
 
 StateDerivative HullDynamics::Derivative(const ShipState& s, const Environment& env,
                                          const Eigen::Vector3d& tau_ctrl) const {
-  const double psi = s.eta[2];
-  const double c = std::cos(psi);
-  const double sn = std::sin(psi);
+  return Derivative(s, std::cos(s.eta[2]), std::sin(s.eta[2]), PreparedEnvironment::From(env),
+                    tau_ctrl);
+}
+
+StateDerivative HullDynamics::Derivative(const ShipState& s, double c, double sn,
+                                         const PreparedEnvironment& env,
+                                         const Eigen::Vector3d& tau_ctrl) const {
   const double u = s.nu[0], v = s.nu[1], r = s.nu[2];
 
   StateDerivative d;
@@ -72,6 +79,10 @@ StateDerivative HullDynamics::Derivative(const ShipState& s, const Environment& 
   const double u_r = u - u_c;
   const double v_r = v - v_c;
 
+  // Relative wind: R(psi)^T (wind-from vector) minus the ship's velocity.
+  const double u_rw = c * env.wind_from_north_mps + sn * env.wind_from_east_mps - u;
+  const double v_rw = -sn * env.wind_from_north_mps + c * env.wind_from_east_mps - v;
+
   const double m = mass_;
   const double xg = params_.x_g_m;
   // C_RB(nu) nu.
@@ -82,13 +93,20 @@ StateDerivative HullDynamics::Derivative(const ShipState& s, const Environment& 
   const Eigen::Vector3d damp((d_l_(0, 0) + params_.nonlinear_damping_surge * u) * u_r,
                              (d_l_(1, 1) + params_.nonlinear_damping_sway * v) * v_r,
                              (d_l_(2, 2) + params_.nonlinear_damping_yaw * r) * r);
-  d.nu_dot = m_inv_ * (-crb - ca - damp + WindForce(s, env) + tau_ctrl);
+  d.nu_dot = m_inv_ * (-crb - ca - damp + WindForceBody(u_rw, v_rw) + tau_ctrl);
   return d;
 }
 
 void HullDynamics::EulerStep(ShipState& s, const Environment& env,
                              const Eigen::Vector3d& tau_ctrl, double dt_s) const {
   const StateDerivative d = Derivative(s, env, tau_ctrl);
+  s.eta += d.eta_dot * dt_s;
+  s.nu += d.nu_dot * dt_s;
+}
+
+void HullDynamics::EulerStep(ShipState& s, double c, double sn, const PreparedEnvironment& env,
+                             const Eigen::Vector3d& tau_ctrl, double dt_s) const {
+  const StateDerivative d = Derivative(s, c, sn, env, tau_ctrl);
   s.eta += d.eta_dot * dt_s;
   s.nu += d.nu_dot * dt_s;
 }

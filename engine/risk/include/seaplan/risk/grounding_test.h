@@ -42,6 +42,9 @@ struct HullPolygon {
 
   static HullPolygon Rectangle(double north_m, double east_m, double heading_rad, double length_m,
                                double beam_m);
+  // Same with cos/sin of the heading precomputed (hot loops).
+  static HullPolygon Rectangle(double north_m, double east_m, double cos_heading,
+                               double sin_heading, double length_m, double beam_m);
 };
 
 class GroundingTest {

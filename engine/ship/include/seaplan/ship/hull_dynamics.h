@@ -13,6 +13,8 @@
 // shared between threads; ShipModelWithoutPropulsion owns mutable state.
 #pragma once
 
+#include <cmath>
+
 #include "Eigen/Core"
 #include "seaplan/common/status.h"
 #include "seaplan/ship/ship_params.h"
@@ -23,6 +25,20 @@ namespace seaplan::ship {
 struct StateDerivative {
   Eigen::Vector3d eta_dot;
   Eigen::Vector3d nu_dot;
+};
+
+// Environment with trigonometry done once, for hot loops (the TTG drift):
+// the wind-from vector and the current in NED components.
+struct PreparedEnvironment {
+  double wind_from_north_mps = 0.0;  // V cos(beta)
+  double wind_from_east_mps = 0.0;   // V sin(beta)
+  double current_north_mps = 0.0;
+  double current_east_mps = 0.0;
+  static PreparedEnvironment From(const Environment& env) {
+    return {env.wind_speed_mps * std::cos(env.wind_direction_from_rad),
+            env.wind_speed_mps * std::sin(env.wind_direction_from_rad), env.current_north_mps,
+            env.current_east_mps};
+  }
 };
 
 class HullDynamics {
@@ -55,7 +71,17 @@ class HullDynamics {
   void EulerStep(ShipState& s, const Environment& env, const Eigen::Vector3d& tau_ctrl,
                  double dt_s) const;
 
+  // Hot-loop forms: cos/sin of s.eta[2] supplied by the caller (who usually
+  // needs them anyway, e.g. for the hull outline), environment prepared once.
+  // Relative wind in the body frame is R(psi)^T [Vw_N, Vw_E], which equals
+  // SITS' V [cos(beta - psi), sin(beta - psi)].
+  StateDerivative Derivative(const ShipState& s, double cos_psi, double sin_psi,
+                             const PreparedEnvironment& env, const Eigen::Vector3d& tau_ctrl) const;
+  void EulerStep(ShipState& s, double cos_psi, double sin_psi, const PreparedEnvironment& env,
+                 const Eigen::Vector3d& tau_ctrl, double dt_s) const;
+
  private:
+  Eigen::Vector3d WindForceBody(double u_rw, double v_rw) const;
   ShipParams params_;
   double mass_;
   double i_z_;
