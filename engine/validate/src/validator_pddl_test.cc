@@ -7,7 +7,6 @@
 #include "seaplan/testing/shared_data.h"
 #include "seaplan/validate/plan.h"
 #include "seaplan/validate/validator.h"
-#include "repo_path_test_util.h"
 
 namespace seaplan::validate {
 namespace {
@@ -16,7 +15,7 @@ using ::testing::HasSubstr;
 using Kind = ValidationFailure::Kind;
 
 std::string TestData(const std::string& name) {
-  return seaplan::testing::ReadFile(testing::RepoRoot() / "engine" / "validate" /
+  return seaplan::testing::ReadFile(seaplan::testing::SourceDir() / "engine" / "validate" /
                                     "testdata" / name);
 }
 
