@@ -34,7 +34,8 @@ static void PrintAlternatives(const route::Level2Result& r) {
     const auto& alt = r.alternatives[a];
     std::string modes;
     for (size_t k = 0; k + 1 < alt.waypoints.size(); ++k) {
-      modes += route::MsoModeName(alt.waypoints[k].mode)[1] == 'T' ? (alt.waypoints[k].mode == route::MsoMode::kPto ? 'o' : 'i') : 'M';
+      const route::MsoMode m = alt.waypoints[k].mode;
+      modes += m == route::MsoMode::kPto ? 'o' : m == route::MsoMode::kMec ? 'M' : 'i';
     }
     double min_ttg = 1e9;
     for (const auto& w : alt.waypoints) min_ttg = std::min(min_ttg, w.ttg_s);
@@ -46,7 +47,7 @@ static void PrintAlternatives(const route::Level2Result& r) {
         std::printf("      E %9.1f N %10.1f (ref %9.1f %10.1f) TTG %4.0f P %.3g/%.3g/%.3g prox %.3g cost %.4f/%.4f/%.4f %s\n",
                     w.position.x, w.position.y, w.reference.x, w.reference.y, w.ttg_s, w.grounding_probability[0],
                     w.grounding_probability[1], w.grounding_probability[2], w.proximity, w.mode_cost[0],
-                    w.mode_cost[1], w.mode_cost[2], route::MsoModeName(w.mode));
+                    w.mode_cost[1], w.mode_cost[2], std::string(route::MsoModeName(w.mode)).c_str());
       }
     }
   }
@@ -96,7 +97,9 @@ int main(int argc, char** argv) {
   }
   const double level1_s = Since(t);
 
-  route::EventTreeGroundingModel grounding(options.risk);
+  auto risk_model = risk::DriftingGroundingModel::Create(options.risk);
+  if (!risk_model.ok()) return 2;
+  route::DriftingGroundingAdapter grounding(*risk_model);
   route::Level2Problem problem;
   problem.field = &planner->field();
   problem.grounding = &grounding;

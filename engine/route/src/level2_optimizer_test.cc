@@ -18,7 +18,8 @@ ObstaclePolygon Island() {
 
 struct Scenario {
   ObstacleField field;
-  EventTreeGroundingModel grounding;
+  risk::DriftingGroundingModel risk_model;
+  DriftingGroundingAdapter grounding;
   Level2Problem problem;
 };
 
@@ -27,7 +28,11 @@ std::unique_ptr<Scenario> MakeScenario() {
   fo.far_cutoff_m = 750;
   auto field = ObstacleField::Build({Island()}, {-2500, -1500}, {2500, 1500}, fo);
   EXPECT_TRUE(field.ok()) << field.status();
-  auto s = std::unique_ptr<Scenario>(new Scenario{std::move(field).value(), EventTreeGroundingModel(), {}});
+  auto model = risk::DriftingGroundingModel::Create();
+  EXPECT_TRUE(model.ok()) << model.status();
+  auto s = std::unique_ptr<Scenario>(
+      new Scenario{std::move(field).value(), std::move(model).value(), DriftingGroundingAdapter(*model), {}});
+  s->grounding = DriftingGroundingAdapter(s->risk_model);
   s->problem.field = &s->field;
   s->problem.grounding = &s->grounding;
   s->problem.environment.wind_speed_mps = 20.0;

@@ -118,7 +118,7 @@ StatusOr<RoutePlanner> RoutePlanner::Create(std::shared_ptr<const chart::Obstacl
     p.speed_mps_[m] = op.speed_mps;
     p.fuel_kgps_[m] = op.fuel_rate.total_kgps();
     if (!(op.speed_mps > 0.1)) {
-      return absl::InvalidArgumentError(absl::StrCat("mode ", MsoModeName(static_cast<MsoMode>(m)),
+      return absl::InvalidArgumentError(absl::StrCat("mode ", std::string(ship::MsoModeName(static_cast<MsoMode>(m))),
                                                      " has no service speed at throttle ", ship.service_throttle));
     }
   }
@@ -131,6 +131,9 @@ StatusOr<RoutePlanner> RoutePlanner::Create(std::shared_ptr<const chart::Obstacl
       ObstacleField field,
       ObstacleField::Build(ToObstacles(p.map_->polygons()), ToVec(cov.min), ToVec(cov.max), fo));
   p.field_ = std::make_shared<const ObstacleField>(std::move(field));
+  SEAPLAN_ASSIGN_OR_RETURN(risk::DriftingGroundingModel risk_model,
+                           risk::DriftingGroundingModel::Create(options.risk));
+  p.risk_model_ = std::make_shared<const risk::DriftingGroundingModel>(std::move(risk_model));
   return p;
 }
 
@@ -153,7 +156,7 @@ StatusOr<RouteResult> RoutePlanner::Plan(chart::LocalPoint start, chart::LocalPo
   }
   if (level1->alternatives.empty()) return absl::FailedPreconditionError("no safe route: Level 1 found none");
 
-  EventTreeGroundingModel grounding(options_.risk);
+  DriftingGroundingAdapter grounding(*risk_model_);
   Level2Problem problem;
   problem.field = field_.get();
   problem.grounding = &grounding;
@@ -218,7 +221,7 @@ StatusOr<std::vector<PointRisk>> RoutePlanner::EstimateRisk(const std::vector<Tr
                                                             const Environment& env) const {
   SEAPLAN_RETURN_IF_ERROR(env.Validate());
   const ship::Environment senv = ToShipEnvironment(env);
-  EventTreeGroundingModel grounding(options_.risk);
+  DriftingGroundingAdapter grounding(*risk_model_);
   std::vector<Vec2> local;
   for (size_t i = 0; i < track.size(); ++i) {
     const chart::LocalPoint p = map_->frame().ToLocal(track[i].latlon);

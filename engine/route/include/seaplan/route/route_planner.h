@@ -58,7 +58,7 @@ struct RouteOptions {
   chart::AlternativesOptions alternatives;
   // Level-1 alternatives optimised (shortest first; paper: 2).
   int max_alternatives = 2;
-  EventTreeParameters risk;
+  risk::DriftingGroundingParams risk;  // engine/risk event trees (Tables 2-4)
   // Minimum depth the route needs, metres; 0 = accept the chart's. The
   // obstacles are fixed when the chart is loaded (ChartOptions::min_depth_m),
   // so a chart loaded for a shallower depth is FailedPrecondition.
@@ -141,6 +141,7 @@ class RoutePlanner {
   std::shared_ptr<const ObstacleField> field_;
   ShipParticulars ship_;
   RouteOptions options_;
+  std::shared_ptr<const risk::DriftingGroundingModel> risk_model_;
   ModeArray speed_mps_{};
   ModeArray fuel_kgps_{};
 };
