@@ -1,0 +1,135 @@
+#include "seaplan/route/route_planner.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+#include <memory>
+
+namespace seaplan::route {
+namespace {
+
+constexpr double kE0 = 500000.0, kN0 = 7000000.0;  // UTM33 near 63.1 N, 15 E
+
+chart::Polygon Rect(double x0, double y0, double x1, double y1) {
+  return chart::Polygon{{{kE0 + x0, kN0 + y0}, {kE0 + x1, kN0 + y0}, {kE0 + x1, kN0 + y1}, {kE0 + x0, kN0 + y1}}, {}};
+}
+chart::LocalPoint P(double x, double y) { return {kE0 + x, kN0 + y}; }
+
+// A long island x in [-800, 800], y in [-200, 200]; a square "harbour wall"
+// ring far east encloses the point (3000, 0).
+std::shared_ptr<const chart::ObstacleMap> Map() {
+  std::vector<chart::Polygon> polys = {Rect(-800, -200, 800, 200)};
+  chart::Polygon ring = Rect(2800, -200, 3200, 200);
+  ring.holes.push_back({{kE0 + 2900, kN0 - 100}, {kE0 + 3100, kN0 - 100}, {kE0 + 3100, kN0 + 100}, {kE0 + 2900, kN0 + 100}});
+  polys.push_back(ring);
+  chart::ChartOptions co;
+  co.safety_buffer_m = 10.0;
+  auto map = chart::ObstacleMap::FromPolygons(polys, chart::LocalFrame(), co, "test",
+                                              chart::LocalBox{P(-2500, -1500), P(3500, 1500)});
+  EXPECT_TRUE(map.ok()) << map.status();
+  return std::make_shared<const chart::ObstacleMap>(std::move(map).value());
+}
+
+Environment SouthWind() {
+  Environment env;
+  env.wind_speed_mps = 20.0;
+  env.wind_from_deg = 180.0;
+  env.current_speed_mps = 1.0;
+  env.current_toward_deg = 0.0;
+  return env;
+}
+
+RouteOptions FastOptions() {
+  RouteOptions o;
+  o.level2.pso.particles = 12;
+  o.level2.pso.iterations = 30;
+  return o;
+}
+
+TEST(RoutePlannerTest, PlansTwoAlternativesAndChoosesTheSaferOne) {
+  auto map = Map();
+  auto planner = RoutePlanner::Create(map, ShipParticulars{}, FastOptions());
+  ASSERT_TRUE(planner.ok()) << planner.status();
+  const chart::LatLon start = map->frame().ToLatLon(P(-2000, 0));
+  const chart::LatLon goal = map->frame().ToLatLon(P(2000, 0));
+  auto r = planner->Plan(start, goal, SouthWind());
+  ASSERT_TRUE(r.ok()) << r.status();
+  ASSERT_EQ(r->alternatives.size(), 2u);
+  ASSERT_GE(r->chosen, 0);
+  const RouteAlternative& chosen = r->alternatives[r->chosen];
+  const RouteAlternative& other = r->alternatives[1 - r->chosen];
+  EXPECT_LE(chosen.expected_cost, other.expected_cost);
+  // The chosen route passes north of the island: drifting away from it.
+  double mid_y = 0;
+  for (const auto& w : chosen.waypoints) mid_y += (w.local.y_m - kN0) / chosen.waypoints.size();
+  EXPECT_GT(mid_y, 0.0);
+  // The south route's drift hits the island: higher P(G) somewhere.
+  double max_other = 0, max_chosen = 0;
+  for (const auto& w : other.waypoints) max_other = std::max(max_other, w.grounding_probability);
+  for (const auto& w : chosen.waypoints) max_chosen = std::max(max_chosen, w.grounding_probability);
+  EXPECT_GT(max_other, max_chosen);
+  // Totals add up; lat/lon and local agree; times use per-mode speeds.
+  double length = 0, time = 0, fuel = 0;
+  for (size_t k = 0; k < chosen.waypoints.size(); ++k) {
+    const auto& w = chosen.waypoints[k];
+    const chart::LocalPoint back = map->frame().ToLocal(w.latlon);
+    EXPECT_NEAR(back.x_m, w.local.x_m, 1e-3);
+    EXPECT_NEAR(back.y_m, w.local.y_m, 1e-3);
+    length += w.segment_length_m;
+    time += w.segment_time_s;
+    fuel += w.segment_fuel_kg;
+    if (k + 1 < chosen.waypoints.size()) {
+      EXPECT_GT(w.segment_time_s, w.segment_length_m / 12.0);
+      EXPECT_LT(w.segment_time_s, w.segment_length_m / 4.0);
+    }
+  }
+  EXPECT_NEAR(chosen.length_m, length, 1e-6);
+  EXPECT_NEAR(chosen.sailing_time_s, time, 1e-6);
+  EXPECT_NEAR(chosen.fuel_kg, fuel, 1e-9);
+  EXPECT_GT(chosen.length_m, 4000.0);
+}
+
+TEST(RoutePlannerTest, BadEndpointsAndNoRoute) {
+  auto map = Map();
+  auto planner = RoutePlanner::Create(map, ShipParticulars{}, FastOptions());
+  ASSERT_TRUE(planner.ok()) << planner.status();
+  auto outside = planner->Plan(P(-2000, 0), P(9000, 0), SouthWind());
+  EXPECT_EQ(outside.status().code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_NE(outside.status().message().find("goal"), std::string_view::npos) << outside.status();
+  auto inside = planner->Plan(P(0, 0), P(2000, 0), SouthWind());
+  EXPECT_EQ(inside.status().code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_NE(inside.status().message().find("start"), std::string_view::npos) << inside.status();
+  // Goal inside the walled harbour: water, but unreachable.
+  auto enclosed = planner->Plan(P(-2000, 0), P(3000, 0), SouthWind());
+  EXPECT_EQ(enclosed.status().code(), absl::StatusCode::kFailedPrecondition) << enclosed.status();
+  Environment bad = SouthWind();
+  bad.wind_speed_mps = -1;
+  EXPECT_EQ(planner->Plan(P(-2000, 0), P(2000, 0), bad).status().code(), absl::StatusCode::kInvalidArgument);
+  RouteOptions deeper = FastOptions();
+  deeper.min_depth_m = 50.0;  // the map was built for 5 m
+  EXPECT_EQ(RoutePlanner::Create(map, ShipParticulars{}, deeper).status().code(),
+            absl::StatusCode::kFailedPrecondition);
+}
+
+TEST(RoutePlannerTest, EstimateRiskHigherUpwindOfTheShore) {
+  auto map = Map();
+  auto planner = RoutePlanner::Create(map, ShipParticulars{}, FastOptions());
+  ASSERT_TRUE(planner.ok()) << planner.status();
+  const auto& f = map->frame();
+  std::vector<TrackPoint> track = {
+      {f.ToLatLon(P(0, -320)), 90.0, 2.0, MsoMode::kPto},  // south of the island, drifting onto it
+      {f.ToLatLon(P(0, -320)), 90.0, 2.0, MsoMode::kMec},
+      {f.ToLatLon(P(0, 320)), 90.0, 2.0, MsoMode::kPto},   // north: drifting away
+  };
+  auto risk = planner->EstimateRisk(track, SouthWind());
+  ASSERT_TRUE(risk.ok()) << risk.status();
+  ASSERT_EQ(risk->size(), 3u);
+  EXPECT_LT((*risk)[0].ttg_s, 300.0);
+  EXPECT_EQ((*risk)[2].ttg_s, 630.0);
+  EXPECT_GT((*risk)[0].grounding_probability, 10 * (*risk)[2].grounding_probability);
+  EXPECT_LT((*risk)[1].grounding_probability, (*risk)[0].grounding_probability);
+  EXPECT_NEAR((*risk)[0].expected_cost, 5e6 * (*risk)[0].grounding_probability, 1e-12);
+}
+
+}  // namespace
+}  // namespace seaplan::route
