@@ -1,6 +1,9 @@
 #include "seaplan/risk/grounding_risk.h"
 
+#include <cmath>
 #include <utility>
+
+#include "absl/strings/str_cat.h"
 
 namespace seaplan::risk {
 
@@ -24,6 +27,30 @@ PointRisk GroundingRiskEvaluator::Evaluate(const ship::ShipState& start,
   r.ttg = ttg_.Run(start, env, obstacles);
   if (!r.ttg.grounded && policy_ == UngroundedPolicy::kZero) return r;
   r.probability = model_.GroundingProbabilities(r.ttg.ttg_s);
+  return r;
+}
+
+StatusOr<HorizonRisk> GroundingRiskEvaluator::RouteRisk(std::span<const ship::ShipState> samples,
+                                                        std::span<const MsoMode> modes,
+                                                        const ship::Environment& env,
+                                                        const GroundingTest& obstacles, double cost,
+                                                        std::span<double> interval_p) const {
+  if (samples.size() != modes.size() || (!interval_p.empty() && interval_p.size() != samples.size())) {
+    return absl::InvalidArgumentError(absl::StrCat("RouteRisk: ", samples.size(), " samples, ",
+                                                   modes.size(), " modes, ", interval_p.size(),
+                                                   " outputs (need equal sizes)"));
+  }
+  if (!std::isfinite(cost)) return absl::InvalidArgumentError("RouteRisk: cost must be finite");
+  SEAPLAN_RETURN_IF_ERROR(env.Validate());
+  HorizonRisk r;
+  for (size_t i = 0; i < samples.size(); ++i) {
+    SEAPLAN_RETURN_IF_ERROR(TimeToGroundingSimulator::CheckInputs(samples[i], env));
+    const PointRisk pr = Evaluate(samples[i], env, obstacles);
+    const double pi = pr.probability[modes[i]] * (1.0 - r.probability);
+    if (!interval_p.empty()) interval_p[i] = pi;
+    r.probability += pi;
+    r.expected_cost += pi * cost;
+  }
   return r;
 }
 

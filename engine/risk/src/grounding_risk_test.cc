@@ -1,5 +1,7 @@
 #include "seaplan/risk/grounding_risk.h"
 
+#include <vector>
+
 #include "gtest/gtest.h"
 
 namespace seaplan::risk {
@@ -42,6 +44,37 @@ TEST(GroundingRiskTest, UngroundedPolicy) {
   EXPECT_GT(ra.probability[MsoMode::kPti], 0.0);  // AMM: tiny but not zero
   EXPECT_EQ(rz.probability[MsoMode::kPti], 0.0);
   EXPECT_EQ(rz.probability[MsoMode::kPto], 0.0);
+}
+
+TEST(GroundingRiskTest, RouteRiskAccumulatesPerIntervalModes) {
+  GroundingRiskOptions o;
+  o.probability.risk_interval_s = 30.0;
+  auto eval = GroundingRiskEvaluator::Create(ship::ShipParams{}, o);
+  ASSERT_TRUE(eval.ok());
+  Environment env;
+  env.current_east_mps = 1.0;
+  auto shore = *PolygonObstacles::Create({{{-1e4, 300}, {1e4, 300}, {1e4, 1e3}, {-1e4, 1e3}}});
+  // Three samples approaching the shore, sailed north.
+  const std::vector<ShipState> samples = {ShipState::At(0, 0, 0, 5), ShipState::At(150, 100, 0, 5),
+                                          ShipState::At(300, 200, 0, 5)};
+  const std::vector<MsoMode> modes = {MsoMode::kPto, MsoMode::kMec, MsoMode::kPti};
+  std::vector<double> per(3);
+  auto r = eval->RouteRisk(samples, modes, env, shore, 1e6, per);
+  ASSERT_TRUE(r.ok()) << r.status();
+  // By hand from the single-point evaluations.
+  double acc = 0.0;
+  for (int i = 0; i < 3; ++i) {
+    const double p = eval->Evaluate(samples[i], env, shore).probability[modes[i]];
+    EXPECT_DOUBLE_EQ(per[i], p * (1.0 - acc));
+    acc += per[i];
+  }
+  EXPECT_DOUBLE_EQ(r->probability, acc);
+  EXPECT_DOUBLE_EQ(r->expected_cost, acc * 1e6);
+  // All in PTO is riskier than MEC everywhere.
+  const std::vector<MsoMode> pto(3, MsoMode::kPto), mec(3, MsoMode::kMec);
+  EXPECT_GT(eval->RouteRisk(samples, pto, env, shore, 1.0)->probability,
+            eval->RouteRisk(samples, mec, env, shore, 1.0)->probability);
+  EXPECT_FALSE(eval->RouteRisk(samples, std::span<const MsoMode>(modes).first(2), env, shore, 1.0).ok());
 }
 
 }  // namespace

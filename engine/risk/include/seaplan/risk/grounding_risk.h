@@ -8,9 +8,12 @@
 // provided the GroundingTest is.
 #pragma once
 
+#include <span>
+
 #include "seaplan/common/status.h"
 #include "seaplan/risk/drifting_grounding.h"
 #include "seaplan/risk/grounding_test.h"
+#include "seaplan/risk/horizon_risk.h"
 #include "seaplan/risk/time_to_grounding.h"
 #include "seaplan/ship/ship_params.h"
 
@@ -44,6 +47,18 @@ class GroundingRiskEvaluator {
 
   PointRisk Evaluate(const ship::ShipState& start, const ship::Environment& env,
                      const GroundingTest& obstacles) const;
+
+  // Grounding risk accumulated along a route over a horizon: `samples[i]` is
+  // the ship's state at the start of risk interval i and `modes[i]` the MSO
+  // mode sailed in it (same sizes). Each sample gets one TTG drift and
+  // P(G_i | mode_i); the P_i are accumulated as in horizon_risk.h with the
+  // constant cost `cost`. The sample spacing in time should equal
+  // DriftingGroundingParams::risk_interval_s (the paper: 30 s; AMM: 600 s).
+  // If `interval_p` is non-empty (same size) it receives P_i. No allocation.
+  StatusOr<HorizonRisk> RouteRisk(std::span<const ship::ShipState> samples,
+                                  std::span<const MsoMode> modes, const ship::Environment& env,
+                                  const GroundingTest& obstacles, double cost,
+                                  std::span<double> interval_p = {}) const;
 
   const TimeToGroundingSimulator& ttg() const { return ttg_; }
   const DriftingGroundingModel& model() const { return model_; }
