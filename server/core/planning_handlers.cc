@@ -85,7 +85,7 @@ absl::StatusOr<search::PlannerOptions> ToEngine(const v1::PlannerOptions& o) {
   return p;
 }
 
-v1::PlanStatus ToProto(search::PlanStatus s) {
+v1::PlanStatus StatusToProto(search::PlanStatus s) {
   switch (s) {
     case search::PlanStatus::kSolvedSatisficing: return v1::SOLVED_SATISFICING;
     case search::PlanStatus::kSolvedOptimally: return v1::SOLVED_OPTIMALLY;
@@ -99,7 +99,7 @@ v1::PlanStatus ToProto(search::PlanStatus s) {
   return v1::PLAN_STATUS_UNSPECIFIED;
 }
 
-void ToProto(const search::SearchStatistics& s, v1::SearchStatistics* out) {
+void StatsToProto(const search::SearchStatistics& s, v1::SearchStatistics* out) {
   out->set_expanded(s.expanded);
   out->set_generated(s.generated);
   out->set_evaluated(s.evaluated);
@@ -111,7 +111,7 @@ void ToProto(const search::SearchStatistics& s, v1::SearchStatistics* out) {
 }
 
 void FillPlan(const search::PlanResult& r, v1::PlanResponse* out) {
-  out->set_status(ToProto(r.status));
+  out->set_status(StatusToProto(r.status));
   out->clear_plan();
   for (const auto& step : r.plan.steps) {
     v1::TimedAction* a = out->add_plan();
@@ -122,7 +122,7 @@ void FillPlan(const search::PlanResult& r, v1::PlanResponse* out) {
   }
   out->set_makespan_s(r.makespan_s);
   if (r.metric_value) out->set_metric_value(*r.metric_value); else out->clear_metric_value();
-  ToProto(r.stats, out->mutable_statistics());
+  StatsToProto(r.stats, out->mutable_statistics());
   out->set_plan_text(r.plan.steps.empty() ? std::string() : validate::FormatPlan(r.plan));
   out->set_message(r.message);
 }
@@ -204,7 +204,7 @@ absl::Status PlanningHandlers::PlanStream(const v1::PlanRequest& request, const 
   };
   observer.on_progress = [&](const search::SearchStatistics& s) {
     v1::PlanStreamEvent event;
-    ToProto(s, event.mutable_progress()->mutable_statistics());
+    StatsToProto(s, event.mutable_progress()->mutable_statistics());
     event.mutable_progress()->set_elapsed_s(
         std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count());
     std::lock_guard lock(mu);

@@ -1,0 +1,229 @@
+// The real seaplan-server binary (SEAPLAN_BIN_DIR): starts on ephemeral
+// loopback ports, learns them from --port-file, serves both transports,
+// lists its services through reflection, and on SIGTERM drains, exits 0
+// and leaves an intact database.
+//
+// This is a separate test binary that does not link the server libraries:
+// libgrpc++_reflection carries its own copy of the reflection protos, which
+// would clash with the client stubs of seaplan_grpc_std_protos.
+#include <gtest/gtest.h>
+#include <grpcpp/grpcpp.h>
+#include <httplib.h>
+#include <signal.h>
+#include <spawn.h>
+#include <arpa/inet.h>
+#include <netinet/in.h>
+#include <sys/socket.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <fstream>
+#include <thread>
+
+#include <atomic>
+#include <filesystem>
+#include <set>
+
+#include "grpc/health/v1/health.grpc.pb.h"
+#include "grpc/reflection/v1alpha/reflection.grpc.pb.h"
+#include "seaplan/storage/sqlite_store.h"
+#include "seaplan/testing/shared_data.h"
+#include "seaplan/v1/mission.grpc.pb.h"
+
+extern char** environ;
+
+namespace seaplan::server::testing {
+namespace {
+
+class TempDir {
+ public:
+  TempDir() {
+    static std::atomic<int> counter{0};
+    path_ = std::filesystem::temp_directory_path() /
+            ("seaplan-binary-test-" + std::to_string(::getpid()) + "-" + std::to_string(counter++));
+    std::filesystem::remove_all(path_);
+    std::filesystem::create_directories(path_);
+  }
+  ~TempDir() {
+    std::error_code ec;
+    std::filesystem::remove_all(path_, ec);
+  }
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+void SetDeadline(grpc::ClientContext* ctx, int ms) {
+  ctx->set_deadline(std::chrono::system_clock::now() + std::chrono::milliseconds(ms));
+}
+
+// A child process that is killed (SIGKILL) in the destructor if still running.
+class Child {
+ public:
+  explicit Child(const std::vector<std::string>& argv) {
+    std::vector<char*> args;
+    for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+    args.push_back(nullptr);
+    EXPECT_EQ(posix_spawn(&pid_, args[0], nullptr, nullptr, args.data(), environ), 0) << argv[0];
+  }
+  ~Child() {
+    if (pid_ > 0) {
+      kill(pid_, SIGKILL);
+      waitpid(pid_, nullptr, 0);
+    }
+  }
+  pid_t pid() const { return pid_; }
+  // Waits up to `timeout` for exit; returns the wait status or -1 on timeout.
+  int Wait(std::chrono::seconds timeout) {
+    const auto until = std::chrono::steady_clock::now() + timeout;
+    while (std::chrono::steady_clock::now() < until) {
+      int status = 0;
+      if (waitpid(pid_, &status, WNOHANG) == pid_) {
+        pid_ = -1;
+        return status;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    }
+    return -1;
+  }
+
+ private:
+  pid_t pid_ = -1;
+};
+
+bool ReadPorts(const std::filesystem::path& file, int* grpc_port, int* http_port) {
+  std::ifstream in(file);
+  std::string line;
+  *grpc_port = *http_port = 0;
+  while (std::getline(in, line)) {
+    if (line.rfind("grpc=", 0) == 0) *grpc_port = std::stoi(line.substr(5));
+    if (line.rfind("http=", 0) == 0) *http_port = std::stoi(line.substr(5));
+  }
+  return *grpc_port > 0 && *http_port > 0;
+}
+
+TEST(ServerBinaryTest, ServesBothTransportsAndShutsDownCleanlyOnSigterm) {
+  const std::filesystem::path binary = seaplan::testing::BinDir() / "seaplan-server";
+  if (!std::filesystem::exists(binary)) GTEST_SKIP() << binary << " not built";
+  TempDir dir;
+  const auto port_file = dir.path() / "ports";
+  const auto data_dir = dir.path() / "data";
+  Child child({binary.string(), "--grpc-addr", "127.0.0.1:0", "--http-addr", "127.0.0.1:0", "--data-dir",
+               data_dir.string(), "--port-file", port_file.string(), "--log-level", "warn", "--planning-threads",
+               "1"});
+  int grpc_port = 0, http_port = 0;
+  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  while (!ReadPorts(port_file, &grpc_port, &http_port) && std::chrono::steady_clock::now() < until) {
+    ASSERT_EQ(waitpid(child.pid(), nullptr, WNOHANG), 0) << "server exited early";
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+  ASSERT_GT(grpc_port, 0) << "no port file";
+
+  auto channel = grpc::CreateChannel("127.0.0.1:" + std::to_string(grpc_port), grpc::InsecureChannelCredentials());
+  auto health = grpc::health::v1::Health::NewStub(channel);
+  grpc::ClientContext ctx;
+  SetDeadline(&ctx, 5000);
+  grpc::health::v1::HealthCheckRequest req;
+  req.set_service("seaplan.v1.PlanningService");
+  grpc::health::v1::HealthCheckResponse resp;
+  ASSERT_TRUE(health->Check(&ctx, req, &resp).ok());
+  EXPECT_EQ(resp.status(), grpc::health::v1::HealthCheckResponse::SERVING);
+
+  httplib::Client http("127.0.0.1", http_port);
+  auto res = http.Get("/healthz");
+  ASSERT_TRUE(res);
+  EXPECT_EQ(res->status, 200);
+  res = http.Post("/v1/MissionService/GetMission", "{\"missionId\":\"m-x\"}", "application/json");
+  ASSERT_TRUE(res);
+  EXPECT_EQ(res->status, 404);
+  auto missions = v1::MissionService::NewStub(channel);
+  grpc::ClientContext ctx2;
+  SetDeadline(&ctx2, 5000);
+  v1::ListMissionsRequest list_req;
+  v1::ListMissionsResponse list_resp;
+  ASSERT_TRUE(missions->ListMissions(&ctx2, list_req, &list_resp).ok());
+
+  // Reflection lists the four services (and health).
+  {
+    auto reflection = grpc::reflection::v1alpha::ServerReflection::NewStub(channel);
+    grpc::ClientContext rctx;
+    SetDeadline(&rctx, 5000);
+    auto stream = reflection->ServerReflectionInfo(&rctx);
+    grpc::reflection::v1alpha::ServerReflectionRequest rreq;
+    rreq.set_list_services("*");
+    ASSERT_TRUE(stream->Write(rreq));
+    grpc::reflection::v1alpha::ServerReflectionResponse rresp;
+    ASSERT_TRUE(stream->Read(&rresp));
+    std::set<std::string> names;
+    for (const auto& service : rresp.list_services_response().service()) names.insert(service.name());
+    for (const char* expected : {"seaplan.v1.PlanningService", "seaplan.v1.ChartService", "seaplan.v1.RouteService",
+                                 "seaplan.v1.MissionService", "grpc.health.v1.Health"}) {
+      EXPECT_TRUE(names.count(expected)) << expected;
+    }
+    // The schema itself is served too (what grpcurl needs).
+    grpc::reflection::v1alpha::ServerReflectionRequest file_req;
+    file_req.set_file_containing_symbol("seaplan.v1.MissionService");
+    ASSERT_TRUE(stream->Write(file_req));
+    ASSERT_TRUE(stream->Read(&rresp));
+    EXPECT_GT(rresp.file_descriptor_response().file_descriptor_proto_size(), 0);
+    stream->WritesDone();
+    EXPECT_TRUE(stream->Finish().ok());
+  }
+
+  ASSERT_EQ(kill(child.pid(), SIGTERM), 0);
+  const int status = child.Wait(std::chrono::seconds(15));
+  ASSERT_NE(status, -1) << "did not exit within 15 s of SIGTERM";
+  ASSERT_TRUE(WIFEXITED(status)) << "killed by a signal";
+  EXPECT_EQ(WEXITSTATUS(status), 0);
+
+  // The database is complete and consistent (checkpointed: no -wal left over).
+  EXPECT_FALSE(std::filesystem::exists(data_dir / "seaplan.db-wal") &&
+               std::filesystem::file_size(data_dir / "seaplan.db-wal") > 0);
+  auto store = storage::SqliteStore::Open((data_dir / "seaplan.db").string());
+  ASSERT_TRUE(store.ok()) << store.status();
+  EXPECT_TRUE((*store)->CheckIntegrity().ok());
+  EXPECT_EQ(*(*store)->SchemaVersion(), storage::LatestSchemaVersion());
+}
+
+TEST(ServerBinaryTest, BadFlagsAndBusyPortsFailWithNonZeroExit) {
+  const std::filesystem::path binary = seaplan::testing::BinDir() / "seaplan-server";
+  if (!std::filesystem::exists(binary)) GTEST_SKIP() << binary << " not built";
+  TempDir dir;
+  {
+    Child child({binary.string(), "--planning-threads", "0", "--data-dir", (dir.path() / "d").string()});
+    const int status = child.Wait(std::chrono::seconds(10));
+    ASSERT_NE(status, -1);
+    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) != 0);
+  }
+  {
+    Child child({binary.string(), "--log-level", "loud", "--data-dir", (dir.path() / "d").string()});
+    const int status = child.Wait(std::chrono::seconds(10));
+    ASSERT_NE(status, -1);
+    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) != 0);
+  }
+  {
+    // A port another socket holds: the server says so and exits 1.
+    const int fd = socket(AF_INET, SOCK_STREAM, 0);
+    ASSERT_GE(fd, 0);
+    sockaddr_in addr{};
+    addr.sin_family = AF_INET;
+    addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
+    addr.sin_port = 0;
+    ASSERT_EQ(bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof addr), 0);
+    ASSERT_EQ(listen(fd, 1), 0);
+    socklen_t len = sizeof addr;
+    ASSERT_EQ(getsockname(fd, reinterpret_cast<sockaddr*>(&addr), &len), 0);
+    const std::string busy = "127.0.0.1:" + std::to_string(ntohs(addr.sin_port));
+    Child child({binary.string(), "--grpc-addr", "127.0.0.1:0", "--http-addr", busy, "--data-dir",
+                 (dir.path() / "d").string(), "--log-level", "off"});
+    const int status = child.Wait(std::chrono::seconds(10));
+    close(fd);
+    ASSERT_NE(status, -1);
+    EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 1);
+  }
+}
+
+}  // namespace
+}  // namespace seaplan::server::testing

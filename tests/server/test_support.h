@@ -1,0 +1,90 @@
+// Helpers of the server end-to-end tests: a temporary data folder, a server
+// started in-process on ephemeral loopback ports, gRPC stubs, an HTTP client
+// and a fake mission engine whose timing the tests control.
+#pragma once
+
+#include <gtest/gtest.h>
+#include <grpcpp/grpcpp.h>
+#include <httplib.h>
+
+#include <atomic>
+#include <chrono>
+#include <filesystem>
+#include <memory>
+#include <string>
+#include <thread>
+
+#include "seaplan/storage/sqlite_store.h"
+#include "seaplan/v1/chart.grpc.pb.h"
+#include "seaplan/v1/mission.grpc.pb.h"
+#include "seaplan/v1/planning.grpc.pb.h"
+#include "seaplan/v1/route.grpc.pb.h"
+#include "server/core/mission_engine.h"
+#include "server/server.h"
+
+namespace seaplan::server::testing {
+
+class TempDir {
+ public:
+  TempDir();
+  ~TempDir();
+  const std::filesystem::path& path() const { return path_; }
+
+ private:
+  std::filesystem::path path_;
+};
+
+// A MissionEngine for tests. Version N has tasks "vN-t0" and "vN-t1".
+// TASK_COMPLETED of the last task of the current version completes the
+// mission; TASK_FAILED asks for a replan.
+class FakeMissionEngine final : public MissionEngine {
+ public:
+  // When set, PlanInitial and Replan wait until their StopToken stops (at
+  // most 20 s) and report what stopped them.
+  std::atomic<bool> block_until_stopped{false};
+  std::atomic<int> last_stop_reason{static_cast<int>(StopReason::kNone)};
+  std::atomic<int> plan_calls{0};
+  std::atomic<bool> stopped_work_finished{false};
+
+  absl::Status CheckSpec(const v1::MissionSpec& spec) override;
+  absl::StatusOr<PlannedVersion> PlanInitial(const v1::MissionSpec& spec, const StopToken& stop) override;
+  absl::StatusOr<std::optional<PlannedVersion>> Replan(const v1::MissionSpec& spec, const MissionRuntimeState& state,
+                                                       std::string_view reason, const StopToken& stop) override;
+  FeedbackDecision OnFeedback(const v1::MissionSpec& spec, const MissionRuntimeState& state,
+                              const v1::Feedback& feedback) override;
+
+ private:
+  absl::Status MaybeBlock(const StopToken& stop);
+  static PlannedVersion MakeVersion(int version, double origin_s);
+};
+
+// The server in-process on 127.0.0.1:0 (both transports), over a fresh
+// database in a temporary folder.
+class InProcessServer {
+ public:
+  explicit InProcessServer(std::shared_ptr<MissionEngine> engine = nullptr, int planning_threads = 2);
+  ~InProcessServer();
+
+  Server& server() { return *server_; }
+  storage::SqliteStore& store() { return *store_; }
+  std::string grpc_target() const { return "127.0.0.1:" + std::to_string(server_->grpc_port()); }
+  int http_port() const { return server_->http_port(); }
+  std::shared_ptr<grpc::Channel> channel() { return channel_; }
+  httplib::Client http() const;
+
+ private:
+  TempDir dir_;
+  std::unique_ptr<storage::SqliteStore> store_;
+  std::unique_ptr<Server> server_;
+  std::shared_ptr<grpc::Channel> channel_;
+};
+
+// A minimal valid mission spec (the fake engine does not read the PDDL).
+v1::MissionSpec SampleSpec(const std::string& name = "case-a");
+
+// Runs `fn` with a deadline of `ms` on `ctx`.
+inline void SetDeadline(grpc::ClientContext* ctx, int ms) {
+  ctx->set_deadline(std::chrono::system_clock::now() + std::chrono::milliseconds(ms));
+}
+
+}  // namespace seaplan::server::testing
