@@ -1390,6 +1390,31 @@ class Grounder {
     }
     Effects& target = eff.time == TimeSpec::kAtEnd ? a.end_effects : a.start_effects;
     // The effect itself.
+    if (eff.k != EffItem::K::kNum && eff.cond.k == F::K::kTrue) {
+      // Fast path (most effects): an unconditional add or delete.
+      args_scratch_.clear();
+      for (auto x : eff.args) {
+        const Obj o = IsVar(x) ? b[static_cast<std::size_t>(Slot(x))] : x;
+        if (o < 0) {
+          Error(pddl::DiagnosticKind::kUnsupported, eff.location, "",
+                "an effect uses a variable bound only by an existential precondition");
+          return false;
+        }
+        args_scratch_.push_back(o);
+      }
+      const std::int32_t id = FindAtom(eff.pred, args_scratch_);
+      FactId fact = id >= 0 && static_cast<std::size_t>(id) < atom_fact_.size() ? FactOf(id) : -1;
+      if (eff.k == EffItem::K::kAdd) {
+        if (fact < 0) {
+          std::vector<Obj> args = args_scratch_;
+          fact = ForceFact(eff.pred, args);
+        }
+        target.add.push_back(fact);
+      } else if (fact >= 0) {
+        target.del.push_back(fact);
+      }
+      return true;
+    }
     std::vector<FactId> add, del;
     std::vector<NumericEffect> num;
     if (eff.k == EffItem::K::kNum) {
@@ -1484,32 +1509,77 @@ class Grounder {
     }
   }
 
+  // For a spec of plain literals and equalities (the common case), fills the
+  // action's conditions directly, without building a ground formula. Returns
+  // false when the spec needs the general path (quantifiers, comparisons);
+  // `ok` is false when a literal is statically false.
+  bool SimpleConditions(const Spec& spec, const std::vector<Obj>& b, Action& a, bool& ok) {
+    for (const F* item : spec.items) {
+      if (item->k != F::K::kAtom && item->k != F::K::kEq) return false;
+    }
+    ok = true;
+    for (const F* item : spec.items) {
+      if (item->k == F::K::kEq) {
+        Obj x = IsVar(item->args[0]) ? b[static_cast<std::size_t>(Slot(item->args[0]))] : item->args[0];
+        Obj y = IsVar(item->args[1]) ? b[static_cast<std::size_t>(Slot(item->args[1]))] : item->args[1];
+        if ((x == y) != item->positive) ok = false;
+        continue;
+      }
+      args_scratch_.clear();
+      for (auto x : item->args) args_scratch_.push_back(IsVar(x) ? b[static_cast<std::size_t>(Slot(x))] : x);
+      const std::int32_t id = FindAtom(item->pred, args_scratch_);
+      if (pred_static_[static_cast<std::size_t>(item->pred)]) {
+        const bool known_true = id >= 0 && atom_popped_[static_cast<std::size_t>(id)];
+        if (known_true != item->positive) ok = false;
+        continue;
+      }
+      const FactId fact = id >= 0 && static_cast<std::size_t>(id) < atom_fact_.size() ? FactOf(id) : -1;
+      if (fact < 0) {
+        if (item->positive) ok = false;  // unreachable; a negative literal on it is true
+        continue;
+      }
+      Condition& c = item->time == TimeSpec::kOverAll ? a.over_all
+                     : item->time == TimeSpec::kAtEnd ? a.at_end
+                                                      : a.at_start;
+      auto& list = item->positive ? c.positive : c.negative;
+      if (std::find(list.begin(), list.end(), fact) == list.end()) list.push_back(fact);
+    }
+    return true;
+  }
+
   bool BuildActions() {
-    std::unordered_map<std::uint64_t, int> variants;  // (schema, params) hash -> next variant; see below
     TupleSet names;  // (schema, params...) -> id, for variant numbering
     std::vector<int> next_variant;
+    task_->actions.reserve(instances_.size());
     for (std::size_t inst = 0; inst < instances_.size(); ++inst) {
       auto key = instances_.Get(static_cast<std::int32_t>(inst));
       const Spec& spec = specs_[static_cast<std::size_t>(key[0])];
       const Schema& s = *schemas_[static_cast<std::size_t>(spec.schema)];
       std::vector<Obj> b(key.begin() + 1, key.end());
+      Action simple;
+      bool simple_ok = true;
+      const bool is_simple = SimpleConditions(spec, b, simple, simple_ok);
+      if (is_simple && !simple_ok) continue;
       // Condition: the spec's items, grounded.
       GF cond;
       cond.k = GF::K::kAnd;
       for (const F* item : spec.items) {
+        if (is_simple) break;
         if (!AddKid(cond, GroundF(*item, b, s, false), true)) break;
       }
       cond = Collapse(std::move(cond), true);
       if (budget_exceeded_) return false;
       if (cond.k == GF::K::kFalse) continue;
       std::vector<GroundLits> dnf;
-      if (!GroundDnf(cond, dnf)) {
+      if (is_simple) {
+        dnf.emplace_back();  // conditions already in `simple`
+      } else if (!GroundDnf(cond, dnf)) {
         Error(pddl::DiagnosticKind::kUnsupported, s.action->location, s.action->name,
               "ground precondition too large in disjunctive normal form");
         return false;
       }
       if (dnf.empty()) continue;
-      Action base;
+      Action base = std::move(simple);
       base.name = s.action->name;
       for (int p = 0; p < s.n_params; ++p) base.args.push_back(object_names_[static_cast<std::size_t>(b[static_cast<std::size_t>(p)])]);
       base.is_durative = s.action->durative;
@@ -1528,15 +1598,25 @@ class Grounder {
       std::vector<Obj> eb = b;
       if (!GroundEffects(s, eb, base)) return false;
       if (effect_undefined_) continue;
-      key_.clear();
-      key_.push_back(spec.schema);
-      key_.insert(key_.end(), b.begin(), b.begin() + s.n_params);
-      auto [name_id, fresh] = names.Insert(key_);
-      if (fresh) next_variant.push_back(0);
-      for (const auto& lits : dnf) {
-        Action a = base;
-        if (!FillConditions(a, lits)) continue;
-        a.variant = next_variant[static_cast<std::size_t>(name_id)]++;
+      // Variant numbers: only schemas with several specs or existential
+      // variables can produce one (name, args) twice, so only they pay for
+      // the lookup.
+      int* variant = nullptr;
+      int local_variant = 0;
+      if (s.specs.size() > 1 || spec.free_vars.size() > static_cast<std::size_t>(s.n_params)) {
+        key_.clear();
+        key_.push_back(spec.schema);
+        key_.insert(key_.end(), b.begin(), b.begin() + s.n_params);
+        auto [name_id, fresh] = names.Insert(key_);
+        if (fresh) next_variant.push_back(0);
+        variant = &next_variant[static_cast<std::size_t>(name_id)];
+      } else {
+        variant = &local_variant;
+      }
+      for (std::size_t v = 0; v < dnf.size(); ++v) {
+        Action a = v + 1 == dnf.size() ? std::move(base) : base;
+        if (!FillConditions(a, dnf[v])) continue;
+        a.variant = (*variant)++;
         task_->actions.push_back(std::move(a));
         if (task_->actions.size() > options_.max_actions) {
           Error(pddl::DiagnosticKind::kSemantic, problem_.location, "",
@@ -1546,7 +1626,6 @@ class Grounder {
         }
       }
     }
-    (void)variants;
     return true;
   }
 
