@@ -296,6 +296,8 @@ StatusOr<ObstacleMap> LoadFromRoot(const std::string& root, const std::string& d
   std::vector<std::string> drivers;
   int recognised_layers = 0;
   int skipped_features = 0;
+  int opened = 0;
+  std::vector<std::string> unreadable;
   std::vector<std::string> layer_names;
 
   for (const std::string& path : datasets) {
@@ -307,11 +309,15 @@ StatusOr<ObstacleMap> LoadFromRoot(const std::string& root, const std::string& d
     std::unique_ptr<GDALDataset, GdalDatasetCloser> ds(GDALDataset::Open(
         path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, s57 ? kS57Options : nullptr, nullptr));
     if (!ds) {
+      // In a folder or archive with several datasets, one unreadable file
+      // (a stray metadata .json) is a warning; the load fails only if no
+      // dataset can be read at all.
       const std::string why = errors.Joined();
-      return absl::InvalidArgumentError(absl::StrCat("'", display, "': '", BaseName(path),
-                                                     "' is not a chart GDAL can read",
-                                                     why.empty() ? "" : absl::StrCat(" (", why, ")")));
+      unreadable.push_back(absl::StrCat("'", BaseName(path), "' is not a chart GDAL can read",
+                                        why.empty() ? "" : absl::StrCat(" (", why, ")")));
+      continue;
     }
+    ++opened;
     const std::string driver = ds->GetDriver() != nullptr ? ds->GetDriver()->GetDescription() : "?";
     if (std::find(drivers.begin(), drivers.end(), driver) == drivers.end()) drivers.push_back(driver);
     for (OGRLayer* layer : ds->GetLayers()) {
@@ -361,6 +367,10 @@ StatusOr<ObstacleMap> LoadFromRoot(const std::string& root, const std::string& d
       if (rule.role != Role::kSeabed) summary.features_per_layer[name] += taken;
     }
   }
+  if (opened == 0) {
+    return absl::InvalidArgumentError(absl::StrCat("'", display, "': ", unreadable.front()));
+  }
+  for (const std::string& u : unreadable) summary.warnings.push_back(absl::StrCat(u, "; skipped"));
   summary.source_format = absl::StrJoin(drivers, "+");
   if (recognised_layers == 0) {
     return absl::InvalidArgumentError(absl::StrCat("'", display, "' has no obstacle layer (layers: ",

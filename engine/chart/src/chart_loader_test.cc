@@ -89,11 +89,16 @@ TEST(ChartLoader, BytesAndZipGiveTheSameChart) {
   auto from_bytes = LoadChartBytes({{"harbour.geojson", bytes}}, ChartOptions{});
   ASSERT_TRUE(from_file.ok() && from_bytes.ok()) << from_bytes.status();
   EXPECT_DOUBLE_EQ(from_bytes->summary().total_area_m2, from_file->summary().total_area_m2);
-  const std::string zip = MakeZip({{"upload/harbour.geojson", bytes}, {"upload/readme.txt", "hello"}});
+  const std::string zip = MakeZip({{"upload/harbour.geojson", bytes},
+                                   {"upload/readme.txt", "hello"},
+                                   {"upload/metadata.json", "{\"not\": \"a chart\"}"}});
   auto from_zip = LoadChartBytes({{"chart.zip", zip}}, ChartOptions{});
   ASSERT_TRUE(from_zip.ok()) << from_zip.status();
   EXPECT_DOUBLE_EQ(from_zip->summary().total_area_m2, from_file->summary().total_area_m2);
   EXPECT_EQ(from_zip->summary().features_per_layer.at("harbour"), 3);
+  // The stray metadata.json is skipped with a warning naming it.
+  ASSERT_FALSE(from_zip->summary().warnings.empty());
+  EXPECT_NE(from_zip->summary().warnings.back().find("metadata.json"), std::string::npos);
 }
 
 TEST(ChartLoader, SeabedLayersChooseTheDeepestAtMostMinDepth) {

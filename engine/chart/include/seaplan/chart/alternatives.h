@@ -9,13 +9,20 @@
 // it on each side becomes a waypoint; recursion on every new segment that
 // still crosses a hull (depth limit max_depth, at most max_alternatives).
 //
-// Why a fallback: on real charts a hull of a large concave land polygon (a
-// fjord!) often swallows start or goal, or hulls merge into one that covers
-// the whole chart. Then (and when A1 yields no crossing-free alternative)
-// we fall back to a shortest path in the visibility graph of the obstacle
-// polygons dilated by margin_m (nodes: their convex vertices within a
-// corridor around start-goal, grown until a path is found), which avoids
-// every obstacle exactly but yields a single route. `used_fallback` says so.
+// When A1 cannot answer (our additions, in this order):
+//  1. A1 on the whole chart (the paper). On real charts the hull of a large
+//     concave land polygon (a fjord, a bay) often swallows start or goal, or
+//     hulls merge into one that covers the chart; then
+//  2. A1 on the obstacles clipped to a corridor box around start-goal
+//     (grown by 0.15, then 0.35 x the distance): the hulls of the local pieces
+//     of a coast rarely contain start/goal. Routes are then verified against
+//     the real obstacles (the clipped-away parts too) and dropped if they hit.
+//  3. A shortest path in the visibility graph of the obstacles dilated by
+//     margin_m (nodes: convex vertices within a corridor box grown until a
+//     path exists), which avoids every obstacle exactly but yields a single
+//     route; `used_fallback` and `note` say so.
+// Every returned route is checked against the obstacles (ObstacleQuery) and
+// must stay inside the chart coverage.
 #pragma once
 
 #include <string>

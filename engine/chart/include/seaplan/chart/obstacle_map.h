@@ -11,26 +11,30 @@
 //
 // What is an obstacle (min depth D = ChartOptions::min_depth_m)
 //   S-57:  LNDARE (areas; points buffered by point_hazard_radius_m),
-//          DEPARE with DRVAL1 < D (DRVAL1 missing: obstacle),
-//          OBSTRN / WRECKS / UWTROC with VALSOU < D; VALSOU unknown is an
-//          obstacle too (a rock or wreck of unknown depth is charted as
-//          dangerous: IHO S-4 / S-52 symbolise it as such), points and lines
-//          buffered by point_hazard_radius_m.
+//          DEPARE and DRGARE (dredged areas) with DRVAL1 < D, UNSARE
+//          (unsurveyed: depth unknown), OBSTRN / WRECKS / UWTROC with
+//          VALSOU < D, points and lines buffered by point_hazard_radius_m.
+//          Unknown depth (VALSOU or DRVAL1 missing) is an obstacle while
+//          unknown_depth_is_obstacle (default): a rock or wreck of unknown
+//          depth is charted as dangerous (S-52 symbolises it so), and a
+//          planner must not assume water it cannot see.
 //          Opened with UPDATES=APPLY (the .001.. files beside the .000 are
 //          applied), SPLIT_MULTIPOINT=ON, ADD_SOUNDG_DEPTH=ON,
 //          RETURN_PRIMITIVES=OFF, RETURN_LINKAGES=OFF, LNAM_REFS=OFF.
+//          Coverage: the extent of M_COVR when present.
 //   Kartverket FileGDB (Sjokart - Dybdedata): landareal, torrfall (drying),
-//          dybdeareal with minimumsdybde < D, grunne with dybde < D (points,
-//          buffered), skjer (rocks, no depth: always).
-//   Other vector sets (shapefile folders, GeoJSON): a layer named land*,
-//          shore*, torrfall*, landareal* or obstacle* is an obstacle as a
-//          whole. Layers named seabed<N>m (N metres: "sea deeper than N m",
-//          the Alesund set) give obstacles = chart box minus the seabed<N>m
-//          polygon with the largest N <= D (the sea that is deep enough for
-//          sure; a larger N would close water that is navigable, a smaller N
-//          would allow water shallower than D... we choose safety: the largest
-//          N <= D). If no N <= D exists the load fails. Layers with a numeric
-//          field "depth"/"DRVAL1"/"minimumsdybde" are treated like DEPARE.
+//          skjer (rocks, no depth), dybdeareal with minimumsdybde < D,
+//          grunne (shoal points) with dybde < D.
+//   Other vector sets (shapefile folders, GeoJSON; layer = file stem):
+//          land*, shore*, obstacle*, torrfall*: every feature.
+//          seabed<N>m ("sea deeper than N m", the Alesund set): obstacles =
+//          chart box (extent of all recognised layers) minus the seabed<N>m
+//          polygon with the largest N <= D: that water is surely deeper than
+//          N and N is as close to D as the set allows without calling
+//          shallower water navigable. No N <= D -> InvalidArgument.
+//          A layer with a DRVAL1 / minimumsdybde / VALSOU / dybde field: the
+//          features below D (or of unknown depth). Any other layer: every
+//          feature (plain land/obstacle polygons).
 //
 // Thread-safety
 //   ObstacleMap is immutable after construction: every const method may be
