@@ -4,10 +4,12 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <filesystem>
 #include <fstream>
 #include <sstream>
 #include <string>
 
+#include "cpl_vsi.h"
 #include "gdal_priv.h"
 #include "ogrsf_frmts.h"
 #include "seaplan/chart/alternatives.h"
@@ -143,6 +145,7 @@ TEST(TrondheimGdb, ObstacleCountsAndRoute) {
   EXPECT_EQ(layers.at("landareal"), 98);
   EXPECT_EQ(layers.at("torrfall"), 126);
   EXPECT_EQ(layers.at("skjer"), 12);
+  EXPECT_EQ(layers.at("ikkekartlagtsjomaltomr"), 7);
   EXPECT_EQ(layers.at("dybdeareal"), CountBelow(gdb.string(), "dybdeareal", "minimumsdybde", 5.0, true, true));
   EXPECT_EQ(layers.at("grunne"), CountBelow(gdb.string(), "grunne", "dybde", 5.0, true, false));
   EXPECT_EQ(map->frame().epsg(), 32632);
@@ -155,6 +158,51 @@ TEST(TrondheimGdb, ObstacleCountsAndRoute) {
     ASSERT_TRUE(result.ok()) << result.status();
     ExpectRouteAvoidsEverything(*map, *result);
   }
+}
+
+// Zips a folder of the shared data in memory (GDAL's /vsizip/ writer), as the
+// server receives an uploaded FileGDB folder or shapefile set.
+std::string ZipFolder(const std::filesystem::path& dir, const std::string& prefix) {
+  static int n = 0;
+  const std::string zip = "/vsimem/chart_data_test_" + std::to_string(++n) + ".zip";
+  for (const auto& entry : std::filesystem::recursive_directory_iterator(dir)) {
+    if (!entry.is_regular_file()) continue;
+    const std::string rel = prefix + std::filesystem::relative(entry.path(), dir).string();
+    const std::string bytes = testing::ReadFile(entry.path());
+    VSILFILE* f = VSIFOpenL(("/vsizip/" + zip + "/" + rel).c_str(), "wb");
+    if (f == nullptr) return "";
+    VSIFWriteL(bytes.data(), 1, bytes.size(), f);
+    VSIFCloseL(f);
+  }
+  vsi_l_offset size = 0;
+  GByte* data = VSIGetMemFileBuffer(zip.c_str(), &size, FALSE);
+  std::string out(reinterpret_cast<const char*>(data), size);
+  VSIUnlink(zip.c_str());
+  return out;
+}
+
+TEST(TrondheimGdb, ZippedUploadMatchesTheFolder) {
+  SEAPLAN_REQUIRE_SHARED(gdb, "enc/trondheim/Trondheim.gdb");
+  const std::string zip = ZipFolder(gdb, "Trondheim.gdb/");
+  ASSERT_FALSE(zip.empty());
+  auto from_zip = LoadChartBytes({{"trondheim.zip", zip}}, ChartOptions{});
+  auto from_dir = LoadChartFile(gdb.string(), ChartOptions{});
+  ASSERT_TRUE(from_zip.ok()) << from_zip.status();
+  ASSERT_TRUE(from_dir.ok()) << from_dir.status();
+  EXPECT_EQ(from_zip->summary().features_per_layer, from_dir->summary().features_per_layer);
+  EXPECT_DOUBLE_EQ(from_zip->summary().total_area_m2, from_dir->summary().total_area_m2);
+}
+
+TEST(AlesundShapefiles, ZippedUploadMatchesTheFolder) {
+  SEAPLAN_REQUIRE_SHARED(dir, "enc/alesund/shapefiles");
+  ChartOptions o;
+  o.frame_epsg = 25833;
+  auto from_zip = LoadChartBytes({{"alesund.zip", ZipFolder(dir, "")}}, o);
+  auto from_dir = LoadChartFile(dir.string(), o);
+  ASSERT_TRUE(from_zip.ok()) << from_zip.status();
+  ASSERT_TRUE(from_dir.ok()) << from_dir.status();
+  EXPECT_EQ(from_zip->summary().features_per_layer, from_dir->summary().features_per_layer);
+  EXPECT_DOUBLE_EQ(from_zip->summary().total_area_m2, from_dir->summary().total_area_m2);
 }
 
 TEST(AlesundShapefiles, TwoAlternativesAroundTheIsland) {

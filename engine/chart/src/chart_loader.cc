@@ -165,7 +165,8 @@ LayerRule Classify(const std::string& driver, const std::string& layer, OGRFeatu
     return {Role::kSkip};
   }
   // Kartverket "Sjokart - Dybdedata" (FileGDB or its GeoJSON exports).
-  if (l == "landareal" || l == "torrfall" || l == "skjer" || absl::StartsWith(l, "trondheim_landareal")) {
+  if (l == "landareal" || l == "torrfall" || l == "skjer" || l == "ikkekartlagtsjomaltomr" ||
+      absl::StartsWith(l, "trondheim_landareal")) {
     return {Role::kAll};
   }
   if (l == "dybdeareal") return {Role::kDepthArea, "minimumsdybde"};

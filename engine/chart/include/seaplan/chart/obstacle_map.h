@@ -23,7 +23,8 @@
 //          RETURN_PRIMITIVES=OFF, RETURN_LINKAGES=OFF, LNAM_REFS=OFF.
 //          Coverage: the extent of M_COVR when present.
 //   Kartverket FileGDB (Sjokart - Dybdedata): landareal, torrfall (drying),
-//          skjer (rocks, no depth), dybdeareal with minimumsdybde < D,
+//          skjer (rocks, no depth), ikkekartlagtsjomaltomr (unsurveyed sea,
+//          like UNSARE), dybdeareal with minimumsdybde < D,
 //          grunne (shoal points) with dybde < D.
 //   Other vector sets (shapefile folders, GeoJSON; layer = file stem):
 //          land*, shore*, obstacle*, torrfall*: every feature.
