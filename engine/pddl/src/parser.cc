@@ -422,6 +422,10 @@ class Builder {
       Unsupported(e, "continuous effect (#t)");
       return std::nullopt;
     }
+    if (head == "is-violated") {
+      Unsupported(e, "preference metric (is-violated)");
+      return std::nullopt;
+    }
     if (functions_.count(head) == 0) {
       Error(DiagnosticKind::kSemantic, e.items[0], "undeclared function", "a function declared in :functions");
       return std::nullopt;

@@ -218,6 +218,14 @@ TEST(ParseDomainTest, UnsupportedConstructsNameTheConstruct) {
        "process"},
       {"(define (domain d) (:predicates (p)) (:constraints (always (p))))", "constraints"},
   };
+  {
+    auto d = ParseDomain("(define (domain d) (:predicates (p)))");
+    ASSERT_TRUE(d.domain);
+    auto p = ParseProblem("(define (problem q) (:domain d) (:goal (p)) (:metric minimize (is-violated pref1)))",
+                          *d.domain);
+    EXPECT_TRUE(HasUnsupported(p.diagnostics)) << FormatDiagnostics(p.diagnostics);
+    EXPECT_NE(FindDiag(p.diagnostics, "is-violated"), nullptr);
+  }
   for (const auto& c : cases) {
     auto result = ParseDomain(c.text);
     EXPECT_FALSE(result.domain.has_value()) << c.text;

@@ -25,6 +25,8 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <fstream>
+#include <sstream>
 #include <limits>
 #include <unordered_map>
 #include <utility>
@@ -1943,17 +1945,18 @@ LoadResult Ground(const pddl::Domain& domain, const pddl::Problem& problem, cons
   return result;
 }
 
-LoadResult LoadTask(std::string_view domain_text, std::string_view problem_text, const GroundingOptions& options) {
+LoadResult LoadTask(std::string_view domain_text, std::string_view problem_text, const GroundingOptions& options,
+                    std::string_view domain_file, std::string_view problem_file) {
   LoadResult result;
   const auto start = std::chrono::steady_clock::now();
-  auto parsed_domain = pddl::ParseDomain(domain_text, "domain");
+  auto parsed_domain = pddl::ParseDomain(domain_text, domain_file);
   result.diagnostics = std::move(parsed_domain.diagnostics);
   if (!parsed_domain.domain) {
     result.stats.parse_ms = Millis(start);
     return result;
   }
   auto domain = std::make_shared<const pddl::Domain>(std::move(*parsed_domain.domain));
-  auto parsed_problem = pddl::ParseProblem(problem_text, *domain, "problem");
+  auto parsed_problem = pddl::ParseProblem(problem_text, *domain, problem_file);
   result.diagnostics.insert(result.diagnostics.end(), parsed_problem.diagnostics.begin(),
                             parsed_problem.diagnostics.end());
   result.stats.parse_ms = Millis(start);
@@ -1968,6 +1971,28 @@ LoadResult LoadTask(std::string_view domain_text, std::string_view problem_text,
   result.stats = grounded.stats;
   result.stats.parse_ms = parse_ms;
   return result;
+}
+
+LoadResult LoadTaskFromFiles(const std::string& domain_path, const std::string& problem_path,
+                             const GroundingOptions& options) {
+  auto read = [](const std::string& path, std::string& out) {
+    std::ifstream in(path, std::ios::binary);
+    if (!in) return false;
+    std::ostringstream ss;
+    ss << in.rdbuf();
+    out = ss.str();
+    return true;
+  };
+  std::string domain_text, problem_text;
+  LoadResult result;
+  for (const auto* path : {&domain_path, &problem_path}) {
+    if (!read(*path, path == &domain_path ? domain_text : problem_text)) {
+      result.diagnostics.push_back({pddl::Severity::kError, pddl::DiagnosticKind::kSyntax, {*path, 0, 0}, *path,
+                                    "cannot read the file", "a readable PDDL file"});
+    }
+  }
+  if (pddl::HasErrors(result.diagnostics)) return result;
+  return LoadTask(domain_text, problem_text, options, domain_path, problem_path);
 }
 
 ActionIndex::ActionIndex(const GroundTask& task) {

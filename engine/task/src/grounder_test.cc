@@ -354,6 +354,19 @@ std::string ReadTestData(const std::string& name) {
   return seaplan::testing::ReadFile(std::filesystem::path(SEAPLAN_PDDL_TESTDATA) / name);
 }
 
+TEST(GrounderTest, LoadTaskFromFilesNamesThePaths) {
+  const std::string dir = SEAPLAN_PDDL_TESTDATA;
+  auto ok = LoadTaskFromFiles(dir + "/fjord_domain.pddl", dir + "/fjord_case_a.pddl");
+  EXPECT_TRUE(ok.ok()) << ok.ErrorText();
+  auto bad = LoadTaskFromFiles(dir + "/paper000_domain_verbatim.pddl", dir + "/fjord_case_a.pddl");
+  EXPECT_FALSE(bad.ok());
+  EXPECT_NE(bad.ErrorText().find("paper000_domain_verbatim.pddl:34:17: error: type mismatch"), std::string::npos)
+      << bad.ErrorText();
+  auto missing = LoadTaskFromFiles(dir + "/no-such-file.pddl", dir + "/fjord_case_a.pddl");
+  EXPECT_FALSE(missing.ok());
+  EXPECT_NE(missing.ErrorText().find("cannot read"), std::string::npos);
+}
+
 TEST(GrounderTest, FjordCaseAHasTheHandCountedSize) {
   auto r = MustLoad(ReadTestData("fjord_domain.pddl"), ReadTestData("fjord_case_a.pddl"));
   ASSERT_TRUE(r.task);

@@ -79,9 +79,16 @@ struct LoadResult {
 LoadResult Ground(const pddl::Domain& domain, const pddl::Problem& problem,
                   const GroundingOptions& options = {});
 
-// Parses both texts (diagnostics name them "domain" and "problem") and grounds.
+// Parses both texts and grounds. Diagnostics name the texts `domain_file`
+// and `problem_file` ("domain" and "problem" unless given).
 LoadResult LoadTask(std::string_view domain_text, std::string_view problem_text,
-                    const GroundingOptions& options = {});
+                    const GroundingOptions& options = {}, std::string_view domain_file = "domain",
+                    std::string_view problem_file = "problem");
+
+// Reads both files and calls LoadTask (diagnostics name the paths). An
+// unreadable file is an error diagnostic, not an exception.
+LoadResult LoadTaskFromFiles(const std::string& domain_path, const std::string& problem_path,
+                             const GroundingOptions& options = {});
 
 // Finds ground actions by (name, args) in O(1) (names lower case). Build once
 // per task; holds a reference to the task's names (the task must outlive it).
