@@ -15,11 +15,10 @@ class LineScanner {
  public:
   LineScanner(std::string_view line, int line_number) : line_(line), line_number_(line_number) {}
 
+  // Skips every character Name() treats as a separator (a stray '\r' in a
+  // line is whitespace too).
   void SkipSpace() {
-    while (pos_ < line_.size() && (line_[pos_] == ' ' || line_[pos_] == '\t' ||
-                                   line_[pos_] == '\v' || line_[pos_] == '\f')) {
-      ++pos_;
-    }
+    while (pos_ < line_.size() && std::isspace(static_cast<unsigned char>(line_[pos_]))) ++pos_;
   }
   // True at the end of the line or at a ';' comment.
   bool AtEnd() const { return pos_ >= line_.size() || line_[pos_] == ';'; }
@@ -107,7 +106,11 @@ absl::StatusOr<PlanStep> ParseStep(std::string_view line, int line_number) {
     if (scan.AtEnd() || scan.Peek() == '(' || scan.Peek() == '[' || scan.Peek() == ']') {
       return scan.Error(absl::StrCat("expected an argument or ')', found ", scan.Describe()));
     }
-    step.args.push_back(scan.Name());
+    std::string arg = scan.Name();
+    // Name() stops only at separators handled above; an empty name would
+    // mean no progress, so it is an error rather than a loop.
+    if (arg.empty()) return scan.Error(absl::StrCat("unexpected ", scan.Describe()));
+    step.args.push_back(std::move(arg));
   }
   scan.SkipSpace();
   if (scan.Peek() == '[') {

@@ -74,6 +74,44 @@ INSTANTIATE_TEST_SUITE_P(
         BadPlan{"1e999: (a)", "plan line 1, column 1", "out of range"},
         BadPlan{"\r\n\r\n  0.5 (a b c\r\n", "plan line 3, column 13", "expected an argument or ')'"}));
 
+TEST(ParsePlanTest, ArbitraryBytesGiveAPlanOrAnErrorNeverACrash) {
+  // Deterministic pseudo-random lines built from plan-like characters.
+  const std::string alphabet = "0123456789.:;()[] -+eEnaifx\t\r\n\xff";
+  std::uint32_t state = 12345;
+  auto next = [&] {
+    state = state * 1664525u + 1013904223u;
+    return state >> 8;
+  };
+  const std::string valid = "0.5: (a b) [1]\n12 (c)\n";
+  int parsed = 0, rejected = 0;
+  for (int i = 0; i < 3000; ++i) {
+    std::string text;
+    if (i % 2 == 0) {
+      const std::uint32_t length = next() % 60;
+      for (std::uint32_t k = 0; k < length; ++k) text += alphabet[next() % alphabet.size()];
+    } else {  // a valid plan with a few characters changed
+      text = valid;
+      for (int k = 0; k < 2; ++k) text[next() % text.size()] = alphabet[next() % alphabet.size()];
+    }
+    const auto plan = ParsePlan(text);
+    ++(plan.ok() ? parsed : rejected);
+    if (!plan.ok()) {
+      EXPECT_THAT(plan.status().message(), HasSubstr("plan line ")) << text;
+    } else {
+      // Whatever parsed prints and parses back to the same plan.
+      const auto again = ParsePlan(FormatPlan(*plan));
+      ASSERT_TRUE(again.ok()) << text;
+      Plan without_lines = *plan;
+      for (auto& step : without_lines.steps) step.line = 0;
+      Plan again_without_lines = *again;
+      for (auto& step : again_without_lines.steps) step.line = 0;
+      EXPECT_EQ(again_without_lines, without_lines) << text;
+    }
+  }
+  EXPECT_GT(parsed, 100);
+  EXPECT_GT(rejected, 100);
+}
+
 TEST(FormatPlanTest, PrintsShortestExactNumbers) {
   EXPECT_EQ(FormatTime(0.0), "0");
   EXPECT_EQ(FormatTime(-0.0), "0");
