@@ -57,13 +57,32 @@ int main(int argc, char** argv) {
   std::string shared = "/work/shared";
   if (const char* env = std::getenv("SEAPLAN_SHARED")) shared = env;
   int threads = 2, repeat = 3;
+  std::string field_only;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == "--threads" && i + 1 < argc) threads = std::atoi(argv[++i]);
+    if (a == "--field-only" && i + 1 < argc) field_only = argv[++i];
+    else if (a == "--threads" && i + 1 < argc) threads = std::atoi(argv[++i]);
     else if (a == "--repeat" && i + 1 < argc) repeat = std::atoi(argv[++i]);
     else shared = a;
   }
   log::SetLevel(log::Level::kWarn);
+  if (!field_only.empty()) {
+    // Obstacle-field build time on another chart (scalability check).
+    auto t0 = Clock::now();
+    auto m = chart::LoadChartFile(field_only, chart::ChartOptions{});
+    if (!m.ok()) {
+      std::fprintf(stderr, "cannot load %s: %s\n", field_only.c_str(), std::string(m.status().message()).c_str());
+      return 2;
+    }
+    const double load = Since(t0);
+    auto sm = std::make_shared<const chart::ObstacleMap>(std::move(m).value());
+    t0 = Clock::now();
+    auto p = route::RoutePlanner::Create(sm, route::ShipParticulars{}, route::RouteOptions{});
+    std::printf("%s: load %.3f s, %d polygons, %d vertices; obstacle field %s in %.3f s\n", field_only.c_str(), load,
+                sm->summary().polygon_count, sm->summary().vertex_count,
+                p.ok() ? "built" : std::string(p.status().message()).c_str(), Since(t0));
+    return p.ok() ? 0 : 1;
+  }
   const std::string dir = shared + "/enc/alesund/shapefiles";
   chart::ChartOptions co;
   co.min_depth_m = 5.0;

@@ -130,6 +130,13 @@ StatusOr<ObstacleField> ObstacleField::Build(std::vector<ObstaclePolygon> obstac
   // |d_e(p) - d_e(c)| <= hd (hd = half diagonal), so only edges with
   // d_e(c) <= min_e d_e(c) + 2 hd can win. Likewise the edges that a hull
   // centred in the cell can touch have d_e(c) <= R_outer + hd.
+  //
+  // Build cost: a first pass over blocks of kBlock x kBlock cells (centre C,
+  // half diagonal H) keeps per obstacle only the edges that can matter to any
+  // cell of the block (the same Lipschitz argument one level up), and
+  // inside/outside of every cell centre comes from one scanline per grid row;
+  // so a chart-sized coastline polygon costs O(blocks x edges + cells x local
+  // edges), not O(cells x edges).
   f.cell_ = options.cell_m;
   f.inv_cell_ = 1.0 / options.cell_m;
   f.grid_origin_ = {area_min.x - options.margin_m, area_min.y - options.margin_m};
@@ -139,52 +146,142 @@ StatusOr<ObstacleField> ObstacleField::Build(std::vector<ObstaclePolygon> obstac
   // Every obstacle a hull may touch must have an entry (HullHits relies on it).
   const double cutoff = std::max(options.far_cutoff_m, f.hull_outer_radius_ + 2 * hd);
   const double hull_reach = f.hull_outer_radius_ + hd;
-  f.cells_.resize(static_cast<size_t>(f.nx_) * f.ny_);
-  std::vector<double> d2;
-  for (int iy = 0; iy < f.ny_; ++iy) {
-    for (int ix = 0; ix < f.nx_; ++ix) {
-      Cell& cell = f.cells_[static_cast<size_t>(iy) * f.nx_ + ix];
-      const Vec2 c{f.grid_origin_.x + (ix + 0.5) * f.cell_, f.grid_origin_.y + (iy + 0.5) * f.cell_};
-      cell.entries_begin = static_cast<int32_t>(f.entries_.size());
-      cell.hull_begin = static_cast<int32_t>(f.hull_candidates_.size());
-      double clear = std::numeric_limits<double>::infinity();
-      for (int i = 0; i < f.obstacle_count(); ++i) {
-        const double bd = BoxDistance(c, f.obstacle_box_min_[i], f.obstacle_box_max_[i]);
-        if (bd - hd >= cutoff) {
-          clear = std::min(clear, bd - hd);
+  constexpr int kBlock = 4;
+  const double big_h = kBlock * options.cell_m * std::sqrt(0.5);
+  const size_t cell_count = static_cast<size_t>(f.nx_) * f.ny_;
+  struct TmpEntry {
+    CellObstacle entry;
+    std::vector<int32_t> cand, hull;
+  };
+  std::vector<std::vector<TmpEntry>> tmp(cell_count);
+  std::vector<float> clear(cell_count, std::numeric_limits<float>::max());
+  std::vector<uint8_t> inside_flag(cell_count);
+  std::vector<double> crossings, d2, dc2;
+  std::vector<int32_t> block_edges;
+  auto centre = [&](int ix, int iy) {
+    return Vec2{f.grid_origin_.x + (ix + 0.5) * f.cell_, f.grid_origin_.y + (iy + 0.5) * f.cell_};
+  };
+  for (int i = 0; i < f.obstacle_count(); ++i) {
+    const int eb = f.obstacle_edge_begin_[i], ee = f.obstacle_edge_begin_[i + 1];
+    const Vec2 lo = f.obstacle_box_min_[i], hi = f.obstacle_box_max_[i];
+    // Even-odd inside flags of the cell centres, one scanline per row.
+    std::fill(inside_flag.begin(), inside_flag.end(), 0);
+    for (int iy = 0; iy < f.ny_; ++iy) {
+      const double y = centre(0, iy).y;
+      if (y < lo.y || y > hi.y) continue;
+      crossings.clear();
+      for (int k = eb; k < ee; ++k) {
+        const Edge& e = f.edges_[k];
+        const double by = e.a.y + e.d.y;
+        if ((e.a.y > y) != (by > y)) crossings.push_back(e.a.x + (y - e.a.y) * e.d.x / e.d.y);
+      }
+      std::sort(crossings.begin(), crossings.end());
+      // Centre x is inside when an odd number of crossings lie to its right
+      // (PointInObstacle's rule: p.x < crossing).
+      size_t next = 0;
+      for (int ix = 0; ix < f.nx_; ++ix) {
+        const double x = centre(ix, 0).x;
+        while (next < crossings.size() && crossings[next] <= x) ++next;
+        inside_flag[static_cast<size_t>(iy) * f.nx_ + ix] = ((crossings.size() - next) % 2) == 1;
+      }
+    }
+    for (int by0 = 0; by0 < f.ny_; by0 += kBlock) {
+      for (int bx0 = 0; bx0 < f.nx_; bx0 += kBlock) {
+        const int bx1 = std::min(bx0 + kBlock, f.nx_), by1 = std::min(by0 + kBlock, f.ny_);
+        const Vec2 bc{f.grid_origin_.x + (bx0 + kBlock * 0.5) * f.cell_,
+                      f.grid_origin_.y + (by0 + kBlock * 0.5) * f.cell_};
+        const double bd = BoxDistance(bc, lo, hi);
+        if (bd - big_h - hd >= cutoff) {  // centres outside the box: outside
+          for (int iy = by0; iy < by1; ++iy) {
+            for (int ix = bx0; ix < bx1; ++ix) {
+              float& c = clear[static_cast<size_t>(iy) * f.nx_ + ix];
+              c = std::min<float>(c, static_cast<float>(bd - big_h - hd));
+            }
+          }
           continue;
         }
-        const int b = f.obstacle_edge_begin_[i], e = f.obstacle_edge_begin_[i + 1];
-        d2.resize(e - b);
+        dc2.resize(ee - eb);
         double min2 = std::numeric_limits<double>::infinity();
-        for (int k = b; k < e; ++k) {
-          d2[k - b] = f.EdgeDistance2(f.edges_[k], c);
-          min2 = std::min(min2, d2[k - b]);
+        for (int k = eb; k < ee; ++k) {
+          dc2[k - eb] = f.EdgeDistance2(f.edges_[k], bc);
+          min2 = std::min(min2, dc2[k - eb]);
         }
-        const double dmin = std::sqrt(min2);
-        const int8_t inside = dmin > hd ? (f.PointInObstacle(i, c) ? 1 : 0) : -1;
-        // Signed: a cell wholly inside an obstacle is never clear.
-        clear = std::min(clear, inside == 1 ? -(dmin - hd) : dmin - hd);
-        if (dmin - hd >= cutoff && inside != 1) continue;
-        CellObstacle entry;
-        entry.obstacle = i;
-        entry.inside = inside;
-        entry.cand_begin = static_cast<int32_t>(f.candidates_.size());
-        const double keep = (dmin + 2 * hd) * (dmin + 2 * hd);
-        const double hull_keep = hull_reach * hull_reach;
-        for (int k = b; k < e; ++k) {
-          if (d2[k - b] <= keep) f.candidates_.push_back(k);
-          if (d2[k - b] <= hull_keep) f.hull_candidates_.push_back(k);
+        const double dmin_b = std::sqrt(min2);
+        const bool far = dmin_b - big_h - hd >= cutoff;
+        block_edges.clear();
+        if (!far) {
+          const double keep = std::max(dmin_b + 2 * big_h + 2 * hd, hull_reach + big_h);
+          for (int k = eb; k < ee; ++k) {
+            if (dc2[k - eb] <= keep * keep) block_edges.push_back(k);
+          }
         }
-        entry.cand_end = static_cast<int32_t>(f.candidates_.size());
-        f.entries_.push_back(entry);
+        for (int iy = by0; iy < by1; ++iy) {
+          for (int ix = bx0; ix < bx1; ++ix) {
+            const size_t ci = static_cast<size_t>(iy) * f.nx_ + ix;
+            const bool centre_inside = inside_flag[ci] != 0;
+            if (far) {
+              // Deep inside (clipped distance) or far outside (no entry).
+              if (centre_inside) {
+                clear[ci] = -std::numeric_limits<float>::max();
+                TmpEntry t;
+                t.entry = {i, 0, 0, 2};
+                tmp[ci].push_back(std::move(t));
+              } else {
+                clear[ci] = std::min<float>(clear[ci], static_cast<float>(dmin_b - big_h - hd));
+              }
+              continue;
+            }
+            const Vec2 c = centre(ix, iy);
+            d2.resize(block_edges.size());
+            double cmin2 = std::numeric_limits<double>::infinity();
+            for (size_t j = 0; j < block_edges.size(); ++j) {
+              d2[j] = f.EdgeDistance2(f.edges_[block_edges[j]], c);
+              cmin2 = std::min(cmin2, d2[j]);
+            }
+            const double dmin = std::sqrt(cmin2);
+            const int8_t inside = dmin > hd ? (centre_inside ? 1 : 0) : -1;
+            clear[ci] = std::min<float>(clear[ci], inside == 1 ? -std::numeric_limits<float>::max()
+                                                               : static_cast<float>(dmin - hd));
+            if (dmin - hd >= cutoff) {
+              if (inside == 1) {
+                TmpEntry t;
+                t.entry = {i, 0, 0, 2};
+                tmp[ci].push_back(std::move(t));
+              }
+              continue;
+            }
+            TmpEntry t;
+            t.entry = {i, 0, 0, inside};
+            const double keep = (dmin + 2 * hd) * (dmin + 2 * hd);
+            const double hull_keep = hull_reach * hull_reach;
+            for (size_t j = 0; j < block_edges.size(); ++j) {
+              if (d2[j] <= keep) t.cand.push_back(block_edges[j]);
+              if (d2[j] <= hull_keep) t.hull.push_back(block_edges[j]);
+            }
+            tmp[ci].push_back(std::move(t));
+          }
+        }
       }
-      cell.entries_end = static_cast<int32_t>(f.entries_.size());
-      cell.hull_end = static_cast<int32_t>(f.hull_candidates_.size());
-      cell.clear_lb_m = static_cast<float>(std::min(clear, 1e30));
-      cell.inside_any = -1;
     }
   }
+  f.cells_.resize(cell_count);
+  for (size_t ci = 0; ci < cell_count; ++ci) {
+    Cell& cell = f.cells_[ci];
+    cell.entries_begin = static_cast<int32_t>(f.entries_.size());
+    cell.hull_begin = static_cast<int32_t>(f.hull_candidates_.size());
+    for (TmpEntry& t : tmp[ci]) {
+      t.entry.cand_begin = static_cast<int32_t>(f.candidates_.size());
+      f.candidates_.insert(f.candidates_.end(), t.cand.begin(), t.cand.end());
+      t.entry.cand_end = static_cast<int32_t>(f.candidates_.size());
+      f.hull_candidates_.insert(f.hull_candidates_.end(), t.hull.begin(), t.hull.end());
+      f.entries_.push_back(t.entry);
+    }
+    cell.entries_end = static_cast<int32_t>(f.entries_.size());
+    cell.hull_end = static_cast<int32_t>(f.hull_candidates_.size());
+    cell.clear_lb_m = clear[ci];
+    std::vector<TmpEntry>().swap(tmp[ci]);
+  }
+  f.deep_inside_m_ = cutoff;
   return f;
 }
 
@@ -229,6 +326,10 @@ double ObstacleField::SumExpDistance(Vec2 p, double zeta) const {
   double sum = 0.0;
   for (int32_t j = cell->entries_begin; j < cell->entries_end; ++j) {
     const CellObstacle& entry = entries_[j];
+    if (entry.inside == 2) {
+      sum += std::exp(std::min(kMaxExponent, zeta * deep_inside_m_));
+      continue;
+    }
     double min2 = std::numeric_limits<double>::infinity();
     for (int32_t k = entry.cand_begin; k < entry.cand_end; ++k) {
       min2 = std::min(min2, EdgeDistance2(edges_[candidates_[k]], p));
@@ -257,6 +358,10 @@ double ObstacleField::SignedDistance(Vec2 p) const {
   double best = std::numeric_limits<double>::infinity();
   for (int32_t j = cell->entries_begin; j < cell->entries_end; ++j) {
     const CellObstacle& entry = entries_[j];
+    if (entry.inside == 2) {
+      best = std::min(best, -deep_inside_m_);
+      continue;
+    }
     double min2 = std::numeric_limits<double>::infinity();
     for (int32_t k = entry.cand_begin; k < entry.cand_end; ++k) {
       min2 = std::min(min2, EdgeDistance2(edges_[candidates_[k]], p));

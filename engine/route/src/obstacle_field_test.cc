@@ -67,6 +67,35 @@ TEST(ObstacleFieldTest, GridQueriesEqualBruteForceEverywhere) {
   EXPECT_GT(hits, 1000);  // the test exercises both answers
 }
 
+TEST(ObstacleFieldTest, LargeJaggedCoastEqualsBruteForceAndDeepInsideIsInside) {
+  // A chart-sized jagged "coast" (400 vertices, radius 2000-2600 m) and a
+  // small rock: exercises the block pruning and the deep-inside entries.
+  ObstaclePolygon coast;
+  coast.rings.emplace_back();
+  for (int i = 0; i < 400; ++i) {
+    const double a = 2 * M_PI * i / 400, r = 2300 + 300 * std::sin(17 * a) * std::cos(5 * a);
+    coast.rings[0].push_back({r * std::cos(a), r * std::sin(a)});
+  }
+  auto built = ObstacleField::Build({coast, Circle({3200, 0}, 40, 9)}, {-4000, -4000}, {4000, 4000}, {});
+  ASSERT_TRUE(built.ok()) << built.status();
+  const ObstacleField& f = *built;
+  std::mt19937 rng(11);
+  std::uniform_real_distribution<double> u(-4500, 4500), h(-M_PI, M_PI);
+  for (int i = 0; i < 20000; ++i) {
+    const Vec2 p{u(rng), u(rng)};
+    const double sd = f.SignedDistanceBruteForce(p), psi = h(rng);
+    EXPECT_EQ(f.HullHits(p, psi), f.HullHitsBruteForce(p, psi)) << p.x << "," << p.y;
+    EXPECT_EQ(f.Inside(p), sd <= 0.0) << p.x << "," << p.y;
+    if (std::abs(sd) < 700) {
+      EXPECT_NEAR(f.SignedDistance(p), sd, 1e-9) << p.x << "," << p.y;
+      EXPECT_NEAR(f.SumExpDistance(p, 0.04), f.SumExpDistanceBruteForce(p, 0.04), 1e-9);
+    }
+  }
+  // Deep inside: clipped to -cutoff, still inside.
+  EXPECT_LE(f.SignedDistance({0, 0}), -700.0);
+  EXPECT_TRUE(f.HullHits({0, 0}, 0.3));
+}
+
 TEST(ObstacleFieldTest, HullTouchesShoreOnlyWhenCloseEnough) {
   ObstacleField f = MakeField();
   // Square's west face at x = 600. Ship heading north (along the face):

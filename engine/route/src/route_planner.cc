@@ -122,11 +122,14 @@ StatusOr<RoutePlanner> RoutePlanner::Create(std::shared_ptr<const chart::Obstacl
                                                      " has no service speed at throttle ", ship.service_throttle));
     }
   }
+  const chart::LocalBox cov = p.map_->summary().coverage;
   ObstacleFieldOptions fo;
-  fo.cell_m = options.field_cell_m;
+  // Large charts (a 1:80 000 ENC cell is ~50 x 80 km): coarser cells keep
+  // the grid near 250k cells; queries stay exact, candidate lists get longer.
+  const double area_m2 = (cov.max.x_m - cov.min.x_m + 2 * fo.margin_m) * (cov.max.y_m - cov.min.y_m + 2 * fo.margin_m);
+  fo.cell_m = std::max(options.field_cell_m, std::sqrt(std::max(area_m2, 0.0) / 250e3));
   fo.far_cutoff_m = std::min(3000.0, 30.0 / options.level2.weights.zeta1_per_m);
   fo.hull = {ship.hull.length_m, ship.hull.beam_m};
-  const chart::LocalBox cov = p.map_->summary().coverage;
   SEAPLAN_ASSIGN_OR_RETURN(
       ObstacleField field,
       ObstacleField::Build(ToObstacles(p.map_->polygons()), ToVec(cov.min), ToVec(cov.max), fo));

@@ -76,12 +76,14 @@ class ObstacleField {
 
   // Sum over obstacles of exp(-zeta * d_i(p)), d_i the signed distance to
   // obstacle i (negative inside; the exponent is capped at +50). Obstacles
-  // farther than far_cutoff_m are left out (their terms are < exp(-zeta*cutoff)).
+  // farther than far_cutoff_m are left out (their terms are < exp(-zeta*cutoff));
+  // deeper inside an obstacle than the cutoff, d_i is clipped to -cutoff.
   double SumExpDistance(Vec2 p, double zeta) const;
   double SumExpDistanceBruteForce(Vec2 p, double zeta) const;
 
   // Signed distance to the nearest obstacle (negative inside). Beyond
-  // far_cutoff_m the result is a lower bound >= far_cutoff_m - cell diagonal.
+  // far_cutoff_m outside the result is a lower bound; deeper inside than the
+  // cutoff it is clipped to -cutoff (the sign is always exact).
   double SignedDistance(Vec2 p) const;
   double SignedDistanceBruteForce(Vec2 p) const;
   bool Inside(Vec2 p) const;
@@ -106,13 +108,16 @@ class ObstacleField {
     int32_t obstacle;
     int32_t cand_begin;  // into candidates_
     int32_t cand_end;
-    int8_t inside;       // 0 outside, 1 inside, -1 boundary crosses cell: test
+    // 0 outside, 1 inside, -1 boundary crosses the cell: test; 2 deeper
+    // inside than the cutoff (no candidates; distance clipped to -cutoff).
+    int8_t inside;
   };
   struct Cell {
     int32_t entries_begin, entries_end;  // into entries_
     int32_t hull_begin, hull_end;        // into hull_candidates_
-    float clear_lb_m;  // lower bound of the unsigned distance to any boundary
-    int8_t inside_any; // centre region fully inside some obstacle (1) or not (0) or unknown (-1)
+    // Lower bound of the signed distance to any obstacle over the cell
+    // (negative when the cell may lie inside one).
+    float clear_lb_m;
   };
 
   bool PointInObstacle(int obstacle, Vec2 p) const;
@@ -137,6 +142,7 @@ class ObstacleField {
   std::vector<int32_t> hull_candidates_;
   std::vector<int32_t> all_edges_;  // 0..edges-1 (brute-force hull test)
   double hull_outer_radius_ = 0.0, hull_inner_radius_ = 0.0;
+  double deep_inside_m_ = 0.0;
 };
 
 }  // namespace seaplan::route

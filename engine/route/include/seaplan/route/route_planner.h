@@ -63,6 +63,7 @@ struct RouteOptions {
   // obstacles are fixed when the chart is loaded (ChartOptions::min_depth_m),
   // so a chart loaded for a shallower depth is FailedPrecondition.
   double min_depth_m = 0.0;
+  // Obstacle-field grid cell, metres (grown automatically on large charts).
   double field_cell_m = 50.0;
   absl::Status Validate() const;
 };
