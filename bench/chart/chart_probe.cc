@@ -12,6 +12,7 @@
 #include "seaplan/chart/alternatives.h"
 #include "seaplan/chart/geojson.h"
 #include "seaplan/chart/obstacle_map.h"
+#include "seaplan/common/log.h"
 
 int main(int argc, char** argv) {
   using namespace seaplan::chart;
@@ -35,6 +36,7 @@ int main(int argc, char** argv) {
       pos.push_back(args[i]);
     }
   }
+  if (std::getenv("CHART_PROBE_DEBUG") != nullptr) seaplan::log::SetLevel(seaplan::log::Level::kDebug);
   ChartOptions options;
   options.min_depth_m = std::atof(pos[1].c_str());
   if (pos.size() > 2) options.frame_epsg = std::atoi(pos[2].c_str());

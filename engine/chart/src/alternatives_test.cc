@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 
 namespace seaplan::chart {
@@ -131,6 +132,17 @@ TEST(Alternatives, UnreachableGoalIsNotFound) {
   const ObstacleMap map = MakeMap({ring});
   auto result = PlanAlternatives(map, P(-1000, 0), P(0, 0));
   EXPECT_EQ(result.status().code(), absl::StatusCode::kNotFound) << result.status();
+}
+
+TEST(Alternatives, StopTokenEndsTheSearch) {
+  const ObstacleMap map = MakeMap({Rect(-50, -50, 50, 50)});
+  AlternativesOptions options;
+  options.stop = StopToken::WithTimeout(std::chrono::seconds(0));
+  EXPECT_EQ(PlanAlternatives(map, P(-500, 0), P(500, 0), options).status().code(),
+            absl::StatusCode::kDeadlineExceeded);
+  options.stop = StopToken();
+  options.stop.Cancel();
+  EXPECT_EQ(PlanAlternatives(map, P(-500, 0), P(500, 0), options).status().code(), absl::StatusCode::kCancelled);
 }
 
 TEST(Alternatives, OptionsAreValidated) {

@@ -31,6 +31,7 @@
 #include "seaplan/chart/geodesy.h"
 #include "seaplan/chart/obstacle_map.h"
 #include "seaplan/common/status.h"
+#include "seaplan/common/stop_token.h"
 
 namespace seaplan::chart {
 
@@ -45,6 +46,10 @@ struct AlternativesOptions {
   bool allow_fallback = true;
   // Visibility-graph size limit (nodes); exceeding it is ResourceExhausted.
   int max_graph_nodes = 4000;
+  // Deadline / cancellation, polled in the A1 recursion and the graph
+  // search (default: never stops). Stopping gives DeadlineExceeded or
+  // Cancelled.
+  StopToken stop;
 
   absl::Status Validate() const;
 };
@@ -64,7 +69,8 @@ struct AlternativesResult {
 
 // Errors: InvalidArgument when start or goal lies inside an obstacle (the
 // message names which, and the obstacle index) or outside chart coverage;
-// NotFound when no obstacle-free route exists; ResourceExhausted on limits.
+// NotFound when no obstacle-free route exists; ResourceExhausted on limits;
+// DeadlineExceeded / Cancelled when options.stop fires.
 StatusOr<AlternativesResult> PlanAlternatives(const ObstacleMap& map, LocalPoint start,
                                               LocalPoint goal,
                                               const AlternativesOptions& options = {});
