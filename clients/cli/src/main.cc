@@ -14,6 +14,7 @@
 #include "backend.h"
 #include "google/protobuf/util/json_util.h"
 #include "output.h"
+#include "seaplan/common/log.h"
 #include "seaplan/common/status.h"
 
 
@@ -467,6 +468,16 @@ int Main(int argc, char** argv) {
                  "Server address host:port (env SEAPLAN_SERVER); in-process when empty");
   app.add_flag("--json", options.json, "Machine-readable JSON output");
   app.add_option("--timeout", options.timeout_s, "RPC deadline in seconds (0: none)");
+  std::string log_level = "warn";
+  app.add_option("--log-level", log_level, "debug, info, warn, error or off (in-process work)")
+      ->capture_default_str();
+  app.parse_complete_callback([&] {
+    log::Level level;
+    if (!log::ParseLevel(log_level, &level)) {
+      throw CLI::ValidationError("--log-level", "expected debug, info, warn, error or off");
+    }
+    log::SetLevel(level);
+  });
 
   int exit_code = kExitSuccess;
 
