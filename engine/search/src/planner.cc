@@ -68,7 +68,7 @@ class PlannerRun {
         observer_(observer),
         snap_(task),
         registry_(snap_.num_facts(), snap_.num_vars()),
-        heuristic_(snap_),
+        heuristic_(snap_, options.epsilon_s),
         transitions_(snap_, options.max_concurrent_actions, options.epsilon_s),
         timeline_(snap_, options.epsilon_s, options.max_concurrent_actions > 0),
         plan_timeline_(snap_, options.epsilon_s, options.max_concurrent_actions > 0) {}

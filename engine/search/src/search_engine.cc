@@ -1,6 +1,7 @@
 #include "search_engine.h"
 
 #include <algorithm>
+#include <cstdlib>
 
 namespace seaplan::search {
 
@@ -22,7 +23,8 @@ LazySearch::NodeInfo& LazySearch::Info(StateId id) {
 }
 
 std::size_t LazySearch::MemoryBytes() const {
-  return info_.capacity() * sizeof(NodeInfo) + open_all_.MemoryBytes() +
+  return info_.capacity() * sizeof(NodeInfo) + slack_pool_.capacity() * sizeof(double) +
+         open_all_.MemoryBytes() +
          open_preferred_.MemoryBytes() + path_.capacity() * sizeof(Event);
 }
 
@@ -48,6 +50,21 @@ void LazySearch::ExtractPath(std::int32_t state, std::vector<Event>* out) const 
   std::reverse(out->begin(), out->end());
 }
 
+bool LazySearch::SlackAtLeast(const NodeInfo& n, const std::vector<double>& slack) const {
+  // Same logical state, so the same window actions in the same order.
+  for (int i = 0; i < n.slack_count; ++i) {
+    if (slack_pool_[static_cast<std::size_t>(n.slack_begin + i)] < slack[static_cast<std::size_t>(i)] - 1e-9) return false;
+  }
+  return true;
+}
+
+bool LazySearch::SlackAtMost(const NodeInfo& n, const std::vector<double>& slack) const {
+  for (int i = 0; i < n.slack_count; ++i) {
+    if (slack_pool_[static_cast<std::size_t>(n.slack_begin + i)] > slack[static_cast<std::size_t>(i)] + 1e-9) return false;
+  }
+  return true;
+}
+
 bool LazySearch::IsAncestor(std::int32_t maybe_ancestor, std::int32_t state) const {
   for (std::int32_t x = state; x >= 0; x = info_[static_cast<std::size_t>(x)].parent) {
     if (x == maybe_ancestor) return true;
@@ -60,7 +77,7 @@ void LazySearch::Push(std::int32_t state, bool preferred, double parent_h) {
   double primary, secondary;
   if (params_.weight < 0) {
     primary = parent_h;
-    secondary = n.g_s;
+    secondary = getenv("H3_FIFO") ? 0.0 : n.g_s;
   } else {
     primary = n.lb_s + params_.weight * params_.scale_s * parent_h;
     secondary = parent_h;
@@ -99,7 +116,10 @@ LazySearch::Status LazySearch::Step() {
     plan_makespan_s_ = 0;
     return Status::kSolved;
   }
-  const int h = heuristic_.Evaluate(current_, &preferred_);
+  const NodeInfo& cur = info_[static_cast<std::size_t>(s)];
+  const int h = heuristic_.Evaluate(
+      current_, &preferred_,
+      std::span<const double>(slack_pool_.data() + cur.slack_begin, static_cast<std::size_t>(cur.slack_count)));
   ++counters_.evaluated;
   info_[static_cast<std::size_t>(s)].h = h;
   if (h >= RelaxedPlanHeuristic::kDeadEnd) {
@@ -126,34 +146,72 @@ LazySearch::Status LazySearch::Step() {
     if (!transitions_.Apply(current_, &ev, &next_)) continue;
     Timeline::Outcome out;
     const bool consistent = timeline_.TryAdd(ev, &out);
-    timeline_.Undo();
     if (!consistent) {
+      timeline_.Undo();
       stn_pruned_ = true;
       continue;
     }
+    slack_scratch_.clear();
+    for (const auto& r : next_.running) {
+      if (task_.IsWindowAction(r.action)) {
+        slack_scratch_.push_back(timeline_.WindowSlack(r.action, out.makespan_s));
+      }
+    }
+    timeline_.Undo();
     if (out.lower_bound_s >= params_.bound_s - params_.epsilon_s / 2) continue;
     ++counters_.generated;
-    bool is_new = false;
-    const StateId id = registry_.Insert(next_, &is_new);
-    NodeInfo& n = Info(id);
-    const bool improved = n.status != kNew && out.lower_bound_s < n.lb_s - 1e-9;
-    if (n.status != kNew) {
+    // Find the copy of this state to use: an unvisited one, one we improve
+    // on, or a new variant when no visited copy dominates this schedule.
+    std::int32_t chosen = -1;
+    bool dominated = false;
+    for (int v = 0; v < kMaxVariants; ++v) {
+      next_.variant = v;
+      bool is_new = false;
+      const StateId id = registry_.Insert(next_, &is_new);
+      NodeInfo& n = Info(id);
+      if (n.status == kNew) {
+        chosen = id.value();
+        break;
+      }
       merged_any_ = true;
-      if (!next_.running.empty() || !task_.tils().empty()) merged_timed_ = true;
-      if (!improved) continue;
-      if (greedy && n.status == kClosed) continue;
-      // Stored bounds of descendants can be stale after an ancestor improved;
-      // never let a state become its own ancestor.
-      if (IsAncestor(id.value(), s)) continue;
+      const bool old_dominates = n.lb_s <= out.lower_bound_s + 1e-9 && SlackAtLeast(n, slack_scratch_);
+      if (old_dominates) {
+        dominated = true;
+        break;
+      }
+      const bool new_dominates = out.lower_bound_s <= n.lb_s + 1e-9 && SlackAtMost(n, slack_scratch_);
+      if (new_dominates) {
+        if (greedy && n.status == kClosed) {
+          dominated = true;
+          break;
+        }
+        // Stored bounds of descendants can be stale after an ancestor
+        // improved; never let a state become its own ancestor.
+        if (IsAncestor(id.value(), s)) {
+          dominated = true;
+          break;
+        }
+        chosen = id.value();
+        break;
+      }
     }
+    if (chosen < 0) {
+      if (!next_.running.empty() || !task_.tils().empty()) merged_timed_ = true;
+      (void)dominated;
+      continue;
+    }
+    NodeInfo& n = info_[static_cast<std::size_t>(chosen)];
     const bool was_new = n.status == kNew;
     n.parent = s;
     n.event = ev;
     n.g_s = out.makespan_s;
     n.lb_s = out.lower_bound_s;
     n.status = kOpen;
+    n.slack_begin = static_cast<std::int32_t>(slack_pool_.size());
+    n.slack_count = static_cast<std::int32_t>(slack_scratch_.size());
+    slack_pool_.insert(slack_pool_.end(), slack_scratch_.begin(), slack_scratch_.end());
     if (transitions_.IsGoal(next_)) {
-      ExtractPath(id.value(), &plan_);
+      ExtractPath(chosen, &plan_);
       plan_makespan_s_ = out.makespan_s;
       n.status = kClosed;
       return Status::kSolved;
@@ -165,7 +223,7 @@ LazySearch::Status LazySearch::Step() {
     } else {
       preferred = std::binary_search(preferred_.begin(), preferred_.end(), ev.snap);
     }
-    Push(id.value(), preferred, h);
+    Push(chosen, preferred, h);
   }
   return Status::kInProgress;
 }

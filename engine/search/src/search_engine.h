@@ -76,11 +76,20 @@ class LazySearch {
     double lb_s = 0;   // lower bound on any completion's makespan
     std::int32_t h = -1;
     std::uint8_t status = 0;  // 0 new, 1 open, 2 closed
+    // Slack of the running window actions (Timeline::WindowSlack), in
+    // slack_pool_: a copy of a state dominates another when its bound is no
+    // later and every window leaves at least as much room.
+    std::int32_t slack_begin = 0;
+    std::int32_t slack_count = 0;
   };
+  // Copies of one logical state with mutually non-dominated schedules.
+  static constexpr int kMaxVariants = 8;
   enum : std::uint8_t { kNew = 0, kOpen = 1, kClosed = 2 };
 
   NodeInfo& Info(StateId id);
   void ExtractPath(std::int32_t state, std::vector<Event>* out) const;
+  bool SlackAtLeast(const NodeInfo& n, const std::vector<double>& slack) const;
+  bool SlackAtMost(const NodeInfo& n, const std::vector<double>& slack) const;
   bool IsAncestor(std::int32_t maybe_ancestor, std::int32_t state) const;
   void Push(std::int32_t state, bool preferred, double parent_h);
   bool Pop(std::int32_t* state);
@@ -106,6 +115,8 @@ class LazySearch {
   StateData current_, next_;
   std::vector<Event> path_, candidates_;
   std::vector<SnapId> preferred_;
+  std::vector<double> slack_scratch_;
+  std::vector<double> slack_pool_;
 };
 
 }  // namespace seaplan::search

@@ -88,6 +88,16 @@ SnapTask::SnapTask(const task::GroundTask& task) : task_(task) {
       SortUnique(s->num_reads);
       SortUnique(s->num_writes);
     }
+    {
+      bool window = !action.at_end.empty();
+      for (auto f : action.end_effects.del) {
+        if (std::find(action.start_effects.add.begin(), action.start_effects.add.end(), f) !=
+            action.start_effects.add.end()) {
+          window = true;
+        }
+      }
+      window_action_.push_back(action.is_durative && window);
+    }
     effects_read_duration_[a] =
         AnyEffectReadsDuration(action.start_effects) || AnyEffectReadsDuration(action.end_effects);
   }

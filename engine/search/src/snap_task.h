@@ -57,6 +57,10 @@ class SnapTask {
   const std::vector<int>& TilsWritingVar(task::NumericVarId v) const { return tils_by_var_[v]; }
   // True when any effect of the action reads ?duration (its duration is then fixed to one value).
   bool EffectsReadDuration(task::ActionId a) const { return effects_read_duration_[a]; }
+  // True for "window" actions (envelopes like light-match or a work shift):
+  // their end has conditions, or deletes what their start added, so the
+  // latest time their end may happen matters to what can still run inside.
+  bool IsWindowAction(task::ActionId a) const { return window_action_[a]; }
   // Facts (positive or negative in the goal) for the goal-after-TILs rule.
   const std::vector<bool>& goal_fact_mask() const { return goal_fact_mask_; }
 
@@ -68,6 +72,7 @@ class SnapTask {
   std::vector<std::vector<int>> tils_by_var_;
   std::vector<bool> effects_read_duration_;
   std::vector<bool> goal_fact_mask_;
+  std::vector<bool> window_action_;
 };
 
 }  // namespace seaplan::search

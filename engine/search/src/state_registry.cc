@@ -30,7 +30,8 @@ StateId StateRegistry::Insert(const StateData& state, bool* is_new) {
     if (v == 0.0) v = 0.0;  // one bit pattern for +0 and -0
     pool_.push_back(std::bit_cast<std::uint64_t>(v));
   }
-  pool_.push_back(static_cast<std::uint64_t>(state.next_til));
+  pool_.push_back(static_cast<std::uint64_t>(static_cast<std::uint32_t>(state.next_til)) |
+                  (static_cast<std::uint64_t>(static_cast<std::uint32_t>(state.variant)) << 32));
   for (const auto& r : state.running) {
     pool_.push_back(static_cast<std::uint64_t>(r.action));
     pool_.push_back(std::bit_cast<std::uint64_t>(r.min_duration_s));
@@ -54,7 +55,8 @@ void StateRegistry::Unpack(StateId id, StateData* out) const {
   p += fact_words_;
   out->values.resize(static_cast<std::size_t>(num_vars_));
   for (int i = 0; i < num_vars_; ++i) out->values[i] = std::bit_cast<double>(*p++);
-  out->next_til = static_cast<std::int32_t>(*p++);
+  out->next_til = static_cast<std::int32_t>(*p & 0xffffffffu);
+  out->variant = static_cast<std::int32_t>(*p++ >> 32);
   const std::size_t rest = len - static_cast<std::size_t>(fact_words_ + num_vars_ + 1);
   out->running.resize(rest / 3);
   for (auto& r : out->running) {

@@ -39,6 +39,9 @@ struct StateData {
   std::vector<double> values;        // per numeric variable
   std::vector<RunningAction> running;  // sorted by action
   std::int32_t next_til = 0;
+  // Distinguishes copies of one logical state reached with schedules that
+  // do not dominate each other (see LazySearch); part of the key.
+  std::int32_t variant = 0;
 
   bool Holds(task::FactId f) const { return (facts[f >> 6] >> (f & 63)) & 1u; }
   void Set(task::FactId f) { facts[f >> 6] |= std::uint64_t{1} << (f & 63); }

@@ -6,10 +6,13 @@ constexpr double kTolerance = 1e-9;
 }
 
 void Stn::Reset() {
+  // Keep the per-node edge vectors (and their capacity) for reuse.
   time_.assign(1, 0.0);
   fixed_.assign(1, true);
-  out_.resize(1);
-  in_.resize(1);
+  if (out_.empty()) {
+    out_.resize(1);
+    in_.resize(1);
+  }
   out_[0].clear();
   in_[0].clear();
   trail_.clear();

@@ -27,6 +27,7 @@ class Stn {
   void Reset();
   int num_nodes() const { return static_cast<int>(time_.size()); }
   double time(int node) const { return time_[node]; }
+  const std::vector<Edge>& OutEdges(int node) const { return out_[node]; }
 
   // Adds a node fixed at `time_s` (timed initial literals). Only call
   // before any other node is added after Reset().

@@ -1,6 +1,7 @@
 #include "timeline.h"
 
 #include <algorithm>
+#include <cmath>
 
 namespace seaplan::search {
 
@@ -13,6 +14,7 @@ Timeline::Timeline(const SnapTask& task, double epsilon_s, bool bound_concurrenc
       var_readers_(static_cast<std::size_t>(task.num_vars())),
       open_start_(static_cast<std::size_t>(task.num_actions()), -1),
       open_min_duration_(static_cast<std::size_t>(task.num_actions()), 0.0),
+      open_max_duration_(static_cast<std::size_t>(task.num_actions()), 0.0),
       bound_concurrency_(bound_concurrency) {}
 
 void Timeline::ResetTables() {
@@ -144,6 +146,7 @@ void Timeline::Commit(const Event& event, int node) {
     if (task_.task().actions[snap.action].is_durative) {
       open_start_[snap.action] = node;
       open_min_duration_[snap.action] = event.min_duration_s;
+      open_max_duration_[snap.action] = event.max_duration_s;
       open_actions_.push_back(snap.action);
     }
   } else {
@@ -188,6 +191,18 @@ bool Timeline::TryAdd(const Event& event, Outcome* outcome) {
     }
   }
   return true;
+}
+
+double Timeline::WindowSlack(task::ActionId a, double makespan_s) const {
+  const int start = open_start_[a];
+  const double max_d = open_max_duration_[a];
+  if (start < 0 || !(max_d < kInfinity)) return kInfinity;
+  // Latest start allowed by the events already ordered after it (earliest
+  // times; a cheap, sound-enough signature, not a full latest schedule).
+  double latest = kInfinity;
+  for (const auto& e : stn_.OutEdges(start)) latest = std::min(latest, stn_.time(e.to) - e.weight);
+  if (!(latest < kInfinity)) return kInfinity;
+  return std::round((latest + max_d - makespan_s) / epsilon_s_) * epsilon_s_;
 }
 
 void Timeline::Undo() {

@@ -47,6 +47,9 @@ class Timeline {
     double makespan_s = 0.0;     // latest action event time
     double lower_bound_s = 0.0;  // makespan, or later when running actions must still end
   };
+  // After a successful TryAdd: slack (latest end - makespan, epsilon grid) of
+  // the running window action `a` (see SnapTask::IsWindowAction).
+  double WindowSlack(task::ActionId a, double makespan_s) const;
   // Adds `event` on top of the built path tentatively. Returns false when
   // inconsistent. Always call Undo() afterwards.
   bool TryAdd(const Event& event, Outcome* outcome);
@@ -77,6 +80,7 @@ class Timeline {
   std::vector<std::int32_t> open_start_;  // per action: STN node of the running start, or -1
   std::vector<std::int32_t> open_actions_;
   std::vector<double> open_min_duration_;  // per action
+  std::vector<double> open_max_duration_;  // per action
   std::vector<std::int32_t> scratch_preds_;
   std::vector<bool> is_action_node_;
   bool bound_concurrency_ = false;

@@ -6,6 +6,20 @@
 
 namespace seaplan::search {
 
+namespace {
+bool AddedAtStart(const task::Action& action, task::FactId f) {
+  for (auto g : action.start_effects.add) {
+    if (g == f) return true;
+  }
+  for (const auto& ce : action.start_effects.conditional) {
+    for (auto g : ce.add) {
+      if (g == f) return true;
+    }
+  }
+  return false;
+}
+}  // namespace
+
 bool ConditionHolds(const task::Condition& condition, const StateData& state, double duration) {
   for (auto f : condition.positive) {
     if (!state.Holds(f)) return false;
@@ -26,12 +40,29 @@ Transitions::Transitions(const SnapTask& task, int max_concurrent_actions, doubl
     : task_(task), max_concurrent_(max_concurrent_actions), epsilon_s_(epsilon_s) {
   by_first_fact_.resize(static_cast<std::size_t>(task.num_facts()));
   for (int a = 0; a < task.num_actions(); ++a) {
-    const auto& pre = task.task().actions[a].at_start.positive;
-    if (pre.empty()) {
+    const auto& action = task.task().actions[a];
+    // A fact that must already hold for the start to apply: an at-start
+    // condition, or an over-all one the start effects do not add.
+    task::FactId key = -1;
+    if (!action.at_start.positive.empty()) {
+      key = action.at_start.positive.front();
+    } else if (action.is_durative) {
+      for (auto f : action.over_all.positive) {
+        bool added = std::find(action.start_effects.add.begin(), action.start_effects.add.end(), f) !=
+                     action.start_effects.add.end();
+        for (const auto& ce : action.start_effects.conditional) {
+          added |= std::find(ce.add.begin(), ce.add.end(), f) != ce.add.end();
+        }
+        if (!added) {
+          key = f;
+          break;
+        }
+      }
+    }
+    if (key < 0) {
       without_fact_pre_.push_back(a);
     } else {
-      // Index by the rarest-looking fact is overkill here; the first is fine.
-      by_first_fact_[pre.front()].push_back(a);
+      by_first_fact_[key].push_back(a);
     }
   }
 }
@@ -45,6 +76,10 @@ void Transitions::Candidates(const StateData& state, std::vector<Event>* out) co
     auto consider = [&](task::ActionId a) {
       const auto& action = task_.task().actions[a];
       if (!ConditionHolds(action.at_start, state)) return;
+      for (auto f : action.over_all.positive) {
+        // Cheap filter; Apply does the exact check after the start effects.
+        if (!state.Holds(f) && !AddedAtStart(action, f)) return;
+      }
       out->push_back({2 * a, 0.0, 0.0});
     };
     for (std::size_t w = 0; w < state.facts.size(); ++w) {
@@ -124,6 +159,7 @@ bool Transitions::Apply(const StateData& state, Event* event, StateData* next) c
   if (event->is_til()) {
     const TilEvent& til = task_.tils()[static_cast<std::size_t>(event->til())];
     *next = state;
+    next->variant = 0;
     for (auto f : til.del) next->Clear(f);
     for (auto f : til.add) next->Set(f);
     for (const auto& [v, value] : til.assign) next->values[v] = value;
@@ -145,6 +181,7 @@ bool Transitions::Apply(const StateData& state, Event* event, StateData* next) c
     event->min_duration_s = min_d;
     event->max_duration_s = max_d;
     *next = state;
+    next->variant = 0;
     ApplyEffects(action.start_effects, state, min_d, next);
     if (action.is_durative) {
       if (!ConditionHolds(action.over_all, *next, min_d)) return false;
@@ -160,6 +197,7 @@ bool Transitions::Apply(const StateData& state, Event* event, StateData* next) c
   event->min_duration_s = running_it->min_duration_s;
   event->max_duration_s = running_it->max_duration_s;
   *next = state;
+  next->variant = 0;
   next->running.erase(next->running.begin() + (running_it - state.running.begin()));
   ApplyEffects(action.end_effects, state, duration, next);
   return RunningInvariantsHold(*next);

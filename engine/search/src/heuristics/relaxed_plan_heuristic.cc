@@ -23,8 +23,8 @@ bool ConditionHoldsNumeric(const task::NumericCondition& c, const StateData& sta
 
 }  // namespace
 
-RelaxedPlanHeuristic::RelaxedPlanHeuristic(const SnapTask& task)
-    : task_(task), num_facts_(task.num_facts()), num_ops_(2 * task.num_actions()) {
+RelaxedPlanHeuristic::RelaxedPlanHeuristic(const SnapTask& task, double epsilon_s)
+    : task_(task), num_facts_(task.num_facts()), num_ops_(2 * task.num_actions()), epsilon_s_(epsilon_s) {
   const int total_facts = num_facts_ + task.num_actions();
   const auto& actions = task.task().actions;
   pre_begin_.push_back(0);
@@ -67,6 +67,28 @@ RelaxedPlanHeuristic::RelaxedPlanHeuristic(const SnapTask& task)
     }
     add_.insert(add_.end(), tmp.begin(), tmp.end());
     add_begin_.push_back(static_cast<std::int32_t>(add_.size()));
+  }
+  for (int op = 0; op < num_ops_; ++op) {
+    if (op_exists_[op] && pre_begin_[op + 1] == pre_begin_[op]) no_pre_ops_.push_back(op);
+  }
+  window_facts_.resize(actions.size());
+  min_invariant_duration_.assign(static_cast<std::size_t>(num_facts_), kInf);
+  suppressed_.assign(static_cast<std::size_t>(num_facts_), false);
+  for (std::size_t a = 0; a < actions.size(); ++a) {
+    const auto& action = actions[a];
+    if (!action.is_durative) continue;
+    if (task.IsWindowAction(static_cast<task::ActionId>(a))) {
+      for (auto f : action.end_effects.del) {
+        if (std::find(action.start_effects.add.begin(), action.start_effects.add.end(), f) !=
+            action.start_effects.add.end()) {
+          window_facts_[a].push_back(f);
+        }
+      }
+    }
+    const double d = action.ConstantDuration().value_or(0.0);
+    for (auto f : action.over_all.positive) {
+      min_invariant_duration_[f] = std::min(min_invariant_duration_[f], d);
+    }
   }
   // fact -> ops needing it.
   std::vector<std::int32_t> count(static_cast<std::size_t>(total_facts) + 1, 0);
@@ -220,7 +242,8 @@ void RelaxedPlanHeuristic::MarkNumeric(const task::NumericCondition& c, int laye
   }
 }
 
-int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* preferred) {
+int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* preferred,
+                                   std::span<const double> window_slack) {
   std::fill(fact_layer_.begin(), fact_layer_.end(), -1);
   std::fill(op_layer_.begin(), op_layer_.end(), -1);
   for (int op = 0; op < num_ops_; ++op) {
@@ -240,12 +263,32 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
     fact_achiever_[f] = achiever;
     new_facts_.push_back(f);
   };
+  std::size_t window_index = 0;
+  std::size_t num_suppressed = 0;
+  for (const auto& r : state.running) {
+    if (!task_.IsWindowAction(r.action)) continue;
+    const double slack = window_index < window_slack.size() ? window_slack[window_index] : kInf;
+    ++window_index;
+    for (auto f : window_facts_[r.action]) {
+      if (min_invariant_duration_[f] < kInf && slack < min_invariant_duration_[f] + 2 * epsilon_s_ - 1e-9) {
+        suppressed_[f] = true;
+        ++num_suppressed;
+      }
+    }
+  }
   for (std::size_t w = 0; w < state.facts.size(); ++w) {
     std::uint64_t bits = state.facts[w];
     while (bits) {
       const int b = __builtin_ctzll(bits);
       bits &= bits - 1;
-      reach(static_cast<int>(w * 64) + b, 0, -1);
+      const int f = static_cast<int>(w * 64) + b;
+      if (num_suppressed > 0 && suppressed_[f]) continue;
+      reach(f, 0, -1);
+    }
+  }
+  if (num_suppressed > 0) {
+    for (const auto& r : state.running) {
+      for (auto f : window_facts_[r.action]) suppressed_[f] = false;
     }
   }
   const auto& tils = task_.tils();
@@ -253,6 +296,15 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
     for (auto f : tils[k].add) reach(f, 0, -1);
   }
   for (const auto& r : state.running) reach(num_facts_ + r.action, 0, -1);
+  // Operators without fact preconditions are enabled from the start.
+  for (auto op : no_pre_ops_) {
+    if (num_pre_[op].empty()) {
+      op_layer_[op] = 0;
+      applicable_.push_back(op);
+    } else {
+      numeric_waiting_.push_back(op);
+    }
+  }
 
   const task::Condition& goal = task_.task().goal;
   int layer = 0;

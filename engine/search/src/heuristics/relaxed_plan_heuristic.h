@@ -16,6 +16,7 @@
 #pragma once
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 #include "../snap_task.h"
@@ -28,11 +29,17 @@ class RelaxedPlanHeuristic {
  public:
   static constexpr int kDeadEnd = 1 << 30;
 
-  explicit RelaxedPlanHeuristic(const SnapTask& task);
+  RelaxedPlanHeuristic(const SnapTask& task, double epsilon_s);
 
   // Returns the estimate (kDeadEnd when the goal is relaxed-unreachable).
   // `preferred` (may be null) receives the helpful snaps (SnapIds).
-  int Evaluate(const StateData& state, std::vector<SnapId>* preferred);
+  // `window_slack`: for each running window action of `state` (in running
+  // order, SnapTask::IsWindowAction), the room left before its end must
+  // happen. A fact such an action's end will delete counts as unavailable
+  // when nothing needing it over all fits into that room (match cellar:
+  // a burning match too short for another mend).
+  int Evaluate(const StateData& state, std::vector<SnapId>* preferred,
+               std::span<const double> window_slack = {});
   // After a kDeadEnd: true when the relaxation proves it (false when the
   // numeric fixpoint was cut off after too many widening layers).
   bool last_dead_end_proven() const { return dead_end_proven_; }
@@ -58,6 +65,11 @@ class RelaxedPlanHeuristic {
   std::vector<std::vector<const task::NumericCondition*>> num_pre_;
   std::vector<std::vector<const task::NumericEffect*>> num_eff_;
   std::vector<bool> op_exists_;
+  std::vector<std::int32_t> no_pre_ops_;
+  double epsilon_s_;
+  std::vector<std::vector<task::FactId>> window_facts_;  // per action: start adds deleted at end
+  std::vector<double> min_invariant_duration_;           // per fact: shortest action needing it over all
+  std::vector<bool> suppressed_;
   std::vector<bool> til_fact_;  // scratch: facts added by pending literals
 
   // Scratch per evaluation.
