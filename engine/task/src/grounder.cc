@@ -1489,6 +1489,11 @@ class Grounder {
         time = t;
         AddLeaf(ce.condition, *leaf);
       }
+      if (time == TimeSpec::kAtEnd && eff.time != TimeSpec::kAtEnd) {
+        Error(pddl::DiagnosticKind::kUnsupported, eff.location, "",
+              "conditional effect at start whose condition is checked at end");
+        return false;
+      }
       ce.condition_time = time == TimeSpec::kAtEnd ? TimePoint::kEnd : TimePoint::kStart;
       ce.add = add;
       ce.del = del;
