@@ -111,6 +111,23 @@ bool ActionModel::IsStaticFunction(std::string_view function) const {
   return !changed_functions_.contains(function);
 }
 
+namespace {
+bool Mentions(const Condition& c, std::string_view predicate) {
+  if (c.kind == Condition::Kind::kAtom && c.atom.predicate == predicate) return true;
+  for (const Condition& ch : c.children) {
+    if (Mentions(ch, predicate)) return true;
+  }
+  return false;
+}
+}  // namespace
+
+bool ActionModel::PredicateInConditions(std::string_view predicate) const {
+  for (const pddl::Action& a : domain_.actions) {
+    if (Mentions(a.condition, predicate)) return true;
+  }
+  return false;
+}
+
 std::string ActionModel::Resolve(const pddl::Term& t, const Binding& b) const {
   if (!t.IsVariable()) return t.name;
   auto it = b.find(t.name);

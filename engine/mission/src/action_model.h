@@ -73,6 +73,8 @@ class ActionModel {
   // True when no action effect changes this predicate / function.
   bool IsStaticPredicate(std::string_view predicate) const;
   bool IsStaticFunction(std::string_view function) const;
+  // True when some action's condition mentions `predicate` (positively or not).
+  bool PredicateInConditions(std::string_view predicate) const;
 
  private:
   ActionModel() = default;

@@ -228,27 +228,35 @@ StatusOr<RegeneratedProblem> RegenerateProblem(
         new_facts.insert(JoinKey(parts));
       }
     }
-    // Static numeric fluents of the template location itself ((distance a b) kind).
+    // Static numeric fluents of the template location itself ((distance a b)
+    // kind), once with T -> new and once per other location X with X -> T.
     for (const auto& [key, value] : state.fluents) {
       auto parts = SplitKey(key);
       if (!model.IsStaticFunction(parts[0])) continue;
       if (std::find(parts.begin() + 1, parts.end(), tmpl) == parts.end()) continue;
-      std::vector<std::string> locs_old, np = parts;
-      for (size_t i = 1; i < np.size(); ++i) {
-        if (is_location(np[i])) locs_old.push_back(np[i]);
-        if (np[i] == tmpl) np[i] = here;
+      std::vector<std::string> variants = {""};
+      for (size_t i = 1; i < parts.size(); ++i) {
+        if (parts[i] != tmpl && is_location(parts[i])) variants.push_back(parts[i]);
       }
-      double v = value;
-      if (locs_old.size() == 2) {
-        double d_old = Distance(out.locations.at(locs_old[0]), out.locations.at(locs_old[1]));
-        std::vector<std::string> locs_new;
+      for (const std::string& other : variants) {
+        std::vector<std::string> locs_old, locs_new, np = parts;
         for (size_t i = 1; i < np.size(); ++i) {
+          if (is_location(np[i])) locs_old.push_back(np[i]);
+          if (np[i] == tmpl) {
+            np[i] = here;
+          } else if (!other.empty() && np[i] == other) {
+            np[i] = tmpl;
+          }
           if (np[i] == here || is_location(np[i])) locs_new.push_back(np[i]);
         }
-        double d_new = Distance(out.locations.at(locs_new[0]), out.locations.at(locs_new[1]));
-        v = d_old > 1e-9 ? value * d_new / d_old : d_new;
+        double v = value;
+        if (locs_old.size() == 2 && locs_new.size() == 2) {
+          double d_old = Distance(out.locations.at(locs_old[0]), out.locations.at(locs_old[1]));
+          double d_new = Distance(out.locations.at(locs_new[0]), out.locations.at(locs_new[1]));
+          v = d_old > 1e-9 ? value * d_new / d_old : d_new;
+        }
+        new_fluents[JoinKey(np)] = v;
       }
-      new_fluents[JoinKey(np)] = v;
     }
     state.facts.insert(new_facts.begin(), new_facts.end());
     for (auto& [k, v] : new_fluents) state.fluents[k] = v;
@@ -267,19 +275,32 @@ StatusOr<RegeneratedProblem> RegenerateProblem(
   out.ship_location = here;
 
   // 5. Fuel.
+  // The (fuel ?v) flags follow the tank only in domains where they gate
+  // actions (executor fuel, case C); in case A (no_fuel ?v) is a mission
+  // goal ("refuel at E"), not a tank reading, and is left to the plan.
+  const bool fuel_gates_actions =
+      !options.fuel_predicate.empty() && model.PredicateInConditions(options.fuel_predicate) &&
+      model.domain().FindPredicate(options.fuel_predicate);
+  std::string fuel_function = options.fuel_function;
+  if (fuel_function.empty()) {
+    // A one-argument numeric function named like fuel is the tank level.
+    for (const pddl::FunctionDecl& f : model.domain().functions) {
+      if (f.parameters.size() == 1 && f.name.find("fuel") != std::string::npos) fuel_function = f.name;
+    }
+  }
   if (ship.fuel_fraction) {
     const bool low = *ship.fuel_fraction <= options.fuel_threshold_fraction;
     const pddl::Domain& d = model.domain();
-    if (!options.fuel_predicate.empty() && d.FindPredicate(options.fuel_predicate)) {
+    if (fuel_gates_actions) {
       std::string k = AtomKey(options.fuel_predicate, {ship_obj});
       if (low) state.facts.erase(k); else state.facts.insert(k);
     }
-    if (!options.no_fuel_predicate.empty() && d.FindPredicate(options.no_fuel_predicate)) {
+    if (fuel_gates_actions && !options.no_fuel_predicate.empty() && d.FindPredicate(options.no_fuel_predicate)) {
       std::string k = AtomKey(options.no_fuel_predicate, {ship_obj});
       if (low) state.facts.insert(k); else state.facts.erase(k);
     }
-    if (!options.fuel_function.empty() && d.FindFunction(options.fuel_function)) {
-      state.fluents[AtomKey(options.fuel_function, {ship_obj})] =
+    if (!fuel_function.empty() && d.FindFunction(fuel_function)) {
+      state.fluents[AtomKey(fuel_function, {ship_obj})] =
           *ship.fuel_fraction * options.fuel_function_full;
     }
   }

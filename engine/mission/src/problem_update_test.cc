@@ -4,9 +4,6 @@
 
 #include "action_model.h"
 #include "test_util.h"
-#ifdef SEAPLAN_HAVE_SEARCH
-#include "seaplan/search/planner.h"
-#endif
 
 namespace seaplan::mission {
 namespace {
@@ -69,19 +66,52 @@ TEST_F(ProblemUpdateTest, SnapsToANearbyLocation) {
   EXPECT_FALSE(Has(r->problem_text, "port-s"));
 }
 
-TEST_F(ProblemUpdateTest, FuelBelowThresholdSetsNoFuel) {
-  // After the refuel at E the problem has (fuel ship0); a low reading undoes it.
+TEST_F(ProblemUpdateTest, FuelReadingSetsFlagsOnlyWhereFuelGatesActions) {
   std::vector<validate::PlanStep> all(plan_.steps.begin(), plan_.steps.end());
-  auto high = RegenerateProblem(domain_, problem_, all, {}, CaseALocations(),
-                                {{3000, 2000}, 0.9});
+  // In the case A domain (fuel ship0) is only a goal: a tank reading leaves it alone.
+  auto goal_only = RegenerateProblem(domain_, problem_, all, {}, CaseALocations(), {{3000, 2000}, 0.25});
+  ASSERT_TRUE(goal_only.ok()) << goal_only.status();
+  EXPECT_TRUE(Has(goal_only->problem_text, "(fuel ship0)"));
+  EXPECT_TRUE(goal_only->goal_satisfied);
+  // Executor-fuel domain: moves need (fuel ?v).
+  std::string gated = domain_;
+  const std::string cond = "(at start (route_available ?r))";
+  gated.replace(gated.find(cond), cond.size(), cond + " (at start (fuel ?v))");
+  auto high = RegenerateProblem(gated, problem_, all, {}, CaseALocations(), {{3000, 2000}, 0.9});
   ASSERT_TRUE(high.ok()) << high.status();
   EXPECT_TRUE(Has(high->problem_text, "(fuel ship0)"));
-  EXPECT_TRUE(high->goal_satisfied);
-  auto low = RegenerateProblem(domain_, problem_, all, {}, CaseALocations(), {{3000, 2000}, 0.25});
+  EXPECT_FALSE(Has(high->problem_text, "(no_fuel ship0)"));
+  auto low = RegenerateProblem(gated, problem_, all, {}, CaseALocations(), {{3000, 2000}, 0.25});
   ASSERT_TRUE(low.ok());
   EXPECT_FALSE(Has(low->problem_text, "(fuel ship0)"));
   EXPECT_TRUE(Has(low->problem_text, "(no_fuel ship0)"));
   EXPECT_FALSE(low->goal_satisfied);
+}
+
+// The examples' domain style: (connected ?from ?to) + (distance ?from ?to).
+TEST_F(ProblemUpdateTest, DistanceFunctionsOfTheTemplateAreScaledByGeometry) {
+  std::string domain = R"((define (domain d) (:requirements :typing :durative-actions :fluents)
+    (:types ship port) (:predicates (at ?v - ship ?p - port) (connected ?a ?b - port))
+    (:functions (distance ?a ?b - port) (speed ?v - ship))
+    (:durative-action move-ship :parameters (?v - ship ?a ?b - port)
+      :duration (= ?duration (/ (distance ?a ?b) (speed ?v)))
+      :condition (and (at start (at ?v ?a)) (at start (connected ?a ?b)))
+      :effect (and (at start (not (at ?v ?a))) (at end (at ?v ?b))))))";
+  std::string problem = R"((define (problem p) (:domain d) (:objects ship0 - ship port-a port-b - port)
+    (:init (at ship0 port-a) (connected port-a port-b) (connected port-b port-a)
+           (= (distance port-a port-b) 52) (= (distance port-b port-a) 52) (= (speed ship0) 0.18))
+    (:goal (at ship0 port-b))))";
+  LocationTable loc = {{"port-a", {0, 0}}, {"port-b", {1000, 0}}};
+  auto r = RegenerateProblem(domain, problem, {}, {}, loc, {{0, 400}, std::nullopt});
+  ASSERT_TRUE(r.ok()) << r.status();
+  auto model = internal::ActionModel::Create(domain, r->problem_text);
+  ASSERT_TRUE(model.ok()) << model.status() << r->problem_text;
+  auto st = model->InitialState();
+  EXPECT_TRUE(st.facts.contains("(connected port-s port-b)")) << r->problem_text;
+  EXPECT_TRUE(st.facts.contains("(connected port-s port-a)")) << r->problem_text;
+  EXPECT_NEAR(st.fluents["(distance port-s port-b)"], 52 * std::hypot(1000, 400) / 1000, 1e-9);
+  EXPECT_NEAR(st.fluents["(distance port-s port-a)"], 52 * 400.0 / 1000, 1e-9);
+  EXPECT_NEAR(st.fluents["(distance port-b port-s)"], 52 * std::hypot(1000, 400) / 1000, 1e-9);
 }
 
 TEST_F(ProblemUpdateTest, BadStepIsAnError) {
@@ -90,35 +120,6 @@ TEST_F(ProblemUpdateTest, BadStepIsAnError) {
   EXPECT_TRUE(absl::IsInvalidArgument(r.status())) << r.status();
 }
 
-#ifdef SEAPLAN_HAVE_SEARCH
-TEST_F(ProblemUpdateTest, CaseBRegeneratedProblemIsPlannedFromPortS) {
-  ShipObservation ship{{400, 600}, std::nullopt};
-  auto r = RegenerateProblem(domain_, problem_, {plan_.steps[0]}, {plan_.steps[1]},
-                             CaseALocations(), ship);
-  ASSERT_TRUE(r.ok()) << r.status();
-  search::PlannerOptions opt;
-  opt.time_limit_s = 20;
-  opt.anytime = false;
-  auto res = search::Solve(domain_, r->problem_text, opt, StopToken::WithTimeout(std::chrono::seconds(30)));
-  if (res.status == search::PlanStatus::kError && res.message.find("not implemented") != std::string::npos) {
-    GTEST_SKIP() << "planner not implemented yet: " << res.message;
-  }
-  ASSERT_TRUE(res.status == search::PlanStatus::kSolvedSatisficing ||
-              res.status == search::PlanStatus::kSolvedOptimally)
-      << search::ToString(res.status) << ": " << res.message;
-  ASSERT_FALSE(res.plan.steps.empty());
-  // The first move leaves port-s.
-  bool found = false;
-  for (const auto& s : res.plan.steps) {
-    if (s.name != "move-ship") continue;
-    EXPECT_EQ(s.args[1], "port-s") << s.DisplayName();
-    found = true;
-    break;
-  }
-  EXPECT_TRUE(found);
-  EXPECT_GE(res.plan.steps.size(), 12u) << validate::FormatPlan(res.plan);
-}
-#endif
 
 }  // namespace
 }  // namespace seaplan::mission

@@ -22,9 +22,12 @@
 //    geometric distance ratio (new length = old length x new distance / old
 //    distance), so lengths stay in the problem's own units.
 //  * Fuel: with a fuel fraction reported, the (fuel ?v)/(no_fuel ?v)
-//    predicates (names configurable, used only when the domain declares
-//    them) are set from fraction <= threshold, and a numeric fuel function
-//    (optional) is set to fraction x fuel_function_full.
+//    predicates (names configurable) are set from fraction <= threshold, but
+//    only in domains where (fuel ?v) is a condition of some action (executor
+//    fuel, case C); where it is only a goal (case A's "refuel at E") it is
+//    left alone. A numeric fuel function (fuel_function, or else the
+//    domain's one-argument function whose name contains "fuel") is set to
+//    fraction x fuel_function_full.
 #pragma once
 
 #include <optional>

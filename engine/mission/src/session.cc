@@ -1,0 +1,104 @@
+#include "seaplan/mission/session.h"
+
+#include <algorithm>
+#include <set>
+
+#include "absl/strings/numbers.h"
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_split.h"
+#include "seaplan/validate/plan.h"
+
+namespace seaplan::mission {
+
+FeedbackOutcome OnFeedback(const MissionDefinition& mission, const PlanVersion& current,
+                           const std::vector<std::string>& completed_task_ids, const Feedback& feedback) {
+  FeedbackOutcome out;
+  out.completed_task_ids = completed_task_ids;
+  const Task* task = nullptr;
+  for (const Task& t : current.tasks) {
+    if (t.id == feedback.task_id) task = &t;
+  }
+  std::set<std::string> done(completed_task_ids.begin(), completed_task_ids.end());
+  if (feedback.kind == FeedbackKind::kTaskCompleted && !feedback.task_id.empty() &&
+      !done.contains(feedback.task_id)) {
+    out.completed_task_ids.push_back(feedback.task_id);
+    done.insert(feedback.task_id);
+    out.completed_changed = true;
+  }
+  if (task) {
+    if (feedback.kind == FeedbackKind::kTaskStarted) out.log_messages.push_back(TaskStartedMessage(task->kind));
+    if (feedback.kind == FeedbackKind::kTaskCompleted) out.log_messages.push_back(TaskCompletedMessage(task->kind));
+    if (feedback.kind == FeedbackKind::kTaskFailed) out.log_messages.push_back(TaskFailedMessage(task->kind));
+  }
+  if (feedback.kind == FeedbackKind::kCollisionAvoidance) {
+    out.log_messages.push_back(feedback.detail.empty() ? std::string(messages::kPotentialCollision)
+                                                       : feedback.detail);
+  }
+  // The move under way when the feedback is not about a specific task.
+  const Task* active = task;
+  if (!active) {
+    for (const Task& t : current.tasks) {
+      if (t.kind == TaskKind::kMove && !done.contains(t.id) && t.start_s <= feedback.mission_time_s + 1e-6) {
+        active = &t;
+      }
+    }
+  }
+  out.replan_reason = DecideReplan(feedback, current, active, mission.policy);
+  out.mission_completed = !current.tasks.empty() && !out.replan_reason &&
+                          std::all_of(current.tasks.begin(), current.tasks.end(),
+                                      [&](const Task& t) { return done.contains(t.id); });
+  if (out.mission_completed) out.log_messages.push_back(std::string(messages::kMissionCompleted));
+  return out;
+}
+
+ReplanInput MakeReplanInput(const PlanVersion& current, const std::vector<std::string>& completed_task_ids,
+                            const std::vector<Feedback>& recent_feedback, std::string reason,
+                            const ShipObservation& ship, double mission_time_s) {
+  ReplanInput in;
+  in.reason = std::move(reason);
+  in.ship = ship;
+  in.mission_time_s = mission_time_s;
+  std::set<std::string> done(completed_task_ids.begin(), completed_task_ids.end());
+  std::set<std::string> started, failed;
+  for (const Feedback& f : recent_feedback) {
+    if (f.kind == FeedbackKind::kTaskStarted) started.insert(f.task_id);
+    if (f.kind == FeedbackKind::kTaskFailed) failed.insert(f.task_id);
+  }
+  for (const Task& t : current.tasks) {
+    if (done.contains(t.id)) {
+      in.completed_task_ids.push_back(t.id);
+    } else if (failed.contains(t.id) || (started.contains(t.id) && t.kind == TaskKind::kMove)) {
+      in.interrupted_task_ids.push_back(t.id);
+    } else if (started.contains(t.id)) {
+      // A port operation under way is let finish: the new plan starts after it.
+      in.completed_task_ids.push_back(t.id);
+      in.mission_time_s = std::max(in.mission_time_s, t.end_s());
+    }
+  }
+  return in;
+}
+
+std::string EncodeEngineState(const LocationTable& locations) {
+  std::string out;
+  for (const auto& [name, p] : locations) {
+    absl::StrAppend(&out, name, " ", validate::FormatTime(p.x_m), " ", validate::FormatTime(p.y_m), "\n");
+  }
+  return out;
+}
+
+StatusOr<LocationTable> DecodeEngineState(std::string_view text) {
+  LocationTable t;
+  int line = 0;
+  for (absl::string_view l : absl::StrSplit(absl::string_view(text.data(), text.size()), '\n', absl::SkipEmpty())) {
+    ++line;
+    std::vector<std::string> w = absl::StrSplit(l, ' ', absl::SkipEmpty());
+    double x, y;
+    if (w.size() != 3 || !absl::SimpleAtod(w[1], &x) || !absl::SimpleAtod(w[2], &y)) {
+      return absl::InvalidArgumentError(absl::StrCat("engine state line ", line, ": expected 'name x y'"));
+    }
+    t[w[0]] = {x, y};
+  }
+  return t;
+}
+
+}  // namespace seaplan::mission
