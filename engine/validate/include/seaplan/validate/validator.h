@@ -38,6 +38,14 @@
 //     start and its end event, so that no event may touch an invariant within
 //     epsilon of the interval's ends. A step never interferes with itself.
 //     DNF variants of one (name, args) count with the union of what they touch.
+//     Two timed literals are never checked against each other (the task's
+//     own business). A violation is reported at the earlier event's time.
+//   - DNF variants (Action::variant): a step is fine while at least one of
+//     its variants has had all its conditions hold so far; effects come from
+//     the first variant alive at the start (variants share effects).
+//   - Undefined numeric values: a comparison reading one is false; an
+//     increase/decrease/scale of one, or a division by zero, fails the event
+//     (kind kEffect).
 //   - The goal must hold after the last event (including every timed literal,
 //     also those after the last action).
 //   - Event times are ordered on a 1 ns grid (rounded to whole nanoseconds:
