@@ -321,6 +321,9 @@ std::optional<ValidationFailure> Run::CheckStructure() {
                             ? options_.explain_missing_action(step.name, step.args)
                             : std::string();
       if (why.empty()) why = FallbackExplanation(task_, step);
+      // The grounder's sentence may start with the action itself; say it once.
+      const std::string prefix = step.DisplayName() + ": ";
+      if (why.compare(0, prefix.size(), prefix) == 0) why.erase(0, prefix.size());
       return bad(Kind::kUnknownAction,
                  absl::StrCat(step.DisplayName(), " is not an action of the task: ", why));
     }
