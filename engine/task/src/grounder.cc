@@ -441,7 +441,20 @@ class Grounder {
     const auto pred = static_cast<std::size_t>(key[0]);
     by_pred_[pred].push_back(id);
     auto& index = by_arg_[pred];
-    if (index.empty()) {
+    if (index.empty() && key.size() > 1) {
+      // The per-argument index costs (arity x objects) cells per predicate;
+      // bounded by the fact budget so that many predicates over many objects
+      // end in a diagnostic instead of exhausting memory.
+      index_cells_ += (key.size() - 1) * object_names_.size();
+      if (index_cells_ > 4 * options_.max_facts + (1u << 20)) {
+        if (!budget_exceeded_) {
+          Error(pddl::DiagnosticKind::kSemantic, problem_.location, "",
+                "grounding index exceeds the fact budget (" + std::to_string(index_cells_) + " cells)",
+                "fewer predicates or objects, or a larger GroundingOptions::max_facts");
+        }
+        budget_exceeded_ = true;
+        return;
+      }
       index.assign(key.size() - 1, std::vector<std::vector<std::int32_t>>(object_names_.size()));
     }
     for (std::size_t i = 1; i < key.size(); ++i) index[i - 1][static_cast<std::size_t>(key[i])].push_back(id);
@@ -459,6 +472,7 @@ class Grounder {
         if (fresh) {
           atom_queued_[static_cast<std::size_t>(id)] = 1;
           Pop(id);
+          if (budget_exceeded_) return false;
           ++static_true_;
         }
       } else {
@@ -1056,6 +1070,7 @@ class Grounder {
     for (std::size_t head = 0; head < queue_.size(); ++head) {
       const std::int32_t id = queue_[head];
       Pop(id);
+      if (budget_exceeded_) return false;
       const auto pred = static_cast<std::size_t>(atoms_.Get(id)[0]);
       for (const auto& [si, ai] : triggers[pred]) {
         const Spec& spec = specs_[static_cast<std::size_t>(si)];
@@ -1738,6 +1753,7 @@ class Grounder {
   std::vector<Obj> fargs_scratch_;
   bool budget_exceeded_ = false;
   std::size_t work_ = 0;
+  std::size_t index_cells_ = 0;
   bool effect_undefined_ = false;
   std::size_t reachable_facts_ = 0;
   std::shared_ptr<GroundTask> task_;

@@ -306,6 +306,21 @@ TEST(GrounderTest, BudgetsEndInAnErrorNotUnboundedMemory) {
                     small_work);
   EXPECT_FALSE(q.ok());
   EXPECT_NE(q.ErrorText().find("work budget"), std::string::npos) << q.ErrorText();
+  // Many predicates over many objects: the reachability index is bounded too.
+  std::string preds, init, objs;
+  for (int i = 0; i < 100; ++i) {
+    preds += " (q" + std::to_string(i) + " ?a ?b ?c - obj)";
+    init += " (q" + std::to_string(i) + " o0 o1 o2)";
+  }
+  for (int i = 0; i < 4000; ++i) objs += " o" + std::to_string(i);
+  GroundingOptions few_facts;
+  few_facts.max_facts = 1000;
+  auto wide = LoadTask("(define (domain wide) (:requirements :typing) (:types obj) (:predicates" + preds + "))",
+                       "(define (problem w) (:domain wide) (:objects" + objs + " - obj) (:init" + init +
+                           ") (:goal (q0 o0 o1 o2)))",
+                       few_facts);
+  EXPECT_FALSE(wide.ok());
+  EXPECT_NE(wide.ErrorText().find("index exceeds the fact budget"), std::string::npos) << wide.ErrorText();
   options.max_actions = 0;
   EXPECT_FALSE(options.Validate().ok());
 }
