@@ -502,7 +502,7 @@ std::optional<std::string> Run::Apply(const Effects& effects, task::TimePoint po
     return std::nullopt;
   };
   if (auto err = collect(effects.numeric)) return err;
-  // Which conditional effects fire (a handful per action: a small fixed buffer).
+  // Which conditional effects fire (allocates only for actions that have some).
   std::vector<std::uint8_t> fired(effects.conditional.size(), 0);
   for (std::size_t i = 0; i < effects.conditional.size(); ++i) {
     const auto& ce = effects.conditional[i];
