@@ -249,13 +249,15 @@ absl::Status StopStatus(const StopToken& stop, const char* where) {
 
 StatusOr<std::vector<LocalPoint>> VisibilityPath(const GeosContext& c, const ObstacleMap& map, LocalPoint start,
                                                  LocalPoint goal, double margin_m, const LocalBox& box,
-                                                 int max_nodes, const StopToken& stop) {
+                                                 int max_nodes, const StopToken& stop,
+                                                 const GEOSGeometry* extra_obstacle = nullptr) {
   const auto t_build = std::chrono::steady_clock::now();
   const double tol = 0.2 * margin_m;
   // Obstacles near the box (a margin wider, so dilation near the edge is right).
   const LocalBox wide{{box.min.x_m - 2 * margin_m, box.min.y_m - 2 * margin_m},
                       {box.max.x_m + 2 * margin_m, box.max.y_m + 2 * margin_m}};
   std::vector<GeomPtr> raw = MapGeometries(c, map, &wide);
+  if (extra_obstacle != nullptr) raw.push_back(Own(c, GEOSGeom_clone_r(c.get(), extra_obstacle)));
   GeomPtr raw_all = internal::MakeCollection(c, GEOS_GEOMETRYCOLLECTION, std::move(raw));
   // Test geometry: a segment is visible when it misses the obstacles dilated by
   // slightly less than the margin the nodes sit at (see below).
@@ -464,20 +466,82 @@ StatusOr<AlternativesResult> PlanAlternatives(const ObstacleMap& map, LocalPoint
     const double margin = std::max(options.margin_m, 1.0);
     const LocalBox& cov = map.summary().coverage;
     const double cov_size = std::max(cov.max.x_m - cov.min.x_m, cov.max.y_m - cov.min.y_m);
-    double grow = std::max(1000.0, 0.25 * Dist(start, goal));
-    std::vector<LocalPoint> path;
-    while (true) {
-      const LocalBox box = Corridor(start, goal, grow);
-      SEAPLAN_ASSIGN_OR_RETURN(path, VisibilityPath(c, map, start, goal, margin, box, options.max_graph_nodes, options.stop));
-      if (!path.empty() || grow > cov_size) break;
-      grow *= 2.0;
-    }
+    auto shortest = [&](const GEOSGeometry* wall) -> StatusOr<std::vector<LocalPoint>> {
+      double grow = std::max(1000.0, 0.25 * Dist(start, goal));
+      std::vector<LocalPoint> path;
+      while (true) {
+        const LocalBox box = Corridor(start, goal, grow);
+        SEAPLAN_ASSIGN_OR_RETURN(
+            path, VisibilityPath(c, map, start, goal, margin, box, options.max_graph_nodes, options.stop, wall));
+        if (!path.empty() || grow > cov_size) break;
+        grow *= 2.0;
+      }
+      return path;
+    };
+    SEAPLAN_ASSIGN_OR_RETURN(std::vector<LocalPoint> path, shortest(nullptr));
     if (path.empty()) {
       return absl::NotFoundError(absl::StrCat("no obstacle-free route from ", Fmt(start), " to ", Fmt(goal),
                                               " (", absl::StrJoin(notes, "; "), ")"));
     }
-    notes.push_back("visibility-graph fallback (one route)");
-    finish({std::move(path)});
+    std::vector<std::vector<LocalPoint>> routes = {path};
+    // A second alternative in A1's spirit: around the other side of the
+    // obstacle that blocks the straight line most. A thin wall from inside
+    // that obstacle, across the first route's side, to beyond the chart
+    // closes that side; the shortest path that remains goes the other way.
+    int second = 0;
+    if (options.max_alternatives > 1) {
+      const LocalPoint line[2] = {start, goal};
+      GeomPtr straight = internal::MakeLine(c, line, 2);
+      double best_len = 0.0;
+      LocalPoint mid{};
+      for (const GeomPtr& o : MapGeometries(c, map, nullptr)) {
+        GeomPtr cut = Own(c, GEOSIntersection_r(c.get(), o.get(), straight.get()));
+        if (!cut) continue;
+        // The longest single piece of the line inside this obstacle.
+        for (int k = 0; k < std::max(1, GEOSGetNumGeometries_r(c.get(), cut.get())); ++k) {
+          const GEOSGeometry* piece = GEOSGetNumGeometries_r(c.get(), cut.get()) > 0
+                                          ? GEOSGetGeometryN_r(c.get(), cut.get(), k)
+                                          : cut.get();
+          double len = 0.0;
+          if (GEOSLength_r(c.get(), piece, &len) != 1 || len <= best_len) continue;
+          GeomPtr centre = Own(c, GEOSInterpolateNormalized_r(c.get(), piece, 0.5));
+          if (!centre) continue;
+          best_len = len;
+          GEOSGeomGetX_r(c.get(), centre.get(), &mid.x_m);
+          GEOSGeomGetY_r(c.get(), centre.get(), &mid.y_m);
+        }
+      }
+      double side = 0.0;
+      for (const LocalPoint& p : path) side += Cross(start, goal, p);
+      if (best_len > 0.0 && side != 0.0) {
+        const double len = std::max(Dist(start, goal), 1e-9);
+        const double nx = -(goal.y_m - start.y_m) / len * (side > 0 ? 1 : -1);
+        const double ny = (goal.x_m - start.x_m) / len * (side > 0 ? 1 : -1);
+        const double reach = 2.0 * cov_size + Dist(start, goal);
+        const double w = 1.0;  // half width, m
+        const double ux = ny, uy = -nx;  // along the line
+        const LocalPoint far{mid.x_m + nx * reach, mid.y_m + ny * reach};
+        const LocalPoint wall_ring[4] = {{mid.x_m - ux * w, mid.y_m - uy * w}, {mid.x_m + ux * w, mid.y_m + uy * w},
+                                         {far.x_m + ux * w, far.y_m + uy * w}, {far.x_m - ux * w, far.y_m - uy * w}};
+        GeomPtr wall = internal::MakeRingPolygon(c, wall_ring, 4);
+        auto other = shortest(wall.get());
+        if (!other.ok() && (absl::IsDeadlineExceeded(other.status()) || absl::IsCancelled(other.status()))) {
+          return other.status();
+        }
+        // A detour more than kMaxDetour times the shortest route is no
+        // useful alternative for Level 2 (and on charts whose layers leave
+        // unmapped gaps it may run through water nobody charted).
+        constexpr double kMaxDetour = 3.0;
+        if (other.ok() && !other->empty() && PolylineLength(*other) <= kMaxDetour * PolylineLength(path)) {
+          routes.push_back(std::move(other).value());
+          second = 1;
+        }
+      }
+    }
+    notes.push_back(second ? "visibility-graph fallback (shortest route + one around the other side of the main "
+                             "obstacle)"
+                           : "visibility-graph fallback (one route)");
+    finish(std::move(routes));
   }
   result.note = absl::StrJoin(notes, "; ");
   if (result.alternatives.empty()) {

@@ -123,6 +123,17 @@ TEST(Alternatives, StartInsideConcaveBayUsesFallbackAndAvoidsObstacles) {
     // And is not absurdly long: out (~560) + around a side (~1000) + down.
     EXPECT_LT(alt.length_m, 4500.0);
   }
+  // The fallback's second alternative goes round the other side of the U:
+  // by symmetry both have the same length and mirrored x.
+  ASSERT_EQ(result->alternatives.size(), 2u) << result->note;
+  EXPECT_TRUE(result->used_fallback);
+  EXPECT_NEAR(result->alternatives[0].length_m, result->alternatives[1].length_m, 1.0);
+  auto east = [](const Alternative& alt) {
+    double s = 0;
+    for (const LocalPoint& p : alt.waypoints) s += p.x_m - kCx;
+    return s;
+  };
+  EXPECT_LT(east(result->alternatives[0]) * east(result->alternatives[1]), 0.0);
 }
 
 TEST(Alternatives, UnreachableGoalIsNotFound) {

@@ -17,10 +17,14 @@
 //     (grown by 0.15, then 0.35 x the distance): the hulls of the local pieces
 //     of a coast rarely contain start/goal. Routes are then verified against
 //     the real obstacles (the clipped-away parts too) and dropped if they hit.
-//  3. A shortest path in the visibility graph of the obstacles dilated by
-//     margin_m (nodes: convex vertices within a corridor box grown until a
-//     path exists), which avoids every obstacle exactly but yields a single
-//     route; `used_fallback` and `note` say so.
+//  3. A shortest path in the reduced (bitangent) visibility graph of the
+//     obstacles dilated by margin_m (nodes: convex vertices within a corridor
+//     box grown until a path exists), which avoids every obstacle exactly.
+//     A second alternative in A1's spirit: a thin wall from inside the
+//     obstacle that blocks the straight line most, across the first route's
+//     side, to beyond the chart; the shortest path that remains passes that
+//     obstacle on the other side (kept if at most 3x the first route's
+//     length). `used_fallback` and `note` say so.
 // Every returned route is checked against the obstacles (ObstacleQuery) and
 // must stay inside the chart coverage.
 #pragma once
