@@ -10,7 +10,9 @@
 //   C_mso       = consumption(m) mu5 |w - r_{k+1}|
 // where P_m(G | w) comes from a time-to-grounding (TTG) drift simulation that
 // starts at w with heading along r_{k-1} -> r_{k+1} and surge 2 m/s (as the
-// public code), fed to the mode's event trees (grounding_risk.h).
+// public code), fed to the mode's event trees (grounding_risk.h). Segment 0
+// gets its mode from the same mode costs evaluated at the fixed start; the
+// goal has no segment (its reported mode repeats the last one).
 //
 // Search, per movable waypoint (independent: the cost depends on references
 // only, so waypoints run in parallel):
