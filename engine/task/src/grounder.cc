@@ -1929,7 +1929,11 @@ std::string Grounder::Explain(std::string_view name, std::span<const std::string
       }
     }
     if (reason.empty()) {
-      return call + ": its preconditions cannot hold together in any reachable state (pruned by grounding)";
+      if (task == nullptr) {
+        return call + ": no reason found: its static preconditions hold and its fact preconditions are reachable";
+      }
+      return call + ": its preconditions cannot hold together (a quantified, numeric or duration condition is "
+                    "false or undefined for these arguments; pruned by grounding)";
     }
     if (first_reason.empty()) first_reason = reason;
   }
