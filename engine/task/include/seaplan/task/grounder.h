@@ -21,6 +21,18 @@
 // Generated names (e.g. the never-true fact standing for a statically false
 // goal) contain '@', which no PDDL name can, so they never clash.
 //
+// What stays in the task: facts = reachable atoms of predicates some effect
+// or timed literal changes (plus goal and timed-literal atoms nothing
+// reaches); numeric variables = fluents some effect or timed fluent changes;
+// durations are constants when they read only static fluents, expressions
+// over the numeric variables otherwise (e.g. rovers' recharge). Ground
+// actions whose duration or effect reads a static fluent with no value in
+// :init are dropped (they can never be applied).
+//
+// Ground() expects a domain and problem from ParseDomain/ParseProblem (or
+// edited copies): a problem that no longer matches the domain (unknown
+// object, predicate or function) is reported as a diagnostic.
+//
 // Thread-safety: all functions are pure; the result task is immutable.
 #pragma once
 
@@ -41,7 +53,8 @@ namespace seaplan::task {
 
 struct GroundingOptions {
   // Budgets: exceeding one ends grounding with an error diagnostic instead of
-  // unbounded memory use.
+  // unbounded memory use. max_facts also bounds the per-argument reachability
+  // index (4 cells per allowed fact, plus 1M).
   std::size_t max_actions = 5'000'000;
   std::size_t max_facts = 5'000'000;
   // Elementary grounding steps (join candidates, quantifier and forall
