@@ -279,7 +279,12 @@ StatusOr<ObstacleMap> ObstacleMap::FromPolygons(std::vector<Polygon> obstacles, 
 struct ObstacleQuery::State {
   GeosContext ctx;
   const ObstacleMap* map = nullptr;
+  // Pieces of the obstacle polygons (large polygons are subdivided, like
+  // PostGIS ST_Subdivide, so the STR-tree prunes well and each prepared
+  // geometry is small); owner[piece] = index into map->polygons().
   std::vector<GeomPtr> parts;
+  std::vector<int> owner;
+  std::vector<GeomPtr> originals;  // per polygon, for boundaries
   std::vector<const GEOSPreparedGeometry*> prepared;
   std::vector<GeomPtr> boundaries;
   std::vector<const GEOSPreparedGeometry*> prepared_boundaries;
@@ -299,6 +304,7 @@ struct ObstacleQuery::State {
     if (tree != nullptr) GEOSSTRtree_destroy_r(ctx.get(), tree);
     parts.clear();
     boundaries.clear();
+    originals.clear();
   }
 
   const GEOSPreparedGeometry* Prepared(int i) {
@@ -307,7 +313,7 @@ struct ObstacleQuery::State {
   }
   const GEOSPreparedGeometry* PreparedBoundary(int i) {
     if (prepared_boundaries[i] == nullptr) {
-      boundaries[i] = Own(ctx, GEOSBoundary_r(ctx.get(), parts[i].get()));
+      boundaries[i] = Own(ctx, GEOSBoundary_r(ctx.get(), originals[i].get()));
       prepared_boundaries[i] = GEOSPrepare_r(ctx.get(), boundaries[i].get());
     }
     return prepared_boundaries[i];
@@ -342,27 +348,67 @@ struct ObstacleQuery::State {
   }
 };
 
+namespace {
+
+// Splits g in halves along its longer side until each piece has at most
+// kMaxPieceVertices vertices (or the depth limit is reached).
+constexpr int kMaxPieceVertices = 64;
+void Subdivide(const GeosContext& c, GeomPtr g, int owner, int depth, std::vector<GeomPtr>* out,
+               std::vector<int>* owners) {
+  if (!g || GEOSisEmpty_r(c.get(), g.get()) == 1) return;
+  if (GEOSGetNumCoordinates_r(c.get(), g.get()) <= kMaxPieceVertices || depth >= 12) {
+    out->push_back(std::move(g));
+    owners->push_back(owner);
+    return;
+  }
+  double x0 = 0, y0 = 0, x1 = 0, y1 = 0;
+  GEOSGeom_getXMin_r(c.get(), g.get(), &x0);
+  GEOSGeom_getYMin_r(c.get(), g.get(), &y0);
+  GEOSGeom_getXMax_r(c.get(), g.get(), &x1);
+  GEOSGeom_getYMax_r(c.get(), g.get(), &y1);
+  const bool split_x = (x1 - x0) >= (y1 - y0);
+  const double xm = 0.5 * (x0 + x1), ym = 0.5 * (y0 + y1);
+  const double boxes[2][4] = {{x0, y0, split_x ? xm : x1, split_x ? y1 : ym},
+                              {split_x ? xm : x0, split_x ? y0 : ym, x1, y1}};
+  for (const auto& b : boxes) {
+    GeomPtr half = Own(c, GEOSClipByRect_r(c.get(), g.get(), b[0], b[1], b[2], b[3]));
+    if (!half) {  // clipping failed: keep the piece whole rather than lose it
+      out->push_back(Own(c, GEOSGeom_clone_r(c.get(), g.get())));
+      owners->push_back(owner);
+      return;
+    }
+    for (GeomPtr& part : internal::PolygonParts(c, half.get())) {
+      Subdivide(c, std::move(part), owner, depth + 1, out, owners);
+    }
+  }
+}
+
+}  // namespace
+
 ObstacleQuery::ObstacleQuery(const ObstacleMap& map) : state_(std::make_unique<State>()) {
   State& s = *state_;
   s.map = &map;
   const auto& polygons = map.polygons();
   const size_t n = polygons.size();
-  s.parts.reserve(n);
-  s.ids.resize(n);
-  s.prepared.assign(n, nullptr);
+  s.originals.reserve(n);
+  for (size_t i = 0; i < n; ++i) {
+    s.originals.push_back(internal::MakePolygon(s.ctx, polygons[i]));
+    GeomPtr copy = s.originals.back() ? Own(s.ctx, GEOSGeom_clone_r(s.ctx.get(), s.originals.back().get())) : nullptr;
+    Subdivide(s.ctx, std::move(copy), static_cast<int>(i), 0, &s.parts, &s.owner);
+  }
+  const size_t pieces = s.parts.size();
+  s.ids.resize(pieces);
+  s.prepared.assign(pieces, nullptr);
   s.boundaries.resize(n);
   s.prepared_boundaries.assign(n, nullptr);
   s.tree = GEOSSTRtree_create_r(s.ctx.get(), 10);
-  for (size_t i = 0; i < n; ++i) {
-    s.parts.push_back(internal::MakePolygon(s.ctx, polygons[i]));
+  for (size_t i = 0; i < pieces; ++i) {
     s.ids[i] = static_cast<int>(i);
-  }
-  for (size_t i = 0; i < n; ++i) {
-    if (s.parts[i]) GEOSSTRtree_insert_r(s.ctx.get(), s.tree, s.parts[i].get(), &s.ids[i]);
+    GEOSSTRtree_insert_r(s.ctx.get(), s.tree, s.parts[i].get(), &s.ids[i]);
   }
   // The tree builds itself on its first query; do it now so the cost is paid
   // at construction, not in the first (timed) query.
-  if (n > 0) {
+  if (pieces > 0) {
     GeomPtr probe = internal::MakePoint(s.ctx, polygons[0].outer[0]);
     s.Candidates(probe.get());
   }
@@ -402,7 +448,7 @@ NearestObstacle ObstacleQuery::Nearest(LocalPoint p) {
   double d = 0.0;
   GEOSPreparedDistance_r(s.ctx.get(), s.Prepared(i), pt.get(), &d);
   out.distance_m = d;
-  out.polygon_index = i;
+  out.polygon_index = s.owner[i];
   out.nearest = p;
   if (d > 0.0) {
     GEOSCoordSequence* seq = GEOSPreparedNearestPoints_r(s.ctx.get(), s.Prepared(i), pt.get());
@@ -429,7 +475,7 @@ double ObstacleQuery::SignedDistanceM(LocalPoint p) {
   for (int i : s.hits) {
     if (GEOSPreparedIntersects_r(s.ctx.get(), s.Prepared(i), pt.get()) == 1) {
       double d = 0.0;
-      GEOSPreparedDistance_r(s.ctx.get(), s.PreparedBoundary(i), pt.get(), &d);
+      GEOSPreparedDistance_r(s.ctx.get(), s.PreparedBoundary(s.owner[i]), pt.get(), &d);
       return -d;
     }
   }
