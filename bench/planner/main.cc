@@ -43,6 +43,7 @@ struct Outcome {
   double best_s = -1;
   std::size_t expanded = 0, generated = 0, peak_mb = 0;
   bool valid = false;
+  double load_s = 0;
   std::string note;
 };
 
@@ -61,6 +62,7 @@ Outcome RunOne(const Job& job, double limit_s) {
   const auto start = std::chrono::steady_clock::now();
   auto loaded = seaplan::task::LoadTask(ReadAll(job.domain_file), ReadAll(job.problem_file));
   const double load_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  o.load_s = load_s;
   if (!loaded.ok()) {
     o.status = loaded.unsupported() ? "unsupported" : "load-error";
     o.note = loaded.ErrorText().substr(0, 200);
@@ -182,8 +184,8 @@ int main(int argc, char** argv) {
   std::vector<Outcome> outcomes(all.size());
   std::atomic<std::size_t> next{0};
   std::mutex print_mutex;
-  std::printf("%-26s %-4s %-17s %8s %8s %12s %5s %9s %7s\n", "domain", "prob", "status", "first_s",
-              "best_s", "makespan", "acts", "expanded", "peak_mb");
+  std::printf("%-26s %-4s %-17s %8s %8s %12s %5s %9s %7s %7s %10s\n", "domain", "prob", "status", "first_s",
+              "best_s", "makespan", "acts", "expanded", "peak_mb", "load_s", "generated");
   std::fflush(stdout);
   auto worker = [&]() {
     while (true) {
@@ -193,13 +195,13 @@ int main(int argc, char** argv) {
       const Outcome& o = outcomes[i];
       std::lock_guard<std::mutex> lock(print_mutex);
       if (o.run.solved) {
-        std::printf("%-26s %-4s %-17s %8.3f %8.3f %12.3f %5d %9zu %7zu\n", o.run.domain.c_str(),
+        std::printf("%-26s %-4s %-17s %8.3f %8.3f %12.3f %5d %9zu %7zu %7.3f %10zu\n", o.run.domain.c_str(),
                     o.run.problem.c_str(), o.status.c_str(), o.run.time_s, o.best_s, o.run.makespan,
-                    o.run.actions, o.expanded, o.peak_mb);
+                    o.run.actions, o.expanded, o.peak_mb, o.load_s, o.generated);
       } else {
-        std::printf("%-26s %-4s %-17s %8s %8s %12s %5s %9zu %7zu  %s\n", o.run.domain.c_str(),
+        std::printf("%-26s %-4s %-17s %8s %8s %12s %5s %9zu %7zu %7.3f  %s\n", o.run.domain.c_str(),
                     o.run.problem.c_str(), o.status.c_str(), "-", "-", "-", "-", o.expanded, o.peak_mb,
-                    o.note.substr(0, o.note.find('\n')).c_str());
+                    o.load_s, o.note.substr(0, o.note.find('\n')).c_str());
       }
       std::fflush(stdout);
     }

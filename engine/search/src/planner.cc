@@ -190,12 +190,18 @@ PlanResult PlannerRun::Run() {
     return stop_.Reason() == StopReason::kCancelled ? PlanStatus::kCancelled : PlanStatus::kTimeout;
   };
 
-  // Phase 1: greedy best-first search for a first plan.
-  {
+  // Phase 1: greedy best-first search for a first plan. If it exhausts the
+  // space without a proof (merged states whose schedules differ), retry
+  // once keeping many more schedule variants apart.
+  for (int attempt = 0;; ++attempt) {
     SearchParams params;
     params.weight = -1;
     params.epsilon_s = options_.epsilon_s;
     params.seed = options_.random_seed;
+    if (attempt > 0) {
+      params.max_variants = 64;
+      params.bound_dominance = false;
+    }
     LazySearch search(snap_, registry_, heuristic_, transitions_, timeline_, params);
     search.Initialize(initial);
     while (true) {
@@ -217,12 +223,16 @@ PlanResult PlannerRun::Run() {
         if (search.complete()) {
           return finish(PlanStatus::kUnsolvableProven, "search space exhausted: no plan exists");
         }
+        if (attempt == 0) break;
         return finish(PlanStatus::kError,
                       "search space exhausted without a plan, but duplicate states with running "
                       "actions or timed literals were merged, so this is no proof");
       }
     }
-    AddCounters(search);
+    if (has_plan_) {
+      AddCounters(search);
+      break;
+    }
   }
   if (!options_.anytime) return finish(PlanStatus::kSolvedSatisficing, "");
 

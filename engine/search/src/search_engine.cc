@@ -1,6 +1,7 @@
 #include "search_engine.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 
 namespace seaplan::search {
@@ -164,7 +165,7 @@ LazySearch::Status LazySearch::Step() {
     // on, or a new variant when no visited copy dominates this schedule.
     std::int32_t chosen = -1;
     bool dominated = false;
-    for (int v = 0; v < kMaxVariants; ++v) {
+    for (int v = 0; v < params_.max_variants; ++v) {
       next_.variant = v;
       bool is_new = false;
       const StateId id = registry_.Insert(next_, &is_new);
@@ -174,7 +175,9 @@ LazySearch::Status LazySearch::Step() {
         break;
       }
       merged_any_ = true;
-      const bool old_dominates = n.lb_s <= out.lower_bound_s + 1e-9 && SlackAtLeast(n, slack_scratch_);
+      const bool bound_ok = params_.bound_dominance ? n.lb_s <= out.lower_bound_s + 1e-9
+                                                    : std::abs(n.lb_s - out.lower_bound_s) <= 1e-9;
+      const bool old_dominates = bound_ok && SlackAtLeast(n, slack_scratch_);
       if (old_dominates) {
         dominated = true;
         break;

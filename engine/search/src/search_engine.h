@@ -33,6 +33,11 @@ struct SearchParams {
   double bound_s = kInfinity; // only plans with makespan < bound - epsilon/2
   double epsilon_s = 0.001;
   std::uint64_t seed = 1;
+  // Copies kept per logical state (schedules that do not dominate each
+  // other) and whether a copy with a later makespan bound may dominate
+  // (false: only equal bounds merge; the retry after an incomplete search).
+  int max_variants = 8;
+  bool bound_dominance = true;
 };
 
 struct SearchCounters {
@@ -83,7 +88,7 @@ class LazySearch {
     std::int32_t slack_count = 0;
   };
   // Copies of one logical state with mutually non-dominated schedules.
-  static constexpr int kMaxVariants = 8;
+
   enum : std::uint8_t { kNew = 0, kOpen = 1, kClosed = 2 };
 
   NodeInfo& Info(StateId id);
