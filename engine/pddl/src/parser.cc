@@ -894,16 +894,16 @@ class DomainBuilder : public Builder {
       domain.constants = TypedList(pending_constants_->items, 1, false, true);
       for (const auto& c : domain.constants) AddObject(c, true, *pending_constants_);
     }
+    std::unordered_map<std::string, SourceLocation> action_names;
     for (const SExpr* a : actions) {
-      if (auto action = ParseAction(*a)) {
-        for (const auto& other : domain.actions) {
-          if (other.name == action->name) {
-            Error(DiagnosticKind::kSemantic, a->items.size() > 1 ? a->items[1] : *a, "action declared twice",
-                  "a unique action name (first at " + other.location.ToString() + ")");
-          }
+      if (a->items.size() > 1 && a->items[1].IsAtom()) {
+        auto [it, fresh] = action_names.emplace(a->items[1].atom, Loc(*a));
+        if (!fresh) {
+          Error(DiagnosticKind::kSemantic, a->items[1], "action declared twice",
+                "a unique action name (first at " + it->second.ToString() + ")");
         }
-        domain.actions.push_back(std::move(*action));
       }
+      if (auto action = ParseAction(*a)) domain.actions.push_back(std::move(*action));
     }
     return domain;
   }

@@ -178,6 +178,34 @@ TEST(ParseDomainTest, ToleratesByteOrderMarkCrlfAndTabs) {
   EXPECT_EQ(result.domain->predicates[0].parameters[0].name, "?x");
 }
 
+TEST(ParseDomainTest, SemanticDeclarationErrors) {
+  auto cycle = ParseDomain("(define (domain d) (:types a - b b - a))");
+  EXPECT_FALSE(cycle.domain);
+  EXPECT_NE(FindDiag(cycle.diagnostics, "cycle"), nullptr);
+
+  auto twice = ParseDomain(
+      "(define (domain d) (:predicates (p) (p))\n"
+      "(:action a :parameters (?x ?x) :precondition (p) :effect (p))\n"
+      "(:action a :parameters () :precondition (p) :effect (not (p))))");
+  EXPECT_FALSE(twice.domain);
+  EXPECT_NE(FindDiag(twice.diagnostics, "predicate declared twice"), nullptr);
+  EXPECT_NE(FindDiag(twice.diagnostics, "parameter declared twice"), nullptr);
+  const Diagnostic* dup = FindDiag(twice.diagnostics, "action declared twice");
+  ASSERT_NE(dup, nullptr);
+  EXPECT_EQ(dup->location.line, 3);
+
+  auto arity = ParseDomain(
+      "(define (domain d) (:types t) (:predicates (p ?x - t)) (:functions (f ?x - t))\n"
+      "(:action a :parameters (?x - t) :precondition (and (p ?x ?x) (> (f) 1)) :effect (p)))");
+  EXPECT_FALSE(arity.domain);
+  EXPECT_EQ(CountDiag(arity.diagnostics, "wrong number of arguments"), 3) << FormatDiagnostics(arity.diagnostics);
+
+  auto either_parent = ParseDomain("(define (domain d) (:types car - (either vehicle asset)) (:predicates (p ?c - car)))");
+  ASSERT_TRUE(either_parent.domain) << FormatDiagnostics(either_parent.diagnostics);
+  EXPECT_TRUE(either_parent.domain->IsSubtype("car", "asset"));
+  EXPECT_TRUE(either_parent.domain->IsSubtype("car", "vehicle"));
+}
+
 TEST(ParseDomainTest, SyntaxErrorsHaveClearPositions) {
   auto unmatched = ParseDomain("(define (domain d))\n)");
   const Diagnostic* d = FindDiag(unmatched.diagnostics, "unmatched ')'");
