@@ -45,6 +45,7 @@ struct Outcome {
   bool valid = false;
   double load_s = 0;
   std::string note;
+  std::string plan_text;
 };
 
 std::string ReadAll(const fs::path& p) {
@@ -94,6 +95,7 @@ Outcome RunOne(const Job& job, double limit_s) {
     o.note = v.ToString();
     return o;
   }
+  o.plan_text = seaplan::validate::FormatPlan(r.plan);
   o.run.solved = true;
   o.run.time_s = load_s + r.stats.first_plan_time_s;
   o.best_s = load_s + r.stats.best_plan_time_s;
@@ -117,6 +119,7 @@ int main(int argc, char** argv) {
   std::string filter;
   fs::path dir;
   fs::path peers_file;
+  bool print_plans = false;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     auto value = [&]() -> std::string {
@@ -132,10 +135,12 @@ int main(int argc, char** argv) {
       jobs = std::max(1, std::atoi(value().c_str()));
     } else if (a == "--filter") {
       filter = value();
+    } else if (a == "--print-plans") {
+      print_plans = true;
     } else if (a == "--peers") {
       peers_file = value();
     } else if (a == "--help" || a == "-h") {
-      std::printf("usage: seaplan-bench-planner [--time-limit 60] [--jobs 1] [--filter substr] [--peers FILE] [DIR]\n");
+      std::printf("usage: seaplan-bench-planner [--time-limit 60] [--jobs 1] [--filter substr] [--peers FILE] [--print-plans] [DIR]\n");
       return 0;
     } else if (!a.empty() && a[0] == '-') {
       std::fprintf(stderr, "unknown option %s\n", a.c_str());
@@ -203,6 +208,7 @@ int main(int argc, char** argv) {
                     o.run.problem.c_str(), o.status.c_str(), "-", "-", "-", "-", o.expanded, o.peak_mb,
                     o.load_s, o.note.substr(0, o.note.find('\n')).c_str());
       }
+      if (print_plans && !o.plan_text.empty()) std::printf("%s", o.plan_text.c_str());
       std::fflush(stdout);
     }
   };
