@@ -301,7 +301,8 @@ TEST(GrounderTest, BudgetsEndInAnErrorNotUnboundedMemory) {
   // A universally quantified goal over 60^4 combinations hits the work budget.
   GroundingOptions small_work;
   small_work.max_work = 1'000'000;
-  auto q = LoadTask(domain, "(define (problem q) (:domain big) (:objects" + objects +
+  const std::string no_actions = "(define (domain big) (:requirements :typing) (:types obj) (:predicates (p ?a ?b ?c - obj)))";
+  auto q = LoadTask(no_actions, "(define (problem q) (:domain big) (:objects" + objects +
                                 " - obj) (:init) (:goal (forall (?a ?b ?c ?d - obj) (p ?a ?b ?c))))",
                     small_work);
   EXPECT_FALSE(q.ok());
