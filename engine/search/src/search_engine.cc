@@ -25,21 +25,23 @@ LazySearch::NodeInfo& LazySearch::Info(StateId id) {
 
 std::size_t LazySearch::MemoryBytes() const {
   return info_.capacity() * sizeof(NodeInfo) + slack_pool_.capacity() * sizeof(double) +
+         pending_.capacity() * sizeof(Pending) +
          open_all_.MemoryBytes() +
          open_preferred_.MemoryBytes() + path_.capacity() * sizeof(Event);
 }
 
 void LazySearch::Initialize(const StateData& initial) {
   bool is_new = false;
-  const StateId id = registry_.Insert(initial, &is_new);
+  StateData copy = initial;
+  copy.variant = 0;
+  const StateId id = registry_.Insert(copy, &is_new);
   NodeInfo& n = Info(id);
   n = NodeInfo{};
   n.status = kOpen;
-  if (transitions_.IsGoal(initial)) {
-    plan_.clear();
-    plan_makespan_s_ = 0;
-  }
-  open_all_.Insert(0, 0, id.value());
+  initial_ = id.value();
+  // The initial state is a pending record without a parent.
+  pending_.push_back(Pending{-1, Event{}, 0.0, 0.0});
+  open_all_.Insert(0, 0, 0);
 }
 
 void LazySearch::ExtractPath(std::int32_t state, std::vector<Event>* out) const {
@@ -73,18 +75,20 @@ bool LazySearch::IsAncestor(std::int32_t maybe_ancestor, std::int32_t state) con
   return false;
 }
 
-void LazySearch::Push(std::int32_t state, bool preferred, double parent_h) {
-  const NodeInfo& n = info_[static_cast<std::size_t>(state)];
+void LazySearch::Push(std::int32_t parent, const Event& event, double g_s, double lb_s,
+                      bool preferred, double parent_h) {
+  const auto index = static_cast<std::int32_t>(pending_.size());
+  pending_.push_back(Pending{parent, event, g_s, lb_s});
   double primary, secondary;
   if (params_.weight < 0) {
     primary = parent_h;
-    secondary = getenv("H3_FIFO") ? 0.0 : n.g_s;
+    secondary = g_s;
   } else {
-    primary = n.lb_s + params_.weight * params_.scale_s * parent_h;
+    primary = lb_s + params_.weight * params_.scale_s * parent_h;
     secondary = parent_h;
   }
-  open_all_.Insert(primary, secondary, state);
-  if (preferred) open_preferred_.Insert(primary, secondary, state);
+  open_all_.Insert(primary, secondary, index);
+  if (preferred) open_preferred_.Insert(primary, secondary, index);
 }
 
 bool LazySearch::Pop(std::int32_t* state) {
@@ -98,23 +102,91 @@ bool LazySearch::Pop(std::int32_t* state) {
       ++priority_all_;
     }
     const OpenEntry e = list->Pop();
-    const NodeInfo& n = info_[static_cast<std::size_t>(e.state)];
-    if (n.status == kClosed) continue;
-    if (n.lb_s >= params_.bound_s - params_.epsilon_s / 2) continue;
+    const Pending& p = pending_[static_cast<std::size_t>(e.state)];
+    if (p.lb_s >= params_.bound_s - params_.epsilon_s / 2) continue;
     *state = e.state;
     return true;
   }
   return false;
 }
 
+std::int32_t LazySearch::Materialize(std::int32_t pending_index) {
+  const Pending rec = pending_[static_cast<std::size_t>(pending_index)];
+  if (rec.parent < 0) {
+    // The initial state.
+    NodeInfo& n = info_[static_cast<std::size_t>(initial_)];
+    if (n.status == kClosed) return -1;
+    n.status = kClosed;
+    registry_.Unpack(StateId(initial_), &current_);
+    return initial_;
+  }
+  registry_.Unpack(StateId(rec.parent), &parent_state_);
+  Event ev = rec.event;
+  if (!transitions_.Apply(parent_state_, &ev, &next_)) return -1;  // cannot happen: deterministic
+  ExtractPath(rec.parent, &path_);
+  timeline_.Build(path_);
+  Timeline::Outcome out;
+  if (!timeline_.TryAdd(ev, &out)) {
+    timeline_.Undo();
+    return -1;
+  }
+  slack_scratch_.clear();
+  for (const auto& r : next_.running) {
+    if (task_.IsWindowAction(r.action)) slack_scratch_.push_back(timeline_.WindowSlack(r.action, out.makespan_s));
+  }
+  timeline_.Undo();
+  const bool greedy = params_.weight < 0;
+  // Find the copy of this state to use: an unvisited one, one we improve
+  // on, or a new variant when no visited copy dominates this schedule.
+  std::int32_t chosen = -1;
+  for (int v = 0; v < params_.max_variants; ++v) {
+    next_.variant = v;
+    bool is_new = false;
+    const StateId id = registry_.Insert(next_, &is_new);
+    NodeInfo& n = Info(id);
+    if (n.status == kNew) {
+      chosen = id.value();
+      break;
+    }
+    merged_any_ = true;
+    const bool bound_ok = params_.bound_dominance ? n.lb_s <= out.lower_bound_s + 1e-9
+                                                  : std::abs(n.lb_s - out.lower_bound_s) <= 1e-9;
+    if (bound_ok && SlackAtLeast(n, slack_scratch_)) return -1;  // dominated
+    const bool new_dominates = out.lower_bound_s <= n.lb_s + 1e-9 && SlackAtMost(n, slack_scratch_);
+    if (new_dominates) {
+      if (greedy && n.status == kClosed) return -1;
+      // Stored bounds of descendants can be stale after an ancestor
+      // improved; never let a state become its own ancestor.
+      if (IsAncestor(id.value(), rec.parent)) return -1;
+      chosen = id.value();
+      break;
+    }
+  }
+  if (chosen < 0) {
+    if (!next_.running.empty() || !task_.tils().empty()) merged_timed_ = true;
+    return -1;
+  }
+  NodeInfo& n = info_[static_cast<std::size_t>(chosen)];
+  n.parent = rec.parent;
+  n.event = ev;
+  n.g_s = out.makespan_s;
+  n.lb_s = out.lower_bound_s;
+  n.status = kClosed;
+  n.slack_begin = static_cast<std::int32_t>(slack_pool_.size());
+  n.slack_count = static_cast<std::int32_t>(slack_scratch_.size());
+  slack_pool_.insert(slack_pool_.end(), slack_scratch_.begin(), slack_scratch_.end());
+  std::swap(current_, next_);
+  return chosen;
+}
+
 LazySearch::Status LazySearch::Step() {
-  std::int32_t s;
-  if (!Pop(&s)) return Status::kExhausted;
-  info_[static_cast<std::size_t>(s)].status = kClosed;
-  registry_.Unpack(StateId(s), &current_);
-  if (s == 0 && transitions_.IsGoal(current_) && info_[0].parent < 0) {
-    plan_.clear();
-    plan_makespan_s_ = 0;
+  std::int32_t pending_index;
+  if (!Pop(&pending_index)) return Status::kExhausted;
+  const std::int32_t s = Materialize(pending_index);
+  if (s < 0) return Status::kInProgress;
+  if (transitions_.IsGoal(current_)) {
+    ExtractPath(s, &plan_);
+    plan_makespan_s_ = info_[static_cast<std::size_t>(s)].g_s;
     return Status::kSolved;
   }
   const NodeInfo& cur = info_[static_cast<std::size_t>(s)];
@@ -142,91 +214,30 @@ LazySearch::Status LazySearch::Step() {
   std::stable_partition(candidates_.begin(), candidates_.end(), [&](const Event& e) {
     return !e.is_til() && std::binary_search(preferred_.begin(), preferred_.end(), e.snap);
   });
-  const bool greedy = params_.weight < 0;
   for (Event ev : candidates_) {
     if (!transitions_.Apply(current_, &ev, &next_)) continue;
     Timeline::Outcome out;
     const bool consistent = timeline_.TryAdd(ev, &out);
+    timeline_.Undo();
     if (!consistent) {
-      timeline_.Undo();
       stn_pruned_ = true;
       continue;
     }
-    slack_scratch_.clear();
-    for (const auto& r : next_.running) {
-      if (task_.IsWindowAction(r.action)) {
-        slack_scratch_.push_back(timeline_.WindowSlack(r.action, out.makespan_s));
-      }
-    }
-    timeline_.Undo();
     if (out.lower_bound_s >= params_.bound_s - params_.epsilon_s / 2) continue;
     ++counters_.generated;
-    // Find the copy of this state to use: an unvisited one, one we improve
-    // on, or a new variant when no visited copy dominates this schedule.
-    std::int32_t chosen = -1;
-    bool dominated = false;
-    for (int v = 0; v < params_.max_variants; ++v) {
-      next_.variant = v;
-      bool is_new = false;
-      const StateId id = registry_.Insert(next_, &is_new);
-      NodeInfo& n = Info(id);
-      if (n.status == kNew) {
-        chosen = id.value();
-        break;
-      }
-      merged_any_ = true;
-      const bool bound_ok = params_.bound_dominance ? n.lb_s <= out.lower_bound_s + 1e-9
-                                                    : std::abs(n.lb_s - out.lower_bound_s) <= 1e-9;
-      const bool old_dominates = bound_ok && SlackAtLeast(n, slack_scratch_);
-      if (old_dominates) {
-        dominated = true;
-        break;
-      }
-      const bool new_dominates = out.lower_bound_s <= n.lb_s + 1e-9 && SlackAtMost(n, slack_scratch_);
-      if (new_dominates) {
-        if (greedy && n.status == kClosed) {
-          dominated = true;
-          break;
-        }
-        // Stored bounds of descendants can be stale after an ancestor
-        // improved; never let a state become its own ancestor.
-        if (IsAncestor(id.value(), s)) {
-          dominated = true;
-          break;
-        }
-        chosen = id.value();
-        break;
-      }
-    }
-    if (chosen < 0) {
-      if (!next_.running.empty() || !task_.tils().empty()) merged_timed_ = true;
-      (void)dominated;
-      continue;
-    }
-    NodeInfo& n = info_[static_cast<std::size_t>(chosen)];
-    const bool was_new = n.status == kNew;
-    n.parent = s;
-    n.event = ev;
-    n.g_s = out.makespan_s;
-    n.lb_s = out.lower_bound_s;
-    n.status = kOpen;
-    n.slack_begin = static_cast<std::int32_t>(slack_pool_.size());
-    n.slack_count = static_cast<std::int32_t>(slack_scratch_.size());
-    slack_pool_.insert(slack_pool_.end(), slack_scratch_.begin(), slack_scratch_.end());
-    if (transitions_.IsGoal(next_)) {
-      ExtractPath(chosen, &plan_);
-      plan_makespan_s_ = out.makespan_s;
-      n.status = kClosed;
-      return Status::kSolved;
-    }
-    if (!was_new && greedy) continue;  // better schedule recorded; already queued
     bool preferred = false;
     if (ev.is_til()) {
       preferred = !task_.tils()[static_cast<std::size_t>(ev.til())].add.empty();
     } else {
       preferred = std::binary_search(preferred_.begin(), preferred_.end(), ev.snap);
     }
-    Push(chosen, preferred, h);
+    // A goal reached is taken at once (best first among goals is the
+    // anytime phase's job): put it first in both lists.
+    if (transitions_.IsGoal(next_)) {
+      Push(s, ev, out.makespan_s, out.lower_bound_s, true, -1e9);
+      continue;
+    }
+    Push(s, ev, out.makespan_s, out.lower_bound_s, preferred, h);
   }
   return Status::kInProgress;
 }

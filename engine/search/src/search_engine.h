@@ -1,9 +1,10 @@
 // Step-wise lazy best-first search over snap-action states (Fast Downward's
 // search_algorithm shape: Initialize(), then Step() until it says stop).
 //
-// Successors are generated, scheduled (Timeline) and registered when their
-// parent is expanded; the heuristic runs when a state is expanded (lazy
-// evaluation), giving its helpful events at the same time. Two open lists:
+// Successors are checked and scheduled (Timeline) when their parent is
+// expanded but only registered when popped (deferred generation: states
+// never expanded cost no registry space); the heuristic runs when a state is
+// expanded (lazy evaluation), giving its helpful events at the same time. Two open lists:
 // all successors, and those reached by helpful events (boosted after
 // progress, as in LAMA). Ordering:
 //   - greedy (weight < 0): (parent h, makespan so far);
@@ -96,7 +97,16 @@ class LazySearch {
   bool SlackAtLeast(const NodeInfo& n, const std::vector<double>& slack) const;
   bool SlackAtMost(const NodeInfo& n, const std::vector<double>& slack) const;
   bool IsAncestor(std::int32_t maybe_ancestor, std::int32_t state) const;
-  void Push(std::int32_t state, bool preferred, double parent_h);
+  struct Pending {
+    std::int32_t parent;  // -1: the initial state
+    Event event;
+    double g_s, lb_s;
+  };
+  void Push(std::int32_t parent, const Event& event, double g_s, double lb_s, bool preferred,
+            double parent_h);
+  // Generates and registers the state of a pending record (deferred, as in
+  // Fast Downward's lazy search); -1 when it is a dominated duplicate.
+  std::int32_t Materialize(std::int32_t pending_index);
   bool Pop(std::int32_t* state);
 
   const SnapTask& task_;
@@ -122,6 +132,9 @@ class LazySearch {
   std::vector<SnapId> preferred_;
   std::vector<double> slack_scratch_;
   std::vector<double> slack_pool_;
+  std::vector<Pending> pending_;
+  std::int32_t initial_ = 0;
+  StateData parent_state_;
 };
 
 }  // namespace seaplan::search

@@ -71,6 +71,12 @@ RelaxedPlanHeuristic::RelaxedPlanHeuristic(const SnapTask& task, double epsilon_
   for (int op = 0; op < num_ops_; ++op) {
     if (op_exists_[op] && pre_begin_[op + 1] == pre_begin_[op]) no_pre_ops_.push_back(op);
   }
+  has_num_pre_.resize(static_cast<std::size_t>(num_ops_));
+  has_num_eff_.resize(static_cast<std::size_t>(num_ops_));
+  for (int op = 0; op < num_ops_; ++op) {
+    has_num_pre_[op] = !num_pre_[op].empty();
+    has_num_eff_[op] = !num_eff_[op].empty();
+  }
   window_facts_.resize(actions.size());
   min_invariant_duration_.assign(static_cast<std::size_t>(num_facts_), kInf);
   suppressed_.assign(static_cast<std::size_t>(num_facts_), false);
@@ -319,7 +325,7 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
       for (int i = fact_ops_begin_[f]; i < fact_ops_begin_[f + 1]; ++i) {
         const int op = fact_ops_[i];
         if (--op_missing_[op] == 0) {
-          if (num_pre_[op].empty()) {
+          if (!has_num_pre_[op]) {
             op_layer_[op] = layer;
             applicable_.push_back(op);
           } else {
@@ -372,7 +378,7 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
     for (; processed_applicable < applicable_.size(); ++processed_applicable) {
       const int op = applicable_[processed_applicable];
       for (int i = add_begin_[op]; i < add_begin_[op + 1]; ++i) reach(add_[i], layer + 1, op);
-      if (!num_eff_[op].empty()) numeric_ops.push_back(op);
+      if (has_num_eff_[op]) numeric_ops.push_back(op);
     }
     bool widened = false;
     if (!numeric_ops.empty()) {

@@ -66,6 +66,7 @@ class RelaxedPlanHeuristic {
   std::vector<std::vector<const task::NumericEffect*>> num_eff_;
   std::vector<bool> op_exists_;
   std::vector<std::int32_t> no_pre_ops_;
+  std::vector<std::uint8_t> has_num_pre_, has_num_eff_;  // compact copies for the hot loop
   double epsilon_s_;
   std::vector<std::vector<task::FactId>> window_facts_;  // per action: start adds deleted at end
   std::vector<double> min_invariant_duration_;           // per fact: shortest action needing it over all
