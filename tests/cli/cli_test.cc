@@ -1,0 +1,215 @@
+// End-to-end tests of `seaplan`: exit codes (0 success, 1 no plan / invalid,
+// 2 bad input or usage, 3 server unreachable), IPC plan output, JSON output,
+// and the same commands against a running seaplan-server.
+#include <gtest/gtest.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
+
+#include "seaplan/testing/shared_data.h"
+
+namespace seaplan::testing {
+namespace {
+
+namespace fs = std::filesystem;
+
+struct CommandResult {
+  int exit_code = -1;
+  std::string out;
+  std::string err;
+};
+
+fs::path ScratchDir() {
+  const auto dir = fs::temp_directory_path() / ("seaplan-cli-test-" + std::to_string(::getpid()));
+  fs::create_directories(dir);
+  return dir;
+}
+
+std::string Quote(const std::string& arg) {
+  std::string quoted = "'";
+  for (char c : arg) quoted += c == '\'' ? std::string("'\\''") : std::string(1, c);
+  return quoted + "'";
+}
+
+// Runs build/bin/seaplan with `args`; stdout and stderr captured separately.
+CommandResult RunSeaplan(const std::vector<std::string>& args) {
+  static int counter = 0;
+  const auto dir = ScratchDir();
+  const auto out = dir / ("out" + std::to_string(counter));
+  const auto err = dir / ("err" + std::to_string(counter++));
+  std::string command = Quote((BinDir() / "seaplan").string());
+  for (const auto& arg : args) command += " " + Quote(arg);
+  command += " >" + Quote(out.string()) + " 2>" + Quote(err.string());
+  const int status = std::system(command.c_str());
+  CommandResult result;
+  result.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  result.out = ReadFile(out);
+  result.err = ReadFile(err);
+  return result;
+}
+
+std::string Example(const std::string& name) { return (SourceDir() / "examples/fjord" / name).string(); }
+
+std::string WriteScratch(const std::string& name, const std::string& content) {
+  const auto path = ScratchDir() / name;
+  std::ofstream(path) << content;
+  return path.string();
+}
+
+TEST(CliInProcessTest, PlanPrintsAValidIpcPlan) {
+  const auto plan_file = (ScratchDir() / "case-a.plan").string();
+  auto plan = RunSeaplan({"plan", Example("domain.pddl"), Example("case-a.pddl"), "--time-limit", "5",
+                          "-o", plan_file});
+  ASSERT_EQ(plan.exit_code, 0) << plan.err;
+  EXPECT_NE(plan.out.find("(move-ship ship0 port-a port-b)"), std::string::npos) << plan.out;
+  EXPECT_NE(plan.out.find("; status: SOLVED"), std::string::npos) << plan.out;
+  // The written plan is accepted by the validator.
+  auto check = RunSeaplan({"validate", Example("domain.pddl"), Example("case-a.pddl"), plan_file});
+  EXPECT_EQ(check.exit_code, 0) << check.out << check.err;
+  EXPECT_NE(check.out.find("Plan valid"), std::string::npos);
+}
+
+TEST(CliInProcessTest, InvalidPlanExitsOneAndNamesTheFailure) {
+  auto result = RunSeaplan({"validate", Example("domain.pddl"), Example("case-a.pddl"),
+                            Example("case-a-paper.plan")});
+  EXPECT_EQ(result.exit_code, 1);
+  EXPECT_NE(result.out.find("Plan invalid"), std::string::npos) << result.out;
+  EXPECT_NE(result.out.find("first failure"), std::string::npos) << result.out;
+}
+
+TEST(CliInProcessTest, MalformedPddlExitsTwoWithLocation) {
+  const auto domain = WriteScratch("bad-domain.pddl",
+                                   "(define (domain d)\n  (:requirements :strips)\n  (:predicates (p))\n"
+                                   "  (:action a :parameters () :precondition (q) :effect (p)))\n");
+  const auto problem = WriteScratch("bad-problem.pddl",
+                                    "(define (problem p) (:domain d) (:init) (:goal (p)))\n");
+  auto result = RunSeaplan({"plan", domain, problem, "--time-limit", "1"});
+  EXPECT_EQ(result.exit_code, 2) << result.out << result.err;
+  // The undeclared predicate q on line 4 is named with its position.
+  EXPECT_NE(result.err.find("domain:4:"), std::string::npos) << result.err;
+  EXPECT_NE(result.err.find("q"), std::string::npos) << result.err;
+}
+
+TEST(CliInProcessTest, MissingFileAndUsageErrorsExitTwo) {
+  EXPECT_EQ(RunSeaplan({"plan", "/nonexistent/domain.pddl", Example("case-a.pddl")}).exit_code, 2);
+  EXPECT_EQ(RunSeaplan({"plan"}).exit_code, 2);
+  EXPECT_EQ(RunSeaplan({"no-such-command"}).exit_code, 2);
+  EXPECT_EQ(RunSeaplan({"route", "--from", "95,10", "--to", "63,10", "--chart-file", "x"}).exit_code, 2);
+}
+
+TEST(CliInProcessTest, UnsolvableProblemExitsOne) {
+  const auto domain = WriteScratch("unsolvable-domain.pddl",
+                                   "(define (domain u)\n  (:requirements :durative-actions)\n"
+                                   "  (:predicates (p) (q))\n"
+                                   "  (:durative-action a :parameters () :duration (= ?duration 1)\n"
+                                   "    :condition (at start (q)) :effect (at end (p))))\n");
+  const auto problem = WriteScratch("unsolvable-problem.pddl",
+                                    "(define (problem up) (:domain u) (:init) (:goal (p)))\n");
+  auto result = RunSeaplan({"plan", domain, problem, "--time-limit", "5"});
+  EXPECT_EQ(result.exit_code, 1) << result.out << result.err;
+  EXPECT_EQ(result.out.find("(a)"), std::string::npos);
+}
+
+TEST(CliInProcessTest, JsonOutputIsTheApiMessage) {
+  auto result = RunSeaplan({"--json", "plan", Example("domain.pddl"), Example("case-a.pddl"),
+                            "--time-limit", "2", "--no-anytime"});
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_EQ(result.out.rfind("{", 0), 0u) << result.out;
+  EXPECT_NE(result.out.find("\"status\":\"SOLVED_"), std::string::npos) << result.out;
+  EXPECT_NE(result.out.find("\"makespanS\""), std::string::npos) << result.out;
+}
+
+TEST(CliInProcessTest, MissionsNeedAServer) {
+  auto result = RunSeaplan({"mission", "list"});
+  EXPECT_EQ(result.exit_code, 2);
+  EXPECT_NE(result.err.find("--server"), std::string::npos) << result.err;
+}
+
+TEST(CliRemoteTest, UnreachableServerExitsThree) {
+  auto result = RunSeaplan({"--server", "127.0.0.1:1", "--timeout", "2", "validate", Example("domain.pddl"),
+                            Example("case-a.pddl"), Example("case-a-repaired.plan")});
+  EXPECT_EQ(result.exit_code, 3) << result.out << result.err;
+}
+
+// A real seaplan-server on ephemeral loopback ports, killed at the end.
+class ServerProcess {
+ public:
+  ServerProcess() {
+    dir_ = ScratchDir() / ("server-" + std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()));
+    fs::create_directories(dir_);
+    const auto port_file = dir_ / "ports";
+    pid_ = fork();
+    if (pid_ == 0) {
+      const std::string bin = (BinDir() / "seaplan-server").string();
+      const std::string data = (dir_ / "data").string();
+      const std::string ports = port_file.string();
+      execl(bin.c_str(), bin.c_str(), "--grpc-addr", "127.0.0.1:0", "--http-addr", "127.0.0.1:0",
+            "--data-dir", data.c_str(), "--port-file", ports.c_str(), "--log-level", "warn",
+            static_cast<char*>(nullptr));
+      _exit(127);
+    }
+    for (int i = 0; i < 200 && port_.empty(); ++i) {
+      std::ifstream in(port_file);
+      std::string line;
+      while (std::getline(in, line)) {
+        if (line.rfind("grpc=", 0) == 0) port_ = line.substr(5);
+      }
+      if (port_.empty()) std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+  }
+  ~ServerProcess() {
+    if (pid_ > 0) {
+      kill(pid_, SIGTERM);
+      int status = 0;
+      for (int i = 0; i < 100 && waitpid(pid_, &status, WNOHANG) == 0; ++i) {
+        std::this_thread::sleep_for(std::chrono::milliseconds(50));
+      }
+      kill(pid_, SIGKILL);
+      waitpid(pid_, &status, 0);
+    }
+  }
+  std::string address() const { return "127.0.0.1:" + port_; }
+  bool started() const { return !port_.empty(); }
+
+ private:
+  fs::path dir_;
+  pid_t pid_ = -1;
+  std::string port_;
+};
+
+TEST(CliRemoteTest, CommandsWorkAgainstARunningServer) {
+  ServerProcess server;
+  ASSERT_TRUE(server.started()) << "seaplan-server did not report its ports";
+  const std::string addr = server.address();
+
+  auto plan = RunSeaplan({"--server", addr, "plan", Example("domain.pddl"), Example("case-a.pddl"),
+                          "--time-limit", "5"});
+  EXPECT_EQ(plan.exit_code, 0) << plan.err;
+  EXPECT_NE(plan.out.find("(refuel-ship ship0 port-e teamf0)"), std::string::npos) << plan.out;
+
+  auto valid = RunSeaplan({"--server", addr, "validate", Example("domain.pddl"), Example("case-a.pddl"),
+                           Example("case-a-repaired.plan")});
+  EXPECT_EQ(valid.exit_code, 0) << valid.out << valid.err;
+  auto invalid = RunSeaplan({"--server", addr, "validate", Example("domain.pddl"), Example("case-a.pddl"),
+                             Example("case-a-paper.plan")});
+  EXPECT_EQ(invalid.exit_code, 1) << invalid.out << invalid.err;
+
+  auto charts = RunSeaplan({"--server", addr, "chart", "list"});
+  EXPECT_EQ(charts.exit_code, 0) << charts.err;
+  EXPECT_NE(charts.out.find("no charts"), std::string::npos) << charts.out;
+
+  auto missing = RunSeaplan({"--server", addr, "mission", "get", "no-such-mission"});
+  EXPECT_EQ(missing.exit_code, 2) << missing.out << missing.err;
+  EXPECT_NE(missing.err.find("NOT_FOUND"), std::string::npos) << missing.err;
+}
+
+}  // namespace
+}  // namespace seaplan::testing
