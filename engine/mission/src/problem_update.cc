@@ -44,6 +44,15 @@ struct TimedEvent {
 
 }  // namespace
 
+bool DomainPlansFuel(std::string_view domain_text) {
+  pddl::DomainParseResult d = pddl::ParseDomain(domain_text);
+  if (!d.domain) return false;
+  for (const pddl::FunctionDecl& f : d.domain->functions) {
+    if (f.parameters.size() == 1 && f.name.find("fuel") != std::string::npos) return true;
+  }
+  return false;
+}
+
 Status RegenerationOptions::Validate() const {
   if (location_predicate.empty()) return absl::InvalidArgumentError("regeneration: location_predicate is empty");
   if (!(snap_distance_m >= 0)) return absl::InvalidArgumentError("regeneration: snap_distance_m must be >= 0");

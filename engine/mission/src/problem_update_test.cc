@@ -114,6 +114,14 @@ TEST_F(ProblemUpdateTest, DistanceFunctionsOfTheTemplateAreScaledByGeometry) {
   EXPECT_NEAR(st.fluents["(distance port-b port-s)"], 52 * std::hypot(1000, 400) / 1000, 1e-9);
 }
 
+TEST_F(ProblemUpdateTest, DomainPlansFuelOnlyWithANumericFuelFunction) {
+  EXPECT_FALSE(DomainPlansFuel(domain_));
+  std::string numeric = domain_;
+  numeric.replace(numeric.find("(speed ?v - vehicle)"), 20, "(speed ?v - vehicle) (fuel-level ?v - vehicle)");
+  EXPECT_TRUE(DomainPlansFuel(numeric));
+  EXPECT_FALSE(DomainPlansFuel("(define"));
+}
+
 TEST_F(ProblemUpdateTest, BadStepIsAnError) {
   validate::PlanStep bad{0, "teleport", {"ship0"}, 1};
   auto r = RegenerateProblem(domain_, problem_, {bad}, {}, CaseALocations(), {{0, 0}, 1.0});

@@ -44,7 +44,11 @@ std::optional<std::string> DecideReplan(const Feedback& feedback, const PlanVers
                              active_task->id, policy.position_deviation_m);
     }
   }
-  if (feedback.fuel_fraction && *feedback.fuel_fraction <= policy.fuel_threshold_fraction) {
+  if (policy.fuel_planned && feedback.fuel_fraction && *feedback.fuel_fraction <= 0.0) {
+    return std::string("fuel tank empty although fuel was planned");
+  }
+  if (!policy.fuel_planned && feedback.fuel_fraction &&
+      *feedback.fuel_fraction <= policy.fuel_threshold_fraction) {
     bool refuel_left = false, move_left = false;
     for (const Task& t : current.tasks) {
       if (t.end_s() < feedback.mission_time_s - 1e-6) continue;

@@ -60,6 +60,13 @@ TEST(ReplanPolicyTest, LowFuelTriggersOnlyWithoutRefuelAhead) {
   EXPECT_EQ(*reason, "fuel 28% <= 30%");
   f.fuel_fraction = 0.31;
   EXPECT_FALSE(DecideReplan(f, without, &without.tasks[0], ReplanPolicy{}));
+  // Fuel planned by the planner: only an empty tank means the plan failed.
+  ReplanPolicy planned;
+  planned.fuel_planned = true;
+  f.fuel_fraction = 0.28;
+  EXPECT_FALSE(DecideReplan(f, without, &without.tasks[0], planned));
+  f.fuel_fraction = 0.0;
+  EXPECT_TRUE(DecideReplan(f, without, &without.tasks[0], planned));
 }
 
 TEST(ReplanPolicyTest, LateCompletionAndStaleVersion) {

@@ -68,6 +68,11 @@ struct RegeneratedProblem {
   bool goal_satisfied = false; // the mission's goal already holds now
 };
 
+// True when the domain declares a one-argument numeric function whose name
+// contains "fuel" (fuel planned up front, e.g. (fuel-level ?v)); false for
+// unparsable text. Use it to set ReplanPolicy::fuel_planned.
+bool DomainPlansFuel(std::string_view domain_text);
+
 StatusOr<RegeneratedProblem> RegenerateProblem(
     std::string_view domain_text, std::string_view problem_text,
     const std::vector<validate::PlanStep>& completed,

@@ -17,6 +17,10 @@ struct ReplanPolicy {
   double fuel_threshold_fraction = 0.3;  // replan when fuel <= this
   double position_deviation_m = 200.0;   // off the current move's route by more
   double delay_tolerance_s = 120.0;      // a task completes later than planned by more
+  // The domain tracks fuel itself (a numeric fuel fluent, DomainPlansFuel):
+  // the plan already schedules the refuelling stops, so low fuel triggers a
+  // replan only when the tank is empty (the plan did not hold).
+  bool fuel_planned = false;
   Status Validate() const;
 };
 
