@@ -121,7 +121,7 @@ void PlannerRun::AddCounters(const LazySearch& search) {
 PlannerRun::Outcome PlannerRun::Poll(const LazySearch& search) {
   ++steps_;
   if (stop_.StopRequested()) return Outcome::kStop;
-  if ((steps_ & 63) == 0) {
+  if ((steps_ & 15) == 0) {
     const std::size_t bytes = registry_.MemoryBytes() + search.MemoryBytes();
     const std::size_t mb = bytes >> 20;
     best_.stats.peak_memory_mb = std::max(best_.stats.peak_memory_mb, mb);
@@ -203,6 +203,7 @@ PlanResult PlannerRun::Run() {
       params.bound_dominance = false;
     }
     LazySearch search(snap_, registry_, heuristic_, transitions_, timeline_, params);
+    search.SetStopToken(&stop_);
     search.Initialize(initial);
     while (true) {
       const Outcome poll = Poll(search);
@@ -247,6 +248,7 @@ PlanResult PlannerRun::Run() {
     params.epsilon_s = options_.epsilon_s;
     params.seed = options_.random_seed;
     LazySearch search(snap_, registry_, heuristic_, transitions_, timeline_, params);
+    search.SetStopToken(&stop_);
     search.Initialize(initial);
     bool stop = false;
     while (true) {

@@ -214,7 +214,9 @@ LazySearch::Status LazySearch::Step() {
   std::stable_partition(candidates_.begin(), candidates_.end(), [&](const Event& e) {
     return !e.is_til() && std::binary_search(preferred_.begin(), preferred_.end(), e.snap);
   });
+  std::size_t tried = 0;
   for (Event ev : candidates_) {
+    if (stop_ != nullptr && (++tried & 255) == 0 && stop_->StopRequested()) return Status::kInProgress;
     if (!transitions_.Apply(current_, &ev, &next_)) continue;
     Timeline::Outcome out;
     const bool consistent = timeline_.TryAdd(ev, &out);

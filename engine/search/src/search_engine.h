@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "heuristics/relaxed_plan_heuristic.h"
+#include "seaplan/common/stop_token.h"
 #include "open_lists/tie_breaking_open_list.h"
 #include "snap_task.h"
 #include "state_registry.h"
@@ -52,6 +53,10 @@ class LazySearch {
   LazySearch(const SnapTask& task, StateRegistry& registry, RelaxedPlanHeuristic& heuristic,
              const Transitions& transitions, Timeline& timeline, const SearchParams& params);
 
+  // `stop` (may be null) is also polled inside large expansions so that a
+  // cancellation is seen within milliseconds; an interrupted expansion
+  // leaves the search unusable (callers stop anyway).
+  void SetStopToken(const StopToken* stop) { stop_ = stop; }
   void Initialize(const StateData& initial);
   Status Step();
 
@@ -134,6 +139,7 @@ class LazySearch {
   std::vector<double> slack_pool_;
   std::vector<Pending> pending_;
   std::int32_t initial_ = 0;
+  const StopToken* stop_ = nullptr;
   StateData parent_state_;
 };
 
