@@ -3,6 +3,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "absl/strings/str_cat.h"
+#include "absl/strings/str_split.h"
 #include "seaplan/task/grounder.h"
 #include "seaplan/testing/shared_data.h"
 #include "seaplan/validate/plan.h"
@@ -97,16 +99,57 @@ TEST(FjordExamplesTest, RepairedCaseAPlanIsAccepted) {
   const ValidationResult r = validator->Validate(plan);
   EXPECT_TRUE(r.valid) << r.ToString();
   EXPECT_EQ(r.action_count, 13u);
-  // 2403.333 s of forced sequence + 11 separations of 1 ms.
-  EXPECT_NEAR(r.makespan_s, 2403.344, 0.001);
+  // 348 / 0.18 s of moves + 470 s of port work, all forced into sequence,
+  // + 4 separations of 1 ms (3 unload -> load, last move -> repair/refuel).
+  EXPECT_NEAR(r.makespan_s, 348 / 0.18 + 470 + 0.004, 1e-9);
   ASSERT_TRUE(r.metric_value.has_value());
   EXPECT_DOUBLE_EQ(*r.metric_value, r.makespan_s);
-  // It stays valid when printed and read back (it is printed that way).
+  // It is printed the way FormatPlan prints it, and stays valid read back.
+  std::string steps;
+  for (const absl::string_view line : absl::StrSplit(Example("case-a-repaired.plan"), '\n')) {
+    if (!line.empty() && line[0] != ';') absl::StrAppend(&steps, line, "\n");
+  }
+  EXPECT_EQ(steps, FormatPlan(plan));
   const auto reparsed = ParsePlan(FormatPlan(plan));
   ASSERT_TRUE(reparsed.ok());
   EXPECT_TRUE(validator->Validate(*reparsed).valid);
-  // Repair and refuel end together with the ship at E; with zero separation
-  // after the last move, the arrival and the repair's start would interfere.
+}
+
+TEST(FjordExamplesTest, RepairedCaseAPlanIsTight) {
+  // Every zero separation is exact and every 1 ms one is needed: moving any
+  // step earlier by 0.5 ms (less than epsilon) breaks the plan.
+  const task::LoadResult loaded = LoadExample("domain.pddl", "case-a.pddl");
+  ASSERT_TRUE(loaded.ok());
+  const Plan plan = PlanFile("case-a-repaired.plan");
+  ASSERT_EQ(plan.steps.size(), 13u);
+  auto validator = Validator::Create(loaded.task);
+  ASSERT_TRUE(validator.ok());
+  for (std::size_t i = 1; i < plan.steps.size(); ++i) {
+    Plan earlier = plan;
+    earlier.steps[i].start_s -= 0.0005;
+    EXPECT_FALSE(validator->Validate(earlier).valid) << "step " << i << " 0.5 ms earlier";
+  }
+  // The move leaves when the load ends; 0.5 ms earlier it breaks the load's
+  // invariant (at ship0 port-a).
+  Plan early_move = plan;
+  early_move.steps[1].start_s -= 0.0005;
+  const ValidationResult m = validator->Validate(early_move);
+  ASSERT_FALSE(m.valid);
+  EXPECT_EQ(m.first_failure->kind, Kind::kOverAll) << m.ToString();
+  EXPECT_EQ(m.first_failure->step_index, 0);
+  EXPECT_EQ(m.first_failure->other_step_index, 1);
+  EXPECT_EQ(m.first_failure->condition, "(at ship0 port-a)");
+  // The next load needs (available ship0), which the unload's end adds: with
+  // zero separation the two snap actions interfere.
+  Plan touching_load = plan;
+  touching_load.steps[3].start_s = touching_load.steps[2].end_s();
+  const ValidationResult l = validator->Validate(touching_load);
+  ASSERT_FALSE(l.valid);
+  EXPECT_EQ(l.first_failure->kind, Kind::kMutex) << l.ToString();
+  EXPECT_EQ(l.first_failure->step_index, 2);
+  EXPECT_EQ(l.first_failure->condition, "(available ship0)");
+  // Repair and refuel need the ship at E at their starts, which the last
+  // move's end adds: with zero separation they interfere too.
   Plan touching = plan;
   touching.steps[11].start_s = touching.steps[10].end_s();
   touching.steps[12].start_s = touching.steps[10].end_s();

@@ -269,9 +269,24 @@ class Run {
   // Computes the footprint of events_[event_index] once (footprint_of_event_).
   void FootprintOf(std::size_t event_index);
   std::optional<ValidationFailure> CheckMutex(std::size_t event_index);
-  // Keeps the variants of `step` whose `part` holds; on none, the failure.
+  // Keeps the variants of `step` whose `part` holds; on none, the failure
+  // (and, if `failed` is given, the literal it reports).
+  struct FailedLiteral {
+    const Condition* condition = nullptr;
+    LiteralFailure literal;
+  };
   std::optional<ValidationFailure> Filter(int step, Condition Action::*part, Kind kind, double t,
-                                          const char* when);
+                                          const char* when, FailedLiteral* failed = nullptr);
+  // After the happening at events_[last] (every event at that nanosecond
+  // applied): the over-all conditions of the steps open in the state it
+  // leaves, i.e. started at or before it and ending after it.
+  std::optional<ValidationFailure> CheckInvariants(std::size_t last);
+  // The event of the current happening that made `failed` false, when it
+  // held in the state before the happening; -1 otherwise.
+  std::int32_t Culprit(const FailedLiteral& failed, double duration);
+  // State writes, logged in changes_ so that Culprit can tell who broke what.
+  void SetFact(FactId f, std::uint8_t value);
+  void SetValue(NumericVarId var, double value);
   std::optional<ValidationFailure> Start(const Event& e);
   std::optional<ValidationFailure> End(const Event& e);
   // Applies `effects` of `source` (for messages) in the current state.
@@ -296,6 +311,17 @@ class Run {
     double operand;
   };
   std::vector<PendingUpdate> updates_;  // scratch, reused by every event
+  // Every change of a fact or numeric value in the current happening, in
+  // order, with the value before it (cleared at each new happening; at most
+  // one entry per effect, so no cost beyond applying the effects).
+  struct Change {
+    bool numeric = false;
+    std::int32_t id = -1;
+    double old_value = 0.0;
+    std::int32_t event = -1;  // index into events_
+  };
+  std::vector<Change> changes_;
+  std::int32_t current_event_ = -1;
 };
 
 std::optional<ValidationFailure> Run::CheckStructure() {
@@ -399,9 +425,8 @@ void Run::FootprintOf(std::size_t event_index) {
             fp.Write(ce.add, ce.del, ce.numeric);
           }
         }
-        // Stricter than the letter of PDDL 2.1 (see validator.h): the
-        // invariant counts as read at both ends of the interval.
-        if (a.is_durative) fp.ReadCondition(a.over_all);
+        // Over-all conditions are not part of either snap action (PDDL 2.1,
+        // VAL's Ownership): they are checked on the open interval instead.
       }
       break;
     case EventKind::kTimedLiteral: {
@@ -460,7 +485,7 @@ std::optional<ValidationFailure> Run::CheckMutex(std::size_t i) {
 }
 
 std::optional<ValidationFailure> Run::Filter(int step, Condition Action::*part, Kind kind,
-                                             double t, const char* when) {
+                                             double t, const char* when, FailedLiteral* failed) {
   StepState& ss = steps_[static_cast<std::size_t>(step)];
   const auto& cands = candidates_[static_cast<std::size_t>(step)];
   const double duration = plan_.steps[static_cast<std::size_t>(step)].duration_s;
@@ -479,6 +504,7 @@ std::optional<ValidationFailure> Run::Filter(int step, Condition Action::*part, 
       last = StepFailure(kind, t, step);
       last->condition = DescribeLiteral(task_, c, *failing);
       last->reason = absl::StrCat(KindName(kind), " ", last->condition, " ", WhyFalse(*failing), " ", when);
+      if (failed != nullptr) *failed = FailedLiteral{&c, *failing};
     }
   }
   if (any) return std::nullopt;
@@ -515,19 +541,19 @@ std::optional<std::string> Run::Apply(const Effects& effects, task::TimePoint po
       if (auto err = collect(ce.numeric)) return err;
     }
   }
-  for (FactId f : effects.del) state_.facts[static_cast<std::size_t>(f)] = 0;
+  for (FactId f : effects.del) SetFact(f, 0);
   for (std::size_t i = 0; i < effects.conditional.size(); ++i) {
     if (!fired[i]) continue;
-    for (FactId f : effects.conditional[i].del) state_.facts[static_cast<std::size_t>(f)] = 0;
+    for (FactId f : effects.conditional[i].del) SetFact(f, 0);
   }
   // Adds after deletes: an action that adds and deletes a fact leaves it true (VAL).
-  for (FactId f : effects.add) state_.facts[static_cast<std::size_t>(f)] = 1;
+  for (FactId f : effects.add) SetFact(f, 1);
   for (std::size_t i = 0; i < effects.conditional.size(); ++i) {
     if (!fired[i]) continue;
-    for (FactId f : effects.conditional[i].add) state_.facts[static_cast<std::size_t>(f)] = 1;
+    for (FactId f : effects.conditional[i].add) SetFact(f, 1);
   }
   for (const auto& u : updates_) {
-    double& value = state_.values[static_cast<std::size_t>(u.var)];
+    const double value = state_.values[static_cast<std::size_t>(u.var)];
     if (std::isnan(value) && u.op != task::AssignOp::kAssign) {
       return absl::StrCat("the numeric effect updates ",
                           task_.numeric_vars[static_cast<std::size_t>(u.var)].DisplayName(),
@@ -539,7 +565,107 @@ std::optional<std::string> Run::Apply(const Effects& effects, task::TimePoint po
                           task_.numeric_vars[static_cast<std::size_t>(u.var)].DisplayName(),
                           " gives a non-finite value (division by zero?)");
     }
-    value = next;
+    SetValue(u.var, next);
+  }
+  return std::nullopt;
+}
+
+void Run::SetFact(FactId f, std::uint8_t value) {
+  std::uint8_t& slot = state_.facts[static_cast<std::size_t>(f)];
+  if (slot == value) return;
+  changes_.push_back({false, f, static_cast<double>(slot), current_event_});
+  slot = value;
+}
+
+void Run::SetValue(NumericVarId var, double value) {
+  double& slot = state_.values[static_cast<std::size_t>(var)];
+  // Bitwise-equal values (including both undefined) are no change.
+  if (slot == value || (std::isnan(slot) && std::isnan(value))) return;
+  changes_.push_back({true, var, slot, current_event_});
+  slot = value;
+}
+
+std::int32_t Run::Culprit(const FailedLiteral& failed, double duration) {
+  const Condition& c = *failed.condition;
+  const LiteralFailure& lf = failed.literal;
+  if (lf.type != LiteralFailure::Type::kNumeric) {
+    const bool positive = lf.type == LiteralFailure::Type::kPositive;
+    const FactId f = positive ? c.positive[lf.index] : c.negative[lf.index];
+    const Change* first = nullptr;
+    const Change* last = nullptr;
+    for (const Change& ch : changes_) {
+      if (ch.numeric || ch.id != f) continue;
+      if (first == nullptr) first = &ch;
+      last = &ch;
+    }
+    if (first == nullptr) return -1;
+    const bool held_before = positive ? first->old_value != 0.0 : first->old_value == 0.0;
+    return held_before ? last->event : -1;
+  }
+  // A comparison: evaluate it again with the values from before the
+  // happening put back for a moment.
+  const auto& n = c.numeric[lf.index];
+  auto reads = [&](NumericVarId var) {
+    for (const auto* e : {&n.lhs, &n.rhs}) {
+      for (const auto& node : e->nodes) {
+        if (node.op == task::NumericExpr::Op::kVariable && node.var == var) return true;
+      }
+    }
+    return false;
+  };
+  std::int32_t culprit = -1;
+  std::vector<std::pair<NumericVarId, double>> restore;  // only on a failure path
+  for (const Change& ch : changes_) {
+    if (!ch.numeric || !reads(ch.id)) continue;
+    culprit = ch.event;
+    const bool seen = std::any_of(restore.begin(), restore.end(),
+                                  [&](const auto& r) { return r.first == ch.id; });
+    if (!seen) restore.emplace_back(ch.id, ch.old_value);
+  }
+  if (culprit < 0) return -1;
+  for (auto& [var, value] : restore) std::swap(state_.values[static_cast<std::size_t>(var)], value);
+  const auto lhs = n.lhs.Evaluate(state_.values, duration);
+  const auto rhs = n.rhs.Evaluate(state_.values, duration);
+  const bool held_before = lhs && rhs && task::Compare(*lhs, n.comparator, *rhs);
+  for (auto& [var, value] : restore) std::swap(state_.values[static_cast<std::size_t>(var)], value);
+  return held_before ? culprit : -1;
+}
+
+std::optional<ValidationFailure> Run::CheckInvariants(std::size_t last) {
+  const Event& h = events_[last];
+  for (const int s : open_) {
+    const StepState& ss = steps_[static_cast<std::size_t>(s)];
+    const PlanStep& step = plan_.steps[static_cast<std::size_t>(s)];
+    FailedLiteral failed;
+    auto f = Filter(s, &Action::over_all, Kind::kOverAll, h.t, "", &failed);
+    if (!f) continue;
+    const bool just_started = ss.start_ns == h.t_ns;
+    const std::int32_t culprit = Culprit(failed, step.duration_s);
+    const std::string what = absl::StrCat(KindName(Kind::kOverAll), " ", f->condition);
+    const Event* other = culprit >= 0 ? &events_[static_cast<std::size_t>(culprit)] : nullptr;
+    if (other != nullptr && other->IsStep() && other->index == s) other = nullptr;  // its own start
+    if (just_started) f->time_s = step.start_s;
+    if (other != nullptr) {
+      f->time_s = other->t;
+      f->reason = just_started
+                      ? absl::StrCat(what, " is false just after the action starts: ",
+                                     DescribeEvent(*other), ", in the same happening, breaks it")
+                      : absl::StrCat(what, " of the running action is broken by ", DescribeEvent(*other));
+      if (other->IsStep()) {
+        f->other_step_index = other->index;
+        f->other_action = plan_.steps[static_cast<std::size_t>(other->index)].DisplayName();
+      }
+    } else if (just_started) {
+      f->reason = absl::StrCat(what, " ", WhyFalse(failed.literal),
+                               culprit >= 0 ? " just after the action starts (its own start effects "
+                                              "break it)"
+                                            : " just after the action starts (invariants hold on "
+                                              "the open interval)");
+    } else {
+      f->reason = absl::StrCat(what, " ", WhyFalse(failed.literal), " after the happening at t=",
+                               Secs(h.t));
+    }
+    return f;
   }
   return std::nullopt;
 }
@@ -603,13 +729,8 @@ std::optional<ValidationFailure> Run::Start(const Event& e) {
     f.reason = *err;
     return f;
   }
-  if (durative) {
-    if (auto f = Filter(s, &Action::over_all, Kind::kOverAll, e.t,
-                        "just after the action starts (invariants hold on the open interval)")) {
-      return f;
-    }
-    open_.push_back(s);
-  }
+  // The invariant is checked after the whole happening (CheckInvariants).
+  if (durative) open_.push_back(s);
   return std::nullopt;
 }
 
@@ -673,6 +794,8 @@ ValidationResult Run::Execute() {
   for (std::size_t i = 0; i < events_.size(); ++i) {
     const Event& e = events_[i];
     last_event_s = e.t;
+    if (i == 0 || events_[i - 1].t_ns != e.t_ns) changes_.clear();  // a new happening
+    current_event_ = static_cast<std::int32_t>(i);
     if (auto f = CheckMutex(i)) return Fail(std::move(*f));
     switch (e.kind) {
       case EventKind::kStart:
@@ -683,28 +806,19 @@ ValidationResult Run::Execute() {
         break;
       case EventKind::kTimedLiteral: {
         const auto& til = task_.timed_literals[static_cast<std::size_t>(e.index)];
-        state_.facts[static_cast<std::size_t>(til.fact)] = til.value ? 1 : 0;
+        SetFact(til.fact, til.value ? 1 : 0);
         break;
       }
       case EventKind::kTimedFluent: {
         const auto& tif = task_.timed_fluents[static_cast<std::size_t>(e.index)];
-        state_.values[static_cast<std::size_t>(tif.var)] = tif.value;
+        SetValue(tif.var, tif.value);
         break;
       }
     }
-    // Invariants of the steps whose open interval contains this event.
-    for (const int s : open_) {
-      const StepState& ss = steps_[static_cast<std::size_t>(s)];
-      if (!(ss.start_ns < e.t_ns && e.t_ns < ss.end_ns)) continue;
-      if (auto f = Filter(s, &Action::over_all, Kind::kOverAll, e.t, "")) {
-        f->reason = absl::StrCat(KindName(Kind::kOverAll), " ", f->condition,
-                                 " of the running action is broken by ", DescribeEvent(e));
-        if (e.IsStep()) {
-          f->other_step_index = e.index;
-          f->other_action = plan_.steps[static_cast<std::size_t>(e.index)].DisplayName();
-        }
-        return Fail(std::move(*f));
-      }
+    // Once the whole happening is applied, the state it leaves holds until
+    // the next one: every step open in it needs its invariant there.
+    if (i + 1 == events_.size() || events_[i + 1].t_ns != e.t_ns) {
+      if (auto f = CheckInvariants(i)) return Fail(std::move(*f));
     }
   }
 

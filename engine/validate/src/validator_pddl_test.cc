@@ -3,6 +3,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
+#include "absl/strings/str_cat.h"
 #include "seaplan/task/grounder.h"
 #include "seaplan/testing/shared_data.h"
 #include "seaplan/validate/plan.h"
@@ -80,18 +81,25 @@ TEST_F(MatchCellarTest, MendingThatOutlastsTheMatchIsBrokenByItsEnd) {
   EXPECT_DOUBLE_EQ(r.first_failure->time_s, 8.0);
 }
 
-TEST_F(MatchCellarTest, EpsilonSeparation) {
-  // The mend's invariant reads (light m1), which the match's start adds.
-  EXPECT_VALID(Validate(
-      "0: (light-match m1) [8]\n0.001: (mend-fuse f1 m1) [5]\n"
-      "5.002: (light-match m2) [8]\n5.003: (mend-fuse f2 m2) [5]\n"));
+TEST_F(MatchCellarTest, InvariantsAreNotPartOfTheEpsilonMutex) {
+  // The mend's invariant reads (light m1), which the match's start adds; the
+  // invariant belongs to neither snap action, so the two starts do not
+  // interfere: the mend may start within epsilon of the match, or with it
+  // (the state after that happening has the light).
+  for (const char* mend_start : {"0.001", "0.0005", "0"}) {
+    EXPECT_VALID(Validate(absl::StrCat("0: (light-match m1) [8]\n", mend_start,
+                                       ": (mend-fuse f1 m1) [5]\n"
+                                       "5.002: (light-match m2) [8]\n5.003: (mend-fuse f2 m2) [5]\n")))
+        << mend_start;
+  }
+  // Snap actions that do interfere still need epsilon: both mends read and
+  // delete (handfree) at their starts.
   const auto r = Validate(
-      "0: (light-match m1) [8]\n0.0005: (mend-fuse f1 m1) [5]\n"
-      "5.002: (light-match m2) [8]\n5.003: (mend-fuse f2 m2) [5]\n");
-  EXPECT_FAILS(r, Kind::kMutex, 0);
-  EXPECT_EQ(r.first_failure->action, "(light-match m1)");
-  EXPECT_EQ(r.first_failure->other_action, "(mend-fuse f1 m1)");
-  EXPECT_EQ(r.first_failure->condition, "(light m1)");
+      "0: (light-match m1) [8]\n0.001: (mend-fuse f1 m1) [5]\n"
+      "0.0015: (mend-fuse f2 m1) [5]\n");
+  EXPECT_FAILS(r, Kind::kMutex, 1);
+  EXPECT_EQ(r.first_failure->other_action, "(mend-fuse f2 m1)");
+  EXPECT_EQ(r.first_failure->condition, "(handfree)");
 }
 
 TEST_F(MatchCellarTest, ActionsOutsideTheTaskAreExplained) {
@@ -143,10 +151,24 @@ TEST_F(HarbourTest, TimedInitialLiterals) {
   EXPECT_FAILS(late, Kind::kOverAll, 0);
   EXPECT_DOUBLE_EQ(late.first_failure->time_s, 100.0);
   EXPECT_THAT(late.first_failure->reason, HasSubstr("timed initial literal"));
-  // Within epsilon of the rising tide: the literal and the entry interfere.
-  const auto touching = Validate("10.0005: (enter b1 x1) [10]\n");
-  EXPECT_FAILS(touching, Kind::kMutex, -1);
-  EXPECT_EQ(touching.first_failure->other_step_index, 0);
+  // The tide is only an invariant of the entry, which no snap action reads:
+  // entering with the rising tide (in the same happening) or within epsilon
+  // after it is fine, entering just before it is not.
+  EXPECT_VALID(Validate("10: (enter b1 x1) [10]\n20.001: (charge b1 x1) [10]\n"
+                        "30.002: (inspect b1 x1)\n"));
+  EXPECT_VALID(Validate("10.0005: (enter b1 x1) [10]\n20.0015: (charge b1 x1) [10]\n"
+                        "30.0025: (inspect b1 x1)\n"));
+  const auto just_before = Validate("9.9995: (enter b1 x1) [10]\n");
+  EXPECT_FAILS(just_before, Kind::kOverAll, 0);
+  EXPECT_DOUBLE_EQ(just_before.first_failure->time_s, 9.9995);
+  // Ending exactly when the tide falls is fine (the interval is open); a
+  // fall just before the end is inside it.
+  const auto at_end = Validate("90: (enter b1 x1) [10]\n");
+  ASSERT_FALSE(at_end.valid);
+  EXPECT_EQ(at_end.first_failure->kind, Kind::kGoal) << at_end.ToString();  // only the goal is missing
+  const auto inside = Validate("90.0005: (enter b1 x1) [10]\n");
+  EXPECT_FAILS(inside, Kind::kOverAll, 0);
+  EXPECT_DOUBLE_EQ(inside.first_failure->time_s, 100.0);
 }
 
 TEST_F(HarbourTest, NumericConditionsAndEffects) {

@@ -122,6 +122,9 @@ TEST(ValidatorTest, OverAllConditionsRequireConcurrency) {
   EXPECT_FAILS(Check(b.task(), MakePlan({Step(0, "(light-match match)", 8),
                                          Step(8.001, "(mend-fuse fuse)", 5)})),
                Kind::kOverAll, 1, "(light match)");
+  // Both start together: the state after that happening has the light.
+  EXPECT_VALID(Check(b.task(), MakePlan({Step(0, "(light-match match)", 8),
+                                         Step(0, "(mend-fuse fuse)", 5)})));
   // Mending outlasts the match: the match's end breaks the invariant.
   const auto r = Check(b.task(), MakePlan({Step(0, "(light-match match)", 8),
                                            Step(4, "(mend-fuse fuse)", 5)}));
@@ -145,6 +148,110 @@ TEST(ValidatorTest, OverAllIsNotCheckedAtTheEndPoint) {
   EXPECT_VALID(Check(b.task(), MakePlan({Step(1, "(use)", 5)})));
   b.task().initial_facts.clear();
   EXPECT_FAILS(Check(b.task(), MakePlan({Step(1, "(use)", 5)})), Kind::kOverAll, 0, "(p)");
+}
+
+// A ship at port a: (load) needs it there over all, (sail a b) leaves at its
+// start and arrives at its end, (unload) needs it at b over all. No snap
+// action reads (at a) or (at b) except the sail's start: the invariants are
+// only checked on the open intervals (PDDL 2.1, VAL).
+TaskBuilder Harbour() {
+  TaskBuilder b;
+  b.Init("(at a)");
+  b.Init("(cargo)");
+  auto load = TaskBuilder::Durative("(load)", 60);
+  load.at_start.positive = {b.Fact("(cargo)")};
+  load.over_all.positive = {b.Fact("(at a)")};
+  load.start_effects.del = {b.Fact("(cargo)")};
+  load.end_effects.add = {b.Fact("(loaded)")};
+  b.Add(load);
+  b.Add(Move(b, "a", "b", 10));
+  auto unload = TaskBuilder::Durative("(unload)", 50);
+  unload.at_start.positive = {b.Fact("(loaded)")};
+  unload.over_all.positive = {b.Fact("(at b)")};
+  unload.start_effects.del = {b.Fact("(loaded)")};
+  unload.end_effects.add = {b.Fact("(delivered)")};
+  b.Add(unload);
+  b.Goal("(delivered)");
+  return b;
+}
+
+TEST(ValidatorTest, AnInvariantIsNotNeededAtItsEndPoint) {
+  TaskBuilder b = Harbour();
+  // The sail deletes (at a) exactly when the load ends: valid.
+  EXPECT_VALID(Check(b.task(), MakePlan({Step(0, "(load)", 60), Step(60, "(move a b)", 10),
+                                         Step(70, "(unload)", 50)})));
+  // Half an epsilon before the end the deletion is inside the interval.
+  const auto r = Check(b.task(), MakePlan({Step(0, "(load)", 60), Step(59.9995, "(move a b)", 10),
+                                           Step(70, "(unload)", 50)}));
+  EXPECT_FAILS(r, Kind::kOverAll, 0, "(at a)");
+  EXPECT_EQ(r.first_failure->time_s, 59.9995);
+  EXPECT_EQ(r.first_failure->other_step_index, 1);
+  EXPECT_THAT(r.first_failure->reason, HasSubstr("broken by (move a b) start at t=59.9995"));
+  // And well inside.
+  EXPECT_FAILS(Check(b.task(), MakePlan({Step(0, "(load)", 60), Step(30, "(move a b)", 10),
+                                         Step(70, "(unload)", 50)})),
+               Kind::kOverAll, 0, "(at a)");
+}
+
+TEST(ValidatorTest, AnInvariantAddedInTheStartingHappeningHolds) {
+  TaskBuilder b = Harbour();
+  // The sail's end adds (at b) in the happening where the unload starts.
+  EXPECT_VALID(Check(b.task(), MakePlan({Step(0, "(load)", 60), Step(60, "(move a b)", 10),
+                                         Step(70, "(unload)", 50)})));
+  // Starting before the arrival, even by less than epsilon, is not.
+  const auto r = Check(b.task(), MakePlan({Step(0, "(load)", 60), Step(60, "(move a b)", 10),
+                                           Step(69.9995, "(unload)", 50)}));
+  EXPECT_FAILS(r, Kind::kOverAll, 2, "(at b)");
+  EXPECT_EQ(r.first_failure->time_s, 69.9995);
+  EXPECT_THAT(r.first_failure->reason, HasSubstr("just after the action starts"));
+}
+
+TEST(ValidatorTest, AnInvariantDeletedInTheStartingHappeningFails) {
+  TaskBuilder b = Harbour();
+  // Load and sail start together: the state after that happening has no
+  // (at a). Whatever the order of the steps in the plan.
+  for (const bool load_first : {true, false}) {
+    const Plan plan = load_first ? MakePlan({Step(0, "(load)", 60), Step(0, "(move a b)", 10)})
+                                 : MakePlan({Step(0, "(move a b)", 10), Step(0, "(load)", 60)});
+    const int load = load_first ? 0 : 1;
+    const auto r = Check(b.task(), plan);
+    EXPECT_FAILS(r, Kind::kOverAll, load, "(at a)");
+    EXPECT_EQ(r.first_failure->time_s, 0.0);
+    EXPECT_EQ(r.first_failure->other_step_index, 1 - load);
+    EXPECT_THAT(r.first_failure->reason, HasSubstr("(move a b) start at t=0, in the same happening"));
+  }
+}
+
+TEST(ValidatorTest, AnInvariantIsCheckedAfterTheWholeHappening) {
+  // Match-cellar with both starts in one happening: the match's start adds
+  // the mend's invariant, whichever step comes first in the plan.
+  TaskBuilder b = MatchCellar();
+  EXPECT_VALID(Check(b.task(), MakePlan({Step(0, "(light-match match)", 8),
+                                         Step(0, "(mend-fuse fuse)", 5)})));
+  EXPECT_VALID(Check(b.task(), MakePlan({Step(0, "(mend-fuse fuse)", 5),
+                                         Step(0, "(light-match match)", 8)})));
+  // Numeric: two additive updates in one happening commute and do not
+  // interfere; the invariant sees their sum, not an intermediate value.
+  TaskBuilder n;
+  n.Var("(fuel)", 10);
+  auto run = TaskBuilder::Durative("(run)", 10);
+  run.over_all.numeric = {{n.VarExpr("(fuel)"), Comparator::kGreaterEqual, NumericExpr::Constant(5)}};
+  run.end_effects.add = {n.Fact("(ran)")};
+  n.Add(run);
+  auto burn = TaskBuilder::Instant("(burn)");
+  burn.start_effects.numeric = {{n.Var("(fuel)"), AssignOp::kDecrease, NumericExpr::Constant(8)}};
+  n.Add(burn);
+  auto fill = TaskBuilder::Instant("(fill)");
+  fill.start_effects.numeric = {{n.Var("(fuel)"), AssignOp::kIncrease, NumericExpr::Constant(8)}};
+  n.Add(fill);
+  n.Goal("(ran)");
+  EXPECT_VALID(Check(n.task(), MakePlan({Step(0, "(run)", 10), Step(5, "(burn)"), Step(5, "(fill)")})));
+  const auto r = Check(n.task(), MakePlan({Step(0, "(run)", 10), Step(5, "(burn)"), Step(6, "(fill)")}));
+  EXPECT_FAILS(r, Kind::kOverAll, 0, "(>= (fuel) 5)");
+  EXPECT_EQ(r.first_failure->other_step_index, 1);
+  EXPECT_EQ(r.first_failure->time_s, 5.0);
+  // At the end point the burn does not matter.
+  EXPECT_VALID(Check(n.task(), MakePlan({Step(0, "(run)", 10), Step(10, "(burn)")})));
 }
 
 TEST(ValidatorTest, AtEndConditions) {

@@ -6,17 +6,26 @@
 //   if (!r.valid) log::Warn("{}", r.ToString());
 //
 // Semantics (PDDL 2.1 level 3, Fox & Long 2003, as VAL implements it):
-//   - A durative step (t, a, d) is a start event at t and an end event at t+d;
-//     an instantaneous step is one event at t. Timed initial literals and
-//     fluents are events at their absolute times. Events are processed in time
-//     order; each event's conditions are checked in the state just before it
-//     and its effects are computed from that state too.
+//   - A durative step (t, a, d) is a start snap action at t (conditions: the
+//     at-start ones; effects: the start effects), an end snap action at t+d
+//     (the at-end conditions and end effects) and an invariant (the over-all
+//     conditions) on the open interval (t, t+d). An instantaneous step is one
+//     event at t. Timed initial literals and fluents are events at their
+//     absolute times. Events at the same time (same nanosecond, see below)
+//     form one happening. Events are processed in time order; each event's
+//     conditions are checked in the state just before it and its effects are
+//     computed from that state too (the mutex rule below makes this the same
+//     as applying a happening's events simultaneously).
 //   - At-start conditions and duration constraints (`?duration op value`,
 //     value evaluated in the state before the start) are checked at the start;
 //     at-end conditions at the end, before the end effects.
-//   - Over-all conditions hold on the open interval (t, t+d): they are checked
-//     just after the step's own start effects and after every event strictly
-//     inside the interval. They are not checked at the end point itself.
+//   - Over-all conditions must hold in every state strictly inside (t, t+d):
+//     they are checked in the state after each happening from the one at t
+//     (after ALL its events, so another event at exactly t may add the
+//     invariant, and one that deletes it fails it) up to, not including, the
+//     one at t+d. They are not needed in the state before t nor after the
+//     happening at t+d: an event at exactly t+d may delete them, one at
+//     t+d - 0.0005 may not (it is inside the interval).
 //   - Effects of one event: all numeric operands are evaluated in the state
 //     before the event, then deletes are applied, then adds, then numeric
 //     updates. An action that adds and deletes the same fact leaves it TRUE
@@ -32,11 +41,13 @@
 //     on the same variable commute and do not interfere; two adds (or two
 //     deletes) of the same fact do not interfere (VAL's Ownership rules).
 //     What an event "reads": its own conditions (at start or at end), the
-//     variables its numeric effects and duration constraints read, its
-//     conditional-effect conditions, and - deliberately stricter than the
-//     letter of the semantics - the step's over-all conditions at both its
-//     start and its end event, so that no event may touch an invariant within
-//     epsilon of the interval's ends. A step never interferes with itself.
+//     variables its numeric effects and duration constraints read, and its
+//     conditional-effect conditions. Over-all conditions are part of neither
+//     snap action (VAL's Ownership only marks a happening's start/end actions'
+//     conditions and effects), so they take no part in the mutex rule: an
+//     event may change an invariant's fact at or within epsilon of the
+//     interval's ends, and the invariant rule above alone decides whether
+//     that is valid. A step never interferes with itself.
 //     DNF variants of one (name, args) count with the union of what they touch.
 //     Two timed literals are never checked against each other (the task's
 //     own business). A violation is reported at the earlier event's time.
@@ -62,6 +73,10 @@
 // is the first event, in time order, at which something fails; at one event
 // the mutex check comes before the event's own conditions (a missing
 // separation is the more basic fault than the condition it then breaks).
+// Invariants are checked once the whole happening has been applied, so a
+// failure of an event in the happening comes before an over-all failure
+// there; an over-all failure names the event of the happening that made the
+// condition false (other_step_index), when there is one.
 //
 // Cost: mapping steps to actions is done once per plan (Validator: hash
 // lookups in an index built once per task; ValidatePlan: one pass over the
@@ -144,7 +159,7 @@ struct ValidationResult {
   std::size_t action_count = 0;   // steps in the plan
   std::optional<double> metric_value;  // the task's metric, set iff valid and defined
 
-  // "valid plan: 13 actions, makespan 2403.344 s, metric 2403.344" or
+  // "valid plan: 13 actions, makespan 2403.33733 s, metric 2403.33733" or
   // "invalid plan: t=60.2 step 1 (move-ship ship0 port-a port-b): duration
   // constraint (= ?duration 288.889) violated: ..."
   std::string ToString() const;
