@@ -9,6 +9,7 @@
 #include "seaplan/common/log.h"
 #include "seaplan/storage/sqlite_store.h"
 #include "server/config/config.h"
+#include "server/core/mission_engine_adapter.h"
 #include "server/server.h"
 
 int main(int argc, char** argv) {
@@ -44,7 +45,10 @@ int main(int argc, char** argv) {
   }
   log::Info("database {} (schema version {})", db_path, storage::LatestSchemaVersion());
 
-  auto server = server::Server::Start(config.server, **store);
+  // Null when the mission engine is not built in: MissionService then
+  // answers UNIMPLEMENTED for planning RPCs.
+  std::shared_ptr<server::MissionEngine> mission_engine = server::MakeMissionEngine((*store)->charts());
+  auto server = server::Server::Start(config.server, **store, mission_engine);
   if (!server.ok()) {
     log::Error("cannot start: {}", server.status().ToString());
     return 1;

@@ -20,10 +20,16 @@ struct CallContext {
   // gone (gRPC: ServerContext::IsCancelled()). May be empty.
   std::function<bool()> client_gone;
 
-  // Cancels `stop` when the client is gone. Cheap; call it often.
+  // Cancels `stop` when the client is gone. Cheap; call it often. A
+  // transport also reports the client "gone" when its deadline passes (gRPC
+  // does); within kDeadlineSlack of the deadline that is left to the
+  // deadline itself, so the work ends as DEADLINE_EXCEEDED, not CANCELLED.
   void ForwardCancellation() const {
-    if (client_gone && client_gone()) stop.Cancel();
+    if (!client_gone || !client_gone()) return;
+    if (StopToken::Clock::now() + kDeadlineSlack >= stop.deadline()) return;
+    stop.Cancel();
   }
+  static constexpr std::chrono::milliseconds kDeadlineSlack{100};
 };
 
 // A stream's sink: writes one message; false when the client is gone.

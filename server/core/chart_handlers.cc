@@ -1,5 +1,7 @@
 #include "server/core/chart_handlers.h"
 
+#include <algorithm>
+
 #include "absl/strings/str_cat.h"
 #include "server/core/convert.h"
 

@@ -142,6 +142,20 @@ absl::Status MissionCoordinator::SetState(const std::string& mission_id, v1::Mis
   return st;
 }
 
+void MissionCoordinator::EndReplanning(const std::string& mission_id, const std::string& message) {
+  auto lock_ptr = MissionLock(mission_id);
+  std::lock_guard lock(*lock_ptr);
+  auto record = repo_.Get(mission_id);
+  if (!record.ok()) return;
+  if (record->state == v1::MISSION_STATE_REPLANNING) {
+    (void)SetState(mission_id, v1::MISSION_STATE_ACTIVE, message);
+    return;
+  }
+  // Cancelled (or finished) meanwhile: keep that state, log the outcome.
+  (void)repo_.AppendEvents(mission_id, {ServerEvent(message)});
+  notifier_.Notify(mission_id);
+}
+
 absl::StatusOr<v1::Mission> MissionCoordinator::CreateMission(const v1::CreateMissionRequest& request,
                                                               const CallContext& ctx) {
   const v1::MissionSpec& spec = request.spec();
@@ -261,6 +275,10 @@ absl::Status MissionCoordinator::WatchMission(const v1::WatchMissionRequest& req
     if (ctx.stop.StopRequested()) return StopStatus(ctx.stop, root_.StopRequested(), "mission watch");
     if (notifier_.closed()) return absl::UnavailableError("mission watch ended: the server is shutting down");
     bool more = false;
+    // The mission is read FIRST: when this snapshot is final, every version
+    // and event committed before it is visible to the reads below, so the
+    // stream can end complete after them.
+    SEAPLAN_ASSIGN_OR_RETURN(storage::MissionRecord record, repo_.Get(id));
     SEAPLAN_ASSIGN_OR_RETURN(auto versions, repo_.ListVersions(id, last_version, kBatch));
     more |= static_cast<int>(versions.size()) == kBatch;
     for (const auto& v : versions) {
@@ -285,7 +303,6 @@ absl::Status MissionCoordinator::WatchMission(const v1::WatchMissionRequest& req
       if (!sink(event)) return absl::CancelledError("mission watch: the client went away");
       last_event = e.event_id;
     }
-    SEAPLAN_ASSIGN_OR_RETURN(storage::MissionRecord record, repo_.Get(id));
     if (record.state != last_state_sent || record.current_version != last_current_version_sent) {
       v1::MissionEvent event;
       *event.mutable_mission() = MissionFromRecord(record);
@@ -294,8 +311,7 @@ absl::Status MissionCoordinator::WatchMission(const v1::WatchMissionRequest& req
       last_current_version_sent = record.current_version;
     }
     if (more) continue;
-    // Final state: everything committed before the state change has been
-    // read above (the state is read last), so the stream is complete.
+    // Final state (snapshot taken before the reads): the stream is complete.
     if (IsFinalState(record.state) && last_version >= record.current_version) return absl::OkStatus();
     std::uint64_t now_generation = generation;
     while (now_generation == generation) {
@@ -366,8 +382,7 @@ absl::StatusOr<v1::ReportFeedbackResponse> MissionCoordinator::ReportFeedback(
     std::lock_guard jobs_lock(jobs_mu_);
     if (static_cast<int>(jobs_.size()) >= options_.max_pending_replans || stopping_) {
       log::Error("mission {}: replan queue full, replan '{}' dropped", id, decision.replan_reason);
-      (void)SetState(id, v1::MISSION_STATE_ACTIVE,
-                     absl::StrCat("replan not started (server busy): ", decision.replan_reason));
+      EndReplanning(id, absl::StrCat("replan not started (server busy): ", decision.replan_reason));
     } else {
       jobs_.push_back({id, decision.replan_reason});
       jobs_cv_.notify_one();
@@ -394,11 +409,11 @@ absl::StatusOr<v1::PlanVersion> MissionCoordinator::Replan(
       run([&] { planned = engine_->Replan(runtime.mission.spec(), runtime, reason, stop); }));
   if (stop.StopRequested()) {
     *stopped = true;
-    (void)SetState(id, v1::MISSION_STATE_ACTIVE, absl::StrCat("replan stopped before it finished: ", reason));
+    EndReplanning(id, absl::StrCat("replan stopped before it finished: ", reason));
     return absl::CancelledError("replan stopped");
   }
   if (!planned.ok()) {
-    (void)SetState(id, v1::MISSION_STATE_ACTIVE, absl::StrCat("replan failed: ", planned.status().message()));
+    EndReplanning(id, absl::StrCat("replan failed: ", planned.status().message()));
     return planned.status();
   }
   auto lock_ptr = MissionLock(id);
@@ -453,7 +468,7 @@ absl::StatusOr<v1::RequestReplanResponse> MissionCoordinator::RequestReplan(cons
   if (stopped) return StopStatus(ctx.stop, root_.StopRequested(), "replanning");
   if (!version.ok()) {
     if (absl::IsResourceExhausted(version.status()) || absl::IsUnavailable(version.status())) {
-      (void)SetState(id, v1::MISSION_STATE_ACTIVE, absl::StrCat("replan not started: ", version.status().message()));
+      EndReplanning(id, absl::StrCat("replan not started: ", version.status().message()));
     }
     return version.status();
   }

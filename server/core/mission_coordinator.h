@@ -119,6 +119,9 @@ class MissionCoordinator {
                                          bool* stopped);
   absl::Status SetState(const std::string& mission_id, v1::MissionState state, const std::string& message,
                         const std::string& failure_reason = "");
+  // REPLANNING -> ACTIVE with `message` logged; a mission cancelled
+  // meanwhile keeps its state (only the message is logged).
+  void EndReplanning(const std::string& mission_id, const std::string& message);
   void BackgroundLoop();
 
   storage::MissionRepository& repo_;

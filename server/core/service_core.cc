@@ -20,6 +20,9 @@ std::string BuiltEngines() {
 #if SEAPLAN_SERVER_HAS_ROUTE
   add("route");
 #endif
+#if SEAPLAN_SERVER_HAS_MISSION
+  add("mission");
+#endif
   return out.empty() ? "none" : out;
 }
 

@@ -109,7 +109,7 @@ TEST(PlanningE2eTest, ClientDeadlineStopsALongSearch) {
   SEAPLAN_REQUIRE_SHARED(problem_path, "bench/depots-time/p05.pddl");
   const std::string domain = seaplan::testing::ReadFile(problem_path.parent_path() / "domain.pddl");
   const std::string problem = seaplan::testing::ReadFile(problem_path);
-  InProcessServer s(nullptr, /*planning_threads=*/1);
+  InProcessServer s(std::shared_ptr<MissionEngine>(), /*planning_threads=*/1);
   auto planning = v1::PlanningService::NewStub(s.channel());
   if (!PlannerBuilt(planning.get())) GTEST_SKIP() << "planner not built into the server";
   v1::PlanRequest req;

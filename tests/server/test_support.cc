@@ -103,7 +103,17 @@ InProcessServer::InProcessServer(std::shared_ptr<MissionEngine> engine, int plan
   auto store = storage::SqliteStore::Open((dir_.path() / "seaplan.db").string());
   EXPECT_TRUE(store.ok()) << store.status();
   store_ = std::move(*store);
-  ServerOptions options;
+  Start(std::move(engine), planning_threads);
+}
+
+InProcessServer::InProcessServer(const EngineFactory& make_engine, int planning_threads) {
+  auto store = storage::SqliteStore::Open((dir_.path() / "seaplan.db").string());
+  EXPECT_TRUE(store.ok()) << store.status();
+  store_ = std::move(*store);
+  Start(make_engine(*store_), planning_threads);
+}
+
+void InProcessServer::Start(std::shared_ptr<MissionEngine> engine, int planning_threads) {  ServerOptions options;
   options.grpc_address = "127.0.0.1:0";
   options.http_address = "127.0.0.1:0";
   options.worker_threads = 8;

@@ -10,6 +10,7 @@
 #include <atomic>
 #include <chrono>
 #include <filesystem>
+#include <functional>
 #include <memory>
 #include <string>
 #include <thread>
@@ -63,6 +64,9 @@ class FakeMissionEngine final : public MissionEngine {
 class InProcessServer {
  public:
   explicit InProcessServer(std::shared_ptr<MissionEngine> engine = nullptr, int planning_threads = 2);
+  // With an engine made over the server's own store (e.g. MakeMissionEngine).
+  using EngineFactory = std::function<std::shared_ptr<MissionEngine>(storage::Store&)>;
+  explicit InProcessServer(const EngineFactory& make_engine, int planning_threads = 2);
   ~InProcessServer();
 
   Server& server() { return *server_; }
@@ -73,6 +77,8 @@ class InProcessServer {
   httplib::Client http() const;
 
  private:
+  void Start(std::shared_ptr<MissionEngine> engine, int planning_threads);
+
   TempDir dir_;
   std::unique_ptr<storage::SqliteStore> store_;
   std::unique_ptr<Server> server_;

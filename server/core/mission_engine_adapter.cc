@@ -1,0 +1,403 @@
+#include "server/core/mission_engine_adapter.h"
+
+#if SEAPLAN_SERVER_HAS_MISSION && SEAPLAN_SERVER_HAS_SEARCH && SEAPLAN_SERVER_HAS_CHART
+
+#include <algorithm>
+#include <cstdio>
+#include <sstream>
+
+#include "absl/strings/str_cat.h"
+#include "seaplan/chart/geodesy.h"
+#include "seaplan/chart/obstacle_map.h"
+#include "seaplan/mission/mission_planner.h"
+#include "seaplan/mission/replan_policy.h"
+#include "seaplan/search/planner.h"
+#include "seaplan/task/grounder.h"
+#include "seaplan/v1/chart.pb.h"
+#include "server/core/convert.h"
+#include "server/core/status_details.h"
+#if SEAPLAN_SERVER_HAS_ROUTE
+#include "seaplan/route/route_planner.h"
+#endif
+
+namespace seaplan::server {
+namespace {
+
+v1::Task::Kind KindToProto(mission::TaskKind k) {
+  switch (k) {
+    case mission::TaskKind::kMove: return v1::Task::KIND_MOVE;
+    case mission::TaskKind::kLoad: return v1::Task::KIND_LOAD;
+    case mission::TaskKind::kUnload: return v1::Task::KIND_UNLOAD;
+    case mission::TaskKind::kRepair: return v1::Task::KIND_REPAIR;
+    case mission::TaskKind::kRefuel: return v1::Task::KIND_REFUEL;
+    case mission::TaskKind::kOther: return v1::Task::KIND_OTHER;
+  }
+  return v1::Task::KIND_OTHER;
+}
+
+mission::TaskKind KindFromProto(v1::Task::Kind k) {
+  switch (k) {
+    case v1::Task::KIND_MOVE: return mission::TaskKind::kMove;
+    case v1::Task::KIND_LOAD: return mission::TaskKind::kLoad;
+    case v1::Task::KIND_UNLOAD: return mission::TaskKind::kUnload;
+    case v1::Task::KIND_REPAIR: return mission::TaskKind::kRepair;
+    case v1::Task::KIND_REFUEL: return mission::TaskKind::kRefuel;
+    default: return mission::TaskKind::kOther;
+  }
+}
+
+v1::MsoMode ModeToProto(mission::MsoMode m) {
+  switch (m) {
+    case mission::MsoMode::kPto: return v1::MSO_MODE_PTO;
+    case mission::MsoMode::kMec: return v1::MSO_MODE_MEC;
+    case mission::MsoMode::kPti: return v1::MSO_MODE_PTI;
+    default: return v1::MSO_MODE_UNSPECIFIED;
+  }
+}
+
+v1::TimedAction StepToProto(const validate::PlanStep& s) {
+  v1::TimedAction a;
+  a.set_start_s(s.start_s);
+  a.set_duration_s(s.duration_s);
+  a.set_name(s.name);
+  for (const auto& arg : s.args) a.add_arguments(arg);
+  return a;
+}
+
+validate::PlanStep StepFromProto(const v1::TimedAction& a) {
+  validate::PlanStep s;
+  s.start_s = a.start_s();
+  s.duration_s = a.duration_s();
+  s.name = a.name();
+  s.args.assign(a.arguments().begin(), a.arguments().end());
+  return s;
+}
+
+std::string EncodeLocations(const mission::LocationTable& locations) {
+  std::string out;
+  for (const auto& [name, p] : locations) {
+    char buf[96];
+    std::snprintf(buf, sizeof buf, " %.17g %.17g\n", p.x_m, p.y_m);
+    absl::StrAppend(&out, name, buf);
+  }
+  return out;
+}
+
+mission::LocationTable DecodeLocations(const std::string& text) {
+  mission::LocationTable locations;
+  std::istringstream in(text);
+  std::string name;
+  double x = 0, y = 0;
+  while (in >> name >> x >> y) locations[name] = {x, y};
+  return locations;
+}
+
+class Adapter final : public MissionEngine {
+ public:
+  explicit Adapter(storage::ChartRepository& charts) : charts_(charts) {}
+
+  absl::Status CheckSpec(const v1::MissionSpec& spec) override {
+    task::LoadResult loaded = task::LoadTask(spec.domain(), spec.problem());
+    for (const auto& d : loaded.diagnostics) {
+      if (d.severity == pddl::Severity::kError) {
+        return WithDiagnostics(absl::InvalidArgumentError(absl::StrCat("spec: malformed PDDL: ", d.ToString())),
+                               ToProto(loaded.diagnostics));
+      }
+    }
+    for (int i = 0; i < spec.locations_size(); ++i) {
+      if (spec.locations(i).name().empty()) return absl::InvalidArgumentError(absl::StrCat("spec.locations[", i, "].name is empty"));
+    }
+    if (spec.ship().service_speed_mps() < 0) return absl::InvalidArgumentError("spec.ship.service_speed_mps must not be negative");
+    return absl::OkStatus();
+  }
+
+  absl::StatusOr<PlannedVersion> PlanInitial(const v1::MissionSpec& spec, const StopToken& stop) override {
+    SEAPLAN_ASSIGN_OR_RETURN(Context c, MakeContext(spec, /*locations_state=*/""));
+    mission::NavigationLog log;
+    SEAPLAN_ASSIGN_OR_RETURN(mission::PlanVersion v,
+                             mission::PlanInitialVersion(c.definition, c.planner, c.router, stop, &log));
+    return ToPlanned(v, c, c.definition.locations, log);
+  }
+
+  absl::StatusOr<std::optional<PlannedVersion>> Replan(const v1::MissionSpec& spec, const MissionRuntimeState& state,
+                                                       std::string_view reason, const StopToken& stop) override {
+    SEAPLAN_ASSIGN_OR_RETURN(Context c, MakeContext(spec, state.engine_state));
+    const mission::PlanVersion current = FromProto(state.current_version);
+    mission::ReplanInput input;
+    input.reason = std::string(reason);
+    input.mission_time_s = state.current_version.mission_time_origin_s();
+    for (const auto& f : state.recent_feedback) {
+      if (f.plan_version() == state.mission.current_version() || f.plan_version() == 0) {
+        input.mission_time_s = std::max(input.mission_time_s, f.mission_time_s());
+        if (f.kind() == v1::Feedback::KIND_TASK_FAILED && !f.task_id().empty()) {
+          input.interrupted_task_ids.push_back(f.task_id());
+        }
+      }
+    }
+    for (const auto& id : state.mission.completed_tasks()) {
+      for (const auto& t : current.tasks) {
+        if (t.id == id) input.completed_task_ids.push_back(id);
+      }
+    }
+    const v1::ShipState& last = state.mission.has_last_state() ? state.mission.last_state() : spec.initial_state();
+    const chart::LocalPoint p = c.frame.ToLocal({last.position().latitude_deg(), last.position().longitude_deg()});
+    input.ship.position = {p.x_m, p.y_m};
+    if (last.fuel_fraction() > 0) input.ship.fuel_fraction = last.fuel_fraction();
+    mission::NavigationLog log;
+    SEAPLAN_ASSIGN_OR_RETURN(mission::ReplanResult r,
+                             mission::Replan(c.definition, current, c.definition.locations, input, c.planner,
+                                             c.router, stop, &log));
+    if (!r.version) return std::optional<PlannedVersion>();
+    return std::optional<PlannedVersion>(ToPlanned(*r.version, c, r.locations, log));
+  }
+
+  FeedbackDecision OnFeedback(const v1::MissionSpec& spec, const MissionRuntimeState& state,
+                              const v1::Feedback& feedback) override {
+    FeedbackDecision d;
+    const mission::PlanVersion current = FromProto(state.current_version);
+    const mission::Task* task = nullptr;
+    for (const auto& t : current.tasks) {
+      if (t.id == feedback.task_id()) task = &t;
+    }
+    switch (feedback.kind()) {
+      case v1::Feedback::KIND_TASK_STARTED:
+        if (task) d.log_messages.push_back(mission::TaskStartedMessage(task->kind));
+        break;
+      case v1::Feedback::KIND_TASK_COMPLETED: {
+        std::vector<std::string> done(state.mission.completed_tasks().begin(), state.mission.completed_tasks().end());
+        if (std::find(done.begin(), done.end(), feedback.task_id()) == done.end()) done.push_back(feedback.task_id());
+        if (task) d.log_messages.push_back(mission::TaskCompletedMessage(task->kind));
+        bool all = !current.tasks.empty();
+        for (const auto& t : current.tasks) all &= std::find(done.begin(), done.end(), t.id) != done.end();
+        d.completed_tasks = std::move(done);
+        if (all) {
+          d.new_state = v1::MISSION_STATE_COMPLETED;
+          d.log_messages.emplace_back(mission::messages::kMissionCompleted);
+          return d;
+        }
+        break;
+      }
+      case v1::Feedback::KIND_TASK_FAILED:
+        if (task) d.log_messages.push_back(mission::TaskFailedMessage(task->kind));
+        break;
+      case v1::Feedback::KIND_COLLISION_AVOIDANCE:
+        d.log_messages.emplace_back(mission::messages::kPotentialCollision);
+        break;
+      default:
+        break;
+    }
+    mission::Feedback f;
+    switch (feedback.kind()) {
+      case v1::Feedback::KIND_TASK_STARTED: f.kind = mission::FeedbackKind::kTaskStarted; break;
+      case v1::Feedback::KIND_TASK_COMPLETED: f.kind = mission::FeedbackKind::kTaskCompleted; break;
+      case v1::Feedback::KIND_TASK_FAILED: f.kind = mission::FeedbackKind::kTaskFailed; break;
+      case v1::Feedback::KIND_GNSS_FAULT: f.kind = mission::FeedbackKind::kGnssFault; break;
+      case v1::Feedback::KIND_MACHINERY_FAULT: f.kind = mission::FeedbackKind::kMachineryFault; break;
+      case v1::Feedback::KIND_OPERATOR_CHANGE: f.kind = mission::FeedbackKind::kOperatorChange; break;
+      case v1::Feedback::KIND_COLLISION_AVOIDANCE: f.kind = mission::FeedbackKind::kCollisionAvoidance; break;
+      default: f.kind = mission::FeedbackKind::kPosition; break;
+    }
+    f.task_id = feedback.task_id();
+    f.plan_version = feedback.plan_version() != 0 ? feedback.plan_version() : state.mission.current_version();
+    f.mission_time_s = feedback.mission_time_s();
+    f.detail = feedback.detail();
+    if (feedback.has_state()) {
+      auto frame = FrameFor(spec);
+      if (frame.ok() && feedback.state().has_position()) {
+        const chart::LocalPoint p = frame->ToLocal(
+            {feedback.state().position().latitude_deg(), feedback.state().position().longitude_deg()});
+        f.position = mission::Point{p.x_m, p.y_m};
+      }
+      if (feedback.state().fuel_fraction() > 0) f.fuel_fraction = feedback.state().fuel_fraction();
+    }
+    if (auto reason = mission::DecideReplan(f, current, task, Policy(spec))) {
+      d.replan = true;
+      d.replan_reason = *reason;
+    }
+    return d;
+  }
+
+ private:
+  struct Context {
+    mission::MissionDefinition definition;
+    mission::TemporalPlanner planner;
+    mission::RoutePlanner router;
+    chart::LocalFrame frame;
+  };
+
+  static mission::ReplanPolicy Policy(const v1::MissionSpec& spec) {
+    mission::ReplanPolicy p;
+    const v1::ReplanPolicy& r = spec.replan_policy();
+    if (r.fuel_threshold_fraction() > 0) p.fuel_threshold_fraction = r.fuel_threshold_fraction();
+    if (r.position_deviation_m() > 0) p.position_deviation_m = r.position_deviation_m();
+    if (r.delay_tolerance_s() > 0) p.delay_tolerance_s = r.delay_tolerance_s();
+    return p;
+  }
+
+  absl::StatusOr<chart::LocalFrame> FrameFor(const v1::MissionSpec& spec) {
+    if (!spec.chart_id().empty()) {
+      SEAPLAN_ASSIGN_OR_RETURN(storage::ChartRecord record, charts_.Get(spec.chart_id(), /*with_blobs=*/false));
+      v1::ObstacleSummary summary;
+      summary.ParseFromString(record.summary);
+      int epsg = 0;
+      if (std::sscanf(summary.frame().c_str(), "EPSG:%d", &epsg) == 1) return chart::LocalFrame::FromEpsg(epsg);
+    }
+    if (spec.locations_size() > 0) {
+      const auto& p = spec.locations(0).position();
+      return chart::LocalFrame::ForCentre({p.latitude_deg(), p.longitude_deg()});
+    }
+    return chart::LocalFrame();
+  }
+
+  absl::StatusOr<Context> MakeContext(const v1::MissionSpec& spec, const std::string& locations_state) {
+    Context c;
+    SEAPLAN_ASSIGN_OR_RETURN(c.frame, FrameFor(spec));
+    mission::MissionDefinition& def = c.definition;
+    def.domain = spec.domain();
+    def.problem = spec.problem();
+    if (locations_state.empty()) {
+      for (const auto& l : spec.locations()) {
+        const chart::LocalPoint p = c.frame.ToLocal({l.position().latitude_deg(), l.position().longitude_deg()});
+        def.locations[l.name()] = {p.x_m, p.y_m};
+      }
+    } else {
+      def.locations = DecodeLocations(locations_state);
+    }
+    for (const auto& op : spec.port_operations()) def.refine.port_operation_durations_s[op.action()] = op.duration_s();
+    if (spec.planner_options().epsilon_s() > 0) def.refine.epsilon_s = spec.planner_options().epsilon_s();
+    def.regeneration.ship_object = spec.ship_object();
+    def.policy = Policy(spec);
+    def.regeneration.fuel_threshold_fraction = def.policy.fuel_threshold_fraction;
+
+    search::PlannerOptions options;
+    const v1::PlannerOptions& o = spec.planner_options();
+    if (o.has_time_limit()) {
+      SEAPLAN_ASSIGN_OR_RETURN(double s, DurationSeconds(o.time_limit(), "spec.planner_options.time_limit"));
+      if (s > 0) options.time_limit_s = s;
+    }
+    if (o.memory_limit_mb() > 0) options.memory_limit_mb = o.memory_limit_mb();
+    if (o.max_concurrent_actions() > 0) options.max_concurrent_actions = o.max_concurrent_actions();
+    if (o.has_anytime()) options.anytime = o.anytime();
+    if (o.random_seed() != 0) options.random_seed = o.random_seed();
+    if (o.epsilon_s() > 0) options.epsilon_s = o.epsilon_s();
+    if (absl::Status st = options.Validate(); !st.ok()) {
+      return absl::InvalidArgumentError(absl::StrCat("spec.planner_options: ", st.message()));
+    }
+    c.planner = [options](std::string_view domain, std::string_view problem,
+                          const StopToken& stop) -> StatusOr<mission::PlannerOutcome> {
+      search::PlanResult r = search::Solve(domain, problem, options, stop);
+      if (r.status == search::PlanStatus::kError) return absl::InvalidArgumentError(r.message);
+      mission::PlannerOutcome out;
+      out.solved = r.status == search::PlanStatus::kSolvedSatisficing || r.status == search::PlanStatus::kSolvedOptimally;
+      out.plan = std::move(r.plan);
+      out.status = search::ToString(r.status);
+      return out;
+    };
+    if (spec.chart_id().empty()) {
+      const double speed = spec.ship().service_speed_mps() > 0 ? spec.ship().service_speed_mps() : kDefaultServiceSpeedMps;
+      c.router = mission::StraightLineRouter(speed);
+    } else {
+      // TODO(#2): route moves over the chart with engine/route's RoutePlanner.
+      return absl::UnimplementedError(
+          "missions with a chart_id: routing moves over a chart is not wired into the mission service yet; "
+          "leave chart_id empty for straight-line legs");
+    }
+    return c;
+  }
+
+  PlannedVersion ToPlanned(const mission::PlanVersion& v, const Context& c, const mission::LocationTable& locations,
+                           const mission::NavigationLog& log) {
+    PlannedVersion out;
+    v1::PlanVersion& p = out.version;
+    p.set_reason(v.reason);
+    p.set_makespan_s(v.makespan_s);
+    p.set_problem(v.problem);
+    p.set_mission_time_origin_s(v.mission_time_origin_s);
+    p.set_planner_status(v1::SOLVED_SATISFICING);
+    for (const auto& s : v.plan.steps) *p.add_plan() = StepToProto(s);
+    for (const auto& t : v.tasks) {
+      v1::Task* task = p.add_tasks();
+      task->set_task_id(t.id);
+      task->set_kind(KindToProto(t.kind));
+      task->set_start_s(t.start_s);
+      task->set_duration_s(t.duration_s);
+      *task->mutable_action() = StepToProto(t.action);
+      task->set_from_location(t.from_location);
+      task->set_to_location(t.to_location);
+      if (t.route) {
+        v1::RouteAlternative* r = task->mutable_route();
+        r->set_index(t.route->alternative_index);
+        r->set_length_m(t.route->length_m);
+        r->set_sailing_time_s(t.route->sailing_time_s);
+        r->set_fuel_kg(t.route->fuel_kg);
+        r->set_expected_grounding_cost(t.route->expected_grounding_cost);
+        r->set_max_grounding_probability(t.route->max_grounding_probability);
+        for (const auto& w : t.route->waypoints) {
+          v1::RouteWaypoint* rw = r->add_waypoints();
+          const chart::LatLon ll = c.frame.ToLatLon({w.position.x_m, w.position.y_m});
+          rw->mutable_position()->set_latitude_deg(ll.lat_deg);
+          rw->mutable_position()->set_longitude_deg(ll.lon_deg);
+          rw->set_mode(ModeToProto(w.mode));
+          rw->set_eta_s(w.eta_s);
+          rw->set_distance_from_start_m(w.distance_from_start_m);
+          rw->set_time_to_grounding_s(w.time_to_grounding_s);
+          rw->set_grounding_probability(w.grounding_probability);
+          rw->set_expected_grounding_cost(w.expected_grounding_cost);
+          rw->set_fuel_kg(w.fuel_kg);
+        }
+        for (const auto& e : mission::ModeSchedule(*t.route)) {
+          v1::ModeScheduleEntry* m = task->add_mode_schedule();
+          m->set_from_waypoint(e.from_waypoint);
+          m->set_to_waypoint(e.to_waypoint);
+          m->set_mode(ModeToProto(e.mode));
+          m->set_start_s(e.start_s);
+          m->set_duration_s(e.duration_s);
+        }
+      }
+    }
+    out.engine_state = EncodeLocations(locations);
+    for (const auto& e : log.entries()) out.log_messages.push_back(e.message);
+    return out;
+  }
+
+  // The engine's view of a stored version (routes are not needed to replan).
+  static mission::PlanVersion FromProto(const v1::PlanVersion& p) {
+    mission::PlanVersion v;
+    v.version = p.version();
+    v.reason = p.reason();
+    v.mission_time_origin_s = p.mission_time_origin_s();
+    v.makespan_s = p.makespan_s();
+    v.problem = p.problem();
+    for (const auto& a : p.plan()) v.plan.steps.push_back(StepFromProto(a));
+    for (const auto& t : p.tasks()) {
+      mission::Task task;
+      task.id = t.task_id();
+      task.kind = KindFromProto(t.kind());
+      task.start_s = t.start_s();
+      task.duration_s = t.duration_s();
+      task.action = StepFromProto(t.action());
+      task.from_location = t.from_location();
+      task.to_location = t.to_location();
+      v.tasks.push_back(std::move(task));
+    }
+    return v;
+  }
+
+  storage::ChartRepository& charts_;
+};
+
+}  // namespace
+
+std::shared_ptr<MissionEngine> MakeMissionEngine(storage::ChartRepository& charts) {
+  return std::make_shared<Adapter>(charts);
+}
+
+}  // namespace seaplan::server
+
+#else
+
+namespace seaplan::server {
+std::shared_ptr<MissionEngine> MakeMissionEngine(storage::ChartRepository&) { return nullptr; }
+}  // namespace seaplan::server
+
+#endif
