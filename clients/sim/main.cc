@@ -1,1 +1,453 @@
-int main() { return 0; }
+// seaplan-sim: plays the onboard side of a mission against a seaplan server,
+// over gRPC only.
+//
+//   seaplan-sim --server 127.0.0.1:50051 --scenario examples/scenarios/case-b.scenario
+//               [--mission-id ID (attach)] [--time-factor N] [--report-dir DIR]
+//
+// Creates the mission of the scenario (uploading its chart first when it has
+// one) or attaches to an existing one, watches it, executes its tasks on the
+// simulated ship, posts feedback, follows replans and writes the mission
+// report (report.json, trajectory.svg, gantt.svg).
+//
+// Exit codes: 0 mission completed; 1 error (bad flags, scenario, I/O, RPC);
+// 2 mission failed or cancelled; 3 timed out waiting for the server;
+// 4 the server does not plan missions (CreateMission UNIMPLEMENTED).
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+#include <string>
+#include <thread>
+
+#include "absl/strings/numbers.h"
+#include "absl/strings/str_cat.h"
+#include "executor.h"
+#include "report.h"
+#include "scenario.h"
+#include "seaplan/chart/obstacle_map.h"
+#include "seaplan/common/log.h"
+#include "sim_client.h"
+
+namespace {
+
+using namespace seaplan;
+
+constexpr double kDeg = M_PI / 180.0;
+
+struct Flags {
+  std::string server = "127.0.0.1:50051";
+  std::string scenario;
+  std::string mission_id;
+  std::string report_dir = "sim-report";
+  double time_factor = -1;  // < 0: from the scenario (0 = as fast as possible)
+  double replan_timeout_s = 120;
+  double max_mission_time_s = 20000;
+  std::string log_level = "warn";
+};
+
+int Usage(const char* msg) {
+  std::fprintf(stderr,
+               "%s\nusage: seaplan-sim --scenario FILE [--server HOST:PORT] [--mission-id ID]\n"
+               "       [--time-factor N] [--report-dir DIR] [--replan-timeout-s S]\n"
+               "       [--max-mission-time-s S] [--log-level LEVEL]\n",
+               msg);
+  return 1;
+}
+
+std::string ReadAll(const std::string& path, bool* ok) {
+  std::ifstream in(path, std::ios::binary);
+  *ok = static_cast<bool>(in);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+v1::MsoMode ToProtoMode(mission::MsoMode m) {
+  switch (m) {
+    case mission::MsoMode::kPto: return v1::MSO_MODE_PTO;
+    case mission::MsoMode::kMec: return v1::MSO_MODE_MEC;
+    case mission::MsoMode::kPti: return v1::MSO_MODE_PTI;
+    default: return v1::MSO_MODE_UNSPECIFIED;
+  }
+}
+mission::MsoMode FromProtoMode(v1::MsoMode m) {
+  switch (m) {
+    case v1::MSO_MODE_PTO: return mission::MsoMode::kPto;
+    case v1::MSO_MODE_MEC: return mission::MsoMode::kMec;
+    case v1::MSO_MODE_PTI: return mission::MsoMode::kPti;
+    default: return mission::MsoMode::kUnspecified;
+  }
+}
+mission::TaskKind FromProtoKind(v1::Task::Kind k) {
+  switch (k) {
+    case v1::Task::KIND_MOVE: return mission::TaskKind::kMove;
+    case v1::Task::KIND_LOAD: return mission::TaskKind::kLoad;
+    case v1::Task::KIND_UNLOAD: return mission::TaskKind::kUnload;
+    case v1::Task::KIND_REPAIR: return mission::TaskKind::kRepair;
+    case v1::Task::KIND_REFUEL: return mission::TaskKind::kRefuel;
+    default: return mission::TaskKind::kOther;
+  }
+}
+v1::Feedback::Kind ToProtoFeedback(mission::FeedbackKind k) {
+  switch (k) {
+    case mission::FeedbackKind::kTaskStarted: return v1::Feedback::KIND_TASK_STARTED;
+    case mission::FeedbackKind::kTaskCompleted: return v1::Feedback::KIND_TASK_COMPLETED;
+    case mission::FeedbackKind::kTaskFailed: return v1::Feedback::KIND_TASK_FAILED;
+    case mission::FeedbackKind::kPosition: return v1::Feedback::KIND_POSITION;
+    case mission::FeedbackKind::kGnssFault: return v1::Feedback::KIND_GNSS_FAULT;
+    case mission::FeedbackKind::kMachineryFault: return v1::Feedback::KIND_MACHINERY_FAULT;
+    case mission::FeedbackKind::kOperatorChange: return v1::Feedback::KIND_OPERATOR_CHANGE;
+    case mission::FeedbackKind::kCollisionAvoidance: return v1::Feedback::KIND_COLLISION_AVOIDANCE;
+  }
+  return v1::Feedback::KIND_UNSPECIFIED;
+}
+
+mission::PlanVersion FromProto(const v1::PlanVersion& p, const chart::LocalFrame& frame) {
+  mission::PlanVersion v;
+  v.version = p.version();
+  v.reason = p.reason();
+  v.mission_time_origin_s = p.mission_time_origin_s();
+  v.makespan_s = p.makespan_s();
+  v.problem = p.problem();
+  for (const v1::TimedAction& a : p.plan()) {
+    validate::PlanStep s;
+    s.start_s = a.start_s();
+    s.duration_s = a.duration_s();
+    s.name = a.name();
+    s.args.assign(a.arguments().begin(), a.arguments().end());
+    v.plan.steps.push_back(std::move(s));
+  }
+  for (const v1::Task& t : p.tasks()) {
+    mission::Task m;
+    m.id = t.task_id();
+    m.kind = FromProtoKind(t.kind());
+    m.start_s = t.start_s();
+    m.duration_s = t.duration_s();
+    m.action.start_s = t.action().start_s();
+    m.action.duration_s = t.action().duration_s();
+    m.action.name = t.action().name();
+    m.action.args.assign(t.action().arguments().begin(), t.action().arguments().end());
+    m.from_location = t.from_location();
+    m.to_location = t.to_location();
+    if (t.has_route() && t.route().waypoints_size() > 0) {
+      mission::Route r;
+      r.length_m = t.route().length_m();
+      r.sailing_time_s = t.route().sailing_time_s();
+      r.fuel_kg = t.route().fuel_kg();
+      for (const v1::RouteWaypoint& w : t.route().waypoints()) {
+        mission::RouteWaypoint rw;
+        chart::LocalPoint lp = frame.ToLocal({w.position().latitude_deg(), w.position().longitude_deg()});
+        rw.position = {lp.x_m, lp.y_m};
+        rw.mode = FromProtoMode(w.mode());
+        rw.eta_s = w.eta_s();
+        rw.distance_from_start_m = w.distance_from_start_m();
+        r.waypoints.push_back(rw);
+      }
+      m.route = std::move(r);
+    }
+    v.tasks.push_back(std::move(m));
+  }
+  return v;
+}
+
+v1::MissionSpec MakeSpec(const sim::Scenario& s, const std::string& domain, const std::string& problem,
+                         const std::string& chart_id, const sim::ExecutorConfig& cfg,
+                         const chart::LocalFrame& frame) {
+  v1::MissionSpec spec;
+  spec.set_name(s.name);
+  spec.set_domain(domain);
+  spec.set_problem(problem);
+  spec.set_chart_id(chart_id);
+  for (const auto& [name, ll] : s.locations) {
+    auto* l = spec.add_locations();
+    l->set_name(name);
+    l->mutable_position()->set_latitude_deg(ll.lat_deg);
+    l->mutable_position()->set_longitude_deg(ll.lon_deg);
+  }
+  spec.mutable_ship()->set_name(s.vessel_id);
+  spec.mutable_ship()->set_service_speed_mps(s.service_speed_mps);
+  chart::LatLon start = frame.ToLatLon({cfg.start.x, cfg.start.y});
+  auto* st = spec.mutable_initial_state();
+  st->mutable_position()->set_latitude_deg(start.lat_deg);
+  st->mutable_position()->set_longitude_deg(start.lon_deg);
+  st->set_heading_deg(s.start_heading_deg);
+  st->set_fuel_fraction(s.initial_fuel);
+  st->set_mode(v1::MSO_MODE_PTO);
+  spec.mutable_environment()->set_wind_speed_mps(s.wind_speed_mps);
+  spec.mutable_environment()->set_wind_from_deg(s.wind_from_deg);
+  spec.mutable_environment()->set_current_speed_mps(s.current_speed_mps);
+  spec.mutable_environment()->set_current_from_deg(s.current_from_deg);
+  for (const auto& [action, d] : s.port_operations) {
+    auto* p = spec.add_port_operations();
+    p->set_action(action);
+    p->set_duration_s(d);
+  }
+  spec.mutable_replan_policy()->set_fuel_threshold_fraction(s.fuel_threshold);
+  spec.mutable_replan_policy()->set_position_deviation_m(s.position_deviation_m);
+  spec.mutable_replan_policy()->set_delay_tolerance_s(s.delay_tolerance_s);
+  spec.mutable_planner_options()->mutable_time_limit()->set_seconds(static_cast<int64_t>(s.planner_time_limit_s));
+  spec.set_vessel_id(s.vessel_id);
+  spec.set_ship_object(s.ship_object);
+  return spec;
+}
+
+// The ship's location in the PDDL problem: "(at <ship> <loc>)" in :init.
+std::string ShipLocation(const std::string& problem, const std::string& ship) {
+  if (ship.empty()) return "";
+  std::string needle = "(at " + ship + " ";
+  size_t p = problem.find(needle);
+  if (p == std::string::npos) return "";
+  size_t e = problem.find(')', p);
+  return problem.substr(p + needle.size(), e - p - needle.size());
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Flags f;
+  for (int i = 1; i < argc; ++i) {
+    std::string a = argv[i];
+    auto next = [&]() -> const char* { return i + 1 < argc ? argv[++i] : nullptr; };
+    const char* v = nullptr;
+    if (a == "--help" || a == "-h") return Usage("seaplan-sim: simulate a mission against a seaplan server"), 0;
+    if (a == "--server" && (v = next())) {
+      f.server = v;
+    } else if (a == "--scenario" && (v = next())) {
+      f.scenario = v;
+    } else if (a == "--mission-id" && (v = next())) {
+      f.mission_id = v;
+    } else if (a == "--report-dir" && (v = next())) {
+      f.report_dir = v;
+    } else if (a == "--time-factor" && (v = next())) {
+      if (!absl::SimpleAtod(v, &f.time_factor) || f.time_factor < 0) return Usage("bad --time-factor");
+    } else if (a == "--replan-timeout-s" && (v = next())) {
+      if (!absl::SimpleAtod(v, &f.replan_timeout_s) || f.replan_timeout_s <= 0) return Usage("bad --replan-timeout-s");
+    } else if (a == "--max-mission-time-s" && (v = next())) {
+      if (!absl::SimpleAtod(v, &f.max_mission_time_s) || f.max_mission_time_s <= 0) {
+        return Usage("bad --max-mission-time-s");
+      }
+    } else if (a == "--log-level" && (v = next())) {
+      f.log_level = v;
+    } else {
+      return Usage(absl::StrCat("unknown or incomplete flag: ", a).c_str());
+    }
+  }
+  if (f.scenario.empty()) return Usage("--scenario is required");
+  log::Level level;
+  if (!log::ParseLevel(f.log_level, &level)) return Usage("bad --log-level");
+  log::SetLevel(level);
+
+  auto scenario = sim::LoadScenario(f.scenario);
+  if (!scenario.ok()) {
+    std::fprintf(stderr, "seaplan-sim: %s\n", std::string(scenario.status().message()).c_str());
+    return 1;
+  }
+  const char* shared_env = std::getenv("SEAPLAN_SHARED");
+  const std::string shared = shared_env ? shared_env : "";
+  auto fail = [](const absl::Status& s) {
+    std::fprintf(stderr, "seaplan-sim: %s\n", s.ToString().c_str());
+    return 1;
+  };
+  auto domain_path = sim::ResolvePath(*scenario, scenario->domain_path, shared);
+  auto problem_path = sim::ResolvePath(*scenario, scenario->problem_path, shared);
+  if (!domain_path.ok()) return fail(domain_path.status());
+  if (!problem_path.ok()) return fail(problem_path.status());
+  bool ok1 = false, ok2 = false;
+  std::string domain = ReadAll(*domain_path, &ok1), problem = ReadAll(*problem_path, &ok2);
+  if (!ok1 || !ok2) return fail(absl::NotFoundError(absl::StrCat("cannot read ", ok1 ? *problem_path : *domain_path)));
+
+  // Frame and obstacles (for the plot) from the chart when there is one.
+  chart::LocalFrame frame = chart::LocalFrame::ForCentre(scenario->locations.front().second);
+  sim::Rings rings;
+  std::string chart_bytes, chart_file;
+  if (!scenario->chart_path.empty()) {
+    auto p = sim::ResolvePath(*scenario, scenario->chart_path, shared);
+    if (!p.ok()) return fail(p.status());
+    chart_file = *p;
+    bool ok = false;
+    chart_bytes = ReadAll(chart_file, &ok);
+    if (!ok) return fail(absl::NotFoundError(absl::StrCat("cannot read chart ", chart_file)));
+    chart::ChartOptions copt;
+    copt.safety_buffer_m = 0.0;
+    copt.simplify_tolerance_m = 0.0;
+    auto map = chart::LoadChartFile(chart_file, copt);
+    if (map.ok()) {
+      frame = map->frame();
+      for (const chart::Polygon& poly : map->polygons()) {
+        std::vector<sim::Vec2> ring;
+        for (const chart::LocalPoint& q : poly.outer) ring.push_back({q.x_m, q.y_m});
+        rings.push_back(std::move(ring));
+      }
+    } else {
+      log::Warn("chart {} not loaded for the plot: {}", chart_file, map.status().ToString());
+    }
+  }
+
+  auto cfg = sim::MakeExecutorConfig(*scenario, frame, ShipLocation(problem, scenario->ship_object));
+  if (!cfg.ok()) return fail(cfg.status());
+  auto executor = sim::Executor::Create(*cfg);
+  if (!executor.ok()) return fail(executor.status());
+  mission::LocationTable locations = sim::LocalLocations(*scenario, frame);
+
+  sim::SimClient client(f.server);
+  std::string mission_id = f.mission_id;
+  // Sequence numbers are per vessel across every mission the server has
+  // seen (its idempotency key is (vessel_id, sequence_number)), so a run
+  // starts above any earlier run: microseconds since the epoch.
+  int64_t sequence = std::chrono::duration_cast<std::chrono::microseconds>(
+                         std::chrono::system_clock::now().time_since_epoch())
+                         .count();
+  if (mission_id.empty()) {
+    std::string chart_id;
+    if (!chart_bytes.empty()) {
+      auto chart = client.UploadChart(scenario->name + "-chart", std::filesystem::path(chart_file).filename().string(),
+                                      chart_bytes);
+      if (!chart.ok()) return fail(chart.status());
+      chart_id = chart->chart_id();
+    }
+    v1::MissionSpec spec = MakeSpec(*scenario, domain, problem, chart_id, *cfg, frame);
+    const std::string request_id =
+        absl::StrCat(scenario->name, "-", std::chrono::system_clock::now().time_since_epoch().count());
+    auto m = client.CreateMission(spec, request_id);
+    if (!m.ok() && absl::IsUnimplemented(m.status()) && !spec.chart_id().empty()) {
+      // A server that plans missions but cannot route over a chart yet:
+      // fall back to straight-line legs (the chart still draws the plot).
+      std::fprintf(stderr, "seaplan-sim: warning: %s; retrying without the chart (straight-line legs)\n",
+                   std::string(m.status().message()).c_str());
+      executor->Log("server cannot route over the chart: straight-line legs");
+      spec.clear_chart_id();
+      m = client.CreateMission(spec, request_id + "-nochart");
+    }
+    if (!m.ok()) {
+      std::fprintf(stderr, "seaplan-sim: CreateMission: %s\n", m.status().ToString().c_str());
+      return absl::IsUnimplemented(m.status()) ? 4 : 1;
+    }
+    mission_id = m->mission_id();
+  }
+  std::printf("mission %s\n", mission_id.c_str());
+  std::fflush(stdout);
+  executor->mutable_report().mission_id = mission_id;
+  executor->mutable_report().scenario = scenario->name;
+
+  client.StartWatch(mission_id);
+  const auto replan_timeout = std::chrono::milliseconds(static_cast<int64_t>(f.replan_timeout_s * 1000));
+  auto first = client.WaitForVersion(0, replan_timeout);
+  if (!first) {
+    std::fprintf(stderr, "seaplan-sim: no plan version for mission %s\n", mission_id.c_str());
+    return client.terminal_state() == v1::MISSION_STATE_UNSPECIFIED ? 3 : 2;
+  }
+  executor->SetPlan(FromProto(*first, frame));
+  double current_origin = first->mission_time_origin_s();
+
+  const double time_factor = f.time_factor >= 0 ? f.time_factor : scenario->time_factor;
+  const auto wall_start = std::chrono::steady_clock::now();
+  int exit_code = 0;
+  std::vector<sim::FeedbackOut> out;
+  auto drain_log = [&] {
+    for (const v1::LogEvent& e : client.TakeLogEvents()) {
+      executor->mutable_report().log.Add(e.mission_time_s(), e.message(), e.source());
+    }
+  };
+  while (true) {
+    if (executor->Finished()) break;
+    if (executor->time_s() > f.max_mission_time_s) {
+      std::fprintf(stderr, "seaplan-sim: mission time limit %.0f s reached\n", f.max_mission_time_s);
+      exit_code = 3;
+      break;
+    }
+    if (auto v = client.PollVersion(executor->plan_version())) {
+      // A version planned from the same state as the one under way (two
+      // triggers of one situation) is a duplicate: keep executing.
+      if (v->mission_time_origin_s() > current_origin + 1e-6) {
+        current_origin = v->mission_time_origin_s();
+        executor->SetPlan(FromProto(*v, frame));
+      } else {
+        executor->Log(absl::StrCat("ignored plan version ", v->version(), " (planned from the same state as version ",
+                                   executor->plan_version(), ")"));
+      }
+    }
+    out.clear();
+    executor->Step(&out);
+    bool need_plan = executor->WaitingForPlan();
+    for (const sim::FeedbackOut& fb : out) {
+      v1::ReportFeedbackRequest req;
+      req.set_mission_id(mission_id);
+      req.set_vessel_id(scenario->vessel_id);
+      req.set_sequence_number(sequence++);
+      v1::Feedback* p = req.mutable_feedback();
+      p->set_kind(ToProtoFeedback(fb.kind));
+      p->set_task_id(fb.task_id);
+      p->set_plan_version(fb.plan_version);
+      p->set_mission_time_s(fb.mission_time_s);
+      p->set_detail(fb.detail);
+      chart::LatLon ll = frame.ToLatLon({fb.position.x, fb.position.y});
+      v1::ShipState* st = p->mutable_state();
+      st->mutable_position()->set_latitude_deg(ll.lat_deg);
+      st->mutable_position()->set_longitude_deg(ll.lon_deg);
+      double hdg = std::fmod(fb.heading_rad / kDeg, 360.0);
+      st->set_heading_deg(hdg < 0 ? hdg + 360 : hdg);
+      st->set_speed_mps(fb.speed_mps);
+      st->set_fuel_fraction(fb.fuel_fraction);
+      st->set_mode(ToProtoMode(fb.mode));
+      auto resp = client.Report(req);
+      if (!resp.ok()) {
+        std::fprintf(stderr, "seaplan-sim: ReportFeedback: %s\n", resp.status().ToString().c_str());
+        exit_code = 1;
+        break;
+      }
+      if (resp->replan_triggered()) {
+        need_plan = true;
+        executor->Log(absl::StrCat("replan requested by the server: ", resp->replan_reason()));
+        break;  // the rest of this step's reports concern the version being replaced
+      }
+    }
+    if (exit_code != 0) break;
+    if (need_plan) {
+      auto v = client.WaitForVersion(executor->plan_version(), replan_timeout);
+      if (v) {
+        current_origin = v->mission_time_origin_s();
+        executor->SetPlan(FromProto(*v, frame));
+      } else if (client.terminal_state() == v1::MISSION_STATE_COMPLETED && !executor->WaitingForPlan()) {
+        // The goal already holds: nothing to replan.
+      } else {
+        std::fprintf(stderr, "seaplan-sim: no new plan version after a replan request\n");
+        exit_code = client.terminal_state() == v1::MISSION_STATE_UNSPECIFIED ? 3 : 2;
+        break;
+      }
+    }
+    if (time_factor > 0) {
+      auto due = wall_start + std::chrono::duration<double>(executor->time_s() / time_factor);
+      std::this_thread::sleep_until(due);
+    }
+  }
+  // Wait a little for the server's verdict (COMPLETED after the last task).
+  auto verdict_deadline = std::chrono::steady_clock::now() + std::chrono::seconds(10);
+  v1::MissionState state = v1::MISSION_STATE_UNSPECIFIED;
+  while (std::chrono::steady_clock::now() < verdict_deadline) {
+    auto m = client.GetMission(mission_id);
+    if (m.ok()) state = m->state();
+    if (state == v1::MISSION_STATE_COMPLETED || state == v1::MISSION_STATE_FAILED ||
+        state == v1::MISSION_STATE_CANCELLED) {
+      break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  client.StopWatch();
+  drain_log();
+  auto& report = executor->mutable_report();
+  report.completed = exit_code == 0 && executor->Finished() && state == v1::MISSION_STATE_COMPLETED;
+  for (const auto& v : report.versions) {
+    if (v.reason.rfind("fuel", 0) == 0) ++report.fuel_triggered_replans;
+  }
+  absl::Status written = sim::WriteReport(f.report_dir, report, rings, locations);
+  if (!written.ok()) return fail(written);
+  std::printf("mission %s: %s, %zu plan versions, mission time %.1f s, report in %s\n", mission_id.c_str(),
+              v1::MissionState_Name(state).c_str(), report.versions.size(), executor->time_s(),
+              f.report_dir.c_str());
+  if (exit_code != 0) return exit_code;
+  if (state != v1::MISSION_STATE_COMPLETED) return state == v1::MISSION_STATE_UNSPECIFIED ? 3 : 2;
+  return 0;
+}

@@ -73,7 +73,7 @@ struct AvoidanceOptions {
   double horizon_s = 600.0;          // look this far ahead
   // Stand-on vessels act only when the give-way vessel evidently does not
   // (rule 17 a ii): CPA under safety and TCPA under this.
-  double stand_on_action_tcpa_s = 120.0;
+  double stand_on_action_tcpa_s = 300.0;
   double max_course_change_rad = 1.5708;  // candidate courses within +-90 deg of desired
   double course_step_rad = 0.0436;        // 2.5 deg
   std::vector<double> speed_factors = {1.0, 0.8, 0.6, 0.4, 0.2};

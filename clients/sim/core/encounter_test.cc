@@ -82,7 +82,7 @@ TEST(AvoidanceTest, HeadOnBothStarboardAndStandOnKeepsCourse) {
   EXPECT_GT(manoeuvre.x, 0.0);
   // Crossing from port, far enough: stand on (no manoeuvre yet).
   Kinematics own{{0, 0}, VelocityOf(kNorth, 5)};
-  AvoidanceDecision d = ChooseVelocity(own, own.velocity, {{{{-1000, 1000}, VelocityOf(kEast, 5)}, 3}}, o);
+  AvoidanceDecision d = ChooseVelocity(own, own.velocity, {{{{-2000, 2000}, VelocityOf(kEast, 5)}, 3}}, o);
   EXPECT_FALSE(d.manoeuvring);
   EXPECT_EQ(d.role, Role::kCrossingStandOn);
   // Rule 17: close and still on collision course, the stand-on vessel acts.

@@ -38,7 +38,7 @@ StatusOr<Executor> Executor::Create(const ExecutorConfig& config) {
 Executor::Executor(const ExecutorConfig& config, ship::ShipModel model)
     : config_(config),
       model_(std::move(model)),
-      heading_(ship::HeadingControllerOptions{}, config.dt_s),
+      heading_(config.heading, config.dt_s),
       speed_(ship::SpeedControllerOptions{}, config.dt_s),
       tank_(config.fuel, config.initial_fuel_fraction) {
   report_.safety_distance_m = config.avoidance.safety_distance_m;
@@ -122,6 +122,19 @@ void Executor::StartMove(const mission::Task& task) {
   if (task.route) route_ = task.route->waypoints;
   std::vector<Eigen::Vector2d> ne;
   Vec2 here = position();
+  // Unberthing is not modelled: a ship at rest leaves its berth heading
+  // along the first leg (tugs / thrusters), as the paper's simulation does.
+  if (std::hypot(model_.state().surge_mps(), model_.state().sway_mps()) < 0.5) {
+    for (const auto& w : route_) {
+      if (std::hypot(w.position.x_m - here.x, w.position.y_m - here.y) > config_.arrival_radius_m) {
+        ship::ShipState s = model_.state();
+        s.eta[2] = std::atan2(w.position.x_m - here.x, w.position.y_m - here.y);
+        s.nu.setZero();
+        model_.set_state(s);
+        break;
+      }
+    }
+  }
   ne.emplace_back(here.y, here.x);
   for (size_t i = 0; i < route_.size(); ++i) {
     const auto& p = route_[i].position;
@@ -161,7 +174,7 @@ void Executor::StepMove(std::vector<FeedbackOut>* out) {
     mission::Route r;
     r.waypoints = route_;
     double off = mission::CrossTrackDistance(r, {here.x, here.y});
-    if (off > config_.deviation_limit_m) {
+    if ((jumped_ && off > config_.deviation_limit_m) || off > 2 * config_.deviation_limit_m) {
       Log(mission::TaskFailedMessage(TaskKind::kMove));
       out->push_back(MakeFeedback(FeedbackKind::kTaskFailed, it->task.id, it->version,
                                   absl::StrFormat("%.0f m off the route (limit %.0f m)", off,
@@ -189,7 +202,11 @@ void Executor::StepMove(std::vector<FeedbackOut>* out) {
   Kinematics own{here, vel};
   std::vector<Obstacle> others;
   for (const TrafficVessel& v : config_.traffic) others.push_back({v.At(time_s_), v.id});
-  AvoidanceDecision d = ChooseVelocity(own, VelocityOf(psi_d, speed), others, config_.avoidance);
+  // The VO assumes velocities change at once; this hull needs minutes to
+  // turn, so the manoeuvre is planned with a margin on the safety distance.
+  AvoidanceOptions planning = config_.avoidance;
+  planning.safety_distance_m *= config_.avoidance_margin_factor;
+  AvoidanceDecision d = ChooseVelocity(own, VelocityOf(psi_d, speed), others, planning);
   std::set<int> dangerous_now;
   for (const Obstacle& o : others) {
     Cpa cpa = ComputeCpa(own, o.kinematics);
@@ -301,7 +318,9 @@ void Executor::TrackTraffic() {
 
 void Executor::Step(std::vector<FeedbackOut>* out) {
   if (waiting_) return;
+  last_position_ = position();
   InjectEvents(out);
+  jumped_ = (position() - last_position_).Norm() > config_.jump_threshold_m;
   StartTasks(out);
   // Port operations complete by time.
   for (auto it = running_.begin(); it != running_.end();) {

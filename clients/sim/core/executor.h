@@ -67,9 +67,19 @@ struct ExecutorConfig {
   double min_approach_speed_mps = 1.0;
   double position_report_interval_s = 30.0;
   double deviation_limit_m = 200.0;  // a move fails when the ship is further off its route
-  ship::LosOptions los{150.0, 300.0, 0.0, 0.5};
+  ship::LosOptions los{150.0, 400.0, 0.0, 0.5};
+  // SITS gains (kp 4, kd 90, ki 0.01) make this hull circle under LOS when
+  // a leg starts far off its heading (the integral winds up while the rudder
+  // has no authority at low speed); these settle within ~100 m of the path.
+  ship::HeadingControllerOptions heading{2.0, 200.0, 0.0};
+  // A position change this large within one step is a jump (GNSS fault):
+  // the move fails at once. A slower drift off the route fails the move
+  // only beyond 2 x deviation_limit_m (collision avoidance may legitimately
+  // take the ship off its route).
+  double jump_threshold_m = 100.0;
   ship::Environment environment;
   AvoidanceOptions avoidance;
+  double avoidance_margin_factor = 2.0;  // safety distance x this when choosing velocities
   FuelOptions fuel;
   double initial_fuel_fraction = 1.0;
   double fuel_threshold_fraction = 0.3;  // logged when crossed (the server decides replans)
@@ -148,6 +158,8 @@ class Executor {
   double last_fuel_sample_s_ = -1e9;
   double last_track_sample_s_ = -1e9;
   double fuel_burn_start_kg_ = 0.0;
+  Vec2 last_position_;
+  bool jumped_ = false;
   bool fuel_low_logged_ = false;
   std::set<size_t> jumps_done_, jumps_cleared_;
   // Collision avoidance state.
