@@ -174,7 +174,7 @@ void Executor::StepMove(std::vector<FeedbackOut>* out) {
     mission::Route r;
     r.waypoints = route_;
     double off = mission::CrossTrackDistance(r, {here.x, here.y});
-    if ((jumped_ && off > config_.deviation_limit_m) || off > 2 * config_.deviation_limit_m) {
+    if ((jumped_ && off > config_.deviation_limit_m) || off > 3 * config_.deviation_limit_m) {
       Log(mission::TaskFailedMessage(TaskKind::kMove));
       out->push_back(MakeFeedback(FeedbackKind::kTaskFailed, it->task.id, it->version,
                                   absl::StrFormat("%.0f m off the route (limit %.0f m)", off,

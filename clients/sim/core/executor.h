@@ -74,12 +74,12 @@ struct ExecutorConfig {
   ship::HeadingControllerOptions heading{2.0, 200.0, 0.0};
   // A position change this large within one step is a jump (GNSS fault):
   // the move fails at once. A slower drift off the route fails the move
-  // only beyond 2 x deviation_limit_m (collision avoidance may legitimately
+  // only beyond 3 x deviation_limit_m (collision avoidance may legitimately
   // take the ship off its route).
   double jump_threshold_m = 100.0;
   ship::Environment environment;
   AvoidanceOptions avoidance;
-  double avoidance_margin_factor = 2.0;  // safety distance x this when choosing velocities
+  double avoidance_margin_factor = 1.5;  // safety distance x this when choosing velocities
   FuelOptions fuel;
   double initial_fuel_fraction = 1.0;
   double fuel_threshold_fraction = 0.3;  // logged when crossed (the server decides replans)
