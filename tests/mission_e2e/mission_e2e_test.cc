@@ -234,8 +234,9 @@ TEST_F(MissionE2eTest, ReconnectingWatcherMissesNothingAndFeedbackIsIdempotent) 
   ASSERT_EQ(r.exit_code, 0) << SimOutput("case-b");
   std::smatch m;
   std::string out = SimOutput("case-b");
-  ASSERT_TRUE(std::regex_search(out, m, std::regex("mission ([^ \\n:]+)")));
-  const std::string id = m[1];
+  // The line the sim prints first on stdout: "mission <id>".
+  ASSERT_TRUE(std::regex_search(out, m, std::regex("(^|\\n)mission ([^ \\n:]+)\\n")));
+  const std::string id = m[2];
 
   auto all = Watch(stub_.get(), id, 0, 0);
   std::vector<int64_t> events;
@@ -259,9 +260,32 @@ TEST_F(MissionE2eTest, ReconnectingWatcherMissesNothingAndFeedbackIsIdempotent) 
   EXPECT_EQ(rest_events, expected);
   EXPECT_EQ(rest_versions, std::vector<int>{2});
 
-  // A repeated report (same vessel, same sequence number) is stored once.
+  // A repeated report (same vessel, same sequence number) is stored once;
+  // on a fresh, active mission (the one above is completed).
+  v1::CreateMissionRequest create;
+  auto* spec = create.mutable_spec();
+  spec->set_name("idempotency");
+  spec->set_domain(ReadFile(SourceDir() / "examples/fjord/domain.pddl"));
+  spec->set_problem(ReadFile(SourceDir() / "examples/fjord/case-a.pddl"));
+  const double lat[] = {63.4418, 63.4458, 63.4422, 63.4458, 63.4427};
+  const double lon[] = {10.3271, 10.3462, 10.3864, 10.4286, 10.4627};
+  const char* names[] = {"port-a", "port-b", "port-c", "port-d", "port-e"};
+  for (int i = 0; i < 5; ++i) {
+    auto* l = spec->add_locations();
+    l->set_name(names[i]);
+    l->mutable_position()->set_latitude_deg(lat[i]);
+    l->mutable_position()->set_longitude_deg(lon[i]);
+  }
+  spec->mutable_ship()->set_service_speed_mps(3.6);
+  spec->set_vessel_id("e2e-vessel");
+  v1::Mission live;
+  {
+    grpc::ClientContext ctx;
+    grpc::Status st = stub_->CreateMission(&ctx, create, &live);
+    ASSERT_TRUE(st.ok()) << st.error_message();
+  }
   v1::ReportFeedbackRequest fb;
-  fb.set_mission_id(id);
+  fb.set_mission_id(live.mission_id());
   fb.set_vessel_id("e2e-vessel");
   fb.set_sequence_number(7);
   fb.mutable_feedback()->set_kind(v1::Feedback::KIND_POSITION);
@@ -277,7 +301,7 @@ TEST_F(MissionE2eTest, ReconnectingWatcherMissesNothingAndFeedbackIsIdempotent) 
   }
   EXPECT_FALSE(first.duplicate());
   EXPECT_TRUE(second.duplicate());
-  auto after = Watch(stub_.get(), id, 2, events.back());
+  auto after = Watch(stub_.get(), live.mission_id(), 1, 0);
   int duplicates_logged = 0;
   for (const auto& e : after) {
     if (e.has_log() && e.log().message().find("duplicate check") != std::string::npos) ++duplicates_logged;
