@@ -6,7 +6,7 @@
 #      client: the server plans, refines and replans, seaplan-sim executes and
 #      reports; prints the navigation log and where the mission report is.
 # Environment: DATA_DIR (default ./data), OUT_DIR (default ./out), SCENARIO
-# (default examples/scenarios/case-c.json).
+# (default examples/scenarios/case-c.scenario).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/build.sh
@@ -14,7 +14,7 @@ bash scripts/build.sh
 BIN=build/bin
 DATA_DIR=${DATA_DIR:-data}
 OUT_DIR=${OUT_DIR:-out}
-SCENARIO=${SCENARIO:-examples/scenarios/case-c.json}
+SCENARIO=${SCENARIO:-examples/scenarios/case-c.scenario}
 mkdir -p "$DATA_DIR" "$OUT_DIR"
 PORT_FILE=$(mktemp)
 
