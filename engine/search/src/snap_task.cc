@@ -71,7 +71,6 @@ SnapTask::SnapTask(const task::GroundTask& task) : task_(task) {
     start.condition = &action.at_start;
     start.effects = &action.start_effects;
     AddConditionReads(action.at_start, start);
-    AddConditionReads(action.over_all, start);
     for (const auto& d : action.duration) AddExprReads(d.value, start.num_reads);
     AddEffects(action.start_effects, start);
     SnapAction& end = snaps_[2 * a + 1];
@@ -80,9 +79,18 @@ SnapTask::SnapTask(const task::GroundTask& task) : task_(task) {
     end.condition = &action.at_end;
     end.effects = &action.end_effects;
     AddConditionReads(action.at_end, end);
-    AddConditionReads(action.over_all, end);
     AddEffects(action.end_effects, end);
+    if (action.is_durative) {
+      // Over-all conditions belong to neither snap action (validator / VAL):
+      // kept apart so the schedule orders them with zero, not epsilon, gaps.
+      SnapAction inv;
+      AddConditionReads(action.over_all, inv);
+      start.inv_reads = end.inv_reads = inv.reads;
+      start.inv_num_reads = end.inv_num_reads = inv.num_reads;
+    }
     for (SnapAction* s : {&start, &end}) {
+      SortUnique(s->inv_reads);
+      SortUnique(s->inv_num_reads);
       SortUnique(s->reads);
       SortUnique(s->writes);
       SortUnique(s->num_reads);

@@ -6,9 +6,11 @@
 // the read and write sets (facts and numeric variables) drive the
 // interference orderings of the schedule: a later event that writes what an
 // earlier one reads or writes, or reads what it writes, is ordered at least
-// epsilon after it (VAL's mutex rule). Over-all conditions count as reads of
-// both the start and the end, so an invariant is never broken by an
-// unordered event.
+// epsilon after it (VAL's mutex rule). Over-all conditions are NOT reads of
+// either snap (PDDL 2.1 / VAL: they hold on the open interval and take no
+// part in the mutex rule); they are kept in inv_reads / inv_num_reads so the
+// schedule can order their achiever at or before the start and any later
+// change at or after the end, with zero gaps.
 #pragma once
 
 #include <cstdint>
@@ -32,6 +34,10 @@ struct SnapAction {
   std::vector<task::FactId> writes;  // sorted, unique
   std::vector<task::NumericVarId> num_reads;   // sorted, unique
   std::vector<task::NumericVarId> num_writes;  // sorted, unique
+  // The action's over-all facts (positive and negative) and the variables
+  // its over-all numeric conditions read; same on start and end snaps.
+  std::vector<task::FactId> inv_reads;            // sorted, unique
+  std::vector<task::NumericVarId> inv_num_reads;  // sorted, unique
 };
 
 struct TilEvent {

@@ -12,6 +12,8 @@ Timeline::Timeline(const SnapTask& task, double epsilon_s, bool bound_concurrenc
       readers_(static_cast<std::size_t>(task.num_facts())),
       var_last_writer_(static_cast<std::size_t>(task.num_vars()), -1),
       var_readers_(static_cast<std::size_t>(task.num_vars())),
+      inv_readers_(static_cast<std::size_t>(task.num_facts())),
+      var_inv_readers_(static_cast<std::size_t>(task.num_vars())),
       open_start_(static_cast<std::size_t>(task.num_actions()), -1),
       open_min_duration_(static_cast<std::size_t>(task.num_actions()), 0.0),
       open_max_duration_(static_cast<std::size_t>(task.num_actions()), 0.0),
@@ -21,10 +23,12 @@ void Timeline::ResetTables() {
   for (auto f : touched_facts_) {
     last_writer_[f] = -1;
     readers_[f].clear();
+    inv_readers_[f].clear();
   }
   for (auto v : touched_vars_) {
     var_last_writer_[v] = -1;
     var_readers_[v].clear();
+    var_inv_readers_[v].clear();
   }
   touched_facts_.clear();
   touched_vars_.clear();
@@ -75,6 +79,7 @@ bool Timeline::AddToStn(const Event& event) {
   for (auto f : snap.writes) {
     if (last_writer_[f] >= 0) stn_.AddIncoming(last_writer_[f], eps);
     for (auto r : readers_[f]) stn_.AddIncoming(r, eps);
+    for (auto r : inv_readers_[f]) stn_.AddIncoming(r, 0.0);
   }
   for (auto v : snap.num_reads) {
     if (var_last_writer_[v] >= 0) stn_.AddIncoming(var_last_writer_[v], eps);
@@ -82,6 +87,17 @@ bool Timeline::AddToStn(const Event& event) {
   for (auto v : snap.num_writes) {
     if (var_last_writer_[v] >= 0) stn_.AddIncoming(var_last_writer_[v], eps);
     for (auto r : var_readers_[v]) stn_.AddIncoming(r, eps);
+    for (auto r : var_inv_readers_[v]) stn_.AddIncoming(r, 0.0);
+  }
+  if (!snap.is_end) {
+    // The invariant must hold right after the start's happening: its
+    // achiever may share that happening (the start does not read it).
+    for (auto f : snap.inv_reads) {
+      if (last_writer_[f] >= 0) stn_.AddIncoming(last_writer_[f], 0.0);
+    }
+    for (auto v : snap.inv_num_reads) {
+      if (var_last_writer_[v] >= 0) stn_.AddIncoming(var_last_writer_[v], 0.0);
+    }
   }
   // Literals not yet applied come after this event when they interfere.
   const auto& tils = task_.tils();
@@ -95,6 +111,16 @@ bool Timeline::AddToStn(const Event& event) {
     for (auto f : snap.writes) pending(task_.TilsWritingFact(f));
     for (auto v : snap.num_reads) pending(task_.TilsWritingVar(v));
     for (auto v : snap.num_writes) pending(task_.TilsWritingVar(v));
+    if (snap.is_end) {
+      // A literal still to come may change the invariant only from the end on.
+      auto pending_inv = [&](const std::vector<int>& list) {
+        for (auto k : list) {
+          if (k >= next_til_) stn_.AddOutgoing(TilNode(k), 0.0);
+        }
+      };
+      for (auto f : snap.inv_reads) pending_inv(task_.TilsWritingFact(f));
+      for (auto v : snap.inv_num_reads) pending_inv(task_.TilsWritingVar(v));
+    }
   }
   if (bound_concurrency_ && !snap.is_end) {
     for (auto n : end_nodes_) stn_.AddIncoming(n, eps);
@@ -112,15 +138,23 @@ bool Timeline::AddToStn(const Event& event) {
 }
 
 void Timeline::Commit(const Event& event, int node) {
+  auto fact_fresh = [&](task::FactId f) {
+    return last_writer_[f] < 0 && readers_[f].empty() && inv_readers_[f].empty();
+  };
+  auto var_fresh = [&](task::NumericVarId v) {
+    return var_last_writer_[v] < 0 && var_readers_[v].empty() && var_inv_readers_[v].empty();
+  };
   auto write_fact = [&](task::FactId f) {
-    if (last_writer_[f] < 0 && readers_[f].empty()) touched_facts_.push_back(f);
+    if (fact_fresh(f)) touched_facts_.push_back(f);
     last_writer_[f] = node;
     readers_[f].clear();
+    inv_readers_[f].clear();
   };
   auto write_var = [&](task::NumericVarId v) {
-    if (var_last_writer_[v] < 0 && var_readers_[v].empty()) touched_vars_.push_back(v);
+    if (var_fresh(v)) touched_vars_.push_back(v);
     var_last_writer_[v] = node;
     var_readers_[v].clear();
+    var_inv_readers_[v].clear();
   };
   if (event.is_til()) {
     const TilEvent& til = task_.tils()[static_cast<std::size_t>(event.til())];
@@ -132,13 +166,23 @@ void Timeline::Commit(const Event& event, int node) {
   const SnapAction& snap = task_.snap(event.snap);
   for (auto f : snap.reads) {
     if (std::binary_search(snap.writes.begin(), snap.writes.end(), f)) continue;
-    if (last_writer_[f] < 0 && readers_[f].empty()) touched_facts_.push_back(f);
+    if (fact_fresh(f)) touched_facts_.push_back(f);
     readers_[f].push_back(node);
   }
   for (auto v : snap.num_reads) {
     if (std::binary_search(snap.num_writes.begin(), snap.num_writes.end(), v)) continue;
-    if (var_last_writer_[v] < 0 && var_readers_[v].empty()) touched_vars_.push_back(v);
+    if (var_fresh(v)) touched_vars_.push_back(v);
     var_readers_[v].push_back(node);
+  }
+  if (snap.is_end) {
+    for (auto f : snap.inv_reads) {
+      if (fact_fresh(f)) touched_facts_.push_back(f);
+      inv_readers_[f].push_back(node);
+    }
+    for (auto v : snap.inv_num_reads) {
+      if (var_fresh(v)) touched_vars_.push_back(v);
+      var_inv_readers_[v].push_back(node);
+    }
   }
   for (auto f : snap.writes) write_fact(f);
   for (auto v : snap.num_writes) write_var(v);

@@ -4,7 +4,9 @@
 // initial literals). Each event becomes an STN node ordered epsilon after
 // every earlier event it interferes with: after the last writer of anything
 // it reads or writes, and after the readers (since that writer) of anything
-// it writes. Start and end of an action are tied by [min, max] duration
+// it writes. Over-all conditions follow the validator instead (no mutex):
+// the start comes at or after the last writer of an invariant's fact or
+// variable, and a later writer at or after the end (gap 0). Start and end of an action are tied by [min, max] duration
 // edges; timed literals are nodes fixed at their time, and an event that
 // interferes with a literal not yet applied must precede it by epsilon. The
 // earliest STN solution is the schedule; an inconsistent network prunes the
@@ -76,6 +78,10 @@ class Timeline {
   std::vector<std::vector<std::int32_t>> readers_;        // per fact, since last writer
   std::vector<std::int32_t> var_last_writer_;
   std::vector<std::vector<std::int32_t>> var_readers_;
+  // Ends of actions whose invariant reads the fact / variable, since its
+  // last writer: a later writer comes at or after them (gap 0, not epsilon).
+  std::vector<std::vector<std::int32_t>> inv_readers_;
+  std::vector<std::vector<std::int32_t>> var_inv_readers_;
   std::vector<std::int32_t> touched_facts_, touched_vars_;
   std::vector<std::int32_t> open_start_;  // per action: STN node of the running start, or -1
   std::vector<std::int32_t> open_actions_;
