@@ -2,11 +2,25 @@
 
 #include <algorithm>
 #include <cmath>
+#include <memory>
 
 namespace seaplan::search {
 
+PlanValidator::PlanValidator(const task::GroundTask& task, double epsilon_s) : task_(task) {
+  options_.epsilon_s = epsilon_s;
+  // Non-owning: the planner's task outlives the run (aliasing constructor).
+  std::shared_ptr<const task::GroundTask> view(std::shared_ptr<void>(), &task);
+  auto created = validate::Validator::Create(std::move(view), options_);
+  if (created.ok()) validator_.emplace(std::move(*created));
+}
+
+validate::ValidationResult PlanValidator::Validate(const validate::Plan& plan) const {
+  if (validator_) return validator_->Validate(plan);
+  return validate::ValidatePlan(task_, plan, options_);
+}
+
 std::optional<BuiltPlan> BuildValidatedPlan(const SnapTask& task, std::span<const Event> events,
-                                            Timeline& timeline, double epsilon_s,
+                                            Timeline& timeline, const PlanValidator& validator,
                                             std::string* error) {
   if (!timeline.Build(events)) {
     *error = "schedule of the plan is inconsistent";
@@ -68,9 +82,7 @@ std::optional<BuiltPlan> BuildValidatedPlan(const SnapTask& task, std::span<cons
     *error = "printed plan does not parse: " + std::string(parsed.status().message());
     return std::nullopt;
   }
-  validate::ValidationOptions options;
-  options.epsilon_s = epsilon_s;
-  const validate::ValidationResult result = validate::ValidatePlan(task.task(), *parsed, options);
+  const validate::ValidationResult result = validator.Validate(*parsed);
   if (!result.valid) {
     *error = result.ToString() + "\n" + text;
     return std::nullopt;

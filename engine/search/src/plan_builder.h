@@ -23,10 +23,24 @@ struct BuiltPlan {
   std::optional<double> metric_value;
 };
 
+// One validate::Validator per task (the action index is built once, not per
+// plan). Falls back to one-shot ValidatePlan if the validator cannot be made.
+class PlanValidator {
+ public:
+  // `task` must outlive this object.
+  PlanValidator(const task::GroundTask& task, double epsilon_s);
+  validate::ValidationResult Validate(const validate::Plan& plan) const;
+
+ private:
+  const task::GroundTask& task_;
+  validate::ValidationOptions options_;
+  std::optional<validate::Validator> validator_;
+};
+
 // Schedules `events` and validates the printed plan; nullopt (and `error`
 // set) when the plan does not validate, which is a planner bug.
 std::optional<BuiltPlan> BuildValidatedPlan(const SnapTask& task, std::span<const Event> events,
-                                            Timeline& timeline, double epsilon_s,
+                                            Timeline& timeline, const PlanValidator& validator,
                                             std::string* error);
 
 }  // namespace seaplan::search

@@ -71,7 +71,8 @@ class PlannerRun {
         heuristic_(snap_, options.epsilon_s),
         transitions_(snap_, options.max_concurrent_actions, options.epsilon_s),
         timeline_(snap_, options.epsilon_s, options.max_concurrent_actions > 0),
-        plan_timeline_(snap_, options.epsilon_s, options.max_concurrent_actions > 0) {}
+        plan_timeline_(snap_, options.epsilon_s, options.max_concurrent_actions > 0),
+        validator_(task, options.epsilon_s) {}
 
   PlanResult Run();
 
@@ -96,6 +97,7 @@ class PlannerRun {
   Transitions transitions_;
   Timeline timeline_;
   Timeline plan_timeline_;
+  PlanValidator validator_;
   PlanResult best_;
   bool has_plan_ = false;
   std::size_t plan_events_ = 0;
@@ -142,7 +144,7 @@ PlannerRun::Outcome PlannerRun::Poll(const LazySearch& search) {
 
 bool PlannerRun::Offer(const LazySearch& search) {
   std::string error;
-  auto built = BuildValidatedPlan(snap_, search.plan(), plan_timeline_, options_.epsilon_s, &error);
+  auto built = BuildValidatedPlan(snap_, search.plan(), plan_timeline_, validator_, &error);
   if (!built) {
     log::Error("planner: dropping a plan that fails validation (planner bug): {}", error);
     return false;
