@@ -13,6 +13,7 @@
 #include "seaplan/chart/geojson.h"
 #include "seaplan/chart/obstacle_map.h"
 #include "seaplan/route/route_planner.h"
+#include "server/core/route_convert.h"
 #endif
 
 namespace seaplan::server {
@@ -44,6 +45,8 @@ v1::LatLon LatLonToProto(const chart::LatLon& p) {
   return out;
 }
 
+}  // namespace
+
 route::ShipParticulars ShipToEngine(const v1::ShipParticulars& p) {
   route::ShipParticulars ship;
   if (p.length_m() > 0) ship.hull.length_m = p.length_m();
@@ -52,8 +55,6 @@ route::ShipParticulars ShipToEngine(const v1::ShipParticulars& p) {
   return ship;
 }
 
-// The API gives both directions as "from" (maritime convention of the
-// papers); the engine wants the current's "toward".
 route::Environment EnvironmentToEngine(const v1::Environment& e) {
   route::Environment env;
   env.wind_speed_mps = e.wind_speed_mps();
@@ -87,6 +88,8 @@ route::RouteOptions OptionsToEngine(const v1::OptimizerOptions& o) {
   if (w.mode_switch_cost() != 0) l2.weights.mode_switch_cost = w.mode_switch_cost();
   return r;
 }
+
+namespace {
 
 v1::RouteAlternative AlternativeToProto(const route::RouteAlternative& a, int index, double horizon_s) {
   v1::RouteAlternative out;
@@ -133,6 +136,8 @@ void ModeSchedule(const v1::RouteAlternative& route, v1::PlanRouteResponse* out)
   }
 }
 
+}  // namespace
+
 absl::StatusOr<std::shared_ptr<const chart::ObstacleMap>> LoadMap(storage::ChartRepository& charts,
                                                                   const std::string& id) {
   SEAPLAN_ASSIGN_OR_RETURN(storage::ChartRecord record, charts.Get(id, /*with_blobs=*/true));
@@ -143,6 +148,8 @@ absl::StatusOr<std::shared_ptr<const chart::ObstacleMap>> LoadMap(storage::Chart
   }
   return std::make_shared<const chart::ObstacleMap>(std::move(*map));
 }
+
+namespace {
 #endif
 
 absl::Status CheckLatLon(const v1::LatLon& p, const char* field) {
@@ -197,7 +204,17 @@ absl::StatusOr<v1::PlanRouteResponse> RouteHandlers::PlanRoute(const v1::PlanRou
     *response.mutable_chosen_route() = response.alternatives(result->chosen);
     ModeSchedule(response.chosen_route(), &response);
   }
-  if (request.options().include_obstacles_geojson()) response.set_obstacles_geojson(chart::ToGeoJson(*map));
+  if (request.options().include_obstacles_geojson()) {
+    // The map for the operator: obstacles plus every alternative, the chosen one named so.
+    std::vector<chart::NamedRoute> routes;
+    for (std::size_t i = 0; i < result->alternatives.size(); ++i) {
+      chart::NamedRoute named;
+      named.name = absl::StrCat("alternative ", i, static_cast<int>(i) == result->chosen ? " (chosen)" : "");
+      for (const auto& waypoint : result->alternatives[i].waypoints) named.waypoints.push_back(waypoint.local);
+      routes.push_back(std::move(named));
+    }
+    response.set_obstacles_geojson(chart::ToGeoJson(*map, routes));
+  }
   response.set_computation_time_s(std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count());
   return response;
 #else

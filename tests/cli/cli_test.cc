@@ -127,6 +127,34 @@ TEST(CliInProcessTest, JsonOutputIsTheApiMessage) {
   EXPECT_NE(result.out.find("\"makespanS\""), std::string::npos) << result.out;
 }
 
+std::string Chart() { return (SourceDir() / "examples/scenarios/fjord-entrance.geojson").string(); }
+
+// Port B to port C of the fjord scenario: the island lies between them.
+const std::vector<std::string> kRouteArgs = {"--from", "63.445835,10.346208", "--to", "63.442244,10.386389",
+                                             "--wind-speed", "10", "--wind-from", "250"};
+
+TEST(CliInProcessTest, RouteWritesAlternativesAndGeoJson) {
+  const auto geojson = (ScratchDir() / "route.geojson").string();
+  std::vector<std::string> args = {"route", "--chart-file", Chart(), "--min-depth", "5", "--geojson", geojson};
+  args.insert(args.end(), kRouteArgs.begin(), kRouteArgs.end());
+  auto result = RunSeaplan(args);
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_NE(result.out.find("alternative(s); chosen"), std::string::npos) << result.out;
+  EXPECT_NE(result.out.find("MSO mode schedule"), std::string::npos) << result.out;
+  const std::string map = ReadFile(geojson);
+  EXPECT_NE(map.find("\"kind\":\"obstacle\""), std::string::npos);
+  EXPECT_NE(map.find("\"kind\":\"route\""), std::string::npos);
+  EXPECT_NE(map.find("(chosen)"), std::string::npos);
+}
+
+TEST(CliInProcessTest, RouteFromInsideLandIsBadInput) {
+  // 63.43,10.40 lies on the south shore polygon of the scenario chart.
+  auto result = RunSeaplan({"route", "--chart-file", Chart(), "--from", "63.43,10.40", "--to",
+                            "63.442244,10.386389"});
+  EXPECT_EQ(result.exit_code, 2) << result.out << result.err;
+  EXPECT_NE(result.err.find("start"), std::string::npos) << result.err;
+}
+
 TEST(CliInProcessTest, MissionsNeedAServer) {
   auto result = RunSeaplan({"mission", "list"});
   EXPECT_EQ(result.exit_code, 2);
@@ -205,6 +233,21 @@ TEST(CliRemoteTest, CommandsWorkAgainstARunningServer) {
   auto charts = RunSeaplan({"--server", addr, "chart", "list"});
   EXPECT_EQ(charts.exit_code, 0) << charts.err;
   EXPECT_NE(charts.out.find("no charts"), std::string::npos) << charts.out;
+
+  // A chart uploaded through the CLI, then a route on it by id.
+  auto upload = RunSeaplan({"--server", addr, "--json", "chart", "upload", Chart(), "--min-depth", "5"});
+  ASSERT_EQ(upload.exit_code, 0) << upload.err;
+  const auto id_at = upload.out.find("\"chartId\":\"");
+  ASSERT_NE(id_at, std::string::npos) << upload.out;
+  const auto id_start = id_at + std::string("\"chartId\":\"").size();
+  const std::string chart_id = upload.out.substr(id_start, upload.out.find('"', id_start) - id_start);
+  auto listed = RunSeaplan({"--server", addr, "chart", "list"});
+  EXPECT_NE(listed.out.find(chart_id), std::string::npos) << listed.out;
+  std::vector<std::string> route_args = {"--server", addr, "route", "--chart", chart_id};
+  route_args.insert(route_args.end(), kRouteArgs.begin(), kRouteArgs.end());
+  auto route = RunSeaplan(route_args);
+  EXPECT_EQ(route.exit_code, 0) << route.err;
+  EXPECT_NE(route.out.find("alternative(s); chosen"), std::string::npos) << route.out;
 
   auto missing = RunSeaplan({"--server", addr, "mission", "get", "no-such-mission"});
   EXPECT_EQ(missing.exit_code, 2) << missing.out << missing.err;
