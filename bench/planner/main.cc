@@ -1,4 +1,4 @@
-// seaplan-bench-planner [--time-limit 60] [--jobs 1] [--filter substr] [--peers FILE] [DIR]
+// seaplan-bench-planner [--time-limit 60] [--jobs 1] [--filter substr] [--peers FILE] [--first-plan] [DIR]
 //
 // Runs the planner on every p01..p05 of every domain folder of DIR (default
 // $SEAPLAN_SHARED/bench, else ../shared/bench), validates each plan again
@@ -55,6 +55,10 @@ std::string ReadAll(const fs::path& p) {
   return ss.str();
 }
 
+// --first-plan: stop at the first plan (anytime off), so that `expanded`
+// counts the states of the first search only.
+bool g_first_plan_only = false;
+
 Outcome RunOne(const Job& job, double limit_s) {
   Outcome o;
   o.run.domain = job.domain;
@@ -71,6 +75,7 @@ Outcome RunOne(const Job& job, double limit_s) {
   }
   seaplan::search::PlannerOptions options;
   options.time_limit_s = std::max(0.01, limit_s - load_s);
+  options.anytime = !g_first_plan_only;
   const auto r = seaplan::search::SolveTask(*loaded.task, options, seaplan::StopToken());
   o.status = seaplan::search::ToString(r.status);
   o.expanded = r.stats.expanded;
@@ -135,12 +140,14 @@ int main(int argc, char** argv) {
       jobs = std::max(1, std::atoi(value().c_str()));
     } else if (a == "--filter") {
       filter = value();
+    } else if (a == "--first-plan") {
+      g_first_plan_only = true;
     } else if (a == "--print-plans") {
       print_plans = true;
     } else if (a == "--peers") {
       peers_file = value();
     } else if (a == "--help" || a == "-h") {
-      std::printf("usage: seaplan-bench-planner [--time-limit 60] [--jobs 1] [--filter substr] [--peers FILE] [--print-plans] [DIR]\n");
+      std::printf("usage: seaplan-bench-planner [--time-limit 60] [--jobs 1] [--filter substr] [--peers FILE] [--print-plans] [--first-plan] [DIR]\n");
       return 0;
     } else if (!a.empty() && a[0] == '-') {
       std::fprintf(stderr, "unknown option %s\n", a.c_str());

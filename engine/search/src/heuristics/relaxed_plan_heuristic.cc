@@ -79,7 +79,7 @@ RelaxedPlanHeuristic::RelaxedPlanHeuristic(const SnapTask& task, double epsilon_
   }
   window_facts_.resize(actions.size());
   min_invariant_duration_.assign(static_cast<std::size_t>(num_facts_), kInf);
-  suppressed_.assign(static_cast<std::size_t>(num_facts_), false);
+  suppressed_.assign(static_cast<std::size_t>(num_facts_), 0);
   for (std::size_t a = 0; a < actions.size(); ++a) {
     const auto& action = actions[a];
     if (!action.is_durative) continue;
@@ -117,6 +117,17 @@ RelaxedPlanHeuristic::RelaxedPlanHeuristic(const SnapTask& task, double epsilon_
   var_changer_.resize(static_cast<std::size_t>(task.num_vars()));
   var_change_layer_.resize(static_cast<std::size_t>(task.num_vars()));
   til_fact_.resize(static_cast<std::size_t>(num_facts_));
+  op_missing_init_.resize(static_cast<std::size_t>(num_ops_));
+  for (int op = 0; op < num_ops_; ++op) {
+    op_missing_init_[op] = op_exists_[op] ? pre_begin_[op + 1] - pre_begin_[op] : (1 << 30);
+  }
+  goal_fact_.assign(static_cast<std::size_t>(total_facts), 0);
+  for (auto f : task.task().goal.positive) {
+    if (!goal_fact_[f]) {
+      goal_fact_[f] = 1;
+      ++num_goal_facts_;
+    }
+  }
 }
 
 RelaxedPlanHeuristic::Interval RelaxedPlanHeuristic::EvalInterval(const task::NumericExpr& expr,
@@ -226,14 +237,14 @@ bool RelaxedPlanHeuristic::Satisfiable(const task::NumericCondition& c, const St
 
 void RelaxedPlanHeuristic::MarkOp(int op) {
   if (op < 0 || op_marked_[op]) return;
-  op_marked_[op] = true;
+  op_marked_[op] = 1;
   marked_ops_.push_back(op);
   stack_.push_back(op);
 }
 
 void RelaxedPlanHeuristic::MarkFact(int fact) {
   if (fact_marked_[fact]) return;
-  fact_marked_[fact] = true;
+  fact_marked_[fact] = 1;
   marked_facts_.push_back(fact);
   if (fact_layer_[fact] <= 0) return;
   MarkOp(fact_achiever_[fact]);
@@ -251,10 +262,10 @@ void RelaxedPlanHeuristic::MarkNumeric(const task::NumericCondition& c, int laye
 int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* preferred,
                                    std::span<const double> window_slack) {
   std::fill(fact_layer_.begin(), fact_layer_.end(), -1);
-  std::fill(op_layer_.begin(), op_layer_.end(), -1);
-  for (int op = 0; op < num_ops_; ++op) {
-    op_missing_[op] = op_exists_[op] ? pre_begin_[op + 1] - pre_begin_[op] : (1 << 30);
-  }
+  // op_layer_ is only read for operators that became applicable (plan
+  // operators and numeric changers), which set it: no reset needed.
+  std::copy(op_missing_init_.begin(), op_missing_init_.end(), op_missing_.begin());
+  int goals_left = num_goal_facts_;
   for (std::size_t v = 0; v < interval_.size(); ++v) {
     interval_[v] = {state.values[v], state.values[v]};
     var_changer_[v] = -1;
@@ -267,6 +278,7 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
     if (fact_layer_[f] >= 0) return;
     fact_layer_[f] = layer;
     fact_achiever_[f] = achiever;
+    goals_left -= goal_fact_[f];
     new_facts_.push_back(f);
   };
   std::size_t window_index = 0;
@@ -277,7 +289,7 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
     ++window_index;
     for (auto f : window_facts_[r.action]) {
       if (min_invariant_duration_[f] < kInf && slack < min_invariant_duration_[f] + 2 * epsilon_s_ - 1e-9) {
-        suppressed_[f] = true;
+        suppressed_[f] = 1;
         ++num_suppressed;
       }
     }
@@ -294,7 +306,7 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
   }
   if (num_suppressed > 0) {
     for (const auto& r : state.running) {
-      for (auto f : window_facts_[r.action]) suppressed_[f] = false;
+      for (auto f : window_facts_[r.action]) suppressed_[f] = 0;
     }
   }
   const auto& tils = task_.tils();
@@ -353,13 +365,7 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
       }
     }
     // Goal reached?
-    bool goal_ok = true;
-    for (auto f : goal.positive) {
-      if (fact_layer_[f] < 0) {
-        goal_ok = false;
-        break;
-      }
-    }
+    bool goal_ok = goals_left == 0;
     if (goal_ok) {
       for (const auto& c : goal.numeric) {
         if (!Satisfiable(c, state, -1)) {
@@ -457,8 +463,8 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
   }
 
   // Extract a relaxed plan backwards from the goal.
-  for (auto op : marked_ops_) op_marked_[op] = false;
-  for (auto f : marked_facts_) fact_marked_[f] = false;
+  for (auto op : marked_ops_) op_marked_[op] = 0;
+  for (auto f : marked_facts_) fact_marked_[f] = 0;
   marked_ops_.clear();
   marked_facts_.clear();
   stack_.clear();

@@ -70,8 +70,15 @@ class RelaxedPlanHeuristic {
   double epsilon_s_;
   std::vector<std::vector<task::FactId>> window_facts_;  // per action: start adds deleted at end
   std::vector<double> min_invariant_duration_;           // per fact: shortest action needing it over all
-  std::vector<bool> suppressed_;
+  std::vector<std::uint8_t> suppressed_;
   std::vector<bool> til_fact_;  // scratch: facts added by pending literals
+  // Static per-task tables hoisted out of Evaluate: the initial "missing
+  // preconditions" counter of every operator (copied in one pass) and a
+  // goal flag per fact, so reaching the goal is a counter, not a scan of
+  // the goal per layer.
+  std::vector<std::int32_t> op_missing_init_;
+  std::vector<std::uint8_t> goal_fact_;
+  int num_goal_facts_ = 0;
 
   // Scratch per evaluation.
   std::vector<std::int32_t> fact_layer_, fact_achiever_;
@@ -79,7 +86,7 @@ class RelaxedPlanHeuristic {
   std::vector<Interval> interval_, next_interval_;
   std::vector<std::int32_t> var_changer_, var_change_layer_;
   std::vector<std::int32_t> applicable_, numeric_waiting_, new_facts_, layer_ops_;
-  std::vector<bool> op_marked_, fact_marked_;
+  std::vector<std::uint8_t> op_marked_, fact_marked_;
   std::vector<std::int32_t> marked_ops_, marked_facts_, stack_;
   std::vector<Interval> eval_stack_;
 };
