@@ -533,7 +533,6 @@ class Builder {
       return std::nullopt;
     }
     if (head == "and" || head == "or") {
-      if (head == "or") NoteRequirement(e, ":disjunctive-preconditions");
       out.kind = head == "and" ? Condition::Kind::kAnd : Condition::Kind::kOr;
       bool ok = true;
       for (std::size_t i = 1; i < e.items.size(); ++i) {
@@ -766,7 +765,32 @@ class Builder {
     return out;
   }
 
-  void NoteRequirement(const SExpr&, const char*) {}
+  // The file's one top-level form, `(define (<kind> name) ...)`. Reports an
+  // empty file, text after the form and a file of the `other` kind (domain
+  // vs problem); returns nullptr when there is no usable definition.
+  const SExpr* Definition(const std::vector<SExpr>& top, const internal::ReadResult& read, const std::string& kind,
+                          const std::string& other) {
+    const std::string form = "(define (" + kind + " name) ...)";
+    if (top.empty()) {
+      diags_.push_back({Severity::kError, DiagnosticKind::kSyntax, {file_, read.eof_line, read.eof_column},
+                        "end of file", "empty " + kind, form});
+      return nullptr;
+    }
+    for (std::size_t i = 1; i < top.size(); ++i) {
+      Error(DiagnosticKind::kSyntax, top[i], "text after the " + kind + " definition", "end of file");
+    }
+    const SExpr& def = top[0];
+    if (def.Head() != "define" || def.items.size() < 2 || def.items[1].Head() != kind ||
+        def.items[1].items.size() != 2 || def.items[1].items[1].is_list) {
+      if (def.Head() == "define" && def.items.size() >= 2 && def.items[1].Head() == other) {
+        Error(DiagnosticKind::kSyntax, def, "this is a " + other + ", not a " + kind, form);
+      } else {
+        Error(DiagnosticKind::kSyntax, def, "expected a " + kind + " definition", form);
+      }
+      return nullptr;
+    }
+    return &def;
+  }
 
   // ---- state -------------------------------------------------------------------
 
@@ -823,24 +847,9 @@ class DomainBuilder : public Builder {
   using Builder::Builder;
 
   std::optional<Domain> Build(const std::vector<SExpr>& top, const internal::ReadResult& read) {
-    if (top.empty()) {
-      diags_.push_back({Severity::kError, DiagnosticKind::kSyntax, {file_, read.eof_line, read.eof_column},
-                        "end of file", "empty domain", "(define (domain name) ...)"});
-      return std::nullopt;
-    }
-    for (std::size_t i = 1; i < top.size(); ++i) {
-      Error(DiagnosticKind::kSyntax, top[i], "text after the domain definition", "end of file");
-    }
-    const SExpr& def = top[0];
-    if (def.Head() != "define" || def.items.size() < 2 || def.items[1].Head() != "domain" ||
-        def.items[1].items.size() != 2 || def.items[1].items[1].is_list) {
-      if (def.Head() == "define" && def.items.size() >= 2 && def.items[1].Head() == "problem") {
-        Error(DiagnosticKind::kSyntax, def, "this is a problem, not a domain", "(define (domain name) ...)");
-      } else {
-        Error(DiagnosticKind::kSyntax, def, "expected a domain definition", "(define (domain name) ...)");
-      }
-      return std::nullopt;
-    }
+    const SExpr* definition = Definition(top, read, "domain", "problem");
+    if (definition == nullptr) return std::nullopt;
+    const SExpr& def = *definition;
     Domain domain;
     domain.name = def.items[1].items[1].atom;
     domain.location = Loc(def);
@@ -1152,24 +1161,9 @@ class ProblemBuilder : public Builder {
   }
 
   std::optional<Problem> Build(const std::vector<SExpr>& top, const internal::ReadResult& read) {
-    if (top.empty()) {
-      diags_.push_back({Severity::kError, DiagnosticKind::kSyntax, {file_, read.eof_line, read.eof_column},
-                        "end of file", "empty problem", "(define (problem name) ...)"});
-      return std::nullopt;
-    }
-    for (std::size_t i = 1; i < top.size(); ++i) {
-      Error(DiagnosticKind::kSyntax, top[i], "text after the problem definition", "end of file");
-    }
-    const SExpr& def = top[0];
-    if (def.Head() != "define" || def.items.size() < 2 || def.items[1].Head() != "problem" ||
-        def.items[1].items.size() != 2 || def.items[1].items[1].is_list) {
-      if (def.Head() == "define" && def.items.size() >= 2 && def.items[1].Head() == "domain") {
-        Error(DiagnosticKind::kSyntax, def, "this is a domain, not a problem", "(define (problem name) ...)");
-      } else {
-        Error(DiagnosticKind::kSyntax, def, "expected a problem definition", "(define (problem name) ...)");
-      }
-      return std::nullopt;
-    }
+    const SExpr* definition = Definition(top, read, "problem", "domain");
+    if (definition == nullptr) return std::nullopt;
+    const SExpr& def = *definition;
     Problem problem;
     problem.name = def.items[1].items[1].atom;
     problem.location = Loc(def);

@@ -297,6 +297,32 @@ constexpr const char* kSmallDomain =
     "  (:constants home - place)\n"
     "  (:predicates (at ?t - thing ?p - place)))\n";
 
+// Domain and problem files share the top-level check; each kind names itself
+// and recognises the other.
+TEST(ParseProblemTest, TopLevelFormIsCheckedForBothKinds) {
+  auto d = ParseDomain(kSmallDomain);
+  ASSERT_TRUE(d.domain) << FormatDiagnostics(d.diagnostics);
+
+  auto problem_as_domain = ParseDomain("(define (problem p) (:domain d))");
+  EXPECT_FALSE(problem_as_domain.domain);
+  EXPECT_NE(FindDiag(problem_as_domain.diagnostics, "this is a problem, not a domain"), nullptr);
+  auto domain_as_problem = ParseProblem(kSmallDomain, *d.domain);
+  EXPECT_FALSE(domain_as_problem.problem);
+  EXPECT_NE(FindDiag(domain_as_problem.diagnostics, "this is a domain, not a problem"), nullptr);
+
+  auto not_define = ParseProblem("(problem p)", *d.domain);
+  EXPECT_FALSE(not_define.problem);
+  EXPECT_NE(FindDiag(not_define.diagnostics, "expected a problem definition"), nullptr);
+  auto empty = ParseProblem("", *d.domain);
+  EXPECT_NE(FindDiag(empty.diagnostics, "empty problem"), nullptr);
+
+  auto trailing = ParseDomain(std::string(kSmallDomain) + "(extra)");
+  EXPECT_FALSE(trailing.domain);
+  const Diagnostic* after = FindDiag(trailing.diagnostics, "text after the domain definition");
+  ASSERT_NE(after, nullptr);
+  EXPECT_EQ(after->location.line, 4);
+}
+
 TEST(ParseProblemTest, ForgivingOnRepeatedDeclarationsStrictOnConflicts) {
   auto d = ParseDomain(kSmallDomain);
   ASSERT_TRUE(d.domain) << FormatDiagnostics(d.diagnostics);
