@@ -1,5 +1,7 @@
 #include "seaplan/task/ground_task.h"
 
+#include "seaplan/pddl/parser.h"
+
 #include <cassert>
 #include <cmath>
 #include <cstdio>
@@ -132,15 +134,17 @@ bool Compare(double lhs, Comparator comparator, double rhs) {
   return false;
 }
 
+// task::Comparator is its own small enum (uint8_t, so search never sees parser
+// types), but it lists the same comparators in the same order as
+// pddl::Comparator; the spelling lives once, in the parser.
+static_assert(static_cast<int>(Comparator::kLess) == static_cast<int>(pddl::Comparator::kLess));
+static_assert(static_cast<int>(Comparator::kLessEqual) == static_cast<int>(pddl::Comparator::kLessEqual));
+static_assert(static_cast<int>(Comparator::kEqual) == static_cast<int>(pddl::Comparator::kEqual));
+static_assert(static_cast<int>(Comparator::kGreaterEqual) == static_cast<int>(pddl::Comparator::kGreaterEqual));
+static_assert(static_cast<int>(Comparator::kGreater) == static_cast<int>(pddl::Comparator::kGreater));
+
 const char* ComparatorSymbol(Comparator comparator) {
-  switch (comparator) {
-    case Comparator::kLess: return "<";
-    case Comparator::kLessEqual: return "<=";
-    case Comparator::kEqual: return "=";
-    case Comparator::kGreaterEqual: return ">=";
-    case Comparator::kGreater: return ">";
-  }
-  return "?";
+  return pddl::ComparatorSymbol(static_cast<pddl::Comparator>(comparator));
 }
 
 double ApplyAssign(AssignOp op, double current, double value) {
