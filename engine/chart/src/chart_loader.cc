@@ -208,6 +208,12 @@ struct Extent {
   double max_x = -std::numeric_limits<double>::infinity();
   double max_y = -std::numeric_limits<double>::infinity();
   bool empty() const { return !(min_x <= max_x); }
+  void Include(double x, double y) {
+    min_x = std::min(min_x, x);
+    min_y = std::min(min_y, y);
+    max_x = std::max(max_x, x);
+    max_y = std::max(max_y, y);
+  }
 };
 
 struct ExtentInSrs {
@@ -240,11 +246,21 @@ Extent TransformExtent(const ExtentInSrs& e, const OGRSpatialReference& target) 
       double x = e.extent.min_x + (e.extent.max_x - e.extent.min_x) * i / kSteps;
       double y = e.extent.min_y + (e.extent.max_y - e.extent.min_y) * j / kSteps;
       if (!ct->Transform(1, &x, &y)) continue;
-      out.min_x = std::min(out.min_x, x);
-      out.min_y = std::min(out.min_y, y);
-      out.max_x = std::max(out.max_x, x);
-      out.max_y = std::max(out.max_y, y);
+      out.Include(x, y);
     }
+  }
+  return out;
+}
+
+// Union of the sources' envelopes in `target`; a source that does not
+// transform (empty envelope) is left out rather than widening the union.
+Extent TransformedUnion(const std::vector<ExtentInSrs>& sources, const OGRSpatialReference& target) {
+  Extent out;
+  for (const ExtentInSrs& e : sources) {
+    const Extent t = TransformExtent(e, target);
+    if (t.empty()) continue;
+    out.Include(t.min_x, t.min_y);
+    out.Include(t.max_x, t.max_y);
   }
   return out;
 }
@@ -384,15 +400,7 @@ StatusOr<ObstacleMap> LoadFromRoot(const std::string& root, const std::string& d
   OGRSpatialReference wgs84;
   wgs84.SetWellKnownGeogCS("WGS84");
   wgs84.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
-  Extent geo;
-  for (const ExtentInSrs& e : box_sources) {
-    const Extent t = TransformExtent(e, wgs84);
-    if (t.empty()) continue;
-    geo.min_x = std::min(geo.min_x, t.min_x);
-    geo.min_y = std::min(geo.min_y, t.min_y);
-    geo.max_x = std::max(geo.max_x, t.max_x);
-    geo.max_y = std::max(geo.max_y, t.max_y);
-  }
+  const Extent geo = TransformedUnion(box_sources, wgs84);
   if (geo.empty()) {
     return absl::InvalidArgumentError(absl::StrCat("'", display, "' contains no features (empty chart)"));
   }
@@ -410,15 +418,7 @@ StatusOr<ObstacleMap> LoadFromRoot(const std::string& root, const std::string& d
     return absl::InternalError(absl::StrCat("PROJ does not know EPSG:", frame.epsg(), " (", errors.Joined(), ")"));
   }
   target.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
-  Extent box;
-  for (const ExtentInSrs& e : box_sources) {
-    const Extent t = TransformExtent(e, target);
-    if (t.empty()) continue;
-    box.min_x = std::min(box.min_x, t.min_x);
-    box.min_y = std::min(box.min_y, t.min_y);
-    box.max_x = std::max(box.max_x, t.max_x);
-    box.max_y = std::max(box.max_y, t.max_y);
-  }
+  const Extent box = TransformedUnion(box_sources, target);
   summary.coverage = {{box.min_x, box.min_y}, {box.max_x, box.max_y}};
 
   const double read_ms = ms_since(t_start);
