@@ -1,5 +1,8 @@
 #include "plan_builder.h"
 
+#include "plan_lifting.h"
+#include "seaplan/common/log.h"
+
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -19,17 +22,13 @@ validate::ValidationResult PlanValidator::Validate(const validate::Plan& plan) c
   return validate::ValidatePlan(task_, plan, options_);
 }
 
-std::optional<BuiltPlan> BuildValidatedPlan(const SnapTask& task, std::span<const Event> events,
-                                            Timeline& timeline, const PlanValidator& validator,
-                                            std::string* error) {
-  if (!timeline.Build(events)) {
-    *error = "schedule of the plan is inconsistent";
-    return std::nullopt;
-  }
-  struct Pending {
-    double start_s;
-    std::size_t event;
-  };
+namespace {
+
+// Pairs start/end events into printed steps at `times`, prints, parses back
+// and validates; nullopt (and `error`) when anything fails.
+std::optional<BuiltPlan> PlanAtTimes(const SnapTask& task, std::span<const Event> events,
+                                     std::span<const double> times, const PlanValidator& validator,
+                                     std::string* error) {
   std::vector<std::pair<double, validate::PlanStep>> steps;
   std::vector<std::int32_t> open(static_cast<std::size_t>(task.num_actions()), -1);
   for (std::size_t i = 0; i < events.size(); ++i) {
@@ -40,7 +39,7 @@ std::optional<BuiltPlan> BuildValidatedPlan(const SnapTask& task, std::span<cons
     if (!snap.is_end) {
       if (!action.is_durative) {
         validate::PlanStep step;
-        step.start_s = timeline.EventTime(i);
+        step.start_s = times[i];
         step.name = action.name;
         step.args = action.args;
         step.duration_s = 0;
@@ -57,8 +56,8 @@ std::optional<BuiltPlan> BuildValidatedPlan(const SnapTask& task, std::span<cons
     }
     open[snap.action] = -1;
     validate::PlanStep step;
-    step.start_s = timeline.EventTime(static_cast<std::size_t>(start));
-    double duration = timeline.EventTime(i) - step.start_s;
+    step.start_s = times[static_cast<std::size_t>(start)];
+    double duration = times[i] - step.start_s;
     const Event& se = events[static_cast<std::size_t>(start)];
     // Keep fixed durations exact (the STN sums may differ in the last bit).
     if (se.min_duration_s == se.max_duration_s || std::abs(duration - se.min_duration_s) < 1e-7) {
@@ -91,6 +90,31 @@ std::optional<BuiltPlan> BuildValidatedPlan(const SnapTask& task, std::span<cons
   built.plan = std::move(*parsed);
   built.makespan_s = result.makespan_s;
   built.metric_value = result.metric_value;
+  return built;
+}
+
+}  // namespace
+
+std::optional<BuiltPlan> BuildValidatedPlan(const SnapTask& task, std::span<const Event> events,
+                                            Timeline& timeline, const PlanValidator& validator,
+                                            std::string* error) {
+  if (!timeline.Build(events)) {
+    *error = "schedule of the plan is inconsistent";
+    return std::nullopt;
+  }
+  std::vector<double> times(events.size());
+  for (std::size_t i = 0; i < events.size(); ++i) times[i] = timeline.EventTime(i);
+  auto built = PlanAtTimes(task, events, times, validator, error);
+  if (!built) return std::nullopt;
+  // Post-processing: the partial-order lift, kept only when it validates as
+  // printed and is not longer (see plan_lifting.h).
+  if (auto lifted_times = LiftAndReschedule(task, events, times, validator.epsilon_s(),
+                                                 timeline.bound_concurrency())) {
+    std::string lift_error;
+    auto lifted = PlanAtTimes(task, events, *lifted_times, validator, &lift_error);
+    if (lifted && lifted->makespan_s <= built->makespan_s) return lifted;
+    if (!lifted) log::Debug("planner: lifted schedule rejected: {}", lift_error);
+  }
   return built;
 }
 

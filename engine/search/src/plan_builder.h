@@ -3,7 +3,9 @@
 // The path's events are scheduled at their earliest STN times (Timeline),
 // start/end events are paired into steps (start time, duration), and the
 // plan goes through validate::FormatPlan -> ParsePlan -> ValidatePlan, so
-// what is returned is exactly what was validated.
+// what is returned is exactly what was validated. The schedule is then lifted
+// to a partial order and rescheduled (plan_lifting.h); that plan replaces the
+// first when it validates as printed and is not longer.
 #pragma once
 
 #include <optional>
@@ -30,6 +32,7 @@ class PlanValidator {
   // `task` must outlive this object.
   PlanValidator(const task::GroundTask& task, double epsilon_s);
   validate::ValidationResult Validate(const validate::Plan& plan) const;
+  double epsilon_s() const { return options_.epsilon_s; }
 
  private:
   const task::GroundTask& task_;

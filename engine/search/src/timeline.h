@@ -57,6 +57,8 @@ class Timeline {
   bool TryAdd(const Event& event, Outcome* outcome);
   void Undo();
 
+  bool bound_concurrency() const { return bound_concurrency_; }
+
   // After Build: time of event i of the path.
   double EventTime(std::size_t i) const { return stn_.time(EventNode(i)); }
   Outcome Current() const;
