@@ -1,5 +1,7 @@
 #include "server/core/mission_coordinator.h"
 
+#include <algorithm>
+
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "seaplan/common/log.h"
@@ -380,11 +382,24 @@ absl::StatusOr<v1::ReportFeedbackResponse> MissionCoordinator::ReportFeedback(
   notifier_.Notify(id);
   if (replan) {
     std::lock_guard jobs_lock(jobs_mu_);
-    if (static_cast<int>(jobs_.size()) >= options_.max_pending_replans || stopping_) {
+    const int base = mission.current_version();
+    const auto running = running_bases_.find(id);
+    const bool already = (running != running_bases_.end() && running->second == base) ||
+                         std::any_of(jobs_.begin(), jobs_.end(), [&](const ReplanJob& j) {
+                           return j.mission_id == id && j.base_version == base;
+                         });
+    if (already) {
+      // The replan already under way covers this report too (it reads the
+      // runtime state, this report included, when it starts or it already
+      // started from the same version); the mission stays REPLANNING until
+      // it ends, and a new version still follows on the watch stream.
+      response.set_replan_triggered(true);
+      response.set_replan_reason(decision.replan_reason);
+    } else if (static_cast<int>(jobs_.size()) >= options_.max_pending_replans || stopping_) {
       log::Error("mission {}: replan queue full, replan '{}' dropped", id, decision.replan_reason);
       EndReplanning(id, absl::StrCat("replan not started (server busy): ", decision.replan_reason));
     } else {
-      jobs_.push_back({id, decision.replan_reason});
+      jobs_.push_back({id, decision.replan_reason, base});
       jobs_cv_.notify_one();
       response.set_replan_triggered(true);
       response.set_replan_reason(decision.replan_reason);
@@ -489,6 +504,17 @@ void MissionCoordinator::BackgroundLoop() {
       jobs_.pop_front();
       stop = root_.Child(StopToken::Clock::now() + options_.background_replan_timeout);
       running_replans_[job.mission_id] = stop;
+      running_bases_[job.mission_id] = job.base_version;
+    }
+    // A trigger about a version that was replanned meanwhile (the job was
+    // queued just as an earlier replan of the same base ended) is stale.
+    if (auto record = repo_.Get(job.mission_id); record.ok() && record->current_version != job.base_version) {
+      log::Info("mission {}: replan '{}' skipped: version {} was already replanned", job.mission_id, job.reason,
+                job.base_version);
+      std::lock_guard lock(jobs_mu_);
+      running_replans_.erase(job.mission_id);
+      running_bases_.erase(job.mission_id);
+      continue;
     }
     bool stopped = false;
     auto version = Replan(
@@ -504,6 +530,7 @@ void MissionCoordinator::BackgroundLoop() {
     }
     std::lock_guard lock(jobs_mu_);
     running_replans_.erase(job.mission_id);
+    running_bases_.erase(job.mission_id);
   }
 }
 

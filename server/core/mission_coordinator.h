@@ -108,6 +108,7 @@ class MissionCoordinator {
   struct ReplanJob {
     std::string mission_id;
     std::string reason;
+    int base_version = 0;  // the plan version the trigger was about
   };
 
   std::shared_ptr<std::mutex> MissionLock(const std::string& mission_id);
@@ -138,6 +139,10 @@ class MissionCoordinator {
   std::condition_variable jobs_cv_;
   std::deque<ReplanJob> jobs_;
   std::map<std::string, StopToken> running_replans_;  // mission -> token of its background replan
+  // mission -> base version of its running background replan. A trigger for
+  // a base version already pending or running is the same situation
+  // reported twice (two feedbacks in one step): it must not replan again.
+  std::map<std::string, int> running_bases_;
   bool stopping_ = false;
   std::thread background_;
 };

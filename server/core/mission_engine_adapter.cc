@@ -3,14 +3,18 @@
 #if SEAPLAN_SERVER_HAS_MISSION && SEAPLAN_SERVER_HAS_SEARCH && SEAPLAN_SERVER_HAS_CHART
 
 #include <algorithm>
+#include <array>
 #include <cstdio>
-#include <sstream>
+#include <map>
+#include <mutex>
 
 #include "absl/strings/str_cat.h"
 #include "seaplan/chart/geodesy.h"
 #include "seaplan/chart/obstacle_map.h"
 #include "seaplan/mission/mission_planner.h"
+#include "seaplan/mission/problem_update.h"
 #include "seaplan/mission/replan_policy.h"
+#include "seaplan/mission/session.h"
 #include "seaplan/search/planner.h"
 #include "seaplan/task/grounder.h"
 #include "seaplan/v1/chart.pb.h"
@@ -18,6 +22,7 @@
 #include "server/core/status_details.h"
 #if SEAPLAN_SERVER_HAS_ROUTE
 #include "seaplan/route/route_planner.h"
+#include "server/core/route_convert.h"
 #endif
 
 namespace seaplan::server {
@@ -73,24 +78,94 @@ validate::PlanStep StepFromProto(const v1::TimedAction& a) {
   return s;
 }
 
-std::string EncodeLocations(const mission::LocationTable& locations) {
-  std::string out;
-  for (const auto& [name, p] : locations) {
-    char buf[96];
-    std::snprintf(buf, sizeof buf, " %.17g %.17g\n", p.x_m, p.y_m);
-    absl::StrAppend(&out, name, buf);
+// The engine's view of a feedback report. A ShipState in a report is a full
+// state: its fuel_fraction counts even when it is 0 (an empty tank); a report
+// without a state carries neither position nor fuel.
+mission::Feedback FeedbackFromProto(const v1::Feedback& feedback, int current_version,
+                                    const chart::LocalFrame* frame) {
+  mission::Feedback f;
+  switch (feedback.kind()) {
+    case v1::Feedback::KIND_TASK_STARTED: f.kind = mission::FeedbackKind::kTaskStarted; break;
+    case v1::Feedback::KIND_TASK_COMPLETED: f.kind = mission::FeedbackKind::kTaskCompleted; break;
+    case v1::Feedback::KIND_TASK_FAILED: f.kind = mission::FeedbackKind::kTaskFailed; break;
+    case v1::Feedback::KIND_GNSS_FAULT: f.kind = mission::FeedbackKind::kGnssFault; break;
+    case v1::Feedback::KIND_MACHINERY_FAULT: f.kind = mission::FeedbackKind::kMachineryFault; break;
+    case v1::Feedback::KIND_OPERATOR_CHANGE: f.kind = mission::FeedbackKind::kOperatorChange; break;
+    case v1::Feedback::KIND_COLLISION_AVOIDANCE: f.kind = mission::FeedbackKind::kCollisionAvoidance; break;
+    default: f.kind = mission::FeedbackKind::kPosition; break;
   }
-  return out;
+  f.task_id = feedback.task_id();
+  f.plan_version = feedback.plan_version() != 0 ? feedback.plan_version() : current_version;
+  f.mission_time_s = feedback.mission_time_s();
+  f.detail = feedback.detail();
+  if (feedback.has_state()) {
+    if (frame != nullptr && feedback.state().has_position()) {
+      const chart::LocalPoint p =
+          frame->ToLocal({feedback.state().position().latitude_deg(), feedback.state().position().longitude_deg()});
+      f.position = mission::Point{p.x_m, p.y_m};
+    }
+    f.fuel_fraction = feedback.state().fuel_fraction();
+  }
+  return f;
 }
 
-mission::LocationTable DecodeLocations(const std::string& text) {
-  mission::LocationTable locations;
-  std::istringstream in(text);
-  std::string name;
-  double x = 0, y = 0;
-  while (in >> name >> x >> y) locations[name] = {x, y};
-  return locations;
+// Improvement budget of a replan after its first plan, seconds (see the
+// planner callback in MakeContext).
+inline constexpr double kReplanImproveMinS = 0.01;
+inline constexpr double kReplanImproveMaxS = 0.04;
+
+#if SEAPLAN_SERVER_HAS_ROUTE
+mission::MsoMode ModeFromRoute(route::MsoMode m) {
+  switch (m) {
+    case route::MsoMode::kPto: return mission::MsoMode::kPto;
+    case route::MsoMode::kMec: return mission::MsoMode::kMec;
+    case route::MsoMode::kPti: return mission::MsoMode::kPti;
+  }
+  return mission::MsoMode::kUnspecified;
 }
+
+mission::Route RouteFromEngine(const route::RouteResult& result) {
+  const route::RouteAlternative& a = result.alternatives[static_cast<size_t>(result.chosen)];
+  mission::Route r;
+  r.alternative_index = result.chosen;
+  r.length_m = a.length_m;
+  r.sailing_time_s = a.sailing_time_s;
+  r.fuel_kg = a.fuel_kg;
+  r.expected_grounding_cost = a.expected_grounding_cost;
+  double eta = 0, distance = 0;
+  for (const auto& w : a.waypoints) {
+    mission::RouteWaypoint m;
+    m.position = {w.local.x_m, w.local.y_m};
+    m.mode = ModeFromRoute(w.mode);
+    m.eta_s = eta;
+    m.distance_from_start_m = distance;
+    m.time_to_grounding_s = w.ttg_s;
+    m.grounding_probability = w.grounding_probability;
+    m.expected_grounding_cost = w.expected_grounding_cost;
+    m.fuel_kg = w.segment_fuel_kg;
+    r.max_grounding_probability = std::max(r.max_grounding_probability, w.grounding_probability);
+    eta += w.segment_time_s;
+    distance += w.segment_length_m;
+    r.waypoints.push_back(m);
+  }
+  return r;
+}
+
+// Everything routing over one chart needs, built once per (chart, ship,
+// route options, environment) and shared by every call of every mission
+// using it: the RoutePlanner (its obstacle field is the expensive part) and
+// the routes already planned between two positions (a replan asks again for
+// most legs of the previous version).
+struct ChartRouting {
+  chart::LocalFrame frame;
+  std::shared_ptr<const route::RoutePlanner> planner;
+  route::Environment env;
+  std::mutex mu;
+  std::map<std::array<double, 4>, mission::Route> routes;  // (from x, y, to x, y) -> route
+};
+inline constexpr size_t kMaxCachedRoutings = 16;
+inline constexpr size_t kMaxCachedRoutes = 4096;
+#endif
 
 class Adapter final : public MissionEngine {
  public:
@@ -112,7 +187,7 @@ class Adapter final : public MissionEngine {
   }
 
   absl::StatusOr<PlannedVersion> PlanInitial(const v1::MissionSpec& spec, const StopToken& stop) override {
-    SEAPLAN_ASSIGN_OR_RETURN(Context c, MakeContext(spec, /*locations_state=*/""));
+    SEAPLAN_ASSIGN_OR_RETURN(Context c, MakeContext(spec, /*locations_state=*/"", stop, /*replan=*/false));
     mission::NavigationLog log;
     SEAPLAN_ASSIGN_OR_RETURN(mission::PlanVersion v,
                              mission::PlanInitialVersion(c.definition, c.planner, c.router, stop, &log));
@@ -121,28 +196,30 @@ class Adapter final : public MissionEngine {
 
   absl::StatusOr<std::optional<PlannedVersion>> Replan(const v1::MissionSpec& spec, const MissionRuntimeState& state,
                                                        std::string_view reason, const StopToken& stop) override {
-    SEAPLAN_ASSIGN_OR_RETURN(Context c, MakeContext(spec, state.engine_state));
+    // The definition's locations are the engine state's (they include a
+    // port-s a previous replan added), not the spec's.
+    SEAPLAN_ASSIGN_OR_RETURN(Context c, MakeContext(spec, state.engine_state, stop, /*replan=*/true));
     const mission::PlanVersion current = FromProto(state.current_version);
-    mission::ReplanInput input;
-    input.reason = std::string(reason);
-    input.mission_time_s = state.current_version.mission_time_origin_s();
+    const int current_version = state.mission.current_version();
+    double now_s = state.current_version.mission_time_origin_s();
+    std::vector<mission::Feedback> recent;
     for (const auto& f : state.recent_feedback) {
-      if (f.plan_version() == state.mission.current_version() || f.plan_version() == 0) {
-        input.mission_time_s = std::max(input.mission_time_s, f.mission_time_s());
-        if (f.kind() == v1::Feedback::KIND_TASK_FAILED && !f.task_id().empty()) {
-          input.interrupted_task_ids.push_back(f.task_id());
-        }
+      if (f.plan_version() == current_version || f.plan_version() == 0) {
+        now_s = std::max(now_s, f.mission_time_s());
+        recent.push_back(FeedbackFromProto(f, current_version, nullptr));
       }
     }
-    for (const auto& id : state.mission.completed_tasks()) {
-      for (const auto& t : current.tasks) {
-        if (t.id == id) input.completed_task_ids.push_back(id);
-      }
-    }
+    const std::vector<std::string> completed(state.mission.completed_tasks().begin(),
+                                             state.mission.completed_tasks().end());
+    mission::ShipObservation ship;
     const v1::ShipState& last = state.mission.has_last_state() ? state.mission.last_state() : spec.initial_state();
     const chart::LocalPoint p = c.frame.ToLocal({last.position().latitude_deg(), last.position().longitude_deg()});
-    input.ship.position = {p.x_m, p.y_m};
-    if (last.fuel_fraction() > 0) input.ship.fuel_fraction = last.fuel_fraction();
+    ship.position = {p.x_m, p.y_m};
+    // A reported state is a full state: fuel 0 is an empty tank. The spec's
+    // initial state counts only when it names a fuel level.
+    if (state.mission.has_last_state() || last.fuel_fraction() > 0) ship.fuel_fraction = last.fuel_fraction();
+    const mission::ReplanInput input =
+        mission::MakeReplanInput(current, completed, recent, std::string(reason), ship, now_s);
     mission::NavigationLog log;
     SEAPLAN_ASSIGN_OR_RETURN(mission::ReplanResult r,
                              mission::Replan(c.definition, current, c.definition.locations, input, c.planner,
@@ -186,30 +263,9 @@ class Adapter final : public MissionEngine {
       default:
         break;
     }
-    mission::Feedback f;
-    switch (feedback.kind()) {
-      case v1::Feedback::KIND_TASK_STARTED: f.kind = mission::FeedbackKind::kTaskStarted; break;
-      case v1::Feedback::KIND_TASK_COMPLETED: f.kind = mission::FeedbackKind::kTaskCompleted; break;
-      case v1::Feedback::KIND_TASK_FAILED: f.kind = mission::FeedbackKind::kTaskFailed; break;
-      case v1::Feedback::KIND_GNSS_FAULT: f.kind = mission::FeedbackKind::kGnssFault; break;
-      case v1::Feedback::KIND_MACHINERY_FAULT: f.kind = mission::FeedbackKind::kMachineryFault; break;
-      case v1::Feedback::KIND_OPERATOR_CHANGE: f.kind = mission::FeedbackKind::kOperatorChange; break;
-      case v1::Feedback::KIND_COLLISION_AVOIDANCE: f.kind = mission::FeedbackKind::kCollisionAvoidance; break;
-      default: f.kind = mission::FeedbackKind::kPosition; break;
-    }
-    f.task_id = feedback.task_id();
-    f.plan_version = feedback.plan_version() != 0 ? feedback.plan_version() : state.mission.current_version();
-    f.mission_time_s = feedback.mission_time_s();
-    f.detail = feedback.detail();
-    if (feedback.has_state()) {
-      auto frame = FrameFor(spec);
-      if (frame.ok() && feedback.state().has_position()) {
-        const chart::LocalPoint p = frame->ToLocal(
-            {feedback.state().position().latitude_deg(), feedback.state().position().longitude_deg()});
-        f.position = mission::Point{p.x_m, p.y_m};
-      }
-      if (feedback.state().fuel_fraction() > 0) f.fuel_fraction = feedback.state().fuel_fraction();
-    }
+    auto frame = FrameFor(spec);
+    const mission::Feedback f =
+        FeedbackFromProto(feedback, state.mission.current_version(), frame.ok() ? &*frame : nullptr);
     if (auto reason = mission::DecideReplan(f, current, task, Policy(spec))) {
       d.replan = true;
       d.replan_reason = *reason;
@@ -231,10 +287,17 @@ class Adapter final : public MissionEngine {
     if (r.fuel_threshold_fraction() > 0) p.fuel_threshold_fraction = r.fuel_threshold_fraction();
     if (r.position_deviation_m() > 0) p.position_deviation_m = r.position_deviation_m();
     if (r.delay_tolerance_s() > 0) p.delay_tolerance_s = r.delay_tolerance_s();
+    p.fuel_planned = mission::DomainPlansFuel(spec.domain());
     return p;
   }
 
   absl::StatusOr<chart::LocalFrame> FrameFor(const v1::MissionSpec& spec) {
+#if SEAPLAN_SERVER_HAS_ROUTE
+    if (!spec.chart_id().empty()) {
+      SEAPLAN_ASSIGN_OR_RETURN(std::shared_ptr<ChartRouting> routing, RoutingFor(spec));
+      return routing->frame;
+    }
+#else
     if (!spec.chart_id().empty()) {
       SEAPLAN_ASSIGN_OR_RETURN(storage::ChartRecord record, charts_.Get(spec.chart_id(), /*with_blobs=*/false));
       v1::ObstacleSummary summary;
@@ -242,6 +305,7 @@ class Adapter final : public MissionEngine {
       int epsg = 0;
       if (std::sscanf(summary.frame().c_str(), "EPSG:%d", &epsg) == 1) return chart::LocalFrame::FromEpsg(epsg);
     }
+#endif
     if (spec.locations_size() > 0) {
       const auto& p = spec.locations(0).position();
       return chart::LocalFrame::ForCentre({p.latitude_deg(), p.longitude_deg()});
@@ -249,7 +313,90 @@ class Adapter final : public MissionEngine {
     return chart::LocalFrame();
   }
 
-  absl::StatusOr<Context> MakeContext(const v1::MissionSpec& spec, const std::string& locations_state) {
+#if SEAPLAN_SERVER_HAS_ROUTE
+  // The routing of a chart mission, built once per (chart, ship, route
+  // options, environment) and cached.
+  absl::StatusOr<std::shared_ptr<ChartRouting>> RoutingFor(const v1::MissionSpec& spec) {
+    std::string key = spec.chart_id();
+    for (const auto* m : {static_cast<const google::protobuf::Message*>(&spec.ship()),
+                          static_cast<const google::protobuf::Message*>(&spec.route_options()),
+                          static_cast<const google::protobuf::Message*>(&spec.environment())}) {
+      std::string bytes;
+      m->SerializeToString(&bytes);
+      absl::StrAppend(&key, "|", bytes.size(), ":", bytes);
+    }
+    {
+      std::lock_guard lock(routings_mu_);
+      if (auto it = routings_.find(key); it != routings_.end()) return it->second;
+    }
+    // Built outside the lock: loading a chart and its field takes a while and
+    // must not hold up missions on other charts. Two first calls may both
+    // build; the first stored wins.
+    auto map = LoadMap(charts_, spec.chart_id());
+    if (!map.ok()) {
+      if (absl::IsNotFound(map.status())) {
+        return absl::FailedPreconditionError(absl::StrCat("spec.chart_id: ", map.status().message()));
+      }
+      return map.status();
+    }
+    route::RouteOptions options = OptionsToEngine(spec.route_options());
+    auto planner = route::RoutePlanner::Create(*map, ShipToEngine(spec.ship()), options);
+    if (!planner.ok()) {
+      return absl::Status(planner.status().code(),
+                          absl::StrCat("routing over chart '", spec.chart_id(), "': ", planner.status().message()));
+    }
+    auto routing = std::make_shared<ChartRouting>();
+    routing->frame = (*map)->frame();
+    routing->planner = std::make_shared<const route::RoutePlanner>(std::move(*planner));
+    routing->env = EnvironmentToEngine(spec.environment());
+    std::lock_guard lock(routings_mu_);
+    if (routings_.size() >= kMaxCachedRoutings) routings_.erase(routings_.begin());
+    return routings_.emplace(key, std::move(routing)).first->second;
+  }
+
+  // Plans a move over the chart; cached per (from, to) positions.
+  static mission::RoutePlanner ChartRouter(std::shared_ptr<ChartRouting> shared, StopToken stop) {
+    return [routing = std::move(shared), stop](const mission::RouteRequest& req) -> StatusOr<mission::Route> {
+      const std::array<double, 4> key = {req.from_position.x_m, req.from_position.y_m, req.to_position.x_m,
+                                         req.to_position.y_m};
+      {
+        std::lock_guard lock(routing->mu);
+        if (auto it = routing->routes.find(key); it != routing->routes.end()) return it->second;
+      }
+      if (stop.StopRequested()) {
+        return stop.Reason() == StopReason::kDeadline ? absl::DeadlineExceededError("routing stopped: deadline")
+                                                      : absl::CancelledError("routing stopped");
+      }
+      auto result = routing->planner->Plan(chart::LocalPoint{req.from_position.x_m, req.from_position.y_m},
+                                           chart::LocalPoint{req.to_position.x_m, req.to_position.y_m},
+                                           routing->env, stop);
+      if (!result.ok()) {
+        if (absl::IsInvalidArgument(result.status())) {
+          // A location outside the chart or inside an obstacle: the mission
+          // cannot sail this leg as specified.
+          return absl::FailedPreconditionError(result.status().message());
+        }
+        return result.status();
+      }
+      if (result->stopped) {
+        return stop.Reason() == StopReason::kDeadline ? absl::DeadlineExceededError("routing stopped: deadline")
+                                                      : absl::CancelledError("routing stopped");
+      }
+      if (result->chosen < 0 || result->chosen >= static_cast<int>(result->alternatives.size()) ||
+          !result->alternatives[static_cast<size_t>(result->chosen)].safe) {
+        return absl::FailedPreconditionError("no obstacle-free route alternative");
+      }
+      mission::Route r = RouteFromEngine(*result);
+      std::lock_guard lock(routing->mu);
+      if (routing->routes.size() >= kMaxCachedRoutes) routing->routes.clear();
+      routing->routes.emplace(key, r);
+      return r;
+    };
+  }
+#endif
+
+  absl::StatusOr<Context> MakeContext(const v1::MissionSpec& spec, const std::string& locations_state,
+                                      const StopToken& route_stop, bool replan) {
     Context c;
     SEAPLAN_ASSIGN_OR_RETURN(c.frame, FrameFor(spec));
     mission::MissionDefinition& def = c.definition;
@@ -261,7 +408,11 @@ class Adapter final : public MissionEngine {
         def.locations[l.name()] = {p.x_m, p.y_m};
       }
     } else {
-      def.locations = DecodeLocations(locations_state);
+      auto decoded = mission::DecodeEngineState(locations_state);
+      if (!decoded.ok()) {
+        return absl::DataLossError(absl::StrCat("stored engine state is unreadable: ", decoded.status().message()));
+      }
+      def.locations = std::move(*decoded);
     }
     for (const auto& op : spec.port_operations()) def.refine.port_operation_durations_s[op.action()] = op.duration_s();
     if (spec.planner_options().epsilon_s() > 0) def.refine.epsilon_s = spec.planner_options().epsilon_s();
@@ -283,9 +434,30 @@ class Adapter final : public MissionEngine {
     if (absl::Status st = options.Validate(); !st.ok()) {
       return absl::InvalidArgumentError(absl::StrCat("spec.planner_options: ", st.message()));
     }
-    c.planner = [options](std::string_view domain, std::string_view problem,
-                          const StopToken& stop) -> StatusOr<mission::PlannerOutcome> {
-      search::PlanResult r = search::Solve(domain, problem, options, stop);
+    c.planner = [options, replan](std::string_view domain, std::string_view problem,
+                                  const StopToken& stop) -> StatusOr<mission::PlannerOutcome> {
+      search::PlanResult r;
+      if (replan && options.anytime) {
+        // A replan is on the mission loop's critical path (the ship waits
+        // for it): anytime search would use its whole time limit on
+        // problems it cannot prove optimal. So: first plan, then a short
+        // improvement run, keeping the better of the two.
+        search::PlannerOptions first = options;
+        first.anytime = false;
+        r = search::Solve(domain, problem, first, stop);
+        if (r.status == search::PlanStatus::kSolvedSatisficing && !stop.StopRequested()) {
+          search::PlannerOptions improve = options;
+          improve.time_limit_s =
+              std::min(options.time_limit_s, std::clamp(2.0 * r.stats.search_time_s, kReplanImproveMinS,
+                                                         kReplanImproveMaxS));
+          search::PlanResult better = search::Solve(domain, problem, improve, stop);
+          const bool solved = better.status == search::PlanStatus::kSolvedSatisficing ||
+                              better.status == search::PlanStatus::kSolvedOptimally;
+          if (solved && better.makespan_s < r.makespan_s - 1e-9) r = std::move(better);
+        }
+      } else {
+        r = search::Solve(domain, problem, options, stop);
+      }
       if (r.status == search::PlanStatus::kError) return absl::InvalidArgumentError(r.message);
       mission::PlannerOutcome out;
       out.solved = r.status == search::PlanStatus::kSolvedSatisficing || r.status == search::PlanStatus::kSolvedOptimally;
@@ -297,10 +469,15 @@ class Adapter final : public MissionEngine {
       const double speed = spec.ship().service_speed_mps() > 0 ? spec.ship().service_speed_mps() : kDefaultServiceSpeedMps;
       c.router = mission::StraightLineRouter(speed);
     } else {
-      // TODO(#2): route moves over the chart with engine/route's RoutePlanner.
+#if SEAPLAN_SERVER_HAS_ROUTE
+      SEAPLAN_ASSIGN_OR_RETURN(std::shared_ptr<ChartRouting> routing, RoutingFor(spec));
+      c.router = ChartRouter(std::move(routing), route_stop);
+#else
+      (void)route_stop;
       return absl::UnimplementedError(
-          "missions with a chart_id: routing moves over a chart is not wired into the mission service yet; "
-          "leave chart_id empty for straight-line legs");
+          "missions with a chart_id: this server is built without engine/route; leave chart_id empty for "
+          "straight-line legs");
+#endif
     }
     return c;
   }
@@ -355,7 +532,7 @@ class Adapter final : public MissionEngine {
         }
       }
     }
-    out.engine_state = EncodeLocations(locations);
+    out.engine_state = mission::EncodeEngineState(locations);
     for (const auto& e : log.entries()) out.log_messages.push_back(e.message);
     return out;
   }
@@ -384,6 +561,10 @@ class Adapter final : public MissionEngine {
   }
 
   storage::ChartRepository& charts_;
+#if SEAPLAN_SERVER_HAS_ROUTE
+  std::mutex routings_mu_;
+  std::map<std::string, std::shared_ptr<ChartRouting>> routings_;
+#endif
 };
 
 }  // namespace

@@ -69,7 +69,12 @@ absl::StatusOr<std::optional<PlannedVersion>> FakeMissionEngine::Replan(const v1
                                                                         std::string_view reason,
                                                                         const StopToken& stop) {
   ++plan_calls;
+  ++replan_calls;
   SEAPLAN_RETURN_IF_ERROR(MaybeBlock(stop));
+  const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(replan_delay_ms.load());
+  while (!stop.StopRequested() && std::chrono::steady_clock::now() < until) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  }
   if (state.engine_state != absl::StrCat("state-of-v", state.mission.current_version())) {
     return absl::InternalError("engine state of the current version was not handed back");
   }

@@ -46,6 +46,9 @@ class FakeMissionEngine final : public MissionEngine {
   std::atomic<int> last_stop_reason{static_cast<int>(StopReason::kNone)};
   std::atomic<int> plan_calls{0};
   std::atomic<bool> stopped_work_finished{false};
+  // Replan takes at least this long (stops early with its StopToken).
+  std::atomic<int> replan_delay_ms{0};
+  std::atomic<int> replan_calls{0};
 
   absl::Status CheckSpec(const v1::MissionSpec& spec) override;
   absl::StatusOr<PlannedVersion> PlanInitial(const v1::MissionSpec& spec, const StopToken& stop) override;
