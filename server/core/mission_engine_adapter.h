@@ -8,8 +8,23 @@
 // route is the straight line sailed at ship.service_speed_mps (default
 // kDefaultServiceSpeedMps).
 //
+// Routing over a chart: a route::RoutePlanner per (chart, ship, route
+// options, environment), built once and cached, plans every move between
+// the locations' positions; the chosen route's sailing time becomes the
+// move's duration and the task carries the route and its mode schedule.
+// Routes are cached per (from, to) position (a replan asks again for most
+// legs). A leg with no safe route (or an end inside an obstacle or off the
+// chart) fails with FailedPrecondition naming the leg; an unknown chart_id
+// is FailedPrecondition.
+//
+// Feedback: a ShipState in a report is a full state, so fuel_fraction 0 is
+// an empty tank; a report without a state carries no fuel reading.
+//
+// Replans use the spec's planner options but, with anytime search, stop at
+// the first plan plus a short improvement run (10-40 ms): the ship waits.
+//
 // Engine state stored with each version: the location table (a replan may
-// add a location such as "port-s"), one "name x_m y_m" line per location.
+// add a location such as "port-s"), mission::EncodeEngineState.
 #pragma once
 
 #include <memory>
