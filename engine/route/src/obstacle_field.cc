@@ -320,24 +320,24 @@ const ObstacleField::Cell* ObstacleField::CellAt(Vec2 p) const {
   return &cells_[static_cast<size_t>(static_cast<int>(fy)) * nx_ + static_cast<int>(fx)];
 }
 
+// Defined here, before its two hot callers, so it is inlined into both.
+double ObstacleField::EntrySignedDistance(const CellObstacle& entry, Vec2 p) const {
+  if (entry.inside == 2) return -deep_inside_m_;
+  double min2 = std::numeric_limits<double>::infinity();
+  for (int32_t k = entry.cand_begin; k < entry.cand_end; ++k) {
+    min2 = std::min(min2, EdgeDistance2(edges_[candidates_[k]], p));
+  }
+  const double d = std::sqrt(min2);
+  const bool inside = entry.inside < 0 ? PointInObstacle(entry.obstacle, p) : entry.inside == 1;
+  return inside ? -d : d;
+}
+
 double ObstacleField::SumExpDistance(Vec2 p, double zeta) const {
   const Cell* cell = CellAt(p);
   if (cell == nullptr) return SumExpDistanceBruteForce(p, zeta);
   double sum = 0.0;
   for (int32_t j = cell->entries_begin; j < cell->entries_end; ++j) {
-    const CellObstacle& entry = entries_[j];
-    if (entry.inside == 2) {
-      sum += std::exp(std::min(kMaxExponent, zeta * deep_inside_m_));
-      continue;
-    }
-    double min2 = std::numeric_limits<double>::infinity();
-    for (int32_t k = entry.cand_begin; k < entry.cand_end; ++k) {
-      min2 = std::min(min2, EdgeDistance2(edges_[candidates_[k]], p));
-    }
-    double d = std::sqrt(min2);
-    const bool inside = entry.inside < 0 ? PointInObstacle(entry.obstacle, p) : entry.inside == 1;
-    if (inside) d = -d;
-    sum += std::exp(std::min(kMaxExponent, -zeta * d));
+    sum += std::exp(std::min(kMaxExponent, -zeta * EntrySignedDistance(entries_[j], p)));
   }
   return sum;
 }
@@ -357,19 +357,7 @@ double ObstacleField::SignedDistance(Vec2 p) const {
   if (cell == nullptr) return SignedDistanceBruteForce(p);
   double best = std::numeric_limits<double>::infinity();
   for (int32_t j = cell->entries_begin; j < cell->entries_end; ++j) {
-    const CellObstacle& entry = entries_[j];
-    if (entry.inside == 2) {
-      best = std::min(best, -deep_inside_m_);
-      continue;
-    }
-    double min2 = std::numeric_limits<double>::infinity();
-    for (int32_t k = entry.cand_begin; k < entry.cand_end; ++k) {
-      min2 = std::min(min2, EdgeDistance2(edges_[candidates_[k]], p));
-    }
-    double d = std::sqrt(min2);
-    const bool inside = entry.inside < 0 ? PointInObstacle(entry.obstacle, p) : entry.inside == 1;
-    if (inside) d = -d;
-    best = std::min(best, d);
+    best = std::min(best, EntrySignedDistance(entries_[j], p));
   }
   if (cell->entries_begin == cell->entries_end) return std::max<double>(cell->clear_lb_m, 0.0);
   return best;

@@ -123,6 +123,10 @@ class ObstacleField {
   bool PointInObstacle(int obstacle, Vec2 p) const;
   double EdgeDistance2(const Edge& e, Vec2 p) const;
   double ObstacleDistanceBruteForce(int obstacle, Vec2 p) const;  // unsigned
+  // Signed distance from p (inside the entry's cell) to the entry's obstacle:
+  // nearest candidate edge, negative inside, -deep_inside_m_ for a cell deeper
+  // inside than the cutoff.
+  double EntrySignedDistance(const CellObstacle& entry, Vec2 p) const;
   const Cell* CellAt(Vec2 p) const;
   void HullVertices(Vec2 centre, double heading_rad, Vec2 out[5]) const;
   bool HullHitsEdges(const Vec2 hull[5], const int32_t* edges, int n) const;
