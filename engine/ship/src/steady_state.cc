@@ -41,6 +41,17 @@ Status CheckPolyline(std::span<const Eigen::Vector2d> p) {
   return absl::OkStatus();
 }
 
+// Cost of sailing a checked polyline at a steady speed reached with `throttle`.
+SailingCost CostAt(const MachineryParams& machinery, std::span<const Eigen::Vector2d> polyline, MsoMode mode,
+                   double speed_mps, double throttle) {
+  SailingCost c;
+  c.length_m = PolylineLength(polyline);
+  c.time_s = c.length_m / speed_mps;
+  c.throttle = throttle;
+  c.fuel_kg = FuelRateAt(machinery, mode, throttle).total_kgps() * c.time_s;
+  return c;
+}
+
 }  // namespace
 
 double CalmWaterSteadySpeed(const ShipParams& ship, const MachineryParams& machinery, MsoMode mode,
@@ -145,12 +156,7 @@ StatusOr<SailingCost> SailingCostAtSpeed(const ShipParams& ship, const Machinery
         absl::StrCat("SailingCostAtSpeed: speed ", speed_mps, " m/s must be > 0"));
   }
   SEAPLAN_ASSIGN_OR_RETURN(double throttle, ThrottleForSpeed(ship, machinery, mode, speed_mps));
-  SailingCost c;
-  c.length_m = PolylineLength(polyline);
-  c.time_s = c.length_m / speed_mps;
-  c.throttle = throttle;
-  c.fuel_kg = FuelRateAt(machinery, mode, throttle).total_kgps() * c.time_s;
-  return c;
+  return CostAt(machinery, polyline, mode, speed_mps, throttle);
 }
 
 StatusOr<SailingCost> SailingCostAtThrottle(const ShipParams& ship,
@@ -163,12 +169,7 @@ StatusOr<SailingCost> SailingCostAtThrottle(const ShipParams& ship,
         absl::StrCat("SailingCostAtThrottle: throttle ", throttle, " must be > 0"));
   }
   const double speed = CalmWaterSteadySpeed(ship, machinery, mode, throttle);
-  SailingCost c;
-  c.length_m = PolylineLength(polyline);
-  c.time_s = c.length_m / speed;
-  c.throttle = throttle;
-  c.fuel_kg = FuelRateAt(machinery, mode, throttle).total_kgps() * c.time_s;
-  return c;
+  return CostAt(machinery, polyline, mode, speed, throttle);
 }
 
 }  // namespace seaplan::ship
