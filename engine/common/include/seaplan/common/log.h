@@ -1,6 +1,8 @@
 // The one logging facade of seaplan. Libraries log through these functions,
 // never to std::cout; the sink (spdlog, stderr by default) is chosen by the
 // binary's main. Keep logging out of hot loops.
+// Thread-safe: every function may be called from any thread (the sink is
+// spdlog's mutex-guarded "_mt" logger; the level is an atomic in spdlog).
 #pragma once
 
 #include <string_view>

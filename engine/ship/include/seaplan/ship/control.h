@@ -15,7 +15,8 @@
 //    inside the radius of acceptance.
 //
 // All of these are small value types with mutable controller state; one
-// instance per simulated ship. No heap use after construction.
+// instance per simulated ship. No heap use after construction. Not
+// thread-safe: an instance belongs to the one thread stepping its ship.
 #pragma once
 
 #include <cmath>

@@ -16,6 +16,7 @@
 //
 // All ids are dense indices into the vectors below. A GroundTask is an
 // immutable value once built; share it as std::shared_ptr<const GroundTask>.
+// Being immutable, it may be read from any number of threads at once.
 #pragma once
 
 #include <cstdint>
