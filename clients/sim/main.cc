@@ -3,15 +3,21 @@
 //
 //   seaplan-sim --server 127.0.0.1:50051 --scenario examples/scenarios/case-b.scenario
 //               [--mission-id ID (attach)] [--time-factor N] [--report-dir DIR]
+//               [--replan-timeout-s S] [--max-mission-time-s S] [--log-level LEVEL]
+//   (flags parsed with CLI11; --help lists them)
 //
 // Creates the mission of the scenario (uploading its chart first when it has
 // one) or attaches to an existing one, watches it, executes its tasks on the
 // simulated ship, posts feedback, follows replans and writes the mission
-// report (report.json, trajectory.svg, gantt.svg).
+// report (report.json, trajectory.svg, gantt.svg). At the end it prints the
+// navigation log (mission time, source, message per line) and the report's path.
 //
 // Exit codes: 0 mission completed; 1 error (bad flags, scenario, I/O, RPC);
 // 2 mission failed or cancelled; 3 timed out waiting for the server;
 // 4 the server does not plan missions (CreateMission UNIMPLEMENTED).
+#include <CLI/CLI.hpp>
+
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -22,7 +28,6 @@
 #include <string>
 #include <thread>
 
-#include "absl/strings/numbers.h"
 #include "absl/strings/str_cat.h"
 #include "executor.h"
 #include "report.h"
@@ -47,15 +52,6 @@ struct Flags {
   double max_mission_time_s = 20000;
   std::string log_level = "warn";
 };
-
-int Usage(const char* msg) {
-  std::fprintf(stderr,
-               "%s\nusage: seaplan-sim --scenario FILE [--server HOST:PORT] [--mission-id ID]\n"
-               "       [--time-factor N] [--report-dir DIR] [--replan-timeout-s S]\n"
-               "       [--max-mission-time-s S] [--log-level LEVEL]\n",
-               msg);
-  return 1;
-}
 
 std::string ReadAll(const std::string& path, bool* ok) {
   std::ifstream in(path, std::ios::binary);
@@ -208,36 +204,37 @@ std::string ShipLocation(const std::string& problem, const std::string& ship) {
 
 int main(int argc, char** argv) {
   Flags f;
-  for (int i = 1; i < argc; ++i) {
-    std::string a = argv[i];
-    auto next = [&]() -> const char* { return i + 1 < argc ? argv[++i] : nullptr; };
-    const char* v = nullptr;
-    if (a == "--help" || a == "-h") return Usage("seaplan-sim: simulate a mission against a seaplan server"), 0;
-    if (a == "--server" && (v = next())) {
-      f.server = v;
-    } else if (a == "--scenario" && (v = next())) {
-      f.scenario = v;
-    } else if (a == "--mission-id" && (v = next())) {
-      f.mission_id = v;
-    } else if (a == "--report-dir" && (v = next())) {
-      f.report_dir = v;
-    } else if (a == "--time-factor" && (v = next())) {
-      if (!absl::SimpleAtod(v, &f.time_factor) || f.time_factor < 0) return Usage("bad --time-factor");
-    } else if (a == "--replan-timeout-s" && (v = next())) {
-      if (!absl::SimpleAtod(v, &f.replan_timeout_s) || f.replan_timeout_s <= 0) return Usage("bad --replan-timeout-s");
-    } else if (a == "--max-mission-time-s" && (v = next())) {
-      if (!absl::SimpleAtod(v, &f.max_mission_time_s) || f.max_mission_time_s <= 0) {
-        return Usage("bad --max-mission-time-s");
-      }
-    } else if (a == "--log-level" && (v = next())) {
-      f.log_level = v;
-    } else {
-      return Usage(absl::StrCat("unknown or incomplete flag: ", a).c_str());
-    }
+  CLI::App app{"seaplan-sim: simulate the onboard side of a mission against a seaplan server (gRPC)"};
+  app.add_option("--server", f.server, "seaplan-server gRPC address HOST:PORT")->capture_default_str();
+  app.add_option("--scenario", f.scenario, "scenario file (examples/scenarios/*.scenario)")->required();
+  app.add_option("--mission-id", f.mission_id, "attach to this existing mission instead of creating one");
+  app.add_option("--report-dir", f.report_dir, "folder for report.json, trajectory.svg, gantt.svg")
+      ->capture_default_str();
+  app.add_option("--time-factor", f.time_factor,
+                 "run N times faster than real time (0 = as fast as possible; default: the scenario's)")
+      ->check(CLI::NonNegativeNumber);
+  app.add_option("--replan-timeout-s", f.replan_timeout_s, "wait this long for a (new) plan version")
+      ->check(CLI::PositiveNumber)->capture_default_str();
+  app.add_option("--max-mission-time-s", f.max_mission_time_s, "give up after this much mission time (exit 3)")
+      ->check(CLI::PositiveNumber)->capture_default_str();
+  app.add_option("--log-level", f.log_level, "debug, info, warn, error or off")->capture_default_str();
+  app.footer(
+      "Exit codes: 0 mission completed; 1 error (bad flags, scenario, I/O, RPC); 2 mission failed or\n"
+      "cancelled; 3 timed out waiting for the server; 4 the server does not plan missions.");
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);  // 0
+  } catch (const CLI::ParseError& e) {
+    app.exit(e);  // prints the error and the usage hint
+    return 1;     // bad flags: exit code 1, as documented
   }
-  if (f.scenario.empty()) return Usage("--scenario is required");
   log::Level level;
-  if (!log::ParseLevel(f.log_level, &level)) return Usage("bad --log-level");
+  if (!log::ParseLevel(f.log_level, &level)) {
+    std::fprintf(stderr, "seaplan-sim: --log-level: unknown level '%s' (debug, info, warn, error, off)\n",
+                 f.log_level.c_str());
+    return 1;
+  }
   log::SetLevel(level);
 
   auto scenario = sim::LoadScenario(f.scenario);
@@ -444,9 +441,20 @@ int main(int argc, char** argv) {
   }
   absl::Status written = sim::WriteReport(f.report_dir, report, rings, locations);
   if (!written.ok()) return fail(written);
-  std::printf("mission %s: %s, %zu plan versions, mission time %.1f s, report in %s\n", mission_id.c_str(),
-              v1::MissionState_Name(state).c_str(), report.versions.size(), executor->time_s(),
-              f.report_dir.c_str());
+  // The navigation log (time, source, message), then where the report is.
+  std::printf("navigation log (mission time s, source, message):\n");
+  std::vector<mission::LogEntry> entries = report.log.entries();
+  std::stable_sort(entries.begin(), entries.end(), [](const mission::LogEntry& a, const mission::LogEntry& b) {
+    return a.mission_time_s < b.mission_time_s;
+  });
+  for (const mission::LogEntry& e : entries) {
+    std::printf("%9.1f  %-12s  %s\n", e.mission_time_s, e.source.c_str(), e.message.c_str());
+  }
+  std::error_code ec;
+  const std::string report_path = std::filesystem::absolute(f.report_dir, ec).string();
+  std::printf("mission %s: %s, %zu plan versions, mission time %.1f s\n", mission_id.c_str(),
+              v1::MissionState_Name(state).c_str(), report.versions.size(), executor->time_s());
+  std::printf("report: %s/report.json (trajectory.svg, gantt.svg)\n", report_path.c_str());
   if (exit_code != 0) return exit_code;
   if (state != v1::MISSION_STATE_COMPLETED) return state == v1::MISSION_STATE_UNSPECIFIED ? 3 : 2;
   return 0;

@@ -35,6 +35,29 @@ bool Collides(Vec2 p_rel, Vec2 v_rel, double r, double horizon) {
   return closest.Dot(closest) < r * r;
 }
 
+// Time before `v` is actually sailed when the ship now has `current`.
+double ManoeuvreDelay(Vec2 current, Vec2 v, const AvoidanceOptions& o) {
+  if (o.turn_rate_rad_s <= 0) return 0.0;
+  double cs = current.Norm(), vs = v.Norm();
+  double turn = (cs > 0.3 && vs > 1e-6) ? std::abs(Wrap(CourseOf(v) - CourseOf(current))) : 0.0;
+  double delay = turn / o.turn_rate_rad_s + (o.acceleration_mps2 > 0 ? std::abs(vs - cs) / o.acceleration_mps2 : 0.0);
+  return delay > 1e-3 ? delay + o.manoeuvre_lag_s : 0.0;
+}
+
+// Does taking velocity `v` (after the manoeuvre delay at the present
+// velocity) bring the own ship within `r` of `other` within the horizon?
+bool CollidesDelayed(const Kinematics& own, Vec2 v, const Kinematics& other, double r, double horizon,
+                     const AvoidanceOptions& o) {
+  Vec2 p_rel = other.position - own.position;
+  double delay = std::min(ManoeuvreDelay(own.velocity, v, o), horizon);
+  if (delay > 0) {
+    Vec2 v_now = own.velocity - other.velocity;
+    if (Collides(p_rel, v_now, r, delay)) return true;
+    p_rel = p_rel - v_now * delay;
+  }
+  return Collides(p_rel, v - other.velocity, r, horizon - delay);
+}
+
 }  // namespace
 
 double Vec2::Norm() const { return std::hypot(x, y); }
@@ -114,7 +137,9 @@ AvoidanceDecision ChooseVelocity(const Kinematics& own, Vec2 desired,
     Cpa cpa = ComputeCpa(own_desired, o.kinematics);
     Cpa now = ComputeCpa(own, o.kinematics);
     bool dangerous = (cpa.dcpa_m < r && cpa.tcpa_s < options.horizon_s) ||
-                     (now.dcpa_m < r && now.tcpa_s < options.horizon_s);
+                     (now.dcpa_m < r && now.tcpa_s < options.horizon_s) ||
+                     (options.turn_rate_rad_s > 0 &&
+                      CollidesDelayed(own, desired, o.kinematics, r, options.horizon_s, options));
     if (!dangerous) continue;
     Role role = ClassifyEncounter(own, o.kinematics, options.colreg);
     bool must_act = IsGiveWay(role) || std::min(cpa.tcpa_s, now.tcpa_s) < options.stand_on_action_tcpa_s;
@@ -146,7 +171,7 @@ AvoidanceDecision ChooseVelocity(const Kinematics& own, Vec2 desired,
       for (const Active& a : active) {
         Vec2 p_rel = a.o->kinematics.position - own.position;
         Vec2 v_rel = v - a.o->kinematics.velocity;
-        if (Collides(p_rel, v_rel, r, options.horizon_s)) {
+        if (CollidesDelayed(own, v, a.o->kinematics, r, options.horizon_s, options)) {
           ok = false;
           Cpa c = ComputeCpa({own.position, v}, a.o->kinematics);
           violation += r - c.dcpa_m;

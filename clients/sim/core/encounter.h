@@ -78,6 +78,16 @@ struct AvoidanceOptions {
   double course_step_rad = 0.0436;        // 2.5 deg
   std::vector<double> speed_factors = {1.0, 0.8, 0.6, 0.4, 0.2};
   ColregOptions colreg;
+  // The own ship's manoeuvrability. A velocity obstacle assumes a new
+  // velocity is taken at once; a slow-turning hull keeps its present
+  // velocity for lag + |course change| / turn_rate (+ |speed change| /
+  // acceleration) first, which is what let a CPA fall below the safety
+  // distance. Candidates (and the desired velocity) are checked with that
+  // delay: the ship goes on at its present velocity, then at the candidate.
+  // turn_rate_rad_s <= 0: velocities change at once (the plain VO).
+  double turn_rate_rad_s = 0.0;
+  double manoeuvre_lag_s = 0.0;
+  double acceleration_mps2 = 0.05;
 };
 
 struct Obstacle {

@@ -92,3 +92,46 @@ TEST(AvoidanceTest, HeadOnBothStarboardAndStandOnKeepsCourse) {
 
 }  // namespace
 }  // namespace seaplan::sim
+
+namespace seaplan::sim {
+namespace {
+
+// A slow-turning ship: the course follows the commanded one at most
+// `turn_rate` rad/s, after a lag; speed changes at `accel`.
+double RunSlowTurningEncounter(Kinematics own, Vec2 desired, Kinematics other, const AvoidanceOptions& o,
+                               double turn_rate, int lag_steps, Role* role) {
+  double min_d = 1e9;
+  std::vector<Vec2> commands;
+  double course = CourseOf(own.velocity), speed = own.velocity.Norm();
+  for (int t = 0; t < 900; ++t) {
+    AvoidanceDecision d = ChooseVelocity(own, desired, {{other, 7}}, o);
+    if (d.manoeuvring && *role == Role::kNone) *role = d.role;
+    commands.push_back(d.velocity);
+    Vec2 cmd = commands[std::max(0, static_cast<int>(commands.size()) - 1 - lag_steps)];
+    double dc = std::remainder(CourseOf(cmd) - course, 2 * M_PI);
+    course += std::clamp(dc, -turn_rate, turn_rate);
+    speed += std::clamp(cmd.Norm() - speed, -0.05, 0.05);
+    own.velocity = VelocityOf(course, speed);
+    own.position = own.position + own.velocity;
+    other.position = other.position + other.velocity;
+    min_d = std::min(min_d, (own.position - other.position).Norm());
+  }
+  return min_d;
+}
+
+TEST(AvoidanceTest, SlowTurningHullKeepsTheSafetyDistanceWhenTheDelayIsModelled) {
+  AvoidanceOptions o;
+  o.safety_distance_m = 120;
+  o.turn_rate_rad_s = 0.0175;
+  o.manoeuvre_lag_s = 20;
+  const double kNorthC = 0.0;
+  // The other crosses from starboard (we give way) at a late-ish detection.
+  Role role = Role::kNone;
+  double min_d = RunSlowTurningEncounter({{0, 0}, VelocityOf(kEast, 3.6)}, VelocityOf(kEast, 3.6),
+                                         {{1300, -500}, VelocityOf(kNorthC, 1.6)}, o, 0.0175, 10, &role);
+  EXPECT_EQ(role, Role::kCrossingGiveWay);
+  EXPECT_GE(min_d, o.safety_distance_m) << "CPA with the turning delay modelled";
+}
+
+}  // namespace
+}  // namespace seaplan::sim

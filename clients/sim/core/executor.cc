@@ -120,7 +120,6 @@ void Executor::StartTasks(std::vector<FeedbackOut>* out) {
 void Executor::StartMove(const mission::Task& task) {
   route_.clear();
   if (task.route) route_ = task.route->waypoints;
-  std::vector<Eigen::Vector2d> ne;
   Vec2 here = position();
   // Unberthing is not modelled: a ship at rest leaves its berth heading
   // along the first leg (tugs / thrusters), as the paper's simulation does.
@@ -135,16 +134,30 @@ void Executor::StartMove(const mission::Task& task) {
       }
     }
   }
-  ne.emplace_back(here.y, here.x);
+  std::vector<Vec2> path{here};
+  path_modes_.clear();
   for (size_t i = 0; i < route_.size(); ++i) {
     const auto& p = route_[i].position;
     // Skip waypoints we are already at (the route's start is usually here).
-    if (std::hypot(p.x_m - here.x, p.y_m - here.y) < config_.arrival_radius_m && i + 1 < route_.size()) continue;
-    ne.emplace_back(p.y_m, p.x_m);
+    if (std::hypot(p.x_m - path.back().x, p.y_m - path.back().y) < 1.0) continue;
+    if (path.size() == 1 && std::hypot(p.x_m - here.x, p.y_m - here.y) < config_.arrival_radius_m &&
+        i + 1 < route_.size()) {
+      continue;
+    }
+    // The leg ending here is sailed in the mode of the waypoint it starts from.
+    path_modes_.push_back(route_[i > 0 ? i - 1 : 0].mode);
+    path.push_back({p.x_m, p.y_m});
   }
-  if (ne.size() < 2) ne.emplace_back(here.y + 1.0, here.x);
-  auto los = ship::LosGuidance::Create(ne, config_.los);
-  if (los.ok()) los_.emplace(std::move(*los));
+  if (path.size() < 2) {
+    path.push_back({here.x, here.y + 1.0});
+    path_modes_.push_back(mission::MsoMode::kPto);
+  }
+  auto los = PathFollower::Create(std::move(path), config_.path);
+  if (los.ok()) {
+    los_.emplace(std::move(*los));
+  } else {
+    Log(absl::StrFormat("cannot follow the route: %s", los.status().ToString()));
+  }
   double length = task.route ? task.route->length_m : 0.0;
   double time = task.route ? task.route->sailing_time_s : 0.0;
   move_speed_mps_ = (length > 0 && time > 0) ? length / time : config_.service_speed_mps;
@@ -156,9 +169,15 @@ void Executor::StepMove(std::vector<FeedbackOut>* out) {
   if (it == running_.end() || !los_) return;
   const ship::ShipState& s = model_.state();
   Vec2 here = position();
-  const auto& goal_ne = los_->waypoints().back();
-  double to_goal = std::hypot(goal_ne[0] - here.y, goal_ne[1] - here.x);
-  if (to_goal < config_.arrival_radius_m) {
+  const Vec2 goal = los_->path().back();
+  double to_goal = (goal - here).Norm();
+  // Arrived: inside the arrival circle, or abeam of / past the end of the
+  // route close to its line (a slow-turning hull that misses the circle
+  // must not orbit the berth).
+  los_->Update(here);
+  const bool passed_end = los_->on_last_leg() && los_->leg_remaining_m() <= 0 &&
+                          std::abs(los_->cross_track_m()) < 3 * config_.arrival_radius_m;
+  if (to_goal < config_.arrival_radius_m || passed_end) {
     // Berthing is not modelled: the ship stops at the berth.
     ship::ShipState moored = s;
     moored.nu.setZero();
@@ -188,14 +207,15 @@ void Executor::StepMove(std::vector<FeedbackOut>* out) {
       return;
     }
   }
-  double psi_d = los_->Update(s.north_m(), s.east_m());
+  double psi_d = los_->Update(here);
   double speed = move_speed_mps_;
   if (to_goal < config_.slow_down_distance_m) {
     speed = std::max(config_.min_approach_speed_mps, speed * to_goal / config_.slow_down_distance_m);
   }
   // MSO mode of the segment steered along.
-  int seg = std::clamp(los_->target_index() - 1, 0, static_cast<int>(route_.size()) - 1);
-  if (!route_.empty()) model_.set_mode(ToShipMode(route_[seg].mode));
+  if (!path_modes_.empty()) {
+    model_.set_mode(ToShipMode(path_modes_[std::min<size_t>(los_->leg(), path_modes_.size() - 1)]));
+  }
 
   // Collision avoidance.
   Vec2 vel = VelocityOf(s.heading_rad(), s.surge_mps());
@@ -206,6 +226,10 @@ void Executor::StepMove(std::vector<FeedbackOut>* out) {
   // turn, so the manoeuvre is planned with a margin on the safety distance.
   AvoidanceOptions planning = config_.avoidance;
   planning.safety_distance_m *= config_.avoidance_margin_factor;
+  if (planning.turn_rate_rad_s <= 0) {
+    planning.turn_rate_rad_s = config_.turn_rate_rad_s;
+    planning.manoeuvre_lag_s = config_.manoeuvre_lag_s;
+  }
   AvoidanceDecision d = ChooseVelocity(own, VelocityOf(psi_d, speed), others, planning);
   std::set<int> dangerous_now;
   for (const Obstacle& o : others) {

@@ -25,6 +25,7 @@
 
 #include "encounter.h"
 #include "fuel.h"
+#include "guidance.h"
 #include "report.h"
 #include "seaplan/common/status.h"
 #include "seaplan/mission/navigation_log.h"
@@ -67,7 +68,10 @@ struct ExecutorConfig {
   double min_approach_speed_mps = 1.0;
   double position_report_interval_s = 30.0;
   double deviation_limit_m = 200.0;  // a move fails when the ship is further off its route
-  ship::LosOptions los{150.0, 400.0, 0.0, 0.5};
+  ship::LosOptions los{150.0, 400.0, 0.0, 0.5};  // validated; path following uses `path` below
+  // LOS path following (leg by along-track progress, no integral term);
+  // after an avoidance manoeuvre the ship rejoins the leg it has reached.
+  PathFollowerOptions path{400.0, 60.0, 1500.0};
   // SITS gains (kp 4, kd 90, ki 0.01) make this hull circle under LOS when
   // a leg starts far off its heading (the integral winds up while the rudder
   // has no authority at low speed); these settle within ~100 m of the path.
@@ -80,6 +84,11 @@ struct ExecutorConfig {
   ship::Environment environment;
   AvoidanceOptions avoidance;
   double avoidance_margin_factor = 1.5;  // safety distance x this when choosing velocities
+  // This hull's manoeuvrability for the avoidance (AvoidanceOptions):
+  // about 1 deg/s at 30 deg rudder at service speed, ~20 s before the turn
+  // develops. Used when the scenario leaves avoidance.turn_rate_rad_s at 0.
+  double turn_rate_rad_s = 0.0175;
+  double manoeuvre_lag_s = 20.0;
   FuelOptions fuel;
   double initial_fuel_fraction = 1.0;
   double fuel_threshold_fraction = 0.3;  // logged when crossed (the server decides replans)
@@ -144,8 +153,9 @@ class Executor {
   ship::ShipModel model_;
   ship::HeadingController heading_;
   ship::SpeedController speed_;
-  std::optional<ship::LosGuidance> los_;
+  std::optional<PathFollower> los_;
   std::vector<mission::RouteWaypoint> route_;  // of the move under way
+  std::vector<mission::MsoMode> path_modes_;   // MSO mode of each leg of los_'s path
   double move_speed_mps_ = 0.0;
   FuelTank tank_;
   mission::PlanVersion version_;

@@ -1,0 +1,89 @@
+#include "guidance.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "absl/strings/str_format.h"
+
+namespace seaplan::sim {
+
+Status PathFollowerOptions::Validate() const {
+  if (!(lookahead_m > 0) || !(switch_distance_m >= 0) || !(search_distance_m >= 0)) {
+    return absl::InvalidArgumentError(
+        absl::StrFormat("path follower: lookahead_m (%g) must be > 0, switch_distance_m (%g) and "
+                        "search_distance_m (%g) >= 0",
+                        lookahead_m, switch_distance_m, search_distance_m));
+  }
+  return absl::OkStatus();
+}
+
+StatusOr<PathFollower> PathFollower::Create(std::vector<Vec2> path, const PathFollowerOptions& options) {
+  SEAPLAN_RETURN_IF_ERROR(options.Validate());
+  if (path.size() < 2) {
+    return absl::InvalidArgumentError(absl::StrFormat("path follower: %d points, need >= 2",
+                                                      static_cast<int>(path.size())));
+  }
+  for (size_t i = 0; i < path.size(); ++i) {
+    if (!std::isfinite(path[i].x) || !std::isfinite(path[i].y)) {
+      return absl::InvalidArgumentError(absl::StrFormat("path follower: point %d is not finite", static_cast<int>(i)));
+    }
+    if (i > 0 && (path[i] - path[i - 1]).Norm() < 1e-6) {
+      return absl::InvalidArgumentError(
+          absl::StrFormat("path follower: points %d and %d coincide", static_cast<int>(i - 1), static_cast<int>(i)));
+    }
+  }
+  return PathFollower(std::move(path), options);
+}
+
+PathFollower::PathFollower(std::vector<Vec2> path, const PathFollowerOptions& o)
+    : path_(std::move(path)), options_(o) {
+  start_distance_.resize(path_.size(), 0.0);
+  for (size_t i = 1; i < path_.size(); ++i) {
+    start_distance_[i] = start_distance_[i - 1] + (path_[i] - path_[i - 1]).Norm();
+  }
+}
+
+double PathFollower::Along(int leg, Vec2 p) const {
+  Vec2 d = path_[leg + 1] - path_[leg];
+  return (p - path_[leg]).Dot(d) / d.Norm();
+}
+
+double PathFollower::DistanceTo(int leg, Vec2 p) const {
+  Vec2 d = path_[leg + 1] - path_[leg];
+  double len = d.Norm();
+  double s = std::clamp(Along(leg, p), 0.0, len);
+  return (p - (path_[leg] + d * (s / len))).Norm();
+}
+
+double PathFollower::Update(Vec2 here) {
+  const int last = static_cast<int>(path_.size()) - 2;
+  // Re-choose the leg: the nearest of the legs ahead within the search
+  // distance (ties go to the later leg: it is further along).
+  const double limit = start_distance_[leg_ + 1] + options_.search_distance_m;
+  int best = leg_;
+  double best_d = DistanceTo(leg_, here);
+  for (int j = leg_ + 1; j <= last && start_distance_[j] <= limit; ++j) {
+    double d = DistanceTo(j, here);
+    if (d <= best_d) {
+      best = j;
+      best_d = d;
+    }
+  }
+  leg_ = best;
+  // Past (or nearly past) the leg's end along track: the next leg.
+  while (leg_ < last && Along(leg_, here) > start_distance_[leg_ + 1] - start_distance_[leg_] - options_.switch_distance_m) {
+    ++leg_;
+  }
+  const Vec2 a = path_[leg_], b = path_[leg_ + 1];
+  const Vec2 d = b - a;
+  const double len = d.Norm();
+  const double alpha = CourseOf(d);
+  // Starboard normal of the leg direction (x east, y north): (dy, -dx).
+  cross_track_m_ = (here - a).Dot({d.y / len, -d.x / len});
+  leg_remaining_m_ = len - Along(leg_, here);
+  double c = alpha - std::atan(cross_track_m_ / options_.lookahead_m);
+  c = std::fmod(c, 2.0 * M_PI);
+  return c < 0 ? c + 2.0 * M_PI : c;
+}
+
+}  // namespace seaplan::sim

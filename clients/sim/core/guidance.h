@@ -1,0 +1,68 @@
+// Line-of-sight path following over a route polyline that survives leaving
+// the path (collision avoidance manoeuvres, drift, a slow-turning hull
+// overshooting a corner).
+//
+// Why not seaplan::ship::LosGuidance alone: it switches legs only when the
+// ship enters a waypoint's acceptance circle. After an avoidance manoeuvre
+// the ship is often past a waypoint it never came near, so it keeps steering
+// for the old leg (or circles trying to reach the waypoint) and drifts
+// hundreds of metres off the route. Here the leg is chosen by along-track
+// progress: the nearest of the next legs (never going back), advancing once
+// the projection passes a leg's end, and the cross-track error is always
+// measured to that leg. There is no integral term (nothing to wind up while
+// the ship is away from the path) and the look-ahead is fixed, so the
+// approach angle back to the path is bounded (atan(e / lookahead)). Past
+// the end of the last leg the line is followed on (the caller decides
+// arrival with on_last_leg() / leg_remaining_m(): steering for the end
+// point itself makes a hull with a large turning circle orbit it).
+//
+// Frame: local metric, x east, y north; courses clockwise from north.
+#pragma once
+
+#include <vector>
+
+#include "encounter.h"
+#include "seaplan/common/status.h"
+
+namespace seaplan::sim {
+
+struct PathFollowerOptions {
+  double lookahead_m = 400.0;       // Delta: psi_d = alpha - atan(e / Delta)
+  double switch_distance_m = 60.0;  // advance to the next leg this far before a leg's end
+  // Legs starting within this path distance past the current leg's end are
+  // candidates when re-choosing the leg (bounds the search on long routes
+  // and keeps a route that doubles back from being short-cut).
+  double search_distance_m = 1500.0;
+  Status Validate() const;
+};
+
+class PathFollower {
+ public:
+  // `path` has >= 2 points, consecutive points distinct.
+  static StatusOr<PathFollower> Create(std::vector<Vec2> path, const PathFollowerOptions& options = {});
+
+  // Chooses the leg for `here` (forward only) and returns the desired
+  // course [rad, clockwise from north].
+  double Update(Vec2 here);
+
+  int leg() const { return leg_; }  // index of the leg's first point
+  bool on_last_leg() const { return leg_ + 2 == static_cast<int>(path_.size()); }
+  // Along-track distance still to go to the current leg's end (< 0: past it).
+  double leg_remaining_m() const { return leg_remaining_m_; }
+  double cross_track_m() const { return cross_track_m_; }  // > 0: ship to starboard of the leg
+  const std::vector<Vec2>& path() const { return path_; }
+
+ private:
+  PathFollower(std::vector<Vec2> path, const PathFollowerOptions& o);
+  double Along(int leg, Vec2 p) const;       // projection on the leg's line, from its start
+  double DistanceTo(int leg, Vec2 p) const;  // to the segment
+
+  std::vector<Vec2> path_;
+  std::vector<double> start_distance_;  // path distance at each point
+  PathFollowerOptions options_;
+  int leg_ = 0;
+  double cross_track_m_ = 0.0;
+  double leg_remaining_m_ = 0.0;
+};
+
+}  // namespace seaplan::sim

@@ -1,0 +1,67 @@
+#include "guidance.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+namespace seaplan::sim {
+namespace {
+
+TEST(PathFollowerTest, RejectsBadPaths) {
+  EXPECT_FALSE(PathFollower::Create({{0, 0}}).ok());
+  EXPECT_FALSE(PathFollower::Create({{0, 0}, {0, 0}}).ok());
+  EXPECT_FALSE(PathFollower::Create({{0, 0}, {NAN, 1}}).ok());
+  PathFollowerOptions bad;
+  bad.lookahead_m = 0;
+  EXPECT_FALSE(PathFollower::Create({{0, 0}, {1, 0}}, bad).ok());
+}
+
+TEST(PathFollowerTest, SteersBackTowardsTheLegWithBoundedApproach) {
+  auto f = PathFollower::Create({{0, 0}, {2000, 0}, {2000, 2000}});
+  ASSERT_TRUE(f.ok());
+  // 500 m north (port side) of the eastbound first leg: head south-east, not further away.
+  double c = f->Update({800, 500});
+  EXPECT_EQ(f->leg(), 0);
+  EXPECT_NEAR(f->cross_track_m(), -500, 1e-9);
+  EXPECT_GT(c, M_PI / 2);
+  EXPECT_LT(c, M_PI);  // never beyond perpendicular to the leg
+}
+
+TEST(PathFollowerTest, ChoosesTheLegByProgressAfterLeavingThePath) {
+  // The ship was pushed well clear of the corner at (2000, 0) (it never came
+  // near that waypoint) and is now beside the second leg: it follows the
+  // second leg, it does not go back to the corner.
+  auto f = PathFollower::Create({{0, 0}, {2000, 0}, {2000, 2000}, {4000, 2000}});
+  ASSERT_TRUE(f.ok());
+  f->Update({100, 0});
+  EXPECT_EQ(f->leg(), 0);
+  double c = f->Update({2400, 900});
+  EXPECT_EQ(f->leg(), 1);
+  EXPECT_NEAR(f->cross_track_m(), 400, 1e-9);  // east of a northbound leg = starboard
+  EXPECT_LT(c, 0.01 + 2 * M_PI);
+  EXPECT_GT(c, 1.5 * M_PI);  // north-west: back to the leg while progressing
+  // Never back to an earlier leg.
+  f->Update({1000, 10});
+  EXPECT_EQ(f->leg(), 1);
+}
+
+TEST(PathFollowerTest, KinematicShipConvergesAndReachesTheEnd) {
+  auto f = PathFollower::Create({{0, 0}, {1500, 0}, {1500, 1500}, {3000, 1500}});
+  ASSERT_TRUE(f.ok());
+  Vec2 p{600, -700};  // far off, as after a long avoidance manoeuvre
+  double course = 0;
+  const double max_turn = 0.02;  // rad per 1 s step: a slow-turning hull
+  double worst_late = 0;
+  for (int t = 0; t < 3000 && (p - Vec2{3000, 1500}).Norm() > 60; ++t) {
+    double want = f->Update(p);
+    double dc = std::remainder(want - course, 2 * M_PI);
+    course += std::clamp(dc, -max_turn, max_turn);
+    p = p + VelocityOf(course, 4.0);
+    if (t > 600) worst_late = std::max(worst_late, std::abs(f->cross_track_m()));
+  }
+  EXPECT_LT((p - Vec2{3000, 1500}).Norm(), 60);
+  EXPECT_LT(worst_late, 150);
+}
+
+}  // namespace
+}  // namespace seaplan::sim
