@@ -71,7 +71,9 @@ struct ExecutorConfig {
   ship::LosOptions los{150.0, 400.0, 0.0, 0.5};  // validated; path following uses `path` below
   // LOS path following (leg by along-track progress, no integral term);
   // after an avoidance manoeuvre the ship rejoins the leg it has reached.
-  PathFollowerOptions path{400.0, 60.0, 1500.0};
+  // search 0: legs advance by along-track progress only (a nearer later leg
+  // may lie across a headland: jumping to it cut corners over land).
+  PathFollowerOptions path{400.0, 60.0, 0.0};
   // SITS gains (kp 4, kd 90, ki 0.01) make this hull circle under LOS when
   // a leg starts far off its heading (the integral winds up while the rudder
   // has no authority at low speed); these settle within ~100 m of the path.

@@ -62,7 +62,7 @@ double PathFollower::Update(Vec2 here) {
   const double limit = start_distance_[leg_ + 1] + options_.search_distance_m;
   int best = leg_;
   double best_d = DistanceTo(leg_, here);
-  for (int j = leg_ + 1; j <= last && start_distance_[j] <= limit; ++j) {
+  for (int j = leg_ + 1; j <= last && start_distance_[j] < limit; ++j) {
     double d = DistanceTo(j, here);
     if (d <= best_d) {
       best = j;
