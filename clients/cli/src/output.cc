@@ -5,6 +5,7 @@
 
 #include "google/protobuf/util/json_util.h"
 #include "seaplan/v1/common.pb.h"
+#include "seaplan/validate/plan.h"
 
 namespace seaplan::cli {
 namespace v1 = ::seaplan::v1;
@@ -14,22 +15,6 @@ std::string Seconds(double value) {
   char buffer[64];
   std::snprintf(buffer, sizeof buffer, "%.3f", value);
   return buffer;
-}
-
-// Shortest text that reads back as the same double: plan times must survive
-// printing (a rounded duration can break epsilon separations).
-std::string ExactNumber(double value) {
-  char buffer[64];
-  for (int precision = 3; precision <= 17; ++precision) {
-    std::snprintf(buffer, sizeof buffer, "%.*f", precision, value);
-    if (std::strtod(buffer, nullptr) == value) break;
-  }
-  std::string text = buffer;
-  if (text.find('.') != std::string::npos) {
-    while (text.back() == '0') text.pop_back();
-    if (text.back() == '.') text += '0';
-  }
-  return text;
 }
 
 }  // namespace
@@ -55,9 +40,9 @@ std::string FormatPlanText(const v1::PlanResponse& response) {
   if (!response.plan_text().empty()) return response.plan_text();
   std::string text;
   for (const auto& action : response.plan()) {
-    text += ExactNumber(action.start_s()) + ": (" + action.name();
+    text += validate::FormatTime(action.start_s()) + ": (" + action.name();
     for (const auto& arg : action.arguments()) text += " " + arg;
-    text += ") [" + ExactNumber(action.duration_s()) + "]\n";
+    text += ") [" + validate::FormatTime(action.duration_s()) + "]\n";
   }
   return text;
 }
@@ -66,9 +51,9 @@ void PrintPlanResponse(std::ostream& out, const v1::PlanResponse& response) {
   out << "; status: " << v1::PlanStatus_Name(response.status()) << "\n";
   if (!response.message().empty()) out << "; " << response.message() << "\n";
   if (response.plan_size() > 0) {
-    out << "; makespan: " << ExactNumber(response.makespan_s()) << " s, actions: "
+    out << "; makespan: " << validate::FormatTime(response.makespan_s()) << " s, actions: "
         << response.plan_size();
-    if (response.has_metric_value()) out << ", metric: " << ExactNumber(response.metric_value());
+    if (response.has_metric_value()) out << ", metric: " << validate::FormatTime(response.metric_value());
     out << "\n";
   }
   const auto& stats = response.statistics();
@@ -89,16 +74,16 @@ void PrintValidateResponse(std::ostream& out, const v1::ValidateResponse& respon
   } else {
     const auto& f = response.first_failure();
     out << "Plan invalid\n";
-    out << "  first failure at t=" << ExactNumber(f.time_s());
+    out << "  first failure at t=" << validate::FormatTime(f.time_s());
     if (f.step_index() >= 0) out << ", step " << f.step_index() + 1;
     if (!f.action().empty()) out << " " << f.action();
     out << "\n";
     if (!f.condition().empty()) out << "  condition: " << f.condition() << "\n";
     if (!f.reason().empty()) out << "  reason: " << f.reason() << "\n";
   }
-  out << "  makespan: " << ExactNumber(response.makespan_s()) << " s, actions: "
+  out << "  makespan: " << validate::FormatTime(response.makespan_s()) << " s, actions: "
       << response.action_count();
-  if (response.has_metric_value()) out << ", metric: " << ExactNumber(response.metric_value());
+  if (response.has_metric_value()) out << ", metric: " << validate::FormatTime(response.metric_value());
   out << "\n";
 }
 
