@@ -7,7 +7,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -158,13 +160,6 @@ class MissionE2eTest : public ::testing::Test {
 };
 
 TEST_F(MissionE2eTest, CaseAOneVersionGoalsReachedNoGroundingSafeCpa) {
-  // TODO(#6): the executed track crosses land on the port-c -> port-d and
-  // port-d -> port-e legs (t = 860-1070 s, 1400-1570 s); not yet known whether
-  // the routed legs or the path follower cut the corner. Runs with
-  // SEAPLAN_RUN_KNOWN_FAILURES=1.
-  if (std::getenv("SEAPLAN_RUN_KNOWN_FAILURES") == nullptr) {
-    GTEST_SKIP() << "known failure (issue #6): simulated track touches land in case A";
-  }
   SimRun r = RunSim("case-a");
   ASSERT_EQ(r.exit_code, 0) << SimOutput("case-a");
   EXPECT_TRUE(Flag(r.report, "completed"));
@@ -188,6 +183,30 @@ TEST_F(MissionE2eTest, CaseAOneVersionGoalsReachedNoGroundingSafeCpa) {
     EXPECT_FALSE(q.Inside({std::stod((*it)[2]), std::stod((*it)[3])})) << "aground at t=" << (*it)[1];
   }
   EXPECT_GT(points, 10);
+  // The refined routes themselves never touch the land (they are planned
+  // against the buffered obstacles): every move's polyline, sampled every 5 m.
+  std::regex task_re("\"id\": \"([^\"]+)\"[^{}]*\"route\": \\[([^{}]*)\\]\\]");
+  std::regex wp("\\[(-?[0-9.]+), (-?[0-9.]+), \"[A-Z-]+\"\\]");
+  int routes = 0;
+  for (auto it = std::sregex_iterator(r.report.begin(), r.report.end(), task_re); it != std::sregex_iterator(); ++it) {
+    ++routes;
+    const std::string id = (*it)[1], pts = std::string((*it)[2]) + "]";
+    std::vector<chart::LocalPoint> line;
+    for (auto w = std::sregex_iterator(pts.begin(), pts.end(), wp); w != std::sregex_iterator(); ++w) {
+      line.push_back({std::stod((*w)[1]), std::stod((*w)[2])});
+    }
+    ASSERT_GE(line.size(), 2u) << id;
+    for (size_t i = 0; i + 1 < line.size(); ++i) {
+      const double len = std::hypot(line[i + 1].x_m - line[i].x_m, line[i + 1].y_m - line[i].y_m);
+      const int n = std::max(1, static_cast<int>(len / 5.0));
+      for (int k = 0; k <= n; ++k) {
+        const chart::LocalPoint on{line[i].x_m + (line[i + 1].x_m - line[i].x_m) * k / n,
+                                   line[i].y_m + (line[i + 1].y_m - line[i].y_m) * k / n};
+        EXPECT_FALSE(q.Inside(on)) << id << " crosses land at (" << on.x_m << ", " << on.y_m << ")";
+      }
+    }
+  }
+  EXPECT_EQ(routes, 4) << "case A has four moves";
 }
 
 TEST_F(MissionE2eTest, CaseBExactlyOneReplanFromTheGnssJump) {

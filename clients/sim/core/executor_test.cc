@@ -2,6 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "seaplan/mission/tasks.h"
+
 namespace seaplan::sim {
 namespace {
 
@@ -23,6 +29,62 @@ mission::Task MoveTask(const std::string& id, mission::Point from, mission::Poin
   t.duration_s = r.sailing_time_s;
   t.action.name = "move-ship";
   return t;
+}
+
+// A move along `points` (waypoints every ~100 m, as the route planner
+// returns them) sailed at `speed`.
+mission::Task RouteTask(const std::string& id, const std::vector<mission::Point>& corners, double speed) {
+  mission::Task t;
+  t.id = id;
+  t.kind = mission::TaskKind::kMove;
+  t.action.name = "move-ship";
+  mission::Route r;
+  for (size_t i = 0; i + 1 < corners.size(); ++i) {
+    const double len = mission::Distance(corners[i], corners[i + 1]);
+    const int n = std::max(1, static_cast<int>(std::round(len / 100.0)));
+    for (int k = 0; k < n; ++k) {
+      mission::RouteWaypoint w;
+      w.position = {corners[i].x_m + (corners[i + 1].x_m - corners[i].x_m) * k / n,
+                    corners[i].y_m + (corners[i + 1].y_m - corners[i].y_m) * k / n};
+      r.waypoints.push_back(w);
+    }
+    r.length_m += len;
+  }
+  mission::RouteWaypoint last;
+  last.position = corners.back();
+  r.waypoints.push_back(last);
+  r.sailing_time_s = r.length_m / speed;
+  t.route = r;
+  t.duration_s = r.sailing_time_s;
+  return t;
+}
+
+// Runs one move to completion; returns the largest distance from the route
+// polyline (every step) and where the ship ended.
+struct MoveRun {
+  double max_off_route_m = 0.0;
+  mission::Point end;
+  bool finished = false;
+};
+MoveRun RunMove(Vec2 start, double heading_rad, const mission::Task& move, ExecutorConfig c = {}) {
+  c.start = start;
+  c.start_heading_rad = heading_rad;
+  auto ex = Executor::Create(c);
+  EXPECT_TRUE(ex.ok()) << ex.status();
+  mission::PlanVersion v;
+  v.version = 1;
+  v.tasks.push_back(move);
+  ex->SetPlan(v);
+  std::vector<FeedbackOut> out;
+  MoveRun run;
+  for (int i = 0; i < 20000 && !ex->Finished(); ++i) {
+    ex->Step(&out);
+    const Vec2 p = ex->position();
+    run.max_off_route_m = std::max(run.max_off_route_m, mission::CrossTrackDistance(*move.route, {p.x, p.y}));
+  }
+  run.finished = ex->Finished();
+  run.end = {ex->position().x, ex->position().y};
+  return run;
 }
 
 TEST(FuelTankTest, PaperPercentages) {
@@ -85,6 +147,19 @@ TEST(ExecutorTest, RunsAMoveAndAPortOperation) {
   EXPECT_GE(ex->report().log.Find("load task started"), 0);
   // The move takes longer than planned (the ship accelerates from rest) but not absurdly.
   EXPECT_LT(ex->time_s(), v.tasks[1].end_s() + 400);
+}
+
+// Case A of issue #6: the ship stopped ~100 m abeam of the previous route's
+// end, the next route starts at the berth position behind it. Sailing to the
+// route's start first made the 9 m/s hull loop 400 m into the shore.
+TEST(ExecutorTest, JoinsARouteStartingBesideTheShipWithoutLooping) {
+  const mission::Task move = RouteTask("v1-t1", {{0, 0}, {2100, 450}}, 9.15);
+  // Berthed 97 m north-east of the route's start (like port-c in case A),
+  // heading east.
+  MoveRun run = RunMove({41, 88}, M_PI / 2, move);
+  ASSERT_TRUE(run.finished);
+  EXPECT_LT(run.max_off_route_m, 110);  // never further off than where it started
+  EXPECT_LT(mission::Distance(run.end, {2100, 450}), 60 * 3);
 }
 
 TEST(ExecutorTest, GnssJumpFailsTheMoveAtTheScriptedTime) {
