@@ -50,6 +50,16 @@ class RelaxedPlanHeuristic {
   };
   Interval EvalInterval(const task::NumericExpr& expr, const StateData& state, task::ActionId a);
   bool Satisfiable(const task::NumericCondition& c, const StateData& state, task::ActionId a);
+  // See pair_check_: true when the start `op` can achieve nothing new now.
+  bool PairRedundant(int op) const {
+    const PairCheck& c = pair_check_[static_cast<std::size_t>(op)];
+    if (c.begin < 0 || fact_layer_[num_facts_ + op / 2] >= 0) return false;
+    const std::int32_t* const layer = fact_layer_.data();
+    for (const std::int32_t* it = pair_facts_.data() + c.begin, *end = pair_facts_.data() + c.end; it != end; ++it) {
+      if (layer[*it] < 0) return false;
+    }
+    return true;
+  }
   void MarkOp(int op);
   void MarkFact(int fact);
   void MarkNumeric(const task::NumericCondition& c, int layer);
@@ -79,6 +89,21 @@ class RelaxedPlanHeuristic {
   std::vector<std::int32_t> op_missing_init_;
   std::vector<std::uint8_t> goal_fact_;
   int num_goal_facts_ = 0;
+  // Redundant start/end pairs (satellite's turn_to from every direction).
+  // For a durative start whose start and end have no numeric effect and
+  // whose end has no numeric condition, pair_facts_[begin, end) lists the
+  // real adds of both snaps and the end's conditions other than
+  // started(a); begin is -1 for every other operator. When started(a) is
+  // not reached yet and all of these are when the start becomes applicable
+  // (or is applied), the pair can achieve nothing: the end would only wait
+  // for started(a) and re-add reached facts. It is skipped (no started(a)
+  // fact, no end operator), which is exact: the layers, achievers,
+  // estimate and helpful events are the same as without it.
+  struct PairCheck {
+    std::int32_t begin = -1, end = -1;
+  };
+  std::vector<PairCheck> pair_check_;
+  std::vector<std::int32_t> pair_facts_;
 
   // Scratch per evaluation.
   std::vector<std::int32_t> fact_layer_, fact_achiever_;
