@@ -286,6 +286,7 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
   // operators and numeric changers), which set it: no reset needed.
   std::copy(op_missing_init_.begin(), op_missing_init_.end(), op_missing_.begin());
   int goals_left = num_goal_facts_;
+  skipped_pairs_ = 0;
   for (std::size_t v = 0; v < interval_.size(); ++v) {
     interval_[v] = {state.values[v], state.values[v]};
     var_changer_[v] = -1;
@@ -373,6 +374,7 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
             numeric_waiting_.push_back(op);
           } else if (PairRedundant(op)) {
             skipped_pair = true;
+            ++skipped_pairs_;
           } else {
             op_layer_[op] = layer;
             applicable_.push_back(op);
@@ -421,6 +423,7 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
       // the rest of the pair's adds.
       if (PairRedundant(op)) {
         skipped_pair = true;
+        ++skipped_pairs_;
         continue;
       }
       for (int i = add_begin_[op]; i < add_begin_[op + 1]; ++i) reach(add_[i], layer + 1, op);

@@ -43,6 +43,9 @@ class RelaxedPlanHeuristic {
   // After a kDeadEnd: true when the relaxation proves it (false when the
   // numeric fixpoint was cut off after too many widening layers).
   bool last_dead_end_proven() const { return dead_end_proven_; }
+  // Redundant start/end pairs the last evaluation skipped (see pair_check_;
+  // a diagnostic for tests and profiling).
+  int last_skipped_pairs() const { return skipped_pairs_; }
 
  private:
   struct Interval {
@@ -66,6 +69,7 @@ class RelaxedPlanHeuristic {
 
   const SnapTask& task_;
   bool dead_end_proven_ = true;
+  int skipped_pairs_ = 0;
   int num_facts_;    // real facts; started(a) is num_facts_ + a
   int num_ops_;      // 2 * actions
   // CSR tables.
