@@ -131,6 +131,7 @@ RelaxedPlanHeuristic::RelaxedPlanHeuristic(const SnapTask& task, double epsilon_
     }
     PairCheck& c = pair_check_[static_cast<std::size_t>(op)];
     c.begin = static_cast<std::int32_t>(pair_facts_.size());
+    c.started = num_facts_ + op / 2;
     for (int i = add_begin_[op]; i < add_begin_[op + 1]; ++i) {
       if (add_[i] < num_facts_) pair_facts_.push_back(add_[i]);
     }
@@ -355,6 +356,7 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
   // A skipped pair still counts as progress where it would have made some:
   // started(a) new in its layer, end(a) applicable in the next one.
   bool skipped_pair = false, skipped_before = false;
+  int skipped = 0;  // skipped_pairs_, kept in a register
   while (true) {
     skipped_before = skipped_pair;
     skipped_pair = false;
@@ -365,6 +367,9 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
       const std::int32_t* const fact_ops_begin = fact_ops_begin_.data();
       std::int32_t* const missing = op_missing_.data();
       const std::uint8_t* const has_num_pre = has_num_pre_.data();
+      const PairCheck* const pairs = pair_check_.data();
+      const std::int32_t* const pair_facts = pair_facts_.data();
+      const std::int32_t* const fact_layer = fact_layer_.data();
       for (auto f : new_facts_) {
         const std::int32_t* const end = fact_ops + fact_ops_begin[f + 1];
         for (const std::int32_t* it = fact_ops + fact_ops_begin[f]; it != end; ++it) {
@@ -372,9 +377,9 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
           if (--missing[op] != 0) continue;
           if (has_num_pre[op]) {
             numeric_waiting_.push_back(op);
-          } else if (PairRedundant(op)) {
+          } else if (PairRedundant(pairs[op], fact_layer, pair_facts)) {
             skipped_pair = true;
-            ++skipped_pairs_;
+            ++skipped;
           } else {
             op_layer_[op] = layer;
             applicable_.push_back(op);
@@ -421,9 +426,9 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
       const int op = applicable_[processed_applicable];
       // Checked again: operators earlier in this layer may have reached
       // the rest of the pair's adds.
-      if (PairRedundant(op)) {
+      if (PairRedundant(pair_check_[static_cast<std::size_t>(op)], fact_layer_.data(), pair_facts_.data())) {
         skipped_pair = true;
-        ++skipped_pairs_;
+        ++skipped;
         continue;
       }
       for (int i = add_begin_[op]; i < add_begin_[op + 1]; ++i) reach(add_[i], layer + 1, op);
@@ -493,10 +498,12 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
     if (new_facts_.empty() && !new_ops && !skipped_pair && !skipped_before) {
       if (!widened || (numeric_waiting_.empty() && goal.numeric.empty())) {
         dead_end_proven_ = true;
+        skipped_pairs_ = skipped;
         return kDeadEnd;
       }
       if (++stagnant > kMaxStagnantLayers) {
         dead_end_proven_ = false;
+        skipped_pairs_ = skipped;
         return kDeadEnd;
       }
     } else {
@@ -504,6 +511,7 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
     }
     ++layer;
   }
+  skipped_pairs_ = skipped;
 
   // Extract a relaxed plan backwards from the goal.
   for (auto op : marked_ops_) op_marked_[op] = 0;

@@ -54,12 +54,12 @@ class RelaxedPlanHeuristic {
   Interval EvalInterval(const task::NumericExpr& expr, const StateData& state, task::ActionId a);
   bool Satisfiable(const task::NumericCondition& c, const StateData& state, task::ActionId a);
   // See pair_check_: true when the start `op` can achieve nothing new now.
-  bool PairRedundant(int op) const {
-    const PairCheck& c = pair_check_[static_cast<std::size_t>(op)];
-    if (c.begin < 0 || fact_layer_[num_facts_ + op / 2] >= 0) return false;
-    const std::int32_t* const layer = fact_layer_.data();
-    for (const std::int32_t* it = pair_facts_.data() + c.begin, *end = pair_facts_.data() + c.end; it != end; ++it) {
-      if (layer[*it] < 0) return false;
+  // Takes the raw tables so that the hot loop keeps them in registers.
+  struct PairCheck;
+  static bool PairRedundant(const PairCheck& c, const std::int32_t* fact_layer, const std::int32_t* pair_facts) {
+    if (c.begin < 0 || fact_layer[c.started] >= 0) return false;
+    for (const std::int32_t *it = pair_facts + c.begin, *end = pair_facts + c.end; it != end; ++it) {
+      if (fact_layer[*it] < 0) return false;
     }
     return true;
   }
@@ -105,6 +105,7 @@ class RelaxedPlanHeuristic {
   // estimate and helpful events are the same as without it.
   struct PairCheck {
     std::int32_t begin = -1, end = -1;
+    std::int32_t started = 0;  // the fact started(a)
   };
   std::vector<PairCheck> pair_check_;
   std::vector<std::int32_t> pair_facts_;
