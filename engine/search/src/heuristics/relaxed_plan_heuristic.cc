@@ -424,13 +424,6 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
     const bool new_ops = processed_applicable < applicable_.size();
     for (; processed_applicable < applicable_.size(); ++processed_applicable) {
       const int op = applicable_[processed_applicable];
-      // Checked again: operators earlier in this layer may have reached
-      // the rest of the pair's adds.
-      if (PairRedundant(pair_check_[static_cast<std::size_t>(op)], fact_layer_.data(), pair_facts_.data())) {
-        skipped_pair = true;
-        ++skipped;
-        continue;
-      }
       for (int i = add_begin_[op]; i < add_begin_[op + 1]; ++i) reach(add_[i], layer + 1, op);
       if (has_num_eff_[op]) numeric_ops.push_back(op);
     }
