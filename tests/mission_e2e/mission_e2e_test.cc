@@ -221,12 +221,6 @@ TEST_F(MissionE2eTest, CaseBExactlyOneReplanFromTheGnssJump) {
 }
 
 TEST_F(MissionE2eTest, CaseCExecutorFuelReplansAndNumericFuelDoesBetter) {
-  // TODO(#6): the executor-fuel run ends with an empty tank (min fuel 0) and a
-  // replan from a position inside the buffered obstacles is refused. Runs with
-  // SEAPLAN_RUN_KNOWN_FAILURES=1.
-  if (std::getenv("SEAPLAN_RUN_KNOWN_FAILURES") == nullptr) {
-    GTEST_SKIP() << "known failure (issue #6): case C runs the tank dry";
-  }
   SimRun c = RunSim("case-c");
   ASSERT_EQ(c.exit_code, 0) << SimOutput("case-c");
   EXPECT_TRUE(Flag(c.report, "completed"));

@@ -107,7 +107,9 @@ void Executor::StartTasks(std::vector<FeedbackOut>* out) {
       continue;
     }
     Running r{t, version_.version, time_s_};
+    tank_.OnTaskStarted(t.kind);
     Log(mission::TaskStartedMessage(t.kind));
+    NoteFuel();
     out->push_back(MakeFeedback(FeedbackKind::kTaskStarted, t.id, version_.version, t.action.DisplayName()));
     if (t.kind == TaskKind::kMove) {
       StartMove(t);
@@ -306,13 +308,16 @@ void Executor::Complete(const Running& r, std::vector<FeedbackOut>* out) {
   completed_.insert(r.task.id);
   tank_.OnTaskCompleted(r.task.kind);
   Log(mission::TaskCompletedMessage(r.task.kind));
-  if (tank_.fraction() <= config_.fuel_threshold_fraction && !fuel_low_logged_) {
-    Log(absl::StrFormat("fuel %.0f%% <= %.0f%%", tank_.fraction() * 100,
-                        config_.fuel_threshold_fraction * 100));
-    fuel_low_logged_ = true;
-  }
-  if (tank_.fraction() > config_.fuel_threshold_fraction) fuel_low_logged_ = false;
+  NoteFuel();
   out->push_back(MakeFeedback(FeedbackKind::kTaskCompleted, r.task.id, r.version, r.task.action.DisplayName()));
+}
+
+void Executor::NoteFuel() {
+  const bool low = mission::FuelAtOrBelow(tank_.fraction(), config_.fuel_threshold_fraction);
+  if (low && !fuel_low_logged_) {
+    Log(absl::StrFormat("fuel %.0f%% <= %.0f%%", tank_.fraction() * 100, config_.fuel_threshold_fraction * 100));
+  }
+  fuel_low_logged_ = low;
 }
 
 void Executor::InjectEvents(std::vector<FeedbackOut>* out) {

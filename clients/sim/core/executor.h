@@ -148,6 +148,7 @@ class Executor {
   void StartMove(const mission::Task& task);
   void StepMove(std::vector<FeedbackOut>* out);
   void Complete(const Running& r, std::vector<FeedbackOut>* out);
+  void NoteFuel();  // logs crossing the fuel threshold (the server decides replans)
   void InjectEvents(std::vector<FeedbackOut>* out);
   void TrackTraffic();
 

@@ -91,25 +91,45 @@ TEST(FuelTankTest, PaperPercentages) {
   FuelTank tank(FuelOptions{}, 0.30);
   tank.OnTaskCompleted(mission::TaskKind::kMove);
   EXPECT_NEAR(tank.fraction(), 0.15, 1e-12);
-  tank.OnTaskCompleted(mission::TaskKind::kLoad);
+  tank.OnTaskStarted(mission::TaskKind::kMove);  // a move is charged when it completes
+  EXPECT_NEAR(tank.fraction(), 0.15, 1e-12);
+  tank.OnTaskStarted(mission::TaskKind::kLoad);
+  EXPECT_NEAR(tank.fraction(), 0.05, 1e-12);
+  tank.OnTaskCompleted(mission::TaskKind::kLoad);  // a port operation when it starts
   EXPECT_NEAR(tank.fraction(), 0.05, 1e-12);
   tank.OnTaskCompleted(mission::TaskKind::kRefuel);
   EXPECT_NEAR(tank.fraction(), 1.0, 1e-12);
-  tank.OnTaskCompleted(mission::TaskKind::kRepair);
+  tank.OnTaskStarted(mission::TaskKind::kRepair);
   EXPECT_NEAR(tank.fraction(), 0.90, 1e-12);
-  tank.OnTaskCompleted(mission::TaskKind::kUnload);
+  tank.OnTaskStarted(mission::TaskKind::kUnload);
   EXPECT_NEAR(tank.fraction(), 0.80, 1e-12);
+  tank.OnTaskStarted(mission::TaskKind::kOther);
   tank.OnTaskCompleted(mission::TaskKind::kOther);
   EXPECT_NEAR(tank.fraction(), 0.80, 1e-12);
   EXPECT_FALSE(tank.ran_dry());
   for (int i = 0; i < 6; ++i) tank.OnTaskCompleted(mission::TaskKind::kMove);
   EXPECT_TRUE(tank.ran_dry());
   EXPECT_EQ(tank.fraction(), 0.0);
+}
+
+// The numeric plan of case C unloads while refuelling: the unload's 10 % is
+// taken before the refill (as the planner counts it), not after.
+TEST(FuelTankTest, PortOperationOverlappingARefuelIsChargedBeforeTheRefill) {
+  FuelTank tank(FuelOptions{}, 0.60);
+  tank.OnTaskStarted(mission::TaskKind::kUnload);
+  tank.OnTaskStarted(mission::TaskKind::kRefuel);
+  tank.OnTaskCompleted(mission::TaskKind::kUnload);
+  tank.OnTaskCompleted(mission::TaskKind::kRefuel);
+  EXPECT_NEAR(tank.fraction(), 1.0, 1e-12);
+}
+
+TEST(FuelTankTest, MachineryModel) {
   FuelOptions machinery;
   machinery.kind = FuelModelKind::kMachinery;
   machinery.tank_capacity_kg = 100;
   FuelTank m(machinery, 1.0);
-  m.OnTaskCompleted(mission::TaskKind::kMove);  // no percentage charge
+  m.OnTaskStarted(mission::TaskKind::kLoad);      // no percentage charge
+  m.OnTaskCompleted(mission::TaskKind::kMove);
   m.Burn(25);
   EXPECT_NEAR(m.fraction(), 0.75, 1e-12);
 }
