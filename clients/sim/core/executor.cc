@@ -252,6 +252,7 @@ void Executor::StepMove(std::vector<FeedbackOut>* out) {
   // The VO assumes velocities change at once; this hull needs minutes to
   // turn, so the manoeuvre is planned with a margin on the safety distance.
   AvoidanceOptions planning = config_.avoidance;
+  if (!config_.land.empty()) planning.land = &config_.land;
   planning.safety_distance_m *= config_.avoidance_margin_factor;
   if (planning.turn_rate_rad_s <= 0) {
     planning.turn_rate_rad_s = config_.turn_rate_rad_s;
