@@ -93,11 +93,16 @@ TEST(TrondheimE2eTest, CaseAOnRealLandAreasOneVersionNoGroundingSafeCpa) {
   // either completed 690 m east of port-d (then unloads there) or failed
   // "752 m off the route" (a replan, a second plan version), depending on the
   // traffic; (2) in crossing encounters the closest approach falls under the
-  // 150 m safety distance (yacht 122-131 m; ferry 69 m as stand-on).
+  // 150 m safety distance (yacht 122-131 m; ferry 69 m as stand-on);
+  // (3) since 4730733 the sim's land check in ChooseVelocity
+  // (LandClearance, clients/sim/core/encounter.cc) scans every vertex of the
+  // land (55 374 here) per candidate velocity per step, so the run no longer
+  // ends within minutes and this test stops it at 180 s.
   // SEAPLAN_RUN_KNOWN_FAILURES=1 runs it.
   if (std::getenv("SEAPLAN_RUN_KNOWN_FAILURES") == nullptr) {
     GTEST_SKIP() << "known failure (issue #6): on the Trondheim chart the sim's path follower misses port-d after "
-                    "the Munkholmen detour, and crossing CPAs fall under the safety distance";
+                    "the Munkholmen detour, crossing CPAs fall under the safety distance, and its land check "
+                    "(LandClearance) scans all 55k land vertices per candidate velocity (run takes minutes)";
   }
   const fs::path scenario_path = SourceDir() / "examples/scenarios/trondheim.scenario";
   const std::string scenario = ReadFile(scenario_path);
