@@ -226,7 +226,13 @@ AvoidanceDecision ChooseVelocity(const Kinematics& own, Vec2 desired,
           violation += 1.0;
         }
       }
-      if (options.land != nullptr) {
+      // Prefer small deviations, starboard turns over port, course changes over speed loss.
+      double dev = v.x - desired.x, dev_y = v.y - desired.y;
+      double cost = dev * dev + dev_y * dev_y + (k < 0 ? 0.5 : 0.0) * desired_speed * desired_speed * 0.01 +
+                    (1.0 - f) * desired_speed * desired_speed * 0.5;
+      // Land, checked only for a candidate that could be chosen (the check
+      // is the costly part: every land edge against the track).
+      if (options.land != nullptr && (ok ? cost < best_cost : violation < least_violation)) {
         const double clear = LandClearance(*options.land, own.position, own.position + v * options.land_lookahead_s);
         if (clear < options.land_clearance_m) {
           ok = false;
@@ -235,10 +241,6 @@ AvoidanceDecision ChooseVelocity(const Kinematics& own, Vec2 desired,
           violation += 1e6 + 1e3 * (options.land_clearance_m - clear);
         }
       }
-      // Prefer small deviations, starboard turns over port, course changes over speed loss.
-      double dev = v.x - desired.x, dev_y = v.y - desired.y;
-      double cost = dev * dev + dev_y * dev_y + (k < 0 ? 0.5 : 0.0) * desired_speed * desired_speed * 0.01 +
-                    (1.0 - f) * desired_speed * desired_speed * 0.5;
       if (ok && cost < best_cost) {
         best_cost = cost;
         best = v;
