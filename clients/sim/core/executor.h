@@ -73,7 +73,9 @@ struct ExecutorConfig {
   // after an avoidance manoeuvre the ship rejoins the leg it has reached.
   // search 0: legs advance by along-track progress only (a nearer later leg
   // may lie across a headland: jumping to it cut corners over land).
-  PathFollowerOptions path{400.0, 60.0, 0.0};
+  // turn_radius 300 m: the wheel-over for this hull (about 300 m to turn
+  // at the routes' 9 m/s), see SharpCornerOvershootIsBoundedByTheWheelOver.
+  PathFollowerOptions path{400.0, 60.0, 0.0, 300.0};
   // SITS gains (kp 4, kd 90, ki 0.01) make this hull circle under LOS when
   // a leg starts far off its heading (the integral winds up while the rudder
   // has no authority at low speed); these settle within ~100 m of the path.

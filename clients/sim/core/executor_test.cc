@@ -182,6 +182,25 @@ TEST(ExecutorTest, JoinsARouteStartingBesideTheShipWithoutLooping) {
   EXPECT_LT(mission::Distance(run.end, {2100, 450}), 60 * 3);
 }
 
+// A route bending 60 degrees at one waypoint (waypoints every 100 m, as
+// the route planner returns them). This hull (SITS, ~80 s to turn 90 deg at
+// 9 m/s under full rudder) cannot turn inside ~300 m at the route planner's
+// PTO speed; the wheel-over (PathFollowerOptions::turn_radius_m) starts the
+// turn before the corner. Without it the ship overshot by 500 m at 9.15 m/s
+// and 214 m at 3.6 m/s.
+TEST(ExecutorTest, SharpCornerOvershootIsBoundedByTheWheelOver) {
+  const double c60 = std::cos(M_PI / 3), s60 = std::sin(M_PI / 3);
+  const std::vector<mission::Point> corners = {
+      {0, 0}, {1500, 0}, {1500 + 1000 * c60, 1000 * s60}, {3000 + 1000 * c60, 1000 * s60}};
+  MoveRun fast = RunMove({0, 0}, M_PI / 2, RouteTask("v1-t1", corners, 9.15));
+  ASSERT_TRUE(fast.finished);
+  EXPECT_LT(fast.max_off_route_m, 350);
+  MoveRun slow = RunMove({0, 0}, M_PI / 2, RouteTask("v1-t1", corners, 3.6));
+  ASSERT_TRUE(slow.finished);
+  EXPECT_LT(slow.max_off_route_m, 150);
+  EXPECT_LT(mission::Distance(slow.end, corners.back()), 60 * 3);
+}
+
 TEST(ExecutorTest, GnssJumpFailsTheMoveAtTheScriptedTime) {
   ExecutorConfig c;
   c.start = {0, 0};
