@@ -163,6 +163,50 @@ double LandClearance(const std::vector<std::vector<Vec2>>& rings, Vec2 a, Vec2 b
   return best;
 }
 
+LandIndex::LandIndex(const std::vector<std::vector<Vec2>>& rings, double cell_m) : cell_m_(cell_m) {
+  for (const std::vector<Vec2>& ring : rings) {
+    if (ring.size() < 2) continue;
+    for (size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++) {
+      const Vec2 c = ring[j], d = ring[i];
+      const int32_t id = static_cast<int32_t>(edges_.size());
+      edges_.push_back({c, d});
+      const int64_t i0 = static_cast<int64_t>(std::floor(std::min(c.x, d.x) / cell_m_));
+      const int64_t i1 = static_cast<int64_t>(std::floor(std::max(c.x, d.x) / cell_m_));
+      const int64_t j0 = static_cast<int64_t>(std::floor(std::min(c.y, d.y) / cell_m_));
+      const int64_t j1 = static_cast<int64_t>(std::floor(std::max(c.y, d.y) / cell_m_));
+      for (int64_t x = i0; x <= i1; ++x) {
+        for (int64_t y = j0; y <= j1; ++y) cells_[Key(x, y)].push_back(id);
+      }
+    }
+  }
+  seen_.assign(edges_.size(), -1);
+}
+
+double LandIndex::Clearance(Vec2 a, Vec2 b, double limit_m) const {
+  double best = limit_m;
+  if (edges_.empty()) return best;
+  ++query_;
+  const int64_t i0 = static_cast<int64_t>(std::floor((std::min(a.x, b.x) - limit_m) / cell_m_));
+  const int64_t i1 = static_cast<int64_t>(std::floor((std::max(a.x, b.x) + limit_m) / cell_m_));
+  const int64_t j0 = static_cast<int64_t>(std::floor((std::min(a.y, b.y) - limit_m) / cell_m_));
+  const int64_t j1 = static_cast<int64_t>(std::floor((std::max(a.y, b.y) + limit_m) / cell_m_));
+  for (int64_t x = i0; x <= i1; ++x) {
+    for (int64_t y = j0; y <= j1; ++y) {
+      auto it = cells_.find(Key(x, y));
+      if (it == cells_.end()) continue;
+      for (int32_t id : it->second) {
+        if (seen_[static_cast<size_t>(id)] == query_) continue;
+        seen_[static_cast<size_t>(id)] = query_;
+        const auto& [c, d] = edges_[static_cast<size_t>(id)];
+        if (SegmentsCross(a, b, c, d)) return 0.0;
+        best = std::min({best, PointSegment(a, c, d), PointSegment(b, c, d), PointSegment(c, a, b),
+                         PointSegment(d, a, b)});
+      }
+    }
+  }
+  return best;
+}
+
 AvoidanceDecision ChooseVelocity(const Kinematics& own, Vec2 desired,
                                  const std::vector<Obstacle>& others,
                                  const AvoidanceOptions& options) {
@@ -233,7 +277,8 @@ AvoidanceDecision ChooseVelocity(const Kinematics& own, Vec2 desired,
       // Land, checked only for a candidate that could be chosen (the check
       // is the costly part: every land edge against the track).
       if (options.land != nullptr && (ok ? cost < best_cost : violation < least_violation)) {
-        const double clear = LandClearance(*options.land, own.position, own.position + v * options.land_lookahead_s);
+        const double clear =
+            options.land->Clearance(own.position, own.position + v * options.land_lookahead_s, options.land_clearance_m);
         if (clear < options.land_clearance_m) {
           ok = false;
           // Worse than any CPA shortfall; when every candidate is short of

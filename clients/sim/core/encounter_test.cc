@@ -145,6 +145,14 @@ TEST(LandClearanceTest, CrossingInsideAndDistance) {
   EXPECT_EQ(LandClearance(land, {500, 150}, {510, 160}), 0.0);  // starts on land
   EXPECT_NEAR(LandClearance(land, {0, 40}, {1000, 40}), 60.0, 1e-9);
   EXPECT_NEAR(LandClearance(land, {1100, 0}, {1100, 400}), 100.0, 1e-9);
+  // The grid index agrees (capped at its limit), with cells smaller than
+  // the rectangle so edges span several cells.
+  const LandIndex index(land, 150.0);
+  EXPECT_EQ(index.Clearance({500, 0}, {500, 200}, 80), 0.0);
+  EXPECT_NEAR(index.Clearance({0, 40}, {1000, 40}, 80), 60.0, 1e-9);
+  EXPECT_NEAR(index.Clearance({1100, 0}, {1100, 400}, 80), 80.0, 1e-9);  // beyond the limit
+  EXPECT_NEAR(index.Clearance({-700, -500}, {-600, -500}, 1000), LandClearance(land, {-700, -500}, {-600, -500}),
+              1e-9);
 }
 
 // Giving way to starboard would run the ship onto the shore just south of
@@ -161,7 +169,8 @@ TEST(AvoidanceTest, GiveWayManoeuvreKeepsClearOfLand) {
   EXPECT_LT(LandClearance(south_shore, own.position, own.position + blind.velocity * o.land_lookahead_s),
             o.land_clearance_m)
       << "the scenario must make the land-blind choice head for the shore";
-  o.land = &south_shore;
+  const LandIndex index(south_shore);
+  o.land = &index;
   AvoidanceDecision aware = ChooseVelocity(own, own.velocity, {{other, 1}}, o);
   ASSERT_TRUE(aware.manoeuvring);
   EXPECT_GE(LandClearance(south_shore, own.position, own.position + aware.velocity * o.land_lookahead_s),

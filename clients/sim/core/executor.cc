@@ -39,6 +39,7 @@ StatusOr<Executor> Executor::Create(const ExecutorConfig& config) {
 Executor::Executor(const ExecutorConfig& config, ship::ShipModel model)
     : config_(config),
       model_(std::move(model)),
+      land_(config.land),
       heading_(config.heading, config.dt_s),
       speed_(ship::SpeedControllerOptions{}, config.dt_s),
       tank_(config.fuel, config.initial_fuel_fraction) {
@@ -252,7 +253,7 @@ void Executor::StepMove(std::vector<FeedbackOut>* out) {
   // The VO assumes velocities change at once; this hull needs minutes to
   // turn, so the manoeuvre is planned with a margin on the safety distance.
   AvoidanceOptions planning = config_.avoidance;
-  if (!config_.land.empty()) planning.land = &config_.land;
+  if (!land_.empty()) planning.land = &land_;
   planning.safety_distance_m *= config_.avoidance_margin_factor;
   if (planning.turn_rate_rad_s <= 0) {
     planning.turn_rate_rad_s = config_.turn_rate_rad_s;

@@ -159,6 +159,7 @@ class Executor {
 
   ExecutorConfig config_;
   ship::ShipModel model_;
+  LandIndex land_;  // config_.land, indexed for the avoidance
   ship::HeadingController heading_;
   ship::SpeedController speed_;
   std::optional<PathFollower> los_;
