@@ -85,6 +85,9 @@ struct ExecutorConfig {
   double jump_threshold_m = 100.0;
   ship::Environment environment;
   AvoidanceOptions avoidance;
+  // Land (outer rings, local frame) the avoidance keeps clear of; empty =
+  // none known. The executor points avoidance.land at it.
+  std::vector<std::vector<Vec2>> land;
   double avoidance_margin_factor = 1.5;  // safety distance x this when choosing velocities
   // This hull's manoeuvrability for the avoidance (AvoidanceOptions):
   // about 1 deg/s at 30 deg rudder at service speed, ~20 s before the turn
@@ -148,6 +151,7 @@ class Executor {
   void StartMove(const mission::Task& task);
   void StepMove(std::vector<FeedbackOut>* out);
   void Complete(const Running& r, std::vector<FeedbackOut>* out);
+  void NoteFuel();  // logs crossing the fuel threshold (the server decides replans)
   void InjectEvents(std::vector<FeedbackOut>* out);
   void TrackTraffic();
 
