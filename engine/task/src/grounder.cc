@@ -2020,26 +2020,56 @@ LoadResult LoadTaskFromFiles(const std::string& domain_path, const std::string& 
   return LoadTask(domain_text, problem_text, options, domain_path, problem_path);
 }
 
-ActionIndex::ActionIndex(const GroundTask& task) {
-  by_key_.reserve(task.actions.size());
+ActionIndex::ActionIndex(const GroundTask& task) : task_(&task) {
+  by_hash_.reserve(task.actions.size());
   for (std::size_t i = 0; i < task.actions.size(); ++i) {
-    by_key_[Key(task.actions[i].name, task.actions[i].args)].push_back(static_cast<ActionId>(i));
+    by_hash_.emplace_back(Hash(task.actions[i].name, task.actions[i].args), static_cast<ActionId>(i));
   }
+  std::sort(by_hash_.begin(), by_hash_.end());
 }
 
-std::string ActionIndex::Key(std::string_view name, std::span<const std::string> args) {
-  std::string key(name);
-  for (const auto& a : args) {
-    key += ' ';
-    key += a;
+namespace {
+
+char AsciiLower(char c) { return static_cast<char>(c >= 'A' && c <= 'Z' ? c - 'A' + 'a' : c); }
+
+bool EqualsLowered(std::string_view query, std::string_view lower) {
+  if (query.size() != lower.size()) return false;
+  for (std::size_t i = 0; i < query.size(); ++i) {
+    if (AsciiLower(query[i]) != lower[i]) return false;
   }
-  for (auto& c : key) c = static_cast<char>(c >= 'A' && c <= 'Z' ? c - 'A' + 'a' : c);
-  return key;
+  return true;
+}
+
+}  // namespace
+
+std::uint64_t ActionIndex::Hash(std::string_view name, std::span<const std::string> args) {
+  // FNV-1a over the lower-cased "name arg1 arg2 ...".
+  std::uint64_t h = 1469598103934665603ull;
+  auto add = [&h](char c) {
+    h ^= static_cast<unsigned char>(AsciiLower(c));
+    h *= 1099511628211ull;
+  };
+  for (char c : name) add(c);
+  for (const auto& a : args) {
+    add(' ');
+    for (char c : a) add(c);
+  }
+  return h;
 }
 
 std::vector<ActionId> ActionIndex::Find(std::string_view name, std::span<const std::string> args) const {
-  auto it = by_key_.find(Key(name, args));
-  return it == by_key_.end() ? std::vector<ActionId>{} : it->second;
+  std::vector<ActionId> out;
+  const std::uint64_t h = Hash(name, args);
+  auto it = std::lower_bound(by_hash_.begin(), by_hash_.end(), std::make_pair(h, ActionId{0}),
+                             [](const auto& x, const auto& y) { return x.first < y.first; });
+  for (; it != by_hash_.end() && it->first == h; ++it) {
+    const Action& action = task_->actions[static_cast<std::size_t>(it->second)];
+    if (action.args.size() != args.size() || !EqualsLowered(name, action.name)) continue;
+    bool same = true;
+    for (std::size_t k = 0; k < args.size() && same; ++k) same = EqualsLowered(args[k], action.args[k]);
+    if (same) out.push_back(it->second);
+  }
+  return out;
 }
 
 }  // namespace seaplan::task

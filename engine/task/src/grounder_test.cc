@@ -338,6 +338,17 @@ TEST(GrounderTest, ActionIndexAndExplainMissingAction) {
   ASSERT_EQ(index.Find("move", args).size(), 1u);
   EXPECT_EQ(r.task->actions[static_cast<std::size_t>(index.Find("MOVE", args)[0])].DisplayName(), "(move r1 p1 p2)");
   EXPECT_EQ(ExplainMissingAction(*r.domain, *r.problem, "move", args, r.task.get()), "");
+  // Case-insensitive arguments too; unreachable, unknown and wrong-arity
+  // queries find nothing.
+  EXPECT_EQ(index.Find("Move", std::vector<std::string>{"R1", "P1", "p2"}), index.Find("move", args));
+  EXPECT_TRUE(index.Find("move", std::vector<std::string>{"r1", "p1", "p3"}).empty());
+  EXPECT_TRUE(index.Find("move", std::vector<std::string>{"r1", "p1"}).empty());
+  EXPECT_TRUE(index.Find("fly", args).empty());
+  for (std::size_t a = 0; a < r.task->actions.size(); ++a) {
+    const auto& action = r.task->actions[a];
+    const auto found = index.Find(action.name, action.args);
+    EXPECT_NE(std::find(found.begin(), found.end(), static_cast<ActionId>(a)), found.end()) << action.DisplayName();
+  }
 
   auto explain = [&](const std::string& name, std::vector<std::string> a) {
     return ExplainMissingAction(*r.domain, *r.problem, name, a, r.task.get());

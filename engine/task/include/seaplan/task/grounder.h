@@ -37,11 +37,13 @@
 #pragma once
 
 #include <cstddef>
+#include <cstdint>
 #include <memory>
 #include <span>
 #include <string>
 #include <string_view>
 #include <unordered_map>
+#include <utility>
 #include <vector>
 
 #include "seaplan/common/status.h"
@@ -103,19 +105,23 @@ LoadResult LoadTask(std::string_view domain_text, std::string_view problem_text,
 LoadResult LoadTaskFromFiles(const std::string& domain_path, const std::string& problem_path,
                              const GroundingOptions& options = {});
 
-// Finds ground actions by (name, args) in O(1) (names lower case). Build once
-// per task; holds a reference to the task's names (the task must outlive it).
+// Finds ground actions by (name, args) in O(log n) (names lower case). Build
+// once per task; holds a reference to the task (it must outlive the index).
+// Sorted (hash, action) pairs, with candidates checked against the task's
+// names: building allocates no string per action (it used to dominate the
+// planner's setup on large tasks, e.g. 13 M instructions for 7 k actions).
 class ActionIndex {
  public:
   explicit ActionIndex(const GroundTask& task);
 
   // Every ground action (all DNF variants) with this name and these
-  // arguments; empty when none. Case-insensitive.
+  // arguments, in ascending order; empty when none. Case-insensitive.
   std::vector<ActionId> Find(std::string_view name, std::span<const std::string> args) const;
 
  private:
-  static std::string Key(std::string_view name, std::span<const std::string> args);
-  std::unordered_map<std::string, std::vector<ActionId>> by_key_;
+  static std::uint64_t Hash(std::string_view name, std::span<const std::string> args);
+  const GroundTask* task_;
+  std::vector<std::pair<std::uint64_t, ActionId>> by_hash_;  // sorted
 };
 
 // Why (name args) is not an action of the ground task, in one sentence for a
