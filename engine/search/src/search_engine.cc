@@ -190,9 +190,22 @@ LazySearch::Status LazySearch::Step() {
     return Status::kSolved;
   }
   const NodeInfo& cur = info_[static_cast<std::size_t>(s)];
+  std::span<const std::uint8_t> usable;
+  const bool timed_check = reachability_ != nullptr && reachability_->active();
+  if (timed_check) {
+    ExtractPath(s, &path_);
+    timeline_.Build(path_);
+    if (!reachability_->Evaluate(current_, timeline_)) {
+      // Like an inconsistent schedule, this depends on the path's times.
+      stn_pruned_ = true;
+      return Status::kInProgress;
+    }
+    usable = reachability_->usable_snaps();
+  }
   const int h = heuristic_.Evaluate(
       current_, &preferred_,
-      std::span<const double>(slack_pool_.data() + cur.slack_begin, static_cast<std::size_t>(cur.slack_count)));
+      std::span<const double>(slack_pool_.data() + cur.slack_begin, static_cast<std::size_t>(cur.slack_count)),
+      usable);
   ++counters_.evaluated;
   info_[static_cast<std::size_t>(s)].h = h;
   if (h >= RelaxedPlanHeuristic::kDeadEnd) {
@@ -204,8 +217,10 @@ LazySearch::Status LazySearch::Step() {
     priority_preferred_ -= 1000;
   }
   ++counters_.expanded;
-  ExtractPath(s, &path_);
-  timeline_.Build(path_);
+  if (!timed_check) {
+    ExtractPath(s, &path_);
+    timeline_.Build(path_);
+  }
 
   candidates_.clear();
   transitions_.Candidates(current_, &candidates_);

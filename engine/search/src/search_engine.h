@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "heuristics/relaxed_plan_heuristic.h"
+#include "heuristics/temporal_reachability.h"
 #include "seaplan/common/stop_token.h"
 #include "open_lists/tie_breaking_open_list.h"
 #include "snap_task.h"
@@ -57,6 +58,10 @@ class LazySearch {
   // cancellation is seen within milliseconds; an interrupted expansion
   // leaves the search unusable (callers stop anyway).
   void SetStopToken(const StopToken* stop) { stop_ = stop; }
+  // Optional (may be null; borrowed): prunes states whose timed-literal
+  // deadlines can no longer be met and hides snaps that missed theirs from
+  // the heuristic. Only used when active().
+  void SetTemporalReachability(TemporalReachability* reachability) { reachability_ = reachability; }
   void Initialize(const StateData& initial);
   Status Step();
 
@@ -140,6 +145,7 @@ class LazySearch {
   std::vector<Pending> pending_;
   std::int32_t initial_ = 0;
   const StopToken* stop_ = nullptr;
+  TemporalReachability* reachability_ = nullptr;
   StateData parent_state_;
 };
 

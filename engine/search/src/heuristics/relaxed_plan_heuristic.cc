@@ -260,11 +260,17 @@ void RelaxedPlanHeuristic::MarkNumeric(const task::NumericCondition& c, int laye
 }
 
 int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* preferred,
-                                   std::span<const double> window_slack) {
+                                   std::span<const double> window_slack,
+                                   std::span<const std::uint8_t> usable) {
   std::fill(fact_layer_.begin(), fact_layer_.end(), -1);
   // op_layer_ is only read for operators that became applicable (plan
   // operators and numeric changers), which set it: no reset needed.
   std::copy(op_missing_init_.begin(), op_missing_init_.end(), op_missing_.begin());
+  if (!usable.empty()) {
+    for (int op = 0; op < num_ops_; ++op) {
+      if (!usable[op]) op_missing_[op] = 1 << 30;
+    }
+  }
   int goals_left = num_goal_facts_;
   for (std::size_t v = 0; v < interval_.size(); ++v) {
     interval_[v] = {state.values[v], state.values[v]};
@@ -316,6 +322,7 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
   for (const auto& r : state.running) reach(num_facts_ + r.action, 0, -1);
   // Operators without fact preconditions are enabled from the start.
   for (auto op : no_pre_ops_) {
+    if (!usable.empty() && !usable[op]) continue;
     if (num_pre_[op].empty()) {
       op_layer_[op] = 0;
       applicable_.push_back(op);

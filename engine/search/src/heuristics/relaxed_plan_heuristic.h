@@ -38,8 +38,12 @@ class RelaxedPlanHeuristic {
   // happen. A fact such an action's end will delete counts as unavailable
   // when nothing needing it over all fits into that room (match cellar:
   // a burning match too short for another mend).
+  // `usable` (empty: all): per SnapId, 0 for snaps known not to be able to
+  // happen any more (TemporalReachability: their deadlines have passed);
+  // the relaxed exploration leaves them out.
   int Evaluate(const StateData& state, std::vector<SnapId>* preferred,
-               std::span<const double> window_slack = {});
+               std::span<const double> window_slack = {},
+               std::span<const std::uint8_t> usable = {});
   // After a kDeadEnd: true when the relaxation proves it (false when the
   // numeric fixpoint was cut off after too many widening layers).
   bool last_dead_end_proven() const { return dead_end_proven_; }
