@@ -202,10 +202,17 @@ LazySearch::Status LazySearch::Step() {
     }
     usable = reachability_->usable_snaps();
   }
-  const int h = heuristic_.Evaluate(
+  int h = heuristic_.Evaluate(
       current_, &preferred_,
       std::span<const double>(slack_pool_.data() + cur.slack_begin, static_cast<std::size_t>(cur.slack_count)),
       usable);
+  if (timed_check && h < RelaxedPlanHeuristic::kDeadEnd) {
+    // The untimed relaxed plan counts a fact of the state as free even when
+    // the state got it too late for a window (an image taken after its
+    // antenna's window closed); the plan along the earliest achievers takes
+    // it again. The longer of the two estimates guides the search.
+    h = std::max(h, reachability_->RelaxedPlanLength(current_, nullptr));
+  }
   ++counters_.evaluated;
   info_[static_cast<std::size_t>(s)].h = h;
   if (h >= RelaxedPlanHeuristic::kDeadEnd) {

@@ -59,8 +59,9 @@ class LazySearch {
   // leaves the search unusable (callers stop anyway).
   void SetStopToken(const StopToken* stop) { stop_ = stop; }
   // Optional (may be null; borrowed): prunes states whose timed-literal
-  // deadlines can no longer be met and hides snaps that missed theirs from
-  // the heuristic. Only used when active().
+  // deadlines can no longer be met, hides snaps that missed theirs from
+  // the heuristic and raises h to its time-aware relaxed plan length when
+  // longer. Only used when active().
   void SetTemporalReachability(TemporalReachability* reachability) { reachability_ = reachability; }
   void Initialize(const StateData& initial);
   Status Step();

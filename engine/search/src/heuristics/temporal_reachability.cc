@@ -165,6 +165,9 @@ TemporalReachability::TemporalReachability(const SnapTask& task)
   windows_.resize(static_cast<std::size_t>(num_facts_));
   open_since_.assign(static_cast<std::size_t>(num_facts_), kInfinity);
   earliest_.resize(static_cast<std::size_t>(total_facts));
+  achiever_.resize(static_cast<std::size_t>(total_facts));
+  fact_marked_.assign(static_cast<std::size_t>(total_facts), 0);
+  op_marked_.assign(static_cast<std::size_t>(num_ops_), 0);
   missing_.resize(static_cast<std::size_t>(num_ops_));
   usable_.resize(static_cast<std::size_t>(num_ops_));
   min_d_ = static_min_d_;
@@ -229,9 +232,21 @@ double TemporalReachability::OpTime(int op, double t0) const {
   return t;
 }
 
-void TemporalReachability::Reach(int fact, double time_s) {
+double TemporalReachability::ScheduleBound(int op, const Timeline& timeline) const {
+  const SnapAction& snap = task_.snap(op);
+  double t = 0.0;
+  for (auto f : snap.reads) t = std::max(t, timeline.FactWrittenAt(f));
+  for (auto f : snap.writes) t = std::max(t, timeline.FactReadUntil(f));
+  if (!snap.is_end) {
+    for (auto f : snap.inv_reads) t = std::max(t, timeline.FactWrittenAt(f));
+  }
+  return t;
+}
+
+void TemporalReachability::Reach(int fact, double time_s, int achiever) {
   if (!(time_s < earliest_[fact])) return;
   earliest_[fact] = time_s;
+  achiever_[fact] = achiever;
   heap_.emplace_back(time_s, fact);
   std::push_heap(heap_.begin(), heap_.end(), std::greater<>());
 }
@@ -267,25 +282,25 @@ bool TemporalReachability::Evaluate(const StateData& state, const Timeline& time
     while (bits) {
       const int f = static_cast<int>(w * 64) + __builtin_ctzll(bits);
       bits &= bits - 1;
-      if (!window_fact_[f]) Reach(f, timeline.FactWrittenAt(f));
+      if (!window_fact_[f]) Reach(f, timeline.FactWrittenAt(f), -1);
     }
   }
   for (std::size_t k = static_cast<std::size_t>(state.next_til); k < tils.size(); ++k) {
     for (auto f : tils[k].add) {
-      if (!window_fact_[f]) Reach(f, tils[k].time_s);
+      if (!window_fact_[f]) Reach(f, tils[k].time_s, -1);
     }
   }
   for (const auto& r : state.running) {
     running_[r.action] = 1;
     min_d_[r.action] = r.min_duration_s;
     max_d_[r.action] = r.max_duration_s;
-    Reach(num_facts_ + r.action, timeline.StartedAt(r.action));
+    Reach(num_facts_ + r.action, timeline.StartedAt(r.action), -1);
   }
   auto fire = [&](int op, double t0) {
-    const double t = OpTime(op, t0);
+    const double t = OpTime(op, std::max(t0, ScheduleBound(op, timeline)));
     if (!(t < kInfinity)) return;
     usable_[op] = 1;
-    for (int i = add_begin_[op]; i < add_begin_[op + 1]; ++i) Reach(add_[i], t);
+    for (int i = add_begin_[op]; i < add_begin_[op + 1]; ++i) Reach(add_[i], t, op);
   };
   for (auto op : no_pre_ops_) fire(op, 0.0);
   while (!heap_.empty()) {
@@ -311,6 +326,48 @@ bool TemporalReachability::Evaluate(const StateData& state, const Timeline& time
     if (!window_fact_[f] && !(earliest_[f] < kInfinity)) alive = false;
   }
   return alive;
+}
+
+int TemporalReachability::RelaxedPlanLength(const StateData& state, std::vector<SnapId>* preferred) {
+  for (auto op : marked_ops_) op_marked_[op] = 0;
+  for (auto f : marked_facts_) fact_marked_[f] = 0;
+  marked_ops_.clear();
+  marked_facts_.clear();
+  stack_.clear();
+  auto mark_fact = [&](int f) {
+    if (fact_marked_[f]) return;
+    fact_marked_[f] = 1;
+    marked_facts_.push_back(f);
+    const int op = achiever_[f];
+    if (op < 0 || op_marked_[op]) return;
+    op_marked_[op] = 1;
+    marked_ops_.push_back(op);
+    stack_.push_back(op);
+  };
+  for (auto f : task_.task().goal.positive) {
+    if (!window_fact_[f]) mark_fact(f);
+  }
+  while (!stack_.empty()) {
+    const int op = stack_.back();
+    stack_.pop_back();
+    for (int i = pre_begin_[op]; i < pre_begin_[op + 1]; ++i) mark_fact(pre_[i]);
+  }
+  int h = static_cast<int>(marked_ops_.size());
+  for (const auto& r : state.running) {
+    if (!op_marked_[2 * r.action + 1]) ++h;
+  }
+  if (preferred != nullptr) {
+    preferred->clear();
+    for (auto op : marked_ops_) {
+      bool from_state = true;
+      for (int i = pre_begin_[op]; i < pre_begin_[op + 1] && from_state; ++i) {
+        from_state = achiever_[pre_[i]] < 0;
+      }
+      if (from_state) preferred->push_back(op);
+    }
+    std::sort(preferred->begin(), preferred->end());
+  }
+  return h;
 }
 
 }  // namespace seaplan::search

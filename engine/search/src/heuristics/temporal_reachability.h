@@ -15,7 +15,9 @@
 // (the path's earliest STN times, see Timeline): a fact of the state is
 // available from the time the path last wrote it, a fact a pending literal
 // adds from the literal's time, started(a) of a running action from its
-// start. start(a) happens at the earliest time, not before its conditions,
+// start. Every snap also comes after what the schedule orders before any
+// new event like it: the last writers of what it reads or writes and the
+// readers of what it writes (a satellite already busy cannot turn at 0). start(a) happens at the earliest time, not before its conditions,
 // at which its window facts allow it: at-start ones hold then, over-all ones
 // hold for the whole minimum duration, at-end ones somewhere in the
 // duration range. end(a) comes no earlier than start + minimum duration,
@@ -61,6 +63,14 @@ class TemporalReachability {
   // started(a) at num_facts + a; infinity when unreachable.
   double EarliestTime(int fact) const { return earliest_[static_cast<std::size_t>(fact)]; }
 
+  // After a successful Evaluate: the number of snaps of a relaxed plan
+  // extracted backwards from the goal along the earliest achievers (a fact
+  // the state holds counts as free only when no snap reaches it earlier, so
+  // an image taken too late for its window is taken again), plus the ends
+  // of running actions it leaves out. `preferred` (may be null) receives
+  // the plan's snaps whose conditions the state provides.
+  int RelaxedPlanLength(const StateData& state, std::vector<SnapId>* preferred);
+
  private:
   enum class Kind : std::uint8_t { kAt, kSpan, kRange };
   struct WindowCondition {
@@ -73,7 +83,11 @@ class TemporalReachability {
   // Earliest time >= t at which `c` allows snap `op` (infinity if none).
   double NextAllowed(const WindowCondition& c, double t, task::ActionId a) const;
   double OpTime(int op, double t0) const;
-  void Reach(int fact, double time_s);
+  void Reach(int fact, double time_s, int achiever);
+  // Earliest time the schedule of the path allows a new `op`: after the
+  // last writer of what it reads or writes, after the readers of what it
+  // writes.
+  double ScheduleBound(int op, const Timeline& timeline) const;
 
   const SnapTask& task_;
   bool active_ = false;
@@ -96,6 +110,9 @@ class TemporalReachability {
   std::vector<std::vector<Interval>> windows_;  // per fact (window facts only)
   std::vector<double> open_since_;              // per fact: open interval start, or infinity
   std::vector<double> earliest_;
+  std::vector<std::int32_t> achiever_;  // per fact: snap that set earliest_, -1 the state
+  std::vector<std::uint8_t> op_marked_, fact_marked_;
+  std::vector<std::int32_t> marked_ops_, marked_facts_, stack_;
   std::vector<std::int32_t> missing_;
   std::vector<std::uint8_t> usable_;
   std::vector<double> min_d_, max_d_;          // per action; running ones from their record

@@ -174,6 +174,22 @@ TEST(TemporalReachabilityTest, GoingTheRightWayStaysAliveAndTimesFollowTheSchedu
   EXPECT_NEAR(fx.reachability().EarliestTime(fx.Fact("(delivered pa)")), 7.0, 1e-6);
 }
 
+TEST(TemporalReachabilityTest, RelaxedPlanFollowsTheEarliestAchievers) {
+  Fixture fx(kCourierDomain, CourierProblem("(delivered pa)", 8, 40));
+  ASSERT_TRUE(fx.ok());
+  fx.Apply(fx.Start("(load pa depot)"));
+  fx.Apply(fx.End("(load pa depot)"));
+  ASSERT_TRUE(fx.Evaluate());
+  // The van held the depot over all of the load (0-1): it leaves at 1 s at
+  // the earliest, not at 0 when the path last wrote (van-at depot).
+  EXPECT_NEAR(fx.reachability().EarliestTime(fx.Fact("(van-at a)")), 6.0, 1e-6);
+  // Drive to a and deliver: two durative actions, four snaps; only the
+  // drive can start from the state.
+  std::vector<SnapId> preferred;
+  EXPECT_EQ(fx.reachability().RelaxedPlanLength(fx.state(), &preferred), 4);
+  EXPECT_EQ(preferred, std::vector<SnapId>{fx.Start("(drive depot a)")});
+}
+
 TEST(TemporalReachabilityTest, SnapsThatMissedTheirDeadlineAreUnusable) {
   // Only pb is a goal: driving to b first is fine, but delivering pa no
   // longer can happen, and the relaxed plan heuristic is told so.
