@@ -56,7 +56,10 @@ class RelaxedPlanHeuristic {
   bool Satisfiable(const task::NumericCondition& c, const StateData& state, task::ActionId a);
   void MarkOp(int op);
   void MarkFact(int fact);
-  void MarkNumeric(const task::NumericCondition& c, int layer);
+  // Marks the changers of the condition's variables: the first operator
+  // that raised a variable's interval, or lowered it, whichever direction
+  // the condition needs (refuel, not the flight that burnt fuel).
+  void MarkNumeric(const task::NumericCondition& c, int layer, const StateData& state, task::ActionId a);
 
   const SnapTask& task_;
   bool dead_end_proven_ = true;
@@ -88,7 +91,7 @@ class RelaxedPlanHeuristic {
   std::vector<std::int32_t> fact_layer_, fact_achiever_;
   std::vector<std::int32_t> op_layer_, op_missing_;
   std::vector<Interval> interval_, next_interval_;
-  std::vector<std::int32_t> var_changer_, var_change_layer_;
+  std::vector<std::int32_t> raiser_, raise_layer_, lowerer_, lower_layer_;
   std::vector<std::int32_t> applicable_, numeric_waiting_, new_facts_, layer_ops_;
   std::vector<std::uint8_t> op_marked_, fact_marked_;
   std::vector<std::int32_t> marked_ops_, marked_facts_, stack_;
