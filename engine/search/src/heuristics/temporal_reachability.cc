@@ -57,6 +57,9 @@ TemporalReachability::TemporalReachability(const SnapTask& task)
   for (const auto& til : task.tils()) {
     for (auto f : til.del) active_ = active_ || window_fact_[f];
   }
+  // Inactive: Evaluate is never called, so no tables (large tasks without
+  // deadlines pay nothing).
+  if (!active_) return;
 
   // Static duration bounds: constraints over fluents no effect changes.
   static_min_d_.assign(num_actions, 0.0);
