@@ -285,6 +285,7 @@ int main(int argc, char** argv) {
 
   auto cfg = sim::MakeExecutorConfig(*scenario, frame, ShipLocation(problem, scenario->ship_object));
   if (!cfg.ok()) return fail(cfg.status());
+  cfg->land = rings;  // the unbuffered land, for the collision avoidance
   auto executor = sim::Executor::Create(*cfg);
   if (!executor.ok()) return fail(executor.status());
   mission::LocationTable locations = sim::LocalLocations(*scenario, frame);

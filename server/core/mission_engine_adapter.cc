@@ -4,13 +4,17 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstdio>
 #include <map>
 #include <mutex>
+#include <optional>
+#include <set>
 
 #include "absl/strings/str_cat.h"
 #include "seaplan/chart/geodesy.h"
 #include "seaplan/chart/obstacle_map.h"
+#include "seaplan/common/log.h"
 #include "seaplan/mission/mission_planner.h"
 #include "seaplan/mission/problem_update.h"
 #include "seaplan/mission/replan_policy.h"
@@ -151,6 +155,51 @@ mission::Route RouteFromEngine(const route::RouteResult& result) {
   return r;
 }
 
+// A replan may start where the ship is, and a ship pushed off its route
+// (avoidance, drift, a GNSS jump) can be inside the buffered obstacles
+// (land + safety buffer) while still afloat. The route planner refuses such
+// a start; a real ship leaves the buffer the shortest way out. So: the
+// nearest free point within kMaxWayOutM (rings every 5 m, 64 bearings),
+// 10 m further out when that is free too (clear of the buffer's edge), or
+// nullopt when there is none.
+inline constexpr double kMaxWayOutM = 500.0;
+std::optional<chart::LocalPoint> ShortestWayOut(const route::ObstacleField& field, chart::LocalPoint p) {
+  constexpr int kBearings = 64;
+  for (double r = 5.0; r <= kMaxWayOutM; r += 5.0) {
+    for (int k = 0; k < kBearings; ++k) {
+      const double a = 2.0 * M_PI * k / kBearings;
+      const route::Vec2 q{p.x_m + r * std::sin(a), p.y_m + r * std::cos(a)};
+      if (field.Inside(q)) continue;
+      const route::Vec2 clear{p.x_m + (r + 10.0) * std::sin(a), p.y_m + (r + 10.0) * std::cos(a)};
+      return field.Inside(clear) ? chart::LocalPoint{q.x, q.y} : chart::LocalPoint{clear.x, clear.y};
+    }
+  }
+  return std::nullopt;
+}
+
+// Puts `from` in front of a route that starts at its way out of the
+// obstacles: one more leg, sailed at the route's mean speed in the mode of
+// its first leg.
+void PrependWayOut(chart::LocalPoint from, mission::Route* r) {
+  if (r->waypoints.empty()) return;
+  const mission::Point first = r->waypoints.front().position;
+  const double leg_m = std::hypot(first.x_m - from.x_m, first.y_m - from.y_m);
+  const double speed = r->sailing_time_s > 0 && r->length_m > 0 ? r->length_m / r->sailing_time_s : 1.0;
+  const double leg_s = leg_m / speed;
+  for (mission::RouteWaypoint& w : r->waypoints) {
+    w.eta_s += leg_s;
+    w.distance_from_start_m += leg_m;
+  }
+  mission::RouteWaypoint out = r->waypoints.front();
+  out.position = {from.x_m, from.y_m};
+  out.eta_s = 0.0;
+  out.distance_from_start_m = 0.0;
+  out.fuel_kg = r->waypoints.front().fuel_kg * (r->length_m > 0 ? leg_m / r->length_m : 0.0);
+  r->waypoints.insert(r->waypoints.begin(), out);
+  r->length_m += leg_m;
+  r->sailing_time_s += leg_s;
+}
+
 // Everything routing over one chart needs, built once per (chart, ship,
 // route options, environment) and shared by every call of every mission
 // using it: the RoutePlanner (its obstacle field is the expensive part) and
@@ -266,7 +315,11 @@ class Adapter final : public MissionEngine {
     auto frame = FrameFor(spec);
     const mission::Feedback f =
         FeedbackFromProto(feedback, state.mission.current_version(), frame.ok() ? &*frame : nullptr);
-    if (auto reason = mission::DecideReplan(f, current, task, Policy(spec))) {
+    // Tasks done so far (this report's included): a refuel still ahead is
+    // "left" whatever its planned time (a late ship is past it on paper).
+    std::set<std::string> done(state.mission.completed_tasks().begin(), state.mission.completed_tasks().end());
+    if (feedback.kind() == v1::Feedback::KIND_TASK_COMPLETED) done.insert(feedback.task_id());
+    if (auto reason = mission::DecideReplan(f, current, task, Policy(spec), &done)) {
       d.replan = true;
       d.replan_reason = *reason;
     }
@@ -367,8 +420,20 @@ class Adapter final : public MissionEngine {
         return stop.Reason() == StopReason::kDeadline ? absl::DeadlineExceededError("routing stopped: deadline")
                                                       : absl::CancelledError("routing stopped");
       }
-      auto result = routing->planner->Plan(chart::LocalPoint{req.from_position.x_m, req.from_position.y_m},
-                                           chart::LocalPoint{req.to_position.x_m, req.to_position.y_m},
+      const chart::LocalPoint from{req.from_position.x_m, req.from_position.y_m};
+      chart::LocalPoint start = from;
+      bool way_out = false;
+      if (routing->planner->field().Inside({from.x_m, from.y_m})) {
+        std::optional<chart::LocalPoint> out = ShortestWayOut(routing->planner->field(), from);
+        if (!out) {
+          return absl::FailedPreconditionError(absl::StrCat("start (", from.x_m, ", ", from.y_m,
+                                                            ") lies inside a grounding obstacle with no free water "
+                                                            "within ", kMaxWayOutM, " m"));
+        }
+        start = *out;
+        way_out = true;
+      }
+      auto result = routing->planner->Plan(start, chart::LocalPoint{req.to_position.x_m, req.to_position.y_m},
                                            routing->env, stop);
       if (!result.ok()) {
         if (absl::IsInvalidArgument(result.status())) {
@@ -387,6 +452,11 @@ class Adapter final : public MissionEngine {
         return absl::FailedPreconditionError("no obstacle-free route alternative");
       }
       mission::Route r = RouteFromEngine(*result);
+      if (way_out) {
+        PrependWayOut(from, &r);
+        log::Info("route from ({:.0f}, {:.0f}) inside the buffered obstacles leaves them at ({:.0f}, {:.0f})",
+                  from.x_m, from.y_m, start.x_m, start.y_m);
+      }
       std::lock_guard lock(routing->mu);
       if (routing->routes.size() >= kMaxCachedRoutes) routing->routes.clear();
       routing->routes.emplace(key, r);

@@ -7,7 +7,9 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -20,6 +22,7 @@
 
 #include "seaplan/chart/obstacle_map.h"
 #include "seaplan/testing/shared_data.h"
+#include "seaplan/v1/chart.grpc.pb.h"
 #include "seaplan/v1/mission.grpc.pb.h"
 
 namespace seaplan {
@@ -158,13 +161,6 @@ class MissionE2eTest : public ::testing::Test {
 };
 
 TEST_F(MissionE2eTest, CaseAOneVersionGoalsReachedNoGroundingSafeCpa) {
-  // TODO(#6): the executed track crosses land on the port-c -> port-d and
-  // port-d -> port-e legs (t = 860-1070 s, 1400-1570 s); not yet known whether
-  // the routed legs or the path follower cut the corner. Runs with
-  // SEAPLAN_RUN_KNOWN_FAILURES=1.
-  if (std::getenv("SEAPLAN_RUN_KNOWN_FAILURES") == nullptr) {
-    GTEST_SKIP() << "known failure (issue #6): simulated track touches land in case A";
-  }
   SimRun r = RunSim("case-a");
   ASSERT_EQ(r.exit_code, 0) << SimOutput("case-a");
   EXPECT_TRUE(Flag(r.report, "completed"));
@@ -188,6 +184,30 @@ TEST_F(MissionE2eTest, CaseAOneVersionGoalsReachedNoGroundingSafeCpa) {
     EXPECT_FALSE(q.Inside({std::stod((*it)[2]), std::stod((*it)[3])})) << "aground at t=" << (*it)[1];
   }
   EXPECT_GT(points, 10);
+  // The refined routes themselves never touch the land (they are planned
+  // against the buffered obstacles): every move's polyline, sampled every 5 m.
+  std::regex task_re("\"id\": \"([^\"]+)\"[^{}]*\"route\": \\[([^{}]*)\\]\\]");
+  std::regex wp("\\[(-?[0-9.]+), (-?[0-9.]+), \"[A-Z-]+\"\\]");
+  int routes = 0;
+  for (auto it = std::sregex_iterator(r.report.begin(), r.report.end(), task_re); it != std::sregex_iterator(); ++it) {
+    ++routes;
+    const std::string id = (*it)[1], pts = std::string((*it)[2]) + "]";
+    std::vector<chart::LocalPoint> line;
+    for (auto w = std::sregex_iterator(pts.begin(), pts.end(), wp); w != std::sregex_iterator(); ++w) {
+      line.push_back({std::stod((*w)[1]), std::stod((*w)[2])});
+    }
+    ASSERT_GE(line.size(), 2u) << id;
+    for (size_t i = 0; i + 1 < line.size(); ++i) {
+      const double len = std::hypot(line[i + 1].x_m - line[i].x_m, line[i + 1].y_m - line[i].y_m);
+      const int n = std::max(1, static_cast<int>(len / 5.0));
+      for (int k = 0; k <= n; ++k) {
+        const chart::LocalPoint on{line[i].x_m + (line[i + 1].x_m - line[i].x_m) * k / n,
+                                   line[i].y_m + (line[i + 1].y_m - line[i].y_m) * k / n};
+        EXPECT_FALSE(q.Inside(on)) << id << " crosses land at (" << on.x_m << ", " << on.y_m << ")";
+      }
+    }
+  }
+  EXPECT_EQ(routes, 4) << "case A has four moves";
 }
 
 TEST_F(MissionE2eTest, CaseBExactlyOneReplanFromTheGnssJump) {
@@ -202,12 +222,6 @@ TEST_F(MissionE2eTest, CaseBExactlyOneReplanFromTheGnssJump) {
 }
 
 TEST_F(MissionE2eTest, CaseCExecutorFuelReplansAndNumericFuelDoesBetter) {
-  // TODO(#6): the executor-fuel run ends with an empty tank (min fuel 0) and a
-  // replan from a position inside the buffered obstacles is refused. Runs with
-  // SEAPLAN_RUN_KNOWN_FAILURES=1.
-  if (std::getenv("SEAPLAN_RUN_KNOWN_FAILURES") == nullptr) {
-    GTEST_SKIP() << "known failure (issue #6): case C runs the tank dry";
-  }
   SimRun c = RunSim("case-c");
   ASSERT_EQ(c.exit_code, 0) << SimOutput("case-c");
   EXPECT_TRUE(Flag(c.report, "completed"));
@@ -320,6 +334,92 @@ TEST_F(MissionE2eTest, ReconnectingWatcherMissesNothingAndFeedbackIsIdempotent) 
     if (e.has_log() && e.log().message().find("duplicate check") != std::string::npos) ++duplicates_logged;
   }
   EXPECT_LE(duplicates_logged, 1);
+}
+
+// A move that starts inside the buffered obstacles (port-a 5 m off the
+// shore, inside the chart's 10 m safety buffer; a replan from where a ship
+// was pushed is the same situation): the server routes it out of the buffer
+// the shortest way instead of refusing the start ("lies inside a grounding
+// obstacle"; issue #6, case C).
+TEST_F(MissionE2eTest, MoveStartingInsideTheBufferLeavesItInsteadOfFailing) {
+  auto charts = v1::ChartService::NewStub(channel_);
+  v1::UploadChartRequest upload;
+  upload.set_name("fjord");
+  upload.set_format(v1::CHART_FORMAT_GEOJSON);
+  auto* file = upload.add_files();
+  file->set_name("fjord-entrance.geojson");
+  file->set_content(ReadFile(SourceDir() / "examples/scenarios/fjord-entrance.geojson"));
+  v1::UploadChartResponse chart;
+  {
+    grpc::ClientContext ctx;
+    ctx.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(60));
+    grpc::Status st = charts->UploadChart(&ctx, upload, &chart);
+    ASSERT_TRUE(st.ok()) << st.error_message();
+  }
+  v1::CreateMissionRequest create;
+  auto* spec = create.mutable_spec();
+  spec->set_name("start-in-buffer");
+  spec->set_chart_id(chart.chart().chart_id());
+  spec->set_domain(ReadFile(SourceDir() / "examples/fjord/domain.pddl"));
+  spec->set_problem(ReadFile(SourceDir() / "examples/fjord/case-a.pddl"));
+  // The south shore runs through (63.44 N, 10.327122 E): port-a 5 m north of it.
+  const double lat[] = {63.440045, 63.445835, 63.442244, 63.445835, 63.442693};
+  const double lon[] = {10.327122, 10.346208, 10.386389, 10.428579, 10.462732};
+  const char* names[] = {"port-a", "port-b", "port-c", "port-d", "port-e"};
+  for (int i = 0; i < 5; ++i) {
+    auto* l = spec->add_locations();
+    l->set_name(names[i]);
+    l->mutable_position()->set_latitude_deg(lat[i]);
+    l->mutable_position()->set_longitude_deg(lon[i]);
+  }
+  spec->mutable_ship()->set_service_speed_mps(3.6);
+  spec->set_vessel_id("e2e-buffer");
+  v1::Mission m;
+  {
+    grpc::ClientContext ctx;
+    grpc::Status st = stub_->CreateMission(&ctx, create, &m);
+    ASSERT_TRUE(st.ok()) << st.error_message();
+  }
+  // Planning runs in the background: wait for version 1 (or a failure).
+  for (int i = 0; i < 600 && m.current_version() < 1 && m.state() != v1::MISSION_STATE_FAILED; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    v1::GetMissionRequest get;
+    get.set_mission_id(m.mission_id());
+    grpc::ClientContext ctx;
+    ASSERT_TRUE(stub_->GetMission(&ctx, get, &m).ok());
+  }
+  ASSERT_NE(m.state(), v1::MISSION_STATE_FAILED) << m.failure_reason();
+  ASSERT_GE(m.current_version(), 1);
+  const v1::PlanVersion* first = nullptr;
+  auto events = Watch(stub_.get(), m.mission_id(), 0, 0);
+  for (const auto& e : events) {
+    if (e.has_plan_version() && e.plan_version().version() == 1) first = &e.plan_version();
+  }
+  ASSERT_NE(first, nullptr);
+  chart::ChartOptions o;
+  o.safety_buffer_m = 0;
+  o.simplify_tolerance_m = 0;
+  auto map = chart::LoadChartFile((SourceDir() / "examples/scenarios/fjord-entrance.geojson").string(), o);
+  ASSERT_TRUE(map.ok()) << map.status();
+  chart::ObstacleQuery q(*map);
+  int from_a = 0;
+  for (const v1::Task& t : first->tasks()) {
+    if (t.kind() != v1::Task::KIND_MOVE || t.from_location() != "port-a") continue;
+    ++from_a;
+    ASSERT_GE(t.route().waypoints_size(), 3) << t.task_id();
+    const auto& w0 = t.route().waypoints(0).position();
+    EXPECT_NEAR(w0.latitude_deg(), lat[0], 1e-6);  // the route starts where the ship is
+    EXPECT_NEAR(w0.longitude_deg(), lon[0], 1e-6);
+    // ... and its way out is short (the shore is 5 m away, the buffer 10 m).
+    const chart::LocalPoint a = map->frame().ToLocal({w0.latitude_deg(), w0.longitude_deg()});
+    const auto& w1 = t.route().waypoints(1).position();
+    const chart::LocalPoint b = map->frame().ToLocal({w1.latitude_deg(), w1.longitude_deg()});
+    EXPECT_LT(std::hypot(b.x_m - a.x_m, b.y_m - a.y_m), 40.0);
+    for (const auto& w : t.route().waypoints()) {
+      EXPECT_FALSE(q.Inside(map->frame().ToLocal({w.position().latitude_deg(), w.position().longitude_deg()})));
+    }
+  }
+  EXPECT_GE(from_a, 1);
 }
 
 }  // namespace

@@ -120,6 +120,49 @@ Role ClassifyEncounter(const Kinematics& own, const Kinematics& other, const Col
   return bearing_to_other > 0 ? Role::kCrossingGiveWay : Role::kCrossingStandOn;
 }
 
+namespace {
+
+double PointSegment(Vec2 p, Vec2 a, Vec2 b) {
+  const Vec2 d = b - a;
+  const double len2 = d.Dot(d);
+  const double t = len2 > 0 ? std::clamp((p - a).Dot(d) / len2, 0.0, 1.0) : 0.0;
+  return (p - (a + d * t)).Norm();
+}
+
+bool SegmentsCross(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
+  const double d1 = (b - a).Cross(c - a), d2 = (b - a).Cross(d - a);
+  const double d3 = (d - c).Cross(a - c), d4 = (d - c).Cross(b - c);
+  return ((d1 > 0) != (d2 > 0)) && ((d3 > 0) != (d4 > 0));
+}
+
+bool InsideRing(const std::vector<Vec2>& ring, Vec2 p) {
+  bool in = false;
+  for (size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++) {
+    if ((ring[i].y > p.y) != (ring[j].y > p.y) &&
+        p.x < (ring[j].x - ring[i].x) * (p.y - ring[i].y) / (ring[j].y - ring[i].y) + ring[i].x) {
+      in = !in;
+    }
+  }
+  return in;
+}
+
+}  // namespace
+
+double LandClearance(const std::vector<std::vector<Vec2>>& rings, Vec2 a, Vec2 b) {
+  double best = std::numeric_limits<double>::infinity();
+  for (const std::vector<Vec2>& ring : rings) {
+    if (ring.size() < 3) continue;
+    if (InsideRing(ring, a)) return 0.0;
+    for (size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++) {
+      const Vec2 c = ring[j], d = ring[i];
+      if (SegmentsCross(a, b, c, d)) return 0.0;
+      best = std::min({best, PointSegment(a, c, d), PointSegment(b, c, d), PointSegment(c, a, b),
+                       PointSegment(d, a, b)});
+    }
+  }
+  return best;
+}
+
 AvoidanceDecision ChooseVelocity(const Kinematics& own, Vec2 desired,
                                  const std::vector<Obstacle>& others,
                                  const AvoidanceOptions& options) {
@@ -187,6 +230,17 @@ AvoidanceDecision ChooseVelocity(const Kinematics& own, Vec2 desired,
       double dev = v.x - desired.x, dev_y = v.y - desired.y;
       double cost = dev * dev + dev_y * dev_y + (k < 0 ? 0.5 : 0.0) * desired_speed * desired_speed * 0.01 +
                     (1.0 - f) * desired_speed * desired_speed * 0.5;
+      // Land, checked only for a candidate that could be chosen (the check
+      // is the costly part: every land edge against the track).
+      if (options.land != nullptr && (ok ? cost < best_cost : violation < least_violation)) {
+        const double clear = LandClearance(*options.land, own.position, own.position + v * options.land_lookahead_s);
+        if (clear < options.land_clearance_m) {
+          ok = false;
+          // Worse than any CPA shortfall; when every candidate is short of
+          // the clearance, the one nearest to clear.
+          violation += 1e6 + 1e3 * (options.land_clearance_m - clear);
+        }
+      }
       if (ok && cost < best_cost) {
         best_cost = cost;
         best = v;

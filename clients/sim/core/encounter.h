@@ -88,7 +88,19 @@ struct AvoidanceOptions {
   double turn_rate_rad_s = 0.0;
   double manoeuvre_lag_s = 0.0;
   double acceleration_mps2 = 0.05;
+  // Land (outer rings, local frame; not owned, may be null). A candidate
+  // whose straight track over land_lookahead_s comes closer than
+  // land_clearance_m to it is taken only when every candidate does: the
+  // velocity obstacles alone once sent the ship round the wrong side of an
+  // island and onto the shore (issue #6, case C).
+  const std::vector<std::vector<Vec2>>* land = nullptr;
+  double land_clearance_m = 60.0;
+  double land_lookahead_s = 45.0;  // ~400 m at the routes' 9 m/s
 };
+
+// Smallest distance from the segment a-b to the rings' edges, 0 when it
+// crosses one or starts inside a ring.
+double LandClearance(const std::vector<std::vector<Vec2>>& rings, Vec2 a, Vec2 b);
 
 struct Obstacle {
   Kinematics kinematics;

@@ -135,3 +135,38 @@ TEST(AvoidanceTest, SlowTurningHullKeepsTheSafetyDistanceWhenTheDelayIsModelled)
 
 }  // namespace
 }  // namespace seaplan::sim
+
+namespace seaplan::sim {
+namespace {
+
+TEST(LandClearanceTest, CrossingInsideAndDistance) {
+  const std::vector<std::vector<Vec2>> land = {{{0, 100}, {1000, 100}, {1000, 300}, {0, 300}}};
+  EXPECT_EQ(LandClearance(land, {500, 0}, {500, 200}), 0.0);   // crosses the shore
+  EXPECT_EQ(LandClearance(land, {500, 150}, {510, 160}), 0.0);  // starts on land
+  EXPECT_NEAR(LandClearance(land, {0, 40}, {1000, 40}), 60.0, 1e-9);
+  EXPECT_NEAR(LandClearance(land, {1100, 0}, {1100, 400}), 100.0, 1e-9);
+}
+
+// Giving way to starboard would run the ship onto the shore just south of
+// it: the avoidance picks a velocity whose track stays clear of the land.
+TEST(AvoidanceTest, GiveWayManoeuvreKeepsClearOfLand) {
+  const std::vector<std::vector<Vec2>> south_shore = {{{-5000, -100}, {5000, -100}, {5000, -2000}, {-5000, -2000}}};
+  AvoidanceOptions o;
+  o.safety_distance_m = 120;
+  const Kinematics own{{0, 0}, VelocityOf(kEast, 9)};
+  // Crossing from starboard (south-east), on a collision course.
+  const Kinematics other{{1200, -60}, VelocityOf(kNorth, 0.5)};
+  AvoidanceDecision blind = ChooseVelocity(own, own.velocity, {{other, 1}}, o);
+  ASSERT_TRUE(blind.manoeuvring);
+  EXPECT_LT(LandClearance(south_shore, own.position, own.position + blind.velocity * o.land_lookahead_s),
+            o.land_clearance_m)
+      << "the scenario must make the land-blind choice head for the shore";
+  o.land = &south_shore;
+  AvoidanceDecision aware = ChooseVelocity(own, own.velocity, {{other, 1}}, o);
+  ASSERT_TRUE(aware.manoeuvring);
+  EXPECT_GE(LandClearance(south_shore, own.position, own.position + aware.velocity * o.land_lookahead_s),
+            o.land_clearance_m);
+}
+
+}  // namespace
+}  // namespace seaplan::sim

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "absl/strings/str_format.h"
 #include "seaplan/mission/tasks.h"
@@ -106,7 +107,9 @@ void Executor::StartTasks(std::vector<FeedbackOut>* out) {
       continue;
     }
     Running r{t, version_.version, time_s_};
+    tank_.OnTaskStarted(t.kind);
     Log(mission::TaskStartedMessage(t.kind));
+    NoteFuel();
     out->push_back(MakeFeedback(FeedbackKind::kTaskStarted, t.id, version_.version, t.action.DisplayName()));
     if (t.kind == TaskKind::kMove) {
       StartMove(t);
@@ -120,43 +123,67 @@ void Executor::StartTasks(std::vector<FeedbackOut>* out) {
 void Executor::StartMove(const mission::Task& task) {
   route_.clear();
   if (task.route) route_ = task.route->waypoints;
-  Vec2 here = position();
-  // Unberthing is not modelled: a ship at rest leaves its berth heading
-  // along the first leg (tugs / thrusters), as the paper's simulation does.
-  if (std::hypot(model_.state().surge_mps(), model_.state().sway_mps()) < 0.5) {
-    for (const auto& w : route_) {
-      if (std::hypot(w.position.x_m - here.x, w.position.y_m - here.y) > config_.arrival_radius_m) {
-        ship::ShipState s = model_.state();
-        s.eta[2] = std::atan2(w.position.x_m - here.x, w.position.y_m - here.y);
-        s.nu.setZero();
-        model_.set_state(s);
-        break;
-      }
-    }
-  }
-  std::vector<Vec2> path{here};
+  const Vec2 here = position();
+  // The path is the route itself, joined where the ship is. The ship usually
+  // lies some way off the route's start: it stopped abeam of the previous
+  // route's end, or the server snapped it to a named location up to
+  // RegenerationOptions::snap_distance_m away. A first leg from the ship to
+  // the route's start would point anywhere (often back along the route or
+  // towards the shore): a hull at 9 m/s that turns ~1 deg/s cannot follow a
+  // leg of 100 m, and looping around it ran the ship 400 m into the land
+  // (issue #6, case A). So: drop the legs the ship is already abeam of or
+  // past, and let the LOS law converge on the leg it has reached.
+  std::vector<Vec2> path;
   path_modes_.clear();
   for (size_t i = 0; i < route_.size(); ++i) {
-    const auto& p = route_[i].position;
-    // Skip waypoints we are already at (the route's start is usually here).
-    if (std::hypot(p.x_m - path.back().x, p.y_m - path.back().y) < 1.0) continue;
-    if (path.size() == 1 && std::hypot(p.x_m - here.x, p.y_m - here.y) < config_.arrival_radius_m &&
-        i + 1 < route_.size()) {
-      continue;
-    }
+    const Vec2 p{route_[i].position.x_m, route_[i].position.y_m};
+    if (!path.empty() && (p - path.back()).Norm() < 1.0) continue;
     // The leg ending here is sailed in the mode of the waypoint it starts from.
-    path_modes_.push_back(route_[i > 0 ? i - 1 : 0].mode);
-    path.push_back({p.x_m, p.y_m});
+    if (!path.empty()) path_modes_.push_back(route_[i - 1].mode);
+    path.push_back(p);
+  }
+  if (path.size() >= 2) {
+    // The leg to join: the nearest to the ship among the legs whose start is
+    // within the look-ahead distance of the route's start; legs before it
+    // are behind the ship.
+    size_t join = 0;
+    double best = std::numeric_limits<double>::infinity(), along_start = 0.0;
+    for (size_t i = 0; i + 1 < path.size() && along_start <= config_.path.lookahead_m; ++i) {
+      const Vec2 d = path[i + 1] - path[i];
+      const double len = d.Norm();
+      const double s = std::clamp((here - path[i]).Dot(d) / len, 0.0, len);
+      const double dist = (here - (path[i] + d * (s / len))).Norm();
+      if (dist < best) {
+        best = dist;
+        join = i;
+      }
+      along_start += len;
+    }
+    path.erase(path.begin(), path.begin() + static_cast<std::ptrdiff_t>(join));
+    path_modes_.erase(path_modes_.begin(), path_modes_.begin() + static_cast<std::ptrdiff_t>(join));
   }
   if (path.size() < 2) {
-    path.push_back({here.x, here.y + 1.0});
-    path_modes_.push_back(mission::MsoMode::kPto);
+    // No route (or a single point): head for it, or hold the heading.
+    const Vec2 to = path.empty() || (path.back() - here).Norm() < 1.0
+                        ? here + VelocityOf(model_.state().heading_rad(), 1.0)
+                        : path.back();
+    path = {here, to};
+    path_modes_.assign(1, route_.empty() ? mission::MsoMode::kPto : route_.front().mode);
   }
   auto los = PathFollower::Create(std::move(path), config_.path);
   if (los.ok()) {
     los_.emplace(std::move(*los));
   } else {
     Log(absl::StrFormat("cannot follow the route: %s", los.status().ToString()));
+  }
+  // Unberthing is not modelled: a ship at rest leaves its berth on the
+  // course the path follower asks for (tugs / thrusters), as the paper's
+  // simulation does.
+  if (los_ && std::hypot(model_.state().surge_mps(), model_.state().sway_mps()) < 0.5) {
+    ship::ShipState s = model_.state();
+    s.eta[2] = los_->Update(here);
+    s.nu.setZero();
+    model_.set_state(s);
   }
   double length = task.route ? task.route->length_m : 0.0;
   double time = task.route ? task.route->sailing_time_s : 0.0;
@@ -225,6 +252,7 @@ void Executor::StepMove(std::vector<FeedbackOut>* out) {
   // The VO assumes velocities change at once; this hull needs minutes to
   // turn, so the manoeuvre is planned with a margin on the safety distance.
   AvoidanceOptions planning = config_.avoidance;
+  if (!config_.land.empty()) planning.land = &config_.land;
   planning.safety_distance_m *= config_.avoidance_margin_factor;
   if (planning.turn_rate_rad_s <= 0) {
     planning.turn_rate_rad_s = config_.turn_rate_rad_s;
@@ -281,13 +309,16 @@ void Executor::Complete(const Running& r, std::vector<FeedbackOut>* out) {
   completed_.insert(r.task.id);
   tank_.OnTaskCompleted(r.task.kind);
   Log(mission::TaskCompletedMessage(r.task.kind));
-  if (tank_.fraction() <= config_.fuel_threshold_fraction && !fuel_low_logged_) {
-    Log(absl::StrFormat("fuel %.0f%% <= %.0f%%", tank_.fraction() * 100,
-                        config_.fuel_threshold_fraction * 100));
-    fuel_low_logged_ = true;
-  }
-  if (tank_.fraction() > config_.fuel_threshold_fraction) fuel_low_logged_ = false;
+  NoteFuel();
   out->push_back(MakeFeedback(FeedbackKind::kTaskCompleted, r.task.id, r.version, r.task.action.DisplayName()));
+}
+
+void Executor::NoteFuel() {
+  const bool low = mission::FuelAtOrBelow(tank_.fraction(), config_.fuel_threshold_fraction);
+  if (low && !fuel_low_logged_) {
+    Log(absl::StrFormat("fuel %.0f%% <= %.0f%%", tank_.fraction() * 100, config_.fuel_threshold_fraction * 100));
+  }
+  fuel_low_logged_ = low;
 }
 
 void Executor::InjectEvents(std::vector<FeedbackOut>* out) {

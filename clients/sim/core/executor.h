@@ -73,7 +73,9 @@ struct ExecutorConfig {
   // after an avoidance manoeuvre the ship rejoins the leg it has reached.
   // search 0: legs advance by along-track progress only (a nearer later leg
   // may lie across a headland: jumping to it cut corners over land).
-  PathFollowerOptions path{400.0, 60.0, 0.0};
+  // turn_radius 300 m: the wheel-over for this hull (about 300 m to turn
+  // at the routes' 9 m/s), see SharpCornerOvershootIsBoundedByTheWheelOver.
+  PathFollowerOptions path{400.0, 60.0, 0.0, 300.0};
   // SITS gains (kp 4, kd 90, ki 0.01) make this hull circle under LOS when
   // a leg starts far off its heading (the integral winds up while the rudder
   // has no authority at low speed); these settle within ~100 m of the path.
@@ -85,6 +87,9 @@ struct ExecutorConfig {
   double jump_threshold_m = 100.0;
   ship::Environment environment;
   AvoidanceOptions avoidance;
+  // Land (outer rings, local frame) the avoidance keeps clear of; empty =
+  // none known. The executor points avoidance.land at it.
+  std::vector<std::vector<Vec2>> land;
   double avoidance_margin_factor = 1.5;  // safety distance x this when choosing velocities
   // This hull's manoeuvrability for the avoidance (AvoidanceOptions):
   // about 1 deg/s at 30 deg rudder at service speed, ~20 s before the turn
@@ -148,6 +153,7 @@ class Executor {
   void StartMove(const mission::Task& task);
   void StepMove(std::vector<FeedbackOut>* out);
   void Complete(const Running& r, std::vector<FeedbackOut>* out);
+  void NoteFuel();  // logs crossing the fuel threshold (the server decides replans)
   void InjectEvents(std::vector<FeedbackOut>* out);
   void TrackTraffic();
 

@@ -2,6 +2,12 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
+#include <cmath>
+#include <vector>
+
+#include "seaplan/mission/tasks.h"
+
 namespace seaplan::sim {
 namespace {
 
@@ -25,29 +31,105 @@ mission::Task MoveTask(const std::string& id, mission::Point from, mission::Poin
   return t;
 }
 
+// A move along `points` (waypoints every ~100 m, as the route planner
+// returns them) sailed at `speed`.
+mission::Task RouteTask(const std::string& id, const std::vector<mission::Point>& corners, double speed) {
+  mission::Task t;
+  t.id = id;
+  t.kind = mission::TaskKind::kMove;
+  t.action.name = "move-ship";
+  mission::Route r;
+  for (size_t i = 0; i + 1 < corners.size(); ++i) {
+    const double len = mission::Distance(corners[i], corners[i + 1]);
+    const int n = std::max(1, static_cast<int>(std::round(len / 100.0)));
+    for (int k = 0; k < n; ++k) {
+      mission::RouteWaypoint w;
+      w.position = {corners[i].x_m + (corners[i + 1].x_m - corners[i].x_m) * k / n,
+                    corners[i].y_m + (corners[i + 1].y_m - corners[i].y_m) * k / n};
+      r.waypoints.push_back(w);
+    }
+    r.length_m += len;
+  }
+  mission::RouteWaypoint last;
+  last.position = corners.back();
+  r.waypoints.push_back(last);
+  r.sailing_time_s = r.length_m / speed;
+  t.route = r;
+  t.duration_s = r.sailing_time_s;
+  return t;
+}
+
+// Runs one move to completion; returns the largest distance from the route
+// polyline (every step) and where the ship ended.
+struct MoveRun {
+  double max_off_route_m = 0.0;
+  mission::Point end;
+  bool finished = false;
+};
+MoveRun RunMove(Vec2 start, double heading_rad, const mission::Task& move, ExecutorConfig c = {}) {
+  c.start = start;
+  c.start_heading_rad = heading_rad;
+  auto ex = Executor::Create(c);
+  EXPECT_TRUE(ex.ok()) << ex.status();
+  mission::PlanVersion v;
+  v.version = 1;
+  v.tasks.push_back(move);
+  ex->SetPlan(v);
+  std::vector<FeedbackOut> out;
+  MoveRun run;
+  for (int i = 0; i < 20000 && !ex->Finished(); ++i) {
+    ex->Step(&out);
+    const Vec2 p = ex->position();
+    run.max_off_route_m = std::max(run.max_off_route_m, mission::CrossTrackDistance(*move.route, {p.x, p.y}));
+  }
+  run.finished = ex->Finished();
+  run.end = {ex->position().x, ex->position().y};
+  return run;
+}
+
 TEST(FuelTankTest, PaperPercentages) {
   FuelTank tank(FuelOptions{}, 0.30);
   tank.OnTaskCompleted(mission::TaskKind::kMove);
   EXPECT_NEAR(tank.fraction(), 0.15, 1e-12);
-  tank.OnTaskCompleted(mission::TaskKind::kLoad);
+  tank.OnTaskStarted(mission::TaskKind::kMove);  // a move is charged when it completes
+  EXPECT_NEAR(tank.fraction(), 0.15, 1e-12);
+  tank.OnTaskStarted(mission::TaskKind::kLoad);
+  EXPECT_NEAR(tank.fraction(), 0.05, 1e-12);
+  tank.OnTaskCompleted(mission::TaskKind::kLoad);  // a port operation when it starts
   EXPECT_NEAR(tank.fraction(), 0.05, 1e-12);
   tank.OnTaskCompleted(mission::TaskKind::kRefuel);
   EXPECT_NEAR(tank.fraction(), 1.0, 1e-12);
-  tank.OnTaskCompleted(mission::TaskKind::kRepair);
+  tank.OnTaskStarted(mission::TaskKind::kRepair);
   EXPECT_NEAR(tank.fraction(), 0.90, 1e-12);
-  tank.OnTaskCompleted(mission::TaskKind::kUnload);
+  tank.OnTaskStarted(mission::TaskKind::kUnload);
   EXPECT_NEAR(tank.fraction(), 0.80, 1e-12);
+  tank.OnTaskStarted(mission::TaskKind::kOther);
   tank.OnTaskCompleted(mission::TaskKind::kOther);
   EXPECT_NEAR(tank.fraction(), 0.80, 1e-12);
   EXPECT_FALSE(tank.ran_dry());
   for (int i = 0; i < 6; ++i) tank.OnTaskCompleted(mission::TaskKind::kMove);
   EXPECT_TRUE(tank.ran_dry());
   EXPECT_EQ(tank.fraction(), 0.0);
+}
+
+// The numeric plan of case C unloads while refuelling: the unload's 10 % is
+// taken before the refill (as the planner counts it), not after.
+TEST(FuelTankTest, PortOperationOverlappingARefuelIsChargedBeforeTheRefill) {
+  FuelTank tank(FuelOptions{}, 0.60);
+  tank.OnTaskStarted(mission::TaskKind::kUnload);
+  tank.OnTaskStarted(mission::TaskKind::kRefuel);
+  tank.OnTaskCompleted(mission::TaskKind::kUnload);
+  tank.OnTaskCompleted(mission::TaskKind::kRefuel);
+  EXPECT_NEAR(tank.fraction(), 1.0, 1e-12);
+}
+
+TEST(FuelTankTest, MachineryModel) {
   FuelOptions machinery;
   machinery.kind = FuelModelKind::kMachinery;
   machinery.tank_capacity_kg = 100;
   FuelTank m(machinery, 1.0);
-  m.OnTaskCompleted(mission::TaskKind::kMove);  // no percentage charge
+  m.OnTaskStarted(mission::TaskKind::kLoad);      // no percentage charge
+  m.OnTaskCompleted(mission::TaskKind::kMove);
   m.Burn(25);
   EXPECT_NEAR(m.fraction(), 0.75, 1e-12);
 }
@@ -85,6 +167,38 @@ TEST(ExecutorTest, RunsAMoveAndAPortOperation) {
   EXPECT_GE(ex->report().log.Find("load task started"), 0);
   // The move takes longer than planned (the ship accelerates from rest) but not absurdly.
   EXPECT_LT(ex->time_s(), v.tasks[1].end_s() + 400);
+}
+
+// Case A of issue #6: the ship stopped ~100 m abeam of the previous route's
+// end, the next route starts at the berth position behind it. Sailing to the
+// route's start first made the 9 m/s hull loop 400 m into the shore.
+TEST(ExecutorTest, JoinsARouteStartingBesideTheShipWithoutLooping) {
+  const mission::Task move = RouteTask("v1-t1", {{0, 0}, {2100, 450}}, 9.15);
+  // Berthed 97 m north-east of the route's start (like port-c in case A),
+  // heading east.
+  MoveRun run = RunMove({41, 88}, M_PI / 2, move);
+  ASSERT_TRUE(run.finished);
+  EXPECT_LT(run.max_off_route_m, 110);  // never further off than where it started
+  EXPECT_LT(mission::Distance(run.end, {2100, 450}), 60 * 3);
+}
+
+// A route bending 60 degrees at one waypoint (waypoints every 100 m, as
+// the route planner returns them). This hull (SITS, ~80 s to turn 90 deg at
+// 9 m/s under full rudder) cannot turn inside ~300 m at the route planner's
+// PTO speed; the wheel-over (PathFollowerOptions::turn_radius_m) starts the
+// turn before the corner. Without it the ship overshot by 500 m at 9.15 m/s
+// and 214 m at 3.6 m/s.
+TEST(ExecutorTest, SharpCornerOvershootIsBoundedByTheWheelOver) {
+  const double c60 = std::cos(M_PI / 3), s60 = std::sin(M_PI / 3);
+  const std::vector<mission::Point> corners = {
+      {0, 0}, {1500, 0}, {1500 + 1000 * c60, 1000 * s60}, {3000 + 1000 * c60, 1000 * s60}};
+  MoveRun fast = RunMove({0, 0}, M_PI / 2, RouteTask("v1-t1", corners, 9.15));
+  ASSERT_TRUE(fast.finished);
+  EXPECT_LT(fast.max_off_route_m, 350);
+  MoveRun slow = RunMove({0, 0}, M_PI / 2, RouteTask("v1-t1", corners, 3.6));
+  ASSERT_TRUE(slow.finished);
+  EXPECT_LT(slow.max_off_route_m, 150);
+  EXPECT_LT(mission::Distance(slow.end, corners.back()), 60 * 3);
 }
 
 TEST(ExecutorTest, GnssJumpFailsTheMoveAtTheScriptedTime) {

@@ -12,19 +12,24 @@ void FuelTank::Take(double f) {
   }
 }
 
-void FuelTank::OnTaskCompleted(mission::TaskKind kind) {
+void FuelTank::OnTaskStarted(mission::TaskKind kind) {
   using mission::TaskKind;
-  if (kind == TaskKind::kRefuel) {
-    fraction_ = 1.0;
-    return;
-  }
   if (options_.kind != FuelModelKind::kPercentage) return;
   switch (kind) {
-    case TaskKind::kMove: Take(options_.move_fraction); break;
     case TaskKind::kLoad:
     case TaskKind::kUnload: Take(options_.cargo_fraction); break;
     case TaskKind::kRepair: Take(options_.repair_fraction); break;
     default: break;
+  }
+}
+
+void FuelTank::OnTaskCompleted(mission::TaskKind kind) {
+  if (kind == mission::TaskKind::kRefuel) {
+    fraction_ = 1.0;
+    return;
+  }
+  if (options_.kind == FuelModelKind::kPercentage && kind == mission::TaskKind::kMove) {
+    Take(options_.move_fraction);
   }
 }
 

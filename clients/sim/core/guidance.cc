@@ -8,11 +8,11 @@
 namespace seaplan::sim {
 
 Status PathFollowerOptions::Validate() const {
-  if (!(lookahead_m > 0) || !(switch_distance_m >= 0) || !(search_distance_m >= 0)) {
+  if (!(lookahead_m > 0) || !(switch_distance_m >= 0) || !(search_distance_m >= 0) || !(turn_radius_m >= 0)) {
     return absl::InvalidArgumentError(
-        absl::StrFormat("path follower: lookahead_m (%g) must be > 0, switch_distance_m (%g) and "
-                        "search_distance_m (%g) >= 0",
-                        lookahead_m, switch_distance_m, search_distance_m));
+        absl::StrFormat("path follower: lookahead_m (%g) must be > 0, switch_distance_m (%g), "
+                        "search_distance_m (%g) and turn_radius_m (%g) >= 0",
+                        lookahead_m, switch_distance_m, search_distance_m, turn_radius_m));
   }
   return absl::OkStatus();
 }
@@ -41,6 +41,16 @@ PathFollower::PathFollower(std::vector<Vec2> path, const PathFollowerOptions& o)
   for (size_t i = 1; i < path_.size(); ++i) {
     start_distance_[i] = start_distance_[i - 1] + (path_[i] - path_[i - 1]).Norm();
   }
+  wheel_over_m_.assign(path_.size() - 1, options_.switch_distance_m);
+  for (size_t i = 0; i + 2 < path_.size(); ++i) {
+    const double turn = std::abs(std::remainder(CourseOf(path_[i + 2] - path_[i + 1]) - CourseOf(path_[i + 1] - path_[i]),
+                                                2.0 * M_PI));
+    // Capped below a right angle's tangent (a sharper corner is sailed
+    // round anyway).
+    const double w = options_.turn_radius_m * std::tan(std::min(turn, 0.45 * M_PI) / 2.0);
+    wheel_over_m_[i] = std::max(w, options_.switch_distance_m);
+  }
+  for (double w : wheel_over_m_) max_wheel_over_m_ = std::max(max_wheel_over_m_, w);
 }
 
 double PathFollower::Along(int leg, Vec2 p) const {
@@ -71,9 +81,14 @@ double PathFollower::Update(Vec2 here) {
   }
   leg_ = best;
   // Past (or nearly past) the leg's end along track: the next leg.
-  while (leg_ < last && Along(leg_, here) > start_distance_[leg_ + 1] - start_distance_[leg_] - options_.switch_distance_m) {
-    ++leg_;
+  // The wheel-over distance may exceed a short leg (waypoints every 100 m):
+  // measured along the path from where the ship is abeam of its leg.
+  const double s_here = start_distance_[leg_] + Along(leg_, here);
+  int next = leg_;
+  for (int j = leg_; j < last && start_distance_[j + 1] - s_here <= max_wheel_over_m_; ++j) {
+    if (s_here > start_distance_[j + 1] - wheel_over_m_[j]) next = j + 1;
   }
+  leg_ = next;
   const Vec2 a = path_[leg_], b = path_[leg_ + 1];
   const Vec2 d = b - a;
   const double len = d.Norm();

@@ -33,6 +33,11 @@ struct PathFollowerOptions {
   // candidates when re-choosing the leg (bounds the search on long routes
   // and keeps a route that doubles back from being short-cut).
   double search_distance_m = 1500.0;
+  // Wheel-over: a hull that needs a turning circle of this radius starts
+  // turning onto the next leg R * tan(course change / 2) before the corner,
+  // so its arc meets both legs instead of overshooting the corner outwards
+  // by about R (0: only switch_distance_m).
+  double turn_radius_m = 0.0;
   Status Validate() const;
 };
 
@@ -63,6 +68,8 @@ class PathFollower {
   int leg_ = 0;
   double cross_track_m_ = 0.0;
   double leg_remaining_m_ = 0.0;
+  std::vector<double> wheel_over_m_;  // per leg: switch this far before its end
+  double max_wheel_over_m_ = 0.0;
 };
 
 }  // namespace seaplan::sim

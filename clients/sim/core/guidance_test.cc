@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <vector>
 
 namespace seaplan::sim {
 namespace {
@@ -61,6 +62,29 @@ TEST(PathFollowerTest, KinematicShipConvergesAndReachesTheEnd) {
   }
   EXPECT_LT((p - Vec2{3000, 1500}).Norm(), 60);
   EXPECT_LT(worst_late, 150);
+}
+
+TEST(PathFollowerTest, WheelOverStartsTheTurnBeforeTheCorner) {
+  // A right-angle corner at (2000, 0), waypoints every 100 m before it.
+  std::vector<Vec2> path;
+  for (int x = 0; x <= 2000; x += 100) path.push_back({static_cast<double>(x), 0});
+  path.push_back({2000, 2000});
+  PathFollowerOptions late;
+  auto plain = PathFollower::Create(path, late);
+  PathFollowerOptions early;
+  early.turn_radius_m = 300;  // switches 300 tan(40.5 deg) = 256 m before the corner
+  auto wheel = PathFollower::Create(path, early);
+  ASSERT_TRUE(plain.ok() && wheel.ok());
+  for (double x = 0; x <= 1800; x += 50) {
+    plain->Update({x, 0});
+    wheel->Update({x, 0});
+  }
+  EXPECT_EQ(plain->leg(), 18);  // still on the leg 1800-1900
+  EXPECT_EQ(wheel->leg(), 20);  // already steering for the northbound leg
+  EXPECT_LT(wheel->Update({1800, 0}), M_PI / 2);  // turning left of east, towards north
+  PathFollowerOptions bad;
+  bad.turn_radius_m = -1;
+  EXPECT_FALSE(bad.Validate().ok());
 }
 
 }  // namespace

@@ -79,7 +79,21 @@ std::string ToJson(const MissionReport& r) {
     for (const mission::Task& t : v.tasks) {
       o << (ft ? "" : ", ") << "{\"id\": " << JsonString(t.id) << ", \"kind\": "
         << JsonString(mission::TaskKindName(t.kind)) << ", \"action\": " << JsonString(t.action.DisplayName())
-        << ", \"start_s\": " << Num3(t.start_s) << ", \"duration_s\": " << Num3(t.duration_s) << "}";
+        << ", \"start_s\": " << Num3(t.start_s) << ", \"duration_s\": " << Num3(t.duration_s);
+      if (t.route) {
+        // The refined route (local frame, metres): what the executor follows,
+        // so a track can be checked against it (cross-track error, land).
+        o << ", \"route_length_m\": " << Num3(t.route->length_m)
+          << ", \"route_sailing_time_s\": " << Num3(t.route->sailing_time_s) << ", \"route\": [";
+        bool fw = true;
+        for (const mission::RouteWaypoint& w : t.route->waypoints) {
+          o << (fw ? "" : ", ") << "[" << Num3(w.position.x_m) << ", " << Num3(w.position.y_m) << ", "
+            << JsonString(mission::MsoModeName(w.mode)) << "]";
+          fw = false;
+        }
+        o << "]";
+      }
+      o << "}";
       ft = false;
     }
     o << "]}";

@@ -11,6 +11,7 @@
 #include "absl/strings/str_join.h"
 #include "absl/strings/str_split.h"
 #include "action_model.h"
+#include "seaplan/mission/replan_policy.h"
 
 namespace seaplan::mission {
 namespace {
@@ -298,7 +299,7 @@ StatusOr<RegeneratedProblem> RegenerateProblem(
     }
   }
   if (ship.fuel_fraction) {
-    const bool low = *ship.fuel_fraction <= options.fuel_threshold_fraction;
+    const bool low = FuelAtOrBelow(*ship.fuel_fraction, options.fuel_threshold_fraction);
     const pddl::Domain& d = model.domain();
     if (fuel_gates_actions) {
       std::string k = AtomKey(options.fuel_predicate, {ship_obj});

@@ -86,6 +86,13 @@ TEST_F(ProblemUpdateTest, FuelReadingSetsFlagsOnlyWhereFuelGatesActions) {
   EXPECT_FALSE(Has(low->problem_text, "(fuel ship0)"));
   EXPECT_TRUE(Has(low->problem_text, "(no_fuel ship0)"));
   EXPECT_FALSE(low->goal_satisfied);
+  // 30 % summed from 10 % and 15 % steps (0.30000000000000004) is at the
+  // threshold: the problem must say no_fuel, as the replan decision does.
+  double summed = 1.0;
+  for (double step : {0.1, 0.15, 0.1, 0.1, 0.15, 0.1}) summed -= step;
+  auto at = RegenerateProblem(gated, problem_, all, {}, CaseALocations(), {{3000, 2000}, summed});
+  ASSERT_TRUE(at.ok());
+  EXPECT_TRUE(Has(at->problem_text, "(no_fuel ship0)"));
 }
 
 // The examples' domain style: (connected ?from ?to) + (distance ?from ?to).

@@ -21,8 +21,13 @@ Status ReplanPolicy::Validate() const {
   return absl::OkStatus();
 }
 
+bool FuelAtOrBelow(double fuel_fraction, double threshold_fraction) {
+  return fuel_fraction <= threshold_fraction + 1e-6;
+}
+
 std::optional<std::string> DecideReplan(const Feedback& feedback, const PlanVersion& current,
-                                        const Task* active_task, const ReplanPolicy& policy) {
+                                        const Task* active_task, const ReplanPolicy& policy,
+                                        const std::set<std::string>* completed_task_ids) {
   if (feedback.plan_version != 0 && feedback.plan_version != current.version) return std::nullopt;
   if (feedback.kind == FeedbackKind::kTaskFailed) {
     std::string what = active_task ? absl::StrCat(active_task->id, " ", active_task->action.name)
@@ -44,14 +49,19 @@ std::optional<std::string> DecideReplan(const Feedback& feedback, const PlanVers
                              active_task->id, policy.position_deviation_m);
     }
   }
-  if (policy.fuel_planned && feedback.fuel_fraction && *feedback.fuel_fraction <= 0.0) {
+  if (policy.fuel_planned && feedback.fuel_fraction && FuelAtOrBelow(*feedback.fuel_fraction, 0.0)) {
     return std::string("fuel tank empty although fuel was planned");
   }
   if (!policy.fuel_planned && feedback.fuel_fraction &&
-      *feedback.fuel_fraction <= policy.fuel_threshold_fraction) {
+      FuelAtOrBelow(*feedback.fuel_fraction, policy.fuel_threshold_fraction)) {
     bool refuel_left = false, move_left = false;
     for (const Task& t : current.tasks) {
-      if (t.end_s() < feedback.mission_time_s - 1e-6) continue;
+      if (completed_task_ids != nullptr) {
+        if (completed_task_ids->contains(t.id)) continue;
+      } else if (t.end_s() < feedback.mission_time_s - 1e-6) {
+        continue;
+      }
+      if (feedback.kind == FeedbackKind::kTaskCompleted && t.id == feedback.task_id) continue;
       if (active_task && t.id == active_task->id && feedback.kind == FeedbackKind::kTaskCompleted) {
         continue;
       }

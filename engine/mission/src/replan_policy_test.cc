@@ -2,6 +2,9 @@
 
 #include <gtest/gtest.h>
 
+#include <set>
+#include <string>
+
 namespace seaplan::mission {
 namespace {
 
@@ -76,6 +79,35 @@ TEST(ReplanPolicyTest, LateCompletionAndStaleVersion) {
   late.plan_version = 1;  // about an older version: ignored
   EXPECT_FALSE(DecideReplan(late, v, &v.tasks[0], ReplanPolicy{}));
   EXPECT_FALSE((ReplanPolicy{-1, 1, 1}.Validate().ok()));
+}
+
+// A ship running late: the refuel (v2-t2, planned to end at 180 s) has not
+// happened at 400 s. With the completed list it still counts as ahead; the
+// planned-time guess alone would call it done and replan (issue #6, case C
+// replanned away a plan that was about to refuel).
+TEST(ReplanPolicyTest, LateRefuelStillCountsAsAheadWithTheCompletedList) {
+  PlanVersion v = TwoTaskVersion(TaskKind::kRefuel);
+  Feedback f{FeedbackKind::kPosition, "v2-t1", 2, 400, Point{900, 0}, 0.15, ""};
+  const std::set<std::string> done;  // nothing completed yet
+  EXPECT_FALSE(DecideReplan(f, v, &v.tasks[0], ReplanPolicy{}, &done));
+  const std::set<std::string> refuelled = {"v2-t1", "v2-t2"};
+  Feedback later{FeedbackKind::kTaskCompleted, "v2-t2", 2, 500, Point{1000, 0}, 0.15, ""};
+  EXPECT_TRUE(DecideReplan(later, v, &v.tasks[1], ReplanPolicy{}, &refuelled));
+}
+
+// 1.0 - 0.1 - 0.15 - 0.1 - 0.1 - 0.15 - 0.1 is 0.30000000000000004 in
+// binary floating point: that is 30 %, at the threshold.
+TEST(ReplanPolicyTest, FuelAtTheThresholdCountsDespiteRoundingError) {
+  double fuel = 1.0;
+  for (double step : {0.1, 0.15, 0.1, 0.1, 0.15, 0.1}) fuel -= step;
+  ASSERT_GT(fuel, 0.3);  // the rounding error this guards against
+  EXPECT_TRUE(FuelAtOrBelow(fuel, 0.3));
+  EXPECT_FALSE(FuelAtOrBelow(0.305, 0.3));
+  PlanVersion v = TwoTaskVersion(TaskKind::kLoad);
+  Feedback f{FeedbackKind::kTaskCompleted, "v2-t1", 2, 100, Point{1000, 0}, fuel, ""};
+  auto reason = DecideReplan(f, v, &v.tasks[0], ReplanPolicy{});
+  ASSERT_TRUE(reason);
+  EXPECT_EQ(*reason, "fuel 30% <= 30%");
 }
 
 }  // namespace

@@ -43,7 +43,7 @@ FeedbackOutcome OnFeedback(const MissionDefinition& mission, const PlanVersion& 
       }
     }
   }
-  out.replan_reason = DecideReplan(feedback, current, active, mission.policy);
+  out.replan_reason = DecideReplan(feedback, current, active, mission.policy, &done);
   out.mission_completed = !current.tasks.empty() && !out.replan_reason &&
                           std::all_of(current.tasks.begin(), current.tasks.end(),
                                       [&](const Task& t) { return done.contains(t.id); });

@@ -123,18 +123,22 @@ std::int32_t LazySearch::Materialize(std::int32_t pending_index) {
   registry_.Unpack(StateId(rec.parent), &parent_state_);
   Event ev = rec.event;
   if (!transitions_.Apply(parent_state_, &ev, &next_)) return -1;  // cannot happen: deterministic
-  ExtractPath(rec.parent, &path_);
-  timeline_.Build(path_);
-  Timeline::Outcome out;
-  if (!timeline_.TryAdd(ev, &out)) {
-    timeline_.Undo();
-    return -1;
+  // Usually the parent was just expanded and its schedule is still built.
+  if (timeline_path_of_ != rec.parent) {
+    ExtractPath(rec.parent, &path_);
+    timeline_.Build(path_);
+    timeline_path_of_ = rec.parent;
   }
+  Timeline::Outcome out;
+  const auto reject = [this]() {
+    timeline_.Undo();
+    return std::int32_t{-1};
+  };
+  if (!timeline_.TryAdd(ev, &out)) return reject();
   slack_scratch_.clear();
   for (const auto& r : next_.running) {
     if (task_.IsWindowAction(r.action)) slack_scratch_.push_back(timeline_.WindowSlack(r.action, out.makespan_s));
   }
-  timeline_.Undo();
   const bool greedy = params_.weight < 0;
   // Find the copy of this state to use: an unvisited one, one we improve
   // on, or a new variant when no visited copy dominates this schedule.
@@ -151,21 +155,25 @@ std::int32_t LazySearch::Materialize(std::int32_t pending_index) {
     merged_any_ = true;
     const bool bound_ok = params_.bound_dominance ? n.lb_s <= out.lower_bound_s + 1e-9
                                                   : std::abs(n.lb_s - out.lower_bound_s) <= 1e-9;
-    if (bound_ok && SlackAtLeast(n, slack_scratch_)) return -1;  // dominated
+    if (bound_ok && SlackAtLeast(n, slack_scratch_)) return reject();  // dominated
     const bool new_dominates = out.lower_bound_s <= n.lb_s + 1e-9 && SlackAtMost(n, slack_scratch_);
     if (new_dominates) {
-      if (greedy && n.status == kClosed) return -1;
+      if (greedy && n.status == kClosed) return reject();
       // Stored bounds of descendants can be stale after an ancestor
       // improved; never let a state become its own ancestor.
-      if (IsAncestor(id.value(), rec.parent)) return -1;
+      if (IsAncestor(id.value(), rec.parent)) return reject();
       chosen = id.value();
       break;
     }
   }
   if (chosen < 0) {
     if (!next_.running.empty() || !task_.tils().empty()) merged_timed_ = true;
-    return -1;
+    return reject();
   }
+  // The chosen state's schedule is the parent's plus this event: keep it
+  // for the expansion that follows.
+  timeline_.Keep(ev);
+  timeline_path_of_ = chosen;
   NodeInfo& n = info_[static_cast<std::size_t>(chosen)];
   n.parent = rec.parent;
   n.event = ev;
@@ -193,8 +201,11 @@ LazySearch::Status LazySearch::Step() {
   std::span<const std::uint8_t> usable;
   const bool timed_check = reachability_ != nullptr && reachability_->active();
   if (timed_check) {
-    ExtractPath(s, &path_);
-    timeline_.Build(path_);
+    if (timeline_path_of_ != s) {
+      ExtractPath(s, &path_);
+      timeline_.Build(path_);
+      timeline_path_of_ = s;
+    }
     if (!reachability_->Evaluate(current_, timeline_)) {
       // Like an inconsistent schedule, this depends on the path's times.
       stn_pruned_ = true;
@@ -224,9 +235,10 @@ LazySearch::Status LazySearch::Step() {
     priority_preferred_ -= 1000;
   }
   ++counters_.expanded;
-  if (!timed_check) {
+  if (timeline_path_of_ != s) {
     ExtractPath(s, &path_);
     timeline_.Build(path_);
+    timeline_path_of_ = s;
   }
 
   candidates_.clear();

@@ -145,6 +145,12 @@ class LazySearch {
   std::vector<double> slack_pool_;
   std::vector<Pending> pending_;
   std::int32_t initial_ = 0;
+  // The state whose path the timeline holds (Build or Keep), -1 for none:
+  // saves rebuilding the schedule of the state about to be expanded and
+  // of the parent of the next popped successor (Materialize). Any change
+  // of a parent pointer happens in Materialize, which then keeps or
+  // rebuilds, so the cached path is never stale.
+  std::int32_t timeline_path_of_ = -1;
   const StopToken* stop_ = nullptr;
   TemporalReachability* reachability_ = nullptr;
   StateData parent_state_;

@@ -44,6 +44,12 @@ class Stn {
   struct Mark {
     std::size_t trail, edge_log, nodes;
   };
+  // Nodes whose time propagation raised since `mark` (possibly repeated);
+  // times only ever increase, so their current times are the new maxima.
+  template <typename F>
+  void ForEachRaisedSince(const Mark& mark, F&& f) const {
+    for (std::size_t i = mark.trail; i < trail_.size(); ++i) f(trail_[i].node);
+  }
   Mark GetMark() const { return {trail_.size(), edge_log_.size(), time_.size()}; }
   void Undo(const Mark& mark);
 

@@ -53,7 +53,14 @@ bool Timeline::Build(std::span<const Event> events) {
     Commit(e, EventNode(num_events_));
     ++num_events_;
   }
+  path_makespan_s_ = Current().makespan_s;
   return ok;
+}
+
+void Timeline::Keep(const Event& event) {
+  Commit(event, EventNode(num_events_));
+  ++num_events_;
+  path_makespan_s_ = tentative_makespan_s_;
 }
 
 bool Timeline::AddToStn(const Event& event) {
@@ -215,13 +222,24 @@ Timeline::Outcome Timeline::Current() const {
 bool Timeline::TryAdd(const Event& event, Outcome* outcome) {
   mark_ = stn_.GetMark();
   if (!AddToStn(event)) return false;
-  *outcome = Current();
+  // Current() without its scan over every node of the path.
+  double makespan = path_makespan_s_;
+  const int new_node = stn_.num_nodes() - 1;
+  if (is_action_node_[new_node]) makespan = std::max(makespan, stn_.time(new_node));
+  stn_.ForEachRaisedSince(mark_, [&](int n) {
+    if (is_action_node_[n]) makespan = std::max(makespan, stn_.time(n));
+  });
+  tentative_makespan_s_ = makespan;
+  outcome->makespan_s = makespan;
+  outcome->lower_bound_s = makespan;
+  for (auto a : open_actions_) {
+    outcome->lower_bound_s = std::max(outcome->lower_bound_s, stn_.time(open_start_[a]) + open_min_duration_[a]);
+  }
   if (!event.is_til()) {
     const SnapAction& snap = task_.snap(event.snap);
     if (!snap.is_end && task_.task().actions[snap.action].is_durative) {
-      const int node = stn_.num_nodes() - 1;
       outcome->lower_bound_s =
-          std::max(outcome->lower_bound_s, stn_.time(node) + event.min_duration_s);
+          std::max(outcome->lower_bound_s, stn_.time(new_node) + event.min_duration_s);
     } else if (snap.is_end) {
       // The ended action no longer bounds from below beyond its end node.
       Outcome recomputed = *outcome;

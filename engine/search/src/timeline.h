@@ -57,6 +57,9 @@ class Timeline {
   // inconsistent. Always call Undo() afterwards.
   bool TryAdd(const Event& event, Outcome* outcome);
   void Undo();
+  // Instead of Undo() after a successful TryAdd: keeps `event` (the same
+  // one) as the path's next event, exactly as Build(path + event) would.
+  void Keep(const Event& event);
 
   bool bound_concurrency() const { return bound_concurrency_; }
 
@@ -95,6 +98,10 @@ class Timeline {
   Stn stn_;
   Stn::Mark mark_{};
   std::size_t num_events_ = 0;
+  // Latest action event time of the built path: TryAdd only needs the new
+  // node and the nodes propagation raised (times never decrease).
+  double path_makespan_s_ = 0.0;
+  double tentative_makespan_s_ = 0.0;  // of the last TryAdd, for Keep
   int next_til_ = 0;
   std::vector<std::int32_t> last_writer_;                 // per fact, STN node or -1
   std::vector<std::vector<std::int32_t>> readers_;        // per fact, since last writer

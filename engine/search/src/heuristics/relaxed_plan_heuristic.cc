@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 namespace seaplan::search {
 namespace {
@@ -122,6 +123,25 @@ RelaxedPlanHeuristic::RelaxedPlanHeuristic(const SnapTask& task, double epsilon_
   op_missing_init_.resize(static_cast<std::size_t>(num_ops_));
   for (int op = 0; op < num_ops_; ++op) {
     op_missing_init_[op] = op_exists_[op] ? pre_begin_[op + 1] - pre_begin_[op] : (1 << 30);
+  }
+  pair_check_.assign(static_cast<std::size_t>(num_ops_), PairCheck{});
+  for (int op = 0; op < num_ops_; op += 2) {
+    const int end = op + 1;
+    if (!op_exists_[op] || !actions[static_cast<std::size_t>(op / 2)].is_durative || has_num_eff_[op] ||
+        has_num_eff_[end] || has_num_pre_[end]) {
+      continue;
+    }
+    PairCheck& c = pair_check_[static_cast<std::size_t>(op)];
+    c.begin = static_cast<std::int32_t>(pair_facts_.size());
+    c.started = num_facts_ + op / 2;
+    for (int i = add_begin_[op]; i < add_begin_[op + 1]; ++i) {
+      if (add_[i] < num_facts_) pair_facts_.push_back(add_[i]);
+    }
+    pair_facts_.insert(pair_facts_.end(), add_.begin() + add_begin_[end], add_.begin() + add_begin_[end + 1]);
+    for (int i = pre_begin_[end]; i < pre_begin_[end + 1]; ++i) {
+      if (pre_[i] != num_facts_ + op / 2) pair_facts_.push_back(pre_[i]);
+    }
+    c.end = static_cast<std::int32_t>(pair_facts_.size());
   }
   goal_fact_.assign(static_cast<std::size_t>(total_facts), 0);
   for (auto f : task.task().goal.positive) {
@@ -292,7 +312,8 @@ void RelaxedPlanHeuristic::MarkNumeric(const task::NumericCondition& c, int laye
 int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* preferred,
                                    std::span<const double> window_slack,
                                    std::span<const std::uint8_t> usable) {
-  std::fill(fact_layer_.begin(), fact_layer_.end(), -1);
+  // All bytes 0xff is -1 in every int: memset, not an element loop.
+  std::memset(fact_layer_.data(), 0xff, fact_layer_.size() * sizeof(fact_layer_[0]));
   // op_layer_ is only read for operators that became applicable (plan
   // operators and numeric changers), which set it: no reset needed.
   std::copy(op_missing_init_.begin(), op_missing_init_.end(), op_missing_.begin());
@@ -302,6 +323,7 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
     }
   }
   int goals_left = num_goal_facts_;
+  skipped_pairs_ = 0;
   for (std::size_t v = 0; v < interval_.size(); ++v) {
     interval_[v] = {state.values[v], state.values[v]};
     raiser_[v] = lowerer_[v] = -1;
@@ -368,17 +390,36 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
   std::vector<std::int32_t>& numeric_ops = layer_ops_;  // applicable ops with numeric effects
   numeric_ops.clear();
   int goal_layer = -1;
+  // A skipped pair still counts as progress where it would have made some:
+  // started(a) new in its layer, end(a) applicable in the next one.
+  bool skipped_pair = false, skipped_before = false;
+  int skipped = 0;  // skipped_pairs_, kept in a register
   while (true) {
-    // Facts new at this layer enable operators.
-    for (auto f : new_facts_) {
-      for (int i = fact_ops_begin_[f]; i < fact_ops_begin_[f + 1]; ++i) {
-        const int op = fact_ops_[i];
-        if (--op_missing_[op] == 0) {
-          if (!has_num_pre_[op]) {
+    skipped_before = skipped_pair;
+    skipped_pair = false;
+    // Facts new at this layer enable operators. The hottest loop: raw
+    // pointers, so that the counter stores do not force reloads.
+    {
+      const std::int32_t* const fact_ops = fact_ops_.data();
+      const std::int32_t* const fact_ops_begin = fact_ops_begin_.data();
+      std::int32_t* const missing = op_missing_.data();
+      const std::uint8_t* const has_num_pre = has_num_pre_.data();
+      const PairCheck* const pairs = pair_check_.data();
+      const std::int32_t* const pair_facts = pair_facts_.data();
+      const std::int32_t* const fact_layer = fact_layer_.data();
+      for (auto f : new_facts_) {
+        const std::int32_t* const end = fact_ops + fact_ops_begin[f + 1];
+        for (const std::int32_t* it = fact_ops + fact_ops_begin[f]; it != end; ++it) {
+          const int op = *it;
+          if (--missing[op] != 0) continue;
+          if (has_num_pre[op]) {
+            numeric_waiting_.push_back(op);
+          } else if (PairRedundant(pairs[op], fact_layer, pair_facts)) {
+            skipped_pair = true;
+            ++skipped;
+          } else {
             op_layer_[op] = layer;
             applicable_.push_back(op);
-          } else {
-            numeric_waiting_.push_back(op);
           }
         }
       }
@@ -480,13 +521,15 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
       }
       interval_.swap(next_interval_);
     }
-    if (new_facts_.empty() && !new_ops) {
+    if (new_facts_.empty() && !new_ops && !skipped_pair && !skipped_before) {
       if (!widened || (numeric_waiting_.empty() && goal.numeric.empty())) {
         dead_end_proven_ = true;
+        skipped_pairs_ = skipped;
         return kDeadEnd;
       }
       if (++stagnant > kMaxStagnantLayers) {
         dead_end_proven_ = false;
+        skipped_pairs_ = skipped;
         return kDeadEnd;
       }
     } else {
@@ -494,6 +537,7 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
     }
     ++layer;
   }
+  skipped_pairs_ = skipped;
 
   // Extract a relaxed plan backwards from the goal.
   for (auto op : marked_ops_) op_marked_[op] = 0;

@@ -47,6 +47,9 @@ class RelaxedPlanHeuristic {
   // After a kDeadEnd: true when the relaxation proves it (false when the
   // numeric fixpoint was cut off after too many widening layers).
   bool last_dead_end_proven() const { return dead_end_proven_; }
+  // Redundant start/end pairs the last evaluation skipped (see pair_check_;
+  // a diagnostic for tests and profiling).
+  int last_skipped_pairs() const { return skipped_pairs_; }
 
  private:
   struct Interval {
@@ -54,6 +57,16 @@ class RelaxedPlanHeuristic {
   };
   Interval EvalInterval(const task::NumericExpr& expr, const StateData& state, task::ActionId a);
   bool Satisfiable(const task::NumericCondition& c, const StateData& state, task::ActionId a);
+  // See pair_check_: true when the start `op` can achieve nothing new now.
+  // Takes the raw tables so that the hot loop keeps them in registers.
+  struct PairCheck;
+  static bool PairRedundant(const PairCheck& c, const std::int32_t* fact_layer, const std::int32_t* pair_facts) {
+    if (c.begin < 0 || fact_layer[c.started] >= 0) return false;
+    for (const std::int32_t *it = pair_facts + c.begin, *end = pair_facts + c.end; it != end; ++it) {
+      if (fact_layer[*it] < 0) return false;
+    }
+    return true;
+  }
   void MarkOp(int op);
   void MarkFact(int fact);
   // Marks the changers of the condition's variables: the first operator
@@ -63,6 +76,7 @@ class RelaxedPlanHeuristic {
 
   const SnapTask& task_;
   bool dead_end_proven_ = true;
+  int skipped_pairs_ = 0;
   int num_facts_;    // real facts; started(a) is num_facts_ + a
   int num_ops_;      // 2 * actions
   // CSR tables.
@@ -86,6 +100,24 @@ class RelaxedPlanHeuristic {
   std::vector<std::int32_t> op_missing_init_;
   std::vector<std::uint8_t> goal_fact_;
   int num_goal_facts_ = 0;
+  // Redundant start/end pairs (satellite's turn_to from every direction).
+  // For a durative start whose start and end have no numeric effect and
+  // whose end has no numeric condition, pair_facts_[begin, end) lists the
+  // real adds of both snaps and the end's conditions other than
+  // started(a); begin is -1 for every other operator. When started(a) is
+  // not reached yet and all of these are when the start becomes applicable,
+  // the pair can achieve nothing: the end would only wait for started(a)
+  // and re-add reached facts. It is skipped (no started(a) fact, no end
+  // operator), which is exact: the layers, achievers, estimate and helpful
+  // events are the same as without it. (Checking again when the start is
+  // applied would catch facts reached earlier in the same layer, but costs
+  // more than it saves on satellite and elevators.)
+  struct PairCheck {
+    std::int32_t begin = -1, end = -1;
+    std::int32_t started = 0;  // the fact started(a)
+  };
+  std::vector<PairCheck> pair_check_;
+  std::vector<std::int32_t> pair_facts_;
 
   // Scratch per evaluation.
   std::vector<std::int32_t> fact_layer_, fact_achiever_;

@@ -6,6 +6,7 @@
 #pragma once
 
 #include <optional>
+#include <set>
 #include <string>
 
 #include "seaplan/common/status.h"
@@ -45,14 +46,26 @@ struct Feedback {
   std::string detail;
 };
 
+// Fuel at or below the threshold, with a tolerance of 1e-6 of the tank: a
+// percentage model that sums 10 % and 15 % steps in binary floating point
+// reports 0.30000000000000004 for 30 %, which must count as "at 30 %". The
+// replan decision and the problem regeneration (RegenerationOptions) both use
+// this, so a replan for low fuel always plans with (no_fuel ?v).
+bool FuelAtOrBelow(double fuel_fraction, double threshold_fraction);
+
 // Returns the reason for a replan, or nullopt when the current version still
 // holds. `active_task` is the task the feedback is about or the task under
-// way (may be null). Fuel: only when no refuel task remains at or after the
-// feedback time and a move does (otherwise the plan already handles it, or
-// nothing is left to burn fuel on); this is what keeps a plan with fuel
-// planned up front (numeric fluents) from being replanned for fuel.
+// way (may be null). Fuel: only when no refuel task remains and a move does
+// (otherwise the plan already handles it, or nothing is left to burn fuel
+// on); this is what keeps a plan with fuel planned up front (numeric
+// fluents) from being replanned for fuel. A task "remains" when it is not in
+// `completed_task_ids` (with a list given; the task this feedback completes
+// counts as completed), or, without a list, when its planned end is not
+// before the feedback time (a late ship makes that guess wrong: prefer the
+// list).
 // Feedback about an older plan version never triggers a replan.
 std::optional<std::string> DecideReplan(const Feedback& feedback, const PlanVersion& current,
-                                        const Task* active_task, const ReplanPolicy& policy);
+                                        const Task* active_task, const ReplanPolicy& policy,
+                                        const std::set<std::string>* completed_task_ids = nullptr);
 
 }  // namespace seaplan::mission

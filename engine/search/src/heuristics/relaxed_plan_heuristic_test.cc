@@ -1,0 +1,130 @@
+#include "relaxed_plan_heuristic.h"
+
+#include <gtest/gtest.h>
+
+#include <algorithm>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "seaplan/task/grounder.h"
+
+namespace seaplan::search {
+namespace {
+
+// A one-satellite world: turning from any direction to any other, and an
+// image of a direction taken while pointing at it (needs calibration).
+// Once the satellite can point everywhere, every further turn_to is a
+// redundant start/end pair for the relaxed exploration.
+constexpr char kDomain[] = R"((define (domain turn)
+  (:requirements :typing :equality :durative-actions)
+  (:types dir)
+  (:predicates (pointing ?d - dir) (image ?d - dir) (power) (calibrated))
+  (:durative-action turn_to :parameters (?to ?from - dir) :duration (= ?duration 5)
+    :condition (and (at start (pointing ?from)) (over all (not (= ?to ?from))))
+    :effect (and (at start (not (pointing ?from))) (at end (pointing ?to))))
+  (:durative-action calibrate :parameters () :duration (= ?duration 1)
+    :condition (at start (power))
+    :effect (and (at start (not (power))) (at end (calibrated))))
+  (:durative-action take_image :parameters (?d - dir) :duration (= ?duration 7)
+    :condition (and (over all (pointing ?d)) (at start (calibrated)))
+    :effect (at end (image ?d)))))";
+
+constexpr char kProblem[] = R"((define (problem turn-1) (:domain turn)
+  (:objects d0 d1 d2 d3 - dir)
+  (:init (pointing d0) (calibrated) (power))
+  (:goal (and (image d3) (pointing d1)))))";
+
+class RelaxedPlanHeuristicTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    auto loaded = task::LoadTask(kDomain, kProblem);
+    ASSERT_TRUE(loaded.ok()) << loaded.ErrorText();
+    task_ = loaded.task;
+    snap_ = std::make_unique<SnapTask>(*task_);
+    registry_ = std::make_unique<StateRegistry>(snap_->num_facts(), snap_->num_vars());
+    heuristic_ = std::make_unique<RelaxedPlanHeuristic>(*snap_, 0.001);
+  }
+
+  int Action(const std::string& display_name) const {
+    for (std::size_t a = 0; a < task_->actions.size(); ++a) {
+      if (task_->actions[a].DisplayName() == display_name) return static_cast<int>(a);
+    }
+    ADD_FAILURE() << display_name << " not grounded";
+    return 0;
+  }
+  int Fact(const std::string& display_name) const {
+    for (std::size_t f = 0; f < task_->facts.size(); ++f) {
+      if (task_->facts[f].DisplayName() == display_name) return static_cast<int>(f);
+    }
+    ADD_FAILURE() << display_name << " not grounded";
+    return 0;
+  }
+  StateData State(const std::vector<std::string>& facts) const {
+    StateData s = registry_->MakeEmpty();
+    for (const auto& f : facts) s.Set(Fact(f));
+    return s;
+  }
+
+  std::shared_ptr<const task::GroundTask> task_;
+  std::unique_ptr<SnapTask> snap_;
+  std::unique_ptr<StateRegistry> registry_;
+  std::unique_ptr<RelaxedPlanHeuristic> heuristic_;
+};
+
+TEST_F(RelaxedPlanHeuristicTest, RedundantTurnsAreSkippedWithoutChangingThePlan) {
+  // Layer 0: turns away from d0 and the image of d0 start; calibrate would
+  // only re-add (calibrated): skipped. Layer 2: d1..d3 are reached, so the
+  // 9 turns between d1..d3 and back to d0 that start then add nothing new:
+  // skipped. Relaxed plan: turn d3<-d0, turn d1<-d0, image d3 (start and
+  // end each) = 6; helpful: the two turns' starts.
+  std::vector<SnapId> preferred;
+  const int h = heuristic_->Evaluate(State({"(pointing d0)", "(calibrated)", "(power)"}), &preferred);
+  EXPECT_EQ(h, 6);
+  EXPECT_EQ(heuristic_->last_skipped_pairs(), 10);
+  std::vector<SnapId> expected = {2 * Action("(turn_to d3 d0)"), 2 * Action("(turn_to d1 d0)")};
+  std::sort(expected.begin(), expected.end());
+  EXPECT_EQ(preferred, expected);
+}
+
+TEST_F(RelaxedPlanHeuristicTest, RunningActionIsNotSkipped) {
+  // turn_to d1 d0 runs: started(a) holds, so its end is applicable at once
+  // and achieves (pointing d1); from d1 the satellite reaches d0, d2, d3,
+  // after which the turns starting from them are redundant, except the
+  // running one (its started(a) is no news, but it is not skipped): 8.
+  // Plan: end of the running turn, turn d3<-d1, image d3 = 5; helpful: the
+  // running turn's end.
+  StateData s = State({"(calibrated)"});
+  const int turn = Action("(turn_to d1 d0)");
+  s.running.push_back(RunningAction{turn, 5.0, 5.0});
+  std::vector<SnapId> preferred;
+  const int h = heuristic_->Evaluate(s, &preferred);
+  EXPECT_EQ(h, 5);
+  EXPECT_EQ(heuristic_->last_skipped_pairs(), 8);
+  EXPECT_EQ(preferred, std::vector<SnapId>{2 * turn + 1});
+}
+
+TEST_F(RelaxedPlanHeuristicTest, DeadEndWithOnlyRedundantPairsLeftIsProven) {
+  // Neither calibrated nor power: no image can be taken, however far the
+  // satellite turns; the exploration must still stop and call it proven.
+  std::vector<SnapId> preferred;
+  const int h = heuristic_->Evaluate(State({"(pointing d0)"}), &preferred);
+  EXPECT_EQ(h, RelaxedPlanHeuristic::kDeadEnd);
+  EXPECT_TRUE(heuristic_->last_dead_end_proven());
+  EXPECT_EQ(heuristic_->last_skipped_pairs(), 9);
+}
+
+TEST_F(RelaxedPlanHeuristicTest, PairWithAnUnreachedAddIsKept) {
+  // calibrate's start adds nothing real, but its end adds (calibrated),
+  // not reached yet: kept, and needed. Plan: calibrate, turn d3<-d0,
+  // turn d1<-d0, image d3 = 8; the 9 turns from layer 2 on are skipped.
+  std::vector<SnapId> preferred;
+  const int h = heuristic_->Evaluate(State({"(pointing d0)", "(power)"}), &preferred);
+  EXPECT_EQ(h, 8);
+  EXPECT_EQ(heuristic_->last_skipped_pairs(), 9);
+  const int calibrate = Action("(calibrate)");
+  EXPECT_TRUE(std::find(preferred.begin(), preferred.end(), 2 * calibrate) != preferred.end());
+}
+
+}  // namespace
+}  // namespace seaplan::search

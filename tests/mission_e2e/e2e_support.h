@@ -1,0 +1,233 @@
+// Helpers of the mission end-to-end tests: the real seaplan-server on a
+// loopback ephemeral port with a fresh database, the real seaplan-sim as a
+// child process with a wall-clock limit, and the few report.json fields the
+// tests read. Same approach as mission_e2e_test.cc (which predates this
+// header and keeps its own copy). Header-only: each test binary includes it
+// once. Not thread-safe (processes and files are per test).
+#pragma once
+
+#include <fcntl.h>
+#include <signal.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <map>
+#include <optional>
+#include <regex>
+#include <sstream>
+#include <string>
+#include <thread>
+#include <utility>
+#include <vector>
+
+namespace seaplan::e2e {
+
+namespace fs = std::filesystem;
+
+inline std::string ReadWholeFile(const fs::path& path) {
+  std::ifstream in(path, std::ios::binary);
+  std::stringstream ss;
+  ss << in.rdbuf();
+  return ss.str();
+}
+
+// seaplan-server on 127.0.0.1:0 (HTTP off), database and port file in the
+// folder given to Start. SIGTERM and reaped on destruction.
+class ServerProcess {
+ public:
+  ServerProcess() = default;
+  ServerProcess(const ServerProcess&) = delete;
+  ServerProcess& operator=(const ServerProcess&) = delete;
+  ~ServerProcess() { Stop(); }
+
+  // False when the binary does not start or never reports its port (15 s).
+  bool Start(const fs::path& server_bin, const fs::path& dir) {
+    fs::create_directories(dir);
+    const fs::path port_file = dir / "ports";
+    fs::remove(port_file);
+    const std::string bin = server_bin.string(), data = (dir / "data").string(), ports = port_file.string(),
+                      log = (dir / "server.log").string();
+    pid_ = fork();
+    if (pid_ == 0) {
+      int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+      if (fd >= 0) {
+        dup2(fd, STDOUT_FILENO);
+        dup2(fd, STDERR_FILENO);
+      }
+      execl(bin.c_str(), bin.c_str(), "--grpc-addr", "127.0.0.1:0", "--http-addr", "", "--data-dir", data.c_str(),
+            "--port-file", ports.c_str(), "--log-level", "warn", static_cast<char*>(nullptr));
+      _exit(127);
+    }
+    if (pid_ < 0) return false;
+    for (int i = 0; i < 300; ++i) {
+      std::ifstream in(port_file);
+      std::string line;
+      while (std::getline(in, line)) {
+        if (line.rfind("grpc=", 0) == 0) {
+          address_ = "127.0.0.1:" + line.substr(5);
+          return true;
+        }
+      }
+      int status = 0;
+      if (waitpid(pid_, &status, WNOHANG) == pid_) {
+        pid_ = -1;
+        return false;
+      }
+      std::this_thread::sleep_for(std::chrono::milliseconds(50));
+    }
+    return false;
+  }
+  void Stop() {
+    if (pid_ > 0) {
+      kill(pid_, SIGTERM);
+      int status = 0;
+      waitpid(pid_, &status, 0);
+      pid_ = -1;
+    }
+  }
+  const std::string& address() const { return address_; }
+
+ private:
+  pid_t pid_ = -1;
+  std::string address_;
+};
+
+struct ProcessResult {
+  int exit_code = -1;      // -1: killed by a signal or did not start
+  bool timed_out = false;  // killed after the wall-clock limit
+  std::string output;      // stdout + stderr
+};
+
+// Runs `argv` (argv[0] is the binary path) with extra environment variables,
+// stdout + stderr into `output_file`; SIGKILL after `limit`.
+inline ProcessResult RunProcess(const std::vector<std::string>& argv,
+                                const std::vector<std::pair<std::string, std::string>>& env,
+                                const fs::path& output_file, std::chrono::seconds limit) {
+  ProcessResult r;
+  std::vector<char*> args;
+  for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
+  args.push_back(nullptr);
+  const std::string out = output_file.string();
+  pid_t pid = fork();
+  if (pid == 0) {
+    for (const auto& [k, v] : env) setenv(k.c_str(), v.c_str(), 1);
+    int fd = open(out.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+    if (fd >= 0) {
+      dup2(fd, STDOUT_FILENO);
+      dup2(fd, STDERR_FILENO);
+    }
+    execv(args[0], args.data());
+    _exit(127);
+  }
+  if (pid < 0) return r;
+  const auto deadline = std::chrono::steady_clock::now() + limit;
+  int status = 0;
+  while (true) {
+    pid_t w = waitpid(pid, &status, WNOHANG);
+    if (w == pid) break;
+    if (std::chrono::steady_clock::now() > deadline) {
+      kill(pid, SIGKILL);
+      waitpid(pid, &status, 0);
+      r.timed_out = true;
+      break;
+    }
+    std::this_thread::sleep_for(std::chrono::milliseconds(50));
+  }
+  if (!r.timed_out && WIFEXITED(status)) r.exit_code = WEXITSTATUS(status);
+  r.output = ReadWholeFile(output_file);
+  return r;
+}
+
+// report.json readers. The sim writes the report itself with a fixed layout
+// ("key": value, one space), so a regex per key is enough for these tests.
+inline std::vector<double> Numbers(const std::string& text, const std::string& key) {
+  std::vector<double> out;
+  std::regex re("\"" + key + "\": (-?[0-9.eE+-]+)");
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), re); it != std::sregex_iterator(); ++it) {
+    out.push_back(std::stod((*it)[1]));
+  }
+  return out;
+}
+inline std::vector<std::string> Strings(const std::string& text, const std::string& key) {
+  std::vector<std::string> out;
+  std::regex re("\"" + key + "\": \"([^\"]*)\"");
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), re); it != std::sregex_iterator(); ++it) {
+    out.push_back((*it)[1]);
+  }
+  return out;
+}
+inline bool Flag(const std::string& text, const std::string& key) {
+  return text.find("\"" + key + "\": true") != std::string::npos;
+}
+
+// One executed-track sample: mission time, local frame x/y (metres).
+struct TrackPoint {
+  double time_s = 0.0, x_m = 0.0, y_m = 0.0;
+};
+// The "trajectory" array ([t, x, y] triples, the report's last array).
+inline std::vector<TrackPoint> Trajectory(const std::string& report) {
+  std::vector<TrackPoint> out;
+  const size_t at = report.find("\"trajectory\"");
+  if (at == std::string::npos) return out;
+  const std::string traj = report.substr(at);
+  std::regex pt("\\[(-?[0-9.eE+-]+), (-?[0-9.eE+-]+), (-?[0-9.eE+-]+)\\]");
+  for (auto it = std::sregex_iterator(traj.begin(), traj.end(), pt); it != std::sregex_iterator(); ++it) {
+    out.push_back({std::stod((*it)[1]), std::stod((*it)[2]), std::stod((*it)[3])});
+  }
+  return out;
+}
+
+// A refined move of a plan version: task id, action and route waypoints
+// (local frame, metres).
+struct RoutedMove {
+  std::string id, action;
+  std::vector<std::pair<double, double>> waypoints;
+};
+// Every task with a "route" in the report (all plan versions).
+inline std::vector<RoutedMove> RoutedMoves(const std::string& report) {
+  std::vector<RoutedMove> out;
+  std::regex task("\\{\"id\": \"([^\"]*)\", \"kind\": \"[^\"]*\", \"action\": \"([^\"]*)\"[^\\[\\}]*\"route\": \\[");
+  std::regex wp("^\\[(-?[0-9.eE+-]+), (-?[0-9.eE+-]+), \"[^\"]*\"\\](, )?");
+  for (auto it = std::sregex_iterator(report.begin(), report.end(), task); it != std::sregex_iterator(); ++it) {
+    RoutedMove m{(*it)[1], (*it)[2], {}};
+    std::string rest = report.substr(static_cast<size_t>(it->position() + it->length()));
+    std::smatch w;
+    while (std::regex_search(rest, w, wp)) {
+      m.waypoints.emplace_back(std::stod(w[1]), std::stod(w[2]));
+      rest = w.suffix();
+    }
+    out.push_back(std::move(m));
+  }
+  return out;
+}
+
+// "location = name lat lon" lines of a scenario file, in order.
+struct ScenarioLocation {
+  std::string name;
+  double lat_deg = 0.0, lon_deg = 0.0;
+};
+inline std::vector<ScenarioLocation> ScenarioLocations(const std::string& scenario_text) {
+  std::vector<ScenarioLocation> out;
+  std::regex re("(^|\\n)\\s*location\\s*=\\s*(\\S+)\\s+(-?[0-9.]+)\\s+(-?[0-9.]+)");
+  for (auto it = std::sregex_iterator(scenario_text.begin(), scenario_text.end(), re); it != std::sregex_iterator();
+       ++it) {
+    out.push_back({(*it)[2], std::stod((*it)[3]), std::stod((*it)[4])});
+  }
+  return out;
+}
+// Names of the "traffic = name kind ..." lines of a scenario file.
+inline std::vector<std::string> ScenarioTraffic(const std::string& scenario_text) {
+  std::vector<std::string> out;
+  std::regex re("(^|\\n)\\s*traffic\\s*=\\s*(\\S+)");
+  for (auto it = std::sregex_iterator(scenario_text.begin(), scenario_text.end(), re); it != std::sregex_iterator();
+       ++it) {
+    out.push_back((*it)[2]);
+  }
+  return out;
+}
+
+}  // namespace seaplan::e2e
