@@ -6,6 +6,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "heuristics/relaxed_plan_heuristic.h"
+#include "heuristics/temporal_reachability.h"
 #include "plan_builder.h"
 #include "search_engine.h"
 #include "seaplan/common/log.h"
@@ -69,6 +70,7 @@ class PlannerRun {
         snap_(task),
         registry_(snap_.num_facts(), snap_.num_vars()),
         heuristic_(snap_, options.epsilon_s),
+        reachability_(snap_),
         transitions_(snap_, options.max_concurrent_actions, options.epsilon_s),
         timeline_(snap_, options.epsilon_s, options.max_concurrent_actions > 0),
         plan_timeline_(snap_, options.epsilon_s, options.max_concurrent_actions > 0),
@@ -94,6 +96,7 @@ class PlannerRun {
   SnapTask snap_;
   StateRegistry registry_;
   RelaxedPlanHeuristic heuristic_;
+  TemporalReachability reachability_;
   Transitions transitions_;
   Timeline timeline_;
   Timeline plan_timeline_;
@@ -206,6 +209,7 @@ PlanResult PlannerRun::Run() {
     }
     LazySearch search(snap_, registry_, heuristic_, transitions_, timeline_, params);
     search.SetStopToken(&stop_);
+    search.SetTemporalReachability(&reachability_);
     search.Initialize(initial);
     while (true) {
       const Outcome poll = Poll(search);
@@ -251,6 +255,7 @@ PlanResult PlannerRun::Run() {
     params.seed = options_.random_seed;
     LazySearch search(snap_, registry_, heuristic_, transitions_, timeline_, params);
     search.SetStopToken(&stop_);
+    search.SetTemporalReachability(&reachability_);
     search.Initialize(initial);
     bool stop = false;
     while (true) {

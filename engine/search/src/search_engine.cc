@@ -198,9 +198,32 @@ LazySearch::Status LazySearch::Step() {
     return Status::kSolved;
   }
   const NodeInfo& cur = info_[static_cast<std::size_t>(s)];
-  const int h = heuristic_.Evaluate(
+  std::span<const std::uint8_t> usable;
+  const bool timed_check = reachability_ != nullptr && reachability_->active();
+  if (timed_check) {
+    if (timeline_path_of_ != s) {
+      ExtractPath(s, &path_);
+      timeline_.Build(path_);
+      timeline_path_of_ = s;
+    }
+    if (!reachability_->Evaluate(current_, timeline_)) {
+      // Like an inconsistent schedule, this depends on the path's times.
+      stn_pruned_ = true;
+      return Status::kInProgress;
+    }
+    usable = reachability_->usable_snaps();
+  }
+  int h = heuristic_.Evaluate(
       current_, &preferred_,
-      std::span<const double>(slack_pool_.data() + cur.slack_begin, static_cast<std::size_t>(cur.slack_count)));
+      std::span<const double>(slack_pool_.data() + cur.slack_begin, static_cast<std::size_t>(cur.slack_count)),
+      usable);
+  if (timed_check && h < RelaxedPlanHeuristic::kDeadEnd) {
+    // The untimed relaxed plan counts a fact of the state as free even when
+    // the state got it too late for a window (an image taken after its
+    // antenna's window closed); the plan along the earliest achievers takes
+    // it again. The longer of the two estimates guides the search.
+    h = std::max(h, reachability_->RelaxedPlanLength(current_, nullptr));
+  }
   ++counters_.evaluated;
   info_[static_cast<std::size_t>(s)].h = h;
   if (h >= RelaxedPlanHeuristic::kDeadEnd) {

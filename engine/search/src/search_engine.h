@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "heuristics/relaxed_plan_heuristic.h"
+#include "heuristics/temporal_reachability.h"
 #include "seaplan/common/stop_token.h"
 #include "open_lists/tie_breaking_open_list.h"
 #include "snap_task.h"
@@ -57,6 +58,11 @@ class LazySearch {
   // cancellation is seen within milliseconds; an interrupted expansion
   // leaves the search unusable (callers stop anyway).
   void SetStopToken(const StopToken* stop) { stop_ = stop; }
+  // Optional (may be null; borrowed): prunes states whose timed-literal
+  // deadlines can no longer be met, hides snaps that missed theirs from
+  // the heuristic and raises h to its time-aware relaxed plan length when
+  // longer. Only used when active().
+  void SetTemporalReachability(TemporalReachability* reachability) { reachability_ = reachability; }
   void Initialize(const StateData& initial);
   Status Step();
 
@@ -146,6 +152,7 @@ class LazySearch {
   // rebuilds, so the cached path is never stale.
   std::int32_t timeline_path_of_ = -1;
   const StopToken* stop_ = nullptr;
+  TemporalReachability* reachability_ = nullptr;
   StateData parent_state_;
 };
 

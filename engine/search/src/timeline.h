@@ -17,6 +17,7 @@
 // (no allocation per expansion once warmed up).
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <span>
 #include <vector>
@@ -64,6 +65,25 @@ class Timeline {
 
   // After Build: time of event i of the path.
   double EventTime(std::size_t i) const { return stn_.time(EventNode(i)); }
+  // After Build: earliest time of the path's last event that wrote fact `f`
+  // (0 when none did); nothing after the path reads f before it.
+  double FactWrittenAt(task::FactId f) const {
+    return last_writer_[f] >= 0 ? stn_.time(last_writer_[f]) : 0.0;
+  }
+  // After Build: the latest of FactWrittenAt(f) and the times of the events
+  // that read f since (over-all readers at their end); any later writer of
+  // f comes no earlier.
+  double FactReadUntil(task::FactId f) const {
+    double t = FactWrittenAt(f);
+    for (auto n : readers_[f]) t = std::max(t, stn_.time(n));
+    for (auto n : inv_readers_[f]) t = std::max(t, stn_.time(n));
+    return t;
+  }
+  // After Build: earliest time of the start of running action `a` (0 when
+  // it is not running).
+  double StartedAt(task::ActionId a) const {
+    return open_start_[a] >= 0 ? stn_.time(open_start_[a]) : 0.0;
+  }
   Outcome Current() const;
 
  private:

@@ -113,7 +113,10 @@ bool Transitions::DurationWindow(task::ActionId a, const StateData& state, doubl
       case task::Comparator::kLess: hi = std::min(hi, *v - epsilon_s_); break;
     }
   }
-  if (lo > hi + 1e-9 || hi < 0) return false;
+  // A durative action needs a positive duration (validator); one whose
+  // window allows only 0 (zenotravel's zoom from a city to itself) could
+  // never end: a trap for the search, not a step.
+  if (lo > hi + 1e-9 || hi <= 0) return false;
   if (task_.EffectsReadDuration(a) || action.over_all.numeric.size() + action.at_end.numeric.size() > 0) {
     // One concrete value keeps effects and conditions that read ?duration exact.
     hi = lo;

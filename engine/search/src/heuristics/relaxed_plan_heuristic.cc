@@ -115,8 +115,10 @@ RelaxedPlanHeuristic::RelaxedPlanHeuristic(const SnapTask& task, double epsilon_
   op_marked_.resize(static_cast<std::size_t>(num_ops_));
   interval_.resize(static_cast<std::size_t>(task.num_vars()));
   next_interval_.resize(static_cast<std::size_t>(task.num_vars()));
-  var_changer_.resize(static_cast<std::size_t>(task.num_vars()));
-  var_change_layer_.resize(static_cast<std::size_t>(task.num_vars()));
+  raiser_.resize(static_cast<std::size_t>(task.num_vars()));
+  raise_layer_.resize(static_cast<std::size_t>(task.num_vars()));
+  lowerer_.resize(static_cast<std::size_t>(task.num_vars()));
+  lower_layer_.resize(static_cast<std::size_t>(task.num_vars()));
   til_fact_.resize(static_cast<std::size_t>(num_facts_));
   op_missing_init_.resize(static_cast<std::size_t>(num_ops_));
   for (int op = 0; op < num_ops_; ++op) {
@@ -270,28 +272,62 @@ void RelaxedPlanHeuristic::MarkFact(int fact) {
   MarkOp(fact_achiever_[fact]);
 }
 
-void RelaxedPlanHeuristic::MarkNumeric(const task::NumericCondition& c, int layer) {
+void RelaxedPlanHeuristic::MarkNumeric(const task::NumericCondition& c, int layer,
+                                       const StateData& state, task::ActionId a) {
   for (const auto* expr : {&c.lhs, &c.rhs}) {
     for (const auto& n : expr->nodes) {
       if (n.op != task::NumericExpr::Op::kVariable) continue;
-      if (var_changer_[n.var] >= 0 && var_change_layer_[n.var] < layer) MarkOp(var_changer_[n.var]);
+      const auto v = n.var;
+      const bool can_raise = raiser_[v] >= 0 && raise_layer_[v] <= layer;
+      const bool can_lower = lowerer_[v] >= 0 && lower_layer_[v] <= layer;
+      if (can_raise && can_lower) {
+        // Which direction does the condition need? Try each half of the
+        // final interval around the state's value.
+        const Interval saved = interval_[v];
+        const double now = state.values[v];
+        interval_[v] = {now, saved.hi};
+        const bool up = Satisfiable(c, state, a);
+        interval_[v] = {saved.lo, now};
+        const bool down = Satisfiable(c, state, a);
+        interval_[v] = saved;
+        if (up && !down) {
+          MarkOp(raiser_[v]);
+        } else if (down && !up) {
+          MarkOp(lowerer_[v]);
+        } else if (up && down) {
+          MarkOp(raise_layer_[v] <= lower_layer_[v] ? raiser_[v] : lowerer_[v]);
+        } else {
+          MarkOp(raiser_[v]);
+          MarkOp(lowerer_[v]);
+        }
+      } else if (can_raise) {
+        MarkOp(raiser_[v]);
+      } else if (can_lower) {
+        MarkOp(lowerer_[v]);
+      }
     }
   }
 }
 
 int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* preferred,
-                                   std::span<const double> window_slack) {
+                                   std::span<const double> window_slack,
+                                   std::span<const std::uint8_t> usable) {
   // All bytes 0xff is -1 in every int: memset, not an element loop.
   std::memset(fact_layer_.data(), 0xff, fact_layer_.size() * sizeof(fact_layer_[0]));
   // op_layer_ is only read for operators that became applicable (plan
   // operators and numeric changers), which set it: no reset needed.
   std::copy(op_missing_init_.begin(), op_missing_init_.end(), op_missing_.begin());
+  if (!usable.empty()) {
+    for (int op = 0; op < num_ops_; ++op) {
+      if (!usable[op]) op_missing_[op] = 1 << 30;
+    }
+  }
   int goals_left = num_goal_facts_;
   skipped_pairs_ = 0;
   for (std::size_t v = 0; v < interval_.size(); ++v) {
     interval_[v] = {state.values[v], state.values[v]};
-    var_changer_[v] = -1;
-    var_change_layer_[v] = -1;
+    raiser_[v] = lowerer_[v] = -1;
+    raise_layer_[v] = lower_layer_[v] = -1;
   }
   applicable_.clear();
   numeric_waiting_.clear();
@@ -338,6 +374,7 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
   for (const auto& r : state.running) reach(num_facts_ + r.action, 0, -1);
   // Operators without fact preconditions are enabled from the start.
   for (auto op : no_pre_ops_) {
+    if (!usable.empty() && !usable[op]) continue;
     if (num_pre_[op].empty()) {
       op_layer_[op] = 0;
       applicable_.push_back(op);
@@ -456,6 +493,17 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
             }
           }
           if (std::isnan(cand.lo) || std::isnan(cand.hi)) continue;
+          // The first operator (of the first layer) that raises or lowers
+          // the interval is the variable's changer in that direction.
+          const bool undefined = std::isnan(cur.lo) || std::isnan(cur.hi);
+          if (raiser_[e->var] < 0 && (undefined || cand.hi > cur.hi)) {
+            raiser_[e->var] = op;
+            raise_layer_[e->var] = layer + 1;
+          }
+          if (lowerer_[e->var] < 0 && (undefined || cand.lo < cur.lo)) {
+            lowerer_[e->var] = op;
+            lower_layer_[e->var] = layer + 1;
+          }
           if (std::isnan(t.lo)) {
             t = cand;
           } else {
@@ -469,22 +517,7 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
         const Interval& b = next_interval_[v];
         const bool same = (a.lo == b.lo || (std::isnan(a.lo) && std::isnan(b.lo))) &&
                           (a.hi == b.hi || (std::isnan(a.hi) && std::isnan(b.hi)));
-        if (!same) {
-          widened = true;
-          if (var_changer_[v] < 0) {
-            // First operator (in this layer) that has an effect on v.
-            for (auto op : numeric_ops) {
-              for (const auto* e : num_eff_[op]) {
-                if (e->var == static_cast<task::NumericVarId>(v)) {
-                  var_changer_[v] = op;
-                  break;
-                }
-              }
-              if (var_changer_[v] >= 0) break;
-            }
-            var_change_layer_[v] = layer + 1;
-          }
-        }
+        if (!same) widened = true;
       }
       interval_.swap(next_interval_);
     }
@@ -514,14 +547,14 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
   stack_.clear();
   for (auto f : goal.positive) MarkFact(f);
   for (const auto& c : goal.numeric) {
-    if (!ConditionHoldsNumeric(c, state)) MarkNumeric(c, goal_layer);
+    if (!ConditionHoldsNumeric(c, state)) MarkNumeric(c, goal_layer, state, -1);
   }
   while (!stack_.empty()) {
     const int op = stack_.back();
     stack_.pop_back();
     for (int i = pre_begin_[op]; i < pre_begin_[op + 1]; ++i) MarkFact(pre_[i]);
     for (const auto* c : num_pre_[op]) {
-      if (!ConditionHoldsNumeric(*c, state)) MarkNumeric(*c, op_layer_[op]);
+      if (!ConditionHoldsNumeric(*c, state)) MarkNumeric(*c, op_layer_[op], state, op / 2);
     }
   }
   int h = static_cast<int>(marked_ops_.size());

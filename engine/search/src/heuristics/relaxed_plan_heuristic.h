@@ -38,8 +38,12 @@ class RelaxedPlanHeuristic {
   // happen. A fact such an action's end will delete counts as unavailable
   // when nothing needing it over all fits into that room (match cellar:
   // a burning match too short for another mend).
+  // `usable` (empty: all): per SnapId, 0 for snaps known not to be able to
+  // happen any more (TemporalReachability: their deadlines have passed);
+  // the relaxed exploration leaves them out.
   int Evaluate(const StateData& state, std::vector<SnapId>* preferred,
-               std::span<const double> window_slack = {});
+               std::span<const double> window_slack = {},
+               std::span<const std::uint8_t> usable = {});
   // After a kDeadEnd: true when the relaxation proves it (false when the
   // numeric fixpoint was cut off after too many widening layers).
   bool last_dead_end_proven() const { return dead_end_proven_; }
@@ -65,7 +69,10 @@ class RelaxedPlanHeuristic {
   }
   void MarkOp(int op);
   void MarkFact(int fact);
-  void MarkNumeric(const task::NumericCondition& c, int layer);
+  // Marks the changers of the condition's variables: the first operator
+  // that raised a variable's interval, or lowered it, whichever direction
+  // the condition needs (refuel, not the flight that burnt fuel).
+  void MarkNumeric(const task::NumericCondition& c, int layer, const StateData& state, task::ActionId a);
 
   const SnapTask& task_;
   bool dead_end_proven_ = true;
@@ -116,7 +123,7 @@ class RelaxedPlanHeuristic {
   std::vector<std::int32_t> fact_layer_, fact_achiever_;
   std::vector<std::int32_t> op_layer_, op_missing_;
   std::vector<Interval> interval_, next_interval_;
-  std::vector<std::int32_t> var_changer_, var_change_layer_;
+  std::vector<std::int32_t> raiser_, raise_layer_, lowerer_, lower_layer_;
   std::vector<std::int32_t> applicable_, numeric_waiting_, new_facts_, layer_ops_;
   std::vector<std::uint8_t> op_marked_, fact_marked_;
   std::vector<std::int32_t> marked_ops_, marked_facts_, stack_;

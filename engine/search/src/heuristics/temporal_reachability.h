@@ -1,0 +1,123 @@
+// Earliest-time reachability under timed-initial-literal windows: a
+// temporal relaxed planning graph (POPF/OPTIC style) used to prune states
+// whose deadlines can no longer be met and to hide, from the relaxed plan
+// heuristic, snap actions that can no longer happen in time.
+//
+// "Window facts" are facts no action adds but timed literals write: a
+// delivery deadline (trucks' deliverable), an antenna's visibility window
+// (satellite-tw-til). In a state they are true only inside the intervals
+// given by the state (true now, since the path last wrote them) and its
+// pending literals (each delete closes, each add opens an interval).
+// Everything else is relaxed as usual: deletes, negative and numeric
+// conditions are ignored and conditional adds assumed.
+//
+// Earliest times are propagated Dijkstra-style from the state's schedule
+// (the path's earliest STN times, see Timeline): a fact of the state is
+// available from the time the path last wrote it, a fact a pending literal
+// adds from the literal's time, started(a) of a running action from its
+// start. Every snap also comes after what the schedule orders before any
+// new event like it: the last writers of what it reads or writes and the
+// readers of what it writes (a satellite already busy cannot turn at 0). start(a) happens at the earliest time, not before its conditions,
+// at which its window facts allow it: at-start ones hold then, over-all ones
+// hold for the whole minimum duration, at-end ones somewhere in the
+// duration range. end(a) comes no earlier than start + minimum duration,
+// inside its window facts' windows, and for a running action before the
+// current window of its over-all window facts closes.
+//
+// This is a relaxation (epsilon separations are ignored too): a snap with
+// no finite time happens in no extension of the path with its schedule,
+// and a state is a dead end when a goal fact or the end of a running action
+// has no finite time. Durations read at their minimum from static fluents
+// only (0 when they depend on fluents that change).
+//
+// Not thread-safe: one instance per planner run; scratch is reused, so an
+// evaluation allocates nothing once warmed up.
+#pragma once
+
+#include <cstdint>
+#include <span>
+#include <utility>
+#include <vector>
+
+#include "../snap_task.h"
+#include "../state_registry.h"
+#include "../timeline.h"
+
+namespace seaplan::search {
+
+class TemporalReachability {
+ public:
+  explicit TemporalReachability(const SnapTask& task);
+
+  // False when no literal ever deletes a window fact: then no window closes
+  // and Evaluate would prune nothing the untimed relaxation does not.
+  bool active() const { return active_; }
+
+  // `timeline` must be built for the path that reached `state`. Returns
+  // false when the state is a dead end (usable_snaps() is then unspecified).
+  bool Evaluate(const StateData& state, const Timeline& timeline);
+
+  // After Evaluate: per SnapId, 1 when the snap can still happen.
+  std::span<const std::uint8_t> usable_snaps() const { return usable_; }
+  // After a successful Evaluate: earliest time (s) of a fact (FactId), or of
+  // started(a) at num_facts + a; infinity when unreachable.
+  double EarliestTime(int fact) const { return earliest_[static_cast<std::size_t>(fact)]; }
+
+  // After a successful Evaluate: the number of snaps of a relaxed plan
+  // extracted backwards from the goal along the earliest achievers (a fact
+  // the state holds counts as free only when no snap reaches it earlier, so
+  // an image taken too late for its window is taken again), plus the ends
+  // of running actions it leaves out. `preferred` (may be null) receives
+  // the plan's snaps whose conditions the state provides.
+  int RelaxedPlanLength(const StateData& state, std::vector<SnapId>* preferred);
+
+ private:
+  enum class Kind : std::uint8_t { kAt, kSpan, kRange };
+  struct WindowCondition {
+    task::FactId fact;
+    Kind kind;
+  };
+  struct Interval {
+    double open_s, close_s;
+  };
+  // Earliest time >= t at which `c` allows snap `op` (infinity if none).
+  double NextAllowed(const WindowCondition& c, double t, task::ActionId a) const;
+  double OpTime(int op, double t0) const;
+  void Reach(int fact, double time_s, int achiever);
+  // Earliest time the schedule of the path allows a new `op`: after the
+  // last writer of what it reads or writes, after the readers of what it
+  // writes.
+  double ScheduleBound(int op, const Timeline& timeline) const;
+
+  const SnapTask& task_;
+  bool active_ = false;
+  int num_facts_ = 0;
+  int num_ops_ = 0;
+  std::vector<std::uint8_t> window_fact_;
+  std::vector<task::FactId> window_facts_;  // the window facts some snap needs
+  // CSR tables per snap: fact preconditions (non-window; started(a) for
+  // ends), window conditions, adds (non-window, started(a) for starts).
+  std::vector<std::int32_t> pre_begin_, pre_;
+  std::vector<std::int32_t> win_begin_;
+  std::vector<WindowCondition> win_;
+  std::vector<std::int32_t> add_begin_, add_;
+  std::vector<std::int32_t> fact_ops_begin_, fact_ops_;
+  std::vector<std::int32_t> missing_init_;
+  std::vector<std::int32_t> no_pre_ops_;
+  std::vector<double> static_min_d_, static_max_d_;  // per action
+
+  // Scratch per evaluation.
+  std::vector<std::vector<Interval>> windows_;  // per fact (window facts only)
+  std::vector<double> open_since_;              // per fact: open interval start, or infinity
+  std::vector<double> earliest_;
+  std::vector<std::int32_t> achiever_;  // per fact: snap that set earliest_, -1 the state
+  std::vector<std::uint8_t> op_marked_, fact_marked_;
+  std::vector<std::int32_t> marked_ops_, marked_facts_, stack_;
+  std::vector<std::int32_t> missing_;
+  std::vector<std::uint8_t> usable_;
+  std::vector<double> min_d_, max_d_;          // per action; running ones from their record
+  std::vector<std::uint8_t> running_;          // per action
+  std::vector<std::pair<double, std::int32_t>> heap_;
+};
+
+}  // namespace seaplan::search

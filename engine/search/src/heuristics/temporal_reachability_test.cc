@@ -1,0 +1,282 @@
+#include "temporal_reachability.h"
+
+#include <gtest/gtest.h>
+
+#include <memory>
+#include <string>
+
+#include "../state_registry.h"
+#include "../timeline.h"
+#include "../transitions.h"
+#include "seaplan/search/planner.h"
+#include "seaplan/task/grounder.h"
+#include "seaplan/validate/validator.h"
+
+namespace seaplan::search {
+namespace {
+
+// A van delivers parcels before timed-literal deadlines (trucks-time-til in
+// miniature): depot-a and depot-b take 5 s, a-b 12 s.
+constexpr char kCourierDomain[] = R"(
+(define (domain courier)
+  (:requirements :typing :durative-actions :fluents :timed-initial-literals)
+  (:types place parcel)
+  (:predicates (van-at ?p - place) (at ?x - parcel ?p - place) (in ?x - parcel)
+               (deliverable ?x - parcel ?p - place) (delivered ?x - parcel) (road ?a ?b - place))
+  (:functions (drive-time ?a ?b - place))
+  (:durative-action drive
+    :parameters (?a ?b - place)
+    :duration (= ?duration (drive-time ?a ?b))
+    :condition (and (at start (van-at ?a)) (over all (road ?a ?b)))
+    :effect (and (at start (not (van-at ?a))) (at end (van-at ?b))))
+  (:durative-action load
+    :parameters (?x - parcel ?p - place)
+    :duration (= ?duration 1)
+    :condition (and (at start (at ?x ?p)) (over all (van-at ?p)))
+    :effect (and (at start (not (at ?x ?p))) (at end (in ?x))))
+  (:durative-action deliver
+    :parameters (?x - parcel ?p - place)
+    :duration (= ?duration 1)
+    :condition (and (at start (in ?x)) (over all (van-at ?p)) (at end (deliverable ?x ?p)))
+    :effect (and (at start (not (in ?x))) (at end (delivered ?x)))))
+)";
+
+std::string CourierProblem(const std::string& goal, double deadline_a_s, double deadline_b_s) {
+  return R"(
+(define (problem courier-1) (:domain courier)
+  (:objects depot a b - place pa pb - parcel)
+  (:init (van-at depot) (at pa depot) (at pb depot)
+         (road depot a) (road a depot) (road depot b) (road b depot) (road a b) (road b a)
+         (= (drive-time depot a) 5) (= (drive-time a depot) 5)
+         (= (drive-time depot b) 5) (= (drive-time b depot) 5)
+         (= (drive-time a b) 12) (= (drive-time b a) 12)
+         (deliverable pa a) (deliverable pb b)
+         (at )" + std::to_string(deadline_a_s) + R"( (not (deliverable pa a)))
+         (at )" + std::to_string(deadline_b_s) + R"( (not (deliverable pb b))))
+  (:goal )" + goal + "))";
+}
+
+// A gate opens at 10 s, closes at `close_s` (never when negative) and
+// reopens at `reopen_s` (never when negative); passing it takes 5 s with the
+// gate open over all, after a preparation of `prep_s`.
+constexpr char kGateDomain[] = R"(
+(define (domain gate)
+  (:requirements :durative-actions :fluents :timed-initial-literals)
+  (:predicates (open) (before) (ready) (after))
+  (:functions (prep-time))
+  (:durative-action prepare
+    :parameters ()
+    :duration (= ?duration (prep-time))
+    :condition (at start (before))
+    :effect (and (at start (not (before))) (at end (ready))))
+  (:durative-action pass
+    :parameters ()
+    :duration (= ?duration 5)
+    :condition (and (at start (ready)) (over all (open)))
+    :effect (and (at start (not (ready))) (at end (after)))))
+)";
+
+std::string GateProblem(double close_s, double reopen_s = -1, double prep_s = 1) {
+  std::string init = "(before) (= (prep-time) " + std::to_string(prep_s) + ") (at 10 (open))";
+  if (close_s >= 0) init += " (at " + std::to_string(close_s) + " (not (open)))";
+  if (reopen_s >= 0) init += " (at " + std::to_string(reopen_s) + " (open))";
+  return "(define (problem gate-1) (:domain gate) (:init " + init + ") (:goal (after)))";
+}
+
+class Fixture {
+ public:
+  Fixture(const std::string& domain, const std::string& problem) {
+    auto loaded = task::LoadTask(domain, problem);
+    EXPECT_TRUE(loaded.ok()) << loaded.ErrorText();
+    task_ = loaded.task;
+    snap_ = std::make_unique<SnapTask>(*task_);
+    transitions_ = std::make_unique<Transitions>(*snap_, 0, kEpsilon);
+    timeline_ = std::make_unique<Timeline>(*snap_, kEpsilon);
+    reachability_ = std::make_unique<TemporalReachability>(*snap_);
+    StateRegistry registry(snap_->num_facts(), snap_->num_vars());
+    state_ = registry.MakeEmpty();
+    for (auto f : task_->initial_facts) state_.Set(f);
+    for (std::size_t v = 0; v < state_.values.size(); ++v) state_.values[v] = task_->initial_values[v];
+  }
+
+  bool ok() const { return task_ != nullptr; }
+  TemporalReachability& reachability() { return *reachability_; }
+  const StateData& state() const { return state_; }
+
+  task::ActionId Action(const std::string& display_name) const {
+    for (std::size_t a = 0; a < task_->actions.size(); ++a) {
+      if (task_->actions[a].DisplayName() == display_name) return static_cast<task::ActionId>(a);
+    }
+    ADD_FAILURE() << "no action " << display_name;
+    return 0;
+  }
+  int Fact(const std::string& display_name) const {
+    for (std::size_t f = 0; f < task_->facts.size(); ++f) {
+      if (task_->facts[f].DisplayName() == display_name) return static_cast<int>(f);
+    }
+    ADD_FAILURE() << "no fact " << display_name;
+    return 0;
+  }
+  SnapId Start(const std::string& name) const { return 2 * Action(name); }
+  SnapId End(const std::string& name) const { return 2 * Action(name) + 1; }
+
+  // Applies the snap to the current state and appends it to the path.
+  void Apply(SnapId snap) {
+    Event ev;
+    ev.snap = snap;
+    StateData next;
+    ASSERT_TRUE(transitions_->Apply(state_, &ev, &next)) << snap;
+    state_ = next;
+    path_.push_back(ev);
+  }
+
+  // Evaluates the current state on the schedule of its path.
+  bool Evaluate() {
+    EXPECT_TRUE(timeline_->Build(path_));
+    return reachability_->Evaluate(state_, *timeline_);
+  }
+
+ private:
+  static constexpr double kEpsilon = 0.001;
+  std::shared_ptr<const task::GroundTask> task_;
+  std::unique_ptr<SnapTask> snap_;
+  std::unique_ptr<Transitions> transitions_;
+  std::unique_ptr<Timeline> timeline_;
+  std::unique_ptr<TemporalReachability> reachability_;
+  StateData state_;
+  std::vector<Event> path_;
+};
+
+TEST(TemporalReachabilityTest, DrivingAwayFromAnUrgentDeliveryIsADeadEnd) {
+  Fixture fx(kCourierDomain, CourierProblem("(and (delivered pa) (delivered pb))", 8, 40));
+  ASSERT_TRUE(fx.ok());
+  ASSERT_TRUE(fx.reachability().active());
+  // Load pa (0-1), drive to a (1-6), deliver (6-7) meets the 8 s deadline.
+  EXPECT_TRUE(fx.Evaluate());
+  fx.Apply(fx.Start("(load pa depot)"));
+  fx.Apply(fx.End("(load pa depot)"));
+  EXPECT_TRUE(fx.Evaluate());
+  // Via b, pa reaches a at 1 + 5 + 12 = 18 s at the earliest: too late,
+  // though no deadline has passed on the schedule yet.
+  fx.Apply(fx.Start("(drive depot b)"));
+  EXPECT_FALSE(fx.Evaluate());
+}
+
+TEST(TemporalReachabilityTest, GoingTheRightWayStaysAliveAndTimesFollowTheSchedule) {
+  Fixture fx(kCourierDomain, CourierProblem("(and (delivered pa) (delivered pb))", 8, 40));
+  ASSERT_TRUE(fx.ok());
+  fx.Apply(fx.Start("(load pa depot)"));
+  fx.Apply(fx.End("(load pa depot)"));
+  fx.Apply(fx.Start("(drive depot a)"));
+  ASSERT_TRUE(fx.Evaluate());
+  // The van is at a when the drive ends (1 + 5 s), pa delivered 1 s later.
+  EXPECT_NEAR(fx.reachability().EarliestTime(fx.Fact("(van-at a)")), 6.0, 1e-6);
+  EXPECT_NEAR(fx.reachability().EarliestTime(fx.Fact("(delivered pa)")), 7.0, 1e-6);
+}
+
+TEST(TemporalReachabilityTest, RelaxedPlanFollowsTheEarliestAchievers) {
+  Fixture fx(kCourierDomain, CourierProblem("(delivered pa)", 8, 40));
+  ASSERT_TRUE(fx.ok());
+  fx.Apply(fx.Start("(load pa depot)"));
+  fx.Apply(fx.End("(load pa depot)"));
+  ASSERT_TRUE(fx.Evaluate());
+  // The van held the depot over all of the load (0-1): it leaves at 1 s at
+  // the earliest, not at 0 when the path last wrote (van-at depot).
+  EXPECT_NEAR(fx.reachability().EarliestTime(fx.Fact("(van-at a)")), 6.0, 1e-6);
+  // Drive to a and deliver: two durative actions, four snaps; only the
+  // drive can start from the state.
+  std::vector<SnapId> preferred;
+  EXPECT_EQ(fx.reachability().RelaxedPlanLength(fx.state(), &preferred), 4);
+  EXPECT_EQ(preferred, std::vector<SnapId>{fx.Start("(drive depot a)")});
+}
+
+TEST(TemporalReachabilityTest, SnapsThatMissedTheirDeadlineAreUnusable) {
+  // Only pb is a goal: driving to b first is fine, but delivering pa no
+  // longer can happen, and the relaxed plan heuristic is told so.
+  Fixture fx(kCourierDomain, CourierProblem("(delivered pb)", 8, 40));
+  ASSERT_TRUE(fx.ok());
+  fx.Apply(fx.Start("(load pa depot)"));
+  fx.Apply(fx.Start("(load pb depot)"));
+  fx.Apply(fx.End("(load pa depot)"));
+  fx.Apply(fx.End("(load pb depot)"));
+  fx.Apply(fx.Start("(drive depot b)"));
+  ASSERT_TRUE(fx.Evaluate());
+  const auto usable = fx.reachability().usable_snaps();
+  EXPECT_TRUE(usable[static_cast<std::size_t>(fx.End("(deliver pb b)"))]);
+  EXPECT_FALSE(usable[static_cast<std::size_t>(fx.Start("(deliver pa a)"))]);
+  EXPECT_FALSE(usable[static_cast<std::size_t>(fx.End("(deliver pa a)"))]);
+}
+
+TEST(TemporalReachabilityTest, OverAllConditionNeedsTheWholeDurationInsideAWindow) {
+  {
+    Fixture fx(kGateDomain, GateProblem(30));
+    ASSERT_TRUE(fx.ok());
+    ASSERT_TRUE(fx.reachability().active());
+    ASSERT_TRUE(fx.Evaluate());
+    // The gate opens at 10 s: passing ends at 15 s at the earliest.
+    EXPECT_NEAR(fx.reachability().EarliestTime(fx.Fact("(after)")), 15.0, 1e-6);
+  }
+  {
+    Fixture fx(kGateDomain, GateProblem(13));  // open for 3 s only
+    ASSERT_TRUE(fx.ok());
+    EXPECT_FALSE(fx.Evaluate());
+  }
+}
+
+TEST(TemporalReachabilityTest, RunningActionMustEndBeforeItsWindowCloses) {
+  // Open 10-16, again from 20. Preparing takes 12 s, so a pass started now
+  // runs 12-17 and its gate closes under it; a pass started at 20 would do.
+  Fixture fx(kGateDomain, GateProblem(16, 20, 12));
+  ASSERT_TRUE(fx.ok());
+  fx.Apply(fx.Start("(prepare)"));
+  fx.Apply(fx.End("(prepare)"));
+  fx.Apply(~0);  // the gate opens
+  EXPECT_TRUE(fx.Evaluate());
+  EXPECT_NEAR(fx.reachability().EarliestTime(fx.Fact("(after)")), 25.0, 1e-6);
+  fx.Apply(fx.Start("(pass)"));
+  EXPECT_FALSE(fx.Evaluate());
+}
+
+TEST(TemporalReachabilityTest, InactiveWhenNoWindowEverCloses) {
+  Fixture fx(kGateDomain, GateProblem(-1));
+  ASSERT_TRUE(fx.ok());
+  EXPECT_FALSE(fx.reachability().active());
+}
+
+// The planner meets both deadlines (pa first) with a plan the validator accepts.
+TEST(TemporalReachabilityTest, PlannerDeliversBeforeDeadlines) {
+  auto loaded = task::LoadTask(kCourierDomain, CourierProblem("(and (delivered pa) (delivered pb))", 8, 25));
+  ASSERT_TRUE(loaded.ok()) << loaded.ErrorText();
+  PlannerOptions options;
+  options.time_limit_s = 2;
+  const PlanResult r = SolveTask(*loaded.task, options, StopToken());
+  ASSERT_TRUE(r.status == PlanStatus::kSolvedSatisficing || r.status == PlanStatus::kSolvedOptimally)
+      << ToString(r.status) << ": " << r.message;
+  auto parsed = validate::ParsePlan(validate::FormatPlan(r.plan));
+  ASSERT_TRUE(parsed.ok()) << parsed.status();
+  const auto v = validate::ValidatePlan(*loaded.task, *parsed);
+  EXPECT_TRUE(v.valid) << v.ToString() << "\n" << validate::FormatPlan(r.plan);
+  bool delivered_pa = false;
+  for (const auto& step : r.plan.steps) {
+    if (step.name == "deliver" && step.args.size() == 2 && step.args[0] == "pa") {
+      delivered_pa = true;
+      EXPECT_LE(step.end_s(), 8.0);
+    }
+  }
+  EXPECT_TRUE(delivered_pa);
+}
+
+// A deadline even the relaxation cannot meet (the van reaches a at 5 s,
+// delivering takes 1 s more) is proven unsolvable without any expansion.
+TEST(TemporalReachabilityTest, PlannerProvesAMissedDeadlineUnsolvable) {
+  auto loaded = task::LoadTask(kCourierDomain, CourierProblem("(delivered pa)", 4, 25));
+  ASSERT_TRUE(loaded.ok()) << loaded.ErrorText();
+  PlannerOptions options;
+  options.time_limit_s = 2;
+  const PlanResult r = SolveTask(*loaded.task, options, StopToken());
+  EXPECT_EQ(r.status, PlanStatus::kUnsolvableProven) << ToString(r.status) << ": " << r.message;
+  EXPECT_EQ(r.stats.expanded, 0u);
+}
+
+}  // namespace
+}  // namespace seaplan::search
