@@ -126,7 +126,13 @@ std::int32_t LazySearch::Materialize(std::int32_t pending_index) {
   ExtractPath(rec.parent, &path_);
   timeline_.Build(path_);
   Timeline::Outcome out;
+  // Only deferred successors can fail here: theirs was not checked at generation.
   if (!timeline_.TryAdd(ev, &out)) {
+    stn_pruned_ = true;
+    timeline_.Undo();
+    return -1;
+  }
+  if (out.lower_bound_s >= params_.bound_s - params_.epsilon_s / 2) {
     timeline_.Undo();
     return -1;
   }
@@ -215,8 +221,19 @@ LazySearch::Status LazySearch::Step() {
     return !e.is_til() && std::binary_search(preferred_.begin(), preferred_.end(), e.snap);
   });
   std::size_t tried = 0;
+  const bool greedy = params_.weight < 0;
+  const double parent_g_s = info_[static_cast<std::size_t>(s)].g_s;
+  const double parent_lb_s = info_[static_cast<std::size_t>(s)].lb_s;
   for (Event ev : candidates_) {
     if (stop_ != nullptr && (++tried & 255) == 0 && stop_->StopRequested()) return Status::kInProgress;
+    if (greedy && !ev.is_til() && !task_.snap(ev.snap).is_end &&
+        !std::binary_search(preferred_.begin(), preferred_.end(), ev.snap)) {
+      // Deferred: applied and scheduled only if popped (Materialize), with
+      // the parent's makespan and bound, both valid lower bounds.
+      ++counters_.generated;
+      Push(s, ev, parent_g_s, parent_lb_s, false, h);
+      continue;
+    }
     if (!transitions_.Apply(current_, &ev, &next_)) continue;
     Timeline::Outcome out;
     const bool consistent = timeline_.TryAdd(ev, &out);

@@ -59,7 +59,7 @@ bool AnyEffectReadsDuration(const task::Effects& e) {
 
 }  // namespace
 
-SnapTask::SnapTask(const task::GroundTask& task) : task_(task) {
+SnapTask::SnapTask(const task::GroundTask& task) : task_(task), envelopes_(task) {
   const std::size_t n = task.actions.size();
   snaps_.resize(2 * n);
   effects_read_duration_.resize(n, false);

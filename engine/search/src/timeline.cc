@@ -125,6 +125,7 @@ bool Timeline::AddToStn(const Event& event) {
   if (bound_concurrency_ && !snap.is_end) {
     for (auto n : end_nodes_) stn_.AddIncoming(n, eps);
   }
+  AddEnvelopeEdges(event, snap);
   if (snap.is_end) {
     const int start = open_start_[snap.action];
     if (start >= 0) {
@@ -135,6 +136,31 @@ bool Timeline::AddToStn(const Event& event) {
     }
   }
   return stn_.FinishNode();
+}
+
+void Timeline::AddEnvelopeEdges(const Event& event, const SnapAction& snap) {
+  const InvariantEnvelopes& env = task_.envelopes();
+  const task::ActionId x = snap.action;
+  if (!task_.task().actions[x].is_durative) return;
+  for (auto y : open_actions_) {
+    if (y == x) continue;
+    const int y_start = open_start_[y];
+    if (snap.is_end) {
+      // end(x) <= end(y) <= start(y) + max_dur(y).
+      if (open_max_duration_[y] < kInfinity && env.MustEndWithin(x, y)) {
+        stn_.AddOutgoing(y_start, -open_max_duration_[y]);
+      }
+      continue;
+    }
+    // x starts while y runs: start(x) + min_dur(x) <= end(x) <= end(y) <= start(y) + max_dur(y).
+    if (open_max_duration_[y] < kInfinity && env.MustEndWithin(x, y)) {
+      stn_.AddOutgoing(y_start, event.min_duration_s - open_max_duration_[y]);
+    }
+    // The other way round: y must end within x.
+    if (event.max_duration_s < kInfinity && env.MustEndWithin(y, x)) {
+      stn_.AddIncoming(y_start, open_min_duration_[y] - event.max_duration_s);
+    }
+  }
 }
 
 void Timeline::Commit(const Event& event, int node) {

@@ -68,6 +68,9 @@ class Timeline {
   int TilNode(int k) const { return 1 + k; }
   bool AddToStn(const Event& event);
   void Commit(const Event& event, int node);
+  // Orders implied by over-all envelopes (invariant_envelopes.h) between
+  // `event` and the actions running when it happens.
+  void AddEnvelopeEdges(const Event& event, const SnapAction& snap);
   void ResetTables();
 
   const SnapTask& task_;

@@ -40,6 +40,7 @@ Transitions::Transitions(const SnapTask& task, int max_concurrent_actions, doubl
     : task_(task), max_concurrent_(max_concurrent_actions), epsilon_s_(epsilon_s) {
   by_first_fact_.resize(static_cast<std::size_t>(task.num_facts()));
   for (int a = 0; a < task.num_actions(); ++a) {
+    if (task.envelopes().Unschedulable(a)) continue;  // can never be part of a plan
     const auto& action = task.task().actions[a];
     // A fact that must already hold for the start to apply: an at-start
     // condition, or an over-all one the start effects do not add.
