@@ -287,6 +287,13 @@ void RelaxedPlanHeuristic::PayBackExemptEnds(int fact) {
   }
 }
 
+bool RelaxedPlanHeuristic::IsExemptEnd(int fact, int op) const {
+  for (const auto& [f, o] : exempt_ends_) {
+    if (f == fact && o == op) return true;
+  }
+  return false;
+}
+
 int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* preferred,
                                    std::span<const double> window_slack) {
   std::fill(fact_layer_.begin(), fact_layer_.end(), -1);
@@ -507,7 +514,10 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
   while (!stack_.empty()) {
     const int op = stack_.back();
     stack_.pop_back();
-    for (int i = pre_begin_[op]; i < pre_begin_[op + 1]; ++i) MarkFact(pre_[i]);
+    for (int i = pre_begin_[op]; i < pre_begin_[op + 1]; ++i) {
+      if (!exempt_ends_.empty() && IsExemptEnd(pre_[i], op)) continue;
+      MarkFact(pre_[i]);
+    }
     for (const auto* c : num_pre_[op]) {
       if (!ConditionHoldsNumeric(*c, state)) MarkNumeric(*c, op_layer_[op]);
     }

@@ -76,6 +76,7 @@ class RelaxedPlanHeuristic {
   std::vector<std::pair<std::int32_t, std::int32_t>> exempt_ends_;
   void ExemptRunningEnds(const StateData& state);
   void PayBackExemptEnds(int fact);
+  bool IsExemptEnd(int fact, int op) const;
   std::vector<bool> til_fact_;  // scratch: facts added by pending literals
   // Static per-task tables hoisted out of Evaluate: the initial "missing
   // preconditions" counter of every operator (copied in one pass) and a
