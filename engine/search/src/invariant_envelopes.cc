@@ -76,6 +76,17 @@ InvariantEnvelopes::InvariantEnvelopes(const task::GroundTask& task) {
     end_deletes_[a].erase(std::unique(end_deletes_[a].begin(), end_deletes_[a].end()), end_deletes_[a].end());
   }
 
+  std::vector<bool> end_deleted(num_facts, false);
+  for (const auto& dels : end_deletes_) {
+    for (auto f : dels) end_deleted[f] = true;
+  }
+  enclosed_needs_.resize(num_actions);
+  for (std::size_t a = 0; a < num_actions; ++a) {
+    for (auto f : over_all_[a]) {
+      if (end_deleted[f]) enclosed_needs_[a].push_back(f);
+    }
+  }
+
   // Longest time each envelope-only fact can hold (-1: not envelope-only).
   std::vector<double> max_hold(num_facts, 0.0);
   auto not_envelope_only = [&](task::FactId f) { max_hold[f] = -1.0; };

@@ -39,6 +39,14 @@ class InvariantEnvelopes {
   bool IsEnvelope(task::ActionId a) const { return !end_deletes_[static_cast<std::size_t>(a)].empty(); }
   // True when `a` needs over all some fact over a longer time than that fact can hold.
   bool Unschedulable(task::ActionId a) const { return unschedulable_[static_cast<std::size_t>(a)]; }
+  // Sorted facts the end of `a` deletes that some action needs over all.
+  const std::vector<task::FactId>& EndDeletes(task::ActionId a) const {
+    return end_deletes_[static_cast<std::size_t>(a)];
+  }
+  // Sorted over-all facts of `a` that the end of some action deletes.
+  const std::vector<task::FactId>& EnclosedNeeds(task::ActionId a) const {
+    return enclosed_needs_[static_cast<std::size_t>(a)];
+  }
   int num_unschedulable() const { return num_unschedulable_; }
 
  private:
@@ -47,6 +55,7 @@ class InvariantEnvelopes {
   // needs over all (empty for most actions, which keeps the checks cheap).
   std::vector<std::vector<task::FactId>> over_all_;
   std::vector<std::vector<task::FactId>> end_deletes_;
+  std::vector<std::vector<task::FactId>> enclosed_needs_;
   std::vector<bool> unschedulable_;
   int num_unschedulable_ = 0;
 };
