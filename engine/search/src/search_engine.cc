@@ -226,7 +226,9 @@ LazySearch::Status LazySearch::Step() {
   const double parent_lb_s = info_[static_cast<std::size_t>(s)].lb_s;
   for (Event ev : candidates_) {
     if (stop_ != nullptr && (++tried & 255) == 0 && stop_->StopRequested()) return Status::kInProgress;
-    if (greedy && !ev.is_til() && !task_.snap(ev.snap).is_end &&
+    // Starts are even SnapIds (snap_task.h); reading the SnapAction would
+    // cost a cache miss per candidate.
+    if (greedy && !ev.is_til() && (ev.snap & 1) == 0 &&
         !std::binary_search(preferred_.begin(), preferred_.end(), ev.snap)) {
       // Deferred: applied and scheduled only if popped (Materialize), with
       // the parent's makespan and bound, both valid lower bounds.
