@@ -73,6 +73,9 @@ class SnapTask {
   // Over-all envelopes (required concurrency); actions it finds
   // unschedulable are never started by the search nor used by heuristics.
   const InvariantEnvelopes& envelopes() const { return envelopes_; }
+  // True for actions no plan needs (unschedulable, or irrelevant to the
+  // goal: relevance.h): never started by the search nor used by heuristics.
+  bool Pruned(task::ActionId a) const { return pruned_[static_cast<std::size_t>(a)]; }
 
  private:
   const task::GroundTask& task_;
@@ -84,6 +87,7 @@ class SnapTask {
   std::vector<bool> goal_fact_mask_;
   std::vector<bool> window_action_;
   InvariantEnvelopes envelopes_;
+  std::vector<bool> pruned_;
 };
 
 }  // namespace seaplan::search

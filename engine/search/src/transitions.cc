@@ -61,7 +61,7 @@ Transitions::Transitions(const SnapTask& task, int max_concurrent_actions, doubl
     for (auto f : keys) ++needed_by[f];
   }
   for (int a = 0; a < task.num_actions(); ++a) {
-    if (task.envelopes().Unschedulable(a)) continue;  // can never be part of a plan
+    if (task.Pruned(a)) continue;  // no plan needs it
     key_candidates(a, &keys);
     task::FactId key = -1;
     for (auto f : keys) {

@@ -37,7 +37,7 @@ RelaxedPlanHeuristic::RelaxedPlanHeuristic(const SnapTask& task, double epsilon_
     const int a = op / 2;
     const bool is_end = op % 2 == 1;
     const task::Action& action = actions[static_cast<std::size_t>(a)];
-    op_exists_[op] = (!is_end || action.is_durative) && !task.envelopes().Unschedulable(a);
+    op_exists_[op] = (!is_end || action.is_durative) && !task.Pruned(a);
     tmp.clear();
     if (op_exists_[op]) {
       AddConditionFacts(is_end ? action.at_end : action.at_start, tmp);
