@@ -157,7 +157,13 @@ std::int32_t LazySearch::Materialize(std::int32_t pending_index) {
     merged_any_ = true;
     const bool bound_ok = params_.bound_dominance ? n.lb_s <= out.lower_bound_s + 1e-9
                                                   : std::abs(n.lb_s - out.lower_bound_s) <= 1e-9;
-    if (bound_ok && SlackAtLeast(n, slack_scratch_)) return -1;  // dominated
+    if (bound_ok && SlackAtLeast(n, slack_scratch_)) {
+      // Dominated by bound and slack only: with running actions or timed
+      // literals the times of single facts also matter (a deadline met on
+      // one path, missed on the other), so exhaustion is no proof then.
+      if (!next_.running.empty() || !task_.tils().empty()) merged_timed_ = true;
+      return -1;
+    }
     const bool new_dominates = out.lower_bound_s <= n.lb_s + 1e-9 && SlackAtMost(n, slack_scratch_);
     if (new_dominates) {
       if (greedy && n.status == kClosed) return -1;
