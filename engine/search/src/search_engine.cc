@@ -166,7 +166,11 @@ std::int32_t LazySearch::Materialize(std::int32_t pending_index) {
     }
     const bool new_dominates = out.lower_bound_s <= n.lb_s + 1e-9 && SlackAtMost(n, slack_scratch_);
     if (new_dominates) {
-      if (greedy && n.status == kClosed) return -1;
+      if (greedy && n.status == kClosed) {
+        // The better schedule is dropped: no proof either (see above).
+        if (!next_.running.empty() || !task_.tils().empty()) merged_timed_ = true;
+        return -1;
+      }
       // Stored bounds of descendants can be stale after an ancestor
       // improved; never let a state become its own ancestor.
       if (IsAncestor(id.value(), rec.parent)) return -1;
