@@ -134,7 +134,12 @@ std::int32_t LazySearch::Materialize(std::int32_t pending_index) {
     timeline_.Undo();
     return std::int32_t{-1};
   };
-  if (!timeline_.TryAdd(ev, &out)) return reject();
+  // Only deferred successors can fail here: theirs was not checked at generation.
+  if (!timeline_.TryAdd(ev, &out)) {
+    stn_pruned_ = true;
+    return reject();
+  }
+  if (out.lower_bound_s >= params_.bound_s - params_.epsilon_s / 2) return reject();
   slack_scratch_.clear();
   for (const auto& r : next_.running) {
     if (task_.IsWindowAction(r.action)) slack_scratch_.push_back(timeline_.WindowSlack(r.action, out.makespan_s));
@@ -155,10 +160,20 @@ std::int32_t LazySearch::Materialize(std::int32_t pending_index) {
     merged_any_ = true;
     const bool bound_ok = params_.bound_dominance ? n.lb_s <= out.lower_bound_s + 1e-9
                                                   : std::abs(n.lb_s - out.lower_bound_s) <= 1e-9;
-    if (bound_ok && SlackAtLeast(n, slack_scratch_)) return reject();  // dominated
+    if (bound_ok && SlackAtLeast(n, slack_scratch_)) {
+      // Dominated by bound and slack only: with running actions or timed
+      // literals the times of single facts also matter (a deadline met on
+      // one path, missed on the other), so exhaustion is no proof then.
+      if (!next_.running.empty() || !task_.tils().empty()) merged_timed_ = true;
+      return reject();
+    }
     const bool new_dominates = out.lower_bound_s <= n.lb_s + 1e-9 && SlackAtMost(n, slack_scratch_);
     if (new_dominates) {
-      if (greedy && n.status == kClosed) return reject();
+      if (greedy && n.status == kClosed) {
+        // The better schedule is dropped: no proof either (see above).
+        if (!next_.running.empty() || !task_.tils().empty()) merged_timed_ = true;
+        return reject();
+      }
       // Stored bounds of descendants can be stale after an ancestor
       // improved; never let a state become its own ancestor.
       if (IsAncestor(id.value(), rec.parent)) return reject();
@@ -249,8 +264,21 @@ LazySearch::Status LazySearch::Step() {
     return !e.is_til() && std::binary_search(preferred_.begin(), preferred_.end(), e.snap);
   });
   std::size_t tried = 0;
+  const bool greedy = params_.weight < 0;
+  const double parent_g_s = info_[static_cast<std::size_t>(s)].g_s;
+  const double parent_lb_s = info_[static_cast<std::size_t>(s)].lb_s;
   for (Event ev : candidates_) {
     if (stop_ != nullptr && (++tried & 255) == 0 && stop_->StopRequested()) return Status::kInProgress;
+    // Starts are even SnapIds (snap_task.h); reading the SnapAction would
+    // cost a cache miss per candidate.
+    if (greedy && !ev.is_til() && (ev.snap & 1) == 0 &&
+        !std::binary_search(preferred_.begin(), preferred_.end(), ev.snap)) {
+      // Deferred: applied and scheduled only if popped (Materialize), with
+      // the parent's makespan and bound, both valid lower bounds.
+      ++counters_.generated;
+      Push(s, ev, parent_g_s, parent_lb_s, false, h);
+      continue;
+    }
     if (!transitions_.Apply(current_, &ev, &next_)) continue;
     Timeline::Outcome out;
     const bool consistent = timeline_.TryAdd(ev, &out);

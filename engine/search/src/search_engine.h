@@ -6,7 +6,11 @@
 // never expanded cost no registry space); the heuristic runs when a state is
 // expanded (lazy evaluation), giving its helpful events at the same time. Two open lists:
 // all successors, and those reached by helpful events (boosted after
-// progress, as in LAMA). Ordering:
+// progress, as in LAMA). In the greedy phase, starts that are not helpful
+// are not even applied or scheduled at generation: they are pushed with the
+// parent's makespan and bound and checked when popped, which keeps
+// expansions cheap when thousands of starts apply (pairs of objects in TMS)
+// and the search follows helpful events anyway. Ordering:
 //   - greedy (weight < 0): (parent h, makespan so far);
 //   - weighted A* (weight >= 0): makespan lower bound + weight * scale * h.
 // A bound prunes successors whose makespan lower bound cannot beat it.

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 
+#include "relevance.h"
+
 namespace seaplan::search {
 namespace {
 
@@ -59,7 +61,7 @@ bool AnyEffectReadsDuration(const task::Effects& e) {
 
 }  // namespace
 
-SnapTask::SnapTask(const task::GroundTask& task) : task_(task) {
+SnapTask::SnapTask(const task::GroundTask& task) : task_(task), envelopes_(task) {
   const std::size_t n = task.actions.size();
   snaps_.resize(2 * n);
   effects_read_duration_.resize(n, false);
@@ -138,6 +140,10 @@ SnapTask::SnapTask(const task::GroundTask& task) : task_(task) {
     SortUnique(tils_[i].num_writes);
     for (auto f : tils_[i].writes) tils_by_fact_[f].push_back(static_cast<int>(i));
     for (auto v : tils_[i].num_writes) tils_by_var_[v].push_back(static_cast<int>(i));
+  }
+  pruned_ = RelevantActions(task);
+  for (std::size_t a = 0; a < n; ++a) {
+    pruned_[a] = !pruned_[a] || envelopes_.Unschedulable(static_cast<task::ActionId>(a));
   }
   goal_fact_mask_.assign(task.facts.size(), false);
   for (auto f : task.goal.positive) goal_fact_mask_[f] = true;

@@ -17,6 +17,7 @@
 #include <limits>
 #include <vector>
 
+#include "invariant_envelopes.h"
 #include "seaplan/task/ground_task.h"
 
 namespace seaplan::search {
@@ -69,6 +70,12 @@ class SnapTask {
   bool IsWindowAction(task::ActionId a) const { return window_action_[a]; }
   // Facts (positive or negative in the goal) for the goal-after-TILs rule.
   const std::vector<bool>& goal_fact_mask() const { return goal_fact_mask_; }
+  // Over-all envelopes (required concurrency); actions it finds
+  // unschedulable are never started by the search nor used by heuristics.
+  const InvariantEnvelopes& envelopes() const { return envelopes_; }
+  // True for actions no plan needs (unschedulable, or irrelevant to the
+  // goal: relevance.h): never started by the search nor used by heuristics.
+  bool Pruned(task::ActionId a) const { return pruned_[static_cast<std::size_t>(a)]; }
 
  private:
   const task::GroundTask& task_;
@@ -79,6 +86,8 @@ class SnapTask {
   std::vector<bool> effects_read_duration_;
   std::vector<bool> goal_fact_mask_;
   std::vector<bool> window_action_;
+  InvariantEnvelopes envelopes_;
+  std::vector<bool> pruned_;
 };
 
 }  // namespace seaplan::search

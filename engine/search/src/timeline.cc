@@ -17,7 +17,9 @@ Timeline::Timeline(const SnapTask& task, double epsilon_s, bool bound_concurrenc
       open_start_(static_cast<std::size_t>(task.num_actions()), -1),
       open_min_duration_(static_cast<std::size_t>(task.num_actions()), 0.0),
       open_max_duration_(static_cast<std::size_t>(task.num_actions()), 0.0),
-      bound_concurrency_(bound_concurrency) {}
+      bound_concurrency_(bound_concurrency),
+      open_deleters_(static_cast<std::size_t>(task.num_facts())),
+      open_needers_(static_cast<std::size_t>(task.num_facts())) {}
 
 void Timeline::ResetTables() {
   for (auto f : touched_facts_) {
@@ -34,6 +36,11 @@ void Timeline::ResetTables() {
   touched_vars_.clear();
   for (auto a : open_actions_) open_start_[a] = -1;
   open_actions_.clear();
+  for (auto f : envelope_touched_) {
+    open_deleters_[f].clear();
+    open_needers_[f].clear();
+  }
+  envelope_touched_.clear();
   end_nodes_.clear();
 }
 
@@ -132,6 +139,7 @@ bool Timeline::AddToStn(const Event& event) {
   if (bound_concurrency_ && !snap.is_end) {
     for (auto n : end_nodes_) stn_.AddIncoming(n, eps);
   }
+  AddEnvelopeEdges(event, snap);
   if (snap.is_end) {
     const int start = open_start_[snap.action];
     if (start >= 0) {
@@ -142,6 +150,46 @@ bool Timeline::AddToStn(const Event& event) {
     }
   }
   return stn_.FinishNode();
+}
+
+void Timeline::AddEnvelopeEdges(const Event& event, const SnapAction& snap) {
+  const InvariantEnvelopes& env = task_.envelopes();
+  const task::ActionId x = snap.action;
+  if (!task_.task().actions[x].is_durative) return;
+  // x inside a running y: end(x) <= end(y) <= start(y) + max_dur(y); at the
+  // start of x, through start(x) + min_dur(x) <= end(x).
+  const double x_min = snap.is_end ? 0.0 : event.min_duration_s;
+  for (auto f : env.EnclosedNeeds(x)) {
+    for (auto y : open_deleters_[f]) {
+      if (y == x || !(open_max_duration_[y] < kInfinity)) continue;
+      stn_.AddOutgoing(open_start_[y], x_min - open_max_duration_[y]);
+    }
+  }
+  if (snap.is_end || !(event.max_duration_s < kInfinity)) return;
+  // A running y inside x, which starts now: start(y) + min_dur(y) <= end(y) <= end(x).
+  for (auto f : env.EndDeletes(x)) {
+    for (auto y : open_needers_[f]) {
+      if (y == x) continue;
+      stn_.AddIncoming(open_start_[y], open_min_duration_[y] - event.max_duration_s);
+    }
+  }
+}
+
+void Timeline::TrackEnvelopes(task::ActionId a, bool started) {
+  const InvariantEnvelopes& env = task_.envelopes();
+  auto update = [&](std::vector<std::vector<task::ActionId>>& lists, const std::vector<task::FactId>& facts) {
+    for (auto f : facts) {
+      auto& list = lists[f];
+      if (started) {
+        if (open_deleters_[f].empty() && open_needers_[f].empty()) envelope_touched_.push_back(f);
+        list.push_back(a);
+      } else {
+        list.erase(std::find(list.begin(), list.end(), a));
+      }
+    }
+  };
+  update(open_deleters_, env.EndDeletes(a));
+  update(open_needers_, env.EnclosedNeeds(a));
 }
 
 void Timeline::Commit(const Event& event, int node) {
@@ -199,11 +247,13 @@ void Timeline::Commit(const Event& event, int node) {
       open_min_duration_[snap.action] = event.min_duration_s;
       open_max_duration_[snap.action] = event.max_duration_s;
       open_actions_.push_back(snap.action);
+      TrackEnvelopes(snap.action, true);
     }
   } else {
     open_start_[snap.action] = -1;
     if (bound_concurrency_) end_nodes_.push_back(node);
     open_actions_.erase(std::find(open_actions_.begin(), open_actions_.end(), snap.action));
+    TrackEnvelopes(snap.action, false);
   }
 }
 

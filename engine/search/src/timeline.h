@@ -91,6 +91,11 @@ class Timeline {
   int TilNode(int k) const { return 1 + k; }
   bool AddToStn(const Event& event);
   void Commit(const Event& event, int node);
+  // Orders implied by over-all envelopes (invariant_envelopes.h) between
+  // `event` and the actions running when it happens.
+  void AddEnvelopeEdges(const Event& event, const SnapAction& snap);
+  // Keeps open_deleters_ / open_needers_ in step with the running actions.
+  void TrackEnvelopes(task::ActionId a, bool started);
   void ResetTables();
 
   const SnapTask& task_;
@@ -120,6 +125,10 @@ class Timeline {
   std::vector<bool> is_action_node_;
   bool bound_concurrency_ = false;
   std::vector<std::int32_t> end_nodes_;
+  // Per fact: running actions whose end deletes it / that need it over all
+  // (InvariantEnvelopes::EndDeletes / EnclosedNeeds), for AddEnvelopeEdges.
+  std::vector<std::vector<task::ActionId>> open_deleters_, open_needers_;
+  std::vector<task::FactId> envelope_touched_;
 };
 
 }  // namespace seaplan::search

@@ -39,25 +39,33 @@ bool ConditionHolds(const task::Condition& condition, const StateData& state, do
 Transitions::Transitions(const SnapTask& task, int max_concurrent_actions, double epsilon_s)
     : task_(task), max_concurrent_(max_concurrent_actions), epsilon_s_(epsilon_s) {
   by_first_fact_.resize(static_cast<std::size_t>(task.num_facts()));
-  for (int a = 0; a < task.num_actions(); ++a) {
+  // Facts that must already hold for a start to apply: its at-start
+  // conditions and the over-all ones its start effects do not add.
+  auto key_candidates = [&](task::ActionId a, std::vector<task::FactId>* out) {
+    out->clear();
     const auto& action = task.task().actions[a];
-    // A fact that must already hold for the start to apply: an at-start
-    // condition, or an over-all one the start effects do not add.
+    out->assign(action.at_start.positive.begin(), action.at_start.positive.end());
+    if (!action.is_durative) return;
+    for (auto f : action.over_all.positive) {
+      if (!AddedAtStart(action, f)) out->push_back(f);
+    }
+  };
+  // Index each start under its most selective such fact (the one the fewest
+  // starts need), so a state only looks at starts that may apply: with
+  // thousands of starts sharing one fact (every pair of pieces baked in a
+  // ready kiln) the first fact would make each expansion scan them all.
+  std::vector<int> needed_by(static_cast<std::size_t>(task.num_facts()), 0);
+  std::vector<task::FactId> keys;
+  for (int a = 0; a < task.num_actions(); ++a) {
+    key_candidates(a, &keys);
+    for (auto f : keys) ++needed_by[f];
+  }
+  for (int a = 0; a < task.num_actions(); ++a) {
+    if (task.Pruned(a)) continue;  // no plan needs it
+    key_candidates(a, &keys);
     task::FactId key = -1;
-    if (!action.at_start.positive.empty()) {
-      key = action.at_start.positive.front();
-    } else if (action.is_durative) {
-      for (auto f : action.over_all.positive) {
-        bool added = std::find(action.start_effects.add.begin(), action.start_effects.add.end(), f) !=
-                     action.start_effects.add.end();
-        for (const auto& ce : action.start_effects.conditional) {
-          added |= std::find(ce.add.begin(), ce.add.end(), f) != ce.add.end();
-        }
-        if (!added) {
-          key = f;
-          break;
-        }
-      }
+    for (auto f : keys) {
+      if (key < 0 || needed_by[f] < needed_by[key]) key = f;
     }
     if (key < 0) {
       without_fact_pre_.push_back(a);

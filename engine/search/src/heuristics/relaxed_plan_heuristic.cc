@@ -38,7 +38,7 @@ RelaxedPlanHeuristic::RelaxedPlanHeuristic(const SnapTask& task, double epsilon_
     const int a = op / 2;
     const bool is_end = op % 2 == 1;
     const task::Action& action = actions[static_cast<std::size_t>(a)];
-    op_exists_[op] = !is_end || action.is_durative;
+    op_exists_[op] = (!is_end || action.is_durative) && !task.Pruned(a);
     tmp.clear();
     if (op_exists_[op]) {
       AddConditionFacts(is_end ? action.at_end : action.at_start, tmp);
@@ -309,6 +309,41 @@ void RelaxedPlanHeuristic::MarkNumeric(const task::NumericCondition& c, int laye
   }
 }
 
+void RelaxedPlanHeuristic::ExemptRunningEnds(const StateData& state) {
+  // A suppressed fact only keeps new actions from counting on a window too
+  // short for them; running actions already fit (the schedule holds them
+  // inside their envelopes), so their ends do not wait for it. Counted as
+  // reached for those ends now; reach() undoes that if the fact is reached
+  // later, so the counters stay exact.
+  for (const auto& r : state.running) {
+    const task::Action& action = task_.task().actions[static_cast<std::size_t>(r.action)];
+    const int end_op = 2 * r.action + 1;
+    for (auto f : action.over_all.positive) {
+      if (!suppressed_[f]) continue;
+      if (std::find(action.at_end.positive.begin(), action.at_end.positive.end(), f) !=
+          action.at_end.positive.end()) {
+        continue;
+      }
+      --op_missing_[end_op];  // started(a) is still missing, so never 0 here
+      exempt_ends_.push_back({f, end_op});
+    }
+  }
+}
+
+void RelaxedPlanHeuristic::PayBackExemptEnds(int fact) {
+  for (const auto& [f, op] : exempt_ends_) {
+    // An end already enabled stays enabled (its counter goes below 0).
+    if (f == fact && op_missing_[op] > 0) ++op_missing_[op];
+  }
+}
+
+bool RelaxedPlanHeuristic::IsExemptEnd(int fact, int op) const {
+  for (const auto& [f, o] : exempt_ends_) {
+    if (f == fact && o == op) return true;
+  }
+  return false;
+}
+
 int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* preferred,
                                    std::span<const double> window_slack,
                                    std::span<const std::uint8_t> usable) {
@@ -332,22 +367,30 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
   applicable_.clear();
   numeric_waiting_.clear();
   new_facts_.clear();
+  // Previous evaluation's suppressed facts (kept set until now so reach()
+  // can pay back the running ends exempted from them).
+  for (auto f : suppressed_list_) suppressed_[f] = 0;
+  suppressed_list_.clear();
+  exempt_ends_.clear();
+  std::size_t num_suppressed = 0;
   auto reach = [&](int f, int layer, int achiever) {
     if (fact_layer_[f] >= 0) return;
+    if (num_suppressed > 0 && suppressed_[f]) PayBackExemptEnds(f);
     fact_layer_[f] = layer;
     fact_achiever_[f] = achiever;
     goals_left -= goal_fact_[f];
     new_facts_.push_back(f);
   };
   std::size_t window_index = 0;
-  std::size_t num_suppressed = 0;
   for (const auto& r : state.running) {
     if (!task_.IsWindowAction(r.action)) continue;
     const double slack = window_index < window_slack.size() ? window_slack[window_index] : kInf;
     ++window_index;
     for (auto f : window_facts_[r.action]) {
-      if (min_invariant_duration_[f] < kInf && slack < min_invariant_duration_[f] + 2 * epsilon_s_ - 1e-9) {
+      if (min_invariant_duration_[f] < kInf && slack < min_invariant_duration_[f] + 2 * epsilon_s_ - 1e-9 &&
+          !suppressed_[f]) {
         suppressed_[f] = 1;
+        suppressed_list_.push_back(f);
         ++num_suppressed;
       }
     }
@@ -362,11 +405,7 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
       reach(f, 0, -1);
     }
   }
-  if (num_suppressed > 0) {
-    for (const auto& r : state.running) {
-      for (auto f : window_facts_[r.action]) suppressed_[f] = 0;
-    }
-  }
+  if (num_suppressed > 0) ExemptRunningEnds(state);
   const auto& tils = task_.tils();
   for (std::size_t k = static_cast<std::size_t>(state.next_til); k < tils.size(); ++k) {
     for (auto f : tils[k].add) reach(f, 0, -1);
@@ -552,7 +591,10 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
   while (!stack_.empty()) {
     const int op = stack_.back();
     stack_.pop_back();
-    for (int i = pre_begin_[op]; i < pre_begin_[op + 1]; ++i) MarkFact(pre_[i]);
+    for (int i = pre_begin_[op]; i < pre_begin_[op + 1]; ++i) {
+      if (!exempt_ends_.empty() && IsExemptEnd(pre_[i], op)) continue;
+      MarkFact(pre_[i]);
+    }
     for (const auto* c : num_pre_[op]) {
       if (!ConditionHoldsNumeric(*c, state)) MarkNumeric(*c, op_layer_[op], state, op / 2);
     }

@@ -92,6 +92,12 @@ class RelaxedPlanHeuristic {
   std::vector<std::vector<task::FactId>> window_facts_;  // per action: start adds deleted at end
   std::vector<double> min_invariant_duration_;           // per fact: shortest action needing it over all
   std::vector<std::uint8_t> suppressed_;
+  std::vector<std::int32_t> suppressed_list_;
+  // (suppressed fact, end operator of a running action exempted from it).
+  std::vector<std::pair<std::int32_t, std::int32_t>> exempt_ends_;
+  void ExemptRunningEnds(const StateData& state);
+  void PayBackExemptEnds(int fact);
+  bool IsExemptEnd(int fact, int op) const;
   std::vector<bool> til_fact_;  // scratch: facts added by pending literals
   // Static per-task tables hoisted out of Evaluate: the initial "missing
   // preconditions" counter of every operator (copied in one pass) and a
