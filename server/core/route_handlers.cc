@@ -52,6 +52,7 @@ route::ShipParticulars ShipToEngine(const v1::ShipParticulars& p) {
   if (p.length_m() > 0) ship.hull.length_m = p.length_m();
   if (p.beam_m() > 0) ship.hull.beam_m = p.beam_m();
   if (p.displacement_t() > 0) ship.hull.mass_override_kg = p.displacement_t() * 1000.0;
+  if (p.service_speed_mps() > 0) ship.service_speed_mps = p.service_speed_mps();
   return ship;
 }
 

@@ -86,24 +86,11 @@ TEST(TrondheimE2eTest, CaseAOnRealLandAreasOneVersionNoGroundingSafeCpa) {
   if (!fs::exists(BinDir() / "seaplan-server") || !fs::exists(BinDir() / "seaplan-sim")) {
     GTEST_SKIP() << "seaplan-server or seaplan-sim not built in " << BinDir();
   }
-  // TODO(#6): two seaplan-sim faults make this run fail (seen 2026-11-22):
-  // (1) on the port-c -> port-d leg, the route around Munkholmen turns
-  // north-east at 63.4491 N 10.3845 E but the path follower holds its
-  // east-south-east heading, passes 350 m south of port-d and ends that move
-  // either completed 690 m east of port-d (then unloads there) or failed
-  // "752 m off the route" (a replan, a second plan version), depending on the
-  // traffic; (2) in crossing encounters the closest approach falls under the
-  // 150 m safety distance (yacht 122-131 m; ferry 69 m as stand-on);
-  // (3) since 4730733 the sim's land check in ChooseVelocity
-  // (LandClearance, clients/sim/core/encounter.cc) scans every vertex of the
-  // land (55 374 here) per candidate velocity per step, so the run no longer
-  // ends within minutes and this test stops it at 180 s.
-  // SEAPLAN_RUN_KNOWN_FAILURES=1 runs it.
-  if (std::getenv("SEAPLAN_RUN_KNOWN_FAILURES") == nullptr) {
-    GTEST_SKIP() << "known failure (issue #6): on the Trondheim chart the sim's path follower misses port-d after "
-                    "the Munkholmen detour, crossing CPAs fall under the safety distance, and its land check "
-                    "(LandClearance) scans all 55k land vertices per candidate velocity (run takes minutes)";
-  }
+  // Once skipped (issue #6): the routes were timed at the ship model's
+  // 9.15 m/s while this scenario orders 4 m/s, the path follower missed
+  // port-d after the Munkholmen detour and crossing CPAs fell under 150 m.
+  // Fixed by the wheel-over (24907e0), the land grid (bea5a41) and routes
+  // timed at the ordered speed (route::ShipParticulars::service_speed_mps).
   const fs::path scenario_path = SourceDir() / "examples/scenarios/trondheim.scenario";
   const std::string scenario = ReadFile(scenario_path);
   ASSERT_FALSE(scenario.empty());

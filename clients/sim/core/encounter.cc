@@ -4,10 +4,15 @@
 #include <cmath>
 #include <limits>
 
+#include "absl/container/inlined_vector.h"
+
 namespace seaplan::sim {
 namespace {
 
 constexpr double kTwoPi = 2.0 * M_PI;
+// Metres of safety-circle violation one unit of candidate cost (m^2/s^2 of
+// deviation from the desired velocity) is worth in the least-bad choice.
+constexpr double kViolationPerCost = 0.01;
 
 double Wrap(double a) {  // (-pi, pi]
   a = std::fmod(a + M_PI, kTwoPi);
@@ -42,6 +47,30 @@ double ManoeuvreDelay(Vec2 current, Vec2 v, const AvoidanceOptions& o) {
   double turn = (cs > 0.3 && vs > 1e-6) ? std::abs(Wrap(CourseOf(v) - CourseOf(current))) : 0.0;
   double delay = turn / o.turn_rate_rad_s + (o.acceleration_mps2 > 0 ? std::abs(vs - cs) / o.acceleration_mps2 : 0.0);
   return delay > 1e-3 ? delay + o.manoeuvre_lag_s : 0.0;
+}
+
+// Smallest distance of relative motion p_rel - v_rel * t over t in [0, horizon].
+double MinDistance(Vec2 p_rel, Vec2 v_rel, double horizon) {
+  const double a = v_rel.Dot(v_rel);
+  const double t = a < 1e-12 ? 0.0 : std::clamp(p_rel.Dot(v_rel) / a, 0.0, std::max(horizon, 0.0));
+  return (p_rel - v_rel * t).Norm();
+}
+
+// Smallest distance to `other` within the horizon when the own ship keeps
+// its present velocity for the manoeuvre delay, then sails `v`: how deep a
+// candidate cuts into the safety circle (the measure of "least bad" when
+// every candidate does).
+double MinDistanceDelayed(const Kinematics& own, Vec2 v, const Kinematics& other, double horizon,
+                          const AvoidanceOptions& o) {
+  Vec2 p_rel = other.position - own.position;
+  const double delay = std::min(ManoeuvreDelay(own.velocity, v, o), horizon);
+  double best = std::numeric_limits<double>::infinity();
+  if (delay > 0) {
+    const Vec2 v_now = own.velocity - other.velocity;
+    best = MinDistance(p_rel, v_now, delay);
+    p_rel = p_rel - v_now * delay;
+  }
+  return std::min(best, MinDistance(p_rel, v - other.velocity, horizon - delay));
 }
 
 // Does taking velocity `v` (after the manoeuvre delay at the present
@@ -249,10 +278,16 @@ AvoidanceDecision ChooseVelocity(const Kinematics& own, Vec2 desired,
   double least_violation = std::numeric_limits<double>::infinity();
   Vec2 least_bad = desired;
   const int steps = static_cast<int>(std::round(options.max_course_change_rad / options.course_step_rad));
-  for (double f : options.speed_factors) {
+  absl::InlinedVector<double, 8> speeds;
+  for (double f : options.speed_factors) speeds.push_back(desired_speed * f);
+  if (options.max_speed_mps > desired_speed * 1.05) {
+    for (double f : {1.25, 1.5}) speeds.push_back(std::min(desired_speed * f, options.max_speed_mps));
+  }
+  for (double speed : speeds) {
+    const double f = desired_speed > 1e-9 ? speed / desired_speed : 1.0;
     for (int k = -steps; k <= steps; ++k) {
       double course = desired_course + k * options.course_step_rad;
-      Vec2 v = VelocityOf(course, desired_speed * f);
+      Vec2 v = VelocityOf(course, speed);
       bool ok = true;
       double violation = 0;
       for (const Active& a : active) {
@@ -260,8 +295,15 @@ AvoidanceDecision ChooseVelocity(const Kinematics& own, Vec2 desired,
         Vec2 v_rel = v - a.o->kinematics.velocity;
         if (CollidesDelayed(own, v, a.o->kinematics, r, options.horizon_s, options)) {
           ok = false;
-          Cpa c = ComputeCpa({own.position, v}, a.o->kinematics);
-          violation += r - c.dcpa_m;
+          // Depth of the cut under the modelled delay, less a tenth of the
+          // clearance the velocity would give if taken at once (bounded by
+          // r, so one vessel's wide berth cannot hide a cut into another's
+          // circle): the delay is an estimate, and of candidates it makes
+          // equal, the one that turns away more decisively is the safer bet.
+          const Vec2 p_now = a.o->kinematics.position - own.position;
+          const double at_once = MinDistance(p_now, v - a.o->kinematics.velocity, options.horizon_s);
+          violation += std::max(0.0, r - MinDistanceDelayed(own, v, a.o->kinematics, options.horizon_s, options)) +
+                       0.1 * std::clamp(r - at_once, -r, r);
         }
         // COLREG: give way to starboard (rules 14, 15): the relative
         // velocity must pass the other with it on our port side.
@@ -270,12 +312,18 @@ AvoidanceDecision ChooseVelocity(const Kinematics& own, Vec2 desired,
           violation += 1.0;
         }
       }
-      // Prefer small deviations, starboard turns over port, course changes over speed loss.
+      // Prefer small deviations, starboard turns over port, course changes
+      // over speed changes (speeding up costs more: fuel, and a slower
+      // ship's intentions are easier for others to read).
       double dev = v.x - desired.x, dev_y = v.y - desired.y;
       double cost = dev * dev + dev_y * dev_y + (k < 0 ? 0.5 : 0.0) * desired_speed * desired_speed * 0.01 +
-                    (1.0 - f) * desired_speed * desired_speed * 0.5;
+                    (f <= 1.0 ? (1.0 - f) * 0.5 : (f - 1.0)) * desired_speed * desired_speed;
       // Land, checked only for a candidate that could be chosen (the check
       // is the costly part: every land edge against the track).
+      // Among candidates that all cut into the circle by about as much (a
+      // slow-turning hull: the delay dominates), the one nearest the desired
+      // velocity, so the choice does not swing between far-apart courses.
+      violation += ok ? 0.0 : kViolationPerCost * cost;
       if (options.land != nullptr && (ok ? cost < best_cost : violation < least_violation)) {
         const double clear =
             options.land->Clearance(own.position, own.position + v * options.land_lookahead_s, options.land_clearance_m);

@@ -80,6 +80,13 @@ struct AvoidanceOptions {
   double max_course_change_rad = 1.5708;  // candidate courses within +-90 deg of desired
   double course_step_rad = 0.0436;        // 2.5 deg
   std::vector<double> speed_factors = {1.0, 0.8, 0.6, 0.4, 0.2};
+  // The own ship's top speed, m/s; 0 = unknown. When above the desired
+  // speed, faster candidates (x1.25, x1.5, capped here) are tried too: a
+  // slow ship overtaken by a vessel that does not keep clear, or caught
+  // ahead of a crossing one, gets out of the way by speeding up, which
+  // slowing down and turning alone cannot do (issue #6, the fjord cases at
+  // 3.6 m/s).
+  double max_speed_mps = 0.0;
   ColregOptions colreg;
   // The own ship's manoeuvrability. A velocity obstacle assumes a new
   // velocity is taken at once; a slow-turning hull keeps its present

@@ -177,5 +177,68 @@ TEST(AvoidanceTest, GiveWayManoeuvreKeepsClearOfLand) {
             o.land_clearance_m);
 }
 
+// Overtaken in a narrow channel by a vessel that does not keep clear: land
+// blocks every turn and slowing down only lets it catch up sooner, so the
+// way out is to speed up, which the avoidance tries only when it knows the
+// hull's top speed.
+TEST(AvoidanceTest, OvertakenInAChannelSpeedsUpWhenTurningIsBlocked) {
+  const std::vector<std::vector<Vec2>> banks = {{{-500, -3000}, {-70, -3000}, {-70, 3000}, {-500, 3000}},
+                                                {{70, -3000}, {500, -3000}, {500, 3000}, {70, 3000}}};
+  const LandIndex index(banks);
+  AvoidanceOptions o;
+  o.safety_distance_m = 100;
+  o.land = &index;
+  const Kinematics own{{0, 0}, VelocityOf(kNorth, 3)};
+  const Kinematics overtaker{{0, -250}, VelocityOf(kNorth, 4)};  // CPA 0 in 250 s: rule 17 lets us act
+  AvoidanceDecision unknown_top = ChooseVelocity(own, own.velocity, {{overtaker, 1}}, o);
+  EXPECT_EQ(unknown_top.role, Role::kOvertaken);
+  EXPECT_FALSE(unknown_top.feasible) << "without a top speed only turns and slowing down are tried";
+  o.max_speed_mps = 6;
+  AvoidanceDecision d = ChooseVelocity(own, own.velocity, {{overtaker, 1}}, o);
+  EXPECT_TRUE(d.feasible);
+  EXPECT_TRUE(d.manoeuvring);
+  EXPECT_GT(d.velocity.Norm(), 3.5);
+  EXPECT_LE(d.velocity.Norm(), 6.0 + 1e-9);
+  EXPECT_GE(LandClearance(banks, own.position, own.position + d.velocity * o.land_lookahead_s), o.land_clearance_m);
+  const Cpa cpa = ComputeCpa({own.position, d.velocity}, overtaker);  // within the horizon
+  const Vec2 rel = overtaker.velocity - d.velocity;
+  const double t = cpa.tcpa_s > 0 ? std::min(cpa.tcpa_s, o.horizon_s) : 0.0;
+  EXPECT_GE((overtaker.position + rel * t - own.position).Norm(), o.safety_distance_m - 1e-6);
+}
+
+// When every candidate cuts into the safety circle, the one chosen keeps the
+// most distance under the manoeuvre delay, not the one whose straight-line
+// CPA (ignoring the delay) looks best.
+TEST(AvoidanceTest, LeastBadCandidateKeepsTheMostDistanceUnderTheDelay) {
+  AvoidanceOptions o;
+  o.safety_distance_m = 300;
+  o.turn_rate_rad_s = 0.0175;
+  o.manoeuvre_lag_s = 20;
+  const Kinematics own{{0, 0}, VelocityOf(kNorth, 8)};
+  const Kinematics other{{0, 800}, VelocityOf(kSouth, 2)};  // head-on, 80 s apart
+  AvoidanceDecision d = ChooseVelocity(own, own.velocity, {{other, 1}}, o);
+  ASSERT_FALSE(d.feasible);
+  EXPECT_TRUE(d.manoeuvring);
+  // Every candidate: present velocity for the delay, then the candidate.
+  auto min_distance = [&](Vec2 v) {
+    double best = 1e9;
+    for (double t = 0; t <= o.horizon_s; t += 0.25) {
+      const double turn = std::abs(std::remainder(CourseOf(v) - CourseOf(own.velocity), 2 * M_PI));
+      const double delay = turn / o.turn_rate_rad_s + std::abs(v.Norm() - 8.0) / o.acceleration_mps2;
+      const double lagged = delay > 1e-3 ? delay + o.manoeuvre_lag_s : 0.0;
+      const Vec2 p = t < lagged ? own.velocity * t : own.velocity * lagged + v * (t - lagged);
+      best = std::min(best, (other.position + other.velocity * t - p).Norm());
+    }
+    return best;
+  };
+  // Ties within a tenth of the safety distance are broken by the clearance
+  // the velocity would give at once (see ChooseVelocity).
+  const double chosen = min_distance(d.velocity);
+  for (double c = -M_PI / 2; c <= M_PI / 2 + 1e-9; c += M_PI / 36) {
+    EXPECT_GE(chosen + 0.1 * o.safety_distance_m + 2.0, min_distance(VelocityOf(c, 8))) << "course " << c * 180 / M_PI;
+  }
+  EXPECT_GT(chosen, min_distance(own.velocity) + 50.0) << "holding on is the worst choice";
+}
+
 }  // namespace
 }  // namespace seaplan::sim

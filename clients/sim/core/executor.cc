@@ -6,6 +6,7 @@
 
 #include "absl/strings/str_format.h"
 #include "seaplan/mission/tasks.h"
+#include "seaplan/ship/steady_state.h"
 
 namespace seaplan::sim {
 namespace {
@@ -44,6 +45,9 @@ Executor::Executor(const ExecutorConfig& config, ship::ShipModel model)
       speed_(ship::SpeedControllerOptions{}, config.dt_s),
       tank_(config.fuel, config.initial_fuel_fraction) {
   report_.safety_distance_m = config.avoidance.safety_distance_m;
+  for (ship::MsoMode m : ship::kAllMsoModes) {
+    top_speed_mps_[static_cast<size_t>(m)] = ship::TopSpeed(ship::ShipParams{}, ship::MachineryParams{}, m);
+  }
   for (const TrafficVessel& v : config.traffic) report_.cpa[v.id].vessel = v.name;
   report_.min_fuel_fraction = config.initial_fuel_fraction;
 }
@@ -255,6 +259,7 @@ void Executor::StepMove(std::vector<FeedbackOut>* out) {
   AvoidanceOptions planning = config_.avoidance;
   if (!land_.empty()) planning.land = &land_;
   planning.safety_distance_m *= config_.avoidance_margin_factor;
+  if (planning.max_speed_mps <= 0) planning.max_speed_mps = top_speed_mps_[static_cast<size_t>(model_.mode())];
   if (planning.turn_rate_rad_s <= 0) {
     planning.turn_rate_rad_s = config_.turn_rate_rad_s;
     planning.manoeuvre_lag_s = config_.manoeuvre_lag_s;

@@ -17,6 +17,7 @@
 // Thread-compatible; one per simulated ship.
 #pragma once
 
+#include <array>
 #include <map>
 #include <optional>
 #include <set>
@@ -160,6 +161,7 @@ class Executor {
   ExecutorConfig config_;
   ship::ShipModel model_;
   LandIndex land_;  // config_.land, indexed for the avoidance
+  std::array<double, 3> top_speed_mps_{};  // calm-water top speed per MSO mode, for the avoidance
   ship::HeadingController heading_;
   ship::SpeedController speed_;
   std::optional<PathFollower> los_;

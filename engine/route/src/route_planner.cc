@@ -70,6 +70,9 @@ absl::Status ShipParticulars::Validate() const {
   if (!(service_throttle > 0.0 && service_throttle <= 1.1)) {
     return absl::InvalidArgumentError(absl::StrCat("service_throttle must be in (0, 1.1], got ", service_throttle));
   }
+  if (!(service_speed_mps >= 0.0 && std::isfinite(service_speed_mps))) {
+    return absl::InvalidArgumentError(absl::StrCat("service_speed_mps must be >= 0 and finite, got ", service_speed_mps));
+  }
   return absl::OkStatus();
 }
 
@@ -113,13 +116,19 @@ StatusOr<RoutePlanner> RoutePlanner::Create(std::shared_ptr<const chart::Obstacl
   p.ship_ = ship;
   p.options_ = options;
   for (int m = 0; m < kModeCount; ++m) {
-    const ship::OperatingPoint op = ship::CalmWaterOperatingPoint(
-        ship.hull, ship.machinery, static_cast<ship::MsoMode>(m), ship.service_throttle);
+    const auto mode = static_cast<ship::MsoMode>(m);
+    double throttle = ship.service_throttle;
+    if (ship.service_speed_mps > 0.0) {
+      // OutOfRange: the mode's top speed is below the ordered speed.
+      const StatusOr<double> t = ship::ThrottleForSpeed(ship.hull, ship.machinery, mode, ship.service_speed_mps);
+      throttle = t.ok() ? *t : 1.0;
+    }
+    const ship::OperatingPoint op = ship::CalmWaterOperatingPoint(ship.hull, ship.machinery, mode, throttle);
     p.speed_mps_[m] = op.speed_mps;
     p.fuel_kgps_[m] = op.fuel_rate.total_kgps();
     if (!(op.speed_mps > 0.1)) {
       return absl::InvalidArgumentError(absl::StrCat("mode ", std::string(ship::MsoModeName(static_cast<MsoMode>(m))),
-                                                     " has no service speed at throttle ", ship.service_throttle));
+                                                     " has no service speed at throttle ", throttle));
     }
   }
   const chart::LocalBox cov = p.map_->summary().coverage;

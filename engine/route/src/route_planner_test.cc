@@ -111,6 +111,46 @@ TEST(RoutePlannerTest, BadEndpointsAndNoRoute) {
             absl::StatusCode::kFailedPrecondition);
 }
 
+TEST(RoutePlannerTest, ServiceSpeedSetsEveryModesSpeedAndFuel) {
+  auto map = Map();
+  const chart::LatLon start = map->frame().ToLatLon(P(-2000, 0));
+  const chart::LatLon goal = map->frame().ToLatLon(P(2000, 0));
+  auto fast = RoutePlanner::Create(map, ShipParticulars{}, FastOptions());
+  ASSERT_TRUE(fast.ok()) << fast.status();
+  ShipParticulars slow_ship;
+  slow_ship.service_speed_mps = 3.6;
+  auto slow = RoutePlanner::Create(map, slow_ship, FastOptions());
+  ASSERT_TRUE(slow.ok()) << slow.status();
+  auto rf = fast->Plan(start, goal, Environment{});
+  auto rs = slow->Plan(start, goal, Environment{});
+  ASSERT_TRUE(rf.ok() && rs.ok());
+  const RouteAlternative& s = rs->alternatives[rs->chosen];
+  // Every mode can hold 3.6 m/s: each segment is sailed at it, whatever its mode.
+  for (size_t k = 0; k + 1 < s.waypoints.size(); ++k) {
+    EXPECT_NEAR(s.waypoints[k].segment_time_s, s.waypoints[k].segment_length_m / 3.6, 1e-6) << k;
+  }
+  const RouteAlternative& f = rf->alternatives[rf->chosen];
+  EXPECT_GT(f.length_m / f.sailing_time_s, 4.5);  // service throttle 0.8: PTI 4.6, PTO 9.2 m/s
+  // Slower through the water: less power, so a lower fuel rate (per metre
+  // it can be more: the machinery's fixed loads run longer).
+  EXPECT_LT(s.fuel_kg / s.sailing_time_s, f.fuel_kg / f.sailing_time_s);
+
+  // Faster than a mode's top speed: that mode sails at its top speed, the route is still planned.
+  ShipParticulars racer;
+  racer.service_speed_mps = 30.0;
+  auto top = RoutePlanner::Create(map, racer, FastOptions());
+  ASSERT_TRUE(top.ok()) << top.status();
+  auto rt = top->Plan(start, goal, Environment{});
+  ASSERT_TRUE(rt.ok()) << rt.status();
+  const RouteAlternative& t = rt->alternatives[rt->chosen];
+  EXPECT_LT(t.sailing_time_s, f.sailing_time_s);
+  EXPECT_GT(t.sailing_time_s, t.length_m / 30.0);
+
+  ShipParticulars bad;
+  bad.service_speed_mps = -1.0;
+  EXPECT_EQ(RoutePlanner::Create(map, bad, FastOptions()).status().code(), absl::StatusCode::kInvalidArgument);
+}
+
 TEST(RoutePlannerTest, EstimateRiskHigherUpwindOfTheShore) {
   auto map = Map();
   auto planner = RoutePlanner::Create(map, ShipParticulars{}, FastOptions());

@@ -50,6 +50,11 @@ struct ShipParticulars {
   // steady state at this throttle (0.8: SITS example, PTO 9.15 m/s,
   // MEC 9.84 m/s, PTI 4.62 m/s).
   double service_throttle = 0.8;
+  // Planning speed through the water, m/s; 0 = the speeds at
+  // service_throttle. When set, each mode sails at the throttle that holds
+  // this speed in calm water, or at its top speed where it cannot (fuel per
+  // mode follows), so route times match the ship's ordered speed.
+  double service_speed_mps = 0.0;
   absl::Status Validate() const;
 };
 
