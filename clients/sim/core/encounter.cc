@@ -236,6 +236,33 @@ double LandIndex::Clearance(Vec2 a, Vec2 b, double limit_m) const {
   return best;
 }
 
+PathApproach PathAheadClosestApproach(const std::vector<Vec2>& path, size_t next, Vec2 position, double speed_mps,
+                                      const Kinematics& other, double horizon_s, double step_s) {
+  PathApproach best{(other.position - position).Norm(), 0.0};
+  if (!(speed_mps > 0) || !(step_s > 0)) return best;
+  Vec2 at = position;
+  size_t target = next;
+  const double step_m = speed_mps * step_s;
+  for (double t = step_s; t <= horizon_s + 1e-9; t += step_s) {
+    double left = step_m;  // walk step_m along the path, past its points
+    while (left > 0 && target < path.size()) {
+      const Vec2 d = path[target] - at;
+      const double len = d.Norm();
+      if (len <= left) {
+        at = path[target];
+        left -= len;
+        ++target;
+      } else {
+        at = at + d * (left / len);
+        left = 0;
+      }
+    }
+    const double dist = (other.position + other.velocity * t - at).Norm();
+    if (dist < best.distance_m) best = {dist, t};
+  }
+  return best;
+}
+
 AvoidanceDecision ChooseVelocity(const Kinematics& own, Vec2 desired,
                                  const std::vector<Obstacle>& others,
                                  const AvoidanceOptions& options) {

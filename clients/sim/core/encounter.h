@@ -108,6 +108,19 @@ struct AvoidanceOptions {
   double land_lookahead_s = 45.0;  // ~400 m at the routes' 9 m/s
 };
 
+// The closest approach to `other` (straight-line motion) of a ship that
+// sails the polyline `path` from `position`, first towards path[next] and
+// then along the following points, at `speed_mps`, sampled every `step_s`
+// within `horizon_s`. A straight-line CPA cannot see a conflict that lies
+// past a turn of the route: at 9 m/s a crossing vessel found only once the
+// turn is under way is too close for a slow-turning hull (issue #6, case C).
+struct PathApproach {
+  double distance_m = 0.0;
+  double time_s = 0.0;
+};
+PathApproach PathAheadClosestApproach(const std::vector<Vec2>& path, size_t next, Vec2 position, double speed_mps,
+                                      const Kinematics& other, double horizon_s, double step_s = 5.0);
+
 // Smallest distance from the segment a-b to the rings' edges, 0 when it
 // crosses one or starts inside a ring. Scans every edge (tests, small maps).
 double LandClearance(const std::vector<std::vector<Vec2>>& rings, Vec2 a, Vec2 b);

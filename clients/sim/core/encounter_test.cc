@@ -240,5 +240,23 @@ TEST(AvoidanceTest, LeastBadCandidateKeepsTheMostDistanceUnderTheDelay) {
   EXPECT_GT(chosen, min_distance(own.velocity) + 50.0) << "holding on is the worst choice";
 }
 
+// A conflict past a turn of the route: the straight-line CPA sees none, the
+// path-ahead prediction does, and at a lower speed it is gone.
+TEST(PathAheadTest, SeesAConflictPastTheTurnThatTheStraightLineMisses) {
+  // East 900 m, then south; a vessel heading west along y = -600.
+  const std::vector<Vec2> path = {{0, 0}, {900, 0}, {900, -2000}};
+  const Kinematics own{{0, 0}, VelocityOf(kEast, 9)};
+  const Kinematics other{{1700, -600}, VelocityOf(kWest, 5)};
+  EXPECT_GT(ComputeCpa(own, other).dcpa_m, 500.0);
+  const PathApproach fast = PathAheadClosestApproach(path, 1, own.position, 9.0, other, 300.0, 1.0);
+  EXPECT_LT(fast.distance_m, 60.0);
+  EXPECT_NEAR(fast.time_s, 167.0, 10.0);  // 900 m east + 600 m south at 9 m/s
+  const PathApproach slow = PathAheadClosestApproach(path, 1, own.position, 4.5, other, 300.0, 1.0);
+  EXPECT_GT(slow.distance_m, 300.0);
+  // The path's end is held: no extrapolation past the last point.
+  const PathApproach end = PathAheadClosestApproach({{0, 0}, {100, 0}}, 1, {0, 0}, 10.0, {{100, 500}, {0, 0}}, 300.0);
+  EXPECT_NEAR(end.distance_m, 500.0, 1e-9);
+}
+
 }  // namespace
 }  // namespace seaplan::sim

@@ -259,6 +259,7 @@ void Executor::StepMove(std::vector<FeedbackOut>* out) {
   AvoidanceOptions planning = config_.avoidance;
   if (!land_.empty()) planning.land = &land_;
   planning.safety_distance_m *= config_.avoidance_margin_factor;
+  speed = PathAheadSpeed(here, speed, others, planning.safety_distance_m);
   if (planning.max_speed_mps <= 0) planning.max_speed_mps = top_speed_mps_[static_cast<size_t>(model_.mode())];
   if (planning.turn_rate_rad_s <= 0) {
     planning.turn_rate_rad_s = config_.turn_rate_rad_s;
@@ -309,6 +310,47 @@ void Executor::StepMove(std::vector<FeedbackOut>* out) {
     last_position_report_s_ = time_s_;
     out->push_back(MakeFeedback(FeedbackKind::kPosition, it->task.id, it->version));
   }
+}
+
+double Executor::PathAheadSpeed(Vec2 here, double speed, const std::vector<Obstacle>& others, double safety_m) {
+  if (config_.path_lookahead_s <= 0 || others.empty()) return speed;
+  const size_t next = static_cast<size_t>(los_->leg()) + 1;
+  int blocking = -1;
+  double chosen = speed;
+  for (double f : {1.0, 0.75, 0.5, 0.3}) {
+    blocking = -1;
+    for (const Obstacle& o : others) {
+      const PathApproach a =
+          PathAheadClosestApproach(los_->path(), next, here, speed * f, o.kinematics, config_.path_lookahead_s);
+      if (a.distance_m < safety_m) {
+        blocking = o.id;
+        break;
+      }
+    }
+    if (blocking < 0) {
+      chosen = speed * f;
+      break;
+    }
+  }
+  // No slower speed clears it either (a vessel from astern, or one already
+  // close): leave it to the velocity obstacles at full speed.
+  if (blocking >= 0) chosen = speed;
+  const bool slowed = chosen < speed - 1e-9;
+  if (slowed && path_slowed_for_ < 0) {
+    for (const Obstacle& o : others) {
+      const PathApproach a =
+          PathAheadClosestApproach(los_->path(), next, here, speed, o.kinematics, config_.path_lookahead_s);
+      if (a.distance_m < safety_m) {
+        path_slowed_for_ = o.id;
+        Log(absl::StrFormat("%s with %s ahead on the route: speed reduced to %.1f m/s",
+                            std::string(mission::messages::kPotentialCollision), report_.cpa[o.id].vessel, chosen));
+        break;
+      }
+    }
+  } else if (!slowed) {
+    path_slowed_for_ = -1;
+  }
+  return chosen;
 }
 
 void Executor::Complete(const Running& r, std::vector<FeedbackOut>* out) {

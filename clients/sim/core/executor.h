@@ -92,6 +92,10 @@ struct ExecutorConfig {
   // none known. The executor points avoidance.land at it.
   std::vector<std::vector<Vec2>> land;
   double avoidance_margin_factor = 1.5;  // safety distance x this when choosing velocities
+  // Look this far along the route ahead (not just the straight line) for
+  // vessels that would come within the planning safety distance, and slow
+  // down (x0.75, 0.5, 0.3) to let them pass; 0 = off.
+  double path_lookahead_s = 180.0;
   // This hull's manoeuvrability for the avoidance (AvoidanceOptions):
   // about 1 deg/s at 30 deg rudder at service speed, ~20 s before the turn
   // develops. Used when the scenario leaves avoidance.turn_rate_rad_s at 0.
@@ -153,6 +157,9 @@ class Executor {
   void StartTasks(std::vector<FeedbackOut>* out);
   void StartMove(const mission::Task& task);
   void StepMove(std::vector<FeedbackOut>* out);
+  // The desired speed, lowered while a vessel would come within safety_m
+  // of the ship sailing its route ahead (see path_lookahead_s).
+  double PathAheadSpeed(Vec2 here, double speed, const std::vector<Obstacle>& others, double safety_m);
   void Complete(const Running& r, std::vector<FeedbackOut>* out);
   void NoteFuel();  // logs crossing the fuel threshold (the server decides replans)
   void InjectEvents(std::vector<FeedbackOut>* out);
@@ -162,6 +169,7 @@ class Executor {
   ship::ShipModel model_;
   LandIndex land_;  // config_.land, indexed for the avoidance
   std::array<double, 3> top_speed_mps_{};  // calm-water top speed per MSO mode, for the avoidance
+  int path_slowed_for_ = -1;  // vessel the path-ahead check last slowed the ship for, -1 none
   ship::HeadingController heading_;
   ship::SpeedController speed_;
   std::optional<PathFollower> los_;
