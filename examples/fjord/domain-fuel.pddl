@@ -35,13 +35,17 @@
     :effect (and (at start (not (at ?v ?from)))
                  (at end (at ?v ?to))))
 
-  ; The same move for a ship that must go refuelling (paper: move-fueling-ship).
+  ; The same move for a ship that must go refuelling (paper: move-fueling-ship
+  ; "to the nearest charger"): straight to a port with a refuelling team ?y.
+  ; Without (at ?y ?to) a plan could chain it (S -> A -> B), asking for two
+  ; moves on a tank the executor refuses below 30 %: 15 % each leaves 0 %.
   (:durative-action move-fueling-ship
-    :parameters (?v - ship ?from - port ?to - port)
+    :parameters (?v - ship ?from - port ?to - port ?y - team_refuel)
     :duration (= ?duration (/ (distance ?from ?to) (speed ?v)))
     :condition (and (at start (at ?v ?from))
                     (at start (connected ?from ?to))
-                    (at start (no_fuel ?v)))
+                    (at start (no_fuel ?v))
+                    (at start (at ?y ?to)))
     :effect (and (at start (not (at ?v ?from)))
                  (at end (at ?v ?to))))
 

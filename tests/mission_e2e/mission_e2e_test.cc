@@ -184,6 +184,9 @@ TEST_F(MissionE2eTest, CaseAOneVersionGoalsReachedNoGroundingSafeCpa) {
     EXPECT_FALSE(q.Inside({std::stod((*it)[2]), std::stod((*it)[3])})) << "aground at t=" << (*it)[1];
   }
   EXPECT_GT(points, 10);
+  // The sim's own check, every 2 s of the track against the same land.
+  EXPECT_GT(Numbers(r.report, "min_land_clearance_m").at(0), 0.0);
+  EXPECT_EQ(Numbers(r.report, "aground_s").at(0), 0.0);
   // The refined routes themselves never touch the land (they are planned
   // against the buffered obstacles): every move's polyline, sampled every 5 m.
   std::regex task_re("\"id\": \"([^\"]+)\"[^{}]*\"route\": \\[([^{}]*)\\]\\]");

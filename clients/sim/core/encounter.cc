@@ -206,6 +206,7 @@ LandIndex::LandIndex(const std::vector<std::vector<Vec2>>& rings, double cell_m)
       for (int64_t x = i0; x <= i1; ++x) {
         for (int64_t y = j0; y <= j1; ++y) cells_[Key(x, y)].push_back(id);
       }
+      max_i_ = edges_.size() == 1 ? i1 : std::max(max_i_, i1);
     }
   }
   seen_.assign(edges_.size(), -1);
@@ -261,6 +262,29 @@ PathApproach PathAheadClosestApproach(const std::vector<Vec2>& path, size_t next
     if (dist < best.distance_m) best = {dist, t};
   }
   return best;
+}
+
+bool LandIndex::Inside(Vec2 p) const {
+  if (edges_.empty()) return false;
+  ++query_;
+  bool in = false;
+  const int64_t j = static_cast<int64_t>(std::floor(p.y / cell_m_));
+  for (int64_t i = static_cast<int64_t>(std::floor(p.x / cell_m_)); i <= max_i_; ++i) {
+    auto it = cells_.find(Key(i, j));
+    if (it == cells_.end()) continue;
+    for (int32_t id : it->second) {
+      if (seen_[static_cast<size_t>(id)] == query_) continue;
+      seen_[static_cast<size_t>(id)] = query_;
+      const auto& [c, d] = edges_[static_cast<size_t>(id)];
+      if ((c.y > p.y) != (d.y > p.y) && p.x < (d.x - c.x) * (p.y - c.y) / (d.y - c.y) + c.x) in = !in;
+    }
+  }
+  return in;
+}
+
+double LandIndex::SignedClearance(Vec2 p, double limit_m) const {
+  const double d = Clearance(p, p, limit_m);
+  return Inside(p) ? -d : d;
 }
 
 AvoidanceDecision ChooseVelocity(const Kinematics& own, Vec2 desired,

@@ -140,12 +140,19 @@ class LandIndex {
   // edges reads as clear: the ship is aground already, not the avoidance's
   // concern.)
   double Clearance(Vec2 a, Vec2 b, double limit_m) const;
+  // Inside the land (even-odd over every ring): a ray east from p through
+  // the grid row of p.
+  bool Inside(Vec2 p) const;
+  // Distance from p to the land's edges, at most limit_m; negative inside
+  // (how far aground). For the report's closest approach to land.
+  double SignedClearance(Vec2 p, double limit_m) const;
 
  private:
   int64_t Key(int64_t i, int64_t j) const { return i * 1'000'003 + j; }
   std::vector<std::pair<Vec2, Vec2>> edges_;
   std::unordered_map<int64_t, std::vector<int32_t>> cells_;
   double cell_m_ = 250.0;
+  int64_t max_i_ = 0;  // easternmost cell column with an edge
   mutable std::vector<int32_t> seen_;  // scratch: last query that looked at each edge
   mutable int32_t query_ = 0;
 };

@@ -258,5 +258,38 @@ TEST(PathAheadTest, SeesAConflictPastTheTurnThatTheStraightLineMisses) {
   EXPECT_NEAR(end.distance_m, 500.0, 1e-9);
 }
 
+TEST(LandIndexTest, InsideAndSignedClearanceAgreeWithTheFullScan) {
+  // A square island with a square lagoon (a hole drawn as a second ring).
+  const std::vector<std::vector<Vec2>> land = {{{0, 0}, {1000, 0}, {1000, 1000}, {0, 1000}},
+                                               {{400, 400}, {600, 400}, {600, 600}, {400, 600}}};
+  const LandIndex index(land, 150.0);
+  EXPECT_TRUE(index.Inside({100, 500}));
+  EXPECT_FALSE(index.Inside({500, 500})) << "the lagoon is water";
+  EXPECT_FALSE(index.Inside({-50, 500}));
+  EXPECT_FALSE(index.Inside({1500, 2000}));
+  EXPECT_NEAR(index.SignedClearance({-50, 500}, 1000), 50.0, 1e-9);
+  EXPECT_NEAR(index.SignedClearance({100, 500}, 1000), -100.0, 1e-9);
+  EXPECT_NEAR(index.SignedClearance({500, 500}, 1000), 100.0, 1e-9);
+  EXPECT_NEAR(index.SignedClearance({5000, 500}, 1000), 1000.0, 1e-9) << "capped at the limit";
+  // Against brute force: even-odd over all edges, distance to the nearest edge.
+  for (double x = -200; x <= 1200; x += 37) {
+    for (double y = -200; y <= 1200; y += 41) {
+      bool in = false;
+      double dist = 1e18;
+      for (const auto& ring : land) {
+        for (size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++) {
+          const Vec2 c = ring[j], d = ring[i];
+          if ((c.y > y) != (d.y > y) && x < (d.x - c.x) * (y - c.y) / (d.y - c.y) + c.x) in = !in;
+          const Vec2 e = d - c;
+          const double t = std::clamp(((Vec2{x, y} - c).Dot(e)) / e.Dot(e), 0.0, 1.0);
+          dist = std::min(dist, (Vec2{x, y} - (c + e * t)).Norm());
+        }
+      }
+      EXPECT_EQ(index.Inside({x, y}), in) << x << ", " << y;
+      EXPECT_NEAR(index.SignedClearance({x, y}, 5000), in ? -dist : dist, 1e-6) << x << ", " << y;
+    }
+  }
+}
+
 }  // namespace
 }  // namespace seaplan::sim

@@ -393,6 +393,10 @@ void Executor::InjectEvents(std::vector<FeedbackOut>* out) {
   }
 }
 
+namespace {
+constexpr double kLandSampleS = 2.0;  // the report's land clearance, every this many seconds
+}  // namespace
+
 void Executor::TrackTraffic() {
   Vec2 here = position();
   for (const TrafficVessel& v : config_.traffic) {
@@ -403,6 +407,16 @@ void Executor::TrackTraffic() {
       rec.min_distance_m = d;
       rec.time_s = time_s_;
     }
+  }
+  if (!land_.empty() && time_s_ - last_land_sample_s_ >= kLandSampleS) {
+    last_land_sample_s_ = time_s_;
+    report_.land_known = true;
+    const double clearance = land_.SignedClearance(here, 1000.0);
+    if (clearance < report_.min_land_clearance_m) {
+      report_.min_land_clearance_m = clearance;
+      report_.min_land_clearance_time_s = time_s_;
+    }
+    if (clearance < 0) report_.aground_s += kLandSampleS;
   }
   if (time_s_ - last_track_sample_s_ >= 10.0) {
     last_track_sample_s_ = time_s_;

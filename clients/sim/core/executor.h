@@ -186,6 +186,7 @@ class Executor {
   double last_position_report_s_ = -1e9;
   double last_fuel_sample_s_ = -1e9;
   double last_track_sample_s_ = -1e9;
+  double last_land_sample_s_ = -1e9;
   double fuel_burn_start_kg_ = 0.0;
   Vec2 last_position_;
   bool jumped_ = false;

@@ -62,7 +62,13 @@ std::string ToJson(const MissionReport& r) {
     << ",\n  \"safety_distance_m\": " << Num(r.safety_distance_m)
     << ",\n  \"tank_ran_dry\": " << (r.tank_ran_dry ? "true" : "false")
     << ",\n  \"min_fuel_fraction\": " << Num(r.min_fuel_fraction)
-    << ",\n  \"fuel_triggered_replans\": " << r.fuel_triggered_replans << ",\n  \"cpa\": [";
+    << ",\n  \"fuel_triggered_replans\": " << r.fuel_triggered_replans;
+  if (r.land_known) {
+    o << ",\n  \"min_land_clearance_m\": " << Num(r.min_land_clearance_m)
+      << ",\n  \"min_land_clearance_time_s\": " << Num3(r.min_land_clearance_time_s)
+      << ",\n  \"aground_s\": " << Num3(r.aground_s);
+  }
+  o << ",\n  \"cpa\": [";
   bool first = true;
   for (const auto& [id, c] : r.cpa) {
     o << (first ? "\n" : ",\n") << "    {\"vessel\": " << JsonString(c.vessel)

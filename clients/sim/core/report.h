@@ -42,6 +42,13 @@ struct MissionReport {
   bool tank_ran_dry = false;
   double min_fuel_fraction = 1.0;
   int fuel_triggered_replans = 0;
+  // Closest approach of the ship's position to the land (sampled every 2 s,
+  // up to 1000 m; negative = aground, how far in) and the time spent aground.
+  // Only when the scenario has a chart.
+  bool land_known = false;
+  double min_land_clearance_m = 1000.0;
+  double min_land_clearance_time_s = 0.0;
+  double aground_s = 0.0;
 };
 
 std::string ToJson(const MissionReport& report);
