@@ -21,6 +21,14 @@ double PiController::Update(double setpoint, double measurement) {
   return error * kp_ + integral_ * ki_;
 }
 
+double PiController::UpdateSaturated(double setpoint, double measurement, double out_lo, double out_hi) {
+  const double error = setpoint - measurement;
+  const double unsaturated = error * kp_ + integral_ * ki_;
+  const bool pushing_out = (unsaturated >= out_hi && error > 0.0) || (unsaturated <= out_lo && error < 0.0);
+  if (!pushing_out) integral_ = std::clamp(integral_ + error * dt_s_, lo_, hi_);
+  return std::clamp(error * kp_ + integral_ * ki_, out_lo, out_hi);
+}
+
 double PidController::UpdateFromError(double error) {
   const double d_error = (error - prev_error_) / dt_s_;
   integral_ = std::clamp(integral_ + error * dt_s_, lo_, hi_);
@@ -44,7 +52,7 @@ SpeedController::SpeedController(const SpeedControllerOptions& o, double dt_s)
 }
 
 double SpeedController::Throttle(double setpoint, double measured) {
-  return std::clamp(pi_.Update(setpoint, measured), 0.0, options_.max_throttle);
+  return pi_.UpdateSaturated(setpoint, measured, 0.0, options_.max_throttle);
 }
 
 ShaftSpeedController::ShaftSpeedController(const ShaftSpeedControllerOptions& o, double dt_s)

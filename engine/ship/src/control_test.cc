@@ -71,6 +71,27 @@ TEST(ControlTest, ClosedLoopRouteFollowing) {
   EXPECT_GT(model->fuel_consumed_kg(), 0.0);
 }
 
+// Full throttle from rest to 9 m/s, then an order for 3.6 m/s (a collision
+// avoidance slowing down): the speed comes down promptly instead of rising
+// on a wound-up integral.
+TEST(ControlTest, SpeedControllerFollowsALowerSetpointAfterALongAcceleration) {
+  const double dt = 0.5;
+  auto model = ShipModel::Create(ShipParams{}, MachineryParams{}, Environment{}, ShipState::At(0, 0, 0, 0),
+                                 MsoMode::kPto);
+  ASSERT_TRUE(model.ok());
+  SpeedController speed(SpeedControllerOptions{}, dt);
+  while (model->time_s() < 60) model->Step(speed.Throttle(9.0, model->state().nu[0]), 0.0, dt);
+  const double at_order = model->state().nu[0];
+  ASSERT_LT(at_order, 9.0) << "still accelerating when the lower order comes";
+  double peak = at_order;
+  while (model->time_s() < 420) {
+    model->Step(speed.Throttle(3.6, model->state().nu[0]), 0.0, dt);
+    peak = std::max(peak, model->state().nu[0]);
+  }
+  EXPECT_LT(peak, at_order + 0.5) << "kept accelerating after the order (a wound-up integral: +1.5 m/s)";
+  EXPECT_NEAR(model->state().nu[0], 3.6, 0.4);
+}
+
 // The shaft-dynamics ship with the cascaded speed controller of §5 (ship-speed
 // PI -> shaft-speed setpoint -> throttle PI) and heading hold reaches a speed
 // setpoint.

@@ -38,6 +38,12 @@ class PiController {
   // Integral clamp [lo, hi]; default: unclamped.
   void set_integral_limits(double lo, double hi) { lo_ = lo, hi_ = hi; }
   double Update(double setpoint, double measurement);
+  // Update with the output saturated to [out_lo, out_hi] and conditional
+  // integration (anti-windup): the error is not integrated while the output
+  // is saturated and the error would push it further out. Without it, a
+  // long acceleration at full throttle fills the integral and a lower
+  // setpoint is overshot for minutes.
+  double UpdateSaturated(double setpoint, double measurement, double out_lo, double out_hi);
   double integral() const { return integral_; }
 
  private:
@@ -72,8 +78,9 @@ struct SpeedControllerOptions {
 class SpeedController {
  public:
   SpeedController(const SpeedControllerOptions& o, double dt_s);
-  // Returns the throttle in [0, max_throttle]. The integral is clamped so
-  // that ki * integral stays within [0, max_throttle] (anti-windup).
+  // Returns the throttle in [0, max_throttle]. Anti-windup: the integral is
+  // clamped so that ki * integral stays within [0, max_throttle] and is not
+  // integrated while the throttle is saturated in the error's direction.
   double Throttle(double speed_setpoint_mps, double measured_speed_mps);
 
  private:
