@@ -234,6 +234,7 @@ TEST_F(MissionE2eTest, CaseCExecutorFuelReplansAndNumericFuelDoesBetter) {
   }
   EXPECT_FALSE(Flag(c.report, "tank_ran_dry"));
   EXPECT_GT(Numbers(c.report, "min_fuel_fraction").at(0), 0.0);
+  EXPECT_EQ(Numbers(c.report, "aground_s").at(0), 0.0) << "the simulated ship ran aground";
 
   SimRun n = RunSim("case-c-numeric");
   ASSERT_EQ(n.exit_code, 0) << SimOutput("case-c-numeric");
@@ -241,6 +242,7 @@ TEST_F(MissionE2eTest, CaseCExecutorFuelReplansAndNumericFuelDoesBetter) {
   EXPECT_EQ(Numbers(n.report, "fuel_triggered_replans").at(0), 0);
   EXPECT_FALSE(Flag(n.report, "tank_ran_dry"));
   EXPECT_LT(Numbers(n.report, "end_time_s").at(0), Numbers(c.report, "end_time_s").at(0));
+  EXPECT_EQ(Numbers(n.report, "aground_s").at(0), 0.0) << "the simulated ship ran aground";
 }
 
 std::vector<v1::MissionEvent> Watch(v1::MissionService::Stub* stub, const std::string& id, int after_version,

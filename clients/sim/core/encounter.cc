@@ -238,14 +238,22 @@ double LandIndex::Clearance(Vec2 a, Vec2 b, double limit_m) const {
 }
 
 PathApproach PathAheadClosestApproach(const std::vector<Vec2>& path, size_t next, Vec2 position, double speed_mps,
-                                      const Kinematics& other, double horizon_s, double step_s) {
+                                      const Kinematics& other, double horizon_s, double step_s,
+                                      double start_speed_mps, double acceleration_mps2) {
   PathApproach best{(other.position - position).Norm(), 0.0};
   if (!(speed_mps > 0) || !(step_s > 0)) return best;
   Vec2 at = position;
   size_t target = next;
-  const double step_m = speed_mps * step_s;
+  const bool ramp = start_speed_mps >= 0 && acceleration_mps2 > 0;
+  double speed = ramp ? start_speed_mps : speed_mps;
   for (double t = step_s; t <= horizon_s + 1e-9; t += step_s) {
-    double left = step_m;  // walk step_m along the path, past its points
+    double next_speed = speed;
+    if (ramp) {
+      const double dv = std::clamp(speed_mps - speed, -acceleration_mps2 * step_s, acceleration_mps2 * step_s);
+      next_speed = speed + dv;
+    }
+    double left = 0.5 * (speed + next_speed) * step_s;  // walk along the path, past its points
+    speed = next_speed;
     while (left > 0 && target < path.size()) {
       const Vec2 d = path[target] - at;
       const double len = d.Norm();

@@ -118,8 +118,11 @@ struct PathApproach {
   double distance_m = 0.0;
   double time_s = 0.0;
 };
+// With start_speed_mps >= 0 and acceleration_mps2 > 0 the speed ramps from
+// start_speed_mps to speed_mps at that rate (a ship leaving its berth).
 PathApproach PathAheadClosestApproach(const std::vector<Vec2>& path, size_t next, Vec2 position, double speed_mps,
-                                      const Kinematics& other, double horizon_s, double step_s = 5.0);
+                                      const Kinematics& other, double horizon_s, double step_s = 5.0,
+                                      double start_speed_mps = -1.0, double acceleration_mps2 = 0.0);
 
 // Smallest distance from the segment a-b to the rings' edges, 0 when it
 // crosses one or starts inside a ring. Scans every edge (tests, small maps).

@@ -258,6 +258,20 @@ TEST(PathAheadTest, SeesAConflictPastTheTurnThatTheStraightLineMisses) {
   EXPECT_NEAR(end.distance_m, 500.0, 1e-9);
 }
 
+// A ship leaving its berth reaches a crossing point later than one already
+// at speed: with the speed ramp the prediction sees the meeting that the
+// instant-speed one misses.
+TEST(PathAheadTest, SpeedRampFromRestDelaysTheArrival) {
+  const std::vector<Vec2> path = {{0, 0}, {3000, 0}};
+  const Kinematics crossing{{800, -450}, VelocityOf(kNorth, 2.5)};  // at (800, 0) at t = 180 s
+  const PathApproach instant = PathAheadClosestApproach(path, 1, {0, 0}, 9.0, crossing, 300.0, 1.0);
+  EXPECT_GT(instant.distance_m, 150.0);
+  // From rest at 0.05 m/s^2: 810 m after 180 s.
+  const PathApproach ramped = PathAheadClosestApproach(path, 1, {0, 0}, 9.0, crossing, 300.0, 1.0, 0.0, 0.05);
+  EXPECT_LT(ramped.distance_m, 50.0);
+  EXPECT_NEAR(ramped.time_s, 180.0, 10.0);
+}
+
 TEST(LandIndexTest, InsideAndSignedClearanceAgreeWithTheFullScan) {
   // A square island with a square lagoon (a hole drawn as a second ring).
   const std::vector<std::vector<Vec2>> land = {{{0, 0}, {1000, 0}, {1000, 1000}, {0, 1000}},

@@ -265,7 +265,24 @@ void Executor::StepMove(std::vector<FeedbackOut>* out) {
     planning.turn_rate_rad_s = config_.turn_rate_rad_s;
     planning.manoeuvre_lag_s = config_.manoeuvre_lag_s;
   }
-  AvoidanceDecision d = ChooseVelocity(own, VelocityOf(psi_d, speed), others, planning);
+  // A vessel the ship clears along its route (the path ahead at the speed it
+  // is ramping to) and that is not closing in on its present motion is no
+  // encounter: the straight-line models would call a ship leaving its berth
+  // "in danger" of a vessel it will pass well ahead of, and its give-way turn
+  // then takes it off the route towards the shore (issue #6, case C).
+  std::vector<Obstacle> encounters;
+  encounters.reserve(others.size());
+  const size_t next_point = static_cast<size_t>(los_->leg()) + 1;
+  for (const Obstacle& o : others) {
+    const PathApproach along = PathAheadClosestApproach(los_->path(), next_point, here, speed, o.kinematics,
+                                                        config_.path_lookahead_s, 5.0, vel.Norm(),
+                                                        planning.acceleration_mps2);
+    const Cpa now = ComputeCpa(own, o.kinematics);
+    const bool closing_now = now.dcpa_m < config_.avoidance.safety_distance_m && now.tcpa_s < planning.horizon_s;
+    if (along.distance_m >= planning.safety_distance_m && !closing_now) continue;
+    encounters.push_back(o);
+  }
+  AvoidanceDecision d = ChooseVelocity(own, VelocityOf(psi_d, speed), encounters, planning);
   std::set<int> dangerous_now;
   for (const Obstacle& o : others) {
     Cpa cpa = ComputeCpa(own, o.kinematics);
