@@ -47,7 +47,8 @@ int main(int argc, char** argv) {
 
   // Null when the mission engine is not built in: MissionService then
   // answers UNIMPLEMENTED for planning RPCs.
-  std::shared_ptr<server::MissionEngine> mission_engine = server::MakeMissionEngine((*store)->charts());
+  std::shared_ptr<server::MissionEngine> mission_engine =
+      server::MakeMissionEngine((*store)->charts());
   auto server = server::Server::Start(config.server, **store, mission_engine);
   if (!server.ok()) {
     log::Error("cannot start: {}", server.status().ToString());

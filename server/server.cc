@@ -14,8 +14,9 @@
 
 namespace seaplan::server {
 
-absl::StatusOr<std::unique_ptr<Server>> Server::Start(const ServerOptions& options, storage::Store& store,
-                                                      std::shared_ptr<MissionEngine> mission_engine) {
+absl::StatusOr<std::unique_ptr<Server>> Server::Start(
+    const ServerOptions& options, storage::Store& store,
+    std::shared_ptr<MissionEngine> mission_engine) {
   if (options.max_request_bytes == 0 || options.max_request_bytes > (1u << 31) - 1) {
     return absl::InvalidArgumentError("max request bytes must be in 1..2^31-1");
   }
@@ -27,7 +28,8 @@ absl::StatusOr<std::unique_ptr<Server>> Server::Start(const ServerOptions& optio
   grpc::EnableDefaultHealthCheckService(true);
   grpc::reflection::InitProtoReflectionServerBuilderPlugin();
   grpc::ServerBuilder builder;
-  builder.AddListeningPort(options.grpc_address, grpc::InsecureServerCredentials(), &server->grpc_port_);
+  builder.AddListeningPort(options.grpc_address, grpc::InsecureServerCredentials(),
+                           &server->grpc_port_);
   builder.SetMaxReceiveMessageSize(static_cast<int>(options.max_request_bytes));
   grpc::ResourceQuota quota("seaplan-server");
   // Streams hold a thread each in the sync server; leave room beyond the
@@ -38,7 +40,8 @@ absl::StatusOr<std::unique_ptr<Server>> Server::Start(const ServerOptions& optio
   server->grpc_ = builder.BuildAndStart();
   if (!server->grpc_ || server->grpc_port_ == 0) {
     server->core_->Stop();
-    return absl::UnavailableError(absl::StrCat("gRPC: cannot listen on ", options.grpc_address, " (in use?)"));
+    return absl::UnavailableError(
+        absl::StrCat("gRPC: cannot listen on ", options.grpc_address, " (in use?)"));
   }
   grpc::HealthCheckServiceInterface* health = server->grpc_->GetHealthCheckService();
   if (health != nullptr) {
@@ -48,9 +51,10 @@ absl::StatusOr<std::unique_ptr<Server>> Server::Start(const ServerOptions& optio
 
   if (!options.http_address.empty()) {
     server->http_ = std::make_unique<HttpGateway>(
-        *server->core_, HttpGateway::Options{
-                            // JSON carries bytes as base64 (4/3 larger) plus syntax.
-                            options.max_request_bytes / 3 * 4 + (1u << 20), options.worker_threads});
+        *server->core_,
+        HttpGateway::Options{
+            // JSON carries bytes as base64 (4/3 larger) plus syntax.
+            options.max_request_bytes / 3 * 4 + (1u << 20), options.worker_threads});
     auto port = server->http_->Bind(options.http_address);
     if (!port.ok()) {
       server->Shutdown();
@@ -59,19 +63,25 @@ absl::StatusOr<std::unique_ptr<Server>> Server::Start(const ServerOptions& optio
     server->http_port_ = *port;
     server->http_->Start();
   }
-  log::Info("seaplan-server listening: grpc={} (port {}), http={} (port {}); engines: {}; planning workers: {}",
-            options.grpc_address, server->grpc_port_, options.http_address, server->http_port_, BuiltEngines(),
-            options.core.planning_threads);
+  log::Info(
+      "seaplan-server listening: grpc={} (port {}), http={} (port {}); engines: {}; planning "
+      "workers: {}",
+      options.grpc_address, server->grpc_port_, options.http_address, server->http_port_,
+      BuiltEngines(), options.core.planning_threads);
   return server;
 }
 
-Server::~Server() { Shutdown(); }
+Server::~Server() {
+  Shutdown();
+}
 
 void Server::Shutdown() {
   std::call_once(shutdown_once_, [this] {
-    log::Info("shutting down: NOT_SERVING, draining for up to {} ms", options_.shutdown_grace.count());
+    log::Info("shutting down: NOT_SERVING, draining for up to {} ms",
+              options_.shutdown_grace.count());
     if (grpc_) {
-      if (auto* health = grpc_->GetHealthCheckService()) health->Shutdown();  // every service NOT_SERVING
+      if (auto* health = grpc_->GetHealthCheckService())
+        health->Shutdown();  // every service NOT_SERVING
     }
     if (http_) http_->SetServing(false);
     core_->CloseStreams();

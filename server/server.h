@@ -33,8 +33,8 @@ class HttpGateway;
 struct ServerOptions {
   std::string grpc_address = "127.0.0.1:50051";  // port 0 = ephemeral
   std::string http_address = "127.0.0.1:8080";   // port 0 = ephemeral; "" = no HTTP gateway
-  int worker_threads = 16;                       // HTTP handler threads; gRPC sync-server thread cap
-  std::size_t max_request_bytes = 64u << 20;     // one request message
+  int worker_threads = 16;                    // HTTP handler threads; gRPC sync-server thread cap
+  std::size_t max_request_bytes = 64u << 20;  // one request message
   CoreOptions core;
   std::chrono::milliseconds shutdown_grace{2000};
 };
@@ -42,8 +42,9 @@ struct ServerOptions {
 class Server {
  public:
   // Binds both ports and starts serving. `store` must outlive the server.
-  static absl::StatusOr<std::unique_ptr<Server>> Start(const ServerOptions& options, storage::Store& store,
-                                                       std::shared_ptr<MissionEngine> mission_engine = nullptr);
+  static absl::StatusOr<std::unique_ptr<Server>> Start(
+      const ServerOptions& options, storage::Store& store,
+      std::shared_ptr<MissionEngine> mission_engine = nullptr);
   ~Server();  // Shutdown()
   Server(const Server&) = delete;
   Server& operator=(const Server&) = delete;

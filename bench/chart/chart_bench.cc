@@ -19,7 +19,9 @@
 namespace {
 
 using Clock = std::chrono::steady_clock;
-double Ms(Clock::time_point a, Clock::time_point b) { return std::chrono::duration<double, std::milli>(b - a).count(); }
+double Ms(Clock::time_point a, Clock::time_point b) {
+  return std::chrono::duration<double, std::milli>(b - a).count();
+}
 
 struct Case {
   const char* name;
@@ -45,15 +47,17 @@ int main(int argc, char** argv) {
   seaplan::log::SetLevel(seaplan::log::Level::kWarn);
   const std::vector<Case> cases = {
       // Chesapeake Bay off Annapolis -> east of Cove Point.
-      {"noaa-US4MD81M", shared + "/enc/noaa-US4MD81M/US4MD81M.000", 0, false, 38.950, -76.405, 38.400, -76.330},
+      {"noaa-US4MD81M", shared + "/enc/noaa-US4MD81M/US4MD81M.000", 0, false, 38.950, -76.405,
+       38.400, -76.330},
       // Off Trondheim harbour (Ila) -> the fjord off Stjordal.
-      {"trondheim", shared + "/enc/trondheim/Trondheim.gdb", 0, false, 63.4417, 10.3794, 63.4837, 10.6114},
+      {"trondheim", shared + "/enc/trondheim/Trondheim.gdb", 0, false, 63.4417, 10.3794, 63.4837,
+       10.6114},
       // route1.csv waypoints 2 -> 3 (UTM33), around the island.
       {"alesund", shared + "/enc/alesund/shapefiles", 25833, true, 41200, 6959900, 38000, 6961100},
   };
   std::printf("min depth %.1f m, %d repeat(s); times in ms (median, min)\n", min_depth, repeats);
-  std::printf("%-14s %15s %8s %8s %7s %9s %11s %9s %5s\n", "chart", "load+build", "query0", "ser", "deser",
-              "polygons", "dist_q/s", "a1", "alts");
+  std::printf("%-14s %15s %8s %8s %7s %9s %11s %9s %5s\n", "chart", "load+build", "query0", "ser",
+              "deser", "polygons", "dist_q/s", "a1", "alts");
   int failures = 0;
   for (const Case& c : cases) {
     ChartOptions options;
@@ -98,15 +102,19 @@ int main(int argc, char** argv) {
       ++failures;
     }
     char load[32];
-    std::snprintf(load, sizeof(load), "%.0f, %.0f", Median(load_ms), *std::min_element(load_ms.begin(), load_ms.end()));
-    std::printf("%-14s %15s %8.1f %8.1f %7.1f %9d %11.0f %9.1f %5zu\n", c.name, load, Ms(t1, t2), Ms(t2, t3),
-                Ms(t3, t4), map->summary().polygon_count, kQueries / (Ms(t5, t6) / 1000.0), a1_ms,
-                alts.ok() ? alts->alternatives.size() : 0);
+    std::snprintf(load, sizeof(load), "%.0f, %.0f", Median(load_ms),
+                  *std::min_element(load_ms.begin(), load_ms.end()));
+    std::printf("%-14s %15s %8.1f %8.1f %7.1f %9d %11.0f %9.1f %5zu\n", c.name, load, Ms(t1, t2),
+                Ms(t2, t3), Ms(t3, t4), map->summary().polygon_count,
+                kQueries / (Ms(t5, t6) / 1000.0), a1_ms, alts.ok() ? alts->alternatives.size() : 0);
     std::printf("  layers:");
-    for (const auto& [layer, count] : map->summary().features_per_layer) std::printf(" %s=%d", layer.c_str(), count);
-    std::printf("\n  frame EPSG:%d, %d vertices, %.2f km2, blob %zu bytes%s%s\n", map->frame().epsg(),
-                map->summary().vertex_count, map->summary().total_area_m2 / 1e6, blob.size(),
-                alts.ok() && alts->used_fallback ? ", A1 used the visibility-graph fallback" : "", sink < 0 ? "!" : "");
+    for (const auto& [layer, count] : map->summary().features_per_layer)
+      std::printf(" %s=%d", layer.c_str(), count);
+    std::printf("\n  frame EPSG:%d, %d vertices, %.2f km2, blob %zu bytes%s%s\n",
+                map->frame().epsg(), map->summary().vertex_count,
+                map->summary().total_area_m2 / 1e6, blob.size(),
+                alts.ok() && alts->used_fallback ? ", A1 used the visibility-graph fallback" : "",
+                sink < 0 ? "!" : "");
   }
   return failures == 0 ? 0 : 1;
 }

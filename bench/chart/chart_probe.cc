@@ -1,6 +1,7 @@
 // Developer tool: load a chart, print an ASCII map of its obstacles, run A1
 // between two points and optionally write GeoJSON.
-// Usage: chart_probe <chart> <min_depth_m> [frame_epsg] [x0 y0 x1 y1 (local) | lat0 lon0 lat1 lon1 --latlon]
+// Usage: chart_probe <chart> <min_depth_m> [frame_epsg] [x0 y0 x1 y1 (local) | lat0 lon0 lat1 lon1
+// --latlon]
 //        [--geojson out.json] [--cols N]
 #include <cstdio>
 #include <cstdlib>
@@ -17,7 +18,9 @@
 int main(int argc, char** argv) {
   using namespace seaplan::chart;
   if (argc < 3) {
-    std::fprintf(stderr, "usage: chart_probe <chart> <min_depth_m> [frame_epsg] [a b c d [--latlon]] [--geojson f]\n");
+    std::fprintf(stderr,
+                 "usage: chart_probe <chart> <min_depth_m> [frame_epsg] [a b c d [--latlon]] "
+                 "[--geojson f]\n");
     return 2;
   }
   std::vector<std::string> args(argv + 1, argv + argc);
@@ -36,7 +39,8 @@ int main(int argc, char** argv) {
       pos.push_back(args[i]);
     }
   }
-  if (std::getenv("CHART_PROBE_DEBUG") != nullptr) seaplan::log::SetLevel(seaplan::log::Level::kDebug);
+  if (std::getenv("CHART_PROBE_DEBUG") != nullptr)
+    seaplan::log::SetLevel(seaplan::log::Level::kDebug);
   ChartOptions options;
   options.min_depth_m = std::atof(pos[1].c_str());
   if (pos.size() > 2) options.frame_epsg = std::atoi(pos[2].c_str());
@@ -46,8 +50,8 @@ int main(int argc, char** argv) {
     return 1;
   }
   const LocalBox cov = map->summary().coverage;
-  std::printf("EPSG:%d coverage (%.0f %.0f)-(%.0f %.0f), %d polygons\n", map->frame().epsg(), cov.min.x_m,
-              cov.min.y_m, cov.max.x_m, cov.max.y_m, map->summary().polygon_count);
+  std::printf("EPSG:%d coverage (%.0f %.0f)-(%.0f %.0f), %d polygons\n", map->frame().epsg(),
+              cov.min.x_m, cov.min.y_m, cov.max.x_m, cov.max.y_m, map->summary().polygon_count);
   std::vector<LocalPoint> ends;
   if (pos.size() >= 7) {
     for (int k = 0; k < 2; ++k) {
@@ -61,8 +65,8 @@ int main(int argc, char** argv) {
     if (!alts.ok()) {
       std::printf("A1: %s\n", std::string(alts.status().message()).c_str());
     } else {
-      std::printf("A1: %zu alternative(s), fallback=%d, note: %s\n", alts->alternatives.size(), alts->used_fallback,
-                  alts->note.c_str());
+      std::printf("A1: %zu alternative(s), fallback=%d, note: %s\n", alts->alternatives.size(),
+                  alts->used_fallback, alts->note.c_str());
       for (size_t i = 0; i < alts->alternatives.size(); ++i) {
         const auto& a = alts->alternatives[i];
         std::printf("  #%zu length %.0f m:", i, a.length_m);
@@ -74,7 +78,8 @@ int main(int argc, char** argv) {
   }
   // ASCII map: '#' obstacle, '.' free, digits = route i, S/G ends.
   ObstacleQuery q(*map);
-  const int rows = static_cast<int>(cols * (cov.max.y_m - cov.min.y_m) / (cov.max.x_m - cov.min.x_m) / 2.0);
+  const int rows =
+      static_cast<int>(cols * (cov.max.y_m - cov.min.y_m) / (cov.max.x_m - cov.min.x_m) / 2.0);
   std::vector<std::string> grid(rows, std::string(cols, '.'));
   const double dx = (cov.max.x_m - cov.min.x_m) / cols, dy = (cov.max.y_m - cov.min.y_m) / rows;
   for (int r = 0; r < rows; ++r) {
@@ -83,14 +88,16 @@ int main(int argc, char** argv) {
     }
   }
   auto plot = [&](LocalPoint p, char ch) {
-    const int c = static_cast<int>((p.x_m - cov.min.x_m) / dx), r = static_cast<int>((cov.max.y_m - p.y_m) / dy);
+    const int c = static_cast<int>((p.x_m - cov.min.x_m) / dx),
+              r = static_cast<int>((cov.max.y_m - p.y_m) / dy);
     if (r >= 0 && r < rows && c >= 0 && c < cols) grid[r][c] = ch;
   };
   for (size_t i = 0; i < routes.size(); ++i) {
     const auto& w = routes[i].waypoints;
     for (size_t k = 1; k < w.size(); ++k) {
       for (int s = 0; s <= 200; ++s) {
-        plot({w[k - 1].x_m + (w[k].x_m - w[k - 1].x_m) * s / 200, w[k - 1].y_m + (w[k].y_m - w[k - 1].y_m) * s / 200},
+        plot({w[k - 1].x_m + (w[k].x_m - w[k - 1].x_m) * s / 200,
+              w[k - 1].y_m + (w[k].y_m - w[k - 1].y_m) * s / 200},
              static_cast<char>('0' + i % 10));
       }
     }

@@ -49,18 +49,23 @@ std::string Read(const fs::path& p) {
 void PrintStats(const char* what, std::vector<double> ms) {
   if (ms.empty()) return;
   std::sort(ms.begin(), ms.end());
-  auto pct = [&](double p) { return ms[std::min(ms.size() - 1, static_cast<size_t>(p * (ms.size() - 1) + 0.5))]; };
-  std::printf("%-48s n=%zu p50=%.2f ms p95=%.2f ms max=%.2f ms\n", what, ms.size(), pct(0.5), pct(0.95), ms.back());
+  auto pct = [&](double p) {
+    return ms[std::min(ms.size() - 1, static_cast<size_t>(p * (ms.size() - 1) + 0.5))];
+  };
+  std::printf("%-48s n=%zu p50=%.2f ms p95=%.2f ms max=%.2f ms\n", what, ms.size(), pct(0.5),
+              pct(0.95), ms.back());
 }
 
 mission::TemporalPlanner Planner() {
-  return [](std::string_view d, std::string_view p, const StopToken& stop) -> StatusOr<mission::PlannerOutcome> {
+  return [](std::string_view d, std::string_view p,
+            const StopToken& stop) -> StatusOr<mission::PlannerOutcome> {
     search::PlannerOptions o;
     o.time_limit_s = 10;
     o.anytime = false;
     search::PlanResult r = search::Solve(d, p, o, stop);
     mission::PlannerOutcome out;
-    out.solved = r.status == search::PlanStatus::kSolvedSatisficing || r.status == search::PlanStatus::kSolvedOptimally;
+    out.solved = r.status == search::PlanStatus::kSolvedSatisficing ||
+                 r.status == search::PlanStatus::kSolvedOptimally;
     out.plan = r.plan;
     out.status = search::ToString(r.status);
     return out;
@@ -72,8 +77,11 @@ void EngineBench(const fs::path& src, int n) {
   def.domain = Read(src / "examples/fjord/domain.pddl");
   def.problem = Read(src / "examples/fjord/case-a.pddl");
   // Chart-free positions: 20 m per PDDL unit along a line.
-  def.locations = {{"port-a", {0, 0}}, {"port-b", {1040, 0}}, {"port-c", {3080, 0}},
-                   {"port-d", {5220, 0}}, {"port-e", {6960, 0}}};
+  def.locations = {{"port-a", {0, 0}},
+                   {"port-b", {1040, 0}},
+                   {"port-c", {3080, 0}},
+                   {"port-d", {5220, 0}},
+                   {"port-e", {6960, 0}}};
   auto router = mission::StraightLineRouter(3.6);
   auto v1 = mission::PlanInitialVersion(def, Planner(), router, StopToken(), nullptr);
   if (!v1.ok()) {
@@ -82,12 +90,14 @@ void EngineBench(const fs::path& src, int n) {
   }
   std::vector<double> ms;
   for (int i = 0; i < n; ++i) {
-    mission::ReplanInput in{"bench", 100.0, {v1->tasks[0].id}, {v1->tasks[1].id}, {{300, 420}, 0.9}};
+    mission::ReplanInput in{
+        "bench", 100.0, {v1->tasks[0].id}, {v1->tasks[1].id}, {{300, 420}, 0.9}};
     auto t0 = Clock::now();
     auto r = mission::Replan(def, *v1, def.locations, in, Planner(), router, StopToken(), nullptr);
     ms.push_back(std::chrono::duration<double, std::milli>(Clock::now() - t0).count());
     if (!r.ok() || !r->version) {
-      std::printf("engine: replan failed: %s\n", r.ok() ? "no version" : r.status().ToString().c_str());
+      std::printf("engine: replan failed: %s\n",
+                  r.ok() ? "no version" : r.status().ToString().c_str());
       return;
     }
   }
@@ -112,9 +122,10 @@ bool StartServer(const fs::path& bin, const fs::path& dir, Server* s) {
   fs::path ports = dir / "ports";
   s->pid = fork();
   if (s->pid == 0) {
-    std::string b = (bin / "seaplan-server").string(), d = (dir / "data").string(), p = ports.string();
-    execl(b.c_str(), b.c_str(), "--grpc-addr", "127.0.0.1:0", "--http-addr", "", "--data-dir", d.c_str(),
-          "--port-file", p.c_str(), "--log-level", "error", static_cast<char*>(nullptr));
+    std::string b = (bin / "seaplan-server").string(), d = (dir / "data").string(),
+                p = ports.string();
+    execl(b.c_str(), b.c_str(), "--grpc-addr", "127.0.0.1:0", "--http-addr", "", "--data-dir",
+          d.c_str(), "--port-file", p.c_str(), "--log-level", "error", static_cast<char*>(nullptr));
     _exit(127);
   }
   for (int i = 0; i < 200; ++i) {
@@ -161,7 +172,8 @@ void ServerBench(const fs::path& src, const fs::path& bin, int n) {
     grpc::ClientContext ctx;
     grpc::Status s = stub->CreateMission(&ctx, req, &mission);
     if (s.error_code() == grpc::StatusCode::UNIMPLEMENTED) {
-      std::printf("server: skipped (CreateMission UNIMPLEMENTED: the mission engine is not wired)\n");
+      std::printf(
+          "server: skipped (CreateMission UNIMPLEMENTED: the mission engine is not wired)\n");
       std::printf("case C simulation: skipped (same reason)\n");
       return;
     }
@@ -227,9 +239,10 @@ void ServerBench(const fs::path& src, const fs::path& bin, int n) {
     std::printf("target p95 < 100 ms: %s\n", p95 < 100 ? "met" : "NOT met");
   }
   // Whole case C simulation.
-  std::string cmd = (bin / "seaplan-sim").string() + " --server " + server.address + " --scenario " +
-                    (src / "examples/scenarios/case-c.scenario").string() + " --report-dir " +
-                    (dir / "case-c").string() + " > " + (dir / "case-c.out").string() + " 2>&1";
+  std::string cmd = (bin / "seaplan-sim").string() + " --server " + server.address +
+                    " --scenario " + (src / "examples/scenarios/case-c.scenario").string() +
+                    " --report-dir " + (dir / "case-c").string() + " > " +
+                    (dir / "case-c.out").string() + " 2>&1";
   auto t0 = Clock::now();
   int st = std::system(cmd.c_str());
   double wall = std::chrono::duration<double>(Clock::now() - t0).count();
@@ -244,9 +257,12 @@ int main(int argc, char** argv) {
   int n = 30;
   for (int i = 1; i + 1 < argc; i += 2) {
     std::string a = argv[i];
-    if (a == "--source") src = argv[i + 1];
-    else if (a == "--bin") bin = argv[i + 1];
-    else if (a == "--iterations") n = std::max(1, std::atoi(argv[i + 1]));
+    if (a == "--source")
+      src = argv[i + 1];
+    else if (a == "--bin")
+      bin = argv[i + 1];
+    else if (a == "--iterations")
+      n = std::max(1, std::atoi(argv[i + 1]));
   }
   EngineBench(src, n);
   ServerBench(src, bin, n);

@@ -54,7 +54,9 @@ void operator delete(void* p) noexcept {
   g_live -= static_cast<long long>(malloc_usable_size(p));
   std::free(p);
 }
-void operator delete(void* p, std::size_t) noexcept { operator delete(p); }
+void operator delete(void* p, std::size_t) noexcept {
+  operator delete(p);
+}
 
 namespace {
 
@@ -87,7 +89,8 @@ struct Row {
   std::string note;
 };
 
-Row Run(const std::string& name, const std::string& domain, const std::string& problem, int repeats) {
+Row Run(const std::string& name, const std::string& domain, const std::string& problem,
+        int repeats) {
   Row row;
   row.name = name;
   const long long base = g_live.load();
@@ -122,9 +125,10 @@ Row Run(const std::string& name, const std::string& domain, const std::string& p
 }
 
 void Print(const Row& r) {
-  std::printf("%-40s %-11s %9.3f %9.3f %9.3f %9.3f %8zu %6zu %9zu %8.2f%s%s\n", r.name.c_str(), r.status.c_str(),
-              r.parse_ms, r.ground_ms, r.parse_ms + r.ground_ms, r.cpu_ms, r.size.facts, r.size.numeric_vars,
-              r.size.actions, r.peak_mb, r.note.empty() ? "" : "  ", r.note.c_str());
+  std::printf("%-40s %-11s %9.3f %9.3f %9.3f %9.3f %8zu %6zu %9zu %8.2f%s%s\n", r.name.c_str(),
+              r.status.c_str(), r.parse_ms, r.ground_ms, r.parse_ms + r.ground_ms, r.cpu_ms,
+              r.size.facts, r.size.numeric_vars, r.size.actions, r.peak_mb,
+              r.note.empty() ? "" : "  ", r.note.c_str());
 }
 
 fs::path DefaultDir() {
@@ -157,10 +161,11 @@ int main(int argc, char** argv) {
   }
   if (dir.empty()) dir = DefaultDir();
 
-  std::printf("%-40s %-11s %9s %9s %9s %9s %8s %6s %9s %8s\n", "problem", "status", "parse_ms", "ground_ms",
-              "total_ms", "cpu1_ms", "facts", "nvars", "actions", "peak_mb");
+  std::printf("%-40s %-11s %9s %9s %9s %9s %8s %6s %9s %8s\n", "problem", "status", "parse_ms",
+              "ground_ms", "total_ms", "cpu1_ms", "facts", "nvars", "actions", "peak_mb");
   // The case-A-sized problem: best of 200 runs (it takes well under 1 ms).
-  Row fjord = Run("fjord-case-a (built in)", seaplan::bench::kFjordDomain, seaplan::bench::kFjordProblemCaseA, 200);
+  Row fjord = Run("fjord-case-a (built in)", seaplan::bench::kFjordDomain,
+                  seaplan::bench::kFjordProblemCaseA, 200);
   Print(fjord);
 
   std::vector<fs::path> domains;
@@ -169,7 +174,8 @@ int main(int argc, char** argv) {
       if (entry.is_directory()) domains.push_back(entry.path());
     }
   } else {
-    std::fprintf(stderr, "benchmark folder %s not found (pass DIR or set SEAPLAN_SHARED)\n", dir.c_str());
+    std::fprintf(stderr, "benchmark folder %s not found (pass DIR or set SEAPLAN_SHARED)\n",
+                 dir.c_str());
   }
   std::sort(domains.begin(), domains.end());
   double total_parse = 0, total_ground = 0, worst = 0;
@@ -180,7 +186,8 @@ int main(int argc, char** argv) {
     std::vector<fs::path> problems;
     for (const auto& entry : fs::directory_iterator(d)) {
       const std::string f = entry.path().filename().string();
-      if (f.size() > 5 && f[0] == 'p' && f.ends_with(".pddl") && std::isdigit(static_cast<unsigned char>(f[1]))) {
+      if (f.size() > 5 && f[0] == 'p' && f.ends_with(".pddl") &&
+          std::isdigit(static_cast<unsigned char>(f[1]))) {
         problems.push_back(entry.path());
       }
     }
@@ -211,11 +218,13 @@ int main(int argc, char** argv) {
   }
   rusage usage{};
   getrusage(RUSAGE_SELF, &usage);
-  std::printf("\nTOTAL %d problems: %d ok, %d unsupported, %d errors; parse %.1f ms, ground %.1f ms\n", count, ok,
-              unsupported, errors, total_parse, total_ground);
+  std::printf(
+      "\nTOTAL %d problems: %d ok, %d unsupported, %d errors; parse %.1f ms, ground %.1f ms\n",
+      count, ok, unsupported, errors, total_parse, total_ground);
   std::printf("LARGEST %s: %.1f ms (target < 2000 ms)\n", worst_name.c_str(), worst);
   std::printf(
-      "CASE-A fjord-case-a: parse+ground %.3f ms best, %.3f ms median of 200 (target < 1 ms); first cold call "
+      "CASE-A fjord-case-a: parse+ground %.3f ms best, %.3f ms median of 200 (target < 1 ms); "
+      "first cold call "
       "%.3f ms wall, %.3f ms CPU\n",
       fjord.parse_ms + fjord.ground_ms, fjord.median_ms, fjord.first_ms, fjord.cpu_ms);
   std::printf("process ru_maxrss: %.1f MB\n", static_cast<double>(usage.ru_maxrss) / 1024.0);

@@ -1,4 +1,5 @@
-// seaplan-bench-planner [--time-limit 60] [--jobs 1] [--filter substr] [--peers FILE] [--first-plan] [--repeat N] [DIR]
+// seaplan-bench-planner [--time-limit 60] [--jobs 1] [--filter substr] [--peers FILE]
+// [--first-plan] [--repeat N] [DIR]
 //
 // Runs the planner on every p01..p05 of every domain folder of DIR (default
 // $SEAPLAN_SHARED/bench, else ../shared/bench), validates each plan again
@@ -71,7 +72,8 @@ Outcome RunOne(const Job& job, double limit_s) {
   o.run.planner = "seaplan";
   const auto start = std::chrono::steady_clock::now();
   auto loaded = seaplan::task::LoadTask(ReadAll(job.domain_file), ReadAll(job.problem_file));
-  const double load_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double load_s =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   o.load_s = load_s;
   if (!loaded.ok()) {
     o.status = loaded.unsupported() ? "unsupported" : "load-error";
@@ -154,7 +156,9 @@ int main(int argc, char** argv) {
     } else if (a == "--peers") {
       peers_file = value();
     } else if (a == "--help" || a == "-h") {
-      std::printf("usage: seaplan-bench-planner [--time-limit 60] [--jobs 1] [--filter substr] [--peers FILE] [--print-plans] [--first-plan] [--repeat N] [DIR]\n");
+      std::printf(
+          "usage: seaplan-bench-planner [--time-limit 60] [--jobs 1] [--filter substr] [--peers "
+          "FILE] [--print-plans] [--first-plan] [--repeat N] [DIR]\n");
       return 0;
     } else if (!a.empty() && a[0] == '-') {
       std::fprintf(stderr, "unknown option %s\n", a.c_str());
@@ -195,7 +199,8 @@ int main(int argc, char** argv) {
       job.domain_file = d / ("domain-" + std::to_string(k) + ".pddl");
       if (!fs::exists(job.domain_file)) job.domain_file = d / "domain.pddl";
       if (!fs::exists(job.problem_file) || !fs::exists(job.domain_file)) continue;
-      if (!filter.empty() && (job.domain + "/" + job.problem).find(filter) == std::string::npos) continue;
+      if (!filter.empty() && (job.domain + "/" + job.problem).find(filter) == std::string::npos)
+        continue;
       all.push_back(job);
     }
   }
@@ -203,8 +208,9 @@ int main(int argc, char** argv) {
   std::vector<Outcome> outcomes(all.size());
   std::atomic<std::size_t> next{0};
   std::mutex print_mutex;
-  std::printf("%-26s %-4s %-17s %8s %8s %12s %5s %9s %7s %7s %10s\n", "domain", "prob", "status", "first_s",
-              "best_s", "makespan", "acts", "expanded", "peak_mb", "load_s", "generated");
+  std::printf("%-26s %-4s %-17s %8s %8s %12s %5s %9s %7s %7s %10s\n", "domain", "prob", "status",
+              "first_s", "best_s", "makespan", "acts", "expanded", "peak_mb", "load_s",
+              "generated");
   std::fflush(stdout);
   auto worker = [&]() {
     while (true) {
@@ -213,18 +219,20 @@ int main(int argc, char** argv) {
       outcomes[i] = RunOne(all[i], limit_s);
       for (int r = 1; r < g_repeat && outcomes[i].run.solved; ++r) {
         Outcome again = RunOne(all[i], limit_s);
-        if (again.run.solved && again.run.time_s < outcomes[i].run.time_s) outcomes[i] = std::move(again);
+        if (again.run.solved && again.run.time_s < outcomes[i].run.time_s)
+          outcomes[i] = std::move(again);
       }
       const Outcome& o = outcomes[i];
       std::lock_guard<std::mutex> lock(print_mutex);
       if (o.run.solved) {
-        std::printf("%-26s %-4s %-17s %8.3f %8.3f %12.3f %5d %9zu %7zu %7.3f %10zu\n", o.run.domain.c_str(),
-                    o.run.problem.c_str(), o.status.c_str(), o.run.time_s, o.best_s, o.run.makespan,
-                    o.run.actions, o.expanded, o.peak_mb, o.load_s, o.generated);
+        std::printf("%-26s %-4s %-17s %8.3f %8.3f %12.3f %5d %9zu %7zu %7.3f %10zu\n",
+                    o.run.domain.c_str(), o.run.problem.c_str(), o.status.c_str(), o.run.time_s,
+                    o.best_s, o.run.makespan, o.run.actions, o.expanded, o.peak_mb, o.load_s,
+                    o.generated);
       } else {
         std::printf("%-26s %-4s %-17s %8s %8s %12s %5s %9zu %7zu %7.3f  %s\n", o.run.domain.c_str(),
-                    o.run.problem.c_str(), o.status.c_str(), "-", "-", "-", "-", o.expanded, o.peak_mb,
-                    o.load_s, o.note.substr(0, o.note.find('\n')).c_str());
+                    o.run.problem.c_str(), o.status.c_str(), "-", "-", "-", "-", o.expanded,
+                    o.peak_mb, o.load_s, o.note.substr(0, o.note.find('\n')).c_str());
       }
       if (print_plans && !o.plan_text.empty()) std::printf("%s", o.plan_text.c_str());
       std::fflush(stdout);
@@ -282,7 +290,9 @@ int main(int argc, char** argv) {
     }
     any_peer_solved += any;
   }
-  std::printf("\nPer domain (coverage solved/run, IPC time score, IPC quality score), limit %.0f s\n", limit_s);
+  std::printf(
+      "\nPer domain (coverage solved/run, IPC time score, IPC quality score), limit %.0f s\n",
+      limit_s);
   std::printf("%-26s", "domain");
   for (const auto& p : planners) std::printf(" | %-20s", p.c_str());
   std::printf("\n");
@@ -304,8 +314,8 @@ int main(int argc, char** argv) {
   std::printf("%-26s", "TOTAL");
   for (const auto& p : planners) {
     char cell[64];
-    std::snprintf(cell, sizeof cell, "%d/%d %.2f %.2f", total[p].solved, total[p].run, total[p].time,
-                  total[p].quality);
+    std::snprintf(cell, sizeof cell, "%d/%d %.2f %.2f", total[p].solved, total[p].run,
+                  total[p].time, total[p].quality);
     std::printf(" | %-20s", cell);
   }
   std::printf("\nany peer (within the limit): %d/%zu\n", any_peer_solved, table.size());
@@ -322,8 +332,8 @@ int main(int argc, char** argv) {
       theirs.push_back(b->second.time_s);
     }
     const double mo = Median(ours), mt = Median(theirs);
-    std::printf("  vs %-6s: %3zu problems, seaplan median %.4f s, %s median %.4f s, ratio %.3f\n", p.c_str(),
-                ours.size(), mo, p.c_str(), mt, mt > 0 ? mo / mt : 0.0);
+    std::printf("  vs %-6s: %3zu problems, seaplan median %.4f s, %s median %.4f s, ratio %.3f\n",
+                p.c_str(), ours.size(), mo, p.c_str(), mt, mt > 0 ? mo / mt : 0.0);
   }
   int invalid = 0;
   for (const auto& o : outcomes) invalid += o.status == "INVALID";

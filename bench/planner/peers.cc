@@ -4,9 +4,9 @@
 #include <cstdlib>
 #include <sstream>
 
+#include "absl/strings/ascii.h"
 #include "absl/strings/str_split.h"
 #include "absl/strings/strip.h"
-#include "absl/strings/ascii.h"
 
 namespace seaplan::bench {
 
@@ -31,7 +31,9 @@ std::vector<Run> ParsePeerRuns(const std::string& markdown) {
     r.problem = cells[2];
     r.planner = cells[3];
     r.solved = cells[4] == "solved";
-    auto number = [](const std::string& s) { return s == "-" || s.empty() ? -1.0 : std::atof(s.c_str()); };
+    auto number = [](const std::string& s) {
+      return s == "-" || s.empty() ? -1.0 : std::atof(s.c_str());
+    };
     const double wall = number(cells[5]);
     const double first = number(cells[6]);
     r.time_s = first >= 0 ? first : wall;

@@ -11,7 +11,7 @@ namespace seaplan::bench {
 struct Run {
   std::string domain, problem, planner;
   bool solved = false;
-  double time_s = -1;      // first plan if given, else wall time
+  double time_s = -1;  // first plan if given, else wall time
   double makespan = -1;
   int actions = -1;
 };

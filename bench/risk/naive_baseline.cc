@@ -58,8 +58,8 @@ struct NaiveShip {
         0, 0, i_z / p.damping_time_constant_yaw_s;
     dnl << p.nonlinear_damping_surge * u, 0, 0, 0, p.nonlinear_damping_sway * v, 0, 0, 0,
         p.nonlinear_damping_yaw * r;
-    const VectorXd nu_dot =
-        Mass().inverse() * (-crb * vel - ca * (vel - vc) - (dl + dnl) * (vel - vc) + Wind(env, psi, u, v));
+    const VectorXd nu_dot = Mass().inverse() * (-crb * vel - ca * (vel - vc) -
+                                                (dl + dnl) * (vel - vc) + Wind(env, psi, u, v));
     for (int i = 0; i < 3; ++i) {
       s.eta[i] += eta_dot[i] * dt;
       s.nu[i] += nu_dot[i] * dt;
@@ -71,7 +71,8 @@ struct NaiveShip {
 
 risk::HullPolygon NaiveHull(const ship::ShipState& s, double l, double b) {
   // Built through heap vectors, as a shapely Polygon would be.
-  std::vector<Eigen::Vector2d> body = {{l / 2, -b / 2}, {l / 2, b / 2}, {-l / 2, b / 2}, {-l / 2, -b / 2}};
+  std::vector<Eigen::Vector2d> body = {
+      {l / 2, -b / 2}, {l / 2, b / 2}, {-l / 2, b / 2}, {-l / 2, -b / 2}};
   std::vector<Eigen::Vector2d> world;
   for (const auto& c : body) {
     world.push_back({s.eta[0] + c[0] * std::cos(s.eta[2]) - c[1] * std::sin(s.eta[2]),
@@ -92,7 +93,8 @@ struct NaiveEvent {
   void Update(double t) {
     const double s = std::sqrt(params.std);  // scipy lognorm(s = sqrt(std))
     const double scale = params.mean_s, loc = params.min_time_s;
-    const double cdf = t <= loc ? 0.0 : 0.5 * std::erfc(-std::log((t - loc) / scale) / (s * std::sqrt(2.0)));
+    const double cdf =
+        t <= loc ? 0.0 : 0.5 * std::erfc(-std::log((t - loc) / scale) / (s * std::sqrt(2.0)));
     probability = params.nominal_probability * cdf;
   }
   risk::RecoveryEventParams params;
@@ -148,10 +150,11 @@ double NaiveGroundingProbability(const risk::DriftingGroundingParams& p, ship::M
     Tree tree;
   };
   std::vector<std::vector<Scenario>> modes;
-  modes.push_back({{trig(risk::Component::kMainEngine),
-                    {{{restart_me, true}},
-                     {{restart_me, false}, {start_dg1, true}, {start_hsg, true}},
-                     {{restart_me, false}, {start_dg1, false}, {start_dg2, true}, {start_hsg, true}}}}});
+  modes.push_back(
+      {{trig(risk::Component::kMainEngine),
+        {{{restart_me, true}},
+         {{restart_me, false}, {start_dg1, true}, {start_hsg, true}},
+         {{restart_me, false}, {start_dg1, false}, {start_dg2, true}, {start_hsg, true}}}}});
   modes.push_back({{trig(risk::Component::kMainEngine),
                     {{{restart_me, true}}, {{restart_me, false}, {start_hsg, true}}}}});
   modes.push_back(
@@ -159,7 +162,8 @@ double NaiveGroundingProbability(const risk::DriftingGroundingParams& p, ship::M
         {{{start_me, true}},
          {{start_me, false}, {restart_dg1, true}},
          {{start_me, false}, {restart_dg1, false}, {restart_dg2, true}}}},
-       {trig(risk::Component::kHsg), {{{start_me, true}}, {{start_me, false}, {restart_hsg, true}}}}});
+       {trig(risk::Component::kHsg),
+        {{{start_me, true}}, {{start_me, false}, {restart_hsg, true}}}}});
   double prod = 1.0;
   for (const Scenario& s : modes[static_cast<int>(mode)]) {
     double success = 0.0;

@@ -40,8 +40,12 @@ const Scenario& GetScenario() {
       island.push_back({150 + 300 * std::cos(a), -650 + 300 * std::sin(a)});
     }
     auto obs = risk::PolygonObstacles::Create({island});
-    auto* sc = new Scenario{ship::ShipParams{}, ship::Environment::WithCurrentToward(1.0, -110 * std::numbers::pi / 180),
-                            *std::move(obs), {}, {}};
+    auto* sc =
+        new Scenario{ship::ShipParams{},
+                     ship::Environment::WithCurrentToward(1.0, -110 * std::numbers::pi / 180),
+                     *std::move(obs),
+                     {},
+                     {}};
     sc->env.wind_speed_mps = 10;
     sc->env.wind_direction_from_rad = -110 * std::numbers::pi / 180;
     for (int i = 0; i < 16; ++i) {
@@ -98,7 +102,8 @@ void BM_GroundingProbabilityExact(benchmark::State& state) {
   size_t i = 0;
   for (auto _ : state) {
     const double t = sc.ttgs[i++ & 63];
-    for (MsoMode m : ship::kAllMsoModes) benchmark::DoNotOptimize(model->GroundingProbabilityExact(m, t));
+    for (MsoMode m : ship::kAllMsoModes)
+      benchmark::DoNotOptimize(model->GroundingProbabilityExact(m, t));
   }
 }
 BENCHMARK(BM_GroundingProbabilityExact);
@@ -109,7 +114,8 @@ void BM_GroundingProbability_Naive(benchmark::State& state) {
   size_t i = 0;
   for (auto _ : state) {
     const double t = sc.ttgs[i++ & 63];
-    for (MsoMode m : ship::kAllMsoModes) benchmark::DoNotOptimize(NaiveGroundingProbability(params, m, t));
+    for (MsoMode m : ship::kAllMsoModes)
+      benchmark::DoNotOptimize(NaiveGroundingProbability(params, m, t));
   }
 }
 BENCHMARK(BM_GroundingProbability_Naive);
@@ -119,7 +125,8 @@ void BM_PointRisk(benchmark::State& state) {
   const Scenario& sc = GetScenario();
   auto eval = risk::GroundingRiskEvaluator::Create(sc.ship);
   size_t i = 0;
-  for (auto _ : state) benchmark::DoNotOptimize(eval->Evaluate(sc.starts[i++ & 15], sc.env, sc.obstacles));
+  for (auto _ : state)
+    benchmark::DoNotOptimize(eval->Evaluate(sc.starts[i++ & 15], sc.env, sc.obstacles));
 }
 BENCHMARK(BM_PointRisk);
 
@@ -128,8 +135,10 @@ void BM_PointRisk_Naive(benchmark::State& state) {
   const risk::DriftingGroundingParams params;
   size_t i = 0;
   for (auto _ : state) {
-    const risk::TtgResult r = NaiveTimeToGrounding(sc.ship, sc.starts[i++ & 15], sc.env, sc.obstacles, 600, 30);
-    for (MsoMode m : ship::kAllMsoModes) benchmark::DoNotOptimize(NaiveGroundingProbability(params, m, r.ttg_s));
+    const risk::TtgResult r =
+        NaiveTimeToGrounding(sc.ship, sc.starts[i++ & 15], sc.env, sc.obstacles, 600, 30);
+    for (MsoMode m : ship::kAllMsoModes)
+      benchmark::DoNotOptimize(NaiveGroundingProbability(params, m, r.ttg_s));
   }
 }
 BENCHMARK(BM_PointRisk_Naive);
@@ -174,7 +183,8 @@ bool SelfCheck() {
     const risk::TtgResult a = sim->Run(s, sc.env, sc.obstacles);
     const risk::TtgResult b = NaiveTimeToGrounding(sc.ship, s, sc.env, sc.obstacles, 600, 30);
     if (a.ttg_s != b.ttg_s || a.grounded != b.grounded) {
-      std::printf("  TTG mismatch: %g/%d vs naive %g/%d\n", a.ttg_s, a.grounded, b.ttg_s, b.grounded);
+      std::printf("  TTG mismatch: %g/%d vs naive %g/%d\n", a.ttg_s, a.grounded, b.ttg_s,
+                  b.grounded);
       ok = false;
     }
     for (MsoMode m : ship::kAllMsoModes) {
@@ -187,7 +197,8 @@ bool SelfCheck() {
       }
     }
   }
-  std::printf("self-check (library == naive baseline on all 16 start points): %s\n", ok ? "ok" : "MISMATCH");
+  std::printf("self-check (library == naive baseline on all 16 start points): %s\n",
+              ok ? "ok" : "MISMATCH");
   return ok;
 }
 

@@ -50,7 +50,8 @@ int main() {
   for (int w = 0; w < kSwarms; ++w) {
     pagmo::problem prob{Waypoint{}};
     pagmo::population pop{prob, kParticles, static_cast<unsigned>(w)};
-    pagmo::algorithm algo{pagmo::pso(kIterations, 0.75, 1.0, 2.0, 1.0, 1u, 1u, 4u, false, static_cast<unsigned>(w))};
+    pagmo::algorithm algo{
+        pagmo::pso(kIterations, 0.75, 1.0, 2.0, 1.0, 1u, 1u, 4u, false, static_cast<unsigned>(w))};
     pop = algo.evolve(pop);
     sink += pop.champion_f()[0];
     evals += static_cast<long long>(pop.get_problem().get_fevals());
@@ -66,10 +67,15 @@ int main() {
     y -= 1e-6;
   }
   const double bare_s = CpuSeconds() - t0;
-  std::printf("pagmo::pso, %d swarms x %d particles x %d generations: %lld evaluations, %.3f s CPU (%.3f us/eval)\n",
-              kSwarms, kParticles, kIterations, evals, pagmo_s, 1e6 * pagmo_s / evals);
-  std::printf("same cost function, bare loop: %.3f s CPU (%.3f us/eval)\n", bare_s, 1e6 * bare_s / evals);
-  std::printf("pagmo overhead per evaluation: %.3f us (the route optimiser's whole fast evaluation is ~0.35 us)\n",
-              1e6 * (pagmo_s - bare_s) / evals);
+  std::printf(
+      "pagmo::pso, %d swarms x %d particles x %d generations: %lld evaluations, %.3f s CPU (%.3f "
+      "us/eval)\n",
+      kSwarms, kParticles, kIterations, evals, pagmo_s, 1e6 * pagmo_s / evals);
+  std::printf("same cost function, bare loop: %.3f s CPU (%.3f us/eval)\n", bare_s,
+              1e6 * bare_s / evals);
+  std::printf(
+      "pagmo overhead per evaluation: %.3f us (the route optimiser's whole fast evaluation is "
+      "~0.35 us)\n",
+      1e6 * (pagmo_s - bare_s) / evals);
   return sink > 0 ? 0 : 1;
 }

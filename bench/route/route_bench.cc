@@ -30,7 +30,9 @@
 using namespace seaplan;
 using Clock = std::chrono::steady_clock;
 
-static double Since(Clock::time_point t) { return std::chrono::duration<double>(Clock::now() - t).count(); }
+static double Since(Clock::time_point t) {
+  return std::chrono::duration<double>(Clock::now() - t).count();
+}
 // Process CPU time (all threads): the machine is shared, so wall time alone
 // says little about the code when others load the cores.
 static double CpuSeconds() {
@@ -49,15 +51,20 @@ static void PrintAlternatives(const route::Level2Result& r) {
     }
     double min_ttg = 1e9;
     for (const auto& w : alt.waypoints) min_ttg = std::min(min_ttg, w.ttg_s);
-    std::printf("    alt %zu: expected %.4f (grounding %.4f, mso %.4f, switches %d x) path %.4f  min TTG %.0f s  modes %s%s\n",
-                a, alt.expected_cost, alt.grounding_cost, alt.mso_cost, alt.mode_switches, alt.path_cost, min_ttg,
-                modes.c_str(), alt.crosses_obstacle ? "  CROSSES OBSTACLE" : "");
+    std::printf(
+        "    alt %zu: expected %.4f (grounding %.4f, mso %.4f, switches %d x) path %.4f  min TTG "
+        "%.0f s  modes %s%s\n",
+        a, alt.expected_cost, alt.grounding_cost, alt.mso_cost, alt.mode_switches, alt.path_cost,
+        min_ttg, modes.c_str(), alt.crosses_obstacle ? "  CROSSES OBSTACLE" : "");
     if (std::getenv("ROUTE_BENCH_VERBOSE") != nullptr) {
       for (const auto& w : alt.waypoints) {
-        std::printf("      E %9.1f N %10.1f (ref %9.1f %10.1f) TTG %4.0f P %.3g/%.3g/%.3g prox %.3g cost %.4f/%.4f/%.4f %s\n",
-                    w.position.x, w.position.y, w.reference.x, w.reference.y, w.ttg_s, w.grounding_probability[0],
-                    w.grounding_probability[1], w.grounding_probability[2], w.proximity, w.mode_cost[0],
-                    w.mode_cost[1], w.mode_cost[2], std::string(route::MsoModeName(w.mode)).c_str());
+        std::printf(
+            "      E %9.1f N %10.1f (ref %9.1f %10.1f) TTG %4.0f P %.3g/%.3g/%.3g prox %.3g cost "
+            "%.4f/%.4f/%.4f %s\n",
+            w.position.x, w.position.y, w.reference.x, w.reference.y, w.ttg_s,
+            w.grounding_probability[0], w.grounding_probability[1], w.grounding_probability[2],
+            w.proximity, w.mode_cost[0], w.mode_cost[1], w.mode_cost[2],
+            std::string(route::MsoModeName(w.mode)).c_str());
       }
     }
   }
@@ -70,10 +77,14 @@ int main(int argc, char** argv) {
   std::string field_only;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
-    if (a == "--field-only" && i + 1 < argc) field_only = argv[++i];
-    else if (a == "--threads" && i + 1 < argc) threads = std::atoi(argv[++i]);
-    else if (a == "--repeat" && i + 1 < argc) repeat = std::atoi(argv[++i]);
-    else shared = a;
+    if (a == "--field-only" && i + 1 < argc)
+      field_only = argv[++i];
+    else if (a == "--threads" && i + 1 < argc)
+      threads = std::atoi(argv[++i]);
+    else if (a == "--repeat" && i + 1 < argc)
+      repeat = std::atoi(argv[++i]);
+    else
+      shared = a;
   }
   log::SetLevel(log::Level::kWarn);
   if (!field_only.empty()) {
@@ -81,15 +92,16 @@ int main(int argc, char** argv) {
     auto t0 = Clock::now();
     auto m = chart::LoadChartFile(field_only, chart::ChartOptions{});
     if (!m.ok()) {
-      std::fprintf(stderr, "cannot load %s: %s\n", field_only.c_str(), std::string(m.status().message()).c_str());
+      std::fprintf(stderr, "cannot load %s: %s\n", field_only.c_str(),
+                   std::string(m.status().message()).c_str());
       return 2;
     }
     const double load = Since(t0);
     auto sm = std::make_shared<const chart::ObstacleMap>(std::move(m).value());
     t0 = Clock::now();
     auto p = route::RoutePlanner::Create(sm, route::ShipParticulars{}, route::RouteOptions{});
-    std::printf("%s: load %.3f s, %d polygons, %d vertices; obstacle field %s in %.3f s\n", field_only.c_str(), load,
-                sm->summary().polygon_count, sm->summary().vertex_count,
+    std::printf("%s: load %.3f s, %d polygons, %d vertices; obstacle field %s in %.3f s\n",
+                field_only.c_str(), load, sm->summary().polygon_count, sm->summary().vertex_count,
                 p.ok() ? "built" : std::string(p.status().message()).c_str(), Since(t0));
     return p.ok() ? 0 : 1;
   }
@@ -100,7 +112,8 @@ int main(int argc, char** argv) {
   auto t = Clock::now();
   auto map = chart::LoadChartFile(dir, co);
   if (!map.ok()) {
-    std::fprintf(stderr, "cannot load %s: %s\n", dir.c_str(), std::string(map.status().message()).c_str());
+    std::fprintf(stderr, "cannot load %s: %s\n", dir.c_str(),
+                 std::string(map.status().message()).c_str());
     return 2;
   }
   const double load_s = Since(t);
@@ -140,11 +153,17 @@ int main(int argc, char** argv) {
     problem.alternatives.push_back(line);
   }
 
-  std::printf("Alesund case (paper 002): %zu alternatives, %d segments, %d particles x %d iterations, TTG %g s / %g s, %d threads\n",
-              problem.alternatives.size(), options.level2.segments, options.level2.pso.particles,
-              options.level2.pso.iterations, options.level2.ttg_horizon_s, options.level2.ttg_step_s, threads);
-  std::printf("  chart load %.3f s (%d polygons, %d vertices), obstacle field build %.3f s, level 1 %.3f s\n", load_s,
-              shared_map->summary().polygon_count, shared_map->summary().vertex_count, field_s, level1_s);
+  std::printf(
+      "Alesund case (paper 002): %zu alternatives, %d segments, %d particles x %d iterations, TTG "
+      "%g s / %g s, %d threads\n",
+      problem.alternatives.size(), options.level2.segments, options.level2.pso.particles,
+      options.level2.pso.iterations, options.level2.ttg_horizon_s, options.level2.ttg_step_s,
+      threads);
+  std::printf(
+      "  chart load %.3f s (%d polygons, %d vertices), obstacle field build %.3f s, level 1 %.3f "
+      "s\n",
+      load_s, shared_map->summary().polygon_count, shared_map->summary().vertex_count, field_s,
+      level1_s);
 
   route::Level2Options fast_o = options.level2;
   double best_fast = 1e9, best_fast_cpu = 1e9;
@@ -180,17 +199,21 @@ int main(int argc, char** argv) {
   }
   const double fast_cost = fast.alternatives[fast.chosen].expected_cost;
   const double exact_cost = exact->alternatives[exact->chosen].expected_cost;
-  std::printf("  FAST : wall %.3f s, cpu %.3f s (best of %d; +%.3f s field build = %.3f s wall), %lld evaluations, chosen alt %d, expected cost %.4f\n",
-              best_fast, best_fast_cpu, repeat, field_s, best_fast + field_s, static_cast<long long>(fast.evaluations),
-              fast.chosen, fast_cost);
+  std::printf(
+      "  FAST : wall %.3f s, cpu %.3f s (best of %d; +%.3f s field build = %.3f s wall), %lld "
+      "evaluations, chosen alt %d, expected cost %.4f\n",
+      best_fast, best_fast_cpu, repeat, field_s, best_fast + field_s,
+      static_cast<long long>(fast.evaluations), fast.chosen, fast_cost);
   PrintAlternatives(fast);
-  std::printf("  EXACT: wall %.3f s, cpu %.3f s, %lld evaluations, chosen alt %d, expected cost %.4f\n", exact_s,
-              exact_cpu, static_cast<long long>(exact->evaluations), exact->chosen, exact_cost);
+  std::printf(
+      "  EXACT: wall %.3f s, cpu %.3f s, %lld evaluations, chosen alt %d, expected cost %.4f\n",
+      exact_s, exact_cpu, static_cast<long long>(exact->evaluations), exact->chosen, exact_cost);
   PrintAlternatives(*exact);
-  std::printf("  ratio exact/fast: wall %.1fx (incl. field build %.1fx), cpu %.1fx; cost difference %+.4f %%, same choice: %s\n",
-              exact_s / best_fast, exact_s / (best_fast + field_s), exact_cpu / best_fast_cpu,
-              100.0 * (fast_cost - exact_cost) / exact_cost,
-              fast.chosen == exact->chosen ? "yes" : "NO");
+  std::printf(
+      "  ratio exact/fast: wall %.1fx (incl. field build %.1fx), cpu %.1fx; cost difference %+.4f "
+      "%%, same choice: %s\n",
+      exact_s / best_fast, exact_s / (best_fast + field_s), exact_cpu / best_fast_cpu,
+      100.0 * (fast_cost - exact_cost) / exact_cost, fast.chosen == exact->chosen ? "yes" : "NO");
   std::printf("  modes: o = PTO, M = MEC, i = PTI (segment 0..%d)\n", options.level2.segments - 1);
   return 0;
 }

@@ -16,7 +16,6 @@
 // 2 mission failed or cancelled; 3 timed out waiting for the server;
 // 4 the server does not plan missions (CreateMission UNIMPLEMENTED).
 #include <CLI/CLI.hpp>
-
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -63,40 +62,62 @@ std::string ReadAll(const std::string& path, bool* ok) {
 
 v1::MsoMode ToProtoMode(mission::MsoMode m) {
   switch (m) {
-    case mission::MsoMode::kPto: return v1::MSO_MODE_PTO;
-    case mission::MsoMode::kMec: return v1::MSO_MODE_MEC;
-    case mission::MsoMode::kPti: return v1::MSO_MODE_PTI;
-    default: return v1::MSO_MODE_UNSPECIFIED;
+    case mission::MsoMode::kPto:
+      return v1::MSO_MODE_PTO;
+    case mission::MsoMode::kMec:
+      return v1::MSO_MODE_MEC;
+    case mission::MsoMode::kPti:
+      return v1::MSO_MODE_PTI;
+    default:
+      return v1::MSO_MODE_UNSPECIFIED;
   }
 }
 mission::MsoMode FromProtoMode(v1::MsoMode m) {
   switch (m) {
-    case v1::MSO_MODE_PTO: return mission::MsoMode::kPto;
-    case v1::MSO_MODE_MEC: return mission::MsoMode::kMec;
-    case v1::MSO_MODE_PTI: return mission::MsoMode::kPti;
-    default: return mission::MsoMode::kUnspecified;
+    case v1::MSO_MODE_PTO:
+      return mission::MsoMode::kPto;
+    case v1::MSO_MODE_MEC:
+      return mission::MsoMode::kMec;
+    case v1::MSO_MODE_PTI:
+      return mission::MsoMode::kPti;
+    default:
+      return mission::MsoMode::kUnspecified;
   }
 }
 mission::TaskKind FromProtoKind(v1::Task::Kind k) {
   switch (k) {
-    case v1::Task::KIND_MOVE: return mission::TaskKind::kMove;
-    case v1::Task::KIND_LOAD: return mission::TaskKind::kLoad;
-    case v1::Task::KIND_UNLOAD: return mission::TaskKind::kUnload;
-    case v1::Task::KIND_REPAIR: return mission::TaskKind::kRepair;
-    case v1::Task::KIND_REFUEL: return mission::TaskKind::kRefuel;
-    default: return mission::TaskKind::kOther;
+    case v1::Task::KIND_MOVE:
+      return mission::TaskKind::kMove;
+    case v1::Task::KIND_LOAD:
+      return mission::TaskKind::kLoad;
+    case v1::Task::KIND_UNLOAD:
+      return mission::TaskKind::kUnload;
+    case v1::Task::KIND_REPAIR:
+      return mission::TaskKind::kRepair;
+    case v1::Task::KIND_REFUEL:
+      return mission::TaskKind::kRefuel;
+    default:
+      return mission::TaskKind::kOther;
   }
 }
 v1::Feedback::Kind ToProtoFeedback(mission::FeedbackKind k) {
   switch (k) {
-    case mission::FeedbackKind::kTaskStarted: return v1::Feedback::KIND_TASK_STARTED;
-    case mission::FeedbackKind::kTaskCompleted: return v1::Feedback::KIND_TASK_COMPLETED;
-    case mission::FeedbackKind::kTaskFailed: return v1::Feedback::KIND_TASK_FAILED;
-    case mission::FeedbackKind::kPosition: return v1::Feedback::KIND_POSITION;
-    case mission::FeedbackKind::kGnssFault: return v1::Feedback::KIND_GNSS_FAULT;
-    case mission::FeedbackKind::kMachineryFault: return v1::Feedback::KIND_MACHINERY_FAULT;
-    case mission::FeedbackKind::kOperatorChange: return v1::Feedback::KIND_OPERATOR_CHANGE;
-    case mission::FeedbackKind::kCollisionAvoidance: return v1::Feedback::KIND_COLLISION_AVOIDANCE;
+    case mission::FeedbackKind::kTaskStarted:
+      return v1::Feedback::KIND_TASK_STARTED;
+    case mission::FeedbackKind::kTaskCompleted:
+      return v1::Feedback::KIND_TASK_COMPLETED;
+    case mission::FeedbackKind::kTaskFailed:
+      return v1::Feedback::KIND_TASK_FAILED;
+    case mission::FeedbackKind::kPosition:
+      return v1::Feedback::KIND_POSITION;
+    case mission::FeedbackKind::kGnssFault:
+      return v1::Feedback::KIND_GNSS_FAULT;
+    case mission::FeedbackKind::kMachineryFault:
+      return v1::Feedback::KIND_MACHINERY_FAULT;
+    case mission::FeedbackKind::kOperatorChange:
+      return v1::Feedback::KIND_OPERATOR_CHANGE;
+    case mission::FeedbackKind::kCollisionAvoidance:
+      return v1::Feedback::KIND_COLLISION_AVOIDANCE;
   }
   return v1::Feedback::KIND_UNSPECIFIED;
 }
@@ -135,7 +156,8 @@ mission::PlanVersion FromProto(const v1::PlanVersion& p, const chart::LocalFrame
       r.fuel_kg = t.route().fuel_kg();
       for (const v1::RouteWaypoint& w : t.route().waypoints()) {
         mission::RouteWaypoint rw;
-        chart::LocalPoint lp = frame.ToLocal({w.position().latitude_deg(), w.position().longitude_deg()});
+        chart::LocalPoint lp =
+            frame.ToLocal({w.position().latitude_deg(), w.position().longitude_deg()});
         rw.position = {lp.x_m, lp.y_m};
         rw.mode = FromProtoMode(w.mode());
         rw.eta_s = w.eta_s();
@@ -149,9 +171,9 @@ mission::PlanVersion FromProto(const v1::PlanVersion& p, const chart::LocalFrame
   return v;
 }
 
-v1::MissionSpec MakeSpec(const sim::Scenario& s, const std::string& domain, const std::string& problem,
-                         const std::string& chart_id, const sim::ExecutorConfig& cfg,
-                         const chart::LocalFrame& frame) {
+v1::MissionSpec MakeSpec(const sim::Scenario& s, const std::string& domain,
+                         const std::string& problem, const std::string& chart_id,
+                         const sim::ExecutorConfig& cfg, const chart::LocalFrame& frame) {
   v1::MissionSpec spec;
   spec.set_name(s.name);
   spec.set_domain(domain);
@@ -184,7 +206,8 @@ v1::MissionSpec MakeSpec(const sim::Scenario& s, const std::string& domain, cons
   spec.mutable_replan_policy()->set_fuel_threshold_fraction(s.fuel_threshold);
   spec.mutable_replan_policy()->set_position_deviation_m(s.position_deviation_m);
   spec.mutable_replan_policy()->set_delay_tolerance_s(s.delay_tolerance_s);
-  spec.mutable_planner_options()->mutable_time_limit()->set_seconds(static_cast<int64_t>(s.planner_time_limit_s));
+  spec.mutable_planner_options()->mutable_time_limit()->set_seconds(
+      static_cast<int64_t>(s.planner_time_limit_s));
   spec.set_vessel_id(s.vessel_id);
   spec.set_ship_object(s.ship_object);
   return spec;
@@ -204,22 +227,33 @@ std::string ShipLocation(const std::string& problem, const std::string& ship) {
 
 int main(int argc, char** argv) {
   Flags f;
-  CLI::App app{"seaplan-sim: simulate the onboard side of a mission against a seaplan server (gRPC)"};
-  app.add_option("--server", f.server, "seaplan-server gRPC address HOST:PORT")->capture_default_str();
-  app.add_option("--scenario", f.scenario, "scenario file (examples/scenarios/*.scenario)")->required();
-  app.add_option("--mission-id", f.mission_id, "attach to this existing mission instead of creating one");
+  CLI::App app{
+      "seaplan-sim: simulate the onboard side of a mission against a seaplan server (gRPC)"};
+  app.add_option("--server", f.server, "seaplan-server gRPC address HOST:PORT")
+      ->capture_default_str();
+  app.add_option("--scenario", f.scenario, "scenario file (examples/scenarios/*.scenario)")
+      ->required();
+  app.add_option("--mission-id", f.mission_id,
+                 "attach to this existing mission instead of creating one");
   app.add_option("--report-dir", f.report_dir, "folder for report.json, trajectory.svg, gantt.svg")
       ->capture_default_str();
-  app.add_option("--time-factor", f.time_factor,
-                 "run N times faster than real time (0 = as fast as possible; default: the scenario's)")
+  app.add_option(
+         "--time-factor", f.time_factor,
+         "run N times faster than real time (0 = as fast as possible; default: the scenario's)")
       ->check(CLI::NonNegativeNumber);
-  app.add_option("--replan-timeout-s", f.replan_timeout_s, "wait this long for a (new) plan version")
-      ->check(CLI::PositiveNumber)->capture_default_str();
-  app.add_option("--max-mission-time-s", f.max_mission_time_s, "give up after this much mission time (exit 3)")
-      ->check(CLI::PositiveNumber)->capture_default_str();
-  app.add_option("--log-level", f.log_level, "debug, info, warn, error or off")->capture_default_str();
+  app.add_option("--replan-timeout-s", f.replan_timeout_s,
+                 "wait this long for a (new) plan version")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  app.add_option("--max-mission-time-s", f.max_mission_time_s,
+                 "give up after this much mission time (exit 3)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
+  app.add_option("--log-level", f.log_level, "debug, info, warn, error or off")
+      ->capture_default_str();
   app.footer(
-      "Exit codes: 0 mission completed; 1 error (bad flags, scenario, I/O, RPC); 2 mission failed or\n"
+      "Exit codes: 0 mission completed; 1 error (bad flags, scenario, I/O, RPC); 2 mission failed "
+      "or\n"
       "cancelled; 3 timed out waiting for the server; 4 the server does not plan missions.");
   try {
     app.parse(argc, argv);
@@ -231,7 +265,8 @@ int main(int argc, char** argv) {
   }
   log::Level level;
   if (!log::ParseLevel(f.log_level, &level)) {
-    std::fprintf(stderr, "seaplan-sim: --log-level: unknown level '%s' (debug, info, warn, error, off)\n",
+    std::fprintf(stderr,
+                 "seaplan-sim: --log-level: unknown level '%s' (debug, info, warn, error, off)\n",
                  f.log_level.c_str());
     return 1;
   }
@@ -254,7 +289,9 @@ int main(int argc, char** argv) {
   if (!problem_path.ok()) return fail(problem_path.status());
   bool ok1 = false, ok2 = false;
   std::string domain = ReadAll(*domain_path, &ok1), problem = ReadAll(*problem_path, &ok2);
-  if (!ok1 || !ok2) return fail(absl::NotFoundError(absl::StrCat("cannot read ", ok1 ? *problem_path : *domain_path)));
+  if (!ok1 || !ok2)
+    return fail(
+        absl::NotFoundError(absl::StrCat("cannot read ", ok1 ? *problem_path : *domain_path)));
 
   // Frame and obstacles (for the plot) from the chart when there is one.
   chart::LocalFrame frame = chart::LocalFrame::ForCentre(scenario->locations.front().second);
@@ -283,7 +320,8 @@ int main(int argc, char** argv) {
     }
   }
 
-  auto cfg = sim::MakeExecutorConfig(*scenario, frame, ShipLocation(problem, scenario->ship_object));
+  auto cfg =
+      sim::MakeExecutorConfig(*scenario, frame, ShipLocation(problem, scenario->ship_object));
   if (!cfg.ok()) return fail(cfg.status());
   cfg->land = rings;  // the unbuffered land, for the collision avoidance
   auto executor = sim::Executor::Create(*cfg);
@@ -301,19 +339,21 @@ int main(int argc, char** argv) {
   if (mission_id.empty()) {
     std::string chart_id;
     if (!chart_bytes.empty()) {
-      auto chart = client.UploadChart(scenario->name + "-chart", std::filesystem::path(chart_file).filename().string(),
-                                      chart_bytes);
+      auto chart =
+          client.UploadChart(scenario->name + "-chart",
+                             std::filesystem::path(chart_file).filename().string(), chart_bytes);
       if (!chart.ok()) return fail(chart.status());
       chart_id = chart->chart_id();
     }
     v1::MissionSpec spec = MakeSpec(*scenario, domain, problem, chart_id, *cfg, frame);
-    const std::string request_id =
-        absl::StrCat(scenario->name, "-", std::chrono::system_clock::now().time_since_epoch().count());
+    const std::string request_id = absl::StrCat(
+        scenario->name, "-", std::chrono::system_clock::now().time_since_epoch().count());
     auto m = client.CreateMission(spec, request_id);
     if (!m.ok() && absl::IsUnimplemented(m.status()) && !spec.chart_id().empty()) {
       // A server that plans missions but cannot route over a chart yet:
       // fall back to straight-line legs (the chart still draws the plot).
-      std::fprintf(stderr, "seaplan-sim: warning: %s; retrying without the chart (straight-line legs)\n",
+      std::fprintf(stderr,
+                   "seaplan-sim: warning: %s; retrying without the chart (straight-line legs)\n",
                    std::string(m.status().message()).c_str());
       executor->Log("server cannot route over the chart: straight-line legs");
       spec.clear_chart_id();
@@ -331,7 +371,8 @@ int main(int argc, char** argv) {
   executor->mutable_report().scenario = scenario->name;
 
   client.StartWatch(mission_id);
-  const auto replan_timeout = std::chrono::milliseconds(static_cast<int64_t>(f.replan_timeout_s * 1000));
+  const auto replan_timeout =
+      std::chrono::milliseconds(static_cast<int64_t>(f.replan_timeout_s * 1000));
   auto first = client.WaitForVersion(0, replan_timeout);
   if (!first) {
     std::fprintf(stderr, "seaplan-sim: no plan version for mission %s\n", mission_id.c_str());
@@ -352,7 +393,8 @@ int main(int argc, char** argv) {
   while (true) {
     if (executor->Finished()) break;
     if (executor->time_s() > f.max_mission_time_s) {
-      std::fprintf(stderr, "seaplan-sim: mission time limit %.0f s reached\n", f.max_mission_time_s);
+      std::fprintf(stderr, "seaplan-sim: mission time limit %.0f s reached\n",
+                   f.max_mission_time_s);
       exit_code = 3;
       break;
     }
@@ -363,7 +405,8 @@ int main(int argc, char** argv) {
         current_origin = v->mission_time_origin_s();
         executor->SetPlan(FromProto(*v, frame));
       } else {
-        executor->Log(absl::StrCat("ignored plan version ", v->version(), " (planned from the same state as version ",
+        executor->Log(absl::StrCat("ignored plan version ", v->version(),
+                                   " (planned from the same state as version ",
                                    executor->plan_version(), ")"));
       }
     }
@@ -408,7 +451,8 @@ int main(int argc, char** argv) {
       if (v) {
         current_origin = v->mission_time_origin_s();
         executor->SetPlan(FromProto(*v, frame));
-      } else if (client.terminal_state() == v1::MISSION_STATE_COMPLETED && !executor->WaitingForPlan()) {
+      } else if (client.terminal_state() == v1::MISSION_STATE_COMPLETED &&
+                 !executor->WaitingForPlan()) {
         // The goal already holds: nothing to replan.
       } else {
         std::fprintf(stderr, "seaplan-sim: no new plan version after a replan request\n");
@@ -445,9 +489,10 @@ int main(int argc, char** argv) {
   // The navigation log (time, source, message), then where the report is.
   std::printf("navigation log (mission time s, source, message):\n");
   std::vector<mission::LogEntry> entries = report.log.entries();
-  std::stable_sort(entries.begin(), entries.end(), [](const mission::LogEntry& a, const mission::LogEntry& b) {
-    return a.mission_time_s < b.mission_time_s;
-  });
+  std::stable_sort(entries.begin(), entries.end(),
+                   [](const mission::LogEntry& a, const mission::LogEntry& b) {
+                     return a.mission_time_s < b.mission_time_s;
+                   });
   for (const mission::LogEntry& e : entries) {
     std::printf("%9.1f  %-12s  %s\n", e.mission_time_s, e.source.c_str(), e.message.c_str());
   }

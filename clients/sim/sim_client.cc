@@ -28,7 +28,9 @@ SimClient::SimClient(const std::string& address)
       missions_(v1::MissionService::NewStub(channel_)),
       charts_(v1::ChartService::NewStub(channel_)) {}
 
-SimClient::~SimClient() { StopWatch(); }
+SimClient::~SimClient() {
+  StopWatch();
+}
 
 absl::StatusOr<v1::Mission> SimClient::CreateMission(const v1::MissionSpec& spec,
                                                      const std::string& request_id) {
@@ -54,7 +56,8 @@ absl::StatusOr<v1::Mission> SimClient::GetMission(const std::string& mission_id)
   return out;
 }
 
-absl::StatusOr<v1::Chart> SimClient::UploadChart(const std::string& name, const std::string& file_name,
+absl::StatusOr<v1::Chart> SimClient::UploadChart(const std::string& name,
+                                                 const std::string& file_name,
                                                  const std::string& bytes) {
   v1::UploadChartRequest req;
   req.set_name(name);
@@ -70,8 +73,8 @@ absl::StatusOr<v1::Chart> SimClient::UploadChart(const std::string& name, const 
   return out.chart();
 }
 
-absl::StatusOr<v1::ReportFeedbackResponse> SimClient::Report(const v1::ReportFeedbackRequest& request,
-                                                             int attempts) {
+absl::StatusOr<v1::ReportFeedbackResponse> SimClient::Report(
+    const v1::ReportFeedbackRequest& request, int attempts) {
   grpc::Status last;
   auto backoff = std::chrono::milliseconds(20);
   for (int i = 0; i < attempts; ++i) {
@@ -81,8 +84,8 @@ absl::StatusOr<v1::ReportFeedbackResponse> SimClient::Report(const v1::ReportFee
     last = missions_->ReportFeedback(&ctx, request, &out);
     if (last.ok()) return out;
     if (!Transient(last.error_code())) break;
-    log::Warn("feedback {} failed ({}), retrying with the same sequence number", request.sequence_number(),
-              last.error_message());
+    log::Warn("feedback {} failed ({}), retrying with the same sequence number",
+              request.sequence_number(), last.error_message());
     std::this_thread::sleep_for(backoff);
     backoff = std::min(backoff * 2, std::chrono::milliseconds(1000));
   }
@@ -139,7 +142,8 @@ void SimClient::WatchLoop(std::string mission_id) {
         case v1::MissionEvent::kMission:
           state_ = ev.mission().state();
           break;
-        default: break;
+        default:
+          break;
       }
       cv_.notify_all();
     }
@@ -149,7 +153,8 @@ void SimClient::WatchLoop(std::string mission_id) {
       std::lock_guard<std::mutex> lock(mu_);
       if (Terminal(state_)) break;  // the server ends the stream after a terminal state
     }
-    if (s.error_code() == grpc::StatusCode::NOT_FOUND || s.error_code() == grpc::StatusCode::UNIMPLEMENTED ||
+    if (s.error_code() == grpc::StatusCode::NOT_FOUND ||
+        s.error_code() == grpc::StatusCode::UNIMPLEMENTED ||
         s.error_code() == grpc::StatusCode::INVALID_ARGUMENT) {
       log::Error("watch ended: {}", s.error_message());
       break;
@@ -171,14 +176,16 @@ std::optional<v1::PlanVersion> SimClient::PollVersion(int after_version) {
   return best;  // the newest one: older pending versions are superseded
 }
 
-std::optional<v1::PlanVersion> SimClient::WaitForVersion(int after_version, std::chrono::milliseconds timeout) {
+std::optional<v1::PlanVersion> SimClient::WaitForVersion(int after_version,
+                                                         std::chrono::milliseconds timeout) {
   auto deadline = std::chrono::steady_clock::now() + timeout;
   while (true) {
     if (auto v = PollVersion(after_version)) return v;
     std::unique_lock<std::mutex> lock(mu_);
     if (Terminal(state_)) return std::nullopt;
     if (!versions_.empty()) continue;
-    if (cv_.wait_until(lock, deadline) == std::cv_status::timeout && versions_.empty()) return std::nullopt;
+    if (cv_.wait_until(lock, deadline) == std::cv_status::timeout && versions_.empty())
+      return std::nullopt;
   }
 }
 

@@ -36,7 +36,8 @@ class SimClient {
   explicit SimClient(const std::string& address);
   ~SimClient();
 
-  absl::StatusOr<v1::Mission> CreateMission(const v1::MissionSpec& spec, const std::string& request_id);
+  absl::StatusOr<v1::Mission> CreateMission(const v1::MissionSpec& spec,
+                                            const std::string& request_id);
   absl::StatusOr<v1::Mission> GetMission(const std::string& mission_id);
   absl::StatusOr<v1::Chart> UploadChart(const std::string& name, const std::string& file_name,
                                         const std::string& bytes);
@@ -51,7 +52,8 @@ class SimClient {
 
   // Waits for a plan version > `after_version`, or a terminal mission state,
   // up to `timeout`. Returns the version, or nullopt (check terminal_state()).
-  std::optional<v1::PlanVersion> WaitForVersion(int after_version, std::chrono::milliseconds timeout);
+  std::optional<v1::PlanVersion> WaitForVersion(int after_version,
+                                                std::chrono::milliseconds timeout);
   // A version > after_version if one already arrived (no waiting).
   std::optional<v1::PlanVersion> PollVersion(int after_version);
   // Log events received since the last call.

@@ -9,9 +9,11 @@
 //   --data-dir             SEAPLAN_DATA_DIR            ./data   (database: <dir>/seaplan.db)
 //   --worker-threads       SEAPLAN_WORKER_THREADS      16
 //   --max-request-bytes    SEAPLAN_MAX_REQUEST_BYTES   67108864 (64 MiB: charts)
-//   --planning-threads     SEAPLAN_PLANNING_THREADS    2        (pool size; more -> RESOURCE_EXHAUSTED)
+//   --planning-threads     SEAPLAN_PLANNING_THREADS    2        (pool size; more ->
+//   RESOURCE_EXHAUSTED)
 //   --log-level            SEAPLAN_LOG_LEVEL           info     (debug, info, warn, error, off)
-//   --port-file            SEAPLAN_PORT_FILE           none     (writes "grpc=P\nhttp=P\n" once listening)
+//   --port-file            SEAPLAN_PORT_FILE           none     (writes "grpc=P\nhttp=P\n" once
+//   listening)
 //   --shutdown-grace-ms    SEAPLAN_SHUTDOWN_GRACE_MS   2000
 //
 // Port 0 in an address picks a free port; the bound ports are logged and

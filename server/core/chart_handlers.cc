@@ -21,7 +21,8 @@ constexpr double kDefaultSafetyBufferM = 10.0;
 v1::ObstacleSummary ToProto(const chart::ObstacleSummary& s) {
   v1::ObstacleSummary out;
   out.set_obstacle_count(s.polygon_count);
-  for (const auto& [layer, count] : s.features_per_layer) (*out.mutable_count_by_layer())[layer] = count;
+  for (const auto& [layer, count] : s.features_per_layer)
+    (*out.mutable_count_by_layer())[layer] = count;
   out.set_total_area_m2(s.total_area_m2);
   out.mutable_south_west()->set_latitude_deg(s.bbox_min.lat_deg);
   out.mutable_south_west()->set_longitude_deg(s.bbox_min.lon_deg);
@@ -49,22 +50,26 @@ v1::Chart ChartFromRecord(const storage::ChartRecord& record) {
   return chart;
 }
 
-absl::StatusOr<v1::UploadChartResponse> ChartHandlers::UploadChart(const v1::UploadChartRequest& request,
-                                                                   const CallContext& ctx) {
+absl::StatusOr<v1::UploadChartResponse> ChartHandlers::UploadChart(
+    const v1::UploadChartRequest& request, const CallContext& ctx) {
   if (request.name().empty()) return absl::InvalidArgumentError("name: a chart needs a name");
   if (request.files_size() == 0) return absl::InvalidArgumentError("files: no chart file uploaded");
   for (int i = 0; i < request.files_size(); ++i) {
-    if (request.files(i).name().empty()) return absl::InvalidArgumentError(absl::StrCat("files[", i, "].name is empty"));
+    if (request.files(i).name().empty())
+      return absl::InvalidArgumentError(absl::StrCat("files[", i, "].name is empty"));
   }
   if (request.minimum_depth_m() < 0 || request.safety_buffer_m() < 0) {
     return absl::InvalidArgumentError("minimum_depth_m and safety_buffer_m must not be negative");
   }
 #if SEAPLAN_SERVER_HAS_CHART
   chart::ChartOptions options;
-  options.min_depth_m = request.minimum_depth_m() > 0 ? request.minimum_depth_m() : kDefaultMinimumDepthM;
-  options.safety_buffer_m = request.safety_buffer_m() > 0 ? request.safety_buffer_m() : kDefaultSafetyBufferM;
+  options.min_depth_m =
+      request.minimum_depth_m() > 0 ? request.minimum_depth_m() : kDefaultMinimumDepthM;
+  options.safety_buffer_m =
+      request.safety_buffer_m() > 0 ? request.safety_buffer_m() : kDefaultSafetyBufferM;
   // Keep the simplification inside the buffer (ChartOptions' invariant).
-  options.simplify_tolerance_m = std::min(options.simplify_tolerance_m, options.safety_buffer_m / 2);
+  options.simplify_tolerance_m =
+      std::min(options.simplify_tolerance_m, options.safety_buffer_m / 2);
   if (absl::Status valid = options.Validate(); !valid.ok()) {
     return absl::InvalidArgumentError(absl::StrCat("chart options: ", valid.message()));
   }
@@ -107,7 +112,8 @@ absl::StatusOr<v1::UploadChartResponse> ChartHandlers::UploadChart(const v1::Upl
 #else
   (void)ctx;
   return absl::UnimplementedError(
-      "ChartService.UploadChart: the chart loader (engine/chart, seaplan_chart) is not built into this server yet");
+      "ChartService.UploadChart: the chart loader (engine/chart, seaplan_chart) is not built into "
+      "this server yet");
 #endif
 }
 
@@ -121,19 +127,21 @@ absl::StatusOr<v1::GetChartResponse> ChartHandlers::GetChart(const v1::GetChartR
   *response.mutable_chart() = ChartFromRecord(record);
   if (request.include_obstacles_geojson()) {
 #if SEAPLAN_SERVER_HAS_CHART
-    SEAPLAN_ASSIGN_OR_RETURN(chart::ObstacleMap map, chart::DeserializeObstacleMap(record.obstacles));
+    SEAPLAN_ASSIGN_OR_RETURN(chart::ObstacleMap map,
+                             chart::DeserializeObstacleMap(record.obstacles));
     response.set_obstacles_geojson(chart::ToGeoJson(map));
 #else
     return absl::UnimplementedError(
-        "ChartService.GetChart: include_obstacles_geojson needs engine/chart (seaplan_chart), not built into this "
+        "ChartService.GetChart: include_obstacles_geojson needs engine/chart (seaplan_chart), not "
+        "built into this "
         "server yet");
 #endif
   }
   return response;
 }
 
-absl::StatusOr<v1::ListChartsResponse> ChartHandlers::ListCharts(const v1::ListChartsRequest& request,
-                                                                 const CallContext& ctx) {
+absl::StatusOr<v1::ListChartsResponse> ChartHandlers::ListCharts(
+    const v1::ListChartsRequest& request, const CallContext& ctx) {
   (void)ctx;
   SEAPLAN_ASSIGN_OR_RETURN(int page_size, PageSize(request.page_size()));
   SEAPLAN_ASSIGN_OR_RETURN(std::int64_t after, ParsePageToken(request.page_token()));

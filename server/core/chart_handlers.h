@@ -16,9 +16,12 @@ class ChartHandlers {
   ChartHandlers(storage::ChartRepository& charts, WorkPool& pool, StopToken root)
       : charts_(charts), pool_(pool), root_(std::move(root)) {}
 
-  absl::StatusOr<v1::UploadChartResponse> UploadChart(const v1::UploadChartRequest& request, const CallContext& ctx);
-  absl::StatusOr<v1::GetChartResponse> GetChart(const v1::GetChartRequest& request, const CallContext& ctx);
-  absl::StatusOr<v1::ListChartsResponse> ListCharts(const v1::ListChartsRequest& request, const CallContext& ctx);
+  absl::StatusOr<v1::UploadChartResponse> UploadChart(const v1::UploadChartRequest& request,
+                                                      const CallContext& ctx);
+  absl::StatusOr<v1::GetChartResponse> GetChart(const v1::GetChartRequest& request,
+                                                const CallContext& ctx);
+  absl::StatusOr<v1::ListChartsResponse> ListCharts(const v1::ListChartsRequest& request,
+                                                    const CallContext& ctx);
 
  private:
   storage::ChartRepository& charts_;

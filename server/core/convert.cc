@@ -12,11 +12,18 @@ namespace seaplan::server {
 
 v1::Diagnostic ToProto(const pddl::Diagnostic& d) {
   v1::Diagnostic out;
-  out.set_severity(d.severity == pddl::Severity::kError ? v1::Diagnostic::ERROR : v1::Diagnostic::WARNING);
+  out.set_severity(d.severity == pddl::Severity::kError ? v1::Diagnostic::ERROR
+                                                        : v1::Diagnostic::WARNING);
   switch (d.kind) {
-    case pddl::DiagnosticKind::kSyntax: out.set_kind(v1::Diagnostic::SYNTAX); break;
-    case pddl::DiagnosticKind::kSemantic: out.set_kind(v1::Diagnostic::SEMANTIC); break;
-    case pddl::DiagnosticKind::kUnsupported: out.set_kind(v1::Diagnostic::UNSUPPORTED); break;
+    case pddl::DiagnosticKind::kSyntax:
+      out.set_kind(v1::Diagnostic::SYNTAX);
+      break;
+    case pddl::DiagnosticKind::kSemantic:
+      out.set_kind(v1::Diagnostic::SEMANTIC);
+      break;
+    case pddl::DiagnosticKind::kUnsupported:
+      out.set_kind(v1::Diagnostic::UNSUPPORTED);
+      break;
   }
   out.set_file(d.location.file);
   out.set_line(d.location.line);
@@ -47,7 +54,8 @@ google::protobuf::Timestamp ToTimestamp(std::int64_t ms) {
 }
 
 std::int64_t NowMs() {
-  return std::chrono::duration_cast<std::chrono::milliseconds>(std::chrono::system_clock::now().time_since_epoch())
+  return std::chrono::duration_cast<std::chrono::milliseconds>(
+             std::chrono::system_clock::now().time_since_epoch())
       .count();
 }
 
@@ -67,7 +75,9 @@ absl::StatusOr<std::int64_t> ParsePageToken(const std::string& token) {
   return value;
 }
 
-std::string MakePageToken(std::int64_t after) { return after == 0 ? std::string() : absl::StrCat(after); }
+std::string MakePageToken(std::int64_t after) {
+  return after == 0 ? std::string() : absl::StrCat(after);
+}
 
 absl::StatusOr<int> PageSize(int requested) {
   if (requested < 0) return absl::InvalidArgumentError("page_size must not be negative");

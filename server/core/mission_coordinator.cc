@@ -13,8 +13,9 @@ namespace {
 constexpr char kServerSource[] = "server";
 
 const char* StateName(int state) {
-  return v1::MissionState_IsValid(state) ? v1::MissionState_Name(static_cast<v1::MissionState>(state)).c_str()
-                                         : "MISSION_STATE_UNKNOWN";
+  return v1::MissionState_IsValid(state)
+             ? v1::MissionState_Name(static_cast<v1::MissionState>(state)).c_str()
+             : "MISSION_STATE_UNKNOWN";
 }
 
 storage::NewLogEvent ServerEvent(std::string message, double mission_time_s = 0.0) {
@@ -22,8 +23,8 @@ storage::NewLogEvent ServerEvent(std::string message, double mission_time_s = 0.
 }
 
 std::string DescribeVersion(const v1::PlanVersion& v) {
-  return absl::StrFormat("plan version %d ready (%s): %d tasks, makespan %.3f s", v.version(), v.reason(),
-                         v.tasks_size(), v.makespan_s());
+  return absl::StrFormat("plan version %d ready (%s): %d tasks, makespan %.3f s", v.version(),
+                         v.reason(), v.tasks_size(), v.makespan_s());
 }
 
 std::string DescribeFeedback(const v1::Feedback& f) {
@@ -91,13 +92,20 @@ bool MissionNotifier::closed() {
 
 // ---- MissionCoordinator ----
 
-MissionCoordinator::MissionCoordinator(storage::MissionRepository& repo, WorkPool& pool, StopToken root,
-                                       std::shared_ptr<MissionEngine> engine, Options options)
-    : repo_(repo), pool_(pool), root_(std::move(root)), engine_(std::move(engine)), options_(options) {
+MissionCoordinator::MissionCoordinator(storage::MissionRepository& repo, WorkPool& pool,
+                                       StopToken root, std::shared_ptr<MissionEngine> engine,
+                                       Options options)
+    : repo_(repo),
+      pool_(pool),
+      root_(std::move(root)),
+      engine_(std::move(engine)),
+      options_(options) {
   background_ = std::thread([this] { BackgroundLoop(); });
 }
 
-MissionCoordinator::~MissionCoordinator() { Shutdown(); }
+MissionCoordinator::~MissionCoordinator() {
+  Shutdown();
+}
 
 void MissionCoordinator::Shutdown() {
   notifier_.Close();
@@ -122,20 +130,23 @@ absl::StatusOr<MissionRuntimeState> MissionCoordinator::LoadRuntime(const std::s
   SEAPLAN_ASSIGN_OR_RETURN(storage::MissionRecord record, repo_.Get(mission_id));
   state.mission = MissionFromRecord(record);
   if (record.current_version > 0) {
-    SEAPLAN_ASSIGN_OR_RETURN(storage::PlanVersionRecord v, repo_.GetVersion(mission_id, record.current_version));
+    SEAPLAN_ASSIGN_OR_RETURN(storage::PlanVersionRecord v,
+                             repo_.GetVersion(mission_id, record.current_version));
     if (!state.current_version.ParseFromString(v.content)) {
-      return absl::DataLossError(absl::StrCat("plan version ", v.version, " of mission '", mission_id,
-                                              "' is unreadable"));
+      return absl::DataLossError(
+          absl::StrCat("plan version ", v.version, " of mission '", mission_id, "' is unreadable"));
     }
     state.engine_state = std::move(v.engine_state);
   }
-  SEAPLAN_ASSIGN_OR_RETURN(auto feedback, repo_.ListFeedback(mission_id, options_.feedback_history));
+  SEAPLAN_ASSIGN_OR_RETURN(auto feedback,
+                           repo_.ListFeedback(mission_id, options_.feedback_history));
   for (const auto& f : feedback) state.recent_feedback.emplace_back().ParseFromString(f.payload);
   return state;
 }
 
 absl::Status MissionCoordinator::SetState(const std::string& mission_id, v1::MissionState state,
-                                          const std::string& message, const std::string& failure_reason) {
+                                          const std::string& message,
+                                          const std::string& failure_reason) {
   storage::MissionUpdate update;
   update.state = state;
   if (!failure_reason.empty()) update.failure_reason = failure_reason;
@@ -158,25 +169,29 @@ void MissionCoordinator::EndReplanning(const std::string& mission_id, const std:
   notifier_.Notify(mission_id);
 }
 
-absl::StatusOr<v1::Mission> MissionCoordinator::CreateMission(const v1::CreateMissionRequest& request,
-                                                              const CallContext& ctx) {
+absl::StatusOr<v1::Mission> MissionCoordinator::CreateMission(
+    const v1::CreateMissionRequest& request, const CallContext& ctx) {
   const v1::MissionSpec& spec = request.spec();
   if (!request.request_id().empty()) {
     SEAPLAN_ASSIGN_OR_RETURN(auto existing, repo_.FindByRequestId(request.request_id()));
     if (existing) return MissionFromRecord(*existing);  // a retry of a create that succeeded
   }
-  if (spec.domain().empty()) return absl::InvalidArgumentError("spec.domain: the PDDL domain text is empty");
-  if (spec.problem().empty()) return absl::InvalidArgumentError("spec.problem: the PDDL problem text is empty");
+  if (spec.domain().empty())
+    return absl::InvalidArgumentError("spec.domain: the PDDL domain text is empty");
+  if (spec.problem().empty())
+    return absl::InvalidArgumentError("spec.problem: the PDDL problem text is empty");
   if (!engine_) {
     return absl::UnimplementedError(
-        "MissionService.CreateMission: the mission engine (engine/mission: plan, refine, parse) is not built into "
+        "MissionService.CreateMission: the mission engine (engine/mission: plan, refine, parse) is "
+        "not built into "
         "this server yet; nothing was stored");
   }
   SEAPLAN_RETURN_IF_ERROR(engine_->CheckSpec(spec));
   absl::StatusOr<PlannedVersion> planned = absl::UnknownError("mission planning did not run");
   SEAPLAN_RETURN_IF_ERROR(pool_.Run([&] { planned = engine_->PlanInitial(spec, ctx.stop); },
                                     [&] { ctx.ForwardCancellation(); }));
-  if (ctx.stop.StopRequested()) return StopStatus(ctx.stop, root_.StopRequested(), "mission planning");
+  if (ctx.stop.StopRequested())
+    return StopStatus(ctx.stop, root_.StopRequested(), "mission planning");
   if (!planned.ok()) return planned.status();
 
   const std::int64_t now = NowMs();
@@ -203,7 +218,9 @@ absl::StatusOr<v1::Mission> MissionCoordinator::CreateMission(const v1::CreateMi
   for (const auto& line : planned->log_messages) events.push_back(ServerEvent(line));
   events.push_back(ServerEvent(DescribeVersion(version), version.mission_time_origin_s()));
   absl::Status st = repo_.Create(
-      record, {record.id, 1, version.reason(), now, version.SerializeAsString(), planned->engine_state}, events);
+      record,
+      {record.id, 1, version.reason(), now, version.SerializeAsString(), planned->engine_state},
+      events);
   if (absl::IsAlreadyExists(st) && !request.request_id().empty()) {
     // A concurrent retry with the same key won: answer with its mission.
     SEAPLAN_ASSIGN_OR_RETURN(auto existing, repo_.FindByRequestId(request.request_id()));
@@ -221,8 +238,8 @@ absl::StatusOr<v1::Mission> MissionCoordinator::GetMission(const v1::GetMissionR
   return MissionFromRecord(record);
 }
 
-absl::StatusOr<v1::ListMissionsResponse> MissionCoordinator::ListMissions(const v1::ListMissionsRequest& request,
-                                                                         const CallContext&) {
+absl::StatusOr<v1::ListMissionsResponse> MissionCoordinator::ListMissions(
+    const v1::ListMissionsRequest& request, const CallContext&) {
   SEAPLAN_ASSIGN_OR_RETURN(int page_size, PageSize(request.page_size()));
   SEAPLAN_ASSIGN_OR_RETURN(std::int64_t after, ParsePageToken(request.page_token()));
   SEAPLAN_ASSIGN_OR_RETURN(auto page, repo_.List(request.state(), page_size, after));
@@ -232,20 +249,22 @@ absl::StatusOr<v1::ListMissionsResponse> MissionCoordinator::ListMissions(const 
   return response;
 }
 
-absl::StatusOr<v1::Mission> MissionCoordinator::CancelMission(const v1::CancelMissionRequest& request,
-                                                              const CallContext&) {
+absl::StatusOr<v1::Mission> MissionCoordinator::CancelMission(
+    const v1::CancelMissionRequest& request, const CallContext&) {
   if (request.mission_id().empty()) return absl::InvalidArgumentError("mission_id is empty");
   const std::string& id = request.mission_id();
   {
     auto lock_ptr = MissionLock(id);
     std::lock_guard lock(*lock_ptr);
     SEAPLAN_ASSIGN_OR_RETURN(storage::MissionRecord record, repo_.Get(id));
-    if (record.state == v1::MISSION_STATE_CANCELLED) return MissionFromRecord(record);  // idempotent
+    if (record.state == v1::MISSION_STATE_CANCELLED)
+      return MissionFromRecord(record);  // idempotent
     if (IsFinalState(record.state)) {
-      return absl::FailedPreconditionError(
-          absl::StrCat("mission '", id, "' is already ", StateName(record.state), " and cannot be cancelled"));
+      return absl::FailedPreconditionError(absl::StrCat(
+          "mission '", id, "' is already ", StateName(record.state), " and cannot be cancelled"));
     }
-    const std::string reason = request.reason().empty() ? "cancelled by operator" : request.reason();
+    const std::string reason =
+        request.reason().empty() ? "cancelled by operator" : request.reason();
     SEAPLAN_RETURN_IF_ERROR(
         SetState(id, v1::MISSION_STATE_CANCELLED, absl::StrCat("mission cancelled: ", reason)));
   }
@@ -258,7 +277,8 @@ absl::StatusOr<v1::Mission> MissionCoordinator::CancelMission(const v1::CancelMi
   return MissionFromRecord(record);
 }
 
-absl::Status MissionCoordinator::WatchMission(const v1::WatchMissionRequest& request, const CallContext& ctx,
+absl::Status MissionCoordinator::WatchMission(const v1::WatchMissionRequest& request,
+                                              const CallContext& ctx,
                                               const StreamSink<v1::MissionEvent>& sink) {
   const std::string& id = request.mission_id();
   if (id.empty()) return absl::InvalidArgumentError("mission_id is empty");
@@ -274,8 +294,10 @@ absl::Status MissionCoordinator::WatchMission(const v1::WatchMissionRequest& req
   std::uint64_t generation = notifier_.Generation(id);  // subscribe before reading
   while (true) {
     ctx.ForwardCancellation();
-    if (ctx.stop.StopRequested()) return StopStatus(ctx.stop, root_.StopRequested(), "mission watch");
-    if (notifier_.closed()) return absl::UnavailableError("mission watch ended: the server is shutting down");
+    if (ctx.stop.StopRequested())
+      return StopStatus(ctx.stop, root_.StopRequested(), "mission watch");
+    if (notifier_.closed())
+      return absl::UnavailableError("mission watch ended: the server is shutting down");
     bool more = false;
     // The mission is read FIRST: when this snapshot is final, every version
     // and event committed before it is visible to the reads below, so the
@@ -286,7 +308,8 @@ absl::Status MissionCoordinator::WatchMission(const v1::WatchMissionRequest& req
     for (const auto& v : versions) {
       v1::MissionEvent event;
       if (!event.mutable_plan_version()->ParseFromString(v.content)) {
-        return absl::DataLossError(absl::StrCat("plan version ", v.version, " of mission '", id, "' is unreadable"));
+        return absl::DataLossError(
+            absl::StrCat("plan version ", v.version, " of mission '", id, "' is unreadable"));
       }
       if (!sink(event)) return absl::CancelledError("mission watch: the client went away");
       last_version = v.version;
@@ -314,7 +337,8 @@ absl::Status MissionCoordinator::WatchMission(const v1::WatchMissionRequest& req
     }
     if (more) continue;
     // Final state (snapshot taken before the reads): the stream is complete.
-    if (IsFinalState(record.state) && last_version >= record.current_version) return absl::OkStatus();
+    if (IsFinalState(record.state) && last_version >= record.current_version)
+      return absl::OkStatus();
     std::uint64_t now_generation = generation;
     while (now_generation == generation) {
       now_generation = notifier_.Wait(id, generation, options_.watch_poll);
@@ -330,15 +354,17 @@ absl::StatusOr<v1::ReportFeedbackResponse> MissionCoordinator::ReportFeedback(
   const std::string& id = request.mission_id();
   if (id.empty()) return absl::InvalidArgumentError("mission_id is empty");
   if (request.vessel_id().empty()) return absl::InvalidArgumentError("vessel_id is empty");
-  if (request.sequence_number() < 0) return absl::InvalidArgumentError("sequence_number must not be negative");
+  if (request.sequence_number() < 0)
+    return absl::InvalidArgumentError("sequence_number must not be negative");
   v1::ReportFeedbackResponse response;
   // A retry of a stored report: answer "duplicate" and change nothing.
-  SEAPLAN_ASSIGN_OR_RETURN(auto existing, repo_.FindFeedback(request.vessel_id(), request.sequence_number()));
+  SEAPLAN_ASSIGN_OR_RETURN(auto existing,
+                           repo_.FindFeedback(request.vessel_id(), request.sequence_number()));
   if (existing) {
     if (existing->mission_id != id) {
-      return absl::InvalidArgumentError(absl::StrCat("sequence number ", request.sequence_number(), " of vessel '",
-                                                     request.vessel_id(), "' was already used for mission '",
-                                                     existing->mission_id, "'"));
+      return absl::InvalidArgumentError(absl::StrCat(
+          "sequence number ", request.sequence_number(), " of vessel '", request.vessel_id(),
+          "' was already used for mission '", existing->mission_id, "'"));
     }
     SEAPLAN_ASSIGN_OR_RETURN(storage::MissionRecord record, repo_.Get(id));
     response.set_duplicate(true);
@@ -350,8 +376,8 @@ absl::StatusOr<v1::ReportFeedbackResponse> MissionCoordinator::ReportFeedback(
   SEAPLAN_ASSIGN_OR_RETURN(MissionRuntimeState runtime, LoadRuntime(id));
   const v1::Mission& mission = runtime.mission;
   if (IsFinalState(mission.state())) {
-    return absl::FailedPreconditionError(absl::StrCat("mission '", id, "' is ", StateName(mission.state()),
-                                                      "; feedback is no longer accepted"));
+    return absl::FailedPreconditionError(absl::StrCat(
+        "mission '", id, "' is ", StateName(mission.state()), "; feedback is no longer accepted"));
   }
   const v1::Feedback& feedback = request.feedback();
   FeedbackDecision decision;
@@ -366,12 +392,20 @@ absl::StatusOr<v1::ReportFeedbackResponse> MissionCoordinator::ReportFeedback(
   if (replan) update.state = v1::MISSION_STATE_REPLANNING;
 
   std::vector<storage::NewLogEvent> events;
-  events.push_back({NowMs(), feedback.mission_time_s(), request.vessel_id(), DescribeFeedback(feedback)});
-  for (const auto& line : decision.log_messages) events.push_back(ServerEvent(line, feedback.mission_time_s()));
-  if (replan) events.push_back(ServerEvent(absl::StrCat("replanning: ", decision.replan_reason), feedback.mission_time_s()));
+  events.push_back(
+      {NowMs(), feedback.mission_time_s(), request.vessel_id(), DescribeFeedback(feedback)});
+  for (const auto& line : decision.log_messages)
+    events.push_back(ServerEvent(line, feedback.mission_time_s()));
+  if (replan)
+    events.push_back(ServerEvent(absl::StrCat("replanning: ", decision.replan_reason),
+                                 feedback.mission_time_s()));
 
-  storage::FeedbackRecord record{id, request.vessel_id(), request.sequence_number(), feedback.kind(),
-                                 feedback.SerializeAsString(), NowMs()};
+  storage::FeedbackRecord record{id,
+                                 request.vessel_id(),
+                                 request.sequence_number(),
+                                 feedback.kind(),
+                                 feedback.SerializeAsString(),
+                                 NowMs()};
   SEAPLAN_ASSIGN_OR_RETURN(bool inserted, repo_.RecordFeedback(record, update, events));
   lock.unlock();
   response.set_current_version(mission.current_version());
@@ -414,12 +448,14 @@ absl::StatusOr<v1::PlanVersion> MissionCoordinator::Replan(
   *stopped = false;
   SEAPLAN_ASSIGN_OR_RETURN(MissionRuntimeState runtime, LoadRuntime(id));
   if (IsFinalState(runtime.mission.state())) {
-    return absl::FailedPreconditionError(
-        absl::StrCat("mission '", id, "' is ", StateName(runtime.mission.state()), "; nothing to replan"));
+    return absl::FailedPreconditionError(absl::StrCat(
+        "mission '", id, "' is ", StateName(runtime.mission.state()), "; nothing to replan"));
   }
-  const double now_s = runtime.recent_feedback.empty() ? runtime.current_version.mission_time_origin_s()
-                                                       : runtime.recent_feedback.back().mission_time_s();
-  absl::StatusOr<std::optional<PlannedVersion>> planned = absl::UnknownError("replanning did not run");
+  const double now_s = runtime.recent_feedback.empty()
+                           ? runtime.current_version.mission_time_origin_s()
+                           : runtime.recent_feedback.back().mission_time_s();
+  absl::StatusOr<std::optional<PlannedVersion>> planned =
+      absl::UnknownError("replanning did not run");
   SEAPLAN_RETURN_IF_ERROR(
       run([&] { planned = engine_->Replan(runtime.mission.spec(), runtime, reason, stop); }));
   if (stop.StopRequested()) {
@@ -439,8 +475,10 @@ absl::StatusOr<v1::PlanVersion> MissionCoordinator::Replan(
                                            " while replanning; the new plan was discarded"));
   }
   if (!planned->has_value()) {
-    SEAPLAN_RETURN_IF_ERROR(SetState(id, v1::MISSION_STATE_COMPLETED, "the goal holds: mission completed"));
-    return absl::FailedPreconditionError("nothing left to plan: the goal already holds; the mission is completed");
+    SEAPLAN_RETURN_IF_ERROR(
+        SetState(id, v1::MISSION_STATE_COMPLETED, "the goal holds: mission completed"));
+    return absl::FailedPreconditionError(
+        "nothing left to plan: the goal already holds; the mission is completed");
   }
   PlannedVersion& next = **planned;
   v1::PlanVersion& version = next.version;
@@ -454,31 +492,37 @@ absl::StatusOr<v1::PlanVersion> MissionCoordinator::Replan(
   std::vector<storage::NewLogEvent> events;
   for (const auto& line : next.log_messages) events.push_back(ServerEvent(line, now_s));
   events.push_back(ServerEvent(DescribeVersion(version), version.mission_time_origin_s()));
-  SEAPLAN_RETURN_IF_ERROR(repo_.AppendVersion(
-      {id, version.version(), version.reason(), now, version.SerializeAsString(), next.engine_state}, update, events));
+  SEAPLAN_RETURN_IF_ERROR(repo_.AppendVersion({id, version.version(), version.reason(), now,
+                                               version.SerializeAsString(), next.engine_state},
+                                              update, events));
   notifier_.Notify(id);
   return version;
 }
 
-absl::StatusOr<v1::RequestReplanResponse> MissionCoordinator::RequestReplan(const v1::RequestReplanRequest& request,
-                                                                           const CallContext& ctx) {
+absl::StatusOr<v1::RequestReplanResponse> MissionCoordinator::RequestReplan(
+    const v1::RequestReplanRequest& request, const CallContext& ctx) {
   const std::string& id = request.mission_id();
   if (id.empty()) return absl::InvalidArgumentError("mission_id is empty");
   SEAPLAN_ASSIGN_OR_RETURN(storage::MissionRecord record, repo_.Get(id));
   if (!engine_) {
     return absl::UnimplementedError(
-        "MissionService.RequestReplan: the mission engine (engine/mission) is not built into this server yet");
+        "MissionService.RequestReplan: the mission engine (engine/mission) is not built into this "
+        "server yet");
   }
   if (IsFinalState(record.state)) {
     return absl::FailedPreconditionError(
         absl::StrCat("mission '", id, "' is ", StateName(record.state), "; nothing to replan"));
   }
-  const std::string reason = request.reason().empty() ? "replan requested by operator" : request.reason();
-  SEAPLAN_RETURN_IF_ERROR(SetState(id, v1::MISSION_STATE_REPLANNING, absl::StrCat("replanning: ", reason)));
+  const std::string reason =
+      request.reason().empty() ? "replan requested by operator" : request.reason();
+  SEAPLAN_RETURN_IF_ERROR(
+      SetState(id, v1::MISSION_STATE_REPLANNING, absl::StrCat("replanning: ", reason)));
   bool stopped = false;
   auto version = Replan(
       id, reason, ctx.stop,
-      [&](std::function<void()> work) { return pool_.Run(std::move(work), [&] { ctx.ForwardCancellation(); }); },
+      [&](std::function<void()> work) {
+        return pool_.Run(std::move(work), [&] { ctx.ForwardCancellation(); });
+      },
       &stopped);
   if (stopped) return StopStatus(ctx.stop, root_.StopRequested(), "replanning");
   if (!version.ok()) {
@@ -508,9 +552,10 @@ void MissionCoordinator::BackgroundLoop() {
     }
     // A trigger about a version that was replanned meanwhile (the job was
     // queued just as an earlier replan of the same base ended) is stale.
-    if (auto record = repo_.Get(job.mission_id); record.ok() && record->current_version != job.base_version) {
-      log::Info("mission {}: replan '{}' skipped: version {} was already replanned", job.mission_id, job.reason,
-                job.base_version);
+    if (auto record = repo_.Get(job.mission_id);
+        record.ok() && record->current_version != job.base_version) {
+      log::Info("mission {}: replan '{}' skipped: version {} was already replanned", job.mission_id,
+                job.reason, job.base_version);
       std::lock_guard lock(jobs_mu_);
       running_replans_.erase(job.mission_id);
       running_bases_.erase(job.mission_id);
@@ -525,8 +570,8 @@ void MissionCoordinator::BackgroundLoop() {
         },
         &stopped);
     if (!version.ok()) {
-      log::Warn("mission {}: replan '{}' ended without a new version: {}", job.mission_id, job.reason,
-                version.status().ToString());
+      log::Warn("mission {}: replan '{}' ended without a new version: {}", job.mission_id,
+                job.reason, version.status().ToString());
     }
     std::lock_guard lock(jobs_mu_);
     running_replans_.erase(job.mission_id);

@@ -50,7 +50,8 @@ class MissionNotifier {
   void Notify(const std::string& mission_id);
   // Waits until the generation differs from `seen`, `timeout` passes or
   // Close() is called; returns the current generation.
-  std::uint64_t Wait(const std::string& mission_id, std::uint64_t seen, std::chrono::milliseconds timeout);
+  std::uint64_t Wait(const std::string& mission_id, std::uint64_t seen,
+                     std::chrono::milliseconds timeout);
   void Close();
   bool closed();
 
@@ -85,17 +86,20 @@ class MissionCoordinator {
   MissionCoordinator(const MissionCoordinator&) = delete;
   MissionCoordinator& operator=(const MissionCoordinator&) = delete;
 
-  absl::StatusOr<v1::Mission> CreateMission(const v1::CreateMissionRequest& request, const CallContext& ctx);
-  absl::StatusOr<v1::Mission> GetMission(const v1::GetMissionRequest& request, const CallContext& ctx);
+  absl::StatusOr<v1::Mission> CreateMission(const v1::CreateMissionRequest& request,
+                                            const CallContext& ctx);
+  absl::StatusOr<v1::Mission> GetMission(const v1::GetMissionRequest& request,
+                                         const CallContext& ctx);
   absl::StatusOr<v1::ListMissionsResponse> ListMissions(const v1::ListMissionsRequest& request,
                                                         const CallContext& ctx);
-  absl::StatusOr<v1::Mission> CancelMission(const v1::CancelMissionRequest& request, const CallContext& ctx);
+  absl::StatusOr<v1::Mission> CancelMission(const v1::CancelMissionRequest& request,
+                                            const CallContext& ctx);
   // Ends OK when the mission reached a final state and everything was sent;
   // Unavailable when the server shuts down; Cancelled when the client left.
   absl::Status WatchMission(const v1::WatchMissionRequest& request, const CallContext& ctx,
                             const StreamSink<v1::MissionEvent>& sink);
-  absl::StatusOr<v1::ReportFeedbackResponse> ReportFeedback(const v1::ReportFeedbackRequest& request,
-                                                            const CallContext& ctx);
+  absl::StatusOr<v1::ReportFeedbackResponse> ReportFeedback(
+      const v1::ReportFeedbackRequest& request, const CallContext& ctx);
   absl::StatusOr<v1::RequestReplanResponse> RequestReplan(const v1::RequestReplanRequest& request,
                                                           const CallContext& ctx);
 
@@ -114,12 +118,11 @@ class MissionCoordinator {
   std::shared_ptr<std::mutex> MissionLock(const std::string& mission_id);
   absl::StatusOr<MissionRuntimeState> LoadRuntime(const std::string& mission_id);
   // Replans now; `run` executes the engine call (on the pool or inline).
-  absl::StatusOr<v1::PlanVersion> Replan(const std::string& mission_id, const std::string& reason,
-                                         const StopToken& stop,
-                                         const std::function<absl::Status(std::function<void()>)>& run,
-                                         bool* stopped);
-  absl::Status SetState(const std::string& mission_id, v1::MissionState state, const std::string& message,
-                        const std::string& failure_reason = "");
+  absl::StatusOr<v1::PlanVersion> Replan(
+      const std::string& mission_id, const std::string& reason, const StopToken& stop,
+      const std::function<absl::Status(std::function<void()>)>& run, bool* stopped);
+  absl::Status SetState(const std::string& mission_id, v1::MissionState state,
+                        const std::string& message, const std::string& failure_reason = "");
   // REPLANNING -> ACTIVE with `message` logged; a mission cancelled
   // meanwhile keeps its state (only the message is logged).
   void EndReplanning(const std::string& mission_id, const std::string& message);

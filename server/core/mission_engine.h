@@ -26,9 +26,9 @@ namespace seaplan::server {
 
 // What the coordinator knows about a running mission.
 struct MissionRuntimeState {
-  v1::Mission mission;              // as stored: state, current_version, last_state, completed_tasks
-  v1::PlanVersion current_version;  // the version the vessel executes (empty when none)
-  std::string engine_state;         // what the engine returned with that version
+  v1::Mission mission;  // as stored: state, current_version, last_state, completed_tasks
+  v1::PlanVersion current_version;            // the version the vessel executes (empty when none)
+  std::string engine_state;                   // what the engine returned with that version
   std::vector<v1::Feedback> recent_feedback;  // the latest reports, oldest first (bounded)
 };
 
@@ -36,18 +36,19 @@ struct MissionRuntimeState {
 // created_at; everything else comes from the engine.
 struct PlannedVersion {
   v1::PlanVersion version;
-  std::string engine_state;               // opaque, stored with the version
-  std::vector<std::string> log_messages;  // navigation-log lines ("computing the temporal plan", ...)
+  std::string engine_state;  // opaque, stored with the version
+  std::vector<std::string>
+      log_messages;  // navigation-log lines ("computing the temporal plan", ...)
 };
 
 // The engine's answer to one feedback report.
 struct FeedbackDecision {
-  bool replan = false;       // the plan no longer holds: replan (asynchronously)
-  std::string replan_reason; // e.g. "fuel 28% <= 30%", "task v1-t2 move-ship failed"
-  std::optional<v1::MissionState> new_state;  // e.g. COMPLETED after the last task
+  bool replan = false;        // the plan no longer holds: replan (asynchronously)
+  std::string replan_reason;  // e.g. "fuel 28% <= 30%", "task v1-t2 move-ship failed"
+  std::optional<v1::MissionState> new_state;                // e.g. COMPLETED after the last task
   std::optional<std::vector<std::string>> completed_tasks;  // the full list when it changed
-  std::string failure_reason;              // with new_state FAILED
-  std::vector<std::string> log_messages;   // navigation-log lines for this report
+  std::string failure_reason;                               // with new_state FAILED
+  std::vector<std::string> log_messages;                    // navigation-log lines for this report
 };
 
 class MissionEngine {
@@ -61,13 +62,15 @@ class MissionEngine {
   // Plans, refines and parses version 1. Errors: InvalidArgument (bad
   // input), FailedPrecondition (no plan: unsolvable, timeout), or what
   // `stop` caused.
-  virtual absl::StatusOr<PlannedVersion> PlanInitial(const v1::MissionSpec& spec, const StopToken& stop) = 0;
+  virtual absl::StatusOr<PlannedVersion> PlanInitial(const v1::MissionSpec& spec,
+                                                     const StopToken& stop) = 0;
 
   // Regenerates the problem from `state` and replans. nullopt when the
   // goal already holds (the mission is complete).
   virtual absl::StatusOr<std::optional<PlannedVersion>> Replan(const v1::MissionSpec& spec,
                                                                const MissionRuntimeState& state,
-                                                               std::string_view reason, const StopToken& stop) = 0;
+                                                               std::string_view reason,
+                                                               const StopToken& stop) = 0;
 
   // Decides what a feedback report means (fast: no planning here). Called
   // before the report is stored; `state` does not include `feedback` yet.

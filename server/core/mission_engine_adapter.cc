@@ -34,33 +34,49 @@ namespace {
 
 v1::Task::Kind KindToProto(mission::TaskKind k) {
   switch (k) {
-    case mission::TaskKind::kMove: return v1::Task::KIND_MOVE;
-    case mission::TaskKind::kLoad: return v1::Task::KIND_LOAD;
-    case mission::TaskKind::kUnload: return v1::Task::KIND_UNLOAD;
-    case mission::TaskKind::kRepair: return v1::Task::KIND_REPAIR;
-    case mission::TaskKind::kRefuel: return v1::Task::KIND_REFUEL;
-    case mission::TaskKind::kOther: return v1::Task::KIND_OTHER;
+    case mission::TaskKind::kMove:
+      return v1::Task::KIND_MOVE;
+    case mission::TaskKind::kLoad:
+      return v1::Task::KIND_LOAD;
+    case mission::TaskKind::kUnload:
+      return v1::Task::KIND_UNLOAD;
+    case mission::TaskKind::kRepair:
+      return v1::Task::KIND_REPAIR;
+    case mission::TaskKind::kRefuel:
+      return v1::Task::KIND_REFUEL;
+    case mission::TaskKind::kOther:
+      return v1::Task::KIND_OTHER;
   }
   return v1::Task::KIND_OTHER;
 }
 
 mission::TaskKind KindFromProto(v1::Task::Kind k) {
   switch (k) {
-    case v1::Task::KIND_MOVE: return mission::TaskKind::kMove;
-    case v1::Task::KIND_LOAD: return mission::TaskKind::kLoad;
-    case v1::Task::KIND_UNLOAD: return mission::TaskKind::kUnload;
-    case v1::Task::KIND_REPAIR: return mission::TaskKind::kRepair;
-    case v1::Task::KIND_REFUEL: return mission::TaskKind::kRefuel;
-    default: return mission::TaskKind::kOther;
+    case v1::Task::KIND_MOVE:
+      return mission::TaskKind::kMove;
+    case v1::Task::KIND_LOAD:
+      return mission::TaskKind::kLoad;
+    case v1::Task::KIND_UNLOAD:
+      return mission::TaskKind::kUnload;
+    case v1::Task::KIND_REPAIR:
+      return mission::TaskKind::kRepair;
+    case v1::Task::KIND_REFUEL:
+      return mission::TaskKind::kRefuel;
+    default:
+      return mission::TaskKind::kOther;
   }
 }
 
 v1::MsoMode ModeToProto(mission::MsoMode m) {
   switch (m) {
-    case mission::MsoMode::kPto: return v1::MSO_MODE_PTO;
-    case mission::MsoMode::kMec: return v1::MSO_MODE_MEC;
-    case mission::MsoMode::kPti: return v1::MSO_MODE_PTI;
-    default: return v1::MSO_MODE_UNSPECIFIED;
+    case mission::MsoMode::kPto:
+      return v1::MSO_MODE_PTO;
+    case mission::MsoMode::kMec:
+      return v1::MSO_MODE_MEC;
+    case mission::MsoMode::kPti:
+      return v1::MSO_MODE_PTI;
+    default:
+      return v1::MSO_MODE_UNSPECIFIED;
   }
 }
 
@@ -89,14 +105,30 @@ mission::Feedback FeedbackFromProto(const v1::Feedback& feedback, int current_ve
                                     const chart::LocalFrame* frame) {
   mission::Feedback f;
   switch (feedback.kind()) {
-    case v1::Feedback::KIND_TASK_STARTED: f.kind = mission::FeedbackKind::kTaskStarted; break;
-    case v1::Feedback::KIND_TASK_COMPLETED: f.kind = mission::FeedbackKind::kTaskCompleted; break;
-    case v1::Feedback::KIND_TASK_FAILED: f.kind = mission::FeedbackKind::kTaskFailed; break;
-    case v1::Feedback::KIND_GNSS_FAULT: f.kind = mission::FeedbackKind::kGnssFault; break;
-    case v1::Feedback::KIND_MACHINERY_FAULT: f.kind = mission::FeedbackKind::kMachineryFault; break;
-    case v1::Feedback::KIND_OPERATOR_CHANGE: f.kind = mission::FeedbackKind::kOperatorChange; break;
-    case v1::Feedback::KIND_COLLISION_AVOIDANCE: f.kind = mission::FeedbackKind::kCollisionAvoidance; break;
-    default: f.kind = mission::FeedbackKind::kPosition; break;
+    case v1::Feedback::KIND_TASK_STARTED:
+      f.kind = mission::FeedbackKind::kTaskStarted;
+      break;
+    case v1::Feedback::KIND_TASK_COMPLETED:
+      f.kind = mission::FeedbackKind::kTaskCompleted;
+      break;
+    case v1::Feedback::KIND_TASK_FAILED:
+      f.kind = mission::FeedbackKind::kTaskFailed;
+      break;
+    case v1::Feedback::KIND_GNSS_FAULT:
+      f.kind = mission::FeedbackKind::kGnssFault;
+      break;
+    case v1::Feedback::KIND_MACHINERY_FAULT:
+      f.kind = mission::FeedbackKind::kMachineryFault;
+      break;
+    case v1::Feedback::KIND_OPERATOR_CHANGE:
+      f.kind = mission::FeedbackKind::kOperatorChange;
+      break;
+    case v1::Feedback::KIND_COLLISION_AVOIDANCE:
+      f.kind = mission::FeedbackKind::kCollisionAvoidance;
+      break;
+    default:
+      f.kind = mission::FeedbackKind::kPosition;
+      break;
   }
   f.task_id = feedback.task_id();
   f.plan_version = feedback.plan_version() != 0 ? feedback.plan_version() : current_version;
@@ -104,8 +136,8 @@ mission::Feedback FeedbackFromProto(const v1::Feedback& feedback, int current_ve
   f.detail = feedback.detail();
   if (feedback.has_state()) {
     if (frame != nullptr && feedback.state().has_position()) {
-      const chart::LocalPoint p =
-          frame->ToLocal({feedback.state().position().latitude_deg(), feedback.state().position().longitude_deg()});
+      const chart::LocalPoint p = frame->ToLocal({feedback.state().position().latitude_deg(),
+                                                  feedback.state().position().longitude_deg()});
       f.position = mission::Point{p.x_m, p.y_m};
     }
     f.fuel_fraction = feedback.state().fuel_fraction();
@@ -121,9 +153,12 @@ inline constexpr double kReplanImproveMaxS = 0.04;
 #if SEAPLAN_SERVER_HAS_ROUTE
 mission::MsoMode ModeFromRoute(route::MsoMode m) {
   switch (m) {
-    case route::MsoMode::kPto: return mission::MsoMode::kPto;
-    case route::MsoMode::kMec: return mission::MsoMode::kMec;
-    case route::MsoMode::kPti: return mission::MsoMode::kPti;
+    case route::MsoMode::kPto:
+      return mission::MsoMode::kPto;
+    case route::MsoMode::kMec:
+      return mission::MsoMode::kMec;
+    case route::MsoMode::kPti:
+      return mission::MsoMode::kPti;
   }
   return mission::MsoMode::kUnspecified;
 }
@@ -163,7 +198,8 @@ mission::Route RouteFromEngine(const route::RouteResult& result) {
 // 10 m further out when that is free too (clear of the buffer's edge), or
 // nullopt when there is none.
 inline constexpr double kMaxWayOutM = 500.0;
-std::optional<chart::LocalPoint> ShortestWayOut(const route::ObstacleField& field, chart::LocalPoint p) {
+std::optional<chart::LocalPoint> ShortestWayOut(const route::ObstacleField& field,
+                                                chart::LocalPoint p) {
   constexpr int kBearings = 64;
   for (double r = 5.0; r <= kMaxWayOutM; r += 5.0) {
     for (int k = 0; k < kBearings; ++k) {
@@ -171,7 +207,8 @@ std::optional<chart::LocalPoint> ShortestWayOut(const route::ObstacleField& fiel
       const route::Vec2 q{p.x_m + r * std::sin(a), p.y_m + r * std::cos(a)};
       if (field.Inside(q)) continue;
       const route::Vec2 clear{p.x_m + (r + 10.0) * std::sin(a), p.y_m + (r + 10.0) * std::cos(a)};
-      return field.Inside(clear) ? chart::LocalPoint{q.x, q.y} : chart::LocalPoint{clear.x, clear.y};
+      return field.Inside(clear) ? chart::LocalPoint{q.x, q.y}
+                                 : chart::LocalPoint{clear.x, clear.y};
     }
   }
   return std::nullopt;
@@ -184,7 +221,8 @@ void PrependWayOut(chart::LocalPoint from, mission::Route* r) {
   if (r->waypoints.empty()) return;
   const mission::Point first = r->waypoints.front().position;
   const double leg_m = std::hypot(first.x_m - from.x_m, first.y_m - from.y_m);
-  const double speed = r->sailing_time_s > 0 && r->length_m > 0 ? r->length_m / r->sailing_time_s : 1.0;
+  const double speed =
+      r->sailing_time_s > 0 && r->length_m > 0 ? r->length_m / r->sailing_time_s : 1.0;
   const double leg_s = leg_m / speed;
   for (mission::RouteWaypoint& w : r->waypoints) {
     w.eta_s += leg_s;
@@ -224,30 +262,39 @@ class Adapter final : public MissionEngine {
     task::LoadResult loaded = task::LoadTask(spec.domain(), spec.problem());
     for (const auto& d : loaded.diagnostics) {
       if (d.severity == pddl::Severity::kError) {
-        return WithDiagnostics(absl::InvalidArgumentError(absl::StrCat("spec: malformed PDDL: ", d.ToString())),
-                               ToProto(loaded.diagnostics));
+        return WithDiagnostics(
+            absl::InvalidArgumentError(absl::StrCat("spec: malformed PDDL: ", d.ToString())),
+            ToProto(loaded.diagnostics));
       }
     }
     for (int i = 0; i < spec.locations_size(); ++i) {
-      if (spec.locations(i).name().empty()) return absl::InvalidArgumentError(absl::StrCat("spec.locations[", i, "].name is empty"));
+      if (spec.locations(i).name().empty())
+        return absl::InvalidArgumentError(absl::StrCat("spec.locations[", i, "].name is empty"));
     }
-    if (spec.ship().service_speed_mps() < 0) return absl::InvalidArgumentError("spec.ship.service_speed_mps must not be negative");
+    if (spec.ship().service_speed_mps() < 0)
+      return absl::InvalidArgumentError("spec.ship.service_speed_mps must not be negative");
     return absl::OkStatus();
   }
 
-  absl::StatusOr<PlannedVersion> PlanInitial(const v1::MissionSpec& spec, const StopToken& stop) override {
-    SEAPLAN_ASSIGN_OR_RETURN(Context c, MakeContext(spec, /*locations_state=*/"", stop, /*replan=*/false));
+  absl::StatusOr<PlannedVersion> PlanInitial(const v1::MissionSpec& spec,
+                                             const StopToken& stop) override {
+    SEAPLAN_ASSIGN_OR_RETURN(Context c,
+                             MakeContext(spec, /*locations_state=*/"", stop, /*replan=*/false));
     mission::NavigationLog log;
-    SEAPLAN_ASSIGN_OR_RETURN(mission::PlanVersion v,
-                             mission::PlanInitialVersion(c.definition, c.planner, c.router, stop, &log));
+    SEAPLAN_ASSIGN_OR_RETURN(
+        mission::PlanVersion v,
+        mission::PlanInitialVersion(c.definition, c.planner, c.router, stop, &log));
     return ToPlanned(v, c, c.definition.locations, log);
   }
 
-  absl::StatusOr<std::optional<PlannedVersion>> Replan(const v1::MissionSpec& spec, const MissionRuntimeState& state,
-                                                       std::string_view reason, const StopToken& stop) override {
+  absl::StatusOr<std::optional<PlannedVersion>> Replan(const v1::MissionSpec& spec,
+                                                       const MissionRuntimeState& state,
+                                                       std::string_view reason,
+                                                       const StopToken& stop) override {
     // The definition's locations are the engine state's (they include a
     // port-s a previous replan added), not the spec's.
-    SEAPLAN_ASSIGN_OR_RETURN(Context c, MakeContext(spec, state.engine_state, stop, /*replan=*/true));
+    SEAPLAN_ASSIGN_OR_RETURN(Context c,
+                             MakeContext(spec, state.engine_state, stop, /*replan=*/true));
     const mission::PlanVersion current = FromProto(state.current_version);
     const int current_version = state.mission.current_version();
     double now_s = state.current_version.mission_time_origin_s();
@@ -261,18 +308,21 @@ class Adapter final : public MissionEngine {
     const std::vector<std::string> completed(state.mission.completed_tasks().begin(),
                                              state.mission.completed_tasks().end());
     mission::ShipObservation ship;
-    const v1::ShipState& last = state.mission.has_last_state() ? state.mission.last_state() : spec.initial_state();
-    const chart::LocalPoint p = c.frame.ToLocal({last.position().latitude_deg(), last.position().longitude_deg()});
+    const v1::ShipState& last =
+        state.mission.has_last_state() ? state.mission.last_state() : spec.initial_state();
+    const chart::LocalPoint p =
+        c.frame.ToLocal({last.position().latitude_deg(), last.position().longitude_deg()});
     ship.position = {p.x_m, p.y_m};
     // A reported state is a full state: fuel 0 is an empty tank. The spec's
     // initial state counts only when it names a fuel level.
-    if (state.mission.has_last_state() || last.fuel_fraction() > 0) ship.fuel_fraction = last.fuel_fraction();
+    if (state.mission.has_last_state() || last.fuel_fraction() > 0)
+      ship.fuel_fraction = last.fuel_fraction();
     const mission::ReplanInput input =
         mission::MakeReplanInput(current, completed, recent, std::string(reason), ship, now_s);
     mission::NavigationLog log;
     SEAPLAN_ASSIGN_OR_RETURN(mission::ReplanResult r,
-                             mission::Replan(c.definition, current, c.definition.locations, input, c.planner,
-                                             c.router, stop, &log));
+                             mission::Replan(c.definition, current, c.definition.locations, input,
+                                             c.planner, c.router, stop, &log));
     if (!r.version) return std::optional<PlannedVersion>();
     return std::optional<PlannedVersion>(ToPlanned(*r.version, c, r.locations, log));
   }
@@ -290,11 +340,14 @@ class Adapter final : public MissionEngine {
         if (task) d.log_messages.push_back(mission::TaskStartedMessage(task->kind));
         break;
       case v1::Feedback::KIND_TASK_COMPLETED: {
-        std::vector<std::string> done(state.mission.completed_tasks().begin(), state.mission.completed_tasks().end());
-        if (std::find(done.begin(), done.end(), feedback.task_id()) == done.end()) done.push_back(feedback.task_id());
+        std::vector<std::string> done(state.mission.completed_tasks().begin(),
+                                      state.mission.completed_tasks().end());
+        if (std::find(done.begin(), done.end(), feedback.task_id()) == done.end())
+          done.push_back(feedback.task_id());
         if (task) d.log_messages.push_back(mission::TaskCompletedMessage(task->kind));
         bool all = !current.tasks.empty();
-        for (const auto& t : current.tasks) all &= std::find(done.begin(), done.end(), t.id) != done.end();
+        for (const auto& t : current.tasks)
+          all &= std::find(done.begin(), done.end(), t.id) != done.end();
         d.completed_tasks = std::move(done);
         if (all) {
           d.new_state = v1::MISSION_STATE_COMPLETED;
@@ -313,11 +366,12 @@ class Adapter final : public MissionEngine {
         break;
     }
     auto frame = FrameFor(spec);
-    const mission::Feedback f =
-        FeedbackFromProto(feedback, state.mission.current_version(), frame.ok() ? &*frame : nullptr);
+    const mission::Feedback f = FeedbackFromProto(feedback, state.mission.current_version(),
+                                                  frame.ok() ? &*frame : nullptr);
     // Tasks done so far (this report's included): a refuel still ahead is
     // "left" whatever its planned time (a late ship is past it on paper).
-    std::set<std::string> done(state.mission.completed_tasks().begin(), state.mission.completed_tasks().end());
+    std::set<std::string> done(state.mission.completed_tasks().begin(),
+                               state.mission.completed_tasks().end());
     if (feedback.kind() == v1::Feedback::KIND_TASK_COMPLETED) done.insert(feedback.task_id());
     if (auto reason = mission::DecideReplan(f, current, task, Policy(spec), &done)) {
       d.replan = true;
@@ -352,11 +406,13 @@ class Adapter final : public MissionEngine {
     }
 #else
     if (!spec.chart_id().empty()) {
-      SEAPLAN_ASSIGN_OR_RETURN(storage::ChartRecord record, charts_.Get(spec.chart_id(), /*with_blobs=*/false));
+      SEAPLAN_ASSIGN_OR_RETURN(storage::ChartRecord record,
+                               charts_.Get(spec.chart_id(), /*with_blobs=*/false));
       v1::ObstacleSummary summary;
       summary.ParseFromString(record.summary);
       int epsg = 0;
-      if (std::sscanf(summary.frame().c_str(), "EPSG:%d", &epsg) == 1) return chart::LocalFrame::FromEpsg(epsg);
+      if (std::sscanf(summary.frame().c_str(), "EPSG:%d", &epsg) == 1)
+        return chart::LocalFrame::FromEpsg(epsg);
     }
 #endif
     if (spec.locations_size() > 0) {
@@ -388,15 +444,17 @@ class Adapter final : public MissionEngine {
     auto map = LoadMap(charts_, spec.chart_id());
     if (!map.ok()) {
       if (absl::IsNotFound(map.status())) {
-        return absl::FailedPreconditionError(absl::StrCat("spec.chart_id: ", map.status().message()));
+        return absl::FailedPreconditionError(
+            absl::StrCat("spec.chart_id: ", map.status().message()));
       }
       return map.status();
     }
     route::RouteOptions options = OptionsToEngine(spec.route_options());
     auto planner = route::RoutePlanner::Create(*map, ShipToEngine(spec.ship()), options);
     if (!planner.ok()) {
-      return absl::Status(planner.status().code(),
-                          absl::StrCat("routing over chart '", spec.chart_id(), "': ", planner.status().message()));
+      return absl::Status(
+          planner.status().code(),
+          absl::StrCat("routing over chart '", spec.chart_id(), "': ", planner.status().message()));
     }
     auto routing = std::make_shared<ChartRouting>();
     routing->frame = (*map)->frame();
@@ -409,16 +467,18 @@ class Adapter final : public MissionEngine {
 
   // Plans a move over the chart; cached per (from, to) positions.
   static mission::RoutePlanner ChartRouter(std::shared_ptr<ChartRouting> shared, StopToken stop) {
-    return [routing = std::move(shared), stop](const mission::RouteRequest& req) -> StatusOr<mission::Route> {
-      const std::array<double, 4> key = {req.from_position.x_m, req.from_position.y_m, req.to_position.x_m,
-                                         req.to_position.y_m};
+    return [routing = std::move(shared),
+            stop](const mission::RouteRequest& req) -> StatusOr<mission::Route> {
+      const std::array<double, 4> key = {req.from_position.x_m, req.from_position.y_m,
+                                         req.to_position.x_m, req.to_position.y_m};
       {
         std::lock_guard lock(routing->mu);
         if (auto it = routing->routes.find(key); it != routing->routes.end()) return it->second;
       }
       if (stop.StopRequested()) {
-        return stop.Reason() == StopReason::kDeadline ? absl::DeadlineExceededError("routing stopped: deadline")
-                                                      : absl::CancelledError("routing stopped");
+        return stop.Reason() == StopReason::kDeadline
+                   ? absl::DeadlineExceededError("routing stopped: deadline")
+                   : absl::CancelledError("routing stopped");
       }
       const chart::LocalPoint from{req.from_position.x_m, req.from_position.y_m};
       chart::LocalPoint start = from;
@@ -426,15 +486,17 @@ class Adapter final : public MissionEngine {
       if (routing->planner->field().Inside({from.x_m, from.y_m})) {
         std::optional<chart::LocalPoint> out = ShortestWayOut(routing->planner->field(), from);
         if (!out) {
-          return absl::FailedPreconditionError(absl::StrCat("start (", from.x_m, ", ", from.y_m,
-                                                            ") lies inside a grounding obstacle with no free water "
-                                                            "within ", kMaxWayOutM, " m"));
+          return absl::FailedPreconditionError(
+              absl::StrCat("start (", from.x_m, ", ", from.y_m,
+                           ") lies inside a grounding obstacle with no free water "
+                           "within ",
+                           kMaxWayOutM, " m"));
         }
         start = *out;
         way_out = true;
       }
-      auto result = routing->planner->Plan(start, chart::LocalPoint{req.to_position.x_m, req.to_position.y_m},
-                                           routing->env, stop);
+      auto result = routing->planner->Plan(
+          start, chart::LocalPoint{req.to_position.x_m, req.to_position.y_m}, routing->env, stop);
       if (!result.ok()) {
         if (absl::IsInvalidArgument(result.status())) {
           // A location outside the chart or inside an obstacle: the mission
@@ -444,8 +506,9 @@ class Adapter final : public MissionEngine {
         return result.status();
       }
       if (result->stopped) {
-        return stop.Reason() == StopReason::kDeadline ? absl::DeadlineExceededError("routing stopped: deadline")
-                                                      : absl::CancelledError("routing stopped");
+        return stop.Reason() == StopReason::kDeadline
+                   ? absl::DeadlineExceededError("routing stopped: deadline")
+                   : absl::CancelledError("routing stopped");
       }
       if (result->chosen < 0 || result->chosen >= static_cast<int>(result->alternatives.size()) ||
           !result->alternatives[static_cast<size_t>(result->chosen)].safe) {
@@ -454,8 +517,10 @@ class Adapter final : public MissionEngine {
       mission::Route r = RouteFromEngine(*result);
       if (way_out) {
         PrependWayOut(from, &r);
-        log::Info("route from ({:.0f}, {:.0f}) inside the buffered obstacles leaves them at ({:.0f}, {:.0f})",
-                  from.x_m, from.y_m, start.x_m, start.y_m);
+        log::Info(
+            "route from ({:.0f}, {:.0f}) inside the buffered obstacles leaves them at ({:.0f}, "
+            "{:.0f})",
+            from.x_m, from.y_m, start.x_m, start.y_m);
       }
       std::lock_guard lock(routing->mu);
       if (routing->routes.size() >= kMaxCachedRoutes) routing->routes.clear();
@@ -465,7 +530,8 @@ class Adapter final : public MissionEngine {
   }
 #endif
 
-  absl::StatusOr<Context> MakeContext(const v1::MissionSpec& spec, const std::string& locations_state,
+  absl::StatusOr<Context> MakeContext(const v1::MissionSpec& spec,
+                                      const std::string& locations_state,
                                       const StopToken& route_stop, bool replan) {
     Context c;
     SEAPLAN_ASSIGN_OR_RETURN(c.frame, FrameFor(spec));
@@ -474,18 +540,22 @@ class Adapter final : public MissionEngine {
     def.problem = spec.problem();
     if (locations_state.empty()) {
       for (const auto& l : spec.locations()) {
-        const chart::LocalPoint p = c.frame.ToLocal({l.position().latitude_deg(), l.position().longitude_deg()});
+        const chart::LocalPoint p =
+            c.frame.ToLocal({l.position().latitude_deg(), l.position().longitude_deg()});
         def.locations[l.name()] = {p.x_m, p.y_m};
       }
     } else {
       auto decoded = mission::DecodeEngineState(locations_state);
       if (!decoded.ok()) {
-        return absl::DataLossError(absl::StrCat("stored engine state is unreadable: ", decoded.status().message()));
+        return absl::DataLossError(
+            absl::StrCat("stored engine state is unreadable: ", decoded.status().message()));
       }
       def.locations = std::move(*decoded);
     }
-    for (const auto& op : spec.port_operations()) def.refine.port_operation_durations_s[op.action()] = op.duration_s();
-    if (spec.planner_options().epsilon_s() > 0) def.refine.epsilon_s = spec.planner_options().epsilon_s();
+    for (const auto& op : spec.port_operations())
+      def.refine.port_operation_durations_s[op.action()] = op.duration_s();
+    if (spec.planner_options().epsilon_s() > 0)
+      def.refine.epsilon_s = spec.planner_options().epsilon_s();
     def.regeneration.ship_object = spec.ship_object();
     def.policy = Policy(spec);
     def.regeneration.fuel_threshold_fraction = def.policy.fuel_threshold_fraction;
@@ -493,7 +563,8 @@ class Adapter final : public MissionEngine {
     search::PlannerOptions options;
     const v1::PlannerOptions& o = spec.planner_options();
     if (o.has_time_limit()) {
-      SEAPLAN_ASSIGN_OR_RETURN(double s, DurationSeconds(o.time_limit(), "spec.planner_options.time_limit"));
+      SEAPLAN_ASSIGN_OR_RETURN(double s,
+                               DurationSeconds(o.time_limit(), "spec.planner_options.time_limit"));
       if (s > 0) options.time_limit_s = s;
     }
     if (o.memory_limit_mb() > 0) options.memory_limit_mb = o.memory_limit_mb();
@@ -517,9 +588,9 @@ class Adapter final : public MissionEngine {
         r = search::Solve(domain, problem, first, stop);
         if (r.status == search::PlanStatus::kSolvedSatisficing && !stop.StopRequested()) {
           search::PlannerOptions improve = options;
-          improve.time_limit_s =
-              std::min(options.time_limit_s, std::clamp(2.0 * r.stats.search_time_s, kReplanImproveMinS,
-                                                         kReplanImproveMaxS));
+          improve.time_limit_s = std::min(
+              options.time_limit_s,
+              std::clamp(2.0 * r.stats.search_time_s, kReplanImproveMinS, kReplanImproveMaxS));
           search::PlanResult better = search::Solve(domain, problem, improve, stop);
           const bool solved = better.status == search::PlanStatus::kSolvedSatisficing ||
                               better.status == search::PlanStatus::kSolvedOptimally;
@@ -530,13 +601,15 @@ class Adapter final : public MissionEngine {
       }
       if (r.status == search::PlanStatus::kError) return absl::InvalidArgumentError(r.message);
       mission::PlannerOutcome out;
-      out.solved = r.status == search::PlanStatus::kSolvedSatisficing || r.status == search::PlanStatus::kSolvedOptimally;
+      out.solved = r.status == search::PlanStatus::kSolvedSatisficing ||
+                   r.status == search::PlanStatus::kSolvedOptimally;
       out.plan = std::move(r.plan);
       out.status = search::ToString(r.status);
       return out;
     };
     if (spec.chart_id().empty()) {
-      const double speed = spec.ship().service_speed_mps() > 0 ? spec.ship().service_speed_mps() : kDefaultServiceSpeedMps;
+      const double speed = spec.ship().service_speed_mps() > 0 ? spec.ship().service_speed_mps()
+                                                               : kDefaultServiceSpeedMps;
       c.router = mission::StraightLineRouter(speed);
     } else {
 #if SEAPLAN_SERVER_HAS_ROUTE
@@ -545,14 +618,16 @@ class Adapter final : public MissionEngine {
 #else
       (void)route_stop;
       return absl::UnimplementedError(
-          "missions with a chart_id: this server is built without engine/route; leave chart_id empty for "
+          "missions with a chart_id: this server is built without engine/route; leave chart_id "
+          "empty for "
           "straight-line legs");
 #endif
     }
     return c;
   }
 
-  PlannedVersion ToPlanned(const mission::PlanVersion& v, const Context& c, const mission::LocationTable& locations,
+  PlannedVersion ToPlanned(const mission::PlanVersion& v, const Context& c,
+                           const mission::LocationTable& locations,
                            const mission::NavigationLog& log) {
     PlannedVersion out;
     v1::PlanVersion& p = out.version;
@@ -648,7 +723,9 @@ std::shared_ptr<MissionEngine> MakeMissionEngine(storage::ChartRepository& chart
 #else
 
 namespace seaplan::server {
-std::shared_ptr<MissionEngine> MakeMissionEngine(storage::ChartRepository&) { return nullptr; }
+std::shared_ptr<MissionEngine> MakeMissionEngine(storage::ChartRepository&) {
+  return nullptr;
+}
 }  // namespace seaplan::server
 
 #endif

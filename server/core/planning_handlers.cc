@@ -29,7 +29,8 @@ absl::Status CheckPddlInputs(const std::string& domain, const std::string& probl
 #if SEAPLAN_SERVER_HAS_VALIDATE
 bool HasInputErrors(const std::vector<pddl::Diagnostic>& diagnostics) {
   for (const auto& d : diagnostics) {
-    if (d.severity == pddl::Severity::kError && d.kind != pddl::DiagnosticKind::kUnsupported) return true;
+    if (d.severity == pddl::Severity::kError && d.kind != pddl::DiagnosticKind::kUnsupported)
+      return true;
   }
   return false;
 }
@@ -43,8 +44,8 @@ absl::Status MalformedPddl(const task::LoadResult& loaded) {
     if (errors++ == 0) first = d.ToString();
   }
   return WithDiagnostics(
-      absl::InvalidArgumentError(absl::StrCat("malformed PDDL (", errors, errors == 1 ? " error): " : " errors), first: ",
-                                 first)),
+      absl::InvalidArgumentError(absl::StrCat(
+          "malformed PDDL (", errors, errors == 1 ? " error): " : " errors), first: ", first)),
       ToProto(loaded.diagnostics));
 }
 
@@ -87,14 +88,22 @@ absl::StatusOr<search::PlannerOptions> ToEngine(const v1::PlannerOptions& o) {
 
 v1::PlanStatus StatusToProto(search::PlanStatus s) {
   switch (s) {
-    case search::PlanStatus::kSolvedSatisficing: return v1::SOLVED_SATISFICING;
-    case search::PlanStatus::kSolvedOptimally: return v1::SOLVED_OPTIMALLY;
-    case search::PlanStatus::kUnsolvableProven: return v1::UNSOLVABLE_PROVEN;
-    case search::PlanStatus::kTimeout: return v1::TIMEOUT;
-    case search::PlanStatus::kMemout: return v1::MEMOUT;
-    case search::PlanStatus::kUnsupported: return v1::UNSUPPORTED;
-    case search::PlanStatus::kCancelled: return v1::CANCELLED;
-    case search::PlanStatus::kError: return v1::PLAN_STATUS_UNSPECIFIED;
+    case search::PlanStatus::kSolvedSatisficing:
+      return v1::SOLVED_SATISFICING;
+    case search::PlanStatus::kSolvedOptimally:
+      return v1::SOLVED_OPTIMALLY;
+    case search::PlanStatus::kUnsolvableProven:
+      return v1::UNSOLVABLE_PROVEN;
+    case search::PlanStatus::kTimeout:
+      return v1::TIMEOUT;
+    case search::PlanStatus::kMemout:
+      return v1::MEMOUT;
+    case search::PlanStatus::kUnsupported:
+      return v1::UNSUPPORTED;
+    case search::PlanStatus::kCancelled:
+      return v1::CANCELLED;
+    case search::PlanStatus::kError:
+      return v1::PLAN_STATUS_UNSPECIFIED;
   }
   return v1::PLAN_STATUS_UNSPECIFIED;
 }
@@ -121,7 +130,10 @@ void FillPlan(const search::PlanResult& r, v1::PlanResponse* out) {
     for (const auto& arg : step.args) a->add_arguments(arg);
   }
   out->set_makespan_s(r.makespan_s);
-  if (r.metric_value) out->set_metric_value(*r.metric_value); else out->clear_metric_value();
+  if (r.metric_value)
+    out->set_metric_value(*r.metric_value);
+  else
+    out->clear_metric_value();
   StatsToProto(r.stats, out->mutable_statistics());
   out->set_plan_text(r.plan.steps.empty() ? std::string() : validate::FormatPlan(r.plan));
   out->set_message(r.message);
@@ -133,8 +145,8 @@ struct PlanRun {
   v1::PlanResponse response;
 };
 
-PlanRun RunPlanner(const v1::PlanRequest& request, const search::PlannerOptions& options, const StopToken& stop,
-                   const search::PlanObserver* observer) {
+PlanRun RunPlanner(const v1::PlanRequest& request, const search::PlannerOptions& options,
+                   const StopToken& stop, const search::PlanObserver* observer) {
   PlanRun run;
   task::LoadResult loaded = task::LoadTask(request.domain(), request.problem());
   v1::SearchStatistics* stats = run.response.mutable_statistics();
@@ -168,7 +180,8 @@ PlanRun RunPlanner(const v1::PlanRequest& request, const search::PlannerOptions&
 
 }  // namespace
 
-absl::StatusOr<v1::PlanResponse> PlanningHandlers::Plan(const v1::PlanRequest& request, const CallContext& ctx) {
+absl::StatusOr<v1::PlanResponse> PlanningHandlers::Plan(const v1::PlanRequest& request,
+                                                        const CallContext& ctx) {
   SEAPLAN_RETURN_IF_ERROR(CheckPddlInputs(request.domain(), request.problem()));
 #if SEAPLAN_SERVER_HAS_SEARCH
   SEAPLAN_ASSIGN_OR_RETURN(search::PlannerOptions options, ToEngine(request.options()));
@@ -181,7 +194,8 @@ absl::StatusOr<v1::PlanResponse> PlanningHandlers::Plan(const v1::PlanRequest& r
 #else
   (void)ctx;
   return absl::UnimplementedError(
-      "PlanningService.Plan: the temporal planner (engine/search, seaplan_search) is not built into this server yet");
+      "PlanningService.Plan: the temporal planner (engine/search, seaplan_search) is not built "
+      "into this server yet");
 #endif
 }
 
@@ -226,7 +240,8 @@ absl::Status PlanningHandlers::PlanStream(const v1::PlanRequest& request, const 
     }
   };
   PlanRun run;
-  SEAPLAN_RETURN_IF_ERROR(pool_.Run([&] { run = RunPlanner(request, options, ctx.stop, &observer); }, drain));
+  SEAPLAN_RETURN_IF_ERROR(
+      pool_.Run([&] { run = RunPlanner(request, options, ctx.stop, &observer); }, drain));
   if (ctx.stop.StopRequested()) return StopStatus(ctx.stop, root_.StopRequested(), "planning");
   if (!run.status.ok()) return run.status;
   v1::PlanStreamEvent final_event;
@@ -237,7 +252,8 @@ absl::Status PlanningHandlers::PlanStream(const v1::PlanRequest& request, const 
   (void)ctx;
   (void)sink;
   return absl::UnimplementedError(
-      "PlanningService.PlanStream: the temporal planner (engine/search, seaplan_search) is not built into this "
+      "PlanningService.PlanStream: the temporal planner (engine/search, seaplan_search) is not "
+      "built into this "
       "server yet");
 #endif
 }
@@ -265,7 +281,8 @@ absl::StatusOr<v1::ValidateResponse> PlanningHandlers::Validate(const v1::Valida
         }
         if (!loaded.ok()) {
           status = WithDiagnostics(
-              absl::UnimplementedError(absl::StrCat("the input uses PDDL seaplan does not support: ", loaded.ErrorText())),
+              absl::UnimplementedError(absl::StrCat(
+                  "the input uses PDDL seaplan does not support: ", loaded.ErrorText())),
               ToProto(loaded.diagnostics));
           return;
         }
@@ -283,7 +300,8 @@ absl::StatusOr<v1::ValidateResponse> PlanningHandlers::Validate(const v1::Valida
           f->set_step_index(r.first_failure->step_index);
           f->set_action(r.first_failure->action);
           f->set_condition(r.first_failure->condition);
-          f->set_reason(absl::StrCat(validate::KindName(r.first_failure->kind), ": ", r.first_failure->reason));
+          f->set_reason(absl::StrCat(validate::KindName(r.first_failure->kind), ": ",
+                                     r.first_failure->reason));
         }
       },
       [&] { ctx.ForwardCancellation(); }));
@@ -292,7 +310,8 @@ absl::StatusOr<v1::ValidateResponse> PlanningHandlers::Validate(const v1::Valida
 #else
   (void)ctx;
   return absl::UnimplementedError(
-      "PlanningService.Validate: the plan validator (engine/validate, seaplan_validate) is not built into this "
+      "PlanningService.Validate: the plan validator (engine/validate, seaplan_validate) is not "
+      "built into this "
       "server yet");
 #endif
 }

@@ -26,7 +26,8 @@ class PlanningHandlers {
   // (unless an error status is returned instead).
   absl::Status PlanStream(const v1::PlanRequest& request, const CallContext& ctx,
                           const StreamSink<v1::PlanStreamEvent>& sink);
-  absl::StatusOr<v1::ValidateResponse> Validate(const v1::ValidateRequest& request, const CallContext& ctx);
+  absl::StatusOr<v1::ValidateResponse> Validate(const v1::ValidateRequest& request,
+                                                const CallContext& ctx);
 
  private:
   WorkPool& pool_;

@@ -22,19 +22,26 @@ namespace {
 #if SEAPLAN_SERVER_ROUTES
 v1::MsoMode ModeToProto(route::MsoMode m) {
   switch (m) {
-    case route::MsoMode::kPto: return v1::MSO_MODE_PTO;
-    case route::MsoMode::kMec: return v1::MSO_MODE_MEC;
-    case route::MsoMode::kPti: return v1::MSO_MODE_PTI;
+    case route::MsoMode::kPto:
+      return v1::MSO_MODE_PTO;
+    case route::MsoMode::kMec:
+      return v1::MSO_MODE_MEC;
+    case route::MsoMode::kPti:
+      return v1::MSO_MODE_PTI;
   }
   return v1::MSO_MODE_UNSPECIFIED;
 }
 
 std::optional<route::MsoMode> ModeFromProto(v1::MsoMode m) {
   switch (m) {
-    case v1::MSO_MODE_PTO: return route::MsoMode::kPto;
-    case v1::MSO_MODE_MEC: return route::MsoMode::kMec;
-    case v1::MSO_MODE_PTI: return route::MsoMode::kPti;
-    default: return std::nullopt;
+    case v1::MSO_MODE_PTO:
+      return route::MsoMode::kPto;
+    case v1::MSO_MODE_MEC:
+      return route::MsoMode::kMec;
+    case v1::MSO_MODE_PTI:
+      return route::MsoMode::kPti;
+    default:
+      return std::nullopt;
   }
 }
 
@@ -92,7 +99,8 @@ route::RouteOptions OptionsToEngine(const v1::OptimizerOptions& o) {
 
 namespace {
 
-v1::RouteAlternative AlternativeToProto(const route::RouteAlternative& a, int index, double horizon_s) {
+v1::RouteAlternative AlternativeToProto(const route::RouteAlternative& a, int index,
+                                        double horizon_s) {
   v1::RouteAlternative out;
   out.set_index(index);
   double distance = 0, eta = 0, max_p = 0;
@@ -144,8 +152,8 @@ absl::StatusOr<std::shared_ptr<const chart::ObstacleMap>> LoadMap(storage::Chart
   SEAPLAN_ASSIGN_OR_RETURN(storage::ChartRecord record, charts.Get(id, /*with_blobs=*/true));
   auto map = chart::DeserializeObstacleMap(record.obstacles);
   if (!map.ok()) {
-    return absl::DataLossError(absl::StrCat("stored obstacles of chart '", id, "' are unreadable: ",
-                                            map.status().message()));
+    return absl::DataLossError(absl::StrCat("stored obstacles of chart '", id,
+                                            "' are unreadable: ", map.status().message()));
   }
   return std::make_shared<const chart::ObstacleMap>(std::move(*map));
 }
@@ -154,10 +162,10 @@ namespace {
 #endif
 
 absl::Status CheckLatLon(const v1::LatLon& p, const char* field) {
-  if (!std::isfinite(p.latitude_deg()) || !std::isfinite(p.longitude_deg()) || std::abs(p.latitude_deg()) > 90 ||
-      std::abs(p.longitude_deg()) > 180) {
-    return absl::InvalidArgumentError(absl::StrCat(field, ": not a WGS84 position (", p.latitude_deg(), ", ",
-                                                   p.longitude_deg(), ")"));
+  if (!std::isfinite(p.latitude_deg()) || !std::isfinite(p.longitude_deg()) ||
+      std::abs(p.latitude_deg()) > 90 || std::abs(p.longitude_deg()) > 180) {
+    return absl::InvalidArgumentError(absl::StrCat(field, ": not a WGS84 position (",
+                                                   p.latitude_deg(), ", ", p.longitude_deg(), ")"));
   }
   return absl::OkStatus();
 }
@@ -174,12 +182,16 @@ absl::StatusOr<v1::PlanRouteResponse> RouteHandlers::PlanRoute(const v1::PlanRou
   route::RouteOptions options = OptionsToEngine(request.options());
   route::ShipParticulars ship = ShipToEngine(request.ship());
   route::Environment env = EnvironmentToEngine(request.environment());
-  if (absl::Status st = options.Validate(); !st.ok()) return absl::InvalidArgumentError(absl::StrCat("options: ", st.message()));
-  if (absl::Status st = ship.Validate(); !st.ok()) return absl::InvalidArgumentError(absl::StrCat("ship: ", st.message()));
-  if (absl::Status st = env.Validate(); !st.ok()) return absl::InvalidArgumentError(absl::StrCat("environment: ", st.message()));
+  if (absl::Status st = options.Validate(); !st.ok())
+    return absl::InvalidArgumentError(absl::StrCat("options: ", st.message()));
+  if (absl::Status st = ship.Validate(); !st.ok())
+    return absl::InvalidArgumentError(absl::StrCat("ship: ", st.message()));
+  if (absl::Status st = env.Validate(); !st.ok())
+    return absl::InvalidArgumentError(absl::StrCat("environment: ", st.message()));
   double time_limit_s = 30.0;  // documented default of OptimizerOptions.time_limit
   if (request.options().has_time_limit()) {
-    SEAPLAN_ASSIGN_OR_RETURN(double s, DurationSeconds(request.options().time_limit(), "options.time_limit"));
+    SEAPLAN_ASSIGN_OR_RETURN(double s,
+                             DurationSeconds(request.options().time_limit(), "options.time_limit"));
     if (s > 0) time_limit_s = s;
   }
   // The optimiser's own budget is a child of the call's token: the client's
@@ -191,14 +203,17 @@ absl::StatusOr<v1::PlanRouteResponse> RouteHandlers::PlanRoute(const v1::PlanRou
   const chart::LatLon goal{request.goal().latitude_deg(), request.goal().longitude_deg()};
   absl::StatusOr<route::RouteResult> result = absl::UnknownError("route planner did not run");
   const auto started = std::chrono::steady_clock::now();
-  SEAPLAN_RETURN_IF_ERROR(pool_.Run([&] { result = route::PlanRoute(*map, start, goal, ship, env, options, budget); },
-                                    [&] { ctx.ForwardCancellation(); }));
-  if (ctx.stop.StopRequested()) return StopStatus(ctx.stop, root_.StopRequested(), "route planning");
+  SEAPLAN_RETURN_IF_ERROR(
+      pool_.Run([&] { result = route::PlanRoute(*map, start, goal, ship, env, options, budget); },
+                [&] { ctx.ForwardCancellation(); }));
+  if (ctx.stop.StopRequested())
+    return StopStatus(ctx.stop, root_.StopRequested(), "route planning");
   if (!result.ok()) return result.status();
   v1::PlanRouteResponse response;
   const double horizon = options.level2.ttg_horizon_s;
   for (std::size_t i = 0; i < result->alternatives.size(); ++i) {
-    *response.add_alternatives() = AlternativeToProto(result->alternatives[i], static_cast<int>(i), horizon);
+    *response.add_alternatives() =
+        AlternativeToProto(result->alternatives[i], static_cast<int>(i), horizon);
   }
   response.set_chosen_alternative(result->chosen);
   if (result->chosen >= 0 && result->chosen < response.alternatives_size()) {
@@ -210,31 +225,36 @@ absl::StatusOr<v1::PlanRouteResponse> RouteHandlers::PlanRoute(const v1::PlanRou
     std::vector<chart::NamedRoute> routes;
     for (std::size_t i = 0; i < result->alternatives.size(); ++i) {
       chart::NamedRoute named;
-      named.name = absl::StrCat("alternative ", i, static_cast<int>(i) == result->chosen ? " (chosen)" : "");
-      for (const auto& waypoint : result->alternatives[i].waypoints) named.waypoints.push_back(waypoint.local);
+      named.name =
+          absl::StrCat("alternative ", i, static_cast<int>(i) == result->chosen ? " (chosen)" : "");
+      for (const auto& waypoint : result->alternatives[i].waypoints)
+        named.waypoints.push_back(waypoint.local);
       routes.push_back(std::move(named));
     }
     response.set_obstacles_geojson(chart::ToGeoJson(*map, routes));
   }
-  response.set_computation_time_s(std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count());
+  response.set_computation_time_s(
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count());
   return response;
 #else
   SEAPLAN_RETURN_IF_ERROR(charts_.Get(request.chart_id(), /*with_blobs=*/false).status());
   (void)ctx;
   return absl::UnimplementedError(
-      "RouteService.PlanRoute: the route planner (engine/route + engine/chart) is not built into this server yet");
+      "RouteService.PlanRoute: the route planner (engine/route + engine/chart) is not built into "
+      "this server yet");
 #endif
 }
 
-absl::StatusOr<v1::EstimateRiskResponse> RouteHandlers::EstimateRisk(const v1::EstimateRiskRequest& request,
-                                                                     const CallContext& ctx) {
+absl::StatusOr<v1::EstimateRiskResponse> RouteHandlers::EstimateRisk(
+    const v1::EstimateRiskRequest& request, const CallContext& ctx) {
   if (request.chart_id().empty()) return absl::InvalidArgumentError("chart_id is empty");
   if (request.track_size() == 0) return absl::InvalidArgumentError("track: no track point");
   for (int i = 0; i < request.track_size(); ++i) {
     SEAPLAN_RETURN_IF_ERROR(CheckLatLon(request.track(i).position(), "track[].position"));
   }
 #if SEAPLAN_SERVER_ROUTES
-  if (request.ttg_horizon_s() < 0) return absl::InvalidArgumentError("ttg_horizon_s must not be negative");
+  if (request.ttg_horizon_s() < 0)
+    return absl::InvalidArgumentError("ttg_horizon_s must not be negative");
   SEAPLAN_ASSIGN_OR_RETURN(auto map, LoadMap(charts_, request.chart_id()));
   route::RouteOptions options;
   if (request.ttg_horizon_s() > 0) options.level2.ttg_horizon_s = request.ttg_horizon_s();
@@ -249,10 +269,13 @@ absl::StatusOr<v1::EstimateRiskResponse> RouteHandlers::EstimateRisk(const v1::E
     t.mode = ModeFromProto(p.mode());
     track.push_back(t);
   }
-  absl::StatusOr<std::vector<route::PointRisk>> risks = absl::UnknownError("risk estimation did not run");
-  SEAPLAN_RETURN_IF_ERROR(pool_.Run([&] { risks = route::EstimateRisk(*map, track, ship, env, options); },
-                                    [&] { ctx.ForwardCancellation(); }));
-  if (ctx.stop.StopRequested()) return StopStatus(ctx.stop, root_.StopRequested(), "risk estimation");
+  absl::StatusOr<std::vector<route::PointRisk>> risks =
+      absl::UnknownError("risk estimation did not run");
+  SEAPLAN_RETURN_IF_ERROR(
+      pool_.Run([&] { risks = route::EstimateRisk(*map, track, ship, env, options); },
+                [&] { ctx.ForwardCancellation(); }));
+  if (ctx.stop.StopRequested())
+    return StopStatus(ctx.stop, root_.StopRequested(), "risk estimation");
   if (!risks.ok()) return risks.status();
   v1::EstimateRiskResponse response;
   double total = 0, max_p = 0;
@@ -278,7 +301,8 @@ absl::StatusOr<v1::EstimateRiskResponse> RouteHandlers::EstimateRisk(const v1::E
   SEAPLAN_RETURN_IF_ERROR(charts_.Get(request.chart_id(), /*with_blobs=*/false).status());
   (void)ctx;
   return absl::UnimplementedError(
-      "RouteService.EstimateRisk: the grounding-risk estimator (engine/route + engine/chart) is not built into this "
+      "RouteService.EstimateRisk: the grounding-risk estimator (engine/route + engine/chart) is "
+      "not built into this "
       "server yet");
 #endif
 }

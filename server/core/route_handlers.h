@@ -14,7 +14,8 @@ class RouteHandlers {
   RouteHandlers(storage::ChartRepository& charts, WorkPool& pool, StopToken root)
       : charts_(charts), pool_(pool), root_(std::move(root)) {}
 
-  absl::StatusOr<v1::PlanRouteResponse> PlanRoute(const v1::PlanRouteRequest& request, const CallContext& ctx);
+  absl::StatusOr<v1::PlanRouteResponse> PlanRoute(const v1::PlanRouteRequest& request,
+                                                  const CallContext& ctx);
   absl::StatusOr<v1::EstimateRiskResponse> EstimateRisk(const v1::EstimateRiskRequest& request,
                                                         const CallContext& ctx);
 

@@ -7,7 +7,9 @@ namespace seaplan::server {
 
 std::string BuiltEngines() {
   std::string out;
-  [[maybe_unused]] auto add = [&](const char* name) { absl::StrAppend(&out, out.empty() ? "" : ",", name); };
+  [[maybe_unused]] auto add = [&](const char* name) {
+    absl::StrAppend(&out, out.empty() ? "" : ",", name);
+  };
 #if SEAPLAN_SERVER_HAS_VALIDATE
   add("validate");
 #endif
@@ -34,16 +36,22 @@ ServiceCore::ServiceCore(storage::Store& store, const CoreOptions& options,
       routes_(store.charts(), pool_, root_),
       missions_(store.missions(), pool_, root_, std::move(mission_engine), options.missions) {}
 
-ServiceCore::~ServiceCore() { Stop(); }
+ServiceCore::~ServiceCore() {
+  Stop();
+}
 
 CallContext ServiceCore::NewCall(std::string transport, StopToken::Clock::time_point deadline,
                                  std::function<bool()> client_gone) const {
   return CallContext{std::move(transport), root_.Child(deadline), std::move(client_gone)};
 }
 
-void ServiceCore::CloseStreams() { missions_.notifier().Close(); }
+void ServiceCore::CloseStreams() {
+  missions_.notifier().Close();
+}
 
-void ServiceCore::CancelAllWork() { root_.Cancel(); }
+void ServiceCore::CancelAllWork() {
+  root_.Cancel();
+}
 
 void ServiceCore::Stop() {
   CloseStreams();
@@ -54,13 +62,15 @@ void ServiceCore::Stop() {
 
 void LogCall(const std::string& transport, const std::string& method, const absl::Status& status,
              StopToken::Clock::time_point started) {
-  const double ms = std::chrono::duration<double, std::milli>(StopToken::Clock::now() - started).count();
+  const double ms =
+      std::chrono::duration<double, std::milli>(StopToken::Clock::now() - started).count();
   const std::string code = absl::StatusCodeToString(status.code());
   if (status.ok()) {
-    log::Info("request transport={} method={} code={} latency_ms={:.1f}", transport, method, code, ms);
+    log::Info("request transport={} method={} code={} latency_ms={:.1f}", transport, method, code,
+              ms);
   } else {
-    log::Info("request transport={} method={} code={} latency_ms={:.1f} error=\"{}\"", transport, method, code, ms,
-              std::string(status.message()));
+    log::Info("request transport={} method={} code={} latency_ms={:.1f} error=\"{}\"", transport,
+              method, code, ms, std::string(status.message()));
   }
 }
 

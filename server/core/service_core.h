@@ -33,7 +33,8 @@ std::string BuiltEngines();
 class ServiceCore {
  public:
   // `store` must outlive the core. `mission_engine` may be null.
-  ServiceCore(storage::Store& store, const CoreOptions& options, std::shared_ptr<MissionEngine> mission_engine);
+  ServiceCore(storage::Store& store, const CoreOptions& options,
+              std::shared_ptr<MissionEngine> mission_engine);
   ~ServiceCore();
   ServiceCore(const ServiceCore&) = delete;
   ServiceCore& operator=(const ServiceCore&) = delete;

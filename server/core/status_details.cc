@@ -21,9 +21,11 @@ std::optional<v1::DiagnosticList> GetDiagnostics(const absl::Status& status) {
 }
 
 absl::Status StopStatus(const StopToken& stop, bool shutting_down, const std::string& what) {
-  if (shutting_down) return absl::UnavailableError(absl::StrCat(what, " stopped: the server is shutting down"));
+  if (shutting_down)
+    return absl::UnavailableError(absl::StrCat(what, " stopped: the server is shutting down"));
   if (stop.Reason() == StopReason::kDeadline) {
-    return absl::DeadlineExceededError(absl::StrCat(what, " stopped: the client's deadline was reached"));
+    return absl::DeadlineExceededError(
+        absl::StrCat(what, " stopped: the client's deadline was reached"));
   }
   return absl::CancelledError(absl::StrCat(what, " cancelled: the client went away"));
 }

@@ -1,7 +1,8 @@
+#include "server/grpc/status_mapping.h"
+
 #include <gtest/gtest.h>
 
 #include "server/core/status_details.h"
-#include "server/grpc/status_mapping.h"
 #include "server/http/status_mapping.h"
 
 namespace seaplan::server {
@@ -40,11 +41,14 @@ TEST(StatusMappingTest, DiagnosticsTravelThroughBothMappers) {
 
   const std::string json = ErrorJson(st);
   EXPECT_NE(json.find("\"code\":\"INVALID_ARGUMENT\""), std::string::npos) << json;
-  EXPECT_NE(json.find("\"@type\":\"type.googleapis.com/seaplan.v1.DiagnosticList\""), std::string::npos) << json;
+  EXPECT_NE(json.find("\"@type\":\"type.googleapis.com/seaplan.v1.DiagnosticList\""),
+            std::string::npos)
+      << json;
   EXPECT_NE(json.find("\"line\":12"), std::string::npos) << json;
   EXPECT_NE(json.find("undeclared \\\"predicate\\\""), std::string::npos) << json;
 
-  EXPECT_EQ(ErrorJson(absl::NotFoundError("x")), "{\"code\":\"NOT_FOUND\",\"message\":\"x\",\"details\":[]}");
+  EXPECT_EQ(ErrorJson(absl::NotFoundError("x")),
+            "{\"code\":\"NOT_FOUND\",\"message\":\"x\",\"details\":[]}");
   EXPECT_TRUE(ToGrpcStatus(absl::OkStatus()).ok());
 }
 

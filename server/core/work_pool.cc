@@ -10,7 +10,9 @@ WorkPool::WorkPool(int threads) {
   for (int i = 0; i < threads; ++i) threads_.emplace_back([this] { WorkerLoop(); });
 }
 
-WorkPool::~WorkPool() { Shutdown(); }
+WorkPool::~WorkPool() {
+  Shutdown();
+}
 
 int WorkPool::busy() const {
   std::lock_guard lock(mu_);
@@ -61,8 +63,8 @@ absl::Status WorkPool::Run(std::function<void()> work, const std::function<void(
     std::lock_guard lock(mu_);
     if (shutdown_) return absl::UnavailableError("server is shutting down");
     if (busy_ >= static_cast<int>(threads_.size())) {
-      return absl::ResourceExhaustedError(absl::StrCat("all ", threads_.size(),
-                                                       " planning workers are busy; retry later"));
+      return absl::ResourceExhaustedError(
+          absl::StrCat("all ", threads_.size(), " planning workers are busy; retry later"));
     }
     ++busy_;
     queue_.push_back(job);

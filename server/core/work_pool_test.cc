@@ -36,8 +36,8 @@ TEST(WorkPoolTest, RunsWorkAndRefusesWhenFull) {
 TEST(WorkPoolTest, TicksWhileWaitingAndRefusesAfterShutdown) {
   WorkPool pool(2);
   int ticks = 0;
-  ASSERT_TRUE(pool.Run([] { std::this_thread::sleep_for(std::chrono::milliseconds(60)); }, [&] { ++ticks; },
-                       std::chrono::milliseconds(5))
+  ASSERT_TRUE(pool.Run([] { std::this_thread::sleep_for(std::chrono::milliseconds(60)); },
+                       [&] { ++ticks; }, std::chrono::milliseconds(5))
                   .ok());
   EXPECT_GE(ticks, 3);
   pool.Shutdown();

@@ -11,7 +11,8 @@ StopToken::Clock::time_point Deadline(const grpc::ServerContext* ctx) {
   const auto now = std::chrono::system_clock::now();
   // No deadline is "infinite future"; treat anything beyond a year as none.
   if (deadline - now > std::chrono::hours(24 * 365)) return StopToken::Clock::time_point::max();
-  return StopToken::Clock::now() + std::chrono::duration_cast<StopToken::Clock::duration>(deadline - now);
+  return StopToken::Clock::now() +
+         std::chrono::duration_cast<StopToken::Clock::duration>(deadline - now);
 }
 
 CallContext MakeCall(ServiceCore& core, grpc::ServerContext* ctx) {
@@ -19,7 +20,8 @@ CallContext MakeCall(ServiceCore& core, grpc::ServerContext* ctx) {
 }
 
 template <typename Response, typename Fn>
-grpc::Status Unary(ServiceCore& core, const char* method, grpc::ServerContext* ctx, Response* out, Fn&& fn) {
+grpc::Status Unary(ServiceCore& core, const char* method, grpc::ServerContext* ctx, Response* out,
+                   Fn&& fn) {
   const auto started = StopToken::Clock::now();
   CallContext call = MakeCall(core, ctx);
   absl::StatusOr<Response> result = fn(call);
@@ -45,7 +47,8 @@ grpc::Status Stream(ServiceCore& core, const char* method, grpc::ServerContext* 
 class GrpcServices::Planning final : public v1::PlanningService::Service {
  public:
   explicit Planning(ServiceCore& core) : core_(core) {}
-  grpc::Status Plan(grpc::ServerContext* ctx, const v1::PlanRequest* req, v1::PlanResponse* resp) override {
+  grpc::Status Plan(grpc::ServerContext* ctx, const v1::PlanRequest* req,
+                    v1::PlanResponse* resp) override {
     return Unary(core_, "PlanningService/Plan", ctx, resp,
                  [&](const CallContext& c) { return core_.planning().Plan(*req, c); });
   }
@@ -115,7 +118,8 @@ class GrpcServices::Missions final : public v1::MissionService::Service {
     return Unary(core_, "MissionService/CreateMission", ctx, resp,
                  [&](const CallContext& c) { return core_.missions().CreateMission(*req, c); });
   }
-  grpc::Status GetMission(grpc::ServerContext* ctx, const v1::GetMissionRequest* req, v1::Mission* resp) override {
+  grpc::Status GetMission(grpc::ServerContext* ctx, const v1::GetMissionRequest* req,
+                          v1::Mission* resp) override {
     return Unary(core_, "MissionService/GetMission", ctx, resp,
                  [&](const CallContext& c) { return core_.missions().GetMission(*req, c); });
   }

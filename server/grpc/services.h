@@ -4,10 +4,10 @@
 // maps the status with ToGrpcStatus and logs one line.
 #pragma once
 
+#include <grpcpp/grpcpp.h>
+
 #include <memory>
 #include <vector>
-
-#include <grpcpp/grpcpp.h>
 
 #include "seaplan/v1/chart.grpc.pb.h"
 #include "seaplan/v1/mission.grpc.pb.h"

@@ -28,7 +28,8 @@ absl::Status ToJson(const google::protobuf::Message& message, std::string* out) 
   google::protobuf::util::JsonPrintOptions options;
   options.always_print_primitive_fields = true;
   auto st = google::protobuf::util::MessageToJsonString(message, out, options);
-  if (!st.ok()) return absl::InternalError(absl::StrCat("cannot print the response as JSON: ", st.ToString()));
+  if (!st.ok())
+    return absl::InternalError(absl::StrCat("cannot print the response as JSON: ", st.ToString()));
   return absl::OkStatus();
 }
 
@@ -38,9 +39,9 @@ absl::Status FromJson(const std::string& body, google::protobuf::Message* messag
   options.ignore_unknown_fields = false;
   auto st = google::protobuf::util::JsonStringToMessage(body, message, options);
   if (!st.ok()) {
-    return absl::InvalidArgumentError(
-        absl::StrCat("request body is not a valid ", message->GetDescriptor()->full_name(), " in JSON: ",
-                     std::string(st.message())));
+    return absl::InvalidArgumentError(absl::StrCat("request body is not a valid ",
+                                                   message->GetDescriptor()->full_name(),
+                                                   " in JSON: ", std::string(st.message())));
   }
   return absl::OkStatus();
 }
@@ -51,8 +52,8 @@ absl::StatusOr<StopToken::Clock::time_point> Deadline(const httplib::Request& re
   long long ms = 0;
   auto [end, ec] = std::from_chars(value.data(), value.data() + value.size(), ms);
   if (ec != std::errc() || end != value.data() + value.size() || ms <= 0) {
-    return absl::InvalidArgumentError(absl::StrCat(kTimeoutHeader, ": expected a positive number of ms, got '",
-                                                   value, "'"));
+    return absl::InvalidArgumentError(
+        absl::StrCat(kTimeoutHeader, ": expected a positive number of ms, got '", value, "'"));
   }
   return StopToken::Clock::now() + std::chrono::milliseconds(ms);
 }
@@ -84,11 +85,14 @@ absl::Status SplitHostPort(const std::string& address, std::string* host, int* p
     return absl::InvalidArgumentError(absl::StrCat("address '", address, "' is not host:port"));
   }
   *host = address.substr(0, colon);
-  if (host->size() >= 2 && host->front() == '[' && host->back() == ']') *host = host->substr(1, host->size() - 2);
+  if (host->size() >= 2 && host->front() == '[' && host->back() == ']')
+    *host = host->substr(1, host->size() - 2);
   const std::string port_text = address.substr(colon + 1);
   auto [end, ec] = std::from_chars(port_text.data(), port_text.data() + port_text.size(), *port);
-  if (ec != std::errc() || end != port_text.data() + port_text.size() || *port < 0 || *port > 65535) {
-    return absl::InvalidArgumentError(absl::StrCat("address '", address, "': bad port '", port_text, "'"));
+  if (ec != std::errc() || end != port_text.data() + port_text.size() || *port < 0 ||
+      *port > 65535) {
+    return absl::InvalidArgumentError(
+        absl::StrCat("address '", address, "': bad port '", port_text, "'"));
   }
   return absl::OkStatus();
 }
@@ -96,13 +100,17 @@ absl::Status SplitHostPort(const std::string& address, std::string* host, int* p
 HttpGateway::HttpGateway(ServiceCore& core, const Options& options)
     : core_(core), options_(options), server_(std::make_unique<httplib::Server>()) {
   const int threads = std::max(1, options_.threads);
-  server_->new_task_queue = [threads] { return new httplib::ThreadPool(static_cast<std::size_t>(threads)); };
+  server_->new_task_queue = [threads] {
+    return new httplib::ThreadPool(static_cast<std::size_t>(threads));
+  };
   server_->set_payload_max_length(options_.max_body_bytes);
   server_->set_keep_alive_timeout(5);
   RegisterRoutes();
 }
 
-HttpGateway::~HttpGateway() { Stop(); }
+HttpGateway::~HttpGateway() {
+  Stop();
+}
 
 absl::StatusOr<int> HttpGateway::Bind(const std::string& address) {
   std::string host;
@@ -135,130 +143,135 @@ void HttpGateway::RegisterRoutes() {
                    const std::string& method,
                    std::function<absl::StatusOr<Response>(const Request&, const CallContext&)> fn) {
     (void)this;
-    server_->Post("/v1/" + method, [&core, method, fn](const httplib::Request& hreq, httplib::Response& hres) {
-      const auto started = StopToken::Clock::now();
-      absl::Status status = [&]() -> absl::Status {
-        Request request;
-        SEAPLAN_RETURN_IF_ERROR(FromJson(hreq.body, &request));
-        SEAPLAN_ASSIGN_OR_RETURN(auto deadline, Deadline(hreq));
-        CallContext call = core.NewCall("http", deadline, nullptr);
-        SEAPLAN_ASSIGN_OR_RETURN(Response response, fn(request, call));
-        std::string json;
-        SEAPLAN_RETURN_IF_ERROR(ToJson(response, &json));
-        hres.status = 200;
-        hres.set_content(json, kJson);
-        return absl::OkStatus();
-      }();
-      if (!status.ok()) Reply(hres, status);
-      LogCall("http", method, status, started);
-    });
+    server_->Post("/v1/" + method,
+                  [&core, method, fn](const httplib::Request& hreq, httplib::Response& hres) {
+                    const auto started = StopToken::Clock::now();
+                    absl::Status status = [&]() -> absl::Status {
+                      Request request;
+                      SEAPLAN_RETURN_IF_ERROR(FromJson(hreq.body, &request));
+                      SEAPLAN_ASSIGN_OR_RETURN(auto deadline, Deadline(hreq));
+                      CallContext call = core.NewCall("http", deadline, nullptr);
+                      SEAPLAN_ASSIGN_OR_RETURN(Response response, fn(request, call));
+                      std::string json;
+                      SEAPLAN_RETURN_IF_ERROR(ToJson(response, &json));
+                      hres.status = 200;
+                      hres.set_content(json, kJson);
+                      return absl::OkStatus();
+                    }();
+                    if (!status.ok()) Reply(hres, status);
+                    LogCall("http", method, status, started);
+                  });
   };
 
-  auto stream = [this, &core]<typename Request, typename Event>(
-                    const std::string& method,
-                    std::function<absl::Status(const Request&, const CallContext&, const StreamSink<Event>&)> fn) {
-    (void)this;
-    server_->Post("/v1/" + method, [&core, method, fn](const httplib::Request& hreq, httplib::Response& hres) {
-      const auto started = StopToken::Clock::now();
-      auto request = std::make_shared<Request>();
-      absl::Status parsed = FromJson(hreq.body, request.get());
-      auto deadline = Deadline(hreq);
-      if (!parsed.ok() || !deadline.ok()) {
-        const absl::Status& st = parsed.ok() ? deadline.status() : parsed;
-        Reply(hres, st);
-        LogCall("http", method, st, started);
-        return;
-      }
-      auto state = std::make_shared<StreamState>();
-      state->method = method;
-      state->started = started;
-      state->call = core.NewCall("http", *deadline, [raw = state.get()] {
-        std::lock_guard lock(raw->mu);
-        return raw->client_gone;
-      });
-      // The worker holds only a raw pointer: the state outlives it (the
-      // state's destructor joins the worker).
-      state->worker = std::thread([raw = state.get(), request, fn] {
-        StreamSink<Event> sink = [raw](const Event& event) {
-          std::string json;
-          if (!ToJson(event, &json).ok()) return false;
-          std::lock_guard lock(raw->mu);
-          if (raw->client_gone) return false;
-          raw->lines.push_back(std::move(json) + "\n");
-          raw->cv.notify_all();
-          return true;
-        };
-        absl::Status st = fn(*request, raw->call, sink);
-        std::lock_guard lock(raw->mu);
-        raw->status = st;
-        raw->done = true;
-        raw->cv.notify_all();
-      });
-      // Errors before the first message get a proper HTTP status.
-      {
-        std::unique_lock lock(state->mu);
-        state->cv.wait(lock, [&] { return state->done || !state->lines.empty(); });
-        if (state->done && state->lines.empty() && !state->status.ok()) {
-          const absl::Status st = state->status;
-          lock.unlock();
-          state->worker.join();
-          Reply(hres, st);
-          LogCall("http", method, st, started);
-          return;
-        }
-      }
-      hres.status = 200;
-      hres.set_chunked_content_provider(
-          kNdjson,
-          [state](std::size_t, httplib::DataSink& sink) {
-            std::unique_lock lock(state->mu);
-            state->cv.wait_for(lock, std::chrono::milliseconds(100),
-                               [&] { return state->done || !state->lines.empty(); });
-            std::deque<std::string> batch;
-            batch.swap(state->lines);
-            const bool done = state->done;
-            const absl::Status status = state->status;
-            lock.unlock();
-            for (const auto& line : batch) {
-              if (!sink.is_writable() || !sink.write(line.data(), line.size())) {
-                std::lock_guard relock(state->mu);
-                state->client_gone = true;
-                state->call.stop.Cancel();
-                return false;
-              }
-            }
-            if (batch.empty() && !sink.is_writable()) {
-              std::lock_guard relock(state->mu);
-              state->client_gone = true;
-              state->call.stop.Cancel();
-              return false;
-            }
-            if (done) {
-              if (!status.ok()) {
-                const std::string line = "{\"error\":" + ErrorJson(status) + "}\n";
-                sink.write(line.data(), line.size());
-              }
-              sink.done();
-            }
-            return true;
-          },
-          [state](bool) {
-            {
-              std::lock_guard lock(state->mu);
-              if (!state->done) {
-                state->client_gone = true;
-                state->call.stop.Cancel();
-              }
-            }
-            if (state->worker.joinable()) state->worker.join();
-            LogCall("http", state->method, state->status, state->started);
+  auto stream =
+      [this, &core]<typename Request, typename Event>(
+          const std::string& method,
+          std::function<absl::Status(const Request&, const CallContext&, const StreamSink<Event>&)>
+              fn) {
+        (void)this;
+        server_->Post("/v1/" + method, [&core, method, fn](const httplib::Request& hreq,
+                                                           httplib::Response& hres) {
+          const auto started = StopToken::Clock::now();
+          auto request = std::make_shared<Request>();
+          absl::Status parsed = FromJson(hreq.body, request.get());
+          auto deadline = Deadline(hreq);
+          if (!parsed.ok() || !deadline.ok()) {
+            const absl::Status& st = parsed.ok() ? deadline.status() : parsed;
+            Reply(hres, st);
+            LogCall("http", method, st, started);
+            return;
+          }
+          auto state = std::make_shared<StreamState>();
+          state->method = method;
+          state->started = started;
+          state->call = core.NewCall("http", *deadline, [raw = state.get()] {
+            std::lock_guard lock(raw->mu);
+            return raw->client_gone;
           });
-    });
-  };
+          // The worker holds only a raw pointer: the state outlives it (the
+          // state's destructor joins the worker).
+          state->worker = std::thread([raw = state.get(), request, fn] {
+            StreamSink<Event> sink = [raw](const Event& event) {
+              std::string json;
+              if (!ToJson(event, &json).ok()) return false;
+              std::lock_guard lock(raw->mu);
+              if (raw->client_gone) return false;
+              raw->lines.push_back(std::move(json) + "\n");
+              raw->cv.notify_all();
+              return true;
+            };
+            absl::Status st = fn(*request, raw->call, sink);
+            std::lock_guard lock(raw->mu);
+            raw->status = st;
+            raw->done = true;
+            raw->cv.notify_all();
+          });
+          // Errors before the first message get a proper HTTP status.
+          {
+            std::unique_lock lock(state->mu);
+            state->cv.wait(lock, [&] { return state->done || !state->lines.empty(); });
+            if (state->done && state->lines.empty() && !state->status.ok()) {
+              const absl::Status st = state->status;
+              lock.unlock();
+              state->worker.join();
+              Reply(hres, st);
+              LogCall("http", method, st, started);
+              return;
+            }
+          }
+          hres.status = 200;
+          hres.set_chunked_content_provider(
+              kNdjson,
+              [state](std::size_t, httplib::DataSink& sink) {
+                std::unique_lock lock(state->mu);
+                state->cv.wait_for(lock, std::chrono::milliseconds(100),
+                                   [&] { return state->done || !state->lines.empty(); });
+                std::deque<std::string> batch;
+                batch.swap(state->lines);
+                const bool done = state->done;
+                const absl::Status status = state->status;
+                lock.unlock();
+                for (const auto& line : batch) {
+                  if (!sink.is_writable() || !sink.write(line.data(), line.size())) {
+                    std::lock_guard relock(state->mu);
+                    state->client_gone = true;
+                    state->call.stop.Cancel();
+                    return false;
+                  }
+                }
+                if (batch.empty() && !sink.is_writable()) {
+                  std::lock_guard relock(state->mu);
+                  state->client_gone = true;
+                  state->call.stop.Cancel();
+                  return false;
+                }
+                if (done) {
+                  if (!status.ok()) {
+                    const std::string line = "{\"error\":" + ErrorJson(status) + "}\n";
+                    sink.write(line.data(), line.size());
+                  }
+                  sink.done();
+                }
+                return true;
+              },
+              [state](bool) {
+                {
+                  std::lock_guard lock(state->mu);
+                  if (!state->done) {
+                    state->client_gone = true;
+                    state->call.stop.Cancel();
+                  }
+                }
+                if (state->worker.joinable()) state->worker.join();
+                LogCall("http", state->method, state->status, state->started);
+              });
+        });
+      };
 
   using R = CallContext;
   unary.operator()<v1::PlanRequest, v1::PlanResponse>(
-      "PlanningService/Plan", [&core](const v1::PlanRequest& r, const R& c) { return core.planning().Plan(r, c); });
+      "PlanningService/Plan",
+      [&core](const v1::PlanRequest& r, const R& c) { return core.planning().Plan(r, c); });
   stream.operator()<v1::PlanRequest, v1::PlanStreamEvent>(
       "PlanningService/PlanStream",
       [&core](const v1::PlanRequest& r, const R& c, const StreamSink<v1::PlanStreamEvent>& s) {
@@ -269,44 +282,54 @@ void HttpGateway::RegisterRoutes() {
       [&core](const v1::ValidateRequest& r, const R& c) { return core.planning().Validate(r, c); });
 
   unary.operator()<v1::UploadChartRequest, v1::UploadChartResponse>(
-      "ChartService/UploadChart",
-      [&core](const v1::UploadChartRequest& r, const R& c) { return core.charts().UploadChart(r, c); });
+      "ChartService/UploadChart", [&core](const v1::UploadChartRequest& r, const R& c) {
+        return core.charts().UploadChart(r, c);
+      });
   unary.operator()<v1::GetChartRequest, v1::GetChartResponse>(
-      "ChartService/GetChart", [&core](const v1::GetChartRequest& r, const R& c) { return core.charts().GetChart(r, c); });
+      "ChartService/GetChart",
+      [&core](const v1::GetChartRequest& r, const R& c) { return core.charts().GetChart(r, c); });
   unary.operator()<v1::ListChartsRequest, v1::ListChartsResponse>(
-      "ChartService/ListCharts",
-      [&core](const v1::ListChartsRequest& r, const R& c) { return core.charts().ListCharts(r, c); });
+      "ChartService/ListCharts", [&core](const v1::ListChartsRequest& r, const R& c) {
+        return core.charts().ListCharts(r, c);
+      });
 
   unary.operator()<v1::PlanRouteRequest, v1::PlanRouteResponse>(
       "RouteService/PlanRoute",
       [&core](const v1::PlanRouteRequest& r, const R& c) { return core.routes().PlanRoute(r, c); });
   unary.operator()<v1::EstimateRiskRequest, v1::EstimateRiskResponse>(
-      "RouteService/EstimateRisk",
-      [&core](const v1::EstimateRiskRequest& r, const R& c) { return core.routes().EstimateRisk(r, c); });
+      "RouteService/EstimateRisk", [&core](const v1::EstimateRiskRequest& r, const R& c) {
+        return core.routes().EstimateRisk(r, c);
+      });
 
   unary.operator()<v1::CreateMissionRequest, v1::Mission>(
-      "MissionService/CreateMission",
-      [&core](const v1::CreateMissionRequest& r, const R& c) { return core.missions().CreateMission(r, c); });
+      "MissionService/CreateMission", [&core](const v1::CreateMissionRequest& r, const R& c) {
+        return core.missions().CreateMission(r, c);
+      });
   unary.operator()<v1::GetMissionRequest, v1::Mission>(
-      "MissionService/GetMission",
-      [&core](const v1::GetMissionRequest& r, const R& c) { return core.missions().GetMission(r, c); });
+      "MissionService/GetMission", [&core](const v1::GetMissionRequest& r, const R& c) {
+        return core.missions().GetMission(r, c);
+      });
   unary.operator()<v1::ListMissionsRequest, v1::ListMissionsResponse>(
-      "MissionService/ListMissions",
-      [&core](const v1::ListMissionsRequest& r, const R& c) { return core.missions().ListMissions(r, c); });
+      "MissionService/ListMissions", [&core](const v1::ListMissionsRequest& r, const R& c) {
+        return core.missions().ListMissions(r, c);
+      });
   stream.operator()<v1::WatchMissionRequest, v1::MissionEvent>(
       "MissionService/WatchMission",
       [&core](const v1::WatchMissionRequest& r, const R& c, const StreamSink<v1::MissionEvent>& s) {
         return core.missions().WatchMission(r, c, s);
       });
   unary.operator()<v1::ReportFeedbackRequest, v1::ReportFeedbackResponse>(
-      "MissionService/ReportFeedback",
-      [&core](const v1::ReportFeedbackRequest& r, const R& c) { return core.missions().ReportFeedback(r, c); });
+      "MissionService/ReportFeedback", [&core](const v1::ReportFeedbackRequest& r, const R& c) {
+        return core.missions().ReportFeedback(r, c);
+      });
   unary.operator()<v1::RequestReplanRequest, v1::RequestReplanResponse>(
-      "MissionService/RequestReplan",
-      [&core](const v1::RequestReplanRequest& r, const R& c) { return core.missions().RequestReplan(r, c); });
+      "MissionService/RequestReplan", [&core](const v1::RequestReplanRequest& r, const R& c) {
+        return core.missions().RequestReplan(r, c);
+      });
   unary.operator()<v1::CancelMissionRequest, v1::Mission>(
-      "MissionService/CancelMission",
-      [&core](const v1::CancelMissionRequest& r, const R& c) { return core.missions().CancelMission(r, c); });
+      "MissionService/CancelMission", [&core](const v1::CancelMissionRequest& r, const R& c) {
+        return core.missions().CancelMission(r, c);
+      });
 
   server_->Get("/healthz", [this](const httplib::Request&, httplib::Response& res) {
     const bool serving = serving_.load();
@@ -315,23 +338,24 @@ void HttpGateway::RegisterRoutes() {
   });
   // Unknown paths / methods / oversized bodies: a JSON error body when the
   // handler left none.
-  server_->set_error_handler(httplib::Server::HandlerWithResponse([](const httplib::Request& req,
-                                                                     httplib::Response& res) {
-    if (!res.body.empty()) return httplib::Server::HandlerResponse::Unhandled;
-    absl::Status st;
-    if (res.status == 404) {
-      st = absl::NotFoundError(absl::StrCat("no route ", req.method, " ", req.path,
-                                            " (RPCs are POST /v1/<Service>/<Method>)"));
-    } else if (res.status == 400) {
-      st = absl::InvalidArgumentError("malformed HTTP request (a POST needs a body with a Content-Length or chunked)");
-    } else if (res.status == 413) {
-      st = absl::ResourceExhaustedError("request body exceeds the server's size limit");
-    } else {
-      st = absl::UnknownError(absl::StrCat("HTTP ", res.status));
-    }
-    res.set_content(ErrorJson(st), kJson);
-    return httplib::Server::HandlerResponse::Handled;
-  }));
+  server_->set_error_handler(
+      httplib::Server::HandlerWithResponse([](const httplib::Request& req, httplib::Response& res) {
+        if (!res.body.empty()) return httplib::Server::HandlerResponse::Unhandled;
+        absl::Status st;
+        if (res.status == 404) {
+          st = absl::NotFoundError(absl::StrCat("no route ", req.method, " ", req.path,
+                                                " (RPCs are POST /v1/<Service>/<Method>)"));
+        } else if (res.status == 400) {
+          st = absl::InvalidArgumentError(
+              "malformed HTTP request (a POST needs a body with a Content-Length or chunked)");
+        } else if (res.status == 413) {
+          st = absl::ResourceExhaustedError("request body exceeds the server's size limit");
+        } else {
+          st = absl::UnknownError(absl::StrCat("HTTP ", res.status));
+        }
+        res.set_content(ErrorJson(st), kJson);
+        return httplib::Server::HandlerResponse::Handled;
+      }));
 }
 
 }  // namespace seaplan::server

@@ -106,7 +106,8 @@ absl::Status SqliteError(sqlite3* db, int rc, const char* what) {
 class Stmt {
  public:
   Stmt(sqlite3* db, std::string_view sql) : db_(db) {
-    const int rc = sqlite3_prepare_v2(db, sql.data(), static_cast<int>(sql.size()), &stmt_, nullptr);
+    const int rc =
+        sqlite3_prepare_v2(db, sql.data(), static_cast<int>(sql.size()), &stmt_, nullptr);
     if (rc != SQLITE_OK) status_ = SqliteError(db, rc, "prepare");
   }
   ~Stmt() { sqlite3_finalize(stmt_); }
@@ -118,7 +119,8 @@ class Stmt {
   Stmt& Int(int i, std::int64_t v) { return Check(sqlite3_bind_int64(stmt_, i, v)); }
   Stmt& Real(int i, double v) { return Check(sqlite3_bind_double(stmt_, i, v)); }
   Stmt& Text(int i, std::string_view v) {
-    return Check(sqlite3_bind_text(stmt_, i, v.data(), static_cast<int>(v.size()), SQLITE_TRANSIENT));
+    return Check(
+        sqlite3_bind_text(stmt_, i, v.data(), static_cast<int>(v.size()), SQLITE_TRANSIENT));
   }
   Stmt& Blob(int i, std::string_view v) {
     // A zero-length blob must not bind as NULL (NOT NULL columns).
@@ -143,11 +145,13 @@ class Stmt {
   double ColReal(int c) const { return sqlite3_column_double(stmt_, c); }
   std::string ColText(int c) const {
     const auto* p = reinterpret_cast<const char*>(sqlite3_column_text(stmt_, c));
-    return p ? std::string(p, static_cast<std::size_t>(sqlite3_column_bytes(stmt_, c))) : std::string();
+    return p ? std::string(p, static_cast<std::size_t>(sqlite3_column_bytes(stmt_, c)))
+             : std::string();
   }
   std::string ColBlob(int c) const {
     const auto* p = static_cast<const char*>(sqlite3_column_blob(stmt_, c));
-    return p ? std::string(p, static_cast<std::size_t>(sqlite3_column_bytes(stmt_, c))) : std::string();
+    return p ? std::string(p, static_cast<std::size_t>(sqlite3_column_bytes(stmt_, c)))
+             : std::string();
   }
 
  private:
@@ -185,7 +189,9 @@ absl::Status InTransaction(sqlite3* db, F&& body) {
   return status;
 }
 
-std::string JoinTasks(const std::vector<std::string>& tasks) { return absl::StrJoin(tasks, "\n"); }
+std::string JoinTasks(const std::vector<std::string>& tasks) {
+  return absl::StrJoin(tasks, "\n");
+}
 std::vector<std::string> SplitTasks(const std::string& text) {
   if (text.empty()) return {};
   return absl::StrSplit(text, '\n');
@@ -200,7 +206,9 @@ absl::Status CheckPageSize(int page_size) {
 
 }  // namespace
 
-int LatestSchemaVersion() { return kMigrations[std::size(kMigrations) - 1].version; }
+int LatestSchemaVersion() {
+  return kMigrations[std::size(kMigrations) - 1].version;
+}
 
 struct SqliteStore::Impl final : ChartRepository, MissionRepository {
   sqlite3* db = nullptr;
@@ -232,9 +240,9 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
   absl::Status Migrate() {
     SEAPLAN_ASSIGN_OR_RETURN(int current, UserVersion());
     if (current > LatestSchemaVersion()) {
-      return absl::FailedPreconditionError(absl::StrCat(
-          "database schema version ", current, " is newer than this server knows (",
-          LatestSchemaVersion(), "); refusing to touch it"));
+      return absl::FailedPreconditionError(
+          absl::StrCat("database schema version ", current, " is newer than this server knows (",
+                       LatestSchemaVersion(), "); refusing to touch it"));
     }
     for (const Migration& m : kMigrations) {
       if (m.version <= current) continue;
@@ -252,8 +260,8 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
   }
 
   // ---- log events (caller holds mu and is inside a transaction) ----
-  absl::StatusOr<std::vector<LogEventRecord>> AppendEventsLocked(const std::string& mission_id,
-                                                                 const std::vector<NewLogEvent>& events) {
+  absl::StatusOr<std::vector<LogEventRecord>> AppendEventsLocked(
+      const std::string& mission_id, const std::vector<NewLogEvent>& events) {
     std::vector<LogEventRecord> out;
     if (events.empty()) return out;
     Stmt next(db, "SELECT COALESCE(MAX(event_id), 0) FROM log_events WHERE mission_id = ?1");
@@ -261,29 +269,51 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
     SEAPLAN_ASSIGN_OR_RETURN(bool row, next.Step());
     std::int64_t id = row ? next.ColInt(0) : 0;
     for (const NewLogEvent& e : events) {
-      Stmt ins(db,
-               "INSERT INTO log_events(mission_id, event_id, time_ms, mission_time_s, source, message) "
-               "VALUES (?1, ?2, ?3, ?4, ?5, ?6)");
-      ins.Text(1, mission_id).Int(2, ++id).Int(3, e.time_ms).Real(4, e.mission_time_s).Text(5, e.source).Text(6, e.message);
+      Stmt ins(
+          db,
+          "INSERT INTO log_events(mission_id, event_id, time_ms, mission_time_s, source, message) "
+          "VALUES (?1, ?2, ?3, ?4, ?5, ?6)");
+      ins.Text(1, mission_id)
+          .Int(2, ++id)
+          .Int(3, e.time_ms)
+          .Real(4, e.mission_time_s)
+          .Text(5, e.source)
+          .Text(6, e.message);
       SEAPLAN_RETURN_IF_ERROR(ins.Run());
       out.push_back({mission_id, id, e.time_ms, e.mission_time_s, e.source, e.message});
     }
     return out;
   }
 
-  absl::Status ApplyUpdateLocked(const std::string& id, const MissionUpdate& u, TimestampMs now_ms) {
-    Stmt s(db,
-           "UPDATE missions SET state = COALESCE(?2, state), last_state = COALESCE(?3, last_state), "
-           "completed_tasks = COALESCE(?4, completed_tasks), failure_reason = COALESCE(?5, failure_reason), "
-           "updated_at_ms = ?6 WHERE id = ?1");
+  absl::Status ApplyUpdateLocked(const std::string& id, const MissionUpdate& u,
+                                 TimestampMs now_ms) {
+    Stmt s(
+        db,
+        "UPDATE missions SET state = COALESCE(?2, state), last_state = COALESCE(?3, last_state), "
+        "completed_tasks = COALESCE(?4, completed_tasks), failure_reason = COALESCE(?5, "
+        "failure_reason), "
+        "updated_at_ms = ?6 WHERE id = ?1");
     s.Text(1, id);
-    if (u.state) s.Int(2, *u.state); else s.Null(2);
-    if (u.last_state) s.Blob(3, *u.last_state); else s.Null(3);
-    if (u.completed_tasks) s.Text(4, JoinTasks(*u.completed_tasks)); else s.Null(4);
-    if (u.failure_reason) s.Text(5, *u.failure_reason); else s.Null(5);
+    if (u.state)
+      s.Int(2, *u.state);
+    else
+      s.Null(2);
+    if (u.last_state)
+      s.Blob(3, *u.last_state);
+    else
+      s.Null(3);
+    if (u.completed_tasks)
+      s.Text(4, JoinTasks(*u.completed_tasks));
+    else
+      s.Null(4);
+    if (u.failure_reason)
+      s.Text(5, *u.failure_reason);
+    else
+      s.Null(5);
     s.Int(6, now_ms);
     SEAPLAN_RETURN_IF_ERROR(s.Run());
-    if (sqlite3_changes(db) == 0) return absl::NotFoundError(absl::StrCat("mission '", id, "' not found"));
+    if (sqlite3_changes(db) == 0)
+      return absl::NotFoundError(absl::StrCat("mission '", id, "' not found"));
     return absl::OkStatus();
   }
 
@@ -298,12 +328,20 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
     std::lock_guard lock(mu);
     SEAPLAN_RETURN_IF_ERROR(Usable());
     Stmt s(db,
-           "INSERT INTO charts(id, name, format, options, summary, obstacles, source_files, created_at_ms) "
+           "INSERT INTO charts(id, name, format, options, summary, obstacles, source_files, "
+           "created_at_ms) "
            "VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8)");
-    s.Text(1, c.id).Text(2, c.name).Int(3, c.format).Blob(4, c.options).Blob(5, c.summary)
-        .Blob(6, c.obstacles).Blob(7, c.source_files).Int(8, c.created_at_ms);
+    s.Text(1, c.id)
+        .Text(2, c.name)
+        .Int(3, c.format)
+        .Blob(4, c.options)
+        .Blob(5, c.summary)
+        .Blob(6, c.obstacles)
+        .Blob(7, c.source_files)
+        .Int(8, c.created_at_ms);
     absl::Status st = s.Run();
-    if (absl::IsAlreadyExists(st)) return absl::AlreadyExistsError(absl::StrCat("chart '", c.id, "' exists"));
+    if (absl::IsAlreadyExists(st))
+      return absl::AlreadyExistsError(absl::StrCat("chart '", c.id, "' exists"));
     SEAPLAN_RETURN_IF_ERROR(st);
     c.seq = sqlite3_last_insert_rowid(db);
     return c;
@@ -328,10 +366,11 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
   absl::StatusOr<ChartRecord> Get(const std::string& id, bool with_blobs) override {
     std::lock_guard lock(mu);
     SEAPLAN_RETURN_IF_ERROR(Usable());
-    Stmt s(db, with_blobs ? "SELECT seq, id, name, format, options, summary, created_at_ms, obstacles, "
-                            "source_files FROM charts WHERE id = ?1"
-                          : "SELECT seq, id, name, format, options, summary, created_at_ms FROM charts "
-                            "WHERE id = ?1");
+    Stmt s(db, with_blobs
+                   ? "SELECT seq, id, name, format, options, summary, created_at_ms, obstacles, "
+                     "source_files FROM charts WHERE id = ?1"
+                   : "SELECT seq, id, name, format, options, summary, created_at_ms FROM charts "
+                     "WHERE id = ?1");
     s.Text(1, id);
     SEAPLAN_ASSIGN_OR_RETURN(bool row, s.Step());
     if (!row) return absl::NotFoundError(absl::StrCat("chart '", id, "' not found"));
@@ -342,8 +381,9 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
     SEAPLAN_RETURN_IF_ERROR(CheckPageSize(page_size));
     std::lock_guard lock(mu);
     SEAPLAN_RETURN_IF_ERROR(Usable());
-    Stmt s(db, "SELECT seq, id, name, format, options, summary, created_at_ms FROM charts "
-               "WHERE seq > ?1 ORDER BY seq LIMIT ?2");
+    Stmt s(db,
+           "SELECT seq, id, name, format, options, summary, created_at_ms FROM charts "
+           "WHERE seq > ?1 ORDER BY seq LIMIT ?2");
     s.Int(1, after).Int(2, page_size + 1);
     Page<ChartRecord> page;
     while (true) {
@@ -360,7 +400,8 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
 
   // ---- MissionRepository ----
   static constexpr const char* kMissionColumns =
-      "seq, id, name, vessel_id, COALESCE(request_id, ''), spec, state, current_version, created_at_ms, "
+      "seq, id, name, vessel_id, COALESCE(request_id, ''), spec, state, current_version, "
+      "created_at_ms, "
       "updated_at_ms, last_state, completed_tasks, failure_reason";
 
   static MissionRecord ReadMission(const Stmt& s) {
@@ -382,9 +423,15 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
   }
 
   absl::Status InsertVersionLocked(const PlanVersionRecord& v) {
-    Stmt s(db, "INSERT INTO plan_versions(mission_id, version, reason, created_at_ms, content, engine_state) "
-               "VALUES (?1, ?2, ?3, ?4, ?5, ?6)");
-    s.Text(1, v.mission_id).Int(2, v.version).Text(3, v.reason).Int(4, v.created_at_ms).Blob(5, v.content)
+    Stmt s(db,
+           "INSERT INTO plan_versions(mission_id, version, reason, created_at_ms, content, "
+           "engine_state) "
+           "VALUES (?1, ?2, ?3, ?4, ?5, ?6)");
+    s.Text(1, v.mission_id)
+        .Int(2, v.version)
+        .Text(3, v.reason)
+        .Int(4, v.created_at_ms)
+        .Blob(5, v.content)
         .Blob(6, v.engine_state);
     return s.Run();
   }
@@ -392,22 +439,33 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
   absl::Status Create(const MissionRecord& m, const PlanVersionRecord& first,
                       const std::vector<NewLogEvent>& events) override {
     if (first.version != 1 || first.mission_id != m.id) {
-      return absl::InvalidArgumentError("the first plan version must be version 1 of the same mission");
+      return absl::InvalidArgumentError(
+          "the first plan version must be version 1 of the same mission");
     }
     std::lock_guard lock(mu);
     SEAPLAN_RETURN_IF_ERROR(Usable());
     return InTransaction(db, [&]() -> absl::Status {
       Stmt s(db,
-             "INSERT INTO missions(id, name, vessel_id, request_id, spec, state, current_version, created_at_ms, "
+             "INSERT INTO missions(id, name, vessel_id, request_id, spec, state, current_version, "
+             "created_at_ms, "
              "updated_at_ms, last_state, completed_tasks, failure_reason) "
              "VALUES (?1, ?2, ?3, ?4, ?5, ?6, 1, ?7, ?8, ?9, ?10, ?11)");
       s.Text(1, m.id).Text(2, m.name).Text(3, m.vessel_id);
-      if (m.request_id.empty()) s.Null(4); else s.Text(4, m.request_id);
-      s.Blob(5, m.spec).Int(6, m.state).Int(7, m.created_at_ms).Int(8, m.updated_at_ms).Blob(9, m.last_state)
-          .Text(10, JoinTasks(m.completed_tasks)).Text(11, m.failure_reason);
+      if (m.request_id.empty())
+        s.Null(4);
+      else
+        s.Text(4, m.request_id);
+      s.Blob(5, m.spec)
+          .Int(6, m.state)
+          .Int(7, m.created_at_ms)
+          .Int(8, m.updated_at_ms)
+          .Blob(9, m.last_state)
+          .Text(10, JoinTasks(m.completed_tasks))
+          .Text(11, m.failure_reason);
       absl::Status st = s.Run();
       if (absl::IsAlreadyExists(st)) {
-        return absl::AlreadyExistsError(absl::StrCat("mission '", m.id, "' or request id '", m.request_id, "' exists"));
+        return absl::AlreadyExistsError(
+            absl::StrCat("mission '", m.id, "' or request id '", m.request_id, "' exists"));
       }
       SEAPLAN_RETURN_IF_ERROR(st);
       SEAPLAN_RETURN_IF_ERROR(InsertVersionLocked(first));
@@ -425,7 +483,8 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
     return ReadMission(s);
   }
 
-  absl::StatusOr<std::optional<MissionRecord>> FindByRequestId(const std::string& request_id) override {
+  absl::StatusOr<std::optional<MissionRecord>> FindByRequestId(
+      const std::string& request_id) override {
     std::lock_guard lock(mu);
     SEAPLAN_RETURN_IF_ERROR(Usable());
     Stmt s(db, absl::StrCat("SELECT ", kMissionColumns, " FROM missions WHERE request_id = ?1"));
@@ -439,8 +498,10 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
     SEAPLAN_RETURN_IF_ERROR(CheckPageSize(page_size));
     std::lock_guard lock(mu);
     SEAPLAN_RETURN_IF_ERROR(Usable());
-    Stmt s(db, absl::StrCat("SELECT ", kMissionColumns,
-                            " FROM missions WHERE seq > ?1 AND (?2 = 0 OR state = ?2) ORDER BY seq LIMIT ?3"));
+    Stmt s(db,
+           absl::StrCat(
+               "SELECT ", kMissionColumns,
+               " FROM missions WHERE seq > ?1 AND (?2 = 0 OR state = ?2) ORDER BY seq LIMIT ?3"));
     s.Int(1, after).Int(2, state).Int(3, page_size + 1);
     Page<MissionRecord> page;
     while (true) {
@@ -476,39 +537,50 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
       if (!row) return absl::NotFoundError(absl::StrCat("mission '", v.mission_id, "' not found"));
       const std::int64_t current = cur.ColInt(0);
       if (v.version != current + 1) {
-        return absl::AbortedError(absl::StrCat("plan version ", v.version, " of mission '", v.mission_id,
-                                               "' is not next (current is ", current, ")"));
+        return absl::AbortedError(absl::StrCat("plan version ", v.version, " of mission '",
+                                               v.mission_id, "' is not next (current is ", current,
+                                               ")"));
       }
       SEAPLAN_RETURN_IF_ERROR(InsertVersionLocked(v));
       Stmt bump(db, "UPDATE missions SET current_version = ?2 WHERE id = ?1");
       bump.Text(1, v.mission_id).Int(2, v.version);
       SEAPLAN_RETURN_IF_ERROR(bump.Run());
       SEAPLAN_RETURN_IF_ERROR(AppendEventsLocked(v.mission_id, events).status());
-      return ApplyUpdateLocked(v.mission_id, update, std::max(v.created_at_ms, LatestTime(events, 0)));
+      return ApplyUpdateLocked(v.mission_id, update,
+                               std::max(v.created_at_ms, LatestTime(events, 0)));
     });
   }
 
   static PlanVersionRecord ReadVersion(const Stmt& s) {
-    return {s.ColText(0), static_cast<int>(s.ColInt(1)), s.ColText(2), s.ColInt(3), s.ColBlob(4), s.ColBlob(5)};
+    return {s.ColText(0), static_cast<int>(s.ColInt(1)), s.ColText(2), s.ColInt(3), s.ColBlob(4),
+            s.ColBlob(5)};
   }
 
-  absl::StatusOr<PlanVersionRecord> GetVersion(const std::string& mission_id, int version) override {
+  absl::StatusOr<PlanVersionRecord> GetVersion(const std::string& mission_id,
+                                               int version) override {
     std::lock_guard lock(mu);
     SEAPLAN_RETURN_IF_ERROR(Usable());
-    Stmt s(db, "SELECT mission_id, version, reason, created_at_ms, content, engine_state FROM plan_versions "
-               "WHERE mission_id = ?1 AND version = ?2");
+    Stmt s(db,
+           "SELECT mission_id, version, reason, created_at_ms, content, engine_state FROM "
+           "plan_versions "
+           "WHERE mission_id = ?1 AND version = ?2");
     s.Text(1, mission_id).Int(2, version);
     SEAPLAN_ASSIGN_OR_RETURN(bool row, s.Step());
-    if (!row) return absl::NotFoundError(absl::StrCat("plan version ", version, " of mission '", mission_id, "' not found"));
+    if (!row)
+      return absl::NotFoundError(
+          absl::StrCat("plan version ", version, " of mission '", mission_id, "' not found"));
     return ReadVersion(s);
   }
 
-  absl::StatusOr<std::vector<PlanVersionRecord>> ListVersions(const std::string& mission_id, int after_version,
+  absl::StatusOr<std::vector<PlanVersionRecord>> ListVersions(const std::string& mission_id,
+                                                              int after_version,
                                                               int limit) override {
     std::lock_guard lock(mu);
     SEAPLAN_RETURN_IF_ERROR(Usable());
-    Stmt s(db, "SELECT mission_id, version, reason, created_at_ms, content, engine_state FROM plan_versions "
-               "WHERE mission_id = ?1 AND version > ?2 ORDER BY version LIMIT ?3");
+    Stmt s(db,
+           "SELECT mission_id, version, reason, created_at_ms, content, engine_state FROM "
+           "plan_versions "
+           "WHERE mission_id = ?1 AND version > ?2 ORDER BY version LIMIT ?3");
     s.Text(1, mission_id).Int(2, after_version).Int(3, limit);
     std::vector<PlanVersionRecord> out;
     while (true) {
@@ -526,9 +598,14 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
     bool inserted = false;
     absl::Status result = InTransaction(db, [&]() -> absl::Status {
       Stmt s(db,
-             "INSERT INTO feedback(mission_id, vessel_id, sequence_number, kind, payload, received_at_ms) "
+             "INSERT INTO feedback(mission_id, vessel_id, sequence_number, kind, payload, "
+             "received_at_ms) "
              "VALUES (?1, ?2, ?3, ?4, ?5, ?6) ON CONFLICT(vessel_id, sequence_number) DO NOTHING");
-      s.Text(1, f.mission_id).Text(2, f.vessel_id).Int(3, f.sequence_number).Int(4, f.kind).Blob(5, f.payload)
+      s.Text(1, f.mission_id)
+          .Text(2, f.vessel_id)
+          .Int(3, f.sequence_number)
+          .Int(4, f.kind)
+          .Blob(5, f.payload)
           .Int(6, f.received_at_ms);
       absl::Status st = s.Run();
       if (!st.ok()) {
@@ -541,34 +618,41 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
       inserted = sqlite3_changes(db) == 1;
       if (!inserted) return absl::OkStatus();  // duplicate: change nothing
       SEAPLAN_RETURN_IF_ERROR(AppendEventsLocked(f.mission_id, events).status());
-      return ApplyUpdateLocked(f.mission_id, update, std::max(f.received_at_ms, LatestTime(events, 0)));
+      return ApplyUpdateLocked(f.mission_id, update,
+                               std::max(f.received_at_ms, LatestTime(events, 0)));
     });
     if (!result.ok()) return result;
     return inserted;
   }
 
   static FeedbackRecord ReadFeedback(const Stmt& s) {
-    return {s.ColText(0), s.ColText(1), s.ColInt(2), static_cast<int>(s.ColInt(3)), s.ColBlob(4), s.ColInt(5)};
+    return {s.ColText(0), s.ColText(1), s.ColInt(2), static_cast<int>(s.ColInt(3)),
+            s.ColBlob(4), s.ColInt(5)};
   }
 
-  absl::StatusOr<std::optional<FeedbackRecord>> FindFeedback(const std::string& vessel_id,
-                                                             std::int64_t sequence_number) override {
+  absl::StatusOr<std::optional<FeedbackRecord>> FindFeedback(
+      const std::string& vessel_id, std::int64_t sequence_number) override {
     std::lock_guard lock(mu);
     SEAPLAN_RETURN_IF_ERROR(Usable());
-    Stmt s(db, "SELECT mission_id, vessel_id, sequence_number, kind, payload, received_at_ms FROM feedback "
-               "WHERE vessel_id = ?1 AND sequence_number = ?2");
+    Stmt s(db,
+           "SELECT mission_id, vessel_id, sequence_number, kind, payload, received_at_ms FROM "
+           "feedback "
+           "WHERE vessel_id = ?1 AND sequence_number = ?2");
     s.Text(1, vessel_id).Int(2, sequence_number);
     SEAPLAN_ASSIGN_OR_RETURN(bool row, s.Step());
     if (!row) return std::optional<FeedbackRecord>();
     return std::optional<FeedbackRecord>(ReadFeedback(s));
   }
 
-  absl::StatusOr<std::vector<FeedbackRecord>> ListFeedback(const std::string& mission_id, int limit) override {
+  absl::StatusOr<std::vector<FeedbackRecord>> ListFeedback(const std::string& mission_id,
+                                                           int limit) override {
     std::lock_guard lock(mu);
     SEAPLAN_RETURN_IF_ERROR(Usable());
     // The latest `limit` rows, returned oldest first.
-    Stmt s(db, "SELECT * FROM (SELECT mission_id, vessel_id, sequence_number, kind, payload, received_at_ms, seq "
-               "FROM feedback WHERE mission_id = ?1 ORDER BY seq DESC LIMIT ?2) ORDER BY seq");
+    Stmt s(db,
+           "SELECT * FROM (SELECT mission_id, vessel_id, sequence_number, kind, payload, "
+           "received_at_ms, seq "
+           "FROM feedback WHERE mission_id = ?1 ORDER BY seq DESC LIMIT ?2) ORDER BY seq");
     s.Text(1, mission_id).Int(2, limit);
     std::vector<FeedbackRecord> out;
     while (true) {
@@ -579,8 +663,8 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
     return out;
   }
 
-  absl::StatusOr<std::vector<LogEventRecord>> AppendEvents(const std::string& mission_id,
-                                                           const std::vector<NewLogEvent>& events) override {
+  absl::StatusOr<std::vector<LogEventRecord>> AppendEvents(
+      const std::string& mission_id, const std::vector<NewLogEvent>& events) override {
     std::lock_guard lock(mu);
     SEAPLAN_RETURN_IF_ERROR(Usable());
     std::vector<LogEventRecord> out;
@@ -596,18 +680,21 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
     return out;
   }
 
-  absl::StatusOr<std::vector<LogEventRecord>> ListEvents(const std::string& mission_id, std::int64_t after_event_id,
+  absl::StatusOr<std::vector<LogEventRecord>> ListEvents(const std::string& mission_id,
+                                                         std::int64_t after_event_id,
                                                          int limit) override {
     std::lock_guard lock(mu);
     SEAPLAN_RETURN_IF_ERROR(Usable());
-    Stmt s(db, "SELECT mission_id, event_id, time_ms, mission_time_s, source, message FROM log_events "
-               "WHERE mission_id = ?1 AND event_id > ?2 ORDER BY event_id LIMIT ?3");
+    Stmt s(db,
+           "SELECT mission_id, event_id, time_ms, mission_time_s, source, message FROM log_events "
+           "WHERE mission_id = ?1 AND event_id > ?2 ORDER BY event_id LIMIT ?3");
     s.Text(1, mission_id).Int(2, after_event_id).Int(3, limit);
     std::vector<LogEventRecord> out;
     while (true) {
       SEAPLAN_ASSIGN_OR_RETURN(bool row, s.Step());
       if (!row) break;
-      out.push_back({s.ColText(0), s.ColInt(1), s.ColInt(2), s.ColReal(3), s.ColText(4), s.ColText(5)});
+      out.push_back(
+          {s.ColText(0), s.ColInt(1), s.ColInt(2), s.ColReal(3), s.ColText(4), s.ColText(5)});
     }
     return out;
   }
@@ -625,11 +712,13 @@ SqliteStore::~SqliteStore() = default;
 absl::StatusOr<std::unique_ptr<SqliteStore>> SqliteStore::Open(const std::string& path,
                                                                const SqliteOptions& options) {
   auto impl = std::make_unique<Impl>();
-  const int rc = sqlite3_open_v2(path.c_str(), &impl->db,
-                                 SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE | SQLITE_OPEN_FULLMUTEX, nullptr);
+  const int rc =
+      sqlite3_open_v2(path.c_str(), &impl->db,
+                      SQLITE_OPEN_READWRITE | SQLITE_OPEN_CREATE | SQLITE_OPEN_FULLMUTEX, nullptr);
   if (rc != SQLITE_OK) {
-    absl::Status st = absl::UnavailableError(absl::StrCat("cannot open database '", path, "': ",
-                                                          impl->db ? sqlite3_errmsg(impl->db) : sqlite3_errstr(rc)));
+    absl::Status st = absl::UnavailableError(
+        absl::StrCat("cannot open database '", path,
+                     "': ", impl->db ? sqlite3_errmsg(impl->db) : sqlite3_errstr(rc)));
     sqlite3_close_v2(impl->db);
     impl->db = nullptr;
     return st;
@@ -645,16 +734,21 @@ absl::StatusOr<std::unique_ptr<SqliteStore>> SqliteStore::Open(const std::string
     auto row = wal.Step();
     if (!row.ok()) return fail(row.status());
   }
-  absl::Status st = Exec(impl->db, options.synchronous_full ? "PRAGMA synchronous = FULL; PRAGMA foreign_keys = ON"
-                                                            : "PRAGMA synchronous = NORMAL; PRAGMA foreign_keys = ON");
+  absl::Status st = Exec(impl->db, options.synchronous_full
+                                       ? "PRAGMA synchronous = FULL; PRAGMA foreign_keys = ON"
+                                       : "PRAGMA synchronous = NORMAL; PRAGMA foreign_keys = ON");
   if (!st.ok()) return fail(st);
   st = impl->Migrate();
   if (!st.ok()) return fail(st);
   return std::unique_ptr<SqliteStore>(new SqliteStore(std::move(impl)));
 }
 
-ChartRepository& SqliteStore::charts() { return *impl_; }
-MissionRepository& SqliteStore::missions() { return *impl_; }
+ChartRepository& SqliteStore::charts() {
+  return *impl_;
+}
+MissionRepository& SqliteStore::missions() {
+  return *impl_;
+}
 
 absl::Status SqliteStore::Close() {
   std::lock_guard lock(impl_->mu);
@@ -673,7 +767,8 @@ absl::Status SqliteStore::CheckIntegrity() {
   SEAPLAN_RETURN_IF_ERROR(impl_->Usable());
   Stmt s(impl_->db, "PRAGMA integrity_check");
   SEAPLAN_ASSIGN_OR_RETURN(bool row, s.Step());
-  if (!row || s.ColText(0) != "ok") return absl::DataLossError(absl::StrCat("integrity_check: ", row ? s.ColText(0) : ""));
+  if (!row || s.ColText(0) != "ok")
+    return absl::DataLossError(absl::StrCat("integrity_check: ", row ? s.ColText(0) : ""));
   return absl::OkStatus();
 }
 

@@ -16,8 +16,8 @@ namespace fs = std::filesystem;
 class TempDir {
  public:
   TempDir() {
-    path_ = fs::temp_directory_path() /
-            ("seaplan-storage-test-" + std::to_string(::getpid()) + "-" + std::to_string(counter_++));
+    path_ = fs::temp_directory_path() / ("seaplan-storage-test-" + std::to_string(::getpid()) +
+                                         "-" + std::to_string(counter_++));
     fs::remove_all(path_);
     fs::create_directories(path_);
   }
@@ -56,7 +56,8 @@ MissionRecord Mission(const std::string& id, const std::string& request_id = "")
 }
 
 PlanVersionRecord Version(const std::string& mission, int version) {
-  return {mission, version, "reason " + std::to_string(version), 2000 + version, "content-" + std::to_string(version)};
+  return {mission, version, "reason " + std::to_string(version), 2000 + version,
+          "content-" + std::to_string(version)};
 }
 
 NewLogEvent Event(const std::string& message, const std::string& source = "server") {
@@ -187,13 +188,15 @@ TEST(SqliteStoreTest, FeedbackIsIdempotentByVesselAndSequence) {
   ASSERT_TRUE(repo.Create(Mission("m1"), Version("m1", 1), {}).ok());
   MissionUpdate update;
   update.completed_tasks = std::vector<std::string>{"v1-t0"};
-  auto first = repo.RecordFeedback({"m1", "vessel-1", 7, 2, "payload-a", 100}, update, {Event("task done", "vessel-1")});
+  auto first = repo.RecordFeedback({"m1", "vessel-1", 7, 2, "payload-a", 100}, update,
+                                   {Event("task done", "vessel-1")});
   ASSERT_TRUE(first.ok()) << first.status();
   EXPECT_TRUE(*first);
   // The retry (even with different content) changes nothing.
   MissionUpdate other;
   other.completed_tasks = std::vector<std::string>{"v1-t0", "v1-t1"};
-  auto retry = repo.RecordFeedback({"m1", "vessel-1", 7, 3, "payload-b", 200}, other, {Event("again", "vessel-1")});
+  auto retry = repo.RecordFeedback({"m1", "vessel-1", 7, 3, "payload-b", 200}, other,
+                                   {Event("again", "vessel-1")});
   ASSERT_TRUE(retry.ok()) << retry.status();
   EXPECT_FALSE(*retry);
   auto all = repo.ListFeedback("m1", 100);
@@ -262,7 +265,8 @@ TEST(SqliteStoreTest, PlanVersionsAreNumberedAndImmutable) {
   EXPECT_EQ(repo.AppendVersion(Version("nope", 1), {}, {}).code(), absl::StatusCode::kNotFound);
   // Even raw SQL cannot change or delete a stored version.
   std::string error;
-  EXPECT_NE(RawExec(path, "UPDATE plan_versions SET content = x'00' WHERE version = 2", &error), SQLITE_OK);
+  EXPECT_NE(RawExec(path, "UPDATE plan_versions SET content = x'00' WHERE version = 2", &error),
+            SQLITE_OK);
   EXPECT_NE(error.find("immutable"), std::string::npos) << error;
   EXPECT_NE(RawExec(path, "DELETE FROM plan_versions", &error), SQLITE_OK);
   EXPECT_EQ(repo.GetVersion("m1", 2)->content, "content-2");
@@ -299,7 +303,8 @@ TEST(SqliteStoreTest, ListsPageThroughMissionsAndCharts) {
   EXPECT_NE(charts->next_after, 0);
   EXPECT_EQ((*store)->charts().List(3, charts->next_after)->items.size(), 2u);
   EXPECT_EQ((*store)->charts().Get("c1", true)->obstacles, "big");
-  EXPECT_EQ((*store)->charts().Insert(ChartRecord{.id = "c1"}).status().code(), absl::StatusCode::kAlreadyExists);
+  EXPECT_EQ((*store)->charts().Insert(ChartRecord{.id = "c1"}).status().code(),
+            absl::StatusCode::kAlreadyExists);
   EXPECT_EQ((*store)->missions().List(0, 0, 0).status().code(), absl::StatusCode::kInvalidArgument);
 }
 
@@ -308,7 +313,8 @@ TEST(SqliteStoreTest, RequestIdIsUniqueAndConcurrentWritersAreSerialised) {
   ASSERT_TRUE(store.ok());
   MissionRepository& repo = (*store)->missions();
   ASSERT_TRUE(repo.Create(Mission("a", "same"), Version("a", 1), {}).ok());
-  EXPECT_EQ(repo.Create(Mission("b", "same"), Version("b", 1), {}).code(), absl::StatusCode::kAlreadyExists);
+  EXPECT_EQ(repo.Create(Mission("b", "same"), Version("b", 1), {}).code(),
+            absl::StatusCode::kAlreadyExists);
   // Many threads appending events: ids stay 1..N without gaps or repeats.
   std::vector<std::thread> threads;
   for (int t = 0; t < 4; ++t) {
@@ -319,7 +325,8 @@ TEST(SqliteStoreTest, RequestIdIsUniqueAndConcurrentWritersAreSerialised) {
   for (auto& t : threads) t.join();
   auto events = repo.ListEvents("a", 0, 1000);
   ASSERT_EQ(events->size(), 100u);
-  for (std::size_t i = 0; i < events->size(); ++i) EXPECT_EQ((*events)[i].event_id, static_cast<std::int64_t>(i + 1));
+  for (std::size_t i = 0; i < events->size(); ++i)
+    EXPECT_EQ((*events)[i].event_id, static_cast<std::int64_t>(i + 1));
   EXPECT_EQ(repo.ListEvents("a", 98, 10)->size(), 2u);
   ASSERT_TRUE((*store)->Close().ok());
   EXPECT_EQ(repo.Get("a").status().code(), absl::StatusCode::kFailedPrecondition);

@@ -56,7 +56,9 @@ CommandResult RunSeaplan(const std::vector<std::string>& args) {
   return result;
 }
 
-std::string Example(const std::string& name) { return (SourceDir() / "examples/fjord" / name).string(); }
+std::string Example(const std::string& name) {
+  return (SourceDir() / "examples/fjord" / name).string();
+}
 
 std::string WriteScratch(const std::string& name, const std::string& content) {
   const auto path = ScratchDir() / name;
@@ -66,8 +68,8 @@ std::string WriteScratch(const std::string& name, const std::string& content) {
 
 TEST(CliInProcessTest, PlanPrintsAValidIpcPlan) {
   const auto plan_file = (ScratchDir() / "case-a.plan").string();
-  auto plan = RunSeaplan({"plan", Example("domain.pddl"), Example("case-a.pddl"), "--time-limit", "5",
-                          "-o", plan_file});
+  auto plan = RunSeaplan({"plan", Example("domain.pddl"), Example("case-a.pddl"), "--time-limit",
+                          "5", "-o", plan_file});
   ASSERT_EQ(plan.exit_code, 0) << plan.err;
   EXPECT_NE(plan.out.find("(move-ship ship0 port-a port-b)"), std::string::npos) << plan.out;
   EXPECT_NE(plan.out.find("; status: SOLVED"), std::string::npos) << plan.out;
@@ -78,19 +80,20 @@ TEST(CliInProcessTest, PlanPrintsAValidIpcPlan) {
 }
 
 TEST(CliInProcessTest, InvalidPlanExitsOneAndNamesTheFailure) {
-  auto result = RunSeaplan({"validate", Example("domain.pddl"), Example("case-a.pddl"),
-                            Example("case-a-paper.plan")});
+  auto result = RunSeaplan(
+      {"validate", Example("domain.pddl"), Example("case-a.pddl"), Example("case-a-paper.plan")});
   EXPECT_EQ(result.exit_code, 1);
   EXPECT_NE(result.out.find("Plan invalid"), std::string::npos) << result.out;
   EXPECT_NE(result.out.find("first failure"), std::string::npos) << result.out;
 }
 
 TEST(CliInProcessTest, MalformedPddlExitsTwoWithLocation) {
-  const auto domain = WriteScratch("bad-domain.pddl",
-                                   "(define (domain d)\n  (:requirements :strips)\n  (:predicates (p))\n"
-                                   "  (:action a :parameters () :precondition (q) :effect (p)))\n");
-  const auto problem = WriteScratch("bad-problem.pddl",
-                                    "(define (problem p) (:domain d) (:init) (:goal (p)))\n");
+  const auto domain =
+      WriteScratch("bad-domain.pddl",
+                   "(define (domain d)\n  (:requirements :strips)\n  (:predicates (p))\n"
+                   "  (:action a :parameters () :precondition (q) :effect (p)))\n");
+  const auto problem =
+      WriteScratch("bad-problem.pddl", "(define (problem p) (:domain d) (:init) (:goal (p)))\n");
   auto result = RunSeaplan({"plan", domain, problem, "--time-limit", "1"});
   EXPECT_EQ(result.exit_code, 2) << result.out << result.err;
   // The undeclared predicate q on line 4 is named with its position.
@@ -102,15 +105,17 @@ TEST(CliInProcessTest, MissingFileAndUsageErrorsExitTwo) {
   EXPECT_EQ(RunSeaplan({"plan", "/nonexistent/domain.pddl", Example("case-a.pddl")}).exit_code, 2);
   EXPECT_EQ(RunSeaplan({"plan"}).exit_code, 2);
   EXPECT_EQ(RunSeaplan({"no-such-command"}).exit_code, 2);
-  EXPECT_EQ(RunSeaplan({"route", "--from", "95,10", "--to", "63,10", "--chart-file", "x"}).exit_code, 2);
+  EXPECT_EQ(
+      RunSeaplan({"route", "--from", "95,10", "--to", "63,10", "--chart-file", "x"}).exit_code, 2);
 }
 
 TEST(CliInProcessTest, UnsolvableProblemExitsOne) {
-  const auto domain = WriteScratch("unsolvable-domain.pddl",
-                                   "(define (domain u)\n  (:requirements :durative-actions)\n"
-                                   "  (:predicates (p) (q))\n"
-                                   "  (:durative-action a :parameters () :duration (= ?duration 1)\n"
-                                   "    :condition (at start (q)) :effect (at end (p))))\n");
+  const auto domain =
+      WriteScratch("unsolvable-domain.pddl",
+                   "(define (domain u)\n  (:requirements :durative-actions)\n"
+                   "  (:predicates (p) (q))\n"
+                   "  (:durative-action a :parameters () :duration (= ?duration 1)\n"
+                   "    :condition (at start (q)) :effect (at end (p))))\n");
   const auto problem = WriteScratch("unsolvable-problem.pddl",
                                     "(define (problem up) (:domain u) (:init) (:goal (p)))\n");
   auto result = RunSeaplan({"plan", domain, problem, "--time-limit", "5"});
@@ -127,15 +132,19 @@ TEST(CliInProcessTest, JsonOutputIsTheApiMessage) {
   EXPECT_NE(result.out.find("\"makespanS\""), std::string::npos) << result.out;
 }
 
-std::string Chart() { return (SourceDir() / "examples/scenarios/fjord-entrance.geojson").string(); }
+std::string Chart() {
+  return (SourceDir() / "examples/scenarios/fjord-entrance.geojson").string();
+}
 
 // Port B to port C of the fjord scenario: the island lies between them.
-const std::vector<std::string> kRouteArgs = {"--from", "63.445835,10.346208", "--to", "63.442244,10.386389",
-                                             "--wind-speed", "10", "--wind-from", "250"};
+const std::vector<std::string> kRouteArgs = {
+    "--from", "63.445835,10.346208", "--to", "63.442244,10.386389", "--wind-speed",
+    "10",     "--wind-from",         "250"};
 
 TEST(CliInProcessTest, RouteWritesAlternativesAndGeoJson) {
   const auto geojson = (ScratchDir() / "route.geojson").string();
-  std::vector<std::string> args = {"route", "--chart-file", Chart(), "--min-depth", "5", "--geojson", geojson};
+  std::vector<std::string> args = {"route", "--chart-file", Chart(), "--min-depth",
+                                   "5",     "--geojson",    geojson};
   args.insert(args.end(), kRouteArgs.begin(), kRouteArgs.end());
   auto result = RunSeaplan(args);
   ASSERT_EQ(result.exit_code, 0) << result.err;
@@ -149,8 +158,8 @@ TEST(CliInProcessTest, RouteWritesAlternativesAndGeoJson) {
 
 TEST(CliInProcessTest, RouteFromInsideLandIsBadInput) {
   // 63.43,10.40 lies on the south shore polygon of the scenario chart.
-  auto result = RunSeaplan({"route", "--chart-file", Chart(), "--from", "63.43,10.40", "--to",
-                            "63.442244,10.386389"});
+  auto result = RunSeaplan(
+      {"route", "--chart-file", Chart(), "--from", "63.43,10.40", "--to", "63.442244,10.386389"});
   EXPECT_EQ(result.exit_code, 2) << result.out << result.err;
   EXPECT_NE(result.err.find("start"), std::string::npos) << result.err;
 }
@@ -162,8 +171,9 @@ TEST(CliInProcessTest, MissionsNeedAServer) {
 }
 
 TEST(CliRemoteTest, UnreachableServerExitsThree) {
-  auto result = RunSeaplan({"--server", "127.0.0.1:1", "--timeout", "2", "validate", Example("domain.pddl"),
-                            Example("case-a.pddl"), Example("case-a-repaired.plan")});
+  auto result =
+      RunSeaplan({"--server", "127.0.0.1:1", "--timeout", "2", "validate", Example("domain.pddl"),
+                  Example("case-a.pddl"), Example("case-a-repaired.plan")});
   EXPECT_EQ(result.exit_code, 3) << result.out << result.err;
 }
 
@@ -171,7 +181,9 @@ TEST(CliRemoteTest, UnreachableServerExitsThree) {
 class ServerProcess {
  public:
   ServerProcess() {
-    dir_ = ScratchDir() / ("server-" + std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()));
+    dir_ =
+        ScratchDir() /
+        ("server-" + std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()));
     fs::create_directories(dir_);
     const auto port_file = dir_ / "ports";
     pid_ = fork();
@@ -223,11 +235,11 @@ TEST(CliRemoteTest, CommandsWorkAgainstARunningServer) {
   EXPECT_EQ(plan.exit_code, 0) << plan.err;
   EXPECT_NE(plan.out.find("(refuel-ship ship0 port-e teamf0)"), std::string::npos) << plan.out;
 
-  auto valid = RunSeaplan({"--server", addr, "validate", Example("domain.pddl"), Example("case-a.pddl"),
-                           Example("case-a-repaired.plan")});
+  auto valid = RunSeaplan({"--server", addr, "validate", Example("domain.pddl"),
+                           Example("case-a.pddl"), Example("case-a-repaired.plan")});
   EXPECT_EQ(valid.exit_code, 0) << valid.out << valid.err;
-  auto invalid = RunSeaplan({"--server", addr, "validate", Example("domain.pddl"), Example("case-a.pddl"),
-                             Example("case-a-paper.plan")});
+  auto invalid = RunSeaplan({"--server", addr, "validate", Example("domain.pddl"),
+                             Example("case-a.pddl"), Example("case-a-paper.plan")});
   EXPECT_EQ(invalid.exit_code, 1) << invalid.out << invalid.err;
 
   auto charts = RunSeaplan({"--server", addr, "chart", "list"});
@@ -235,12 +247,14 @@ TEST(CliRemoteTest, CommandsWorkAgainstARunningServer) {
   EXPECT_NE(charts.out.find("no charts"), std::string::npos) << charts.out;
 
   // A chart uploaded through the CLI, then a route on it by id.
-  auto upload = RunSeaplan({"--server", addr, "--json", "chart", "upload", Chart(), "--min-depth", "5"});
+  auto upload =
+      RunSeaplan({"--server", addr, "--json", "chart", "upload", Chart(), "--min-depth", "5"});
   ASSERT_EQ(upload.exit_code, 0) << upload.err;
   const auto id_at = upload.out.find("\"chartId\":\"");
   ASSERT_NE(id_at, std::string::npos) << upload.out;
   const auto id_start = id_at + std::string("\"chartId\":\"").size();
-  const std::string chart_id = upload.out.substr(id_start, upload.out.find('"', id_start) - id_start);
+  const std::string chart_id =
+      upload.out.substr(id_start, upload.out.find('"', id_start) - id_start);
   auto listed = RunSeaplan({"--server", addr, "chart", "list"});
   EXPECT_NE(listed.out.find(chart_id), std::string::npos) << listed.out;
   std::vector<std::string> route_args = {"--server", addr, "route", "--chart", chart_id};

@@ -49,8 +49,8 @@ class ServerProcess {
     fs::create_directories(dir);
     const fs::path port_file = dir / "ports";
     fs::remove(port_file);
-    const std::string bin = server_bin.string(), data = (dir / "data").string(), ports = port_file.string(),
-                      log = (dir / "server.log").string();
+    const std::string bin = server_bin.string(), data = (dir / "data").string(),
+                      ports = port_file.string(), log = (dir / "server.log").string();
     pid_ = fork();
     if (pid_ == 0) {
       int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
@@ -58,8 +58,9 @@ class ServerProcess {
         dup2(fd, STDOUT_FILENO);
         dup2(fd, STDERR_FILENO);
       }
-      execl(bin.c_str(), bin.c_str(), "--grpc-addr", "127.0.0.1:0", "--http-addr", "", "--data-dir", data.c_str(),
-            "--port-file", ports.c_str(), "--log-level", "warn", static_cast<char*>(nullptr));
+      execl(bin.c_str(), bin.c_str(), "--grpc-addr", "127.0.0.1:0", "--http-addr", "", "--data-dir",
+            data.c_str(), "--port-file", ports.c_str(), "--log-level", "warn",
+            static_cast<char*>(nullptr));
       _exit(127);
     }
     if (pid_ < 0) return false;
@@ -147,7 +148,8 @@ inline ProcessResult RunProcess(const std::vector<std::string>& argv,
 inline std::vector<double> Numbers(const std::string& text, const std::string& key) {
   std::vector<double> out;
   std::regex re("\"" + key + "\": (-?[0-9.eE+-]+)");
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), re); it != std::sregex_iterator(); ++it) {
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), re); it != std::sregex_iterator();
+       ++it) {
     out.push_back(std::stod((*it)[1]));
   }
   return out;
@@ -155,7 +157,8 @@ inline std::vector<double> Numbers(const std::string& text, const std::string& k
 inline std::vector<std::string> Strings(const std::string& text, const std::string& key) {
   std::vector<std::string> out;
   std::regex re("\"" + key + "\": \"([^\"]*)\"");
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), re); it != std::sregex_iterator(); ++it) {
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), re); it != std::sregex_iterator();
+       ++it) {
     out.push_back((*it)[1]);
   }
   return out;
@@ -175,7 +178,8 @@ inline std::vector<TrackPoint> Trajectory(const std::string& report) {
   if (at == std::string::npos) return out;
   const std::string traj = report.substr(at);
   std::regex pt("\\[(-?[0-9.eE+-]+), (-?[0-9.eE+-]+), (-?[0-9.eE+-]+)\\]");
-  for (auto it = std::sregex_iterator(traj.begin(), traj.end(), pt); it != std::sregex_iterator(); ++it) {
+  for (auto it = std::sregex_iterator(traj.begin(), traj.end(), pt); it != std::sregex_iterator();
+       ++it) {
     out.push_back({std::stod((*it)[1]), std::stod((*it)[2]), std::stod((*it)[3])});
   }
   return out;
@@ -190,9 +194,12 @@ struct RoutedMove {
 // Every task with a "route" in the report (all plan versions).
 inline std::vector<RoutedMove> RoutedMoves(const std::string& report) {
   std::vector<RoutedMove> out;
-  std::regex task("\\{\"id\": \"([^\"]*)\", \"kind\": \"[^\"]*\", \"action\": \"([^\"]*)\"[^\\[\\}]*\"route\": \\[");
+  std::regex task(
+      "\\{\"id\": \"([^\"]*)\", \"kind\": \"[^\"]*\", \"action\": \"([^\"]*)\"[^\\[\\}]*\"route\": "
+      "\\[");
   std::regex wp("^\\[(-?[0-9.eE+-]+), (-?[0-9.eE+-]+), \"[^\"]*\"\\](, )?");
-  for (auto it = std::sregex_iterator(report.begin(), report.end(), task); it != std::sregex_iterator(); ++it) {
+  for (auto it = std::sregex_iterator(report.begin(), report.end(), task);
+       it != std::sregex_iterator(); ++it) {
     RoutedMove m{(*it)[1], (*it)[2], {}};
     std::string rest = report.substr(static_cast<size_t>(it->position() + it->length()));
     std::smatch w;
@@ -213,8 +220,8 @@ struct ScenarioLocation {
 inline std::vector<ScenarioLocation> ScenarioLocations(const std::string& scenario_text) {
   std::vector<ScenarioLocation> out;
   std::regex re("(^|\\n)\\s*location\\s*=\\s*(\\S+)\\s+(-?[0-9.]+)\\s+(-?[0-9.]+)");
-  for (auto it = std::sregex_iterator(scenario_text.begin(), scenario_text.end(), re); it != std::sregex_iterator();
-       ++it) {
+  for (auto it = std::sregex_iterator(scenario_text.begin(), scenario_text.end(), re);
+       it != std::sregex_iterator(); ++it) {
     out.push_back({(*it)[2], std::stod((*it)[3]), std::stod((*it)[4])});
   }
   return out;
@@ -223,8 +230,8 @@ inline std::vector<ScenarioLocation> ScenarioLocations(const std::string& scenar
 inline std::vector<std::string> ScenarioTraffic(const std::string& scenario_text) {
   std::vector<std::string> out;
   std::regex re("(^|\\n)\\s*traffic\\s*=\\s*(\\S+)");
-  for (auto it = std::sregex_iterator(scenario_text.begin(), scenario_text.end(), re); it != std::sregex_iterator();
-       ++it) {
+  for (auto it = std::sregex_iterator(scenario_text.begin(), scenario_text.end(), re);
+       it != std::sregex_iterator(); ++it) {
     out.push_back((*it)[2]);
   }
   return out;

@@ -1,8 +1,8 @@
 // Missions end to end: seaplan-server (real binary, loopback, ephemeral
 // port, fresh database) + seaplan-sim (real binary) on the example
 // scenarios, checked through the sim's report and the server's API.
-#include <gtest/gtest.h>
 #include <grpcpp/grpcpp.h>
+#include <gtest/gtest.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -43,8 +43,9 @@ class ServerProcess {
     if (pid_ == 0) {
       std::string data = (dir / "data").string(), ports = port_file_.string();
       std::string bin = (BinDir() / "seaplan-server").string();
-      execl(bin.c_str(), bin.c_str(), "--grpc-addr", "127.0.0.1:0", "--http-addr", "", "--data-dir", data.c_str(),
-            "--port-file", ports.c_str(), "--log-level", "warn", static_cast<char*>(nullptr));
+      execl(bin.c_str(), bin.c_str(), "--grpc-addr", "127.0.0.1:0", "--http-addr", "", "--data-dir",
+            data.c_str(), "--port-file", ports.c_str(), "--log-level", "warn",
+            static_cast<char*>(nullptr));
       _exit(127);
     }
     for (int i = 0; i < 300; ++i) {
@@ -86,7 +87,8 @@ struct SimRun {
 std::vector<double> Numbers(const std::string& text, const std::string& key) {
   std::vector<double> out;
   std::regex re("\"" + key + "\": (-?[0-9.eE+-]+)");
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), re); it != std::sregex_iterator(); ++it) {
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), re); it != std::sregex_iterator();
+       ++it) {
     out.push_back(std::stod((*it)[1]));
   }
   return out;
@@ -94,7 +96,8 @@ std::vector<double> Numbers(const std::string& text, const std::string& key) {
 std::vector<std::string> Strings(const std::string& text, const std::string& key) {
   std::vector<std::string> out;
   std::regex re("\"" + key + "\": \"([^\"]*)\"");
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), re); it != std::sregex_iterator(); ++it) {
+  for (auto it = std::sregex_iterator(text.begin(), text.end(), re); it != std::sregex_iterator();
+       ++it) {
     out.push_back((*it)[1]);
   }
   return out;
@@ -109,8 +112,9 @@ class MissionE2eTest : public ::testing::Test {
     if (!fs::exists(BinDir() / "seaplan-server") || !fs::exists(BinDir() / "seaplan-sim")) {
       GTEST_SKIP() << "seaplan-server or seaplan-sim not built in " << BinDir();
     }
-    dir_ = fs::temp_directory_path() / ("seaplan-mission-e2e-" + std::to_string(getpid()) + "-" +
-                                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    dir_ = fs::temp_directory_path() /
+           ("seaplan-mission-e2e-" + std::to_string(getpid()) + "-" +
+            ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(dir_);
     ASSERT_TRUE(server_.Start(dir_ / "server")) << "seaplan-server did not start";
     channel_ = grpc::CreateChannel(server_.address(), grpc::InsecureChannelCredentials());
@@ -123,8 +127,9 @@ class MissionE2eTest : public ::testing::Test {
     ctx.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(30));
     grpc::Status s = stub_->CreateMission(&ctx, req, &m);
     if (s.error_code() == grpc::StatusCode::UNIMPLEMENTED) {
-      GTEST_SKIP() << "the server answers UNIMPLEMENTED for CreateMission (mission engine not wired yet): "
-                   << s.error_message();
+      GTEST_SKIP()
+          << "the server answers UNIMPLEMENTED for CreateMission (mission engine not wired yet): "
+          << s.error_message();
     }
   }
   void TearDown() override {
@@ -135,10 +140,11 @@ class MissionE2eTest : public ::testing::Test {
   SimRun RunSim(const std::string& scenario, const std::string& extra = "") {
     SimRun r;
     r.dir = dir_ / scenario;
-    std::string cmd = (BinDir() / "seaplan-sim").string() + " --server " + server_.address() + " --scenario " +
+    std::string cmd = (BinDir() / "seaplan-sim").string() + " --server " + server_.address() +
+                      " --scenario " +
                       (SourceDir() / "examples/scenarios" / (scenario + ".scenario")).string() +
-                      " --report-dir " + r.dir.string() + " --replan-timeout-s 60 " + extra + " > " +
-                      (dir_ / (scenario + ".out")).string() + " 2>&1";
+                      " --report-dir " + r.dir.string() + " --replan-timeout-s 60 " + extra +
+                      " > " + (dir_ / (scenario + ".out")).string() + " 2>&1";
     int status = std::system(cmd.c_str());
     r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     std::ifstream in(r.dir / "report.json");
@@ -173,15 +179,18 @@ TEST_F(MissionE2eTest, CaseAOneVersionGoalsReachedNoGroundingSafeCpa) {
   chart::ChartOptions o;
   o.safety_buffer_m = 0;
   o.simplify_tolerance_m = 0;
-  auto map = chart::LoadChartFile((SourceDir() / "examples/scenarios/fjord-entrance.geojson").string(), o);
+  auto map =
+      chart::LoadChartFile((SourceDir() / "examples/scenarios/fjord-entrance.geojson").string(), o);
   ASSERT_TRUE(map.ok()) << map.status();
   chart::ObstacleQuery q(*map);
   std::regex pt("\\[(-?[0-9.]+), (-?[0-9.]+), (-?[0-9.]+)\\]");
   std::string traj = r.report.substr(r.report.find("\"trajectory\""));
   int points = 0;
-  for (auto it = std::sregex_iterator(traj.begin(), traj.end(), pt); it != std::sregex_iterator(); ++it) {
+  for (auto it = std::sregex_iterator(traj.begin(), traj.end(), pt); it != std::sregex_iterator();
+       ++it) {
     ++points;
-    EXPECT_FALSE(q.Inside({std::stod((*it)[2]), std::stod((*it)[3])})) << "aground at t=" << (*it)[1];
+    EXPECT_FALSE(q.Inside({std::stod((*it)[2]), std::stod((*it)[3])}))
+        << "aground at t=" << (*it)[1];
   }
   EXPECT_GT(points, 10);
   // The sim's own check, every 2 s of the track against the same land.
@@ -192,11 +201,13 @@ TEST_F(MissionE2eTest, CaseAOneVersionGoalsReachedNoGroundingSafeCpa) {
   std::regex task_re("\"id\": \"([^\"]+)\"[^{}]*\"route\": \\[([^{}]*)\\]\\]");
   std::regex wp("\\[(-?[0-9.]+), (-?[0-9.]+), \"[A-Z-]+\"\\]");
   int routes = 0;
-  for (auto it = std::sregex_iterator(r.report.begin(), r.report.end(), task_re); it != std::sregex_iterator(); ++it) {
+  for (auto it = std::sregex_iterator(r.report.begin(), r.report.end(), task_re);
+       it != std::sregex_iterator(); ++it) {
     ++routes;
     const std::string id = (*it)[1], pts = std::string((*it)[2]) + "]";
     std::vector<chart::LocalPoint> line;
-    for (auto w = std::sregex_iterator(pts.begin(), pts.end(), wp); w != std::sregex_iterator(); ++w) {
+    for (auto w = std::sregex_iterator(pts.begin(), pts.end(), wp); w != std::sregex_iterator();
+         ++w) {
       line.push_back({std::stod((*w)[1]), std::stod((*w)[2])});
     }
     ASSERT_GE(line.size(), 2u) << id;
@@ -245,8 +256,8 @@ TEST_F(MissionE2eTest, CaseCExecutorFuelReplansAndNumericFuelDoesBetter) {
   EXPECT_EQ(Numbers(n.report, "aground_s").at(0), 0.0) << "the simulated ship ran aground";
 }
 
-std::vector<v1::MissionEvent> Watch(v1::MissionService::Stub* stub, const std::string& id, int after_version,
-                                    int64_t after_event) {
+std::vector<v1::MissionEvent> Watch(v1::MissionService::Stub* stub, const std::string& id,
+                                    int after_version, int64_t after_event) {
   v1::WatchMissionRequest req;
   req.set_mission_id(id);
   req.set_after_version(after_version);
@@ -336,7 +347,8 @@ TEST_F(MissionE2eTest, ReconnectingWatcherMissesNothingAndFeedbackIsIdempotent) 
   auto after = Watch(stub_.get(), live.mission_id(), 1, 0);
   int duplicates_logged = 0;
   for (const auto& e : after) {
-    if (e.has_log() && e.log().message().find("duplicate check") != std::string::npos) ++duplicates_logged;
+    if (e.has_log() && e.log().message().find("duplicate check") != std::string::npos)
+      ++duplicates_logged;
   }
   EXPECT_LE(duplicates_logged, 1);
 }
@@ -386,7 +398,8 @@ TEST_F(MissionE2eTest, MoveStartingInsideTheBufferLeavesItInsteadOfFailing) {
     ASSERT_TRUE(st.ok()) << st.error_message();
   }
   // Planning runs in the background: wait for version 1 (or a failure).
-  for (int i = 0; i < 600 && m.current_version() < 1 && m.state() != v1::MISSION_STATE_FAILED; ++i) {
+  for (int i = 0; i < 600 && m.current_version() < 1 && m.state() != v1::MISSION_STATE_FAILED;
+       ++i) {
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
     v1::GetMissionRequest get;
     get.set_mission_id(m.mission_id());
@@ -404,7 +417,8 @@ TEST_F(MissionE2eTest, MoveStartingInsideTheBufferLeavesItInsteadOfFailing) {
   chart::ChartOptions o;
   o.safety_buffer_m = 0;
   o.simplify_tolerance_m = 0;
-  auto map = chart::LoadChartFile((SourceDir() / "examples/scenarios/fjord-entrance.geojson").string(), o);
+  auto map =
+      chart::LoadChartFile((SourceDir() / "examples/scenarios/fjord-entrance.geojson").string(), o);
   ASSERT_TRUE(map.ok()) << map.status();
   chart::ObstacleQuery q(*map);
   int from_a = 0;
@@ -421,7 +435,8 @@ TEST_F(MissionE2eTest, MoveStartingInsideTheBufferLeavesItInsteadOfFailing) {
     const chart::LocalPoint b = map->frame().ToLocal({w1.latitude_deg(), w1.longitude_deg()});
     EXPECT_LT(std::hypot(b.x_m - a.x_m, b.y_m - a.y_m), 40.0);
     for (const auto& w : t.route().waypoints()) {
-      EXPECT_FALSE(q.Inside(map->frame().ToLocal({w.position().latitude_deg(), w.position().longitude_deg()})));
+      EXPECT_FALSE(q.Inside(
+          map->frame().ToLocal({w.position().latitude_deg(), w.position().longitude_deg()})));
     }
   }
   EXPECT_GE(from_a, 1);

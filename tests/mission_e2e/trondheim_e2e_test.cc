@@ -6,13 +6,13 @@
 // repository). Checked against that chart loaded again here without buffer:
 // ports in open water, refined routes and executed track clear of land, one
 // plan version, every closest approach above the safety distance.
-#include <gtest/gtest.h>
 #include <grpcpp/grpcpp.h>
+#include <gtest/gtest.h>
 #include <unistd.h>
 
 #include <algorithm>
-#include <cmath>
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <map>
@@ -77,7 +77,8 @@ TEST(TrondheimE2eTest, ScenarioPortsInOpenWaterAndMunkholmenBetweenCAndD) {
     EXPECT_GT(query.DistanceM(p), kPortClearanceM) << l.name << " is too close to land";
   }
   ASSERT_TRUE(at.count("port-c") && at.count("port-d"));
-  EXPECT_TRUE(query.SegmentHits(at["port-c"], at["port-d"])) << "the straight port-c -> port-d line misses Munkholmen";
+  EXPECT_TRUE(query.SegmentHits(at["port-c"], at["port-d"]))
+      << "the straight port-c -> port-d line misses Munkholmen";
 }
 
 // Case A end to end on the real chart.
@@ -98,7 +99,8 @@ TEST(TrondheimE2eTest, CaseAOnRealLandAreasOneVersionNoGroundingSafeCpa) {
   ASSERT_TRUE(land.ok()) << land.status();
   chart::ObstacleQuery query(*land);
 
-  const fs::path dir = fs::temp_directory_path() / ("seaplan-trondheim-e2e-" + std::to_string(getpid()));
+  const fs::path dir =
+      fs::temp_directory_path() / ("seaplan-trondheim-e2e-" + std::to_string(getpid()));
   fs::remove_all(dir);
   e2e::ServerProcess server;
   ASSERT_TRUE(server.Start(BinDir() / "seaplan-server", dir / "server"))
@@ -114,8 +116,9 @@ TEST(TrondheimE2eTest, CaseAOnRealLandAreasOneVersionNoGroundingSafeCpa) {
     ctx.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(30));
     grpc::Status s = stub->CreateMission(&ctx, req, &m);
     if (s.error_code() == grpc::StatusCode::UNIMPLEMENTED) {
-      GTEST_SKIP() << "the server answers UNIMPLEMENTED for CreateMission (mission engine not wired yet): "
-                   << s.error_message();
+      GTEST_SKIP()
+          << "the server answers UNIMPLEMENTED for CreateMission (mission engine not wired yet): "
+          << s.error_message();
     }
   }
 
@@ -123,11 +126,15 @@ TEST(TrondheimE2eTest, CaseAOnRealLandAreasOneVersionNoGroundingSafeCpa) {
   // folder this test found. As fast as possible; the wall-clock limit only
   // catches a hang (a normal run takes seconds).
   const fs::path report_dir = dir / "report";
-  const e2e::ProcessResult sim = e2e::RunProcess(
-      {(BinDir() / "seaplan-sim").string(), "--server", server.address(), "--scenario", scenario_path.string(),
-       "--report-dir", report_dir.string(), "--replan-timeout-s", "60", "--max-mission-time-s", "7200"},
-      {{"SEAPLAN_SHARED", land_path_shared_root->string()}}, dir / "sim.out", std::chrono::seconds(180));
-  ASSERT_FALSE(sim.timed_out) << "seaplan-sim still running after 180 s (a normal run takes seconds):\n" << sim.output;
+  const e2e::ProcessResult sim =
+      e2e::RunProcess({(BinDir() / "seaplan-sim").string(), "--server", server.address(),
+                       "--scenario", scenario_path.string(), "--report-dir", report_dir.string(),
+                       "--replan-timeout-s", "60", "--max-mission-time-s", "7200"},
+                      {{"SEAPLAN_SHARED", land_path_shared_root->string()}}, dir / "sim.out",
+                      std::chrono::seconds(180));
+  ASSERT_FALSE(sim.timed_out)
+      << "seaplan-sim still running after 180 s (a normal run takes seconds):\n"
+      << sim.output;
   ASSERT_EQ(sim.exit_code, 0) << sim.output;
   const std::string report = e2e::ReadWholeFile(report_dir / "report.json");
   ASSERT_FALSE(report.empty()) << "no report.json in " << report_dir;
@@ -159,15 +166,19 @@ TEST(TrondheimE2eTest, CaseAOnRealLandAreasOneVersionNoGroundingSafeCpa) {
   const double deviation_m = ScenarioNumber(scenario, "position_deviation_m");
   for (const auto& m : moves) {
     std::smatch done;
-    const std::regex done_re("\"t\": (-?[0-9.]+), \"source\": \"[^\"]*\", \"message\": \"[^\"]*KIND_TASK_COMPLETED task " +
-                             m.id + ":");
+    const std::regex done_re(
+        "\"t\": (-?[0-9.]+), \"source\": \"[^\"]*\", \"message\": \"[^\"]*KIND_TASK_COMPLETED "
+        "task " +
+        m.id + ":");
     if (!std::regex_search(report, done, done_re)) continue;  // superseded by a replan
     const double t_done = std::stod(done[1]);
-    auto sample = std::find_if(track.begin(), track.end(), [&](const e2e::TrackPoint& p) { return p.time_s >= t_done; });
+    auto sample = std::find_if(track.begin(), track.end(),
+                               [&](const e2e::TrackPoint& p) { return p.time_s >= t_done; });
     if (sample == track.end()) sample = track.end() - 1;
     const auto& [ex, ey] = m.waypoints.back();
     EXPECT_LT(std::hypot(sample->x_m - ex, sample->y_m - ey), deviation_m)
-        << m.id << " " << m.action << " completed at t=" << t_done << " s away from its destination";
+        << m.id << " " << m.action << " completed at t=" << t_done
+        << " s away from its destination";
   }
   int aground = 0;
   double deepest_m = 0.0, deepest_t = 0.0;
@@ -182,8 +193,8 @@ TEST(TrondheimE2eTest, CaseAOnRealLandAreasOneVersionNoGroundingSafeCpa) {
       }
     }
   }
-  EXPECT_EQ(aground, 0) << aground << " track samples on land, deepest " << deepest_m << " m at t=" << deepest_t
-                        << " s";
+  EXPECT_EQ(aground, 0) << aground << " track samples on land, deepest " << deepest_m
+                        << " m at t=" << deepest_t << " s";
 
   // Every traffic vessel has a closest approach, all above the safety
   // distance.

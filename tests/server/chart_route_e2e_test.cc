@@ -1,8 +1,8 @@
 // ChartService and RouteService end to end: upload a small GeoJSON chart
 // (engine/chart/testdata/harbour.geojson), read it back from storage over
 // both transports, and ask for a route and a risk estimate on it.
-#include <gtest/gtest.h>
 #include <google/protobuf/util/json_util.h>
+#include <gtest/gtest.h>
 
 #include "seaplan/testing/shared_data.h"
 #include "test_support.h"
@@ -21,8 +21,8 @@ v1::LatLon Point(double lat, double lon) {
 }
 
 TEST(ChartRouteE2eTest, UploadGetListAndRouteOnAStoredChart) {
-  const std::string geojson =
-      seaplan::testing::ReadFile(seaplan::testing::SourceDir() / "engine/chart/testdata/harbour.geojson");
+  const std::string geojson = seaplan::testing::ReadFile(seaplan::testing::SourceDir() /
+                                                         "engine/chart/testdata/harbour.geojson");
   ASSERT_FALSE(geojson.empty());
   InProcessServer s;
   auto charts = v1::ChartService::NewStub(s.channel());
@@ -60,9 +60,10 @@ TEST(ChartRouteE2eTest, UploadGetListAndRouteOnAStoredChart) {
   }
 
   // Read back over HTTP/JSON, with the obstacles as GeoJSON.
-  auto res = s.http().Post("/v1/ChartService/GetChart",
-                           "{\"chartId\":\"" + chart.chart_id() + "\",\"includeObstaclesGeojson\":true}",
-                           "application/json");
+  auto res =
+      s.http().Post("/v1/ChartService/GetChart",
+                    "{\"chartId\":\"" + chart.chart_id() + "\",\"includeObstaclesGeojson\":true}",
+                    "application/json");
   ASSERT_TRUE(res);
   ASSERT_EQ(res->status, 200) << res->body;
   v1::GetChartResponse got;
@@ -80,7 +81,8 @@ TEST(ChartRouteE2eTest, UploadGetListAndRouteOnAStoredChart) {
     EXPECT_TRUE(list.next_page_token().empty());
     ClientContext ctx2;
     list_req.set_page_token("garbage");
-    EXPECT_EQ(charts->ListCharts(&ctx2, list_req, &list).error_code(), StatusCode::INVALID_ARGUMENT);
+    EXPECT_EQ(charts->ListCharts(&ctx2, list_req, &list).error_code(),
+              StatusCode::INVALID_ARGUMENT);
   }
 
   // Risk along a short track in the deep water east of the shallows.
@@ -123,12 +125,14 @@ TEST(ChartRouteE2eTest, UploadGetListAndRouteOnAStoredChart) {
     const v1::RouteAlternative& route = resp.chosen_route();
     ASSERT_GE(route.waypoints_size(), 2);
     EXPECT_NEAR(route.waypoints(0).position().latitude_deg(), 62.4703, 1e-5);
-    EXPECT_NEAR(route.waypoints(route.waypoints_size() - 1).position().longitude_deg(), 6.1117, 1e-5);
+    EXPECT_NEAR(route.waypoints(route.waypoints_size() - 1).position().longitude_deg(), 6.1117,
+                1e-5);
     EXPECT_GT(route.length_m(), 0);
     EXPECT_GT(route.sailing_time_s(), 0);
     ASSERT_GE(resp.mode_schedule_size(), 1);
     EXPECT_EQ(resp.mode_schedule(0).from_waypoint(), 0);
-    EXPECT_EQ(resp.mode_schedule(resp.mode_schedule_size() - 1).to_waypoint(), route.waypoints_size() - 1);
+    EXPECT_EQ(resp.mode_schedule(resp.mode_schedule_size() - 1).to_waypoint(),
+              route.waypoints_size() - 1);
 
     ClientContext ctx2;
     *req.mutable_start() = Point(62.471, 6.102);  // on the land square

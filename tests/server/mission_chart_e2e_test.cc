@@ -45,8 +45,10 @@ constexpr char kDomain[] = R"((define (domain ferry)
     :effect (and (at start (not (at ?s ?from))) (at end (at ?s ?to))))))";
 
 std::string Problem(const std::string& goal) {
-  return "(define (problem p) (:domain ferry) (:objects ship0 - ship port-w port-e port-lagoon - location) "
-         "(:init (at ship0 port-w)) (:goal (at ship0 " + goal + ")))";
+  return "(define (problem p) (:domain ferry) (:objects ship0 - ship port-w port-e port-lagoon - "
+         "location) "
+         "(:init (at ship0 port-w)) (:goal (at ship0 " +
+         goal + ")))";
 }
 
 std::string UploadIslandChart(InProcessServer& s) {
@@ -76,7 +78,8 @@ v1::MissionSpec ChartSpec(const std::string& chart_id, const std::string& goal) 
   struct {
     const char* name;
     double lat, lon;
-  } const ports[] = {{"port-w", 62.469, 6.090}, {"port-e", 62.469, 6.130}, {"port-lagoon", 62.4775, 6.131}};
+  } const ports[] = {
+      {"port-w", 62.469, 6.090}, {"port-e", 62.469, 6.130}, {"port-lagoon", 62.4775, 6.131}};
   for (const auto& p : ports) {
     v1::NamedLocation* l = spec.add_locations();
     l->set_name(p.name);
@@ -104,9 +107,10 @@ TEST(MissionChartE2eTest, MovesAreRoutedAroundTheIslandWithModes) {
   grpc::Status st = missions->CreateMission(&ctx, req, &mission);
   if (st.error_code() == StatusCode::UNIMPLEMENTED) GTEST_SKIP() << st.error_message();
   ASSERT_TRUE(st.ok()) << st.error_message();
-  RecordProperty("create_ms", static_cast<int>(std::chrono::duration_cast<std::chrono::milliseconds>(
-                                                   std::chrono::steady_clock::now() - t0)
-                                                   .count()));
+  RecordProperty("create_ms",
+                 static_cast<int>(std::chrono::duration_cast<std::chrono::milliseconds>(
+                                      std::chrono::steady_clock::now() - t0)
+                                      .count()));
   EXPECT_EQ(mission.state(), v1::MISSION_STATE_ACTIVE);
 
   auto record = s.store().missions().GetVersion(mission.mission_id(), 1);
@@ -131,8 +135,9 @@ TEST(MissionChartE2eTest, MovesAreRoutedAroundTheIslandWithModes) {
   EXPECT_NEAR(first.longitude_deg(), 6.090, 1e-4);
   EXPECT_NEAR(last.longitude_deg(), 6.130, 1e-4);
   for (const auto& w : move.route().waypoints()) {
-    const bool on_island = w.position().longitude_deg() > 6.105 && w.position().longitude_deg() < 6.115 &&
-                           w.position().latitude_deg() > 62.464 && w.position().latitude_deg() < 62.474;
+    const bool on_island =
+        w.position().longitude_deg() > 6.105 && w.position().longitude_deg() < 6.115 &&
+        w.position().latitude_deg() > 62.464 && w.position().latitude_deg() < 62.474;
     EXPECT_FALSE(on_island) << w.position().latitude_deg() << " " << w.position().longitude_deg();
     EXPECT_NE(w.mode(), v1::MSO_MODE_UNSPECIFIED);
   }
@@ -189,7 +194,8 @@ TEST(MissionChartE2eTest, LegWithoutSafeRouteIsFailedPreconditionNamingTheLeg) {
   grpc::Status st = missions->CreateMission(&ctx, req, &mission);
   if (st.error_code() == StatusCode::UNIMPLEMENTED) GTEST_SKIP() << st.error_message();
   EXPECT_EQ(st.error_code(), StatusCode::FAILED_PRECONDITION) << st.error_message();
-  EXPECT_NE(st.error_message().find("port-w -> port-lagoon"), std::string::npos) << st.error_message();
+  EXPECT_NE(st.error_message().find("port-w -> port-lagoon"), std::string::npos)
+      << st.error_message();
 
   // An unknown chart is a precondition too, not an internal error.
   *req.mutable_spec() = ChartSpec("no-such-chart", "port-e");

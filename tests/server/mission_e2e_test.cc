@@ -70,12 +70,14 @@ TEST(MissionE2eTest, CaseAPlannedRefinedAndReplannedWithTheRealEngine) {
   {
     ClientContext bad_ctx;
     v1::CreateMissionRequest bad = req;
-    bad.mutable_spec()->set_domain("(define (domain d) (:predicates (p)) (:action a :parameters () :precondition (q)))");
+    bad.mutable_spec()->set_domain(
+        "(define (domain d) (:predicates (p)) (:action a :parameters () :precondition (q)))");
     v1::Mission m;
     grpc::Status bad_st = missions->CreateMission(&bad_ctx, bad, &m);
     EXPECT_EQ(bad_st.error_code(), StatusCode::INVALID_ARGUMENT) << bad_st.error_message();
     v1::DiagnosticList diagnostics;
-    EXPECT_TRUE(diagnostics.ParseFromString(bad_st.error_details()) && diagnostics.diagnostics_size() > 0);
+    EXPECT_TRUE(diagnostics.ParseFromString(bad_st.error_details()) &&
+                diagnostics.diagnostics_size() > 0);
     EXPECT_EQ(s.store().missions().List(0, 10, 0)->items.size(), 1u);
   }
 
@@ -91,7 +93,8 @@ TEST(MissionE2eTest, CaseAPlannedRefinedAndReplannedWithTheRealEngine) {
     ASSERT_TRUE(rst.ok()) << rst.error_message();
     EXPECT_EQ(rresp.version().version(), 2);
     EXPECT_EQ(rresp.version().tasks_size(), 13);
-    EXPECT_EQ(rresp.version().tasks(0).task_id().rfind("v2-", 0), 0u) << rresp.version().tasks(0).task_id();
+    EXPECT_EQ(rresp.version().tasks(0).task_id().rfind("v2-", 0), 0u)
+        << rresp.version().tasks(0).task_id();
   }
   {
     ClientContext cctx;

@@ -2,8 +2,8 @@
 // on the fjord example checked by the server's own validator, NDJSON
 // streaming, and deadlines / the bounded pool on a search that runs until
 // its time limit (depots-time p05 from the shared benchmark set).
-#include <gtest/gtest.h>
 #include <google/protobuf/util/json_util.h>
+#include <gtest/gtest.h>
 
 #include <future>
 
@@ -45,7 +45,8 @@ TEST(PlanningE2eTest, PlanCaseAReturnsAPlanTheValidatorAccepts) {
   v1::PlanResponse resp;
   grpc::Status st = planning->Plan(&ctx, req, &resp);
   ASSERT_TRUE(st.ok()) << st.error_message();
-  ASSERT_TRUE(resp.status() == v1::SOLVED_SATISFICING || resp.status() == v1::SOLVED_OPTIMALLY) << resp.message();
+  ASSERT_TRUE(resp.status() == v1::SOLVED_SATISFICING || resp.status() == v1::SOLVED_OPTIMALLY)
+      << resp.message();
   EXPECT_EQ(resp.plan_size(), 13);
   EXPECT_GE(resp.makespan_s(), 2403.33);
   EXPECT_GT(resp.statistics().ground_actions(), 0u);
@@ -84,7 +85,9 @@ TEST(PlanningE2eTest, PlanStreamOverHttpIsNdjsonEndingWithTheFinalResult) {
     const std::size_t end = res->body.find('\n', start);
     ASSERT_NE(end, std::string::npos);
     v1::PlanStreamEvent ev;
-    ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(res->body.substr(start, end - start), &ev).ok());
+    ASSERT_TRUE(
+        google::protobuf::util::JsonStringToMessage(res->body.substr(start, end - start), &ev)
+            .ok());
     events.push_back(ev);
     start = end + 1;
   }
@@ -98,8 +101,10 @@ TEST(PlanningE2eTest, PlanStreamOverHttpIsNdjsonEndingWithTheFinalResult) {
   EXPECT_GE(improved, 1);
   EXPECT_EQ(events.back().final_result().plan_size(), 13);
   // Malformed PDDL before the stream starts: a plain 400 with diagnostics.
-  auto bad = s.http().Post("/v1/PlanningService/PlanStream",
-                           "{\"domain\":\"(define (domain d\",\"problem\":\"(define (problem p))\"}", "application/json");
+  auto bad =
+      s.http().Post("/v1/PlanningService/PlanStream",
+                    "{\"domain\":\"(define (domain d\",\"problem\":\"(define (problem p))\"}",
+                    "application/json");
   ASSERT_TRUE(bad);
   EXPECT_EQ(bad->status, 400) << bad->body;
   EXPECT_NE(bad->body.find("DiagnosticList"), std::string::npos) << bad->body;
@@ -115,7 +120,8 @@ TEST(PlanningE2eTest, ClientDeadlineStopsALongSearch) {
   v1::PlanRequest req;
   req.set_domain(domain);
   req.set_problem(problem);
-  req.mutable_options()->mutable_time_limit()->set_seconds(120);  // the search alone would run for minutes
+  req.mutable_options()->mutable_time_limit()->set_seconds(
+      120);  // the search alone would run for minutes
 
   // While one long search holds the only worker, another is refused at once.
   auto first = std::async(std::launch::async, [&] {
@@ -126,7 +132,8 @@ TEST(PlanningE2eTest, ClientDeadlineStopsALongSearch) {
     const StatusCode code = planning->Plan(&ctx, req, &resp).error_code();
     return std::make_pair(code, std::chrono::steady_clock::now() - t0);
   });
-  while (s.server().core().pool().busy() == 0) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  while (s.server().core().pool().busy() == 0)
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
   {
     ClientContext ctx;
     v1::PlanResponse resp;

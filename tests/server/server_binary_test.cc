@@ -6,24 +6,23 @@
 // This is a separate test binary that does not link the server libraries:
 // libgrpc++_reflection carries its own copy of the reflection protos, which
 // would clash with the client stubs of seaplan_grpc_std_protos.
-#include <gtest/gtest.h>
+#include <arpa/inet.h>
 #include <grpcpp/grpcpp.h>
+#include <gtest/gtest.h>
 #include <httplib.h>
+#include <netinet/in.h>
 #include <signal.h>
 #include <spawn.h>
-#include <arpa/inet.h>
-#include <netinet/in.h>
 #include <sys/socket.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
-#include <chrono>
-#include <fstream>
-#include <thread>
-
 #include <atomic>
+#include <chrono>
 #include <filesystem>
+#include <fstream>
 #include <set>
+#include <thread>
 
 #include "grpc/health/v1/health.grpc.pb.h"
 #include "grpc/reflection/v1alpha/reflection.grpc.pb.h"
@@ -110,18 +109,20 @@ TEST(ServerBinaryTest, ServesBothTransportsAndShutsDownCleanlyOnSigterm) {
   TempDir dir;
   const auto port_file = dir.path() / "ports";
   const auto data_dir = dir.path() / "data";
-  Child child({binary.string(), "--grpc-addr", "127.0.0.1:0", "--http-addr", "127.0.0.1:0", "--data-dir",
-               data_dir.string(), "--port-file", port_file.string(), "--log-level", "warn", "--planning-threads",
-               "1"});
+  Child child({binary.string(), "--grpc-addr", "127.0.0.1:0", "--http-addr", "127.0.0.1:0",
+               "--data-dir", data_dir.string(), "--port-file", port_file.string(), "--log-level",
+               "warn", "--planning-threads", "1"});
   int grpc_port = 0, http_port = 0;
   const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(20);
-  while (!ReadPorts(port_file, &grpc_port, &http_port) && std::chrono::steady_clock::now() < until) {
+  while (!ReadPorts(port_file, &grpc_port, &http_port) &&
+         std::chrono::steady_clock::now() < until) {
     ASSERT_EQ(waitpid(child.pid(), nullptr, WNOHANG), 0) << "server exited early";
     std::this_thread::sleep_for(std::chrono::milliseconds(20));
   }
   ASSERT_GT(grpc_port, 0) << "no port file";
 
-  auto channel = grpc::CreateChannel("127.0.0.1:" + std::to_string(grpc_port), grpc::InsecureChannelCredentials());
+  auto channel = grpc::CreateChannel("127.0.0.1:" + std::to_string(grpc_port),
+                                     grpc::InsecureChannelCredentials());
   auto health = grpc::health::v1::Health::NewStub(channel);
   grpc::ClientContext ctx;
   SetDeadline(&ctx, 5000);
@@ -157,9 +158,11 @@ TEST(ServerBinaryTest, ServesBothTransportsAndShutsDownCleanlyOnSigterm) {
     grpc::reflection::v1alpha::ServerReflectionResponse rresp;
     ASSERT_TRUE(stream->Read(&rresp));
     std::set<std::string> names;
-    for (const auto& service : rresp.list_services_response().service()) names.insert(service.name());
-    for (const char* expected : {"seaplan.v1.PlanningService", "seaplan.v1.ChartService", "seaplan.v1.RouteService",
-                                 "seaplan.v1.MissionService", "grpc.health.v1.Health"}) {
+    for (const auto& service : rresp.list_services_response().service())
+      names.insert(service.name());
+    for (const char* expected :
+         {"seaplan.v1.PlanningService", "seaplan.v1.ChartService", "seaplan.v1.RouteService",
+          "seaplan.v1.MissionService", "grpc.health.v1.Health"}) {
       EXPECT_TRUE(names.count(expected)) << expected;
     }
     // The schema itself is served too (what grpcurl needs).
@@ -192,13 +195,15 @@ TEST(ServerBinaryTest, BadFlagsAndBusyPortsFailWithNonZeroExit) {
   if (!std::filesystem::exists(binary)) GTEST_SKIP() << binary << " not built";
   TempDir dir;
   {
-    Child child({binary.string(), "--planning-threads", "0", "--data-dir", (dir.path() / "d").string()});
+    Child child(
+        {binary.string(), "--planning-threads", "0", "--data-dir", (dir.path() / "d").string()});
     const int status = child.Wait(std::chrono::seconds(10));
     ASSERT_NE(status, -1);
     EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) != 0);
   }
   {
-    Child child({binary.string(), "--log-level", "loud", "--data-dir", (dir.path() / "d").string()});
+    Child child(
+        {binary.string(), "--log-level", "loud", "--data-dir", (dir.path() / "d").string()});
     const int status = child.Wait(std::chrono::seconds(10));
     ASSERT_NE(status, -1);
     EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) != 0);

@@ -1,9 +1,8 @@
 // The server on loopback, in-process: health, error mapping,
 // the bounded pool, deadlines and cancellation, the mission flow and the
 // HTTP/JSON gateway, over both transports.
-#include <gtest/gtest.h>
-
 #include <google/protobuf/util/json_util.h>
+#include <gtest/gtest.h>
 
 #include <future>
 #include <set>
@@ -78,7 +77,8 @@ TEST(ServerE2eTest, UnknownIdsAreNotFoundOverBothTransports) {
     EXPECT_EQ(missions->ReportFeedback(&ctx, req, &resp).error_code(), StatusCode::NOT_FOUND);
   }
   auto http = s.http();
-  auto res = http.Post("/v1/MissionService/GetMission", "{\"missionId\":\"m-nope\"}", "application/json");
+  auto res =
+      http.Post("/v1/MissionService/GetMission", "{\"missionId\":\"m-nope\"}", "application/json");
   ASSERT_TRUE(res);
   EXPECT_EQ(res->status, 404);
   EXPECT_NE(res->body.find("\"code\":\"NOT_FOUND\""), std::string::npos) << res->body;
@@ -109,7 +109,8 @@ TEST(ServerE2eTest, MissingMissionEngineIsUnimplementedAndStoresNothing) {
   auto listed = s.store().missions().List(0, 10, 0);
   ASSERT_TRUE(listed.ok());
   EXPECT_TRUE(listed->items.empty());
-  auto res = s.http().Post("/v1/MissionService/CreateMission", "{\"spec\":{\"name\":\"x\",\"domain\":\"d\",\"problem\":\"p\"}}",
+  auto res = s.http().Post("/v1/MissionService/CreateMission",
+                           "{\"spec\":{\"name\":\"x\",\"domain\":\"d\",\"problem\":\"p\"}}",
                            "application/json");
   ASSERT_TRUE(res);
   EXPECT_EQ(res->status, 501);
@@ -136,13 +137,16 @@ TEST(ServerE2eTest, MalformedPddlIsInvalidArgumentWithLocation) {
   auto planning = v1::PlanningService::NewStub(s.channel());
   v1::ValidateRequest req;
   // Line 3 uses an undeclared predicate.
-  req.set_domain("(define (domain d)\n (:predicates (p))\n (:action a :parameters () :precondition (q) :effect (p)))\n");
+  req.set_domain(
+      "(define (domain d)\n (:predicates (p))\n (:action a :parameters () :precondition (q) "
+      ":effect (p)))\n");
   req.set_problem("(define (problem x) (:domain d) (:init) (:goal (p)))");
   req.set_plan("0: (a)\n");
   ClientContext ctx;
   v1::ValidateResponse resp;
   grpc::Status st = planning->Validate(&ctx, req, &resp);
-  if (st.error_code() == StatusCode::UNIMPLEMENTED) GTEST_SKIP() << "validator not built: " << st.error_message();
+  if (st.error_code() == StatusCode::UNIMPLEMENTED)
+    GTEST_SKIP() << "validator not built: " << st.error_message();
   ASSERT_EQ(st.error_code(), StatusCode::INVALID_ARGUMENT) << st.error_message();
   v1::DiagnosticList diagnostics;
   ASSERT_TRUE(diagnostics.ParseFromString(st.error_details()));
@@ -153,11 +157,12 @@ TEST(ServerE2eTest, MalformedPddlIsInvalidArgumentWithLocation) {
   EXPECT_GT(d.column(), 0);
   EXPECT_EQ(d.symbol(), "q");
   // Same over HTTP: 400 with the diagnostics in "details".
-  auto res = s.http().Post(
-      "/v1/PlanningService/Validate",
-      "{\"domain\":\"(define (domain d)\\n (:predicates (p))\\n (:action a :parameters () :precondition (q) :effect "
-      "(p)))\",\"problem\":\"(define (problem x) (:domain d) (:init) (:goal (p)))\",\"plan\":\"0: (a)\"}",
-      "application/json");
+  auto res = s.http().Post("/v1/PlanningService/Validate",
+                           "{\"domain\":\"(define (domain d)\\n (:predicates (p))\\n (:action a "
+                           ":parameters () :precondition (q) :effect "
+                           "(p)))\",\"problem\":\"(define (problem x) (:domain d) (:init) (:goal "
+                           "(p)))\",\"plan\":\"0: (a)\"}",
+                           "application/json");
   ASSERT_TRUE(res);
   EXPECT_EQ(res->status, 400) << res->body;
   EXPECT_NE(res->body.find("seaplan.v1.DiagnosticList"), std::string::npos) << res->body;
@@ -169,7 +174,8 @@ TEST(ServerE2eTest, ValidateJsonRoundTripOnTheFjordExample) {
   const std::string problem = ReadExample("case-a.pddl");
   const std::string good = ReadExample("case-a-repaired.plan");
   const std::string paper = ReadExample("case-a-paper.plan");
-  if (domain.empty() || problem.empty() || good.empty() || paper.empty()) GTEST_SKIP() << "examples/fjord missing";
+  if (domain.empty() || problem.empty() || good.empty() || paper.empty())
+    GTEST_SKIP() << "examples/fjord missing";
   InProcessServer s;
   auto planning = v1::PlanningService::NewStub(s.channel());
   v1::ValidateRequest req;
@@ -179,7 +185,8 @@ TEST(ServerE2eTest, ValidateJsonRoundTripOnTheFjordExample) {
   ClientContext ctx;
   v1::ValidateResponse resp;
   grpc::Status st = planning->Validate(&ctx, req, &resp);
-  if (st.error_code() == StatusCode::UNIMPLEMENTED) GTEST_SKIP() << "validator not built: " << st.error_message();
+  if (st.error_code() == StatusCode::UNIMPLEMENTED)
+    GTEST_SKIP() << "validator not built: " << st.error_message();
   ASSERT_TRUE(st.ok()) << st.error_message();
   EXPECT_TRUE(resp.valid()) << resp.first_failure().reason();
   EXPECT_EQ(resp.action_count(), 13);
@@ -195,7 +202,8 @@ TEST(ServerE2eTest, ValidateJsonRoundTripOnTheFjordExample) {
   ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(res->body, &http_resp).ok()) << res->body;
   EXPECT_FALSE(http_resp.valid());
   EXPECT_FALSE(http_resp.first_failure().reason().empty());
-  EXPECT_NE(res->body.find("\"valid\":false"), std::string::npos) << res->body;  // defaults are printed
+  EXPECT_NE(res->body.find("\"valid\":false"), std::string::npos)
+      << res->body;  // defaults are printed
 }
 
 // ---- the bounded pool, deadlines and cancellation (fake mission engine) ----
@@ -214,7 +222,8 @@ TEST(ServerE2eTest, FullPoolIsResourceExhaustedAtOnceOverBothTransports) {
     v1::Mission resp;
     return missions->CreateMission(&ctx, req, &resp).error_code();
   });
-  while (s.server().core().pool().busy() == 0) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  while (s.server().core().pool().busy() == 0)
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
   const auto t0 = std::chrono::steady_clock::now();
   ClientContext ctx;
   v1::CreateMissionRequest req;
@@ -224,7 +233,8 @@ TEST(ServerE2eTest, FullPoolIsResourceExhaustedAtOnceOverBothTransports) {
   EXPECT_EQ(st.error_code(), StatusCode::RESOURCE_EXHAUSTED) << st.error_message();
   EXPECT_LT(std::chrono::steady_clock::now() - t0, std::chrono::seconds(1));  // not queued
   auto res = s.http().Post("/v1/MissionService/CreateMission",
-                           "{\"spec\":{\"name\":\"third\",\"domain\":\"d\",\"problem\":\"p\"}}", "application/json");
+                           "{\"spec\":{\"name\":\"third\",\"domain\":\"d\",\"problem\":\"p\"}}",
+                           "application/json");
   ASSERT_TRUE(res);
   EXPECT_EQ(res->status, 429) << res->body;
   EXPECT_NE(res->body.find("RESOURCE_EXHAUSTED"), std::string::npos);
@@ -258,7 +268,8 @@ TEST(ServerE2eTest, ClientDeadlineReachesTheWorkAndIsDeadlineExceeded) {
   engine->stopped_work_finished = false;
   httplib::Headers headers{{"X-Seaplan-Timeout-Ms", "200"}};
   auto res = s.http().Post("/v1/MissionService/CreateMission", headers,
-                           "{\"spec\":{\"name\":\"h\",\"domain\":\"d\",\"problem\":\"p\"}}", "application/json");
+                           "{\"spec\":{\"name\":\"h\",\"domain\":\"d\",\"problem\":\"p\"}}",
+                           "application/json");
   ASSERT_TRUE(res);
   EXPECT_EQ(res->status, 504) << res->body;
   EXPECT_NE(res->body.find("DEADLINE_EXCEEDED"), std::string::npos);
@@ -273,8 +284,10 @@ TEST(ServerE2eTest, ClientCancellationReachesTheWork) {
   v1::CreateMissionRequest req;
   *req.mutable_spec() = SampleSpec();
   v1::Mission resp;
-  auto call = std::async(std::launch::async, [&] { return missions->CreateMission(&ctx, req, &resp).error_code(); });
-  while (s.server().core().pool().busy() == 0) std::this_thread::sleep_for(std::chrono::milliseconds(2));
+  auto call = std::async(std::launch::async,
+                         [&] { return missions->CreateMission(&ctx, req, &resp).error_code(); });
+  while (s.server().core().pool().busy() == 0)
+    std::this_thread::sleep_for(std::chrono::milliseconds(2));
   ctx.TryCancel();
   EXPECT_EQ(call.get(), StatusCode::CANCELLED);
   const auto wait_until = std::chrono::steady_clock::now() + std::chrono::seconds(5);
@@ -392,7 +405,8 @@ TEST(ServerE2eTest, MissionFlowFeedbackIdempotentReplanAndResumableWatch) {
   }
   EXPECT_EQ(versions, (std::vector<int>{1, 2, 3}));
   ASSERT_FALSE(event_ids.empty());
-  for (std::size_t i = 0; i < event_ids.size(); ++i) EXPECT_EQ(event_ids[i], static_cast<std::int64_t>(i + 1));
+  for (std::size_t i = 0; i < event_ids.size(); ++i)
+    EXPECT_EQ(event_ids[i], static_cast<std::int64_t>(i + 1));
   EXPECT_EQ(last_state, v1::MISSION_STATE_COMPLETED);
   const auto stored_events = s.store().missions().ListEvents(id, 0, 1000);
   EXPECT_EQ(event_ids.size(), stored_events->size());
@@ -421,12 +435,14 @@ TEST(ServerE2eTest, MissionFlowFeedbackIdempotentReplanAndResumableWatch) {
     req.set_vessel_id("ship0");
     req.set_sequence_number(99);
     v1::ReportFeedbackResponse resp;
-    EXPECT_EQ(missions->ReportFeedback(&ctx, req, &resp).error_code(), StatusCode::FAILED_PRECONDITION);
+    EXPECT_EQ(missions->ReportFeedback(&ctx, req, &resp).error_code(),
+              StatusCode::FAILED_PRECONDITION);
     ClientContext ctx2;
     v1::CancelMissionRequest cancel;
     cancel.set_mission_id(id);
     v1::Mission m;
-    EXPECT_EQ(missions->CancelMission(&ctx2, cancel, &m).error_code(), StatusCode::FAILED_PRECONDITION);
+    EXPECT_EQ(missions->CancelMission(&ctx2, cancel, &m).error_code(),
+              StatusCode::FAILED_PRECONDITION);
   }
 }
 
@@ -434,10 +450,11 @@ TEST(ServerE2eTest, HttpJsonMissionRoundTripAndNdjsonWatch) {
   auto engine = std::make_shared<FakeMissionEngine>();
   InProcessServer s(engine);
   auto http = s.http();
-  auto res = http.Post("/v1/MissionService/CreateMission",
-                       "{\"spec\":{\"name\":\"json\",\"domain\":\"(define (domain d))\",\"problem\":\"p\","
-                       "\"initialState\":{\"fuelFraction\":0.3}}}",
-                       "application/json");
+  auto res =
+      http.Post("/v1/MissionService/CreateMission",
+                "{\"spec\":{\"name\":\"json\",\"domain\":\"(define (domain d))\",\"problem\":\"p\","
+                "\"initialState\":{\"fuelFraction\":0.3}}}",
+                "application/json");
   ASSERT_TRUE(res);
   ASSERT_EQ(res->status, 200) << res->body;
   EXPECT_EQ(res->get_header_value("Content-Type"), "application/json");
@@ -461,10 +478,11 @@ TEST(ServerE2eTest, HttpJsonMissionRoundTripAndNdjsonWatch) {
     std::this_thread::sleep_for(std::chrono::milliseconds(200));
     auto c = s.http();
     return c.Post("/v1/MissionService/CancelMission",
-                  "{\"missionId\":\"" + mission.mission_id() + "\",\"reason\":\"test over\"}", "application/json");
+                  "{\"missionId\":\"" + mission.mission_id() + "\",\"reason\":\"test over\"}",
+                  "application/json");
   });
-  auto watch = http.Post("/v1/MissionService/WatchMission", "{\"missionId\":\"" + mission.mission_id() + "\"}",
-                         "application/json");
+  auto watch = http.Post("/v1/MissionService/WatchMission",
+                         "{\"missionId\":\"" + mission.mission_id() + "\"}", "application/json");
   ASSERT_TRUE(watch);
   EXPECT_EQ(watch->status, 200);
   EXPECT_EQ(watch->get_header_value("Content-Type"), "application/x-ndjson");
@@ -477,7 +495,9 @@ TEST(ServerE2eTest, HttpJsonMissionRoundTripAndNdjsonWatch) {
     const std::size_t end = watch->body.find('\n', start);
     ASSERT_NE(end, std::string::npos) << "every line ends with \\n";
     v1::MissionEvent ev;
-    ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(watch->body.substr(start, end - start), &ev).ok())
+    ASSERT_TRUE(
+        google::protobuf::util::JsonStringToMessage(watch->body.substr(start, end - start), &ev)
+            .ok())
         << watch->body.substr(start, end - start);
     events.push_back(ev);
     start = end + 1;
@@ -487,11 +507,13 @@ TEST(ServerE2eTest, HttpJsonMissionRoundTripAndNdjsonWatch) {
   EXPECT_TRUE(events.back().has_mission());
   EXPECT_EQ(events.back().mission().state(), v1::MISSION_STATE_CANCELLED);
   bool saw_cancel_log = false;
-  for (const auto& ev : events) saw_cancel_log |= ev.has_log() && ev.log().message() == "mission cancelled: test over";
+  for (const auto& ev : events)
+    saw_cancel_log |= ev.has_log() && ev.log().message() == "mission cancelled: test over";
   EXPECT_TRUE(saw_cancel_log);
 
   // Streams that fail before the first message are plain HTTP errors.
-  auto missing = http.Post("/v1/MissionService/WatchMission", "{\"missionId\":\"m-nope\"}", "application/json");
+  auto missing = http.Post("/v1/MissionService/WatchMission", "{\"missionId\":\"m-nope\"}",
+                           "application/json");
   ASSERT_TRUE(missing);
   EXPECT_EQ(missing->status, 404);
 }

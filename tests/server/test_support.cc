@@ -21,7 +21,8 @@ TempDir::~TempDir() {
 }
 
 absl::Status FakeMissionEngine::CheckSpec(const v1::MissionSpec& spec) {
-  if (spec.name() == "bad") return absl::InvalidArgumentError("spec.name: 'bad' is refused by the fake engine");
+  if (spec.name() == "bad")
+    return absl::InvalidArgumentError("spec.name: 'bad' is refused by the fake engine");
   return absl::OkStatus();
 }
 
@@ -58,37 +59,41 @@ PlannedVersion FakeMissionEngine::MakeVersion(int version, double origin_s) {
   return planned;
 }
 
-absl::StatusOr<PlannedVersion> FakeMissionEngine::PlanInitial(const v1::MissionSpec&, const StopToken& stop) {
+absl::StatusOr<PlannedVersion> FakeMissionEngine::PlanInitial(const v1::MissionSpec&,
+                                                              const StopToken& stop) {
   ++plan_calls;
   SEAPLAN_RETURN_IF_ERROR(MaybeBlock(stop));
   return MakeVersion(1, 0.0);
 }
 
-absl::StatusOr<std::optional<PlannedVersion>> FakeMissionEngine::Replan(const v1::MissionSpec&,
-                                                                        const MissionRuntimeState& state,
-                                                                        std::string_view reason,
-                                                                        const StopToken& stop) {
+absl::StatusOr<std::optional<PlannedVersion>> FakeMissionEngine::Replan(
+    const v1::MissionSpec&, const MissionRuntimeState& state, std::string_view reason,
+    const StopToken& stop) {
   ++plan_calls;
   ++replan_calls;
   SEAPLAN_RETURN_IF_ERROR(MaybeBlock(stop));
-  const auto until = std::chrono::steady_clock::now() + std::chrono::milliseconds(replan_delay_ms.load());
+  const auto until =
+      std::chrono::steady_clock::now() + std::chrono::milliseconds(replan_delay_ms.load());
   while (!stop.StopRequested() && std::chrono::steady_clock::now() < until) {
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
   }
   if (state.engine_state != absl::StrCat("state-of-v", state.mission.current_version())) {
     return absl::InternalError("engine state of the current version was not handed back");
   }
-  PlannedVersion planned = MakeVersion(state.mission.current_version() + 1,
-                                       state.recent_feedback.empty() ? 0.0 : state.recent_feedback.back().mission_time_s());
+  PlannedVersion planned = MakeVersion(
+      state.mission.current_version() + 1,
+      state.recent_feedback.empty() ? 0.0 : state.recent_feedback.back().mission_time_s());
   planned.version.set_reason(std::string(reason));
   return std::optional<PlannedVersion>(std::move(planned));
 }
 
-FeedbackDecision FakeMissionEngine::OnFeedback(const v1::MissionSpec&, const MissionRuntimeState& state,
+FeedbackDecision FakeMissionEngine::OnFeedback(const v1::MissionSpec&,
+                                               const MissionRuntimeState& state,
                                                const v1::Feedback& feedback) {
   FeedbackDecision d;
   if (feedback.kind() == v1::Feedback::KIND_TASK_COMPLETED) {
-    std::vector<std::string> done(state.mission.completed_tasks().begin(), state.mission.completed_tasks().end());
+    std::vector<std::string> done(state.mission.completed_tasks().begin(),
+                                  state.mission.completed_tasks().end());
     done.push_back(feedback.task_id());
     d.completed_tasks = done;
     const auto& tasks = state.current_version.tasks();
@@ -99,7 +104,8 @@ FeedbackDecision FakeMissionEngine::OnFeedback(const v1::MissionSpec&, const Mis
   } else if (feedback.kind() == v1::Feedback::KIND_TASK_FAILED) {
     d.replan = true;
     d.replan_reason = absl::StrCat("task ", feedback.task_id(), " failed");
-    d.log_messages.push_back(absl::StrCat("task ", feedback.task_id(), " failed, need re-planning"));
+    d.log_messages.push_back(
+        absl::StrCat("task ", feedback.task_id(), " failed, need re-planning"));
   }
   return d;
 }
@@ -118,7 +124,8 @@ InProcessServer::InProcessServer(const EngineFactory& make_engine, int planning_
   Start(make_engine(*store_), planning_threads);
 }
 
-void InProcessServer::Start(std::shared_ptr<MissionEngine> engine, int planning_threads) {  ServerOptions options;
+void InProcessServer::Start(std::shared_ptr<MissionEngine> engine, int planning_threads) {
+  ServerOptions options;
   options.grpc_address = "127.0.0.1:0";
   options.http_address = "127.0.0.1:0";
   options.worker_threads = 8;

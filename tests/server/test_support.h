@@ -3,8 +3,8 @@
 // and a fake mission engine whose timing the tests control.
 #pragma once
 
-#include <gtest/gtest.h>
 #include <grpcpp/grpcpp.h>
+#include <gtest/gtest.h>
 #include <httplib.h>
 
 #include <atomic>
@@ -51,9 +51,12 @@ class FakeMissionEngine final : public MissionEngine {
   std::atomic<int> replan_calls{0};
 
   absl::Status CheckSpec(const v1::MissionSpec& spec) override;
-  absl::StatusOr<PlannedVersion> PlanInitial(const v1::MissionSpec& spec, const StopToken& stop) override;
-  absl::StatusOr<std::optional<PlannedVersion>> Replan(const v1::MissionSpec& spec, const MissionRuntimeState& state,
-                                                       std::string_view reason, const StopToken& stop) override;
+  absl::StatusOr<PlannedVersion> PlanInitial(const v1::MissionSpec& spec,
+                                             const StopToken& stop) override;
+  absl::StatusOr<std::optional<PlannedVersion>> Replan(const v1::MissionSpec& spec,
+                                                       const MissionRuntimeState& state,
+                                                       std::string_view reason,
+                                                       const StopToken& stop) override;
   FeedbackDecision OnFeedback(const v1::MissionSpec& spec, const MissionRuntimeState& state,
                               const v1::Feedback& feedback) override;
 
@@ -66,7 +69,8 @@ class FakeMissionEngine final : public MissionEngine {
 // database in a temporary folder.
 class InProcessServer {
  public:
-  explicit InProcessServer(std::shared_ptr<MissionEngine> engine = nullptr, int planning_threads = 2);
+  explicit InProcessServer(std::shared_ptr<MissionEngine> engine = nullptr,
+                           int planning_threads = 2);
   // With an engine made over the server's own store (e.g. MakeMissionEngine).
   using EngineFactory = std::function<std::shared_ptr<MissionEngine>(storage::Store&)>;
   explicit InProcessServer(const EngineFactory& make_engine, int planning_threads = 2);

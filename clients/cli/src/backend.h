@@ -23,8 +23,9 @@ class Backend {
   virtual ~Backend() = default;
 
   virtual absl::Status Plan(const v1::PlanRequest& request, v1::PlanResponse* response) = 0;
-  virtual absl::Status PlanStream(const v1::PlanRequest& request,
-                                  const std::function<void(const v1::PlanStreamEvent&)>& on_event) = 0;
+  virtual absl::Status PlanStream(
+      const v1::PlanRequest& request,
+      const std::function<void(const v1::PlanStreamEvent&)>& on_event) = 0;
   virtual absl::Status Validate(const v1::ValidateRequest& request,
                                 v1::ValidateResponse* response) = 0;
   virtual absl::Status UploadChart(const v1::UploadChartRequest& request,
@@ -43,8 +44,9 @@ class Backend {
   virtual absl::Status ListMissions(const v1::ListMissionsRequest& request,
                                     v1::ListMissionsResponse* response) = 0;
   // Calls `on_event` for each event; stops when it returns false or the stream ends.
-  virtual absl::Status WatchMission(const v1::WatchMissionRequest& request,
-                                    const std::function<bool(const v1::MissionEvent&)>& on_event) = 0;
+  virtual absl::Status WatchMission(
+      const v1::WatchMissionRequest& request,
+      const std::function<bool(const v1::MissionEvent&)>& on_event) = 0;
   virtual absl::Status RequestReplan(const v1::RequestReplanRequest& request,
                                      v1::RequestReplanResponse* response) = 0;
   virtual absl::Status CancelMission(const v1::CancelMissionRequest& request,

@@ -18,7 +18,9 @@ absl::Status NeedsServer(const char* what) {
 
 // Ctrl-C cancels the in-process call (as a client going away does remotely).
 std::atomic<bool> g_interrupted{false};
-void OnInterrupt(int) { g_interrupted.store(true); }
+void OnInterrupt(int) {
+  g_interrupted.store(true);
+}
 
 class LocalBackend final : public Backend {
  public:
@@ -31,21 +33,24 @@ class LocalBackend final : public Backend {
   absl::Status Plan(const v1::PlanRequest& request, v1::PlanResponse* response) override {
     return Assign(core_.planning().Plan(request, Call()), response);
   }
-  absl::Status PlanStream(const v1::PlanRequest& request,
-                          const std::function<void(const v1::PlanStreamEvent&)>& on_event) override {
+  absl::Status PlanStream(
+      const v1::PlanRequest& request,
+      const std::function<void(const v1::PlanStreamEvent&)>& on_event) override {
     return core_.planning().PlanStream(request, Call(), [&](const v1::PlanStreamEvent& event) {
       on_event(event);
       return true;
     });
   }
-  absl::Status Validate(const v1::ValidateRequest& request, v1::ValidateResponse* response) override {
+  absl::Status Validate(const v1::ValidateRequest& request,
+                        v1::ValidateResponse* response) override {
     return Assign(core_.planning().Validate(request, Call()), response);
   }
   absl::Status UploadChart(const v1::UploadChartRequest& request,
                            v1::UploadChartResponse* response) override {
     return Assign(core_.charts().UploadChart(request, Call()), response);
   }
-  absl::Status GetChart(const v1::GetChartRequest& request, v1::GetChartResponse* response) override {
+  absl::Status GetChart(const v1::GetChartRequest& request,
+                        v1::GetChartResponse* response) override {
     return Assign(core_.charts().GetChart(request, Call()), response);
   }
   absl::Status ListCharts(const v1::ListChartsRequest& request,
@@ -103,19 +108,45 @@ class BrokenBackend final : public Backend {
  public:
   explicit BrokenBackend(absl::Status status) : status_(std::move(status)) {}
   absl::Status Plan(const v1::PlanRequest&, v1::PlanResponse*) override { return status_; }
-  absl::Status PlanStream(const v1::PlanRequest&, const std::function<void(const v1::PlanStreamEvent&)>&) override { return status_; }
-  absl::Status Validate(const v1::ValidateRequest&, v1::ValidateResponse*) override { return status_; }
-  absl::Status UploadChart(const v1::UploadChartRequest&, v1::UploadChartResponse*) override { return status_; }
-  absl::Status GetChart(const v1::GetChartRequest&, v1::GetChartResponse*) override { return status_; }
-  absl::Status ListCharts(const v1::ListChartsRequest&, v1::ListChartsResponse*) override { return status_; }
-  absl::Status PlanRoute(const v1::PlanRouteRequest&, v1::PlanRouteResponse*) override { return status_; }
-  absl::Status EstimateRisk(const v1::EstimateRiskRequest&, v1::EstimateRiskResponse*) override { return status_; }
-  absl::Status CreateMission(const v1::CreateMissionRequest&, v1::Mission*) override { return status_; }
+  absl::Status PlanStream(const v1::PlanRequest&,
+                          const std::function<void(const v1::PlanStreamEvent&)>&) override {
+    return status_;
+  }
+  absl::Status Validate(const v1::ValidateRequest&, v1::ValidateResponse*) override {
+    return status_;
+  }
+  absl::Status UploadChart(const v1::UploadChartRequest&, v1::UploadChartResponse*) override {
+    return status_;
+  }
+  absl::Status GetChart(const v1::GetChartRequest&, v1::GetChartResponse*) override {
+    return status_;
+  }
+  absl::Status ListCharts(const v1::ListChartsRequest&, v1::ListChartsResponse*) override {
+    return status_;
+  }
+  absl::Status PlanRoute(const v1::PlanRouteRequest&, v1::PlanRouteResponse*) override {
+    return status_;
+  }
+  absl::Status EstimateRisk(const v1::EstimateRiskRequest&, v1::EstimateRiskResponse*) override {
+    return status_;
+  }
+  absl::Status CreateMission(const v1::CreateMissionRequest&, v1::Mission*) override {
+    return status_;
+  }
   absl::Status GetMission(const v1::GetMissionRequest&, v1::Mission*) override { return status_; }
-  absl::Status ListMissions(const v1::ListMissionsRequest&, v1::ListMissionsResponse*) override { return status_; }
-  absl::Status WatchMission(const v1::WatchMissionRequest&, const std::function<bool(const v1::MissionEvent&)>&) override { return status_; }
-  absl::Status RequestReplan(const v1::RequestReplanRequest&, v1::RequestReplanResponse*) override { return status_; }
-  absl::Status CancelMission(const v1::CancelMissionRequest&, v1::Mission*) override { return status_; }
+  absl::Status ListMissions(const v1::ListMissionsRequest&, v1::ListMissionsResponse*) override {
+    return status_;
+  }
+  absl::Status WatchMission(const v1::WatchMissionRequest&,
+                            const std::function<bool(const v1::MissionEvent&)>&) override {
+    return status_;
+  }
+  absl::Status RequestReplan(const v1::RequestReplanRequest&, v1::RequestReplanResponse*) override {
+    return status_;
+  }
+  absl::Status CancelMission(const v1::CancelMissionRequest&, v1::Mission*) override {
+    return status_;
+  }
 
  private:
   absl::Status status_;

@@ -17,7 +17,6 @@
 #include "seaplan/common/log.h"
 #include "seaplan/common/status.h"
 
-
 namespace seaplan::cli {
 namespace {
 
@@ -38,7 +37,8 @@ absl::Status ReadFile(const std::string& path, std::string* content) {
 
 absl::Status WriteFile(const std::string& path, const std::string& content) {
   std::ofstream out(path, std::ios::binary);
-  if (!out || !(out << content)) return absl::InvalidArgumentError("cannot write file '" + path + "'");
+  if (!out || !(out << content))
+    return absl::InvalidArgumentError("cannot write file '" + path + "'");
   return absl::OkStatus();
 }
 
@@ -92,8 +92,10 @@ struct PlanArgs {
 
 int RunPlan(const GlobalOptions& options, const PlanArgs& args) {
   v1::PlanRequest request;
-  if (auto s = ReadFile(args.domain, request.mutable_domain()); !s.ok()) return ReportError(std::cerr, s);
-  if (auto s = ReadFile(args.problem, request.mutable_problem()); !s.ok()) return ReportError(std::cerr, s);
+  if (auto s = ReadFile(args.domain, request.mutable_domain()); !s.ok())
+    return ReportError(std::cerr, s);
+  if (auto s = ReadFile(args.problem, request.mutable_problem()); !s.ok())
+    return ReportError(std::cerr, s);
   auto* planner = request.mutable_options();
   const auto limit_ms = static_cast<std::int64_t>(args.time_limit_s * 1000);
   planner->mutable_time_limit()->set_seconds(limit_ms / 1000);
@@ -128,13 +130,17 @@ int RunPlan(const GlobalOptions& options, const PlanArgs& args) {
     PrintJsonOr(options, response, [&] { PrintPlanResponse(std::cout, response); });
   }
   if (!args.output.empty() && response.plan_size() > 0) {
-    if (auto s = WriteFile(args.output, FormatPlanText(response)); !s.ok()) return ReportError(std::cerr, s);
+    if (auto s = WriteFile(args.output, FormatPlanText(response)); !s.ok())
+      return ReportError(std::cerr, s);
   }
   switch (response.status()) {
     case v1::SOLVED_SATISFICING:
-    case v1::SOLVED_OPTIMALLY: return kExitSuccess;
-    case v1::UNSUPPORTED: return kExitBadInput;
-    default: return kExitNoPlan;
+    case v1::SOLVED_OPTIMALLY:
+      return kExitSuccess;
+    case v1::UNSUPPORTED:
+      return kExitBadInput;
+    default:
+      return kExitNoPlan;
   }
 }
 
@@ -143,8 +149,10 @@ int RunPlan(const GlobalOptions& options, const PlanArgs& args) {
 int RunValidate(const GlobalOptions& options, const std::string& domain, const std::string& problem,
                 const std::string& plan, double epsilon_s) {
   v1::ValidateRequest request;
-  if (auto s = ReadFile(domain, request.mutable_domain()); !s.ok()) return ReportError(std::cerr, s);
-  if (auto s = ReadFile(problem, request.mutable_problem()); !s.ok()) return ReportError(std::cerr, s);
+  if (auto s = ReadFile(domain, request.mutable_domain()); !s.ok())
+    return ReportError(std::cerr, s);
+  if (auto s = ReadFile(problem, request.mutable_problem()); !s.ok())
+    return ReportError(std::cerr, s);
   if (auto s = ReadFile(plan, request.mutable_plan()); !s.ok()) return ReportError(std::cerr, s);
   request.set_epsilon_s(epsilon_s);
   v1::ValidateResponse response;
@@ -171,9 +179,12 @@ absl::Status BuildUpload(const ChartArgs& args, v1::UploadChartRequest* request)
     SEAPLAN_RETURN_IF_ERROR(ReadFile(path, file->mutable_content()));
   }
   request->set_name(args.name.empty() ? request->files(0).name() : args.name);
-  if (args.format == "s57") request->set_format(v1::CHART_FORMAT_S57);
-  else if (args.format == "geojson") request->set_format(v1::CHART_FORMAT_GEOJSON);
-  else if (args.format == "zip") request->set_format(v1::CHART_FORMAT_ZIP);
+  if (args.format == "s57")
+    request->set_format(v1::CHART_FORMAT_S57);
+  else if (args.format == "geojson")
+    request->set_format(v1::CHART_FORMAT_GEOJSON);
+  else if (args.format == "zip")
+    request->set_format(v1::CHART_FORMAT_ZIP);
   else if (!args.format.empty() && args.format != "auto") {
     return absl::InvalidArgumentError("unknown chart format '" + args.format +
                                       "' (expected auto, s57, geojson or zip)");
@@ -219,9 +230,11 @@ int RunChartGet(const GlobalOptions& options, const std::string& id, const std::
   request.set_chart_id(id);
   request.set_include_obstacles_geojson(!geojson.empty());
   v1::GetChartResponse response;
-  if (auto s = MakeBackend(options)->GetChart(request, &response); !s.ok()) return ReportError(std::cerr, s);
+  if (auto s = MakeBackend(options)->GetChart(request, &response); !s.ok())
+    return ReportError(std::cerr, s);
   if (!geojson.empty()) {
-    if (auto s = WriteFile(geojson, response.obstacles_geojson()); !s.ok()) return ReportError(std::cerr, s);
+    if (auto s = WriteFile(geojson, response.obstacles_geojson()); !s.ok())
+      return ReportError(std::cerr, s);
   }
   PrintJsonOr(options, response.chart(), [&] { PrintChart(std::cout, response.chart()); });
   return kExitSuccess;
@@ -246,7 +259,8 @@ absl::Status ResolveChart(Backend& backend, const RouteArgs& args, std::string* 
     return absl::OkStatus();
   }
   if (args.chart_file.files.empty()) {
-    return absl::InvalidArgumentError("give --chart ID (a chart on the server) or --chart-file FILE");
+    return absl::InvalidArgumentError(
+        "give --chart ID (a chart on the server) or --chart-file FILE");
   }
   v1::UploadChartRequest upload;
   SEAPLAN_RETURN_IF_ERROR(BuildUpload(args.chart_file, &upload));
@@ -266,8 +280,10 @@ void FillEnvironment(const RouteArgs& args, v1::Environment* env) {
 int RunRoute(const GlobalOptions& options, const RouteArgs& args) {
   auto backend = MakeBackend(options);
   v1::PlanRouteRequest request;
-  if (auto s = ParseLatLon(args.from, request.mutable_start()); !s.ok()) return ReportError(std::cerr, s);
-  if (auto s = ParseLatLon(args.to, request.mutable_goal()); !s.ok()) return ReportError(std::cerr, s);
+  if (auto s = ParseLatLon(args.from, request.mutable_start()); !s.ok())
+    return ReportError(std::cerr, s);
+  if (auto s = ParseLatLon(args.to, request.mutable_goal()); !s.ok())
+    return ReportError(std::cerr, s);
   if (auto s = ResolveChart(*backend, args, request.mutable_chart_id()); !s.ok()) {
     return ReportError(std::cerr, s);
   }
@@ -284,7 +300,8 @@ int RunRoute(const GlobalOptions& options, const RouteArgs& args) {
   v1::PlanRouteResponse response;
   if (auto s = backend->PlanRoute(request, &response); !s.ok()) return ReportError(std::cerr, s);
   if (!args.geojson.empty()) {
-    if (auto s = WriteFile(args.geojson, response.obstacles_geojson()); !s.ok()) return ReportError(std::cerr, s);
+    if (auto s = WriteFile(args.geojson, response.obstacles_geojson()); !s.ok())
+      return ReportError(std::cerr, s);
   }
   PrintJsonOr(options, response, [&] { PrintRoute(std::cout, response); });
   return kExitSuccess;
@@ -309,8 +326,11 @@ absl::Status ReadTrack(const std::string& path, v1::EstimateRiskRequest* request
                                         ": expected lat,lon[,heading_deg[,speed_mps[,mode]]]");
     }
     auto s = ParseLatLon(fields[0] + "," + fields[1], point->mutable_position());
-    if (!s.ok()) return absl::InvalidArgumentError(path + ":" + std::to_string(number) + ": " + std::string(s.message()));
-    if (fields.size() > 2 && !fields[2].empty()) point->set_heading_deg(std::atof(fields[2].c_str()));
+    if (!s.ok())
+      return absl::InvalidArgumentError(path + ":" + std::to_string(number) + ": " +
+                                        std::string(s.message()));
+    if (fields.size() > 2 && !fields[2].empty())
+      point->set_heading_deg(std::atof(fields[2].c_str()));
     if (fields.size() > 3 && !fields[3].empty()) point->set_speed_mps(std::atof(fields[3].c_str()));
     if (fields.size() > 4) {
       v1::MsoMode mode = v1::MSO_MODE_UNSPECIFIED;
@@ -321,7 +341,8 @@ absl::Status ReadTrack(const std::string& path, v1::EstimateRiskRequest* request
       point->set_mode(mode);
     }
   }
-  if (request->track_size() == 0) return absl::InvalidArgumentError(path + ": the track has no points");
+  if (request->track_size() == 0)
+    return absl::InvalidArgumentError(path + ": the track has no points");
   return absl::OkStatus();
 }
 
@@ -356,18 +377,22 @@ int RunMissionCreate(const GlobalOptions& options, const MissionArgs& args) {
     if (auto s = ReadFile(args.spec, &json); !s.ok()) return ReportError(std::cerr, s);
     auto parsed = google::protobuf::util::JsonStringToMessage(json, request.mutable_spec());
     if (!parsed.ok()) {
-      return ReportError(std::cerr, absl::InvalidArgumentError(args.spec + ": not a MissionSpec in JSON: " +
-                                                               std::string(parsed.message())));
+      return ReportError(std::cerr,
+                         absl::InvalidArgumentError(args.spec + ": not a MissionSpec in JSON: " +
+                                                    std::string(parsed.message())));
     }
   }
   if (!args.domain.empty()) {
-    if (auto s = ReadFile(args.domain, request.mutable_spec()->mutable_domain()); !s.ok()) return ReportError(std::cerr, s);
+    if (auto s = ReadFile(args.domain, request.mutable_spec()->mutable_domain()); !s.ok())
+      return ReportError(std::cerr, s);
   }
   if (!args.problem.empty()) {
-    if (auto s = ReadFile(args.problem, request.mutable_spec()->mutable_problem()); !s.ok()) return ReportError(std::cerr, s);
+    if (auto s = ReadFile(args.problem, request.mutable_spec()->mutable_problem()); !s.ok())
+      return ReportError(std::cerr, s);
   }
   v1::Mission mission;
-  if (auto s = MakeBackend(options)->CreateMission(request, &mission); !s.ok()) return ReportError(std::cerr, s);
+  if (auto s = MakeBackend(options)->CreateMission(request, &mission); !s.ok())
+    return ReportError(std::cerr, s);
   PrintJsonOr(options, mission, [&] { PrintMission(std::cout, mission); });
   return kExitSuccess;
 }
@@ -376,7 +401,8 @@ int RunMissionGet(const GlobalOptions& options, const std::string& id) {
   v1::GetMissionRequest request;
   request.set_mission_id(id);
   v1::Mission mission;
-  if (auto s = MakeBackend(options)->GetMission(request, &mission); !s.ok()) return ReportError(std::cerr, s);
+  if (auto s = MakeBackend(options)->GetMission(request, &mission); !s.ok())
+    return ReportError(std::cerr, s);
   PrintJsonOr(options, mission, [&] { PrintMission(std::cout, mission); });
   return kExitSuccess;
 }
@@ -430,7 +456,8 @@ int RunMissionReplan(const GlobalOptions& options, const MissionArgs& args) {
   request.set_mission_id(args.id);
   request.set_reason(args.reason.empty() ? "operator request" : args.reason);
   v1::RequestReplanResponse response;
-  if (auto s = MakeBackend(options)->RequestReplan(request, &response); !s.ok()) return ReportError(std::cerr, s);
+  if (auto s = MakeBackend(options)->RequestReplan(request, &response); !s.ok())
+    return ReportError(std::cerr, s);
   PrintJsonOr(options, response, [&] { PrintPlanVersion(std::cout, response.version()); });
   return kExitSuccess;
 }
@@ -440,20 +467,25 @@ int RunMissionCancel(const GlobalOptions& options, const MissionArgs& args) {
   request.set_mission_id(args.id);
   request.set_reason(args.reason.empty() ? "cancelled by operator" : args.reason);
   v1::Mission mission;
-  if (auto s = MakeBackend(options)->CancelMission(request, &mission); !s.ok()) return ReportError(std::cerr, s);
+  if (auto s = MakeBackend(options)->CancelMission(request, &mission); !s.ok())
+    return ReportError(std::cerr, s);
   PrintJsonOr(options, mission, [&] { PrintMission(std::cout, mission); });
   return kExitSuccess;
 }
 
 void AddRouteOptions(CLI::App* command, RouteArgs& args) {
   command->add_option("--chart", args.chart_id, "Chart id on the server");
-  command->add_option("--chart-file", args.chart_file.files, "Chart file(s) to load (S-57 .000 + updates, GeoJSON, zip)");
-  command->add_option("--min-depth", args.chart_file.minimum_depth_m, "Minimum depth for --chart-file (m)");
-  command->add_option("--buffer", args.chart_file.safety_buffer_m, "Safety buffer for --chart-file (m)");
+  command->add_option("--chart-file", args.chart_file.files,
+                      "Chart file(s) to load (S-57 .000 + updates, GeoJSON, zip)");
+  command->add_option("--min-depth", args.chart_file.minimum_depth_m,
+                      "Minimum depth for --chart-file (m)");
+  command->add_option("--buffer", args.chart_file.safety_buffer_m,
+                      "Safety buffer for --chart-file (m)");
   command->add_option("--wind-speed", args.wind_speed_mps, "Wind speed (m/s)");
   command->add_option("--wind-from", args.wind_from_deg, "Direction the wind comes from (deg)");
   command->add_option("--current-speed", args.current_speed_mps, "Current speed (m/s)");
-  command->add_option("--current-from", args.current_from_deg, "Direction the current comes from (deg)");
+  command->add_option("--current-from", args.current_from_deg,
+                      "Direction the current comes from (deg)");
   command->add_option("--horizon", args.horizon_s, "Time-to-grounding horizon (s), default 600");
 }
 
@@ -487,10 +519,12 @@ int Main(int argc, char** argv) {
   plan_cmd->add_option("problem", plan.problem, "Problem file")->required();
   plan_cmd->add_option("--time-limit", plan.time_limit_s, "Time limit (s)")->capture_default_str();
   plan_cmd->add_option("--memory-limit", plan.memory_limit_mb, "Memory limit (MB), default 2048");
-  plan_cmd->add_option("--max-concurrent", plan.max_concurrent, "Most actions running at once (0: any)");
+  plan_cmd->add_option("--max-concurrent", plan.max_concurrent,
+                       "Most actions running at once (0: any)");
   plan_cmd->add_flag("--no-anytime", plan.no_anytime, "Stop at the first plan");
   plan_cmd->add_option("--seed", plan.seed, "Random seed")->capture_default_str();
-  plan_cmd->add_option("--epsilon", plan.epsilon_s, "Separation of interfering events (s), default 0.001");
+  plan_cmd->add_option("--epsilon", plan.epsilon_s,
+                       "Separation of interfering events (s), default 0.001");
   plan_cmd->add_flag("--stream", plan.stream, "Show progress and each improved plan");
   plan_cmd->add_option("-o,--output", plan.output, "Write the plan to this file");
   plan_cmd->callback([&] { exit_code = RunPlan(options, plan); });
@@ -501,20 +535,25 @@ int Main(int argc, char** argv) {
   validate_cmd->add_option("domain", v_domain, "Domain file")->required();
   validate_cmd->add_option("problem", v_problem, "Problem file")->required();
   validate_cmd->add_option("plan", v_plan, "Plan file (IPC format)")->required();
-  validate_cmd->add_option("--epsilon", v_epsilon, "Separation of interfering events (s), default 0.001");
-  validate_cmd->callback([&] { exit_code = RunValidate(options, v_domain, v_problem, v_plan, v_epsilon); });
+  validate_cmd->add_option("--epsilon", v_epsilon,
+                           "Separation of interfering events (s), default 0.001");
+  validate_cmd->callback(
+      [&] { exit_code = RunValidate(options, v_domain, v_problem, v_plan, v_epsilon); });
 
   auto* chart_cmd = app.add_subcommand("chart", "Upload, list and show charts");
   chart_cmd->require_subcommand(1);
   ChartArgs chart;
   auto* upload_cmd = chart_cmd->add_subcommand("upload", "Upload a chart");
-  upload_cmd->add_option("files", chart.files, "S-57 .000 (+ .001 ...), GeoJSON, or zip")->required();
+  upload_cmd->add_option("files", chart.files, "S-57 .000 (+ .001 ...), GeoJSON, or zip")
+      ->required();
   upload_cmd->add_option("--name", chart.name, "Chart name");
   upload_cmd->add_option("--format", chart.format, "auto, s57, geojson or zip");
   upload_cmd->add_option("--min-depth", chart.minimum_depth_m, "Minimum depth (m), default 10");
   upload_cmd->add_option("--buffer", chart.safety_buffer_m, "Safety buffer (m), default 10");
   upload_cmd->callback([&] { exit_code = RunChartUpload(options, chart); });
-  chart_cmd->add_subcommand("list", "List charts")->callback([&] { exit_code = RunChartList(options); });
+  chart_cmd->add_subcommand("list", "List charts")->callback([&] {
+    exit_code = RunChartList(options);
+  });
   std::string chart_id, chart_geojson;
   auto* get_cmd = chart_cmd->add_subcommand("get", "Show a chart");
   get_cmd->add_option("id", chart_id, "Chart id")->required();
@@ -522,7 +561,8 @@ int Main(int argc, char** argv) {
   get_cmd->callback([&] { exit_code = RunChartGet(options, chart_id, chart_geojson); });
 
   RouteArgs route;
-  auto* route_cmd = app.add_subcommand("route", "Plan a risk-aware route with its MSO mode schedule");
+  auto* route_cmd =
+      app.add_subcommand("route", "Plan a risk-aware route with its MSO mode schedule");
   AddRouteOptions(route_cmd, route);
   route_cmd->add_option("--from", route.from, "Start LAT,LON")->required();
   route_cmd->add_option("--to", route.to, "Goal LAT,LON")->required();
@@ -530,7 +570,8 @@ int Main(int argc, char** argv) {
   route_cmd->add_option("--iterations", route.iterations, "PSO iterations, default 100");
   route_cmd->add_option("--segments", route.segments, "Segments per alternative, default 20");
   route_cmd->add_option("--seed", route.seed, "Random seed");
-  route_cmd->add_option("--safety-distance", route.safety_distance_m, "Level-1 margin (m), default 50");
+  route_cmd->add_option("--safety-distance", route.safety_distance_m,
+                        "Level-1 margin (m), default 50");
   route_cmd->add_option("--speed", route.speed_mps, "Planning speed (m/s)");
   route_cmd->add_option("--geojson", route.geojson, "Write routes and obstacles as GeoJSON");
   route_cmd->callback([&] { exit_code = RunRoute(options, route); });
@@ -538,7 +579,9 @@ int Main(int argc, char** argv) {
   RouteArgs risk;
   auto* risk_cmd = app.add_subcommand("risk", "Grounding risk along a route or track");
   AddRouteOptions(risk_cmd, risk);
-  risk_cmd->add_option("--track", risk.track, "CSV: lat,lon[,heading_deg[,speed_mps[,mode]]] per line")->required();
+  risk_cmd
+      ->add_option("--track", risk.track, "CSV: lat,lon[,heading_deg[,speed_mps[,mode]]] per line")
+      ->required();
   risk_cmd->callback([&] { exit_code = RunRisk(options, risk); });
 
   auto* mission_cmd = app.add_subcommand("mission", "Create, watch and steer missions");
@@ -552,8 +595,11 @@ int Main(int argc, char** argv) {
   auto* mget_cmd = mission_cmd->add_subcommand("get", "Show a mission");
   mget_cmd->add_option("id", mission.id, "Mission id")->required();
   mget_cmd->callback([&] { exit_code = RunMissionGet(options, mission.id); });
-  mission_cmd->add_subcommand("list", "List missions")->callback([&] { exit_code = RunMissionList(options); });
-  auto* watch_cmd = mission_cmd->add_subcommand("watch", "Follow a mission's plan versions and log");
+  mission_cmd->add_subcommand("list", "List missions")->callback([&] {
+    exit_code = RunMissionList(options);
+  });
+  auto* watch_cmd =
+      mission_cmd->add_subcommand("watch", "Follow a mission's plan versions and log");
   watch_cmd->add_option("id", mission.id, "Mission id")->required();
   watch_cmd->add_option("--after-version", mission.after_version, "Resume after this plan version");
   watch_cmd->add_option("--after-event", mission.after_event, "Resume after this log event id");
@@ -578,4 +624,6 @@ int Main(int argc, char** argv) {
 
 }  // namespace seaplan::cli
 
-int main(int argc, char** argv) { return seaplan::cli::Main(argc, argv); }
+int main(int argc, char** argv) {
+  return seaplan::cli::Main(argc, argv);
+}

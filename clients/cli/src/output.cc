@@ -29,10 +29,14 @@ std::string ToJson(const google::protobuf::Message& message) {
 
 const char* MsoModeName(v1::MsoMode mode) {
   switch (mode) {
-    case v1::MSO_MODE_PTO: return "PTO";
-    case v1::MSO_MODE_MEC: return "MEC";
-    case v1::MSO_MODE_PTI: return "PTI";
-    default: return "-";
+    case v1::MSO_MODE_PTO:
+      return "PTO";
+    case v1::MSO_MODE_MEC:
+      return "MEC";
+    case v1::MSO_MODE_PTI:
+      return "PTI";
+    default:
+      return "-";
   }
 }
 
@@ -51,15 +55,17 @@ void PrintPlanResponse(std::ostream& out, const v1::PlanResponse& response) {
   out << "; status: " << v1::PlanStatus_Name(response.status()) << "\n";
   if (!response.message().empty()) out << "; " << response.message() << "\n";
   if (response.plan_size() > 0) {
-    out << "; makespan: " << validate::FormatTime(response.makespan_s()) << " s, actions: "
-        << response.plan_size();
-    if (response.has_metric_value()) out << ", metric: " << validate::FormatTime(response.metric_value());
+    out << "; makespan: " << validate::FormatTime(response.makespan_s())
+        << " s, actions: " << response.plan_size();
+    if (response.has_metric_value())
+      out << ", metric: " << validate::FormatTime(response.metric_value());
     out << "\n";
   }
   const auto& stats = response.statistics();
   out << "; search: " << stats.expanded() << " expanded, " << stats.generated() << " generated, "
       << Seconds(stats.search_time_s()) << " s";
-  if (stats.first_plan_time_s() >= 0) out << ", first plan " << Seconds(stats.first_plan_time_s()) << " s";
+  if (stats.first_plan_time_s() >= 0)
+    out << ", first plan " << Seconds(stats.first_plan_time_s()) << " s";
   if (stats.peak_memory_mb() > 0) out << ", peak " << stats.peak_memory_mb() << " MB";
   out << "\n";
   for (const auto& d : response.diagnostics()) {
@@ -81,9 +87,10 @@ void PrintValidateResponse(std::ostream& out, const v1::ValidateResponse& respon
     if (!f.condition().empty()) out << "  condition: " << f.condition() << "\n";
     if (!f.reason().empty()) out << "  reason: " << f.reason() << "\n";
   }
-  out << "  makespan: " << validate::FormatTime(response.makespan_s()) << " s, actions: "
-      << response.action_count();
-  if (response.has_metric_value()) out << ", metric: " << validate::FormatTime(response.metric_value());
+  out << "  makespan: " << validate::FormatTime(response.makespan_s())
+      << " s, actions: " << response.action_count();
+  if (response.has_metric_value())
+    out << ", metric: " << validate::FormatTime(response.metric_value());
   out << "\n";
 }
 
@@ -93,24 +100,25 @@ void PrintChart(std::ostream& out, const v1::Chart& chart) {
       << " m, buffer " << chart.safety_buffer_m() << " m, " << s.obstacle_count() << " obstacles";
   if (!s.frame().empty()) out << ", frame " << s.frame();
   out << "\n";
-  for (const auto& [layer, count] : s.count_by_layer()) out << "    " << layer << ": " << count << "\n";
+  for (const auto& [layer, count] : s.count_by_layer())
+    out << "    " << layer << ": " << count << "\n";
 }
 
 namespace {
 void PrintAlternative(std::ostream& out, const v1::RouteAlternative& alt, bool chosen) {
-  out << (chosen ? "* " : "  ") << "alternative " << alt.index() << ": length "
-      << std::fixed << std::setprecision(0) << alt.length_m() << " m, sailing "
-      << alt.sailing_time_s() << " s, fuel " << std::setprecision(1) << alt.fuel_kg()
-      << " kg, expected grounding cost " << std::setprecision(3) << alt.expected_grounding_cost()
-      << ", total cost " << alt.total_cost() << "\n";
+  out << (chosen ? "* " : "  ") << "alternative " << alt.index() << ": length " << std::fixed
+      << std::setprecision(0) << alt.length_m() << " m, sailing " << alt.sailing_time_s()
+      << " s, fuel " << std::setprecision(1) << alt.fuel_kg() << " kg, expected grounding cost "
+      << std::setprecision(3) << alt.expected_grounding_cost() << ", total cost "
+      << alt.total_cost() << "\n";
   out << "      #  latitude    longitude   mode  TTG s   P(grounding)  E[cost]   fuel kg\n";
   int i = 0;
   for (const auto& w : alt.waypoints()) {
     char line[200];
-    std::snprintf(line, sizeof line, "    %3d  %10.6f  %10.6f  %-4s  %6.0f  %12.3e  %8.3f  %7.2f\n", i++,
-                  w.position().latitude_deg(), w.position().longitude_deg(), MsoModeName(w.mode()),
-                  w.time_to_grounding_s(), w.grounding_probability(), w.expected_grounding_cost(),
-                  w.fuel_kg());
+    std::snprintf(line, sizeof line, "    %3d  %10.6f  %10.6f  %-4s  %6.0f  %12.3e  %8.3f  %7.2f\n",
+                  i++, w.position().latitude_deg(), w.position().longitude_deg(),
+                  MsoModeName(w.mode()), w.time_to_grounding_s(), w.grounding_probability(),
+                  w.expected_grounding_cost(), w.fuel_kg());
     out << line;
   }
   out.unsetf(std::ios::floatfield);
@@ -118,8 +126,8 @@ void PrintAlternative(std::ostream& out, const v1::RouteAlternative& alt, bool c
 }  // namespace
 
 void PrintRoute(std::ostream& out, const v1::PlanRouteResponse& response) {
-  out << response.alternatives_size() << " alternative(s); chosen: "
-      << response.chosen_alternative() << "\n";
+  out << response.alternatives_size()
+      << " alternative(s); chosen: " << response.chosen_alternative() << "\n";
   for (const auto& alt : response.alternatives()) {
     PrintAlternative(out, alt, alt.index() == response.chosen_alternative());
   }
@@ -179,7 +187,8 @@ int ReportError(std::ostream& err, const absl::Status& status) {
       for (const auto& d : list.diagnostics()) {
         err << "  " << d.file() << ":" << d.line() << ":" << d.column() << ": " << d.message();
         if (!d.symbol().empty()) err << " (found '" << d.symbol() << "'";
-        if (!d.expected().empty()) err << (d.symbol().empty() ? " (" : ", ") << "expected " << d.expected();
+        if (!d.expected().empty())
+          err << (d.symbol().empty() ? " (" : ", ") << "expected " << d.expected();
         if (!d.symbol().empty() || !d.expected().empty()) err << ")";
         err << "\n";
       }

@@ -2,8 +2,8 @@
 
 #include "absl/strings/cord.h"
 #include "backend.h"
-#include "output.h"
 #include "grpcpp/grpcpp.h"
+#include "output.h"
 #include "seaplan/v1/chart.grpc.pb.h"
 #include "seaplan/v1/mission.grpc.pb.h"
 #include "seaplan/v1/planning.grpc.pb.h"
@@ -37,15 +37,17 @@ class RemoteBackend final : public Backend {
     auto context = MakeContext();
     return FromGrpc(planning_->Plan(context.get(), request, response));
   }
-  absl::Status PlanStream(const v1::PlanRequest& request,
-                          const std::function<void(const v1::PlanStreamEvent&)>& on_event) override {
+  absl::Status PlanStream(
+      const v1::PlanRequest& request,
+      const std::function<void(const v1::PlanStreamEvent&)>& on_event) override {
     auto context = MakeContext();
     auto reader = planning_->PlanStream(context.get(), request);
     v1::PlanStreamEvent event;
     while (reader->Read(&event)) on_event(event);
     return FromGrpc(reader->Finish());
   }
-  absl::Status Validate(const v1::ValidateRequest& request, v1::ValidateResponse* response) override {
+  absl::Status Validate(const v1::ValidateRequest& request,
+                        v1::ValidateResponse* response) override {
     auto context = MakeContext();
     return FromGrpc(planning_->Validate(context.get(), request, response));
   }
@@ -54,7 +56,8 @@ class RemoteBackend final : public Backend {
     auto context = MakeContext();
     return FromGrpc(charts_->UploadChart(context.get(), request, response));
   }
-  absl::Status GetChart(const v1::GetChartRequest& request, v1::GetChartResponse* response) override {
+  absl::Status GetChart(const v1::GetChartRequest& request,
+                        v1::GetChartResponse* response) override {
     auto context = MakeContext();
     return FromGrpc(charts_->GetChart(context.get(), request, response));
   }
@@ -73,7 +76,8 @@ class RemoteBackend final : public Backend {
     auto context = MakeContext();
     return FromGrpc(routes_->EstimateRisk(context.get(), request, response));
   }
-  absl::Status CreateMission(const v1::CreateMissionRequest& request, v1::Mission* response) override {
+  absl::Status CreateMission(const v1::CreateMissionRequest& request,
+                             v1::Mission* response) override {
     auto context = MakeContext();
     return FromGrpc(missions_->CreateMission(context.get(), request, response));
   }
@@ -105,7 +109,8 @@ class RemoteBackend final : public Backend {
     auto context = MakeContext();
     return FromGrpc(missions_->RequestReplan(context.get(), request, response));
   }
-  absl::Status CancelMission(const v1::CancelMissionRequest& request, v1::Mission* response) override {
+  absl::Status CancelMission(const v1::CancelMissionRequest& request,
+                             v1::Mission* response) override {
     auto context = MakeContext();
     return FromGrpc(missions_->CancelMission(context.get(), request, response));
   }

@@ -45,7 +45,8 @@ double ManoeuvreDelay(Vec2 current, Vec2 v, const AvoidanceOptions& o) {
   if (o.turn_rate_rad_s <= 0) return 0.0;
   double cs = current.Norm(), vs = v.Norm();
   double turn = (cs > 0.3 && vs > 1e-6) ? std::abs(Wrap(CourseOf(v) - CourseOf(current))) : 0.0;
-  double delay = turn / o.turn_rate_rad_s + (o.acceleration_mps2 > 0 ? std::abs(vs - cs) / o.acceleration_mps2 : 0.0);
+  double delay = turn / o.turn_rate_rad_s +
+                 (o.acceleration_mps2 > 0 ? std::abs(vs - cs) / o.acceleration_mps2 : 0.0);
   return delay > 1e-3 ? delay + o.manoeuvre_lag_s : 0.0;
 }
 
@@ -75,8 +76,8 @@ double MinDistanceDelayed(const Kinematics& own, Vec2 v, const Kinematics& other
 
 // Does taking velocity `v` (after the manoeuvre delay at the present
 // velocity) bring the own ship within `r` of `other` within the horizon?
-bool CollidesDelayed(const Kinematics& own, Vec2 v, const Kinematics& other, double r, double horizon,
-                     const AvoidanceOptions& o) {
+bool CollidesDelayed(const Kinematics& own, Vec2 v, const Kinematics& other, double r,
+                     double horizon, const AvoidanceOptions& o) {
   Vec2 p_rel = other.position - own.position;
   double delay = std::min(ManoeuvreDelay(own.velocity, v, o), horizon);
   if (delay > 0) {
@@ -89,7 +90,9 @@ bool CollidesDelayed(const Kinematics& own, Vec2 v, const Kinematics& other, dou
 
 }  // namespace
 
-double Vec2::Norm() const { return std::hypot(x, y); }
+double Vec2::Norm() const {
+  return std::hypot(x, y);
+}
 
 Vec2 VelocityOf(double course_rad, double speed_mps) {
   return {std::sin(course_rad) * speed_mps, std::cos(course_rad) * speed_mps};
@@ -112,12 +115,18 @@ Cpa ComputeCpa(const Kinematics& own, const Kinematics& other) {
 
 std::string_view RoleName(Role role) {
   switch (role) {
-    case Role::kNone: return "none";
-    case Role::kHeadOn: return "head-on";
-    case Role::kCrossingGiveWay: return "crossing give-way";
-    case Role::kCrossingStandOn: return "crossing stand-on";
-    case Role::kOvertaking: return "overtaking";
-    case Role::kOvertaken: return "overtaken";
+    case Role::kNone:
+      return "none";
+    case Role::kHeadOn:
+      return "head-on";
+    case Role::kCrossingGiveWay:
+      return "crossing give-way";
+    case Role::kCrossingStandOn:
+      return "crossing stand-on";
+    case Role::kOvertaking:
+      return "overtaking";
+    case Role::kOvertaken:
+      return "overtaken";
   }
   return "none";
 }
@@ -237,9 +246,10 @@ double LandIndex::Clearance(Vec2 a, Vec2 b, double limit_m) const {
   return best;
 }
 
-PathApproach PathAheadClosestApproach(const std::vector<Vec2>& path, size_t next, Vec2 position, double speed_mps,
-                                      const Kinematics& other, double horizon_s, double step_s,
-                                      double start_speed_mps, double acceleration_mps2) {
+PathApproach PathAheadClosestApproach(const std::vector<Vec2>& path, size_t next, Vec2 position,
+                                      double speed_mps, const Kinematics& other, double horizon_s,
+                                      double step_s, double start_speed_mps,
+                                      double acceleration_mps2) {
   PathApproach best{(other.position - position).Norm(), 0.0};
   if (!(speed_mps > 0) || !(step_s > 0)) return best;
   Vec2 at = position;
@@ -249,7 +259,8 @@ PathApproach PathAheadClosestApproach(const std::vector<Vec2>& path, size_t next
   for (double t = step_s; t <= horizon_s + 1e-9; t += step_s) {
     double next_speed = speed;
     if (ramp) {
-      const double dv = std::clamp(speed_mps - speed, -acceleration_mps2 * step_s, acceleration_mps2 * step_s);
+      const double dv =
+          std::clamp(speed_mps - speed, -acceleration_mps2 * step_s, acceleration_mps2 * step_s);
       next_speed = speed + dv;
     }
     double left = 0.5 * (speed + next_speed) * step_s;  // walk along the path, past its points
@@ -284,7 +295,8 @@ bool LandIndex::Inside(Vec2 p) const {
       if (seen_[static_cast<size_t>(id)] == query_) continue;
       seen_[static_cast<size_t>(id)] = query_;
       const auto& [c, d] = edges_[static_cast<size_t>(id)];
-      if ((c.y > p.y) != (d.y > p.y) && p.x < (d.x - c.x) * (p.y - c.y) / (d.y - c.y) + c.x) in = !in;
+      if ((c.y > p.y) != (d.y > p.y) && p.x < (d.x - c.x) * (p.y - c.y) / (d.y - c.y) + c.x)
+        in = !in;
     }
   }
   return in;
@@ -317,7 +329,8 @@ AvoidanceDecision ChooseVelocity(const Kinematics& own, Vec2 desired,
                       CollidesDelayed(own, desired, o.kinematics, r, options.horizon_s, options));
     if (!dangerous) continue;
     Role role = ClassifyEncounter(own, o.kinematics, options.colreg);
-    bool must_act = IsGiveWay(role) || std::min(cpa.tcpa_s, now.tcpa_s) < options.stand_on_action_tcpa_s;
+    bool must_act =
+        IsGiveWay(role) || std::min(cpa.tcpa_s, now.tcpa_s) < options.stand_on_action_tcpa_s;
     if (!must_act) {
       if (decision.role == Role::kNone) {
         decision.role = role;
@@ -336,11 +349,13 @@ AvoidanceDecision ChooseVelocity(const Kinematics& own, Vec2 desired,
   bool found = false;
   double least_violation = std::numeric_limits<double>::infinity();
   Vec2 least_bad = desired;
-  const int steps = static_cast<int>(std::round(options.max_course_change_rad / options.course_step_rad));
+  const int steps =
+      static_cast<int>(std::round(options.max_course_change_rad / options.course_step_rad));
   absl::InlinedVector<double, 8> speeds;
   for (double f : options.speed_factors) speeds.push_back(desired_speed * f);
   if (options.max_speed_mps > desired_speed * 1.05) {
-    for (double f : {1.25, 1.5}) speeds.push_back(std::min(desired_speed * f, options.max_speed_mps));
+    for (double f : {1.25, 1.5})
+      speeds.push_back(std::min(desired_speed * f, options.max_speed_mps));
   }
   for (double speed : speeds) {
     const double f = desired_speed > 1e-9 ? speed / desired_speed : 1.0;
@@ -360,13 +375,16 @@ AvoidanceDecision ChooseVelocity(const Kinematics& own, Vec2 desired,
           // circle): the delay is an estimate, and of candidates it makes
           // equal, the one that turns away more decisively is the safer bet.
           const Vec2 p_now = a.o->kinematics.position - own.position;
-          const double at_once = MinDistance(p_now, v - a.o->kinematics.velocity, options.horizon_s);
-          violation += std::max(0.0, r - MinDistanceDelayed(own, v, a.o->kinematics, options.horizon_s, options)) +
+          const double at_once =
+              MinDistance(p_now, v - a.o->kinematics.velocity, options.horizon_s);
+          violation += std::max(0.0, r - MinDistanceDelayed(own, v, a.o->kinematics,
+                                                            options.horizon_s, options)) +
                        0.1 * std::clamp(r - at_once, -r, r);
         }
         // COLREG: give way to starboard (rules 14, 15): the relative
         // velocity must pass the other with it on our port side.
-        if ((a.role == Role::kHeadOn || a.role == Role::kCrossingGiveWay) && p_rel.Cross(v_rel) > 0) {
+        if ((a.role == Role::kHeadOn || a.role == Role::kCrossingGiveWay) &&
+            p_rel.Cross(v_rel) > 0) {
           ok = false;
           violation += 1.0;
         }
@@ -375,7 +393,8 @@ AvoidanceDecision ChooseVelocity(const Kinematics& own, Vec2 desired,
       // over speed changes (speeding up costs more: fuel, and a slower
       // ship's intentions are easier for others to read).
       double dev = v.x - desired.x, dev_y = v.y - desired.y;
-      double cost = dev * dev + dev_y * dev_y + (k < 0 ? 0.5 : 0.0) * desired_speed * desired_speed * 0.01 +
+      double cost = dev * dev + dev_y * dev_y +
+                    (k < 0 ? 0.5 : 0.0) * desired_speed * desired_speed * 0.01 +
                     (f <= 1.0 ? (1.0 - f) * 0.5 : (f - 1.0)) * desired_speed * desired_speed;
       // Land, checked only for a candidate that could be chosen (the check
       // is the costly part: every land edge against the track).
@@ -384,8 +403,8 @@ AvoidanceDecision ChooseVelocity(const Kinematics& own, Vec2 desired,
       // velocity, so the choice does not swing between far-apart courses.
       violation += ok ? 0.0 : kViolationPerCost * cost;
       if (options.land != nullptr && (ok ? cost < best_cost : violation < least_violation)) {
-        const double clear =
-            options.land->Clearance(own.position, own.position + v * options.land_lookahead_s, options.land_clearance_m);
+        const double clear = options.land->Clearance(
+            own.position, own.position + v * options.land_lookahead_s, options.land_clearance_m);
         if (clear < options.land_clearance_m) {
           ok = false;
           // Worse than any CPA shortfall; when every candidate is short of

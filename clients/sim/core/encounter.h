@@ -15,9 +15,9 @@
 // simple half-plane constraints. All functions are pure.
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string_view>
-#include <cstdint>
 #include <unordered_map>
 #include <utility>
 #include <vector>
@@ -64,12 +64,13 @@ std::string_view RoleName(Role role);  // "head-on", "crossing give-way", ...
 bool IsGiveWay(Role role);             // head-on, crossing give-way, overtaking
 
 struct ColregOptions {
-  double head_on_sector_rad = 0.2618;      // +-15 deg about the bow, both ways
-  double overtaking_sector_rad = 1.9635;   // abaft 112.5 deg from the bow (rule 13)
+  double head_on_sector_rad = 0.2618;     // +-15 deg about the bow, both ways
+  double overtaking_sector_rad = 1.9635;  // abaft 112.5 deg from the bow (rule 13)
 };
 // The role of `own` towards `other` from geometry alone (the caller decides
 // whether the encounter is dangerous, e.g. by CPA).
-Role ClassifyEncounter(const Kinematics& own, const Kinematics& other, const ColregOptions& options = {});
+Role ClassifyEncounter(const Kinematics& own, const Kinematics& other,
+                       const ColregOptions& options = {});
 
 struct AvoidanceOptions {
   double safety_distance_m = 150.0;  // keep every CPA above this
@@ -120,9 +121,10 @@ struct PathApproach {
 };
 // With start_speed_mps >= 0 and acceleration_mps2 > 0 the speed ramps from
 // start_speed_mps to speed_mps at that rate (a ship leaving its berth).
-PathApproach PathAheadClosestApproach(const std::vector<Vec2>& path, size_t next, Vec2 position, double speed_mps,
-                                      const Kinematics& other, double horizon_s, double step_s = 5.0,
-                                      double start_speed_mps = -1.0, double acceleration_mps2 = 0.0);
+PathApproach PathAheadClosestApproach(const std::vector<Vec2>& path, size_t next, Vec2 position,
+                                      double speed_mps, const Kinematics& other, double horizon_s,
+                                      double step_s = 5.0, double start_speed_mps = -1.0,
+                                      double acceleration_mps2 = 0.0);
 
 // Smallest distance from the segment a-b to the rings' edges, 0 when it
 // crosses one or starts inside a ring. Scans every edge (tests, small maps).
@@ -155,7 +157,7 @@ class LandIndex {
   std::vector<std::pair<Vec2, Vec2>> edges_;
   std::unordered_map<int64_t, std::vector<int32_t>> cells_;
   double cell_m_ = 250.0;
-  int64_t max_i_ = 0;  // easternmost cell column with an edge
+  int64_t max_i_ = 0;                  // easternmost cell column with an edge
   mutable std::vector<int32_t> seen_;  // scratch: last query that looked at each edge
   mutable int32_t query_ = 0;
 };
@@ -166,11 +168,11 @@ struct Obstacle {
 };
 
 struct AvoidanceDecision {
-  Vec2 velocity;          // the velocity to steer for
+  Vec2 velocity;             // the velocity to steer for
   bool manoeuvring = false;  // differs from the desired velocity because of another vessel
-  int vessel_id = -1;     // the most constraining vessel when manoeuvring
+  int vessel_id = -1;        // the most constraining vessel when manoeuvring
   Role role = Role::kNone;
-  bool feasible = true;   // false: no candidate clears every vessel (best effort returned)
+  bool feasible = true;  // false: no candidate clears every vessel (best effort returned)
 };
 
 // Chooses the velocity closest to `desired` that is outside every dangerous

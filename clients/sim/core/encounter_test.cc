@@ -69,7 +69,9 @@ TEST(AvoidanceTest, CrossingGiveWayKeepsCpaAboveSafetyAndTurnsToStarboard) {
   EXPECT_GE(min_d, o.safety_distance_m * 0.97);
   EXPECT_GT(manoeuvre.x, 0.0) << "give way by turning to starboard (east)";
   // Without avoidance they would collide.
-  EXPECT_NEAR(ComputeCpa({{0, 0}, VelocityOf(kNorth, 5)}, {{1000, 1000}, VelocityOf(kWest, 5)}).dcpa_m, 0, 1e-9);
+  EXPECT_NEAR(
+      ComputeCpa({{0, 0}, VelocityOf(kNorth, 5)}, {{1000, 1000}, VelocityOf(kWest, 5)}).dcpa_m, 0,
+      1e-9);
 }
 
 TEST(AvoidanceTest, HeadOnBothStarboardAndStandOnKeepsCourse) {
@@ -82,11 +84,13 @@ TEST(AvoidanceTest, HeadOnBothStarboardAndStandOnKeepsCourse) {
   EXPECT_GT(manoeuvre.x, 0.0);
   // Crossing from port, far enough: stand on (no manoeuvre yet).
   Kinematics own{{0, 0}, VelocityOf(kNorth, 5)};
-  AvoidanceDecision d = ChooseVelocity(own, own.velocity, {{{{-2000, 2000}, VelocityOf(kEast, 5)}, 3}}, o);
+  AvoidanceDecision d =
+      ChooseVelocity(own, own.velocity, {{{{-2000, 2000}, VelocityOf(kEast, 5)}, 3}}, o);
   EXPECT_FALSE(d.manoeuvring);
   EXPECT_EQ(d.role, Role::kCrossingStandOn);
   // Rule 17: close and still on collision course, the stand-on vessel acts.
-  AvoidanceDecision late = ChooseVelocity(own, own.velocity, {{{{-400, 400}, VelocityOf(kEast, 5)}, 3}}, o);
+  AvoidanceDecision late =
+      ChooseVelocity(own, own.velocity, {{{{-400, 400}, VelocityOf(kEast, 5)}, 3}}, o);
   EXPECT_TRUE(late.manoeuvring);
 }
 
@@ -98,8 +102,9 @@ namespace {
 
 // A slow-turning ship: the course follows the commanded one at most
 // `turn_rate` rad/s, after a lag; speed changes at `accel`.
-double RunSlowTurningEncounter(Kinematics own, Vec2 desired, Kinematics other, const AvoidanceOptions& o,
-                               double turn_rate, int lag_steps, Role* role) {
+double RunSlowTurningEncounter(Kinematics own, Vec2 desired, Kinematics other,
+                               const AvoidanceOptions& o, double turn_rate, int lag_steps,
+                               Role* role) {
   double min_d = 1e9;
   std::vector<Vec2> commands;
   double course = CourseOf(own.velocity), speed = own.velocity.Norm();
@@ -127,8 +132,9 @@ TEST(AvoidanceTest, SlowTurningHullKeepsTheSafetyDistanceWhenTheDelayIsModelled)
   const double kNorthC = 0.0;
   // The other crosses from starboard (we give way) at a late-ish detection.
   Role role = Role::kNone;
-  double min_d = RunSlowTurningEncounter({{0, 0}, VelocityOf(kEast, 3.6)}, VelocityOf(kEast, 3.6),
-                                         {{1300, -500}, VelocityOf(kNorthC, 1.6)}, o, 0.0175, 10, &role);
+  double min_d =
+      RunSlowTurningEncounter({{0, 0}, VelocityOf(kEast, 3.6)}, VelocityOf(kEast, 3.6),
+                              {{1300, -500}, VelocityOf(kNorthC, 1.6)}, o, 0.0175, 10, &role);
   EXPECT_EQ(role, Role::kCrossingGiveWay);
   EXPECT_GE(min_d, o.safety_distance_m) << "CPA with the turning delay modelled";
 }
@@ -141,7 +147,7 @@ namespace {
 
 TEST(LandClearanceTest, CrossingInsideAndDistance) {
   const std::vector<std::vector<Vec2>> land = {{{0, 100}, {1000, 100}, {1000, 300}, {0, 300}}};
-  EXPECT_EQ(LandClearance(land, {500, 0}, {500, 200}), 0.0);   // crosses the shore
+  EXPECT_EQ(LandClearance(land, {500, 0}, {500, 200}), 0.0);    // crosses the shore
   EXPECT_EQ(LandClearance(land, {500, 150}, {510, 160}), 0.0);  // starts on land
   EXPECT_NEAR(LandClearance(land, {0, 40}, {1000, 40}), 60.0, 1e-9);
   EXPECT_NEAR(LandClearance(land, {1100, 0}, {1100, 400}), 100.0, 1e-9);
@@ -151,14 +157,15 @@ TEST(LandClearanceTest, CrossingInsideAndDistance) {
   EXPECT_EQ(index.Clearance({500, 0}, {500, 200}, 80), 0.0);
   EXPECT_NEAR(index.Clearance({0, 40}, {1000, 40}, 80), 60.0, 1e-9);
   EXPECT_NEAR(index.Clearance({1100, 0}, {1100, 400}, 80), 80.0, 1e-9);  // beyond the limit
-  EXPECT_NEAR(index.Clearance({-700, -500}, {-600, -500}, 1000), LandClearance(land, {-700, -500}, {-600, -500}),
-              1e-9);
+  EXPECT_NEAR(index.Clearance({-700, -500}, {-600, -500}, 1000),
+              LandClearance(land, {-700, -500}, {-600, -500}), 1e-9);
 }
 
 // Giving way to starboard would run the ship onto the shore just south of
 // it: the avoidance picks a velocity whose track stays clear of the land.
 TEST(AvoidanceTest, GiveWayManoeuvreKeepsClearOfLand) {
-  const std::vector<std::vector<Vec2>> south_shore = {{{-5000, -100}, {5000, -100}, {5000, -2000}, {-5000, -2000}}};
+  const std::vector<std::vector<Vec2>> south_shore = {
+      {{-5000, -100}, {5000, -100}, {5000, -2000}, {-5000, -2000}}};
   AvoidanceOptions o;
   o.safety_distance_m = 120;
   const Kinematics own{{0, 0}, VelocityOf(kEast, 9)};
@@ -166,15 +173,17 @@ TEST(AvoidanceTest, GiveWayManoeuvreKeepsClearOfLand) {
   const Kinematics other{{1200, -60}, VelocityOf(kNorth, 0.5)};
   AvoidanceDecision blind = ChooseVelocity(own, own.velocity, {{other, 1}}, o);
   ASSERT_TRUE(blind.manoeuvring);
-  EXPECT_LT(LandClearance(south_shore, own.position, own.position + blind.velocity * o.land_lookahead_s),
-            o.land_clearance_m)
+  EXPECT_LT(
+      LandClearance(south_shore, own.position, own.position + blind.velocity * o.land_lookahead_s),
+      o.land_clearance_m)
       << "the scenario must make the land-blind choice head for the shore";
   const LandIndex index(south_shore);
   o.land = &index;
   AvoidanceDecision aware = ChooseVelocity(own, own.velocity, {{other, 1}}, o);
   ASSERT_TRUE(aware.manoeuvring);
-  EXPECT_GE(LandClearance(south_shore, own.position, own.position + aware.velocity * o.land_lookahead_s),
-            o.land_clearance_m);
+  EXPECT_GE(
+      LandClearance(south_shore, own.position, own.position + aware.velocity * o.land_lookahead_s),
+      o.land_clearance_m);
 }
 
 // Overtaken in a narrow channel by a vessel that does not keep clear: land
@@ -182,14 +191,16 @@ TEST(AvoidanceTest, GiveWayManoeuvreKeepsClearOfLand) {
 // way out is to speed up, which the avoidance tries only when it knows the
 // hull's top speed.
 TEST(AvoidanceTest, OvertakenInAChannelSpeedsUpWhenTurningIsBlocked) {
-  const std::vector<std::vector<Vec2>> banks = {{{-500, -3000}, {-70, -3000}, {-70, 3000}, {-500, 3000}},
-                                                {{70, -3000}, {500, -3000}, {500, 3000}, {70, 3000}}};
+  const std::vector<std::vector<Vec2>> banks = {
+      {{-500, -3000}, {-70, -3000}, {-70, 3000}, {-500, 3000}},
+      {{70, -3000}, {500, -3000}, {500, 3000}, {70, 3000}}};
   const LandIndex index(banks);
   AvoidanceOptions o;
   o.safety_distance_m = 100;
   o.land = &index;
   const Kinematics own{{0, 0}, VelocityOf(kNorth, 3)};
-  const Kinematics overtaker{{0, -250}, VelocityOf(kNorth, 4)};  // CPA 0 in 250 s: rule 17 lets us act
+  const Kinematics overtaker{{0, -250},
+                             VelocityOf(kNorth, 4)};  // CPA 0 in 250 s: rule 17 lets us act
   AvoidanceDecision unknown_top = ChooseVelocity(own, own.velocity, {{overtaker, 1}}, o);
   EXPECT_EQ(unknown_top.role, Role::kOvertaken);
   EXPECT_FALSE(unknown_top.feasible) << "without a top speed only turns and slowing down are tried";
@@ -199,7 +210,8 @@ TEST(AvoidanceTest, OvertakenInAChannelSpeedsUpWhenTurningIsBlocked) {
   EXPECT_TRUE(d.manoeuvring);
   EXPECT_GT(d.velocity.Norm(), 3.5);
   EXPECT_LE(d.velocity.Norm(), 6.0 + 1e-9);
-  EXPECT_GE(LandClearance(banks, own.position, own.position + d.velocity * o.land_lookahead_s), o.land_clearance_m);
+  EXPECT_GE(LandClearance(banks, own.position, own.position + d.velocity * o.land_lookahead_s),
+            o.land_clearance_m);
   const Cpa cpa = ComputeCpa({own.position, d.velocity}, overtaker);  // within the horizon
   const Vec2 rel = overtaker.velocity - d.velocity;
   const double t = cpa.tcpa_s > 0 ? std::min(cpa.tcpa_s, o.horizon_s) : 0.0;
@@ -224,7 +236,8 @@ TEST(AvoidanceTest, LeastBadCandidateKeepsTheMostDistanceUnderTheDelay) {
     double best = 1e9;
     for (double t = 0; t <= o.horizon_s; t += 0.25) {
       const double turn = std::abs(std::remainder(CourseOf(v) - CourseOf(own.velocity), 2 * M_PI));
-      const double delay = turn / o.turn_rate_rad_s + std::abs(v.Norm() - 8.0) / o.acceleration_mps2;
+      const double delay =
+          turn / o.turn_rate_rad_s + std::abs(v.Norm() - 8.0) / o.acceleration_mps2;
       const double lagged = delay > 1e-3 ? delay + o.manoeuvre_lag_s : 0.0;
       const Vec2 p = t < lagged ? own.velocity * t : own.velocity * lagged + v * (t - lagged);
       best = std::min(best, (other.position + other.velocity * t - p).Norm());
@@ -235,7 +248,8 @@ TEST(AvoidanceTest, LeastBadCandidateKeepsTheMostDistanceUnderTheDelay) {
   // the velocity would give at once (see ChooseVelocity).
   const double chosen = min_distance(d.velocity);
   for (double c = -M_PI / 2; c <= M_PI / 2 + 1e-9; c += M_PI / 36) {
-    EXPECT_GE(chosen + 0.1 * o.safety_distance_m + 2.0, min_distance(VelocityOf(c, 8))) << "course " << c * 180 / M_PI;
+    EXPECT_GE(chosen + 0.1 * o.safety_distance_m + 2.0, min_distance(VelocityOf(c, 8)))
+        << "course " << c * 180 / M_PI;
   }
   EXPECT_GT(chosen, min_distance(own.velocity) + 50.0) << "holding on is the worst choice";
 }
@@ -254,7 +268,8 @@ TEST(PathAheadTest, SeesAConflictPastTheTurnThatTheStraightLineMisses) {
   const PathApproach slow = PathAheadClosestApproach(path, 1, own.position, 4.5, other, 300.0, 1.0);
   EXPECT_GT(slow.distance_m, 300.0);
   // The path's end is held: no extrapolation past the last point.
-  const PathApproach end = PathAheadClosestApproach({{0, 0}, {100, 0}}, 1, {0, 0}, 10.0, {{100, 500}, {0, 0}}, 300.0);
+  const PathApproach end =
+      PathAheadClosestApproach({{0, 0}, {100, 0}}, 1, {0, 0}, 10.0, {{100, 500}, {0, 0}}, 300.0);
   EXPECT_NEAR(end.distance_m, 500.0, 1e-9);
 }
 
@@ -267,7 +282,8 @@ TEST(PathAheadTest, SpeedRampFromRestDelaysTheArrival) {
   const PathApproach instant = PathAheadClosestApproach(path, 1, {0, 0}, 9.0, crossing, 300.0, 1.0);
   EXPECT_GT(instant.distance_m, 150.0);
   // From rest at 0.05 m/s^2: 810 m after 180 s.
-  const PathApproach ramped = PathAheadClosestApproach(path, 1, {0, 0}, 9.0, crossing, 300.0, 1.0, 0.0, 0.05);
+  const PathApproach ramped =
+      PathAheadClosestApproach(path, 1, {0, 0}, 9.0, crossing, 300.0, 1.0, 0.0, 0.05);
   EXPECT_LT(ramped.distance_m, 50.0);
   EXPECT_NEAR(ramped.time_s, 180.0, 10.0);
 }

@@ -16,9 +16,12 @@ using mission::TaskKind;
 
 ship::MsoMode ToShipMode(mission::MsoMode m) {
   switch (m) {
-    case mission::MsoMode::kMec: return ship::MsoMode::kMec;
-    case mission::MsoMode::kPti: return ship::MsoMode::kPti;
-    default: return ship::MsoMode::kPto;
+    case mission::MsoMode::kMec:
+      return ship::MsoMode::kMec;
+    case mission::MsoMode::kPti:
+      return ship::MsoMode::kPti;
+    default:
+      return ship::MsoMode::kPto;
   }
 }
 
@@ -31,9 +34,9 @@ StatusOr<Executor> Executor::Create(const ExecutorConfig& config) {
   }
   SEAPLAN_RETURN_IF_ERROR(config.los.Validate());
   ship::ShipState s = ship::ShipState::At(config.start.y, config.start.x, config.start_heading_rad);
-  SEAPLAN_ASSIGN_OR_RETURN(auto model, ship::ShipModel::Create(ship::ShipParams{}, ship::MachineryParams{},
-                                                               config.environment, s,
-                                                               ship::MsoMode::kPto));
+  SEAPLAN_ASSIGN_OR_RETURN(auto model,
+                           ship::ShipModel::Create(ship::ShipParams{}, ship::MachineryParams{},
+                                                   config.environment, s, ship::MsoMode::kPto));
   return Executor(config, std::move(model));
 }
 
@@ -46,13 +49,16 @@ Executor::Executor(const ExecutorConfig& config, ship::ShipModel model)
       tank_(config.fuel, config.initial_fuel_fraction) {
   report_.safety_distance_m = config.avoidance.safety_distance_m;
   for (ship::MsoMode m : ship::kAllMsoModes) {
-    top_speed_mps_[static_cast<size_t>(m)] = ship::TopSpeed(ship::ShipParams{}, ship::MachineryParams{}, m);
+    top_speed_mps_[static_cast<size_t>(m)] =
+        ship::TopSpeed(ship::ShipParams{}, ship::MachineryParams{}, m);
   }
   for (const TrafficVessel& v : config.traffic) report_.cpa[v.id].vessel = v.name;
   report_.min_fuel_fraction = config.initial_fuel_fraction;
 }
 
-Vec2 Executor::position() const { return {model_.state().east_m(), model_.state().north_m()}; }
+Vec2 Executor::position() const {
+  return {model_.state().east_m(), model_.state().north_m()};
+}
 
 FeedbackOut Executor::MakeFeedback(FeedbackKind kind, const std::string& task_id, int version,
                                    std::string detail) const {
@@ -89,7 +95,9 @@ void Executor::SetPlan(const mission::PlanVersion& version) {
                       static_cast<int>(version.tasks.size())));
 }
 
-bool Executor::Finished() const { return pending_.empty() && running_.empty() && !waiting_; }
+bool Executor::Finished() const {
+  return pending_.empty() && running_.empty() && !waiting_;
+}
 
 void Executor::StartTasks(std::vector<FeedbackOut>* out) {
   bool moving = std::any_of(running_.begin(), running_.end(),
@@ -115,7 +123,8 @@ void Executor::StartTasks(std::vector<FeedbackOut>* out) {
     tank_.OnTaskStarted(t.kind);
     Log(mission::TaskStartedMessage(t.kind));
     NoteFuel();
-    out->push_back(MakeFeedback(FeedbackKind::kTaskStarted, t.id, version_.version, t.action.DisplayName()));
+    out->push_back(
+        MakeFeedback(FeedbackKind::kTaskStarted, t.id, version_.version, t.action.DisplayName()));
     if (t.kind == TaskKind::kMove) {
       StartMove(t);
       moving = true;
@@ -227,9 +236,9 @@ void Executor::StepMove(std::vector<FeedbackOut>* out) {
     double off = mission::CrossTrackDistance(r, {here.x, here.y});
     if ((jumped_ && off > config_.deviation_limit_m) || off > 3 * config_.deviation_limit_m) {
       Log(mission::TaskFailedMessage(TaskKind::kMove));
-      out->push_back(MakeFeedback(FeedbackKind::kTaskFailed, it->task.id, it->version,
-                                  absl::StrFormat("%.0f m off the route (limit %.0f m)", off,
-                                                  config_.deviation_limit_m)));
+      out->push_back(MakeFeedback(
+          FeedbackKind::kTaskFailed, it->task.id, it->version,
+          absl::StrFormat("%.0f m off the route (limit %.0f m)", off, config_.deviation_limit_m)));
       ship::ShipState hold = s;
       hold.nu.setZero();
       model_.set_state(hold);
@@ -242,7 +251,8 @@ void Executor::StepMove(std::vector<FeedbackOut>* out) {
   double psi_d = los_->Update(here);
   double speed = move_speed_mps_;
   if (to_goal < config_.slow_down_distance_m) {
-    speed = std::max(config_.min_approach_speed_mps, speed * to_goal / config_.slow_down_distance_m);
+    speed =
+        std::max(config_.min_approach_speed_mps, speed * to_goal / config_.slow_down_distance_m);
   }
   // MSO mode of the segment steered along.
   if (!path_modes_.empty()) {
@@ -260,7 +270,8 @@ void Executor::StepMove(std::vector<FeedbackOut>* out) {
   if (!land_.empty()) planning.land = &land_;
   planning.safety_distance_m *= config_.avoidance_margin_factor;
   speed = PathAheadSpeed(here, speed, others, planning.safety_distance_m);
-  if (planning.max_speed_mps <= 0) planning.max_speed_mps = top_speed_mps_[static_cast<size_t>(model_.mode())];
+  if (planning.max_speed_mps <= 0)
+    planning.max_speed_mps = top_speed_mps_[static_cast<size_t>(model_.mode())];
   if (planning.turn_rate_rad_s <= 0) {
     planning.turn_rate_rad_s = config_.turn_rate_rad_s;
     planning.manoeuvre_lag_s = config_.manoeuvre_lag_s;
@@ -274,11 +285,12 @@ void Executor::StepMove(std::vector<FeedbackOut>* out) {
   encounters.reserve(others.size());
   const size_t next_point = static_cast<size_t>(los_->leg()) + 1;
   for (const Obstacle& o : others) {
-    const PathApproach along = PathAheadClosestApproach(los_->path(), next_point, here, speed, o.kinematics,
-                                                        config_.path_lookahead_s, 5.0, vel.Norm(),
-                                                        planning.acceleration_mps2);
+    const PathApproach along = PathAheadClosestApproach(los_->path(), next_point, here, speed,
+                                                        o.kinematics, config_.path_lookahead_s, 5.0,
+                                                        vel.Norm(), planning.acceleration_mps2);
     const Cpa now = ComputeCpa(own, o.kinematics);
-    const bool closing_now = now.dcpa_m < config_.avoidance.safety_distance_m && now.tcpa_s < planning.horizon_s;
+    const bool closing_now =
+        now.dcpa_m < config_.avoidance.safety_distance_m && now.tcpa_s < planning.horizon_s;
     if (along.distance_m >= planning.safety_distance_m && !closing_now) continue;
     encounters.push_back(o);
   }
@@ -286,7 +298,8 @@ void Executor::StepMove(std::vector<FeedbackOut>* out) {
   std::set<int> dangerous_now;
   for (const Obstacle& o : others) {
     Cpa cpa = ComputeCpa(own, o.kinematics);
-    if (cpa.dcpa_m < config_.avoidance.safety_distance_m && cpa.tcpa_s < config_.avoidance.horizon_s) {
+    if (cpa.dcpa_m < config_.avoidance.safety_distance_m &&
+        cpa.tcpa_s < config_.avoidance.horizon_s) {
       dangerous_now.insert(o.id);
     }
   }
@@ -298,15 +311,17 @@ void Executor::StepMove(std::vector<FeedbackOut>* out) {
       for (const Obstacle& o : others) {
         if (o.id == id) role = ClassifyEncounter(own, o.kinematics);
       }
-      Log(absl::StrFormat("%s with %s (%s)", std::string(mission::messages::kPotentialCollision), name, std::string(RoleName(role))));
+      Log(absl::StrFormat("%s with %s (%s)", std::string(mission::messages::kPotentialCollision),
+                          name, std::string(RoleName(role))));
     }
   }
   dangerous_ = dangerous_now;
   if (d.manoeuvring && !manoeuvring_) {
     manoeuvring_ = true;
     manoeuvre_vessel_ = d.vessel_id;
-    std::string what = absl::StrFormat("collision avoidance manoeuvre started (%s, %s)",
-                                       report_.cpa[d.vessel_id].vessel, std::string(RoleName(d.role)));
+    std::string what =
+        absl::StrFormat("collision avoidance manoeuvre started (%s, %s)",
+                        report_.cpa[d.vessel_id].vessel, std::string(RoleName(d.role)));
     Log(what);
     out->push_back(MakeFeedback(FeedbackKind::kCollisionAvoidance, it->task.id, it->version, what));
   } else if (!d.manoeuvring && manoeuvring_) {
@@ -329,7 +344,8 @@ void Executor::StepMove(std::vector<FeedbackOut>* out) {
   }
 }
 
-double Executor::PathAheadSpeed(Vec2 here, double speed, const std::vector<Obstacle>& others, double safety_m) {
+double Executor::PathAheadSpeed(Vec2 here, double speed, const std::vector<Obstacle>& others,
+                                double safety_m) {
   if (config_.path_lookahead_s <= 0 || others.empty()) return speed;
   const size_t next = static_cast<size_t>(los_->leg()) + 1;
   int blocking = -1;
@@ -337,8 +353,8 @@ double Executor::PathAheadSpeed(Vec2 here, double speed, const std::vector<Obsta
   for (double f : {1.0, 0.75, 0.5, 0.3}) {
     blocking = -1;
     for (const Obstacle& o : others) {
-      const PathApproach a =
-          PathAheadClosestApproach(los_->path(), next, here, speed * f, o.kinematics, config_.path_lookahead_s);
+      const PathApproach a = PathAheadClosestApproach(los_->path(), next, here, speed * f,
+                                                      o.kinematics, config_.path_lookahead_s);
       if (a.distance_m < safety_m) {
         blocking = o.id;
         break;
@@ -355,12 +371,13 @@ double Executor::PathAheadSpeed(Vec2 here, double speed, const std::vector<Obsta
   const bool slowed = chosen < speed - 1e-9;
   if (slowed && path_slowed_for_ < 0) {
     for (const Obstacle& o : others) {
-      const PathApproach a =
-          PathAheadClosestApproach(los_->path(), next, here, speed, o.kinematics, config_.path_lookahead_s);
+      const PathApproach a = PathAheadClosestApproach(los_->path(), next, here, speed, o.kinematics,
+                                                      config_.path_lookahead_s);
       if (a.distance_m < safety_m) {
         path_slowed_for_ = o.id;
         Log(absl::StrFormat("%s with %s ahead on the route: speed reduced to %.1f m/s",
-                            std::string(mission::messages::kPotentialCollision), report_.cpa[o.id].vessel, chosen));
+                            std::string(mission::messages::kPotentialCollision),
+                            report_.cpa[o.id].vessel, chosen));
         break;
       }
     }
@@ -375,13 +392,15 @@ void Executor::Complete(const Running& r, std::vector<FeedbackOut>* out) {
   tank_.OnTaskCompleted(r.task.kind);
   Log(mission::TaskCompletedMessage(r.task.kind));
   NoteFuel();
-  out->push_back(MakeFeedback(FeedbackKind::kTaskCompleted, r.task.id, r.version, r.task.action.DisplayName()));
+  out->push_back(MakeFeedback(FeedbackKind::kTaskCompleted, r.task.id, r.version,
+                              r.task.action.DisplayName()));
 }
 
 void Executor::NoteFuel() {
   const bool low = mission::FuelAtOrBelow(tank_.fraction(), config_.fuel_threshold_fraction);
   if (low && !fuel_low_logged_) {
-    Log(absl::StrFormat("fuel %.0f%% <= %.0f%%", tank_.fraction() * 100, config_.fuel_threshold_fraction * 100));
+    Log(absl::StrFormat("fuel %.0f%% <= %.0f%%", tank_.fraction() * 100,
+                        config_.fuel_threshold_fraction * 100));
   }
   fuel_low_logged_ = low;
 }
@@ -395,9 +414,11 @@ void Executor::InjectEvents(std::vector<FeedbackOut>* out) {
       Vec2 expected = config_.grid.Cell(j.from_cell.x, j.from_cell.y);
       Vec2 to = config_.grid.Cell(j.to_cell.x, j.to_cell.y);
       Vec2 here = position();
-      Log(absl::StrFormat("GNSS fault: position jumps from grid (%g, %g) to (%g, %g) (%.0f m; ship was %.0f m from the first cell)",
-                          j.from_cell.x, j.from_cell.y, j.to_cell.x, j.to_cell.y, (to - here).Norm(),
-                          (expected - here).Norm()));
+      Log(
+          absl::StrFormat("GNSS fault: position jumps from grid (%g, %g) to (%g, %g) (%.0f m; ship "
+                          "was %.0f m from the first cell)",
+                          j.from_cell.x, j.from_cell.y, j.to_cell.x, j.to_cell.y,
+                          (to - here).Norm(), (expected - here).Norm()));
       ship::ShipState s = model_.state();
       s.eta[0] = to.y;
       s.eta[1] = to.x;

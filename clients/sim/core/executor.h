@@ -159,7 +159,8 @@ class Executor {
   void StepMove(std::vector<FeedbackOut>* out);
   // The desired speed, lowered while a vessel would come within safety_m
   // of the ship sailing its route ahead (see path_lookahead_s).
-  double PathAheadSpeed(Vec2 here, double speed, const std::vector<Obstacle>& others, double safety_m);
+  double PathAheadSpeed(Vec2 here, double speed, const std::vector<Obstacle>& others,
+                        double safety_m);
   void Complete(const Running& r, std::vector<FeedbackOut>* out);
   void NoteFuel();  // logs crossing the fuel threshold (the server decides replans)
   void InjectEvents(std::vector<FeedbackOut>* out);
@@ -167,7 +168,7 @@ class Executor {
 
   ExecutorConfig config_;
   ship::ShipModel model_;
-  LandIndex land_;  // config_.land, indexed for the avoidance
+  LandIndex land_;                         // config_.land, indexed for the avoidance
   std::array<double, 3> top_speed_mps_{};  // calm-water top speed per MSO mode, for the avoidance
   int path_slowed_for_ = -1;  // vessel the path-ahead check last slowed the ship for, -1 none
   ship::HeadingController heading_;

@@ -33,7 +33,8 @@ mission::Task MoveTask(const std::string& id, mission::Point from, mission::Poin
 
 // A move along `points` (waypoints every ~100 m, as the route planner
 // returns them) sailed at `speed`.
-mission::Task RouteTask(const std::string& id, const std::vector<mission::Point>& corners, double speed) {
+mission::Task RouteTask(const std::string& id, const std::vector<mission::Point>& corners,
+                        double speed) {
   mission::Task t;
   t.id = id;
   t.kind = mission::TaskKind::kMove;
@@ -80,7 +81,8 @@ MoveRun RunMove(Vec2 start, double heading_rad, const mission::Task& move, Execu
   for (int i = 0; i < 20000 && !ex->Finished(); ++i) {
     ex->Step(&out);
     const Vec2 p = ex->position();
-    run.max_off_route_m = std::max(run.max_off_route_m, mission::CrossTrackDistance(*move.route, {p.x, p.y}));
+    run.max_off_route_m =
+        std::max(run.max_off_route_m, mission::CrossTrackDistance(*move.route, {p.x, p.y}));
   }
   run.finished = ex->Finished();
   run.end = {ex->position().x, ex->position().y};
@@ -128,7 +130,7 @@ TEST(FuelTankTest, MachineryModel) {
   machinery.kind = FuelModelKind::kMachinery;
   machinery.tank_capacity_kg = 100;
   FuelTank m(machinery, 1.0);
-  m.OnTaskStarted(mission::TaskKind::kLoad);      // no percentage charge
+  m.OnTaskStarted(mission::TaskKind::kLoad);  // no percentage charge
   m.OnTaskCompleted(mission::TaskKind::kMove);
   m.Burn(25);
   EXPECT_NEAR(m.fraction(), 0.75, 1e-12);

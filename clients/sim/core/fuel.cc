@@ -17,9 +17,14 @@ void FuelTank::OnTaskStarted(mission::TaskKind kind) {
   if (options_.kind != FuelModelKind::kPercentage) return;
   switch (kind) {
     case TaskKind::kLoad:
-    case TaskKind::kUnload: Take(options_.cargo_fraction); break;
-    case TaskKind::kRepair: Take(options_.repair_fraction); break;
-    default: break;
+    case TaskKind::kUnload:
+      Take(options_.cargo_fraction);
+      break;
+    case TaskKind::kRepair:
+      Take(options_.repair_fraction);
+      break;
+    default:
+      break;
   }
 }
 

@@ -30,7 +30,7 @@ enum class FuelModelKind { kPercentage, kMachinery };
 struct FuelOptions {
   FuelModelKind kind = FuelModelKind::kPercentage;
   double move_fraction = 0.15;
-  double cargo_fraction = 0.10;   // load / unload
+  double cargo_fraction = 0.10;  // load / unload
   double repair_fraction = 0.10;
   double tank_capacity_kg = 2000.0;  // kMachinery
 };

@@ -8,7 +8,8 @@
 namespace seaplan::sim {
 
 Status PathFollowerOptions::Validate() const {
-  if (!(lookahead_m > 0) || !(switch_distance_m >= 0) || !(search_distance_m >= 0) || !(turn_radius_m >= 0)) {
+  if (!(lookahead_m > 0) || !(switch_distance_m >= 0) || !(search_distance_m >= 0) ||
+      !(turn_radius_m >= 0)) {
     return absl::InvalidArgumentError(
         absl::StrFormat("path follower: lookahead_m (%g) must be > 0, switch_distance_m (%g), "
                         "search_distance_m (%g) and turn_radius_m (%g) >= 0",
@@ -17,19 +18,22 @@ Status PathFollowerOptions::Validate() const {
   return absl::OkStatus();
 }
 
-StatusOr<PathFollower> PathFollower::Create(std::vector<Vec2> path, const PathFollowerOptions& options) {
+StatusOr<PathFollower> PathFollower::Create(std::vector<Vec2> path,
+                                            const PathFollowerOptions& options) {
   SEAPLAN_RETURN_IF_ERROR(options.Validate());
   if (path.size() < 2) {
-    return absl::InvalidArgumentError(absl::StrFormat("path follower: %d points, need >= 2",
-                                                      static_cast<int>(path.size())));
+    return absl::InvalidArgumentError(
+        absl::StrFormat("path follower: %d points, need >= 2", static_cast<int>(path.size())));
   }
   for (size_t i = 0; i < path.size(); ++i) {
     if (!std::isfinite(path[i].x) || !std::isfinite(path[i].y)) {
-      return absl::InvalidArgumentError(absl::StrFormat("path follower: point %d is not finite", static_cast<int>(i)));
+      return absl::InvalidArgumentError(
+          absl::StrFormat("path follower: point %d is not finite", static_cast<int>(i)));
     }
     if (i > 0 && (path[i] - path[i - 1]).Norm() < 1e-6) {
-      return absl::InvalidArgumentError(
-          absl::StrFormat("path follower: points %d and %d coincide", static_cast<int>(i - 1), static_cast<int>(i)));
+      return absl::InvalidArgumentError(absl::StrFormat("path follower: points %d and %d coincide",
+                                                        static_cast<int>(i - 1),
+                                                        static_cast<int>(i)));
     }
   }
   return PathFollower(std::move(path), options);
@@ -43,8 +47,8 @@ PathFollower::PathFollower(std::vector<Vec2> path, const PathFollowerOptions& o)
   }
   wheel_over_m_.assign(path_.size() - 1, options_.switch_distance_m);
   for (size_t i = 0; i + 2 < path_.size(); ++i) {
-    const double turn = std::abs(std::remainder(CourseOf(path_[i + 2] - path_[i + 1]) - CourseOf(path_[i + 1] - path_[i]),
-                                                2.0 * M_PI));
+    const double turn = std::abs(std::remainder(
+        CourseOf(path_[i + 2] - path_[i + 1]) - CourseOf(path_[i + 1] - path_[i]), 2.0 * M_PI));
     // Capped below a right angle's tangent (a sharper corner is sailed
     // round anyway).
     const double w = options_.turn_radius_m * std::tan(std::min(turn, 0.45 * M_PI) / 2.0);

@@ -44,7 +44,8 @@ struct PathFollowerOptions {
 class PathFollower {
  public:
   // `path` has >= 2 points, consecutive points distinct.
-  static StatusOr<PathFollower> Create(std::vector<Vec2> path, const PathFollowerOptions& options = {});
+  static StatusOr<PathFollower> Create(std::vector<Vec2> path,
+                                       const PathFollowerOptions& options = {});
 
   // Chooses the leg for `here` (forward only) and returns the desired
   // course [rad, clockwise from north].

@@ -79,8 +79,8 @@ TEST(PathFollowerTest, WheelOverStartsTheTurnBeforeTheCorner) {
     plain->Update({x, 0});
     wheel->Update({x, 0});
   }
-  EXPECT_EQ(plain->leg(), 18);  // still on the leg 1800-1900
-  EXPECT_EQ(wheel->leg(), 20);  // already steering for the northbound leg
+  EXPECT_EQ(plain->leg(), 18);                    // still on the leg 1800-1900
+  EXPECT_EQ(wheel->leg(), 20);                    // already steering for the northbound leg
   EXPECT_LT(wheel->Update({1800, 0}), M_PI / 2);  // turning left of east, towards north
   PathFollowerOptions bad;
   bad.turn_radius_m = -1;

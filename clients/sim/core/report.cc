@@ -24,12 +24,18 @@ std::string Num3(double v) {
 
 const char* KindColour(mission::TaskKind k) {
   switch (k) {
-    case mission::TaskKind::kMove: return "#4a90d9";
-    case mission::TaskKind::kLoad: return "#7bc043";
-    case mission::TaskKind::kUnload: return "#f6a623";
-    case mission::TaskKind::kRepair: return "#d0021b";
-    case mission::TaskKind::kRefuel: return "#9b59b6";
-    default: return "#999999";
+    case mission::TaskKind::kMove:
+      return "#4a90d9";
+    case mission::TaskKind::kLoad:
+      return "#7bc043";
+    case mission::TaskKind::kUnload:
+      return "#f6a623";
+    case mission::TaskKind::kRepair:
+      return "#d0021b";
+    case mission::TaskKind::kRefuel:
+      return "#9b59b6";
+    default:
+      return "#999999";
   }
 }
 
@@ -39,11 +45,21 @@ std::string JsonString(std::string_view s) {
   std::string out = "\"";
   for (char c : s) {
     switch (c) {
-      case '"': out += "\\\""; break;
-      case '\\': out += "\\\\"; break;
-      case '\n': out += "\\n"; break;
-      case '\r': out += "\\r"; break;
-      case '\t': out += "\\t"; break;
+      case '"':
+        out += "\\\"";
+        break;
+      case '\\':
+        out += "\\\\";
+        break;
+      case '\n':
+        out += "\\n";
+        break;
+      case '\r':
+        out += "\\r";
+        break;
+      case '\t':
+        out += "\\t";
+        break;
       default:
         if (static_cast<unsigned char>(c) < 0x20) {
           out += absl::StrFormat("\\u%04x", c);
@@ -57,8 +73,10 @@ std::string JsonString(std::string_view s) {
 
 std::string ToJson(const MissionReport& r) {
   std::ostringstream o;
-  o << "{\n  \"mission_id\": " << JsonString(r.mission_id) << ",\n  \"scenario\": " << JsonString(r.scenario)
-    << ",\n  \"completed\": " << (r.completed ? "true" : "false") << ",\n  \"end_time_s\": " << Num3(r.end_time_s)
+  o << "{\n  \"mission_id\": " << JsonString(r.mission_id)
+    << ",\n  \"scenario\": " << JsonString(r.scenario)
+    << ",\n  \"completed\": " << (r.completed ? "true" : "false")
+    << ",\n  \"end_time_s\": " << Num3(r.end_time_s)
     << ",\n  \"safety_distance_m\": " << Num(r.safety_distance_m)
     << ",\n  \"tank_ran_dry\": " << (r.tank_ran_dry ? "true" : "false")
     << ",\n  \"min_fuel_fraction\": " << Num(r.min_fuel_fraction)
@@ -72,19 +90,22 @@ std::string ToJson(const MissionReport& r) {
   bool first = true;
   for (const auto& [id, c] : r.cpa) {
     o << (first ? "\n" : ",\n") << "    {\"vessel\": " << JsonString(c.vessel)
-      << ", \"min_distance_m\": " << Num(c.min_distance_m) << ", \"time_s\": " << Num3(c.time_s) << "}";
+      << ", \"min_distance_m\": " << Num(c.min_distance_m) << ", \"time_s\": " << Num3(c.time_s)
+      << "}";
     first = false;
   }
   o << "\n  ],\n  \"plan_versions\": [";
   first = true;
   for (const mission::PlanVersion& v : r.versions) {
-    o << (first ? "\n" : ",\n") << "    {\"version\": " << v.version << ", \"reason\": " << JsonString(v.reason)
-      << ", \"origin_s\": " << Num3(v.mission_time_origin_s) << ", \"makespan_s\": " << Num3(v.makespan_s)
-      << ", \"tasks\": [";
+    o << (first ? "\n" : ",\n") << "    {\"version\": " << v.version
+      << ", \"reason\": " << JsonString(v.reason)
+      << ", \"origin_s\": " << Num3(v.mission_time_origin_s)
+      << ", \"makespan_s\": " << Num3(v.makespan_s) << ", \"tasks\": [";
     bool ft = true;
     for (const mission::Task& t : v.tasks) {
-      o << (ft ? "" : ", ") << "{\"id\": " << JsonString(t.id) << ", \"kind\": "
-        << JsonString(mission::TaskKindName(t.kind)) << ", \"action\": " << JsonString(t.action.DisplayName())
+      o << (ft ? "" : ", ") << "{\"id\": " << JsonString(t.id)
+        << ", \"kind\": " << JsonString(mission::TaskKindName(t.kind))
+        << ", \"action\": " << JsonString(t.action.DisplayName())
         << ", \"start_s\": " << Num3(t.start_s) << ", \"duration_s\": " << Num3(t.duration_s);
       if (t.route) {
         // The refined route (local frame, metres): what the executor follows,
@@ -93,8 +114,8 @@ std::string ToJson(const MissionReport& r) {
           << ", \"route_sailing_time_s\": " << Num3(t.route->sailing_time_s) << ", \"route\": [";
         bool fw = true;
         for (const mission::RouteWaypoint& w : t.route->waypoints) {
-          o << (fw ? "" : ", ") << "[" << Num3(w.position.x_m) << ", " << Num3(w.position.y_m) << ", "
-            << JsonString(mission::MsoModeName(w.mode)) << "]";
+          o << (fw ? "" : ", ") << "[" << Num3(w.position.x_m) << ", " << Num3(w.position.y_m)
+            << ", " << JsonString(mission::MsoModeName(w.mode)) << "]";
           fw = false;
         }
         o << "]";
@@ -108,8 +129,9 @@ std::string ToJson(const MissionReport& r) {
   o << "\n  ],\n  \"navigation_log\": [";
   first = true;
   for (const mission::LogEntry& e : r.log.entries()) {
-    o << (first ? "\n" : ",\n") << "    {\"t\": " << Num3(e.mission_time_s) << ", \"source\": "
-      << JsonString(e.source) << ", \"message\": " << JsonString(e.message) << "}";
+    o << (first ? "\n" : ",\n") << "    {\"t\": " << Num3(e.mission_time_s)
+      << ", \"source\": " << JsonString(e.source) << ", \"message\": " << JsonString(e.message)
+      << "}";
     first = false;
   }
   o << "\n  ],\n  \"fuel\": [";
@@ -121,7 +143,8 @@ std::string ToJson(const MissionReport& r) {
   o << "],\n  \"trajectory\": [";
   first = true;
   for (const TimedPoint& p : r.trajectory) {
-    o << (first ? "" : ", ") << "[" << Num3(p.time_s) << ", " << Num3(p.position.x) << ", " << Num3(p.position.y) << "]";
+    o << (first ? "" : ", ") << "[" << Num3(p.time_s) << ", " << Num3(p.position.x) << ", "
+      << Num3(p.position.y) << "]";
     first = false;
   }
   o << "]\n}\n";
@@ -152,7 +175,8 @@ std::string TrajectorySvg(const MissionReport& r, const Rings& obstacles,
   auto Y = [&](double y) { return (maxy - y) * scale; };
   std::ostringstream o;
   o << absl::StrFormat(
-      "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" height=\"%.0f\" viewBox=\"0 0 %.0f %.0f\">\n",
+      "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" height=\"%.0f\" viewBox=\"0 0 %.0f "
+      "%.0f\">\n",
       width, height, width, height);
   o << "<rect width=\"100%\" height=\"100%\" fill=\"#dceefc\"/>\n";
   for (const auto& ring : obstacles) {
@@ -168,20 +192,25 @@ std::string TrajectorySvg(const MissionReport& r, const Rings& obstacles,
   const char* colours[] = {"#e67e22", "#16a085", "#8e44ad", "#c0392b"};
   int ci = 0;
   for (const auto& [name, track] : r.traffic_tracks) {
-    o << "<polyline fill=\"none\" stroke=\"" << colours[ci++ % 4] << "\" stroke-dasharray=\"6,4\" points=\"";
-    for (const TimedPoint& p : track) o << absl::StrFormat("%.1f,%.1f ", X(p.position.x), Y(p.position.y));
+    o << "<polyline fill=\"none\" stroke=\"" << colours[ci++ % 4]
+      << "\" stroke-dasharray=\"6,4\" points=\"";
+    for (const TimedPoint& p : track)
+      o << absl::StrFormat("%.1f,%.1f ", X(p.position.x), Y(p.position.y));
     o << "\"/>\n";
     if (!track.empty()) {
-      o << absl::StrFormat("<text x=\"%.1f\" y=\"%.1f\" font-size=\"12\">%s</text>\n", X(track.front().position.x),
-                           Y(track.front().position.y), name);
+      o << absl::StrFormat("<text x=\"%.1f\" y=\"%.1f\" font-size=\"12\">%s</text>\n",
+                           X(track.front().position.x), Y(track.front().position.y), name);
     }
   }
   o << "<polyline fill=\"none\" stroke=\"#1f3a93\" stroke-width=\"2\" points=\"";
-  for (const TimedPoint& p : r.trajectory) o << absl::StrFormat("%.1f,%.1f ", X(p.position.x), Y(p.position.y));
+  for (const TimedPoint& p : r.trajectory)
+    o << absl::StrFormat("%.1f,%.1f ", X(p.position.x), Y(p.position.y));
   o << "\"/>\n";
   for (const auto& [name, p] : locations) {
-    o << absl::StrFormat("<circle cx=\"%.1f\" cy=\"%.1f\" r=\"4\" fill=\"#000\"/>\n", X(p.x_m), Y(p.y_m));
-    o << absl::StrFormat("<text x=\"%.1f\" y=\"%.1f\" font-size=\"13\">%s</text>\n", X(p.x_m) + 6, Y(p.y_m) - 6, name);
+    o << absl::StrFormat("<circle cx=\"%.1f\" cy=\"%.1f\" r=\"4\" fill=\"#000\"/>\n", X(p.x_m),
+                         Y(p.y_m));
+    o << absl::StrFormat("<text x=\"%.1f\" y=\"%.1f\" font-size=\"13\">%s</text>\n", X(p.x_m) + 6,
+                         Y(p.y_m) - 6, name);
   }
   o << "</svg>\n";
   return o.str();
@@ -198,23 +227,28 @@ std::string GanttSvg(const MissionReport& r) {
   const double scale = (width - left - 20) / end;
   const double height = (rows + 2) * row_h + 20;
   std::ostringstream o;
-  o << absl::StrFormat("<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" height=\"%.0f\">\n", width, height);
+  o << absl::StrFormat(
+      "<svg xmlns=\"http://www.w3.org/2000/svg\" width=\"%.0f\" height=\"%.0f\">\n", width, height);
   o << "<rect width=\"100%\" height=\"100%\" fill=\"#fff\"/>\n";
   double y = 20;
   for (const auto& v : r.versions) {
-    o << absl::StrFormat("<text x=\"4\" y=\"%.0f\" font-size=\"12\" font-weight=\"bold\">version %d: %s</text>\n",
-                         y + 12, v.version, JsonString(v.reason).substr(1, JsonString(v.reason).size() - 2));
+    o << absl::StrFormat(
+        "<text x=\"4\" y=\"%.0f\" font-size=\"12\" font-weight=\"bold\">version %d: %s</text>\n",
+        y + 12, v.version, JsonString(v.reason).substr(1, JsonString(v.reason).size() - 2));
     y += row_h;
     for (const auto& t : v.tasks) {
-      o << absl::StrFormat("<text x=\"12\" y=\"%.0f\" font-size=\"11\">%s</text>\n", y + 11, t.action.DisplayName());
-      o << absl::StrFormat("<rect x=\"%.1f\" y=\"%.0f\" width=\"%.1f\" height=\"%.0f\" fill=\"%s\"/>\n",
-                           left + t.start_s * scale, y + 2, std::max(1.0, t.duration_s * scale), row_h - 4,
-                           KindColour(t.kind));
+      o << absl::StrFormat("<text x=\"12\" y=\"%.0f\" font-size=\"11\">%s</text>\n", y + 11,
+                           t.action.DisplayName());
+      o << absl::StrFormat(
+          "<rect x=\"%.1f\" y=\"%.0f\" width=\"%.1f\" height=\"%.0f\" fill=\"%s\"/>\n",
+          left + t.start_s * scale, y + 2, std::max(1.0, t.duration_s * scale), row_h - 4,
+          KindColour(t.kind));
       y += row_h;
     }
   }
   for (double t = 0; t <= end; t += std::max(100.0, std::round(end / 10 / 100) * 100)) {
-    o << absl::StrFormat("<text x=\"%.1f\" y=\"%.0f\" font-size=\"10\">%.0f</text>\n", left + t * scale, y + 14, t);
+    o << absl::StrFormat("<text x=\"%.1f\" y=\"%.0f\" font-size=\"10\">%.0f</text>\n",
+                         left + t * scale, y + 14, t);
   }
   o << "</svg>\n";
   return o.str();
@@ -224,7 +258,9 @@ Status WriteReport(const std::string& dir, const MissionReport& report, const Ri
                    const mission::LocationTable& locations) {
   std::error_code ec;
   std::filesystem::create_directories(dir, ec);
-  if (ec) return absl::InternalError(absl::StrCat("cannot create report folder ", dir, ": ", ec.message()));
+  if (ec)
+    return absl::InternalError(
+        absl::StrCat("cannot create report folder ", dir, ": ", ec.message()));
   auto write = [&](const std::string& name, const std::string& text) -> Status {
     std::ofstream out(dir + "/" + name);
     out << text;

@@ -31,7 +31,7 @@ struct MissionReport {
   std::string mission_id;
   std::string scenario;
   mission::NavigationLog log;
-  std::map<int, CpaRecord> cpa;  // by traffic id
+  std::map<int, CpaRecord> cpa;                 // by traffic id
   std::vector<std::pair<double, double>> fuel;  // (mission time, fraction)
   std::vector<TimedPoint> trajectory;
   std::map<std::string, std::vector<TimedPoint>> traffic_tracks;

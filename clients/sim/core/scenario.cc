@@ -18,10 +18,12 @@ namespace {
 constexpr double kDeg = M_PI / 180.0;
 
 std::vector<std::string> Words(std::string_view v) {
-  return absl::StrSplit(absl::string_view(v.data(), v.size()), absl::ByAnyChar(" \t"), absl::SkipEmpty());
+  return absl::StrSplit(absl::string_view(v.data(), v.size()), absl::ByAnyChar(" \t"),
+                        absl::SkipEmpty());
 }
 
-bool ParseDoubles(const std::vector<std::string>& w, size_t from, size_t count, std::vector<double>* out) {
+bool ParseDoubles(const std::vector<std::string>& w, size_t from, size_t count,
+                  std::vector<double>* out) {
   if (w.size() < from + count) return false;
   for (size_t i = from; i < from + count; ++i) {
     double v;
@@ -37,14 +39,16 @@ StatusOr<Scenario> ParseScenario(std::string_view text, std::string_view file) {
   Scenario s;
   s.file = std::string(file);
   int line_no = 0;
-  std::vector<std::string> lines = absl::StrSplit(absl::string_view(text.data(), text.size()), '\n');
+  std::vector<std::string> lines =
+      absl::StrSplit(absl::string_view(text.data(), text.size()), '\n');
   for (const std::string& raw : lines) {
     ++line_no;
     std::string line = raw.substr(0, raw.find('#'));
     std::string l(absl::StripAsciiWhitespace(line));
     if (l.empty()) continue;
     auto err = [&](std::string_view what) {
-      return absl::InvalidArgumentError(absl::StrCat(std::string(file), ":", line_no, ": ", std::string(what)));
+      return absl::InvalidArgumentError(
+          absl::StrCat(std::string(file), ":", line_no, ": ", std::string(what)));
     };
     size_t eq = l.find('=');
     if (eq == std::string::npos) return err("expected 'key = value'");
@@ -53,7 +57,8 @@ StatusOr<Scenario> ParseScenario(std::string_view text, std::string_view file) {
     std::vector<std::string> w = Words(value);
     std::vector<double> d;
     auto number = [&](double* out) -> Status {
-      if (!ParseDoubles(w, 0, 1, &d) || w.size() != 1) return err(absl::StrCat(key, ": expected one number"));
+      if (!ParseDoubles(w, 0, 1, &d) || w.size() != 1)
+        return err(absl::StrCat(key, ": expected one number"));
       *out = d[0];
       return absl::OkStatus();
     };
@@ -147,7 +152,8 @@ StatusOr<Scenario> ParseScenario(std::string_view text, std::string_view file) {
         std::vector<std::string> pw = Words(parts[i]);
         size_t off = 0;
         if (i == 0) {
-          if (pw.size() != 5) return err("traffic: expected 'name kind t lat lon ; t lat lon ; ...'");
+          if (pw.size() != 5)
+            return err("traffic: expected 'name kind t lat lon ; t lat lon ; ...'");
           t.name = pw[0];
           t.kind = pw[1];
           off = 2;
@@ -156,7 +162,8 @@ StatusOr<Scenario> ParseScenario(std::string_view text, std::string_view file) {
         if (pw.size() != off + 3 || !ParseDoubles(pw, off, 3, &v)) {
           return err("traffic: each point is 't lat lon'");
         }
-        if (!t.track.empty() && v[0] <= t.track.back().time_s) return err("traffic: times must increase");
+        if (!t.track.empty() && v[0] <= t.track.back().time_s)
+          return err("traffic: times must increase");
         t.track.push_back({v[0], {v[1], v[2]}});
       }
       s.traffic.push_back(std::move(t));
@@ -165,13 +172,16 @@ StatusOr<Scenario> ParseScenario(std::string_view text, std::string_view file) {
     }
   }
   if (s.domain_path.empty() || s.problem_path.empty()) {
-    return absl::InvalidArgumentError(absl::StrCat(std::string(file), ": 'domain' and 'problem' are required"));
+    return absl::InvalidArgumentError(
+        absl::StrCat(std::string(file), ": 'domain' and 'problem' are required"));
   }
   if (s.locations.empty()) {
-    return absl::InvalidArgumentError(absl::StrCat(std::string(file), ": at least one 'location' is required"));
+    return absl::InvalidArgumentError(
+        absl::StrCat(std::string(file), ": at least one 'location' is required"));
   }
   if (!s.gnss_jumps.empty() && !s.grid_origin) {
-    return absl::InvalidArgumentError(absl::StrCat(std::string(file), ": gnss_jump needs a 'grid'"));
+    return absl::InvalidArgumentError(
+        absl::StrCat(std::string(file), ": gnss_jump needs a 'grid'"));
   }
   return s;
 }
@@ -184,10 +194,12 @@ StatusOr<Scenario> LoadScenario(const std::string& path) {
   return ParseScenario(ss.str(), path);
 }
 
-StatusOr<std::string> ResolvePath(const Scenario& s, const std::string& path, const std::string& shared_dir) {
+StatusOr<std::string> ResolvePath(const Scenario& s, const std::string& path,
+                                  const std::string& shared_dir) {
   if (absl::StartsWith(path, "shared:")) {
     if (shared_dir.empty()) {
-      return absl::FailedPreconditionError(absl::StrCat(path, ": set SEAPLAN_SHARED to the shared data folder"));
+      return absl::FailedPreconditionError(
+          absl::StrCat(path, ": set SEAPLAN_SHARED to the shared data folder"));
     }
     return (std::filesystem::path(shared_dir) / path.substr(7)).string();
   }

@@ -38,9 +38,9 @@
 #include <utility>
 #include <vector>
 
+#include "executor.h"
 #include "seaplan/chart/geodesy.h"
 #include "seaplan/common/status.h"
-#include "executor.h"
 
 namespace seaplan::sim {
 
@@ -88,7 +88,8 @@ StatusOr<Scenario> LoadScenario(const std::string& path);
 
 // A path of the scenario resolved: relative to the scenario's folder, or
 // "shared:<rel>" under `shared_dir` ($SEAPLAN_SHARED).
-StatusOr<std::string> ResolvePath(const Scenario& s, const std::string& path, const std::string& shared_dir);
+StatusOr<std::string> ResolvePath(const Scenario& s, const std::string& path,
+                                  const std::string& shared_dir);
 
 // Local positions of the locations in `frame`.
 mission::LocationTable LocalLocations(const Scenario& s, const chart::LocalFrame& frame);

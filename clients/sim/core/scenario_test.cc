@@ -19,7 +19,8 @@ traffic = ferry ferry 0 63.45 10.36 ; 900 63.43 10.40
 port_operation = load-cont 60
 wind = 10 250
 fuel_model = machinery
-)", "/x/scenarios/b.scenario");
+)",
+                         "/x/scenarios/b.scenario");
   ASSERT_TRUE(s.ok()) << s.status();
   EXPECT_EQ(s->locations.size(), 2u);
   EXPECT_EQ(s->locations[1].first, "port-b");
@@ -49,7 +50,8 @@ TEST(ScenarioTest, BadLinesNameTheLine) {
   EXPECT_NE(s.status().message().find("f.scenario:3"), std::string::npos) << s.status();
   auto u = ParseScenario("domain = d\nproblem = p\nfoo = 1\n", "f");
   EXPECT_NE(u.status().message().find("unknown key 'foo'"), std::string::npos);
-  auto g = ParseScenario("domain = d\nproblem = p\nlocation = a 1 2\ngnss_jump = 1 2 3 4 5 6\n", "f");
+  auto g =
+      ParseScenario("domain = d\nproblem = p\nlocation = a 1 2\ngnss_jump = 1 2 3 4 5 6\n", "f");
   EXPECT_NE(g.status().message().find("grid"), std::string::npos);
 }
 

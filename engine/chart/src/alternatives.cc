@@ -23,7 +23,9 @@ using internal::GeomPtr;
 using internal::GeosContext;
 using internal::Own;
 
-double Dist(LocalPoint a, LocalPoint b) { return std::hypot(b.x_m - a.x_m, b.y_m - a.y_m); }
+double Dist(LocalPoint a, LocalPoint b) {
+  return std::hypot(b.x_m - a.x_m, b.y_m - a.y_m);
+}
 double Cross(LocalPoint o, LocalPoint a, LocalPoint b) {
   return (a.x_m - o.x_m) * (b.y_m - o.y_m) - (a.y_m - o.y_m) * (b.x_m - o.x_m);
 }
@@ -32,7 +34,9 @@ double PolylineLength(const std::vector<LocalPoint>& pts) {
   for (size_t i = 1; i < pts.size(); ++i) len += Dist(pts[i - 1], pts[i]);
   return len;
 }
-std::string Fmt(LocalPoint p) { return absl::StrFormat("(%.1f, %.1f)", p.x_m, p.y_m); }
+std::string Fmt(LocalPoint p) {
+  return absl::StrFormat("(%.1f, %.1f)", p.x_m, p.y_m);
+}
 
 struct PreparedDeleter {
   GEOSContextHandle_t ctx;
@@ -46,7 +50,8 @@ PreparedPtr Prepare(const GeosContext& c, const GEOSGeometry* g) {
   return PreparedPtr(g != nullptr ? GEOSPrepare_r(c.get(), g) : nullptr, PreparedDeleter{c.get()});
 }
 
-bool SegmentHitsPrepared(const GeosContext& c, const GEOSPreparedGeometry* p, LocalPoint a, LocalPoint b) {
+bool SegmentHitsPrepared(const GeosContext& c, const GEOSPreparedGeometry* p, LocalPoint a,
+                         LocalPoint b) {
   if (p == nullptr) return false;
   const LocalPoint pts[2] = {a, b};
   GeomPtr line = a == b ? internal::MakePoint(c, a) : internal::MakeLine(c, pts, 2);
@@ -61,15 +66,16 @@ bool PointInPrepared(const GeosContext& c, const GEOSPreparedGeometry* p, LocalP
 
 // One hull of K with what A1 needs about it.
 struct Hull {
-  GeomPtr shape;            // the dilated convex hull
-  GeomPtr shrunk;           // shape shrunk by a hair: touching its boundary is not a crossing
+  GeomPtr shape;   // the dilated convex hull
+  GeomPtr shrunk;  // shape shrunk by a hair: touching its boundary is not a crossing
   PreparedPtr prepared_shrunk;
   std::vector<LocalPoint> vertices;
   double area = 0.0;
 };
 
 // K <- convex hulls of the unions of overlapping dilated hulls, until no two overlap.
-StatusOr<std::vector<Hull>> BuildHulls(const GeosContext& c, const std::vector<GeomPtr>& obstacles, double margin_m) {
+StatusOr<std::vector<Hull>> BuildHulls(const GeosContext& c, const std::vector<GeomPtr>& obstacles,
+                                       double margin_m) {
   std::vector<GeomPtr> dilated;
   dilated.reserve(obstacles.size());
   for (const GeomPtr& o : obstacles) {
@@ -78,9 +84,10 @@ StatusOr<std::vector<Hull>> BuildHulls(const GeosContext& c, const std::vector<G
     // Mitred joins: a dilated convex hull keeps one vertex per corner, so
     // A1's waypoints are real corners, not steps along a rounded arc (the
     // mitre limit 2 bevels very sharp corners).
-    GeomPtr d = margin_m > 0 ? Own(c, GEOSBufferWithStyle_r(c.get(), hull.get(), margin_m, 4, GEOSBUF_CAP_ROUND,
-                                                            GEOSBUF_JOIN_MITRE, 2.0))
-                             : std::move(hull);
+    GeomPtr d = margin_m > 0
+                    ? Own(c, GEOSBufferWithStyle_r(c.get(), hull.get(), margin_m, 4,
+                                                   GEOSBUF_CAP_ROUND, GEOSBUF_JOIN_MITRE, 2.0))
+                    : std::move(hull);
     if (d) dilated.push_back(std::move(d));
   }
   std::vector<GeomPtr> current = std::move(dilated);
@@ -88,7 +95,8 @@ StatusOr<std::vector<Hull>> BuildHulls(const GeosContext& c, const std::vector<G
     const size_t before = current.size();
     GeomPtr all = internal::MakeCollection(c, GEOS_GEOMETRYCOLLECTION, std::move(current));
     GeomPtr unioned = Own(c, GEOSUnaryUnion_r(c.get(), all.get()));
-    if (!unioned) return absl::InternalError(absl::StrCat("A1: union of hulls failed: ", c.TakeError()));
+    if (!unioned)
+      return absl::InternalError(absl::StrCat("A1: union of hulls failed: ", c.TakeError()));
     std::vector<GeomPtr> parts = internal::PolygonParts(c, unioned.get());
     current.clear();
     for (GeomPtr& p : parts) {
@@ -127,8 +135,8 @@ struct A1Outcome {
   bool stopped = false;
 };
 
-A1Outcome RunA1(const GeosContext& c, const std::vector<Hull>& hulls, LocalPoint start, LocalPoint goal,
-                const AlternativesOptions& options) {
+A1Outcome RunA1(const GeosContext& c, const std::vector<Hull>& hulls, LocalPoint start,
+                LocalPoint goal, const AlternativesOptions& options) {
   A1Outcome out;
   for (size_t i = 0; i < hulls.size(); ++i) {
     if (PointInPrepared(c, hulls[i].prepared_shrunk.get(), start)) {
@@ -149,7 +157,8 @@ A1Outcome RunA1(const GeosContext& c, const std::vector<Hull>& hulls, LocalPoint
       out.stopped = true;
       break;
     }
-    if (static_cast<int>(out.routes.size()) >= options.max_alternatives || ++expansions > kMaxExpansions) {
+    if (static_cast<int>(out.routes.size()) >= options.max_alternatives ||
+        ++expansions > kMaxExpansions) {
       out.limit_hit = true;
       break;
     }
@@ -181,7 +190,8 @@ A1Outcome RunA1(const GeosContext& c, const std::vector<Hull>& hulls, LocalPoint
     double best_d[2] = {-1.0, -1.0};
     for (const LocalPoint& v : hulls[hull].vertices) {
       if (Dist(v, from) < 1.0) continue;
-      if (SegmentHitsPrepared(c, hulls[hull].prepared_shrunk.get(), from, v)) continue;  // not visible
+      if (SegmentHitsPrepared(c, hulls[hull].prepared_shrunk.get(), from, v))
+        continue;  // not visible
       const double cr = Cross(from, to, v);
       const int side = cr > 0 ? 0 : 1;
       const double d = std::abs(cr) / len;
@@ -211,7 +221,8 @@ A1Outcome RunA1(const GeosContext& c, const std::vector<Hull>& hulls, LocalPoint
 }
 
 // Obstacle polygons of the map as GEOS geometries, optionally clipped to a box.
-std::vector<GeomPtr> MapGeometries(const GeosContext& c, const ObstacleMap& map, const LocalBox* clip) {
+std::vector<GeomPtr> MapGeometries(const GeosContext& c, const ObstacleMap& map,
+                                   const LocalBox* clip) {
   std::vector<GeomPtr> out;
   const auto& polygons = map.polygons();
   for (const Polygon& p : polygons) {
@@ -223,9 +234,13 @@ std::vector<GeomPtr> MapGeometries(const GeosContext& c, const ObstacleMap& map,
       GEOSGeom_getYMin_r(c.get(), g.get(), &miny);
       GEOSGeom_getXMax_r(c.get(), g.get(), &maxx);
       GEOSGeom_getYMax_r(c.get(), g.get(), &maxy);
-      if (maxx < clip->min.x_m || minx > clip->max.x_m || maxy < clip->min.y_m || miny > clip->max.y_m) continue;
-      if (minx < clip->min.x_m || miny < clip->min.y_m || maxx > clip->max.x_m || maxy > clip->max.y_m) {
-        g = Own(c, GEOSClipByRect_r(c.get(), g.get(), clip->min.x_m, clip->min.y_m, clip->max.x_m, clip->max.y_m));
+      if (maxx < clip->min.x_m || minx > clip->max.x_m || maxy < clip->min.y_m ||
+          miny > clip->max.y_m)
+        continue;
+      if (minx < clip->min.x_m || miny < clip->min.y_m || maxx > clip->max.x_m ||
+          maxy > clip->max.y_m) {
+        g = Own(c, GEOSClipByRect_r(c.get(), g.get(), clip->min.x_m, clip->min.y_m, clip->max.x_m,
+                                    clip->max.y_m));
         if (!g || GEOSisEmpty_r(c.get(), g.get()) == 1) continue;
       }
     }
@@ -244,12 +259,14 @@ LocalBox Corridor(LocalPoint a, LocalPoint b, double grow) {
 absl::Status StopStatus(const StopToken& stop, const char* where) {
   return stop.Reason() == StopReason::kCancelled
              ? absl::CancelledError(absl::StrCat("route alternatives cancelled during ", where))
-             : absl::DeadlineExceededError(absl::StrCat("route alternatives: deadline reached during ", where));
+             : absl::DeadlineExceededError(
+                   absl::StrCat("route alternatives: deadline reached during ", where));
 }
 
-StatusOr<std::vector<LocalPoint>> VisibilityPath(const GeosContext& c, const ObstacleMap& map, LocalPoint start,
-                                                 LocalPoint goal, double margin_m, const LocalBox& box,
-                                                 int max_nodes, const StopToken& stop,
+StatusOr<std::vector<LocalPoint>> VisibilityPath(const GeosContext& c, const ObstacleMap& map,
+                                                 LocalPoint start, LocalPoint goal, double margin_m,
+                                                 const LocalBox& box, int max_nodes,
+                                                 const StopToken& stop,
                                                  const GEOSGeometry* extra_obstacle = nullptr) {
   const auto t_build = std::chrono::steady_clock::now();
   const double tol = 0.2 * margin_m;
@@ -263,7 +280,8 @@ StatusOr<std::vector<LocalPoint>> VisibilityPath(const GeosContext& c, const Obs
   // slightly less than the margin the nodes sit at (see below).
   GeomPtr test = Own(c, GEOSBuffer_r(c.get(), raw_all.get(), 0.98 * (margin_m - tol), 4));
   GeomPtr dilated = Own(c, GEOSBuffer_r(c.get(), raw_all.get(), margin_m, 4));
-  if (!test || !dilated) return absl::InternalError(absl::StrCat("visibility graph: buffer failed: ", c.TakeError()));
+  if (!test || !dilated)
+    return absl::InternalError(absl::StrCat("visibility graph: buffer failed: ", c.TakeError()));
   // Douglas-Peucker keeps original vertices (on the dilated outline, margin_m
   // from the obstacles); edges between them stay within tol of the outline.
   GeomPtr simple = Own(c, GEOSTopologyPreserveSimplify_r(c.get(), dilated.get(), tol));
@@ -296,12 +314,13 @@ StatusOr<std::vector<LocalPoint>> VisibilityPath(const GeosContext& c, const Obs
     for (const Ring& h : p.holes) add_ring(h, false);
   }
   if (static_cast<int>(nodes.size()) > max_nodes) {
-    return absl::ResourceExhaustedError(absl::StrCat("visibility graph needs ", nodes.size(),
-                                                     " nodes (limit ", max_nodes, ")"));
+    return absl::ResourceExhaustedError(
+        absl::StrCat("visibility graph needs ", nodes.size(), " nodes (limit ", max_nodes, ")"));
   }
   // Nodes inside the test geometry (clipping artefacts) are dropped.
   std::vector<char> usable(nodes.size(), 1);
-  for (size_t i = 2; i < nodes.size(); ++i) usable[i] = !PointInPrepared(c, test_prepared.get(), nodes[i]);
+  for (size_t i = 2; i < nodes.size(); ++i)
+    usable[i] = !PointInPrepared(c, test_prepared.get(), nodes[i]);
   // Start/goal closer than the margin to an obstacle: their own segments are
   // checked against the obstacles themselves (they already carry the chart's
   // safety buffer) instead of the dilated ones.
@@ -321,8 +340,10 @@ StatusOr<std::vector<LocalPoint>> VisibilityPath(const GeosContext& c, const Obs
   auto visible = [&](size_t u, size_t v) {
     if (!tangent(u, v) || !tangent(v, u)) return false;
     ++tests;
-    const bool endpoint_close = ((u == 0 || v == 0) && start_close) || ((u == 1 || v == 1) && goal_close);
-    return !SegmentHitsPrepared(c, endpoint_close ? raw_prepared.get() : test_prepared.get(), nodes[u], nodes[v]);
+    const bool endpoint_close =
+        ((u == 0 || v == 0) && start_close) || ((u == 1 || v == 1) && goal_close);
+    return !SegmentHitsPrepared(c, endpoint_close ? raw_prepared.get() : test_prepared.get(),
+                                nodes[u], nodes[v]);
   };
   // A* with lazy visibility: an edge is tested only when it would improve.
   const size_t n = nodes.size();
@@ -351,9 +372,10 @@ StatusOr<std::vector<LocalPoint>> VisibilityPath(const GeosContext& c, const Obs
       open.push({nd + Dist(nodes[v], goal), static_cast<int>(v)});
     }
   }
-  log::Debug("visibility graph: {} nodes, {} visibility tests; build {:.0f} ms, search {:.0f} ms", n, tests,
-             std::chrono::duration<double, std::milli>(t_nodes - t_build).count(),
-             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t_nodes).count());
+  log::Debug("visibility graph: {} nodes, {} visibility tests; build {:.0f} ms, search {:.0f} ms",
+             n, tests, std::chrono::duration<double, std::milli>(t_nodes - t_build).count(),
+             std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t_nodes)
+                 .count());
   std::vector<LocalPoint> path;
   if (!std::isfinite(g[1])) return path;
   for (int v = 1; v >= 0; v = parent[v]) path.push_back(nodes[v]);
@@ -365,22 +387,26 @@ StatusOr<std::vector<LocalPoint>> VisibilityPath(const GeosContext& c, const Obs
 
 absl::Status AlternativesOptions::Validate() const {
   if (!std::isfinite(margin_m) || margin_m < 0 || margin_m > 10000) {
-    return absl::InvalidArgumentError(absl::StrCat("margin_m must be in [0, 10000], got ", margin_m));
+    return absl::InvalidArgumentError(
+        absl::StrCat("margin_m must be in [0, 10000], got ", margin_m));
   }
   if (max_depth < 1 || max_depth > 64) {
-    return absl::InvalidArgumentError(absl::StrCat("max_depth must be in [1, 64], got ", max_depth));
+    return absl::InvalidArgumentError(
+        absl::StrCat("max_depth must be in [1, 64], got ", max_depth));
   }
   if (max_alternatives < 1 || max_alternatives > 1024) {
-    return absl::InvalidArgumentError(absl::StrCat("max_alternatives must be in [1, 1024], got ", max_alternatives));
+    return absl::InvalidArgumentError(
+        absl::StrCat("max_alternatives must be in [1, 1024], got ", max_alternatives));
   }
   if (max_graph_nodes < 16) {
-    return absl::InvalidArgumentError(absl::StrCat("max_graph_nodes must be >= 16, got ", max_graph_nodes));
+    return absl::InvalidArgumentError(
+        absl::StrCat("max_graph_nodes must be >= 16, got ", max_graph_nodes));
   }
   return absl::OkStatus();
 }
 
-StatusOr<AlternativesResult> PlanAlternatives(const ObstacleMap& map, LocalPoint start, LocalPoint goal,
-                                              const AlternativesOptions& options) {
+StatusOr<AlternativesResult> PlanAlternatives(const ObstacleMap& map, LocalPoint start,
+                                              LocalPoint goal, const AlternativesOptions& options) {
   SEAPLAN_RETURN_IF_ERROR(options.Validate());
   for (const auto& [name, p] : {std::pair{"start", start}, std::pair{"goal", goal}}) {
     if (!std::isfinite(p.x_m) || !std::isfinite(p.y_m)) {
@@ -388,27 +414,26 @@ StatusOr<AlternativesResult> PlanAlternatives(const ObstacleMap& map, LocalPoint
     }
     if (!map.Covers(p)) {
       const LocalBox& b = map.summary().coverage;
-      return absl::InvalidArgumentError(absl::StrCat(name, " ", Fmt(p), " lies outside the chart coverage ",
-                                                     Fmt(b.min), "-", Fmt(b.max), " (EPSG:", map.frame().epsg(),
-                                                     ")"));
+      return absl::InvalidArgumentError(
+          absl::StrCat(name, " ", Fmt(p), " lies outside the chart coverage ", Fmt(b.min), "-",
+                       Fmt(b.max), " (EPSG:", map.frame().epsg(), ")"));
     }
   }
   ObstacleQuery query(map);
   for (const auto& [name, p] : {std::pair{"start", start}, std::pair{"goal", goal}}) {
     if (query.Inside(p)) {
       const NearestObstacle n = query.Nearest(p);
-      return absl::InvalidArgumentError(absl::StrCat(name, " ", Fmt(p), " lies inside obstacle ", n.polygon_index,
-                                                     " (land, shallow water or a hazard with its safety buffer; ",
-                                                     absl::StrFormat("%.0f", -query.SignedDistanceM(p)),
-                                                     " m from its edge)"));
+      return absl::InvalidArgumentError(
+          absl::StrCat(name, " ", Fmt(p), " lies inside obstacle ", n.polygon_index,
+                       " (land, shallow water or a hazard with its safety buffer; ",
+                       absl::StrFormat("%.0f", -query.SignedDistanceM(p)), " m from its edge)"));
     }
   }
   AlternativesResult result;
   GeosContext c;
   auto finish = [&](std::vector<std::vector<LocalPoint>> routes) {
-    std::sort(routes.begin(), routes.end(), [](const auto& a, const auto& b) {
-      return PolylineLength(a) < PolylineLength(b);
-    });
+    std::sort(routes.begin(), routes.end(),
+              [](const auto& a, const auto& b) { return PolylineLength(a) < PolylineLength(b); });
     for (auto& r : routes) {
       if (query.PolylineHits(r)) continue;  // never hand out a route through an obstacle
       // Nor one that leaves the chart: beyond its coverage nothing is known.
@@ -454,7 +479,8 @@ StatusOr<AlternativesResult> PlanAlternatives(const ObstacleMap& map, LocalPoint
       }
       finish(std::move(a1.routes));
       if (!result.alternatives.empty()) {
-        notes.push_back(absl::StrCat("A1 on obstacles clipped to a corridor (", factor, " x length)"));
+        notes.push_back(
+            absl::StrCat("A1 on obstacles clipped to a corridor (", factor, " x length)"));
         break;
       }
       notes.push_back(absl::StrCat("A1 in corridor x", factor, ": no route free of obstacles"));
@@ -471,8 +497,8 @@ StatusOr<AlternativesResult> PlanAlternatives(const ObstacleMap& map, LocalPoint
       std::vector<LocalPoint> path;
       while (true) {
         const LocalBox box = Corridor(start, goal, grow);
-        SEAPLAN_ASSIGN_OR_RETURN(
-            path, VisibilityPath(c, map, start, goal, margin, box, options.max_graph_nodes, options.stop, wall));
+        SEAPLAN_ASSIGN_OR_RETURN(path, VisibilityPath(c, map, start, goal, margin, box,
+                                                      options.max_graph_nodes, options.stop, wall));
         if (!path.empty() || grow > cov_size) break;
         grow *= 2.0;
       }
@@ -480,8 +506,8 @@ StatusOr<AlternativesResult> PlanAlternatives(const ObstacleMap& map, LocalPoint
     };
     SEAPLAN_ASSIGN_OR_RETURN(std::vector<LocalPoint> path, shortest(nullptr));
     if (path.empty()) {
-      return absl::NotFoundError(absl::StrCat("no obstacle-free route from ", Fmt(start), " to ", Fmt(goal),
-                                              " (", absl::StrJoin(notes, "; "), ")"));
+      return absl::NotFoundError(absl::StrCat("no obstacle-free route from ", Fmt(start), " to ",
+                                              Fmt(goal), " (", absl::StrJoin(notes, "; "), ")"));
     }
     std::vector<std::vector<LocalPoint>> routes = {path};
     // A second alternative in A1's spirit: around the other side of the
@@ -518,37 +544,44 @@ StatusOr<AlternativesResult> PlanAlternatives(const ObstacleMap& map, LocalPoint
         const double nx = -(goal.y_m - start.y_m) / len * (side > 0 ? 1 : -1);
         const double ny = (goal.x_m - start.x_m) / len * (side > 0 ? 1 : -1);
         const double reach = 2.0 * cov_size + Dist(start, goal);
-        const double w = 1.0;  // half width, m
+        const double w = 1.0;            // half width, m
         const double ux = ny, uy = -nx;  // along the line
         const LocalPoint far{mid.x_m + nx * reach, mid.y_m + ny * reach};
-        const LocalPoint wall_ring[4] = {{mid.x_m - ux * w, mid.y_m - uy * w}, {mid.x_m + ux * w, mid.y_m + uy * w},
-                                         {far.x_m + ux * w, far.y_m + uy * w}, {far.x_m - ux * w, far.y_m - uy * w}};
+        const LocalPoint wall_ring[4] = {{mid.x_m - ux * w, mid.y_m - uy * w},
+                                         {mid.x_m + ux * w, mid.y_m + uy * w},
+                                         {far.x_m + ux * w, far.y_m + uy * w},
+                                         {far.x_m - ux * w, far.y_m - uy * w}};
         GeomPtr wall = internal::MakeRingPolygon(c, wall_ring, 4);
         auto other = shortest(wall.get());
-        if (!other.ok() && (absl::IsDeadlineExceeded(other.status()) || absl::IsCancelled(other.status()))) {
+        if (!other.ok() &&
+            (absl::IsDeadlineExceeded(other.status()) || absl::IsCancelled(other.status()))) {
           return other.status();
         }
         // A detour more than kMaxDetour times the shortest route is no
         // useful alternative for Level 2 (and on charts whose layers leave
         // unmapped gaps it may run through water nobody charted).
         constexpr double kMaxDetour = 3.0;
-        if (other.ok() && !other->empty() && PolylineLength(*other) <= kMaxDetour * PolylineLength(path)) {
+        if (other.ok() && !other->empty() &&
+            PolylineLength(*other) <= kMaxDetour * PolylineLength(path)) {
           routes.push_back(std::move(other).value());
           second = 1;
         }
       }
     }
-    notes.push_back(second ? "visibility-graph fallback (shortest route + one around the other side of the main "
-                             "obstacle)"
-                           : "visibility-graph fallback (one route)");
+    notes.push_back(
+        second
+            ? "visibility-graph fallback (shortest route + one around the other side of the main "
+              "obstacle)"
+            : "visibility-graph fallback (one route)");
     finish(std::move(routes));
   }
   result.note = absl::StrJoin(notes, "; ");
   if (result.alternatives.empty()) {
-    return absl::NotFoundError(absl::StrCat("no obstacle-free alternative from ", Fmt(start), " to ", Fmt(goal),
-                                            " (", result.note, ")"));
+    return absl::NotFoundError(absl::StrCat("no obstacle-free alternative from ", Fmt(start),
+                                            " to ", Fmt(goal), " (", result.note, ")"));
   }
-  log::Debug("A1: {} alternative(s), fallback={}, {}", result.alternatives.size(), result.used_fallback, result.note);
+  log::Debug("A1: {} alternative(s), fallback={}, {}", result.alternatives.size(),
+             result.used_fallback, result.note);
   return result;
 }
 

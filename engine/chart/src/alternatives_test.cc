@@ -11,16 +11,20 @@ namespace {
 
 constexpr double kCx = 500000.0, kCy = 6900000.0;
 Polygon Rect(double x0, double y0, double x1, double y1) {
-  return {{{kCx + x0, kCy + y0}, {kCx + x1, kCy + y0}, {kCx + x1, kCy + y1}, {kCx + x0, kCy + y1}}, {}};
+  return {{{kCx + x0, kCy + y0}, {kCx + x1, kCy + y0}, {kCx + x1, kCy + y1}, {kCx + x0, kCy + y1}},
+          {}};
 }
-LocalPoint P(double x, double y) { return {kCx + x, kCy + y}; }
+LocalPoint P(double x, double y) {
+  return {kCx + x, kCy + y};
+}
 
 ObstacleMap MakeMap(std::vector<Polygon> polygons, double buffer_m = 10.0) {
   ChartOptions o;
   o.safety_buffer_m = buffer_m;
   o.simplify_tolerance_m = 0.0;
   const LocalBox box{P(-3000, -3000), P(3000, 3000)};
-  auto map = ObstacleMap::FromPolygons(std::move(polygons), *LocalFrame::FromEpsg(32633), o, "test", box);
+  auto map =
+      ObstacleMap::FromPolygons(std::move(polygons), *LocalFrame::FromEpsg(32633), o, "test", box);
   EXPECT_TRUE(map.ok()) << map.status();
   return std::move(map).value();
 }
@@ -62,7 +66,8 @@ TEST(Alternatives, SquareIslandGivesTwoSymmetricAlternatives) {
     ObstacleQuery q(map);
     EXPECT_FALSE(q.PolylineHits(alt.waypoints));
     // Clearance from the (buffered) obstacle is about the margin everywhere.
-    for (size_t i = 1; i + 1 < alt.waypoints.size(); ++i) EXPECT_GE(q.DistanceM(alt.waypoints[i]), 45.0);
+    for (size_t i = 1; i + 1 < alt.waypoints.size(); ++i)
+      EXPECT_GE(q.DistanceM(alt.waypoints[i]), 45.0);
   }
 }
 
@@ -108,7 +113,8 @@ TEST(Alternatives, StartOrGoalInsideObstacleIsNamed) {
 TEST(Alternatives, StartInsideConcaveBayUsesFallbackAndAvoidsObstacles) {
   // A U-shaped harbour open to the north; start inside the bay, goal south.
   // The hull of the U swallows the start, so pure A1 cannot answer.
-  const ObstacleMap map = MakeMap({Rect(-500, -500, 500, -300), Rect(-500, -300, -300, 500), Rect(300, -300, 500, 500)});
+  const ObstacleMap map = MakeMap(
+      {Rect(-500, -500, 500, -300), Rect(-500, -300, -300, 500), Rect(300, -300, 500, 500)});
   auto result = PlanAlternatives(map, P(0, 0), P(0, -1200));
   ASSERT_TRUE(result.ok()) << result.status();
   ASSERT_FALSE(result->alternatives.empty());
@@ -153,14 +159,16 @@ TEST(Alternatives, StopTokenEndsTheSearch) {
             absl::StatusCode::kDeadlineExceeded);
   options.stop = StopToken();
   options.stop.Cancel();
-  EXPECT_EQ(PlanAlternatives(map, P(-500, 0), P(500, 0), options).status().code(), absl::StatusCode::kCancelled);
+  EXPECT_EQ(PlanAlternatives(map, P(-500, 0), P(500, 0), options).status().code(),
+            absl::StatusCode::kCancelled);
 }
 
 TEST(Alternatives, OptionsAreValidated) {
   const ObstacleMap map = MakeMap({Rect(-50, -50, 50, 50)});
   AlternativesOptions bad;
   bad.margin_m = -1;
-  EXPECT_EQ(PlanAlternatives(map, P(-500, 0), P(500, 0), bad).status().code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_EQ(PlanAlternatives(map, P(-500, 0), P(500, 0), bad).status().code(),
+            absl::StatusCode::kInvalidArgument);
   bad = {};
   bad.max_depth = 0;
   EXPECT_FALSE(bad.Validate().ok());

@@ -21,11 +21,11 @@ namespace {
 
 // Independent count with plain OGR: features of `layer` whose `field` is
 // below `limit` (or null, when count_null), optionally areas only.
-int CountBelow(const std::string& path, const char* layer, const char* field, double limit, bool count_null,
-               bool areas_only, const char* const* open_options = nullptr) {
+int CountBelow(const std::string& path, const char* layer, const char* field, double limit,
+               bool count_null, bool areas_only, const char* const* open_options = nullptr) {
   GDALAllRegister();
-  std::unique_ptr<GDALDataset> ds(
-      GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, open_options, nullptr));
+  std::unique_ptr<GDALDataset> ds(GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY,
+                                                    nullptr, open_options, nullptr));
   if (!ds) return -1;
   OGRLayer* l = ds->GetLayerByName(layer);
   if (l == nullptr) return -1;
@@ -128,7 +128,8 @@ TEST(NoaaUS4MD81M, RouteDownTheBayAvoidsEveryObstacle) {
   auto result = PlanAlternatives(*map, annapolis, cove_point);
   ASSERT_TRUE(result.ok()) << result.status();
   ExpectRouteAvoidsEverything(*map, *result);
-  const double straight = std::hypot(cove_point.x_m - annapolis.x_m, cove_point.y_m - annapolis.y_m);
+  const double straight =
+      std::hypot(cove_point.x_m - annapolis.x_m, cove_point.y_m - annapolis.y_m);
   EXPECT_LT(result->alternatives[0].length_m, 1.5 * straight);
   // A point on land (Kent Island) is refused with a clear message.
   auto on_land = PlanAlternatives(*map, map->frame().ToLocal({38.93, -76.25}), cove_point);
@@ -146,7 +147,8 @@ TEST(TrondheimGdb, ObstacleCountsAndRoute) {
   EXPECT_EQ(layers.at("torrfall"), 126);
   EXPECT_EQ(layers.at("skjer"), 12);
   EXPECT_EQ(layers.at("ikkekartlagtsjomaltomr"), 7);
-  EXPECT_EQ(layers.at("dybdeareal"), CountBelow(gdb.string(), "dybdeareal", "minimumsdybde", 5.0, true, true));
+  EXPECT_EQ(layers.at("dybdeareal"),
+            CountBelow(gdb.string(), "dybdeareal", "minimumsdybde", 5.0, true, true));
   EXPECT_EQ(layers.at("grunne"), CountBelow(gdb.string(), "grunne", "dybde", 5.0, true, false));
   EXPECT_EQ(map->frame().epsg(), 32632);
   // Off Trondheim harbour (Ila) -> the fjord off Stjordal: around Lade.

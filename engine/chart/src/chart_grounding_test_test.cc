@@ -14,7 +14,8 @@ std::shared_ptr<const ObstacleMap> Island() {
   ChartOptions o;
   o.safety_buffer_m = 0;
   o.simplify_tolerance_m = 0;
-  Polygon square{{{kE - 50, kN - 50}, {kE + 50, kN - 50}, {kE + 50, kN + 50}, {kE - 50, kN + 50}}, {}};
+  Polygon square{{{kE - 50, kN - 50}, {kE + 50, kN - 50}, {kE + 50, kN + 50}, {kE - 50, kN + 50}},
+                 {}};
   auto map = ObstacleMap::FromPolygons({square}, *LocalFrame::FromEpsg(32633), o);
   EXPECT_TRUE(map.ok());
   return std::make_shared<const ObstacleMap>(std::move(map).value());
@@ -37,7 +38,8 @@ TEST(ChartGroundingTest, AgreesWithPlainPolygonObstacles) {
   }
   // By hand: hull heading north (length along N) centred 150 m east: its
   // west side is at e + 150 - 8, the island's east side at e + 50.
-  EXPECT_NEAR(chart.Clearance(risk::HullPolygon::Rectangle(kN, kE + 150, 0.0, 80.0, 16.0)), 92.0, 1e-6);
+  EXPECT_NEAR(chart.Clearance(risk::HullPolygon::Rectangle(kN, kE + 150, 0.0, 80.0, 16.0)), 92.0,
+              1e-6);
 }
 
 TEST(ChartGroundingTest, OriginShiftAndThreads) {
@@ -50,7 +52,10 @@ TEST(ChartGroundingTest, OriginShiftAndThreads) {
   for (int t = 0; t < 4; ++t) {
     threads.emplace_back([&, t] {
       for (int i = 0; i < 200; ++i) {
-        hits[t] += shifted.HullIntersects(risk::HullPolygon::Rectangle(0, -300 + 3.0 * i, 0.0, 80, 16)) ? 1 : 0;
+        hits[t] +=
+            shifted.HullIntersects(risk::HullPolygon::Rectangle(0, -300 + 3.0 * i, 0.0, 80, 16))
+                ? 1
+                : 0;
       }
     });
   }

@@ -69,7 +69,9 @@ class ErrorCapture {
   std::vector<std::string> messages_;
 };
 
-std::string Lower(std::string_view s) { return absl::AsciiStrToLower(std::string(s)); }
+std::string Lower(std::string_view s) {
+  return absl::AsciiStrToLower(std::string(s));
+}
 
 std::string Extension(std::string_view path) {
   const size_t slash = path.find_last_of('/');
@@ -106,7 +108,8 @@ absl::Status Discover(const std::string& root, const std::string& display, int d
       const std::string inner = absl::StrCat("/vsizip/", root);
       char** entries = VSIReadDir(inner.c_str());
       if (entries == nullptr) {
-        return absl::InvalidArgumentError(absl::StrCat("'", display, "' is not a readable (or is an empty) zip archive"));
+        return absl::InvalidArgumentError(
+            absl::StrCat("'", display, "' is not a readable (or is an empty) zip archive"));
       }
       CSLDestroy(entries);
       return Discover(inner, display, depth + 1, out, true);
@@ -150,7 +153,7 @@ enum class Role { kSkip, kAll, kDepthArea, kHazard, kSeabed, kCoverage, kGeneric
 
 struct LayerRule {
   Role role = Role::kSkip;
-  std::string depth_field;  // for kDepthArea / kHazard
+  std::string depth_field;    // for kDepthArea / kHazard
   double seabed_depth_m = 0;  // for kSeabed
 };
 
@@ -160,7 +163,8 @@ LayerRule Classify(const std::string& driver, const std::string& layer, OGRFeatu
     if (layer == "LNDARE") return {Role::kAll};
     if (layer == "DEPARE" || layer == "DRGARE") return {Role::kDepthArea, "DRVAL1"};
     if (layer == "UNSARE") return {Role::kAll};
-    if (layer == "OBSTRN" || layer == "WRECKS" || layer == "UWTROC") return {Role::kHazard, "VALSOU"};
+    if (layer == "OBSTRN" || layer == "WRECKS" || layer == "UWTROC")
+      return {Role::kHazard, "VALSOU"};
     if (layer == "M_COVR") return {Role::kCoverage};
     return {Role::kSkip};
   }
@@ -175,7 +179,8 @@ LayerRule Classify(const std::string& driver, const std::string& layer, OGRFeatu
   // Processed sets (Alesund): seabed<N>m = sea deeper than N m.
   if (absl::StartsWith(l, "seabed")) {
     double n = 0;
-    const std::string digits = l.substr(6, l.find('m', 6) == std::string::npos ? std::string::npos : l.find('m', 6) - 6);
+    const std::string digits =
+        l.substr(6, l.find('m', 6) == std::string::npos ? std::string::npos : l.find('m', 6) - 6);
     const auto [ptr, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), n);
     if (ec == std::errc() && ptr == digits.data() + digits.size()) {
       LayerRule r{Role::kSeabed};
@@ -184,8 +189,8 @@ LayerRule Classify(const std::string& driver, const std::string& layer, OGRFeatu
     }
     return {Role::kSkip};
   }
-  if (absl::StartsWith(l, "land") || absl::StartsWith(l, "shore") || absl::StartsWith(l, "obstacle") ||
-      absl::StartsWith(l, "torrfall")) {
+  if (absl::StartsWith(l, "land") || absl::StartsWith(l, "shore") ||
+      absl::StartsWith(l, "obstacle") || absl::StartsWith(l, "torrfall")) {
     return {Role::kAll};
   }
   for (const char* field : {"DRVAL1", "minimumsdybde", "VALSOU", "dybde"}) {
@@ -237,7 +242,8 @@ std::shared_ptr<OGRSpatialReference> SrsOf(OGRLayer* layer) {
 // transformed envelope (empty on failure).
 Extent TransformExtent(const ExtentInSrs& e, const OGRSpatialReference& target) {
   Extent out;
-  std::unique_ptr<OGRCoordinateTransformation> ct(OGRCreateCoordinateTransformation(e.srs.get(), &target));
+  std::unique_ptr<OGRCoordinateTransformation> ct(
+      OGRCreateCoordinateTransformation(e.srs.get(), &target));
   if (!ct) return out;
   constexpr int kSteps = 8;
   for (int i = 0; i <= kSteps; ++i) {
@@ -254,7 +260,8 @@ Extent TransformExtent(const ExtentInSrs& e, const OGRSpatialReference& target) 
 
 // Union of the sources' envelopes in `target`; a source that does not
 // transform (empty envelope) is left out rather than widening the union.
-Extent TransformedUnion(const std::vector<ExtentInSrs>& sources, const OGRSpatialReference& target) {
+Extent TransformedUnion(const std::vector<ExtentInSrs>& sources,
+                        const OGRSpatialReference& target) {
   Extent out;
   for (const ExtentInSrs& e : sources) {
     const Extent t = TransformExtent(e, target);
@@ -273,12 +280,13 @@ GeomPtr ToGeos(const GeosContext& c, OGRGeometry* g) {
   g->flattenTo2D();
   const size_t size = g->WkbSize();
   std::string wkb(size, '\0');
-  if (g->exportToWkb(wkbNDR, reinterpret_cast<unsigned char*>(wkb.data()), wkbVariantIso) != OGRERR_NONE) {
+  if (g->exportToWkb(wkbNDR, reinterpret_cast<unsigned char*>(wkb.data()), wkbVariantIso) !=
+      OGRERR_NONE) {
     return Own(c, nullptr);
   }
   GEOSWKBReader* reader = GEOSWKBReader_create_r(c.get());
-  GEOSGeometry* out =
-      GEOSWKBReader_read_r(c.get(), reader, reinterpret_cast<const unsigned char*>(wkb.data()), wkb.size());
+  GEOSGeometry* out = GEOSWKBReader_read_r(
+      c.get(), reader, reinterpret_cast<const unsigned char*>(wkb.data()), wkb.size());
   GEOSWKBReader_destroy_r(c.get(), reader);
   return Own(c, out);
 }
@@ -293,7 +301,8 @@ StatusOr<ObstacleMap> LoadFromRoot(const std::string& root, const std::string& d
   SEAPLAN_RETURN_IF_ERROR(options.Validate());
   InitGdal();
   ErrorCapture errors;
-  if (!Exists(root)) return absl::NotFoundError(absl::StrCat("chart '", display, "' does not exist"));
+  if (!Exists(root))
+    return absl::NotFoundError(absl::StrCat("chart '", display, "' does not exist"));
   std::vector<std::string> datasets;
   SEAPLAN_RETURN_IF_ERROR(Discover(root, display, 0, &datasets));
   if (datasets.empty()) {
@@ -308,8 +317,8 @@ StatusOr<ObstacleMap> LoadFromRoot(const std::string& root, const std::string& d
   ObstacleSummary summary;
   summary.options = options;
   std::vector<SourceGeometry> sources;
-  std::vector<ExtentInSrs> extents;     // all recognised layers: chart box
-  std::vector<ExtentInSrs> m_covr;      // S-57 coverage when present
+  std::vector<ExtentInSrs> extents;  // all recognised layers: chart box
+  std::vector<ExtentInSrs> m_covr;   // S-57 coverage when present
   std::vector<std::string> drivers;
   int recognised_layers = 0;
   int skipped_features = 0;
@@ -320,11 +329,16 @@ StatusOr<ObstacleMap> LoadFromRoot(const std::string& root, const std::string& d
   for (const std::string& path : datasets) {
     errors.Clear();
     const bool s57 = Extension(path) == "000";
-    static const char* const kS57Options[] = {"UPDATES=APPLY",        "SPLIT_MULTIPOINT=ON", "ADD_SOUNDG_DEPTH=ON",
-                                              "RETURN_PRIMITIVES=OFF", "RETURN_LINKAGES=OFF", "LNAM_REFS=OFF",
+    static const char* const kS57Options[] = {"UPDATES=APPLY",
+                                              "SPLIT_MULTIPOINT=ON",
+                                              "ADD_SOUNDG_DEPTH=ON",
+                                              "RETURN_PRIMITIVES=OFF",
+                                              "RETURN_LINKAGES=OFF",
+                                              "LNAM_REFS=OFF",
                                               nullptr};
-    std::unique_ptr<GDALDataset, GdalDatasetCloser> ds(GDALDataset::Open(
-        path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr, s57 ? kS57Options : nullptr, nullptr));
+    std::unique_ptr<GDALDataset, GdalDatasetCloser> ds(
+        GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr,
+                          s57 ? kS57Options : nullptr, nullptr));
     if (!ds) {
       // In a folder or archive with several datasets, one unreadable file
       // (a stray metadata .json) is a warning; the load fails only if no
@@ -336,7 +350,8 @@ StatusOr<ObstacleMap> LoadFromRoot(const std::string& root, const std::string& d
     }
     ++opened;
     const std::string driver = ds->GetDriver() != nullptr ? ds->GetDriver()->GetDescription() : "?";
-    if (std::find(drivers.begin(), drivers.end(), driver) == drivers.end()) drivers.push_back(driver);
+    if (std::find(drivers.begin(), drivers.end(), driver) == drivers.end())
+      drivers.push_back(driver);
     for (OGRLayer* layer : ds->GetLayers()) {
       std::string name = layer->GetName();
       // Shapefile sets: the layer name is the file stem ("seabed5m").
@@ -351,14 +366,17 @@ StatusOr<ObstacleMap> LoadFromRoot(const std::string& root, const std::string& d
         (rule.role == Role::kCoverage ? m_covr : extents).push_back(e);
       }
       if (rule.role == Role::kCoverage) continue;
-      const int field = rule.depth_field.empty() ? -1 : layer->GetLayerDefn()->GetFieldIndex(rule.depth_field.c_str());
+      const int field = rule.depth_field.empty()
+                            ? -1
+                            : layer->GetLayerDefn()->GetFieldIndex(rule.depth_field.c_str());
       layer->ResetReading();
       int taken = 0;
       for (auto& feature : *layer) {
         OGRGeometry* g = feature->GetGeometryRef();
         if (g == nullptr || g->IsEmpty()) continue;
         const OGRwkbGeometryType type = wkbFlatten(g->getGeometryType());
-        if (rule.role == Role::kDepthArea || rule.role == Role::kHazard || rule.role == Role::kGeneric) {
+        if (rule.role == Role::kDepthArea || rule.role == Role::kHazard ||
+            rule.role == Role::kGeneric) {
           if (rule.role == Role::kDepthArea && !IsAreal(type) && driver == "S57") continue;
           bool obstacle = true;
           if (field >= 0 && feature->IsFieldSetAndNotNull(field)) {
@@ -390,10 +408,10 @@ StatusOr<ObstacleMap> LoadFromRoot(const std::string& root, const std::string& d
   for (const std::string& u : unreadable) summary.warnings.push_back(absl::StrCat(u, "; skipped"));
   summary.source_format = absl::StrJoin(drivers, "+");
   if (recognised_layers == 0) {
-    return absl::InvalidArgumentError(absl::StrCat("'", display, "' has no obstacle layer (layers: ",
-                                                   absl::StrJoin(layer_names, ", "),
-                                                   "); expected S-57 LNDARE/DEPARE, Kartverket landareal/"
-                                                   "dybdeareal, land*/seabed<N>m or plain polygons"));
+    return absl::InvalidArgumentError(absl::StrCat(
+        "'", display, "' has no obstacle layer (layers: ", absl::StrJoin(layer_names, ", "),
+        "); expected S-57 LNDARE/DEPARE, Kartverket landareal/"
+        "dybdeareal, land*/seabed<N>m or plain polygons"));
   }
   const std::vector<ExtentInSrs>& box_sources = m_covr.empty() ? extents : m_covr;
   // Chart centre in WGS84 -> frame.
@@ -402,20 +420,23 @@ StatusOr<ObstacleMap> LoadFromRoot(const std::string& root, const std::string& d
   wgs84.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
   const Extent geo = TransformedUnion(box_sources, wgs84);
   if (geo.empty()) {
-    return absl::InvalidArgumentError(absl::StrCat("'", display, "' contains no features (empty chart)"));
+    return absl::InvalidArgumentError(
+        absl::StrCat("'", display, "' contains no features (empty chart)"));
   }
   if (geo.min_y < -90.0 || geo.max_y > 90.0 || geo.min_x < -180.0 || geo.max_x > 180.0) {
-    return absl::InvalidArgumentError(absl::StrCat("'", display, "': chart extent is not a valid position (lon ",
-                                                   geo.min_x, "..", geo.max_x, ", lat ", geo.min_y, "..",
-                                                   geo.max_y, "); wrong or missing coordinate system?"));
+    return absl::InvalidArgumentError(absl::StrCat(
+        "'", display, "': chart extent is not a valid position (lon ", geo.min_x, "..", geo.max_x,
+        ", lat ", geo.min_y, "..", geo.max_y, "); wrong or missing coordinate system?"));
   }
-  LocalFrame frame = LocalFrame::ForCentre({(geo.min_y + geo.max_y) / 2, (geo.min_x + geo.max_x) / 2});
+  LocalFrame frame =
+      LocalFrame::ForCentre({(geo.min_y + geo.max_y) / 2, (geo.min_x + geo.max_x) / 2});
   if (options.frame_epsg != 0) {
     SEAPLAN_ASSIGN_OR_RETURN(frame, LocalFrame::FromEpsg(options.frame_epsg));
   }
   OGRSpatialReference target;
   if (target.importFromEPSG(frame.epsg()) != OGRERR_NONE) {
-    return absl::InternalError(absl::StrCat("PROJ does not know EPSG:", frame.epsg(), " (", errors.Joined(), ")"));
+    return absl::InternalError(
+        absl::StrCat("PROJ does not know EPSG:", frame.epsg(), " (", errors.Joined(), ")"));
   }
   target.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
   const Extent box = TransformedUnion(box_sources, target);
@@ -439,8 +460,8 @@ StatusOr<ObstacleMap> LoadFromRoot(const std::string& root, const std::string& d
       continue;
     }
     const OGRwkbGeometryType type = wkbFlatten(s.geometry->getGeometryType());
-    if (wkbFlatten(type) == wkbCurvePolygon || type == wkbMultiSurface || type == wkbCompoundCurve ||
-        type == wkbCircularString || type == wkbMultiCurve) {
+    if (wkbFlatten(type) == wkbCurvePolygon || type == wkbMultiSurface ||
+        type == wkbCompoundCurve || type == wkbCircularString || type == wkbMultiCurve) {
       s.geometry.reset(s.geometry->getLinearGeometry());
     }
     GeomPtr g = ToGeos(c, s.geometry.get());
@@ -461,7 +482,9 @@ StatusOr<ObstacleMap> LoadFromRoot(const std::string& root, const std::string& d
       // and their coverage union is slow on dense coastlines: thin + overlay.
       const bool s57 = summary.source_format == "S57";
       const std::string key = s57 ? "S57" : s.layer;
-      group = group_of_layer.emplace(key, static_cast<int>(group_of_layer.size()) + (s57 ? 0 : internal::kPreSimplifyGroup))
+      group = group_of_layer
+                  .emplace(key, static_cast<int>(group_of_layer.size()) +
+                                    (s57 ? 0 : internal::kPreSimplifyGroup))
                   .first->second;
     }
     if (!areal) {
@@ -477,18 +500,20 @@ StatusOr<ObstacleMap> LoadFromRoot(const std::string& root, const std::string& d
   }
   sources.clear();
   if (failed > 0) {
-    summary.warnings.push_back(absl::StrCat(failed, " feature(s) could not be projected or converted; skipped"));
+    summary.warnings.push_back(
+        absl::StrCat(failed, " feature(s) could not be projected or converted; skipped"));
   }
   if (skipped_features > 0) {
-    summary.warnings.push_back(absl::StrCat(skipped_features, " feature(s) with unsupported geometry type skipped"));
+    summary.warnings.push_back(
+        absl::StrCat(skipped_features, " feature(s) with unsupported geometry type skipped"));
   }
   if (!seabeds.empty()) {
     // Largest N <= min depth: that polygon is surely deep enough.
     auto it = seabeds.upper_bound(options.min_depth_m);
     if (it == seabeds.begin()) {
-      return absl::InvalidArgumentError(absl::StrCat("'", display, "': no seabed<N>m layer with N <= min depth ",
-                                                     options.min_depth_m, " m (smallest N is ",
-                                                     seabeds.begin()->first, ")"));
+      return absl::InvalidArgumentError(
+          absl::StrCat("'", display, "': no seabed<N>m layer with N <= min depth ",
+                       options.min_depth_m, " m (smallest N is ", seabeds.begin()->first, ")"));
     }
     --it;
     const double n = it->first;
@@ -503,7 +528,8 @@ StatusOr<ObstacleMap> LoadFromRoot(const std::string& root, const std::string& d
                                                      "m from the chart box: ", c.TakeError()));
     }
     std::vector<GeomPtr> parts = internal::PolygonParts(c, shallow.get());
-    summary.features_per_layer[absl::StrCat("chart_box-minus-seabed", n, "m")] = static_cast<int>(parts.size());
+    summary.features_per_layer[absl::StrCat("chart_box-minus-seabed", n, "m")] =
+        static_cast<int>(parts.size());
     for (GeomPtr& p : parts) {
       areas.push_back(std::move(p));
       tiled_group.push_back(-1);
@@ -514,10 +540,12 @@ StatusOr<ObstacleMap> LoadFromRoot(const std::string& root, const std::string& d
   const size_t area_count = areas.size();
   auto map = internal::BuildObstacleMap(c, std::move(areas), std::move(tiled_group), frame, options,
                                         std::move(summary));
-  log::Info("chart '{}': {} obstacle areas from {} ({} dataset(s)), frame EPSG:{}; read {:.0f} ms, project {:.0f} ms, "
-            "buffer+union {:.0f} ms",
-            display, area_count, drivers.empty() ? "?" : drivers[0], datasets.size(), frame.epsg(), read_ms,
-            project_ms, ms_since(t_build));
+  log::Info(
+      "chart '{}': {} obstacle areas from {} ({} dataset(s)), frame EPSG:{}; read {:.0f} ms, "
+      "project {:.0f} ms, "
+      "buffer+union {:.0f} ms",
+      display, area_count, drivers.empty() ? "?" : drivers[0], datasets.size(), frame.epsg(),
+      read_ms, project_ms, ms_since(t_build));
   return map;
 }
 
@@ -530,7 +558,8 @@ StatusOr<ObstacleMap> LoadChartFile(const std::string& path, const ChartOptions&
   return LoadFromRoot(root, path, options);
 }
 
-StatusOr<ObstacleMap> LoadChartBytes(const std::vector<ChartFile>& files, const ChartOptions& options) {
+StatusOr<ObstacleMap> LoadChartBytes(const std::vector<ChartFile>& files,
+                                     const ChartOptions& options) {
   if (files.empty()) return absl::InvalidArgumentError("no chart file given");
   SEAPLAN_RETURN_IF_ERROR(options.Validate());
   InitGdal();
@@ -543,7 +572,8 @@ StatusOr<ObstacleMap> LoadChartBytes(const std::vector<ChartFile>& files, const 
     const std::string base = BaseName(f.name);
     if (base.empty() || base == "." || base == ".." || f.name.find("..") != std::string::npos) {
       for (const std::string& w : written) VSIUnlink(w.c_str());
-      return absl::InvalidArgumentError(absl::StrCat("chart file name '", f.name, "' is not a plain file name"));
+      return absl::InvalidArgumentError(
+          absl::StrCat("chart file name '", f.name, "' is not a plain file name"));
     }
     const std::string path = absl::StrCat(dir, "/", base);
     // No copy: the bytes outlive the load (GDAL only reads them).

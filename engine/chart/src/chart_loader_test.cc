@@ -10,12 +10,15 @@
 namespace seaplan::chart {
 namespace {
 
-std::string HarbourPath() { return (testing::SourceDir() / "engine/chart/testdata/harbour.geojson").string(); }
+std::string HarbourPath() {
+  return (testing::SourceDir() / "engine/chart/testdata/harbour.geojson").string();
+}
 
 // Shoelace area of a lon/lat rectangle projected into `frame`.
-double RectArea(const LocalFrame& f, double lon0, double lat0, double lon1, double lat1, double* perimeter) {
-  const LocalPoint a = f.ToLocal({lat0, lon0}), b = f.ToLocal({lat0, lon1}), c = f.ToLocal({lat1, lon1}),
-                   d = f.ToLocal({lat1, lon0});
+double RectArea(const LocalFrame& f, double lon0, double lat0, double lon1, double lat1,
+                double* perimeter) {
+  const LocalPoint a = f.ToLocal({lat0, lon0}), b = f.ToLocal({lat0, lon1}),
+                   c = f.ToLocal({lat1, lon1}), d = f.ToLocal({lat1, lon0});
   const LocalPoint pts[4] = {a, b, c, d};
   double area = 0, per = 0;
   for (int i = 0; i < 4; ++i) {
@@ -57,15 +60,15 @@ TEST(ChartLoader, HandWrittenGeoJson) {
   EXPECT_EQ(map->frame().epsg(), 32632);  // 6.1 E is UTM zone 32
   EXPECT_EQ(map->summary().source_format, "GeoJSON");
   EXPECT_EQ(map->summary().features_per_layer.at("harbour"), 3);  // land, shallow, rock
-  ASSERT_EQ(map->polygons().size(), 2u);                           // land+shallow merged, rock
+  ASSERT_EQ(map->polygons().size(), 2u);                          // land+shallow merged, rock
   double per = 0;
   const double box = RectArea(map->frame(), 6.100, 62.470, 6.106, 62.472, &per);
   const double expected = box + per * 10 + M_PI * 100 + M_PI * 30 * 30;
   EXPECT_NEAR(map->summary().total_area_m2, expected, 0.01 * expected);
   ObstacleQuery q(*map);
-  EXPECT_TRUE(q.Inside(map->frame().ToLocal({62.471, 6.105})));     // shallow
-  EXPECT_FALSE(q.Inside(map->frame().ToLocal({62.4705, 6.108})));   // deep
-  EXPECT_TRUE(q.Inside(map->frame().ToLocal({62.4715, 6.1102})));   // rock disc
+  EXPECT_TRUE(q.Inside(map->frame().ToLocal({62.471, 6.105})));    // shallow
+  EXPECT_FALSE(q.Inside(map->frame().ToLocal({62.4705, 6.108})));  // deep
+  EXPECT_TRUE(q.Inside(map->frame().ToLocal({62.4715, 6.1102})));  // rock disc
   EXPECT_TRUE(map->Covers(map->frame().ToLocal({62.471, 6.108})));
   EXPECT_FALSE(map->Covers(map->frame().ToLocal({62.60, 6.108})));
 
@@ -105,10 +108,12 @@ TEST(ChartLoader, SeabedLayersChooseTheDeepestAtMostMinDepth) {
   // Chart box 6.10-6.12 E, 62.47-62.48 N; "sea deeper than N m" shrinks with N.
   auto rect = [](double lon0, double lat0, double lon1, double lat1) {
     char buf[512];
-    std::snprintf(buf, sizeof(buf),
-                  "{\"type\":\"FeatureCollection\",\"features\":[{\"type\":\"Feature\",\"properties\":{},"
-                  "\"geometry\":{\"type\":\"Polygon\",\"coordinates\":[[[%f,%f],[%f,%f],[%f,%f],[%f,%f],[%f,%f]]]}}]}",
-                  lon0, lat0, lon1, lat0, lon1, lat1, lon0, lat1, lon0, lat0);
+    std::snprintf(
+        buf, sizeof(buf),
+        "{\"type\":\"FeatureCollection\",\"features\":[{\"type\":\"Feature\",\"properties\":{},"
+        "\"geometry\":{\"type\":\"Polygon\",\"coordinates\":[[[%f,%f],[%f,%f],[%f,%f],[%f,%f],[%f,%"
+        "f]]]}}]}",
+        lon0, lat0, lon1, lat0, lon1, lat1, lon0, lat1, lon0, lat0);
     return std::string(buf);
   };
   const std::vector<ChartFile> files = {
@@ -121,7 +126,8 @@ TEST(ChartLoader, SeabedLayersChooseTheDeepestAtMostMinDepth) {
   o.safety_buffer_m = 0;
   o.simplify_tolerance_m = 0;
   for (const auto& [depth, layer, free_lon] :
-       {std::tuple{7.0, "chart_box-minus-seabed5m", 6.106}, std::tuple{10.0, "chart_box-minus-seabed10m", 6.111},
+       {std::tuple{7.0, "chart_box-minus-seabed5m", 6.106},
+        std::tuple{10.0, "chart_box-minus-seabed10m", 6.111},
         std::tuple{0.0, "chart_box-minus-seabed0m", 6.103}}) {
     o.min_depth_m = depth;
     auto map = LoadChartBytes(files, o);
@@ -139,8 +145,10 @@ TEST(ChartLoader, SeabedLayersChooseTheDeepestAtMostMinDepth) {
 
 TEST(ChartLoader, SelfIntersectingPolygonIsRepaired) {
   const std::string bowtie =
-      "{\"type\":\"FeatureCollection\",\"features\":[{\"type\":\"Feature\",\"properties\":{},\"geometry\":"
-      "{\"type\":\"Polygon\",\"coordinates\":[[[6.10,62.47],[6.11,62.48],[6.11,62.47],[6.10,62.48],[6.10,62.47]]]}}]}";
+      "{\"type\":\"FeatureCollection\",\"features\":[{\"type\":\"Feature\",\"properties\":{},"
+      "\"geometry\":"
+      "{\"type\":\"Polygon\",\"coordinates\":[[[6.10,62.47],[6.11,62.48],[6.11,62.47],[6.10,62.48],"
+      "[6.10,62.47]]]}}]}";
   auto map = LoadChartBytes({{"obstacles.geojson", bowtie}}, ChartOptions{});
   ASSERT_TRUE(map.ok()) << map.status();
   ASSERT_FALSE(map->summary().warnings.empty());
@@ -151,26 +159,32 @@ TEST(ChartLoader, SelfIntersectingPolygonIsRepaired) {
 TEST(ChartLoader, BadInputGivesClearErrors) {
   auto garbage = LoadChartBytes({{"US0BAD00.000", std::string(5000, '\x42')}}, ChartOptions{});
   ASSERT_EQ(garbage.status().code(), absl::StatusCode::kInvalidArgument);
-  EXPECT_NE(garbage.status().message().find("US0BAD00.000"), absl::string_view::npos) << garbage.status();
+  EXPECT_NE(garbage.status().message().find("US0BAD00.000"), absl::string_view::npos)
+      << garbage.status();
 
   auto not_json = LoadChartBytes({{"chart.geojson", "{ this is not json"}}, ChartOptions{});
   ASSERT_EQ(not_json.status().code(), absl::StatusCode::kInvalidArgument);
   EXPECT_NE(not_json.status().message().find("chart.geojson"), absl::string_view::npos);
 
-  auto empty = LoadChartBytes({{"empty.geojson", "{\"type\":\"FeatureCollection\",\"features\":[]}"}}, ChartOptions{});
+  auto empty = LoadChartBytes(
+      {{"empty.geojson", "{\"type\":\"FeatureCollection\",\"features\":[]}"}}, ChartOptions{});
   ASSERT_EQ(empty.status().code(), absl::StatusCode::kInvalidArgument);
-  EXPECT_NE(empty.status().message().find("no features"), absl::string_view::npos) << empty.status();
+  EXPECT_NE(empty.status().message().find("no features"), absl::string_view::npos)
+      << empty.status();
 
-  auto bad_zip = LoadChartBytes({{"upload.zip", "PK\x03\x04 definitely not a zip"}}, ChartOptions{});
+  auto bad_zip =
+      LoadChartBytes({{"upload.zip", "PK\x03\x04 definitely not a zip"}}, ChartOptions{});
   ASSERT_EQ(bad_zip.status().code(), absl::StatusCode::kInvalidArgument);
   EXPECT_NE(bad_zip.status().message().find("zip"), absl::string_view::npos) << bad_zip.status();
 
   const std::string zip = MakeZip({{"docs/readme.txt", "no chart in here"}});
   auto no_chart = LoadChartBytes({{"upload.zip", zip}}, ChartOptions{});
   ASSERT_EQ(no_chart.status().code(), absl::StatusCode::kInvalidArgument);
-  EXPECT_NE(no_chart.status().message().find("no chart found"), absl::string_view::npos) << no_chart.status();
+  EXPECT_NE(no_chart.status().message().find("no chart found"), absl::string_view::npos)
+      << no_chart.status();
 
-  EXPECT_EQ(LoadChartFile("/nonexistent/chart.000", ChartOptions{}).status().code(), absl::StatusCode::kNotFound);
+  EXPECT_EQ(LoadChartFile("/nonexistent/chart.000", ChartOptions{}).status().code(),
+            absl::StatusCode::kNotFound);
   EXPECT_EQ(LoadChartBytes({}, ChartOptions{}).status().code(), absl::StatusCode::kInvalidArgument);
   EXPECT_EQ(LoadChartBytes({{"../etc/passwd", "x"}}, ChartOptions{}).status().code(),
             absl::StatusCode::kInvalidArgument);
@@ -183,11 +197,14 @@ TEST(ChartLoader, BadInputGivesClearErrors) {
 
   // Coordinates that are not positions (a projected file without .prj read as lon/lat).
   const std::string far =
-      "{\"type\":\"FeatureCollection\",\"features\":[{\"type\":\"Feature\",\"properties\":{},\"geometry\":"
-      "{\"type\":\"Polygon\",\"coordinates\":[[[400000,6900000],[400100,6900000],[400100,6900100],[400000,6900000]]]}}]}";
+      "{\"type\":\"FeatureCollection\",\"features\":[{\"type\":\"Feature\",\"properties\":{},"
+      "\"geometry\":"
+      "{\"type\":\"Polygon\",\"coordinates\":[[[400000,6900000],[400100,6900000],[400100,6900100],["
+      "400000,6900000]]]}}]}";
   auto projected = LoadChartBytes({{"land.geojson", far}}, ChartOptions{});
   ASSERT_EQ(projected.status().code(), absl::StatusCode::kInvalidArgument);
-  EXPECT_NE(projected.status().message().find("coordinate system"), absl::string_view::npos) << projected.status();
+  EXPECT_NE(projected.status().message().find("coordinate system"), absl::string_view::npos)
+      << projected.status();
 }
 
 }  // namespace

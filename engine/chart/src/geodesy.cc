@@ -23,8 +23,8 @@ constexpr double kFalseNorthingSouth = 10000000.0;
 // Coefficients of Karney (2011), "Transverse Mercator with an accuracy of a
 // few nanometers", eq. 35 and 36, to order n^6.
 struct KruegerSeries {
-  double e;        // first eccentricity
-  double a_rect;   // rectifying radius A
+  double e;       // first eccentricity
+  double a_rect;  // rectifying radius A
   std::array<double, 6> alpha;
   std::array<double, 6> beta;
 };
@@ -70,7 +70,8 @@ double InitialBearingDeg(LatLon a, LatLon b) {
   const double lat1 = a.lat_deg * kDegToRad, lat2 = b.lat_deg * kDegToRad;
   const double dlon = (b.lon_deg - a.lon_deg) * kDegToRad;
   const double y = std::sin(dlon) * std::cos(lat2);
-  const double x = std::cos(lat1) * std::sin(lat2) - std::sin(lat1) * std::cos(lat2) * std::cos(dlon);
+  const double x =
+      std::cos(lat1) * std::sin(lat2) - std::sin(lat1) * std::cos(lat2) * std::cos(dlon);
   double deg = std::atan2(y, x) * kRadToDeg;
   if (deg < 0) deg += 360.0;
   return deg >= 360.0 ? 0.0 : deg;
@@ -89,11 +90,13 @@ StatusOr<LocalFrame> LocalFrame::FromEpsg(int epsg) {
   if (epsg > 32600 && epsg <= 32660) return LocalFrame(epsg, epsg - 32600, true);
   if (epsg > 32700 && epsg <= 32760) return LocalFrame(epsg, epsg - 32700, false);
   if (epsg >= 25828 && epsg <= 25838) return LocalFrame(epsg, epsg - 25800, true);
-  return absl::InvalidArgumentError(absl::StrCat(
-      "frame EPSG:", epsg, " is not a UTM frame (use 326zz, 327zz or 25828..25838)"));
+  return absl::InvalidArgumentError(
+      absl::StrCat("frame EPSG:", epsg, " is not a UTM frame (use 326zz, 327zz or 25828..25838)"));
 }
 
-double LocalFrame::central_meridian_deg() const { return -183.0 + 6.0 * zone_; }
+double LocalFrame::central_meridian_deg() const {
+  return -183.0 + 6.0 * zone_;
+}
 
 LocalPoint LocalFrame::ToLocal(LatLon p) const {
   const KruegerSeries& s = Series();

@@ -26,9 +26,9 @@ TEST(Bearing, CardinalDirections) {
 }
 
 TEST(LocalFrame, ZoneByCentreAndEpsg) {
-  EXPECT_EQ(LocalFrame::ForCentre({63.43, 10.39}).epsg(), 32632);   // Trondheim
-  EXPECT_EQ(LocalFrame::ForCentre({38.7, -76.3}).epsg(), 32618);    // Chesapeake Bay
-  EXPECT_EQ(LocalFrame::ForCentre({-33.9, 151.2}).epsg(), 32756);   // Sydney
+  EXPECT_EQ(LocalFrame::ForCentre({63.43, 10.39}).epsg(), 32632);  // Trondheim
+  EXPECT_EQ(LocalFrame::ForCentre({38.7, -76.3}).epsg(), 32618);   // Chesapeake Bay
+  EXPECT_EQ(LocalFrame::ForCentre({-33.9, 151.2}).epsg(), 32756);  // Sydney
   EXPECT_EQ(LocalFrame::FromEpsg(25833)->zone(), 33);
   EXPECT_FALSE(LocalFrame::FromEpsg(4326).ok());
   EXPECT_FALSE(LocalFrame::FromEpsg(32661).ok());
@@ -42,8 +42,8 @@ TEST(LocalFrame, CentralMeridianPointIsFalseEasting) {
 }
 
 TEST(LocalFrame, RoundTripBelowOneMillimetre) {
-  for (const LatLon ll : {LatLon{63.43, 10.39}, LatLon{62.48, 6.0}, LatLon{38.7, -76.3}, LatLon{-33.9, 151.2},
-                          LatLon{0.001, 2.999}, LatLon{79.0, 20.0}}) {
+  for (const LatLon ll : {LatLon{63.43, 10.39}, LatLon{62.48, 6.0}, LatLon{38.7, -76.3},
+                          LatLon{-33.9, 151.2}, LatLon{0.001, 2.999}, LatLon{79.0, 20.0}}) {
     const LocalFrame f = LocalFrame::ForCentre(ll);
     for (double dlat : {-0.2, 0.0, 0.3}) {
       for (double dlon : {-2.5, 0.0, 2.9}) {
@@ -64,7 +64,8 @@ TEST(LocalFrame, AgreesWithProjBelowOneMillimetre) {
     wgs84.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
     ASSERT_EQ(utm.importFromEPSG(epsg), OGRERR_NONE);
     utm.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
-    std::unique_ptr<OGRCoordinateTransformation> ct(OGRCreateCoordinateTransformation(&wgs84, &utm));
+    std::unique_ptr<OGRCoordinateTransformation> ct(
+        OGRCreateCoordinateTransformation(&wgs84, &utm));
     ASSERT_NE(ct, nullptr);
     const LocalFrame f = *LocalFrame::FromEpsg(epsg);
     const double cm = f.central_meridian_deg();

@@ -21,7 +21,8 @@ void AppendRing(const LocalFrame& frame, const Ring& ring, bool ccw, std::string
   for (size_t i = 0; i < ring.size(); ++i) {
     const LocalPoint& a = ring[i];
     const LocalPoint& b = ring[(i + 1) % ring.size()];
-    area2 += (a.x_m - ring[0].x_m) * (b.y_m - ring[0].y_m) - (b.x_m - ring[0].x_m) * (a.y_m - ring[0].y_m);
+    area2 += (a.x_m - ring[0].x_m) * (b.y_m - ring[0].y_m) -
+             (b.x_m - ring[0].x_m) * (a.y_m - ring[0].y_m);
   }
   const bool reverse = (area2 > 0) != ccw;
   out->push_back('[');
@@ -38,10 +39,18 @@ std::string JsonString(const std::string& s) {
   std::string out = "\"";
   for (char ch : s) {
     switch (ch) {
-      case '"': out += "\\\""; break;
-      case '\\': out += "\\\\"; break;
-      case '\n': out += "\\n"; break;
-      case '\t': out += "\\t"; break;
+      case '"':
+        out += "\\\"";
+        break;
+      case '\\':
+        out += "\\\\";
+        break;
+      case '\n':
+        out += "\\n";
+        break;
+      case '\t':
+        out += "\\t";
+        break;
       default:
         if (static_cast<unsigned char>(ch) < 0x20) {
           char buf[8];
@@ -66,7 +75,8 @@ std::string ToGeoJson(const ObstacleMap& map, const std::vector<NamedRoute>& rou
   for (size_t i = 0; i < polygons.size(); ++i) {
     if (!first) out.push_back(',');
     first = false;
-    absl::StrAppend(&out, "{\"type\":\"Feature\",\"properties\":{\"kind\":\"obstacle\",\"index\":", i,
+    absl::StrAppend(&out,
+                    "{\"type\":\"Feature\",\"properties\":{\"kind\":\"obstacle\",\"index\":", i,
                     "},\"geometry\":{\"type\":\"Polygon\",\"coordinates\":[");
     AppendRing(frame, polygons[i].outer, true, &out);
     for (const Ring& h : polygons[i].holes) {
@@ -78,7 +88,8 @@ std::string ToGeoJson(const ObstacleMap& map, const std::vector<NamedRoute>& rou
   for (const NamedRoute& r : routes) {
     if (!first) out.push_back(',');
     first = false;
-    absl::StrAppend(&out, "{\"type\":\"Feature\",\"properties\":{\"kind\":\"route\",\"name\":", JsonString(r.name),
+    absl::StrAppend(&out, "{\"type\":\"Feature\",\"properties\":{\"kind\":\"route\",\"name\":",
+                    JsonString(r.name),
                     "},\"geometry\":{\"type\":\"LineString\",\"coordinates\":[");
     for (size_t i = 0; i < r.waypoints.size(); ++i) {
       if (i > 0) out.push_back(',');

@@ -20,7 +20,9 @@ GeosContext::GeosContext() : handle_(GEOS_init_r()) {
   GEOSContext_setNoticeMessageHandler_r(handle_, &IgnoreNotice, nullptr);
 }
 
-GeosContext::~GeosContext() { GEOS_finish_r(handle_); }
+GeosContext::~GeosContext() {
+  GEOS_finish_r(handle_);
+}
 
 std::string GeosContext::TakeError() const {
   std::string e;
@@ -35,7 +37,8 @@ GeomPtr MakePoint(const GeosContext& c, LocalPoint p) {
 GeomPtr MakeLine(const GeosContext& c, const LocalPoint* pts, size_t n) {
   if (n < 2) return Own(c, nullptr);
   GEOSCoordSequence* seq = GEOSCoordSeq_create_r(c.get(), static_cast<unsigned>(n), 2);
-  for (size_t i = 0; i < n; ++i) GEOSCoordSeq_setXY_r(c.get(), seq, static_cast<unsigned>(i), pts[i].x_m, pts[i].y_m);
+  for (size_t i = 0; i < n; ++i)
+    GEOSCoordSeq_setXY_r(c.get(), seq, static_cast<unsigned>(i), pts[i].x_m, pts[i].y_m);
   return Own(c, GEOSGeom_createLineString_r(c.get(), seq));
 }
 
@@ -45,13 +48,16 @@ GEOSGeometry* RawRing(const GeosContext& c, const LocalPoint* pts, size_t n) {
   if (n >= 2 && pts[0] == pts[n - 1]) --n;
   if (n < 3) return nullptr;
   GEOSCoordSequence* seq = GEOSCoordSeq_create_r(c.get(), static_cast<unsigned>(n + 1), 2);
-  for (size_t i = 0; i < n; ++i) GEOSCoordSeq_setXY_r(c.get(), seq, static_cast<unsigned>(i), pts[i].x_m, pts[i].y_m);
+  for (size_t i = 0; i < n; ++i)
+    GEOSCoordSeq_setXY_r(c.get(), seq, static_cast<unsigned>(i), pts[i].x_m, pts[i].y_m);
   GEOSCoordSeq_setXY_r(c.get(), seq, static_cast<unsigned>(n), pts[0].x_m, pts[0].y_m);
   return GEOSGeom_createLinearRing_r(c.get(), seq);
 }
 }  // namespace
 
-GeomPtr MakeRing(const GeosContext& c, const Ring& ring) { return Own(c, RawRing(c, ring.data(), ring.size())); }
+GeomPtr MakeRing(const GeosContext& c, const Ring& ring) {
+  return Own(c, RawRing(c, ring.data(), ring.size()));
+}
 
 GeomPtr MakeRingPolygon(const GeosContext& c, const LocalPoint* pts, size_t n) {
   GEOSGeometry* shell = RawRing(c, pts, n);
@@ -67,7 +73,8 @@ GeomPtr MakePolygon(const GeosContext& c, const Polygon& polygon) {
     GEOSGeometry* r = RawRing(c, h.data(), h.size());
     if (r != nullptr) holes.push_back(r);
   }
-  return Own(c, GEOSGeom_createPolygon_r(c.get(), shell, holes.data(), static_cast<unsigned>(holes.size())));
+  return Own(c, GEOSGeom_createPolygon_r(c.get(), shell, holes.data(),
+                                         static_cast<unsigned>(holes.size())));
 }
 
 GeomPtr MakeCollection(const GeosContext& c, int type, std::vector<GeomPtr> parts) {
@@ -76,11 +83,13 @@ GeomPtr MakeCollection(const GeosContext& c, int type, std::vector<GeomPtr> part
   for (GeomPtr& p : parts) {
     if (p) raw.push_back(p.release());
   }
-  return Own(c, GEOSGeom_createCollection_r(c.get(), type, raw.data(), static_cast<unsigned>(raw.size())));
+  return Own(
+      c, GEOSGeom_createCollection_r(c.get(), type, raw.data(), static_cast<unsigned>(raw.size())));
 }
 
 GeomPtr MakeBox(const GeosContext& c, const LocalBox& box) {
-  return Own(c, GEOSGeom_createRectangle_r(c.get(), box.min.x_m, box.min.y_m, box.max.x_m, box.max.y_m));
+  return Own(
+      c, GEOSGeom_createRectangle_r(c.get(), box.min.x_m, box.min.y_m, box.max.x_m, box.max.y_m));
 }
 
 Ring ExportRing(const GeosContext& c, const GEOSGeometry* ring) {
@@ -105,7 +114,8 @@ void ExportPolygons(const GeosContext& c, const GEOSGeometry* g, std::vector<Pol
     Polygon p;
     p.outer = ExportRing(c, GEOSGetExteriorRing_r(c.get(), g));
     const int holes = GEOSGetNumInteriorRings_r(c.get(), g);
-    for (int i = 0; i < holes; ++i) p.holes.push_back(ExportRing(c, GEOSGetInteriorRingN_r(c.get(), g, i)));
+    for (int i = 0; i < holes; ++i)
+      p.holes.push_back(ExportRing(c, GEOSGetInteriorRingN_r(c.get(), g, i)));
     if (p.outer.size() >= 3) out->push_back(std::move(p));
     return;
   }
@@ -153,7 +163,8 @@ double RingSignedArea(const Ring& ring) {
     const LocalPoint& p = ring[i];
     const LocalPoint& q = ring[(i + 1) % n];
     // Relative to the first point to keep precision with UTM magnitudes.
-    a += (p.x_m - ring[0].x_m) * (q.y_m - ring[0].y_m) - (q.x_m - ring[0].x_m) * (p.y_m - ring[0].y_m);
+    a += (p.x_m - ring[0].x_m) * (q.y_m - ring[0].y_m) -
+         (q.x_m - ring[0].x_m) * (p.y_m - ring[0].y_m);
   }
   return 0.5 * a;
 }

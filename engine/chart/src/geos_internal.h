@@ -41,7 +41,9 @@ struct GeomDeleter {
 };
 using GeomPtr = std::unique_ptr<GEOSGeometry, GeomDeleter>;
 
-inline GeomPtr Own(const GeosContext& c, GEOSGeometry* g) { return GeomPtr(g, GeomDeleter{c.get()}); }
+inline GeomPtr Own(const GeosContext& c, GEOSGeometry* g) {
+  return GeomPtr(g, GeomDeleter{c.get()});
+}
 
 // Builders from plain data (nullptr on degenerate input).
 GeomPtr MakePoint(const GeosContext& c, LocalPoint p);

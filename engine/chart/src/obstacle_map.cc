@@ -22,12 +22,15 @@ using internal::Own;
 absl::Status ChartOptions::Validate() const {
   auto finite_nonneg = [](double v) { return std::isfinite(v) && v >= 0.0; };
   if (!std::isfinite(min_depth_m) || min_depth_m < 0.0 || min_depth_m > 1000.0) {
-    return absl::InvalidArgumentError(absl::StrCat("min_depth_m must be in [0, 1000], got ", min_depth_m));
+    return absl::InvalidArgumentError(
+        absl::StrCat("min_depth_m must be in [0, 1000], got ", min_depth_m));
   }
   if (!finite_nonneg(safety_buffer_m) || safety_buffer_m > 10000.0) {
-    return absl::InvalidArgumentError(absl::StrCat("safety_buffer_m must be in [0, 10000], got ", safety_buffer_m));
+    return absl::InvalidArgumentError(
+        absl::StrCat("safety_buffer_m must be in [0, 10000], got ", safety_buffer_m));
   }
-  if (!std::isfinite(point_hazard_radius_m) || point_hazard_radius_m <= 0.0 || point_hazard_radius_m > 10000.0) {
+  if (!std::isfinite(point_hazard_radius_m) || point_hazard_radius_m <= 0.0 ||
+      point_hazard_radius_m > 10000.0) {
     return absl::InvalidArgumentError(
         absl::StrCat("point_hazard_radius_m must be in (0, 10000], got ", point_hazard_radius_m));
   }
@@ -46,11 +49,21 @@ ObstacleMap::ObstacleMap(ObstacleMap&&) noexcept = default;
 ObstacleMap& ObstacleMap::operator=(ObstacleMap&&) noexcept = default;
 ObstacleMap::~ObstacleMap() = default;
 
-const LocalFrame& ObstacleMap::frame() const { return impl_->frame; }
-const ObstacleSummary& ObstacleMap::summary() const { return impl_->summary; }
-const std::vector<Polygon>& ObstacleMap::polygons() const { return impl_->polygons; }
-LocalBox ObstacleMap::bounds() const { return impl_->bounds; }
-const std::string& ObstacleMap::wkb() const { return impl_->wkb; }
+const LocalFrame& ObstacleMap::frame() const {
+  return impl_->frame;
+}
+const ObstacleSummary& ObstacleMap::summary() const {
+  return impl_->summary;
+}
+const std::vector<Polygon>& ObstacleMap::polygons() const {
+  return impl_->polygons;
+}
+LocalBox ObstacleMap::bounds() const {
+  return impl_->bounds;
+}
+const std::string& ObstacleMap::wkb() const {
+  return impl_->wkb;
+}
 
 namespace internal {
 
@@ -65,12 +78,15 @@ StatusOr<ObstacleMap> FinishObstacleMap(GeosContext& c, GeomPtr obstacles, Local
     parts.reserve(impl->polygons.size());
     for (const Polygon& p : impl->polygons) parts.push_back(MakePolygon(c, p));
     GeomPtr multi = MakeCollection(c, GEOS_MULTIPOLYGON, std::move(parts));
-    if (!multi) return absl::InternalError(absl::StrCat("GEOS: cannot build obstacle multipolygon: ", c.TakeError()));
+    if (!multi)
+      return absl::InternalError(
+          absl::StrCat("GEOS: cannot build obstacle multipolygon: ", c.TakeError()));
     GEOSWKBWriter* writer = GEOSWKBWriter_create_r(c.get());
     size_t size = 0;
     unsigned char* buf = GEOSWKBWriter_write_r(c.get(), writer, multi.get(), &size);
     GEOSWKBWriter_destroy_r(c.get(), writer);
-    if (buf == nullptr) return absl::InternalError(absl::StrCat("GEOS: cannot write WKB: ", c.TakeError()));
+    if (buf == nullptr)
+      return absl::InternalError(absl::StrCat("GEOS: cannot write WKB: ", c.TakeError()));
     impl->wkb.assign(reinterpret_cast<const char*>(buf), size);
     GEOSFree_r(c.get(), buf);
   }
@@ -118,8 +134,9 @@ StatusOr<ObstacleMap> FinishObstacleMap(GeosContext& c, GeomPtr obstacles, Local
   return ObstacleMap(std::move(impl));
 }
 
-StatusOr<ObstacleMap> BuildObstacleMap(GeosContext& c, std::vector<GeomPtr> areas, std::vector<int> tiled_group,
-                                       LocalFrame frame, const ChartOptions& options, ObstacleSummary summary) {
+StatusOr<ObstacleMap> BuildObstacleMap(GeosContext& c, std::vector<GeomPtr> areas,
+                                       std::vector<int> tiled_group, LocalFrame frame,
+                                       const ChartOptions& options, ObstacleSummary summary) {
   SEAPLAN_RETURN_IF_ERROR(options.Validate());
   tiled_group.resize(areas.size(), -1);
   int repaired = 0;
@@ -144,8 +161,8 @@ StatusOr<ObstacleMap> BuildObstacleMap(GeosContext& c, std::vector<GeomPtr> area
     }
   }
   if (repaired > 0) {
-    summary.warnings.push_back(
-        absl::StrCat(repaired, " invalid (e.g. self-intersecting) polygon(s) repaired with GEOSMakeValid"));
+    summary.warnings.push_back(absl::StrCat(
+        repaired, " invalid (e.g. self-intersecting) polygon(s) repaired with GEOSMakeValid"));
     log::Warn("chart: {} invalid polygon(s) repaired", repaired);
   }
   const auto t0 = std::chrono::steady_clock::now();
@@ -187,7 +204,8 @@ StatusOr<ObstacleMap> BuildObstacleMap(GeosContext& c, std::vector<GeomPtr> area
     const double cu_ms = ms(tg);
     tg = std::chrono::steady_clock::now();
     const bool valid_merge = merged && GEOSisValid_r(c.get(), merged.get()) == 1;
-    log::Debug("group {}: {} members, coverage union {:.0f} ms, isValid {:.0f} ms", id, backup.size(), cu_ms, ms(tg));
+    log::Debug("group {}: {} members, coverage union {:.0f} ms, isValid {:.0f} ms", id,
+               backup.size(), cu_ms, ms(tg));
     if (valid_merge) {
       ++clean_groups;
       rest.push_back(std::move(merged));
@@ -204,13 +222,17 @@ StatusOr<ObstacleMap> BuildObstacleMap(GeosContext& c, std::vector<GeomPtr> area
   if (!rest.empty()) {
     GeomPtr collection = MakeCollection(c, GEOS_GEOMETRYCOLLECTION, std::move(rest));
     GeomPtr unioned = Own(c, GEOSUnaryUnion_r(c.get(), collection.get()));
-    if (!unioned) return absl::InvalidArgumentError(absl::StrCat("chart: union of obstacles failed: ", c.TakeError()));
+    if (!unioned)
+      return absl::InvalidArgumentError(
+          absl::StrCat("chart: union of obstacles failed: ", c.TakeError()));
     union_ms = ms(t1);
     const auto t2 = std::chrono::steady_clock::now();
     if (options.safety_buffer_m > 0.0) {
       // 8 segments per quarter circle: the chord error is r(1-cos(pi/32)) < 0.5% of r.
       result = Own(c, GEOSBuffer_r(c.get(), unioned.get(), options.safety_buffer_m, 8));
-      if (!result) return absl::InvalidArgumentError(absl::StrCat("chart: safety buffer failed: ", c.TakeError()));
+      if (!result)
+        return absl::InvalidArgumentError(
+            absl::StrCat("chart: safety buffer failed: ", c.TakeError()));
     } else {
       result = std::move(unioned);
     }
@@ -219,7 +241,8 @@ StatusOr<ObstacleMap> BuildObstacleMap(GeosContext& c, std::vector<GeomPtr> area
             ? 0.5 * options.simplify_tolerance_m
             : options.simplify_tolerance_m;
     if (simplify_final > 0.0) {
-      GeomPtr simple = Own(c, GEOSTopologyPreserveSimplify_r(c.get(), result.get(), simplify_final));
+      GeomPtr simple =
+          Own(c, GEOSTopologyPreserveSimplify_r(c.get(), result.get(), simplify_final));
       if (simple) {
         bool fixed = false;
         simple = MakeValidPolygonal(c, std::move(simple), &fixed);
@@ -228,8 +251,10 @@ StatusOr<ObstacleMap> BuildObstacleMap(GeosContext& c, std::vector<GeomPtr> area
     }
     buffer_ms = ms(t2);
   }
-  log::Debug("chart build: coverage union {:.0f} ms ({} clean, {} not), union {:.0f} ms, buffer+simplify {:.0f} ms",
-             coverage_ms, clean_groups, dirty_groups, union_ms, buffer_ms);
+  log::Debug(
+      "chart build: coverage union {:.0f} ms ({} clean, {} not), union {:.0f} ms, buffer+simplify "
+      "{:.0f} ms",
+      coverage_ms, clean_groups, dirty_groups, union_ms, buffer_ms);
   return FinishObstacleMap(c, std::move(result), frame, std::move(summary));
 }
 
@@ -247,7 +272,8 @@ StatusOr<ObstacleMap> ObstacleMap::FromPolygons(std::vector<Polygon> obstacles, 
     const Polygon& p = obstacles[i];
     for (const LocalPoint& q : p.outer) {
       if (!std::isfinite(q.x_m) || !std::isfinite(q.y_m)) {
-        return absl::InvalidArgumentError(absl::StrCat("obstacle polygon ", i, " has a non-finite coordinate"));
+        return absl::InvalidArgumentError(
+            absl::StrCat("obstacle polygon ", i, " has a non-finite coordinate"));
       }
       box.min.x_m = std::min(box.min.x_m, q.x_m);
       box.min.y_m = std::min(box.min.y_m, q.y_m);
@@ -255,7 +281,9 @@ StatusOr<ObstacleMap> ObstacleMap::FromPolygons(std::vector<Polygon> obstacles, 
       box.max.y_m = std::max(box.max.y_m, q.y_m);
     }
     GeomPtr g = internal::MakePolygon(c, p);
-    if (!g) return absl::InvalidArgumentError(absl::StrCat("obstacle polygon ", i, " has fewer than 3 distinct points"));
+    if (!g)
+      return absl::InvalidArgumentError(
+          absl::StrCat("obstacle polygon ", i, " has fewer than 3 distinct points"));
     areas.push_back(std::move(g));
   }
   ObstacleSummary summary;
@@ -268,7 +296,8 @@ StatusOr<ObstacleMap> ObstacleMap::FromPolygons(std::vector<Polygon> obstacles, 
     return absl::InvalidArgumentError("FromPolygons: no obstacles and no coverage box");
   } else {
     const double grow = 1000.0 + options.safety_buffer_m;
-    summary.coverage = {{box.min.x_m - grow, box.min.y_m - grow}, {box.max.x_m + grow, box.max.y_m + grow}};
+    summary.coverage = {{box.min.x_m - grow, box.min.y_m - grow},
+                        {box.max.x_m + grow, box.max.y_m + grow}};
   }
   return internal::BuildObstacleMap(c, std::move(areas), {}, frame, options, std::move(summary));
 }
@@ -289,7 +318,7 @@ struct ObstacleQuery::State {
   std::vector<GeomPtr> boundaries;
   std::vector<const GEOSPreparedGeometry*> prepared_boundaries;
   GEOSSTRtree* tree = nullptr;
-  std::vector<int> ids;  // tree items point into this (stable after build)
+  std::vector<int> ids;   // tree items point into this (stable after build)
   std::vector<int> hits;  // scratch for tree queries
   int query_sentinel = -1;
   const GEOSGeometry* query_geom = nullptr;
@@ -344,7 +373,8 @@ struct ObstacleQuery::State {
       *distance = 0.0;
       return 1;
     }
-    return GEOSPreparedDistance_r(self->ctx.get(), self->Prepared(poly), self->query_geom, distance);
+    return GEOSPreparedDistance_r(self->ctx.get(), self->Prepared(poly), self->query_geom,
+                                  distance);
   }
 };
 
@@ -393,7 +423,9 @@ ObstacleQuery::ObstacleQuery(const ObstacleMap& map) : state_(std::make_unique<S
   s.originals.reserve(n);
   for (size_t i = 0; i < n; ++i) {
     s.originals.push_back(internal::MakePolygon(s.ctx, polygons[i]));
-    GeomPtr copy = s.originals.back() ? Own(s.ctx, GEOSGeom_clone_r(s.ctx.get(), s.originals.back().get())) : nullptr;
+    GeomPtr copy = s.originals.back()
+                       ? Own(s.ctx, GEOSGeom_clone_r(s.ctx.get(), s.originals.back().get()))
+                       : nullptr;
     Subdivide(s.ctx, std::move(copy), static_cast<int>(i), 0, &s.parts, &s.owner);
   }
   const size_t pieces = s.parts.size();
@@ -425,8 +457,8 @@ double ObstacleQuery::PolygonDistanceM(std::span<const LocalPoint> ring) {
                                : internal::MakeLine(s.ctx, ring.data(), ring.size());
   if (!g) g = internal::MakePoint(s.ctx, ring[0]);
   s.query_geom = g.get();
-  const void* found =
-      GEOSSTRtree_nearest_generic_r(s.ctx.get(), s.tree, &s.query_sentinel, g.get(), &State::Distance, &s);
+  const void* found = GEOSSTRtree_nearest_generic_r(s.ctx.get(), s.tree, &s.query_sentinel, g.get(),
+                                                    &State::Distance, &s);
   s.query_geom = nullptr;
   if (found == nullptr) return std::numeric_limits<double>::infinity();
   double d = 0.0;
@@ -440,8 +472,8 @@ NearestObstacle ObstacleQuery::Nearest(LocalPoint p) {
   if (s.parts.empty()) return out;
   GeomPtr pt = internal::MakePoint(s.ctx, p);
   s.query_geom = pt.get();
-  const void* found = GEOSSTRtree_nearest_generic_r(s.ctx.get(), s.tree, &s.query_sentinel, pt.get(),
-                                                    &State::Distance, &s);
+  const void* found = GEOSSTRtree_nearest_generic_r(s.ctx.get(), s.tree, &s.query_sentinel,
+                                                    pt.get(), &State::Distance, &s);
   s.query_geom = nullptr;
   if (found == nullptr) return out;
   const int i = *static_cast<const int*>(found);
@@ -460,7 +492,9 @@ NearestObstacle ObstacleQuery::Nearest(LocalPoint p) {
   return out;
 }
 
-double ObstacleQuery::DistanceM(LocalPoint p) { return Nearest(p).distance_m; }
+double ObstacleQuery::DistanceM(LocalPoint p) {
+  return Nearest(p).distance_m;
+}
 
 bool ObstacleQuery::Inside(LocalPoint p) {
   State& s = *state_;
@@ -579,9 +613,12 @@ std::string SerializeObstacleMap(const ObstacleMap& map) {
   }
   w.U32(static_cast<uint32_t>(s.warnings.size()));
   for (const std::string& warning : s.warnings) w.Str(warning);
-  for (double v : {s.coverage.min.x_m, s.coverage.min.y_m, s.coverage.max.x_m, s.coverage.max.y_m}) w.F64(v);
+  for (double v : {s.coverage.min.x_m, s.coverage.min.y_m, s.coverage.max.x_m, s.coverage.max.y_m})
+    w.F64(v);
   const ChartOptions& o = s.options;
-  for (double v : {o.min_depth_m, o.safety_buffer_m, o.point_hazard_radius_m, o.simplify_tolerance_m}) w.F64(v);
+  for (double v :
+       {o.min_depth_m, o.safety_buffer_m, o.point_hazard_radius_m, o.simplify_tolerance_m})
+    w.F64(v);
   w.I32(o.frame_epsg);
   w.I32(o.unknown_depth_is_obstacle ? 1 : 0);
   w.Str(map.wkb());
@@ -592,7 +629,8 @@ std::string SerializeObstacleMap(const ObstacleMap& map) {
 
 StatusOr<ObstacleMap> DeserializeObstacleMap(std::string_view bytes) {
   auto corrupt = [](const std::string& what) {
-    return absl::InvalidArgumentError(absl::StrCat("stored chart blob is corrupt or not a seaplan chart: ", what));
+    return absl::InvalidArgumentError(
+        absl::StrCat("stored chart blob is corrupt or not a seaplan chart: ", what));
   };
   if (bytes.size() < sizeof(kMagic) + 8 || std::memcmp(bytes.data(), kMagic, sizeof(kMagic)) != 0) {
     return corrupt("bad magic/version");
@@ -622,9 +660,9 @@ StatusOr<ObstacleMap> DeserializeObstacleMap(std::string_view bytes) {
   }
   int32_t frame_epsg = 0, unknown = 0;
   if (!r.F64(&s.coverage.min.x_m) || !r.F64(&s.coverage.min.y_m) || !r.F64(&s.coverage.max.x_m) ||
-      !r.F64(&s.coverage.max.y_m) || !r.F64(&s.options.min_depth_m) || !r.F64(&s.options.safety_buffer_m) ||
-      !r.F64(&s.options.point_hazard_radius_m) || !r.F64(&s.options.simplify_tolerance_m) ||
-      !r.I32(&frame_epsg) || !r.I32(&unknown)) {
+      !r.F64(&s.coverage.max.y_m) || !r.F64(&s.options.min_depth_m) ||
+      !r.F64(&s.options.safety_buffer_m) || !r.F64(&s.options.point_hazard_radius_m) ||
+      !r.F64(&s.options.simplify_tolerance_m) || !r.I32(&frame_epsg) || !r.I32(&unknown)) {
     return corrupt("coverage/options");
   }
   s.options.frame_epsg = frame_epsg;
@@ -633,8 +671,9 @@ StatusOr<ObstacleMap> DeserializeObstacleMap(std::string_view bytes) {
   if (!r.Str(&wkb)) return corrupt("geometry");
   GeosContext c;
   GEOSWKBReader* reader = GEOSWKBReader_create_r(c.get());
-  GeomPtr g = Own(c, GEOSWKBReader_read_r(c.get(), reader, reinterpret_cast<const unsigned char*>(wkb.data()),
-                                          wkb.size()));
+  GeomPtr g =
+      Own(c, GEOSWKBReader_read_r(c.get(), reader,
+                                  reinterpret_cast<const unsigned char*>(wkb.data()), wkb.size()));
   GEOSWKBReader_destroy_r(c.get(), reader);
   if (!g) return corrupt(absl::StrCat("WKB: ", c.TakeError()));
   return internal::FinishObstacleMap(c, std::move(g), *frame, std::move(s));

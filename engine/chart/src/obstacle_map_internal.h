@@ -24,13 +24,14 @@ namespace internal {
 // in the local frame; point hazards already grown to areas) and builds the
 // map. tiled_group[i] >= 0 marks areas[i] as a member of a tiled layer group
 // (edge-matched, non-overlapping: S-57 skin of the earth, one Kartverket
-// layer) merged with GEOSCoverageUnion; -1 (or a short vector) = general. `summary` carries source format, per-layer counts, coverage and
-// warnings; the rest is filled here.
-// Groups numbered from kPreSimplifyGroup on are not unioned as a coverage
-// but thinned (Douglas-Peucker, half the tolerance) and overlaid.
+// layer) merged with GEOSCoverageUnion; -1 (or a short vector) = general. `summary` carries source
+// format, per-layer counts, coverage and warnings; the rest is filled here. Groups numbered from
+// kPreSimplifyGroup on are not unioned as a coverage but thinned (Douglas-Peucker, half the
+// tolerance) and overlaid.
 inline constexpr int kPreSimplifyGroup = 1000;
-StatusOr<ObstacleMap> BuildObstacleMap(GeosContext& c, std::vector<GeomPtr> areas, std::vector<int> tiled_group,
-                                       LocalFrame frame, const ChartOptions& options, ObstacleSummary summary);
+StatusOr<ObstacleMap> BuildObstacleMap(GeosContext& c, std::vector<GeomPtr> areas,
+                                       std::vector<int> tiled_group, LocalFrame frame,
+                                       const ChartOptions& options, ObstacleSummary summary);
 
 // Builds the map from the final (already buffered) obstacle geometry.
 StatusOr<ObstacleMap> FinishObstacleMap(GeosContext& c, GeomPtr obstacles, LocalFrame frame,

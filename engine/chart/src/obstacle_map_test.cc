@@ -14,9 +14,15 @@ namespace {
 // A 100 m square island centred on (cx, cy), in WGS84 UTM 33N coordinates.
 constexpr double kCx = 500000.0, kCy = 6900000.0;
 Polygon Square(double cx, double cy, double half) {
-  return {{{cx - half, cy - half}, {cx + half, cy - half}, {cx + half, cy + half}, {cx - half, cy + half}}, {}};
+  return {{{cx - half, cy - half},
+           {cx + half, cy - half},
+           {cx + half, cy + half},
+           {cx - half, cy + half}},
+          {}};
 }
-LocalFrame Utm33() { return *LocalFrame::FromEpsg(32633); }
+LocalFrame Utm33() {
+  return *LocalFrame::FromEpsg(32633);
+}
 
 ChartOptions Buffer10NoSimplify() {
   ChartOptions o;
@@ -72,14 +78,15 @@ TEST(ObstacleMap, SegmentAndPolygonIntersection) {
   EXPECT_TRUE(q.SegmentHits({kCx - 200, kCy}, {kCx + 200, kCy}));
   EXPECT_FALSE(q.SegmentHits({kCx - 200, kCy + 61}, {kCx + 200, kCy + 61}));
   EXPECT_TRUE(q.SegmentHits({kCx - 200, kCy + 59}, {kCx + 200, kCy + 59}));
-  const std::vector<LocalPoint> route = {{kCx - 200, kCy}, {kCx - 200, kCy + 100}, {kCx + 200, kCy + 100}};
+  const std::vector<LocalPoint> route = {
+      {kCx - 200, kCy}, {kCx - 200, kCy + 100}, {kCx + 200, kCy + 100}};
   EXPECT_FALSE(q.PolylineHits(route));
-  const std::vector<LocalPoint> touching = {{kCx + 55, kCy - 5}, {kCx + 65, kCy - 5}, {kCx + 65, kCy + 5},
-                                            {kCx + 55, kCy + 5}};
+  const std::vector<LocalPoint> touching = {
+      {kCx + 55, kCy - 5}, {kCx + 65, kCy - 5}, {kCx + 65, kCy + 5}, {kCx + 55, kCy + 5}};
   EXPECT_TRUE(q.PolygonHits(touching));
   EXPECT_DOUBLE_EQ(q.PolygonDistanceM(touching), 0.0);
-  const std::vector<LocalPoint> away = {{kCx + 100, kCy - 5}, {kCx + 110, kCy - 5}, {kCx + 110, kCy + 5},
-                                        {kCx + 100, kCy + 5}};
+  const std::vector<LocalPoint> away = {
+      {kCx + 100, kCy - 5}, {kCx + 110, kCy - 5}, {kCx + 110, kCy + 5}, {kCx + 100, kCy + 5}};
   EXPECT_FALSE(q.PolygonHits(away));
   EXPECT_NEAR(q.PolygonDistanceM(away), 40.0, 1e-6);
 }
@@ -146,7 +153,8 @@ TEST(ObstacleMap, BadInputIsAnError) {
 TEST(ObstacleMap, SerializationRoundTrip) {
   Polygon with_hole = Square(kCx + 3000, kCy, 500);
   with_hole.holes.push_back(Square(kCx + 3000, kCy, 300).outer);
-  auto map = ObstacleMap::FromPolygons({Square(kCx, kCy, 50), with_hole}, Utm33(), Buffer10NoSimplify(), "test");
+  auto map = ObstacleMap::FromPolygons({Square(kCx, kCy, 50), with_hole}, Utm33(),
+                                       Buffer10NoSimplify(), "test");
   ASSERT_TRUE(map.ok());
   const std::string blob = SerializeObstacleMap(*map);
   auto back = DeserializeObstacleMap(blob);
@@ -159,7 +167,8 @@ TEST(ObstacleMap, SerializationRoundTrip) {
   EXPECT_DOUBLE_EQ(back->summary().options.safety_buffer_m, 10.0);
   EXPECT_DOUBLE_EQ(back->summary().coverage.max.x_m, map->summary().coverage.max.x_m);
   ObstacleQuery q1(*map), q2(*back);
-  for (const LocalPoint p : {LocalPoint{kCx + 150, kCy}, LocalPoint{kCx + 3000, kCy}, LocalPoint{kCx + 3000, kCy + 400}}) {
+  for (const LocalPoint p : {LocalPoint{kCx + 150, kCy}, LocalPoint{kCx + 3000, kCy},
+                             LocalPoint{kCx + 3000, kCy + 400}}) {
     EXPECT_DOUBLE_EQ(q1.SignedDistanceM(p), q2.SignedDistanceM(p));
   }
   EXPECT_FALSE(q2.Inside({kCx + 3000, kCy}));  // in the hole
@@ -183,7 +192,8 @@ TEST(ObstacleMap, CorruptBlobsAreRejected) {
 
 TEST(ObstacleMap, QueriesFromSeveralThreadsAgree) {
   std::vector<Polygon> islands;
-  for (int i = 0; i < 20; ++i) islands.push_back(Square(kCx + 300.0 * i, kCy + 100.0 * (i % 3), 40));
+  for (int i = 0; i < 20; ++i)
+    islands.push_back(Square(kCx + 300.0 * i, kCy + 100.0 * (i % 3), 40));
   auto map = ObstacleMap::FromPolygons(islands, Utm33(), ChartOptions{});
   ASSERT_TRUE(map.ok());
   std::vector<LocalPoint> points;
@@ -211,7 +221,8 @@ TEST(ObstacleMap, QueriesFromSeveralThreadsAgree) {
 TEST(GeoJson, ObstaclesAndRoutes) {
   auto map = ObstacleMap::FromPolygons({Square(kCx, kCy, 50)}, Utm33(), Buffer10NoSimplify());
   ASSERT_TRUE(map.ok());
-  const std::string json = ToGeoJson(*map, {{"alt \"0\"", {{kCx - 200, kCy}, {kCx + 200, kCy + 100}}}});
+  const std::string json =
+      ToGeoJson(*map, {{"alt \"0\"", {{kCx - 200, kCy}, {kCx + 200, kCy + 100}}}});
   EXPECT_EQ(json.rfind("{\"type\":\"FeatureCollection\"", 0), 0u);
   EXPECT_NE(json.find("\"kind\":\"obstacle\""), std::string::npos);
   EXPECT_NE(json.find("\"name\":\"alt \\\"0\\\"\""), std::string::npos);

@@ -21,21 +21,37 @@ void EnsureStderrLogger() {
 void SetLevel(Level level) {
   EnsureStderrLogger();
   switch (level) {
-    case Level::kDebug: spdlog::set_level(spdlog::level::debug); break;
-    case Level::kInfo: spdlog::set_level(spdlog::level::info); break;
-    case Level::kWarn: spdlog::set_level(spdlog::level::warn); break;
-    case Level::kError: spdlog::set_level(spdlog::level::err); break;
-    case Level::kOff: spdlog::set_level(spdlog::level::off); break;
+    case Level::kDebug:
+      spdlog::set_level(spdlog::level::debug);
+      break;
+    case Level::kInfo:
+      spdlog::set_level(spdlog::level::info);
+      break;
+    case Level::kWarn:
+      spdlog::set_level(spdlog::level::warn);
+      break;
+    case Level::kError:
+      spdlog::set_level(spdlog::level::err);
+      break;
+    case Level::kOff:
+      spdlog::set_level(spdlog::level::off);
+      break;
   }
 }
 
 bool ParseLevel(std::string_view name, Level* level) {
-  if (name == "debug") *level = Level::kDebug;
-  else if (name == "info") *level = Level::kInfo;
-  else if (name == "warn") *level = Level::kWarn;
-  else if (name == "error") *level = Level::kError;
-  else if (name == "off") *level = Level::kOff;
-  else return false;
+  if (name == "debug")
+    *level = Level::kDebug;
+  else if (name == "info")
+    *level = Level::kInfo;
+  else if (name == "warn")
+    *level = Level::kWarn;
+  else if (name == "error")
+    *level = Level::kError;
+  else if (name == "off")
+    *level = Level::kOff;
+  else
+    return false;
   return true;
 }
 

@@ -23,7 +23,9 @@ StopToken StopToken::Child(Clock::time_point deadline) const {
   return child;
 }
 
-void StopToken::Cancel() const { cancelled_->store(true, std::memory_order_relaxed); }
+void StopToken::Cancel() const {
+  cancelled_->store(true, std::memory_order_relaxed);
+}
 
 StopReason StopToken::Reason() const {
   if (cancelled_->load(std::memory_order_relaxed) ||

@@ -19,20 +19,30 @@ void CollectEffectHeads(const Effect& e, std::set<std::string, std::less<>>* pre
                         std::set<std::string, std::less<>>* funcs) {
   switch (e.kind) {
     case Effect::Kind::kAdd:
-    case Effect::Kind::kDelete: preds->insert(e.atom.predicate); break;
-    case Effect::Kind::kNumeric: funcs->insert(e.fluent.function); break;
-    default: break;
+    case Effect::Kind::kDelete:
+      preds->insert(e.atom.predicate);
+      break;
+    case Effect::Kind::kNumeric:
+      funcs->insert(e.fluent.function);
+      break;
+    default:
+      break;
   }
   for (const Effect& c : e.children) CollectEffectHeads(c, preds, funcs);
 }
 
 bool CompareValues(double lhs, pddl::Comparator c, double rhs) {
   switch (c) {
-    case pddl::Comparator::kLess: return lhs < rhs;
-    case pddl::Comparator::kLessEqual: return lhs <= rhs;
-    case pddl::Comparator::kEqual: return std::abs(lhs - rhs) <= 1e-9 * (1 + std::abs(rhs));
-    case pddl::Comparator::kGreaterEqual: return lhs >= rhs;
-    case pddl::Comparator::kGreater: return lhs > rhs;
+    case pddl::Comparator::kLess:
+      return lhs < rhs;
+    case pddl::Comparator::kLessEqual:
+      return lhs <= rhs;
+    case pddl::Comparator::kEqual:
+      return std::abs(lhs - rhs) <= 1e-9 * (1 + std::abs(rhs));
+    case pddl::Comparator::kGreaterEqual:
+      return lhs >= rhs;
+    case pddl::Comparator::kGreater:
+      return lhs > rhs;
   }
   return false;
 }
@@ -167,11 +177,12 @@ StatusOr<ActionInstance> ActionModel::Instantiate(std::string_view name,
                                                   const std::vector<std::string>& args) const {
   const pddl::Action* schema = domain_.FindAction(name);
   if (schema == nullptr) {
-    return absl::InvalidArgumentError(absl::StrCat("plan action '", std::string(name), "' is not in the domain"));
+    return absl::InvalidArgumentError(
+        absl::StrCat("plan action '", std::string(name), "' is not in the domain"));
   }
   if (schema->parameters.size() != args.size()) {
-    return absl::InvalidArgumentError(absl::StrCat("plan action '", std::string(name), "' has ", args.size(),
-                                                   " arguments, the domain declares ",
+    return absl::InvalidArgumentError(absl::StrCat("plan action '", std::string(name), "' has ",
+                                                   args.size(), " arguments, the domain declares ",
                                                    schema->parameters.size()));
   }
   ActionInstance inst;
@@ -201,9 +212,11 @@ void ActionModel::CollectReads(const Condition& c, const Binding& b, TimeSpec ti
                                   : time == TimeSpec::kAtEnd ? &out->reads_end
                                                              : &out->reads_start;
   switch (c.kind) {
-    case Condition::Kind::kTrue: return;
+    case Condition::Kind::kTrue:
+      return;
     case Condition::Kind::kAtom:
-      if (c.atom.predicate != "=") bucket->insert(AtomKey(c.atom.predicate, Resolve(c.atom.args, b)));
+      if (c.atom.predicate != "=")
+        bucket->insert(AtomKey(c.atom.predicate, Resolve(c.atom.args, b)));
       return;
     case Condition::Kind::kCompare:
       CollectExprReads(c.lhs, b, bucket);
@@ -226,7 +239,8 @@ void ActionModel::CollectReads(const Condition& c, const Binding& b, TimeSpec ti
 
 void ActionModel::CollectWrites(const Effect& e, const Binding& b, TimeSpec time,
                                 ActionInstance* out) const {
-  std::set<std::string>* bucket = time == TimeSpec::kAtStart ? &out->writes_start : &out->writes_end;
+  std::set<std::string>* bucket =
+      time == TimeSpec::kAtStart ? &out->writes_start : &out->writes_end;
   switch (e.kind) {
     case Effect::Kind::kAdd:
     case Effect::Kind::kDelete:
@@ -234,7 +248,8 @@ void ActionModel::CollectWrites(const Effect& e, const Binding& b, TimeSpec time
       return;
     case Effect::Kind::kNumeric: {
       bucket->insert(AtomKey(e.fluent.function, Resolve(e.fluent.args, b)));
-      std::set<std::string>* reads = time == TimeSpec::kAtStart ? &out->reads_start : &out->reads_end;
+      std::set<std::string>* reads =
+          time == TimeSpec::kAtStart ? &out->reads_start : &out->reads_end;
       CollectExprReads(e.value, b, reads);
       return;
     }
@@ -260,9 +275,12 @@ void ActionModel::CollectWrites(const Effect& e, const Binding& b, TimeSpec time
 StatusOr<double> ActionModel::Eval(const NumExpr& e, const Binding& b, const WorldState& s,
                                    double duration_s) const {
   switch (e.kind) {
-    case NumExpr::Kind::kNumber: return e.value;
-    case NumExpr::Kind::kDuration: return duration_s;
-    case NumExpr::Kind::kTotalTime: return 0.0;
+    case NumExpr::Kind::kNumber:
+      return e.value;
+    case NumExpr::Kind::kDuration:
+      return duration_s;
+    case NumExpr::Kind::kTotalTime:
+      return 0.0;
     case NumExpr::Kind::kFluent: {
       std::string key = AtomKey(e.function, Resolve(e.args, b));
       auto it = s.fluents.find(key);
@@ -276,21 +294,29 @@ StatusOr<double> ActionModel::Eval(const NumExpr& e, const Binding& b, const Wor
       SEAPLAN_ASSIGN_OR_RETURN(double v, Eval(e.children[0], b, s, duration_s));
       return -v;
     }
-    default: break;
+    default:
+      break;
   }
   if (e.children.empty()) return absl::InvalidArgumentError("arithmetic with no operands");
   SEAPLAN_ASSIGN_OR_RETURN(double acc, Eval(e.children[0], b, s, duration_s));
   for (size_t i = 1; i < e.children.size(); ++i) {
     SEAPLAN_ASSIGN_OR_RETURN(double v, Eval(e.children[i], b, s, duration_s));
     switch (e.kind) {
-      case NumExpr::Kind::kAdd: acc += v; break;
-      case NumExpr::Kind::kSub: acc -= v; break;
-      case NumExpr::Kind::kMul: acc *= v; break;
+      case NumExpr::Kind::kAdd:
+        acc += v;
+        break;
+      case NumExpr::Kind::kSub:
+        acc -= v;
+        break;
+      case NumExpr::Kind::kMul:
+        acc *= v;
+        break;
       case NumExpr::Kind::kDiv:
         if (v == 0.0) return absl::FailedPreconditionError("division by zero");
         acc /= v;
         break;
-      default: break;
+      default:
+        break;
     }
   }
   return acc;
@@ -299,13 +325,15 @@ StatusOr<double> ActionModel::Eval(const NumExpr& e, const Binding& b, const Wor
 bool ActionModel::Holds(const Condition& c, const Binding& b, const WorldState& s,
                         double duration_s) const {
   switch (c.kind) {
-    case Condition::Kind::kTrue: return true;
+    case Condition::Kind::kTrue:
+      return true;
     case Condition::Kind::kAtom: {
       std::vector<std::string> args = Resolve(c.atom.args, b);
       if (c.atom.predicate == "=") return args.size() == 2 && args[0] == args[1];
       return s.facts.contains(AtomKey(c.atom.predicate, args));
     }
-    case Condition::Kind::kNot: return !Holds(c.children.at(0), b, s, duration_s);
+    case Condition::Kind::kNot:
+      return !Holds(c.children.at(0), b, s, duration_s);
     case Condition::Kind::kAnd:
     case Condition::Kind::kTimed:
       for (const Condition& ch : c.children) {
@@ -318,7 +346,8 @@ bool ActionModel::Holds(const Condition& c, const Binding& b, const WorldState& 
       }
       return false;
     case Condition::Kind::kImply:
-      return !Holds(c.children.at(0), b, s, duration_s) || Holds(c.children.at(1), b, s, duration_s);
+      return !Holds(c.children.at(0), b, s, duration_s) ||
+             Holds(c.children.at(1), b, s, duration_s);
     case Condition::Kind::kExists:
       for (const Binding& nb : Expand(c.variables, b)) {
         if (Holds(c.children.at(0), nb, s, duration_s)) return true;
@@ -344,7 +373,7 @@ Status ActionModel::ApplyEffect(const Effect& e, const Binding& b, bool at_end, 
                                 std::vector<std::pair<std::string, double>>* assign) const {
   // Instantaneous actions: everything happens "at start".
   const bool here = !durative ? !at_end
-                              : (inherited == TimeSpec::kAtEnd ? at_end
+                              : (inherited == TimeSpec::kAtEnd     ? at_end
                                  : inherited == TimeSpec::kAtStart ? !at_end
                                                                    : at_end);
   switch (e.kind) {
@@ -366,11 +395,21 @@ Status ActionModel::ApplyEffect(const Effect& e, const Binding& b, bool at_end, 
       }
       double result = v;
       switch (e.op) {
-        case pddl::AssignOp::kAssign: result = v; break;
-        case pddl::AssignOp::kIncrease: result = current + v; break;
-        case pddl::AssignOp::kDecrease: result = current - v; break;
-        case pddl::AssignOp::kScaleUp: result = current * v; break;
-        case pddl::AssignOp::kScaleDown: result = v == 0 ? current : current / v; break;
+        case pddl::AssignOp::kAssign:
+          result = v;
+          break;
+        case pddl::AssignOp::kIncrease:
+          result = current + v;
+          break;
+        case pddl::AssignOp::kDecrease:
+          result = current - v;
+          break;
+        case pddl::AssignOp::kScaleUp:
+          result = current * v;
+          break;
+        case pddl::AssignOp::kScaleDown:
+          result = v == 0 ? current : current / v;
+          break;
       }
       assign->emplace_back(std::move(key), result);
       return absl::OkStatus();
@@ -384,8 +423,8 @@ Status ActionModel::ApplyEffect(const Effect& e, const Binding& b, bool at_end, 
     case Effect::Kind::kForall:
       for (const Binding& nb : Expand(e.variables, b)) {
         for (const Effect& ch : e.children) {
-          SEAPLAN_RETURN_IF_ERROR(
-              ApplyEffect(ch, nb, at_end, durative, inherited, before, duration_s, add, del, assign));
+          SEAPLAN_RETURN_IF_ERROR(ApplyEffect(ch, nb, at_end, durative, inherited, before,
+                                              duration_s, add, del, assign));
         }
       }
       return absl::OkStatus();
@@ -412,8 +451,8 @@ Status ActionModel::Apply(const ActionInstance& action, bool at_end, double dura
   std::vector<std::string> add, del;
   std::vector<std::pair<std::string, double>> assign;
   SEAPLAN_RETURN_IF_ERROR(ApplyEffect(action.schema->effect, action.binding, at_end,
-                                      action.schema->durative, TimeSpec::kNone, *state,
-                                      duration_s, &add, &del, &assign));
+                                      action.schema->durative, TimeSpec::kNone, *state, duration_s,
+                                      &add, &del, &assign));
   for (const std::string& f : del) state->facts.erase(f);
   for (std::string& f : add) state->facts.insert(std::move(f));
   for (auto& [k, v] : assign) state->fluents[k] = v;
@@ -423,12 +462,18 @@ Status ActionModel::Apply(const ActionInstance& action, bool at_end, double dura
 namespace {
 const char* OpName(NumExpr::Kind k) {
   switch (k) {
-    case NumExpr::Kind::kAdd: return "+";
-    case NumExpr::Kind::kSub: return "-";
-    case NumExpr::Kind::kMul: return "*";
-    case NumExpr::Kind::kDiv: return "/";
-    case NumExpr::Kind::kNeg: return "-";
-    default: return "?";
+    case NumExpr::Kind::kAdd:
+      return "+";
+    case NumExpr::Kind::kSub:
+      return "-";
+    case NumExpr::Kind::kMul:
+      return "*";
+    case NumExpr::Kind::kDiv:
+      return "/";
+    case NumExpr::Kind::kNeg:
+      return "-";
+    default:
+      return "?";
   }
 }
 std::string AtomText(const pddl::Atom& a) {
@@ -439,8 +484,8 @@ std::string AtomText(const pddl::Atom& a) {
 std::string VarsText(const std::vector<pddl::TypedName>& vars) {
   std::vector<std::string> parts;
   for (const pddl::TypedName& v : vars) {
-    std::string type = v.types.size() == 1 ? v.types[0]
-                                            : "(either " + absl::StrJoin(v.types, " ") + ")";
+    std::string type =
+        v.types.size() == 1 ? v.types[0] : "(either " + absl::StrJoin(v.types, " ") + ")";
     parts.push_back(v.name + " - " + type);
   }
   return absl::StrJoin(parts, " ");
@@ -449,15 +494,19 @@ std::string VarsText(const std::vector<pddl::TypedName>& vars) {
 
 std::string ToPddl(const NumExpr& e) {
   switch (e.kind) {
-    case NumExpr::Kind::kNumber: return validate::FormatTime(e.value);
-    case NumExpr::Kind::kDuration: return "?duration";
-    case NumExpr::Kind::kTotalTime: return "total-time";
+    case NumExpr::Kind::kNumber:
+      return validate::FormatTime(e.value);
+    case NumExpr::Kind::kDuration:
+      return "?duration";
+    case NumExpr::Kind::kTotalTime:
+      return "total-time";
     case NumExpr::Kind::kFluent: {
       std::string s = "(" + e.function;
       for (const pddl::Term& t : e.args) s += " " + t.name;
       return s + ")";
     }
-    default: break;
+    default:
+      break;
   }
   std::string s = absl::StrCat("(", OpName(e.kind));
   for (const NumExpr& c : e.children) s += " " + ToPddl(c);
@@ -471,12 +520,18 @@ std::string ToPddl(const Condition& c) {
     return s + ")";
   };
   switch (c.kind) {
-    case Condition::Kind::kTrue: return "(and)";
-    case Condition::Kind::kAtom: return AtomText(c.atom);
-    case Condition::Kind::kNot: return children("not");
-    case Condition::Kind::kAnd: return children("and");
-    case Condition::Kind::kOr: return children("or");
-    case Condition::Kind::kImply: return children("imply");
+    case Condition::Kind::kTrue:
+      return "(and)";
+    case Condition::Kind::kAtom:
+      return AtomText(c.atom);
+    case Condition::Kind::kNot:
+      return children("not");
+    case Condition::Kind::kAnd:
+      return children("and");
+    case Condition::Kind::kOr:
+      return children("or");
+    case Condition::Kind::kImply:
+      return children("imply");
     case Condition::Kind::kExists:
       return "(exists (" + VarsText(c.variables) + ") " + ToPddl(c.children.at(0)) + ")";
     case Condition::Kind::kForall:

@@ -83,7 +83,8 @@ class ActionModel {
   void CollectExprReads(const pddl::NumExpr& e, const Binding& b, std::set<std::string>* out) const;
   void CollectWrites(const pddl::Effect& e, const Binding& b, pddl::TimeSpec time,
                      ActionInstance* out) const;
-  bool Holds(const pddl::Condition& c, const Binding& b, const WorldState& s, double duration_s) const;
+  bool Holds(const pddl::Condition& c, const Binding& b, const WorldState& s,
+             double duration_s) const;
   StatusOr<double> Eval(const pddl::NumExpr& e, const Binding& b, const WorldState& s,
                         double duration_s) const;
   Status ApplyEffect(const pddl::Effect& e, const Binding& b, bool at_end, bool durative,

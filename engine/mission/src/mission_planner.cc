@@ -27,8 +27,8 @@ StatusOr<PlanVersion> PlanRefineParse(const MissionDefinition& mission, std::str
   validate::Plan shifted = outcome.plan;
   for (validate::PlanStep& s : shifted.steps) s.start_s += origin_s;
   if (log) log->Add(origin_s, messages::kRefiningPlan);
-  SEAPLAN_ASSIGN_OR_RETURN(RefinedPlan refined, RefinePlan(mission.domain, problem, shifted, locations,
-                                                           router, mission.refine));
+  SEAPLAN_ASSIGN_OR_RETURN(RefinedPlan refined, RefinePlan(mission.domain, problem, shifted,
+                                                           locations, router, mission.refine));
   if (log) log->Add(origin_s, messages::kParsingPlan);
   PlanVersion v;
   v.version = version;
@@ -46,9 +46,8 @@ StatusOr<PlanVersion> PlanRefineParse(const MissionDefinition& mission, std::str
 }  // namespace
 
 StatusOr<PlanVersion> PlanInitialVersion(const MissionDefinition& mission,
-                                         const TemporalPlanner& planner,
-                                         const RoutePlanner& router, const StopToken& stop,
-                                         NavigationLog* log) {
+                                         const TemporalPlanner& planner, const RoutePlanner& router,
+                                         const StopToken& stop, NavigationLog* log) {
   SEAPLAN_RETURN_IF_ERROR(mission.refine.Validate());
   SEAPLAN_RETURN_IF_ERROR(mission.policy.Validate());
   return PlanRefineParse(mission, mission.problem, mission.locations, 1, "initial plan", 0.0,
@@ -79,9 +78,10 @@ StatusOr<ReplanResult> Replan(const MissionDefinition& mission, const PlanVersio
     interrupted.push_back(it->second->action);
   }
   if (log) log->Add(input.mission_time_s, messages::kUpdatingProblem);
-  SEAPLAN_ASSIGN_OR_RETURN(RegeneratedProblem regen,
-                           RegenerateProblem(mission.domain, current.problem, completed, interrupted,
-                                             current_locations, input.ship, mission.regeneration));
+  SEAPLAN_ASSIGN_OR_RETURN(
+      RegeneratedProblem regen,
+      RegenerateProblem(mission.domain, current.problem, completed, interrupted, current_locations,
+                        input.ship, mission.regeneration));
   ReplanResult result;
   result.locations = regen.locations;
   result.problem = regen.problem_text;
@@ -90,8 +90,9 @@ StatusOr<ReplanResult> Replan(const MissionDefinition& mission, const PlanVersio
     return result;
   }
   SEAPLAN_ASSIGN_OR_RETURN(
-      PlanVersion v, PlanRefineParse(mission, regen.problem_text, regen.locations, current.version + 1,
-                                     input.reason, input.mission_time_s, planner, router, stop, log));
+      PlanVersion v,
+      PlanRefineParse(mission, regen.problem_text, regen.locations, current.version + 1,
+                      input.reason, input.mission_time_s, planner, router, stop, log));
   if (log) log->Add(input.mission_time_s, messages::kReplanDone);
   result.version = std::move(v);
   return result;

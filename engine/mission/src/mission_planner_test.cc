@@ -47,7 +47,8 @@ TEST(MissionPlannerTest, ReplanShiftsToMissionTimeAndNumbersTheVersion) {
   ASSERT_TRUE(v1.ok());
   // A hand-made replan: from port-s straight to port-b, then unload.
   validate::Plan rest;
-  rest.steps.push_back({0, "move-ship", {"ship0", "port-s", "port-s", "port-b", "port-b", "r-port-s-port-b"}, 10});
+  rest.steps.push_back(
+      {0, "move-ship", {"ship0", "port-s", "port-s", "port-b", "port-b", "r-port-s-port-b"}, 10});
   rest.steps.push_back({10.001, "unload-cont", {"cont-x", "port-b", "ship0"}, 50});
   NavigationLog log;
   ReplanInput in{"task v1-t2 move-ship failed", 120.0, {"v1-t1"}, {"v1-t2"}, {{400, 600}, 0.8}};
@@ -69,9 +70,10 @@ TEST(MissionPlannerTest, ReplanShiftsToMissionTimeAndNumbersTheVersion) {
   EXPECT_GE(log.Find(messages::kReplanDone), 0);
   // Unknown task ids are rejected.
   in.completed_task_ids = {"v9-t1"};
-  EXPECT_TRUE(absl::IsInvalidArgument(Replan(def, *v1, def.locations, in, FixedPlanner{rest, &asked},
-                                             StraightLineRouter(5.0), StopToken(), nullptr)
-                                          .status()));
+  EXPECT_TRUE(
+      absl::IsInvalidArgument(Replan(def, *v1, def.locations, in, FixedPlanner{rest, &asked},
+                                     StraightLineRouter(5.0), StopToken(), nullptr)
+                                  .status()));
 }
 
 }  // namespace

@@ -4,7 +4,9 @@
 
 namespace seaplan::mission {
 
-std::string TaskStartedMessage(TaskKind kind) { return absl::StrCat(std::string(TaskKindName(kind)), " task started"); }
+std::string TaskStartedMessage(TaskKind kind) {
+  return absl::StrCat(std::string(TaskKindName(kind)), " task started");
+}
 std::string TaskCompletedMessage(TaskKind kind) {
   return absl::StrCat(std::string(TaskKindName(kind)), " task completed");
 }

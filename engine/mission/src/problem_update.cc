@@ -55,20 +55,25 @@ bool DomainPlansFuel(std::string_view domain_text) {
 }
 
 Status RegenerationOptions::Validate() const {
-  if (location_predicate.empty()) return absl::InvalidArgumentError("regeneration: location_predicate is empty");
-  if (!(snap_distance_m >= 0)) return absl::InvalidArgumentError("regeneration: snap_distance_m must be >= 0");
-  if (new_location_name.empty()) return absl::InvalidArgumentError("regeneration: new_location_name is empty");
+  if (location_predicate.empty())
+    return absl::InvalidArgumentError("regeneration: location_predicate is empty");
+  if (!(snap_distance_m >= 0))
+    return absl::InvalidArgumentError("regeneration: snap_distance_m must be >= 0");
+  if (new_location_name.empty())
+    return absl::InvalidArgumentError("regeneration: new_location_name is empty");
   if (!(fuel_threshold_fraction >= 0 && fuel_threshold_fraction <= 1)) {
     return absl::InvalidArgumentError("regeneration: fuel_threshold_fraction must be in [0, 1]");
   }
   return absl::OkStatus();
 }
 
-StatusOr<RegeneratedProblem> RegenerateProblem(
-    std::string_view domain_text, std::string_view problem_text,
-    const std::vector<validate::PlanStep>& completed,
-    const std::vector<validate::PlanStep>& interrupted, const LocationTable& locations,
-    const ShipObservation& ship, const RegenerationOptions& options) {
+StatusOr<RegeneratedProblem> RegenerateProblem(std::string_view domain_text,
+                                               std::string_view problem_text,
+                                               const std::vector<validate::PlanStep>& completed,
+                                               const std::vector<validate::PlanStep>& interrupted,
+                                               const LocationTable& locations,
+                                               const ShipObservation& ship,
+                                               const RegenerationOptions& options) {
   SEAPLAN_RETURN_IF_ERROR(options.Validate());
   SEAPLAN_ASSIGN_OR_RETURN(auto model, internal::ActionModel::Create(domain_text, problem_text));
   const pddl::Problem& problem = model.problem();
@@ -111,8 +116,8 @@ StatusOr<RegeneratedProblem> RegenerateProblem(
   std::vector<std::pair<std::string, std::string>> objects;  // name, type text
   std::set<std::string> taken;
   for (const pddl::TypedName& o : problem.objects) {
-    objects.emplace_back(o.name, o.types.size() == 1 ? o.types[0]
-                                                     : "(either " + absl::StrJoin(o.types, " ") + ")");
+    objects.emplace_back(
+        o.name, o.types.size() == 1 ? o.types[0] : "(either " + absl::StrJoin(o.types, " ") + ")");
     taken.insert(o.name);
   }
   for (const pddl::TypedName& c : model.domain().constants) taken.insert(c.name);
@@ -131,7 +136,8 @@ StatusOr<RegeneratedProblem> RegenerateProblem(
     }
   }
   if (nearest.empty()) {
-    return absl::FailedPreconditionError("regeneration: no location of the problem has a known position");
+    return absl::FailedPreconditionError(
+        "regeneration: no location of the problem has a known position");
   }
   std::string here = nearest;
   if (nearest_d > options.snap_distance_m) {
@@ -149,7 +155,9 @@ StatusOr<RegeneratedProblem> RegenerateProblem(
       if (!model.IsStaticFunction(parts[0])) continue;
       for (size_t i = 1; i < parts.size(); ++i) numeric_by_object[parts[i]].push_back(key);
     }
-    auto is_location = [&](const std::string& o) { return locations.contains(o) && taken.contains(o); };
+    auto is_location = [&](const std::string& o) {
+      return locations.contains(o) && taken.contains(o);
+    };
 
     std::set<std::string> new_facts;
     std::map<std::string, double> new_fluents;
@@ -288,14 +296,15 @@ StatusOr<RegeneratedProblem> RegenerateProblem(
   // The (fuel ?v) flags follow the tank only in domains where they gate
   // actions (executor fuel, case C); in case A (no_fuel ?v) is a mission
   // goal ("refuel at E"), not a tank reading, and is left to the plan.
-  const bool fuel_gates_actions =
-      !options.fuel_predicate.empty() && model.PredicateInConditions(options.fuel_predicate) &&
-      model.domain().FindPredicate(options.fuel_predicate);
+  const bool fuel_gates_actions = !options.fuel_predicate.empty() &&
+                                  model.PredicateInConditions(options.fuel_predicate) &&
+                                  model.domain().FindPredicate(options.fuel_predicate);
   std::string fuel_function = options.fuel_function;
   if (fuel_function.empty()) {
     // A one-argument numeric function named like fuel is the tank level.
     for (const pddl::FunctionDecl& f : model.domain().functions) {
-      if (f.parameters.size() == 1 && f.name.find("fuel") != std::string::npos) fuel_function = f.name;
+      if (f.parameters.size() == 1 && f.name.find("fuel") != std::string::npos)
+        fuel_function = f.name;
     }
   }
   if (ship.fuel_fraction) {
@@ -303,11 +312,18 @@ StatusOr<RegeneratedProblem> RegenerateProblem(
     const pddl::Domain& d = model.domain();
     if (fuel_gates_actions) {
       std::string k = AtomKey(options.fuel_predicate, {ship_obj});
-      if (low) state.facts.erase(k); else state.facts.insert(k);
+      if (low)
+        state.facts.erase(k);
+      else
+        state.facts.insert(k);
     }
-    if (fuel_gates_actions && !options.no_fuel_predicate.empty() && d.FindPredicate(options.no_fuel_predicate)) {
+    if (fuel_gates_actions && !options.no_fuel_predicate.empty() &&
+        d.FindPredicate(options.no_fuel_predicate)) {
       std::string k = AtomKey(options.no_fuel_predicate, {ship_obj});
-      if (low) state.facts.insert(k); else state.facts.erase(k);
+      if (low)
+        state.facts.insert(k);
+      else
+        state.facts.erase(k);
     }
     if (!fuel_function.empty() && d.FindFunction(fuel_function)) {
       state.fluents[AtomKey(fuel_function, {ship_obj})] =
@@ -324,7 +340,8 @@ StatusOr<RegeneratedProblem> RegenerateProblem(
   for (const auto& [name, type] : objects) p << "\n    " << name << " - " << type;
   p << ")\n  (:init";
   for (const std::string& f : state.facts) p << "\n    " << f;
-  for (const auto& [k, v] : state.fluents) p << "\n    (= " << k << " " << validate::FormatTime(v) << ")";
+  for (const auto& [k, v] : state.fluents)
+    p << "\n    (= " << k << " " << validate::FormatTime(v) << ")";
   p << ")\n  (:goal " << internal::ToPddl(problem.goal) << ")\n";
   if (problem.metric.present) {
     p << "  (:metric " << (problem.metric.minimize ? "minimize " : "maximize ")

@@ -51,7 +51,8 @@ TEST_F(ProblemUpdateTest, CaseBAddsPortSWithRoutesFromGeometry) {
   ASSERT_TRUE(model.ok()) << model.status() << "\n" << p;
   auto state = model->InitialState();
   ASSERT_TRUE(state.fluents.contains("(route-length r-port-s-port-b)"));
-  EXPECT_NEAR(state.fluents["(route-length r-port-s-port-b)"], 52 * std::sqrt(720000.0) / 1000, 1e-9);
+  EXPECT_NEAR(state.fluents["(route-length r-port-s-port-b)"], 52 * std::sqrt(720000.0) / 1000,
+              1e-9);
   EXPECT_FALSE(r->goal_satisfied);
 }
 
@@ -69,7 +70,8 @@ TEST_F(ProblemUpdateTest, SnapsToANearbyLocation) {
 TEST_F(ProblemUpdateTest, FuelReadingSetsFlagsOnlyWhereFuelGatesActions) {
   std::vector<validate::PlanStep> all(plan_.steps.begin(), plan_.steps.end());
   // In the case A domain (fuel ship0) is only a goal: a tank reading leaves it alone.
-  auto goal_only = RegenerateProblem(domain_, problem_, all, {}, CaseALocations(), {{3000, 2000}, 0.25});
+  auto goal_only =
+      RegenerateProblem(domain_, problem_, all, {}, CaseALocations(), {{3000, 2000}, 0.25});
   ASSERT_TRUE(goal_only.ok()) << goal_only.status();
   EXPECT_TRUE(Has(goal_only->problem_text, "(fuel ship0)"));
   EXPECT_TRUE(goal_only->goal_satisfied);
@@ -104,7 +106,8 @@ TEST_F(ProblemUpdateTest, DistanceFunctionsOfTheTemplateAreScaledByGeometry) {
       :duration (= ?duration (/ (distance ?a ?b) (speed ?v)))
       :condition (and (at start (at ?v ?a)) (at start (connected ?a ?b)))
       :effect (and (at start (not (at ?v ?a))) (at end (at ?v ?b))))))";
-  std::string problem = R"((define (problem p) (:domain d) (:objects ship0 - ship port-a port-b - port)
+  std::string problem =
+      R"((define (problem p) (:domain d) (:objects ship0 - ship port-a port-b - port)
     (:init (at ship0 port-a) (connected port-a port-b) (connected port-b port-a)
            (= (distance port-a port-b) 52) (= (distance port-b port-a) 52) (= (speed ship0) 0.18))
     (:goal (at ship0 port-b))))";
@@ -124,7 +127,8 @@ TEST_F(ProblemUpdateTest, DistanceFunctionsOfTheTemplateAreScaledByGeometry) {
 TEST_F(ProblemUpdateTest, DomainPlansFuelOnlyWithANumericFuelFunction) {
   EXPECT_FALSE(DomainPlansFuel(domain_));
   std::string numeric = domain_;
-  numeric.replace(numeric.find("(speed ?v - vehicle)"), 20, "(speed ?v - vehicle) (fuel-level ?v - vehicle)");
+  numeric.replace(numeric.find("(speed ?v - vehicle)"), 20,
+                  "(speed ?v - vehicle) (fuel-level ?v - vehicle)");
   EXPECT_TRUE(DomainPlansFuel(numeric));
   EXPECT_FALSE(DomainPlansFuel("(define"));
 }
@@ -134,7 +138,6 @@ TEST_F(ProblemUpdateTest, BadStepIsAnError) {
   auto r = RegenerateProblem(domain_, problem_, {bad}, {}, CaseALocations(), {{0, 0}, 1.0});
   EXPECT_TRUE(absl::IsInvalidArgument(r.status())) << r.status();
 }
-
 
 }  // namespace
 }  // namespace seaplan::mission

@@ -56,8 +56,8 @@ StatusOr<std::vector<OrderEdge>> LiftOrder(const internal::ActionModel& model,
   for (int i = 0; i < n; ++i) {
     auto a = model.Instantiate(plan.steps[i].name, plan.steps[i].args);
     if (!a.ok()) {
-      return absl::InvalidArgumentError(
-          absl::StrCat("plan step ", i + 1, " ", plan.steps[i].DisplayName(), ": ", a.status().message()));
+      return absl::InvalidArgumentError(absl::StrCat(
+          "plan step ", i + 1, " ", plan.steps[i].DisplayName(), ": ", a.status().message()));
     }
     inst.push_back(std::move(*a));
   }
@@ -117,7 +117,8 @@ double EarliestStart(const validate::Plan& plan) {
 
 RoutePlanner StraightLineRouter(double speed_mps) {
   return [speed_mps](const RouteRequest& r) -> StatusOr<Route> {
-    if (!(speed_mps > 0)) return absl::InvalidArgumentError("straight-line router: speed must be > 0");
+    if (!(speed_mps > 0))
+      return absl::InvalidArgumentError("straight-line router: speed must be > 0");
     Route route;
     double length = Distance(r.from_position, r.to_position);
     route.length_m = length;
@@ -156,7 +157,8 @@ Status RefineOptions::Validate() const {
   if (!(tolerance_s >= 0)) return absl::InvalidArgumentError("refine: tolerance_s must be >= 0");
   for (const auto& [name, d] : port_operation_durations_s) {
     if (!(d >= 0)) {
-      return absl::InvalidArgumentError(absl::StrCat("refine: duration of ", name, " must be >= 0"));
+      return absl::InvalidArgumentError(
+          absl::StrCat("refine: duration of ", name, " must be >= 0"));
     }
   }
   return absl::OkStatus();
@@ -170,7 +172,8 @@ StatusOr<validate::Plan> Reschedule(std::string_view domain_text, std::string_vi
   }
   SEAPLAN_ASSIGN_OR_RETURN(auto model, internal::ActionModel::Create(domain_text, problem_text));
   SEAPLAN_ASSIGN_OR_RETURN(auto edges, LiftOrder(model, plan));
-  SEAPLAN_ASSIGN_OR_RETURN(auto starts, Schedule(edges, durations_s, EarliestStart(plan), epsilon_s));
+  SEAPLAN_ASSIGN_OR_RETURN(auto starts,
+                           Schedule(edges, durations_s, EarliestStart(plan), epsilon_s));
   validate::Plan out = plan;
   for (size_t i = 0; i < out.steps.size(); ++i) {
     out.steps[i].start_s = starts[i];
@@ -202,9 +205,9 @@ StatusOr<RefinedPlan> RefinePlan(std::string_view domain_text, std::string_view 
     bool named = std::find(options.moves.move_actions.begin(), options.moves.move_actions.end(),
                            s.name) != options.moves.move_actions.end();
     if (named && !legs[i]) {
-      return absl::InvalidArgumentError(absl::StrCat(
-          "plan step ", i + 1, " ", s.DisplayName(),
-          " is a move but does not name two locations with known positions"));
+      return absl::InvalidArgumentError(
+          absl::StrCat("plan step ", i + 1, " ", s.DisplayName(),
+                       " is a move but does not name two locations with known positions"));
     }
   }
 
@@ -215,21 +218,24 @@ StatusOr<RefinedPlan> RefinePlan(std::string_view domain_text, std::string_view 
   for (int iter = 1; iter <= options.max_iterations; ++iter) {
     for (size_t i = 0; i < n; ++i) {
       if (!legs[i]) continue;
-      RouteRequest req{plan.steps[i].name, legs[i]->from, legs[i]->to,
-                       locations.find(legs[i]->from)->second, locations.find(legs[i]->to)->second,
+      RouteRequest req{plan.steps[i].name,
+                       legs[i]->from,
+                       legs[i]->to,
+                       locations.find(legs[i]->from)->second,
+                       locations.find(legs[i]->to)->second,
                        starts[i]};
       StatusOr<Route> route = route_planner(req);
       if (!route.ok()) {
         if (absl::IsNotFound(route.status()) || absl::IsFailedPrecondition(route.status())) {
-          return absl::FailedPreconditionError(absl::StrCat(
-              "no safe route for leg ", req.from, " -> ", req.to, " (", req.action, ", step ", i + 1,
-              "): ", route.status().message()));
+          return absl::FailedPreconditionError(
+              absl::StrCat("no safe route for leg ", req.from, " -> ", req.to, " (", req.action,
+                           ", step ", i + 1, "): ", route.status().message()));
         }
         return route.status();
       }
       if (!(route->sailing_time_s >= 0) || !std::isfinite(route->sailing_time_s)) {
-        return absl::InternalError(absl::StrCat("route for leg ", req.from, " -> ", req.to,
-                                                " has no valid sailing time"));
+        return absl::InternalError(
+            absl::StrCat("route for leg ", req.from, " -> ", req.to, " has no valid sailing time"));
       }
       durations[i] = route->sailing_time_s;
       routes[i] = std::move(*route);

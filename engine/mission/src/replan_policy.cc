@@ -49,7 +49,8 @@ std::optional<std::string> DecideReplan(const Feedback& feedback, const PlanVers
                              active_task->id, policy.position_deviation_m);
     }
   }
-  if (policy.fuel_planned && feedback.fuel_fraction && FuelAtOrBelow(*feedback.fuel_fraction, 0.0)) {
+  if (policy.fuel_planned && feedback.fuel_fraction &&
+      FuelAtOrBelow(*feedback.fuel_fraction, 0.0)) {
     return std::string("fuel tank empty although fuel was planned");
   }
   if (!policy.fuel_planned && feedback.fuel_fraction &&
@@ -76,7 +77,8 @@ std::optional<std::string> DecideReplan(const Feedback& feedback, const PlanVers
   if (feedback.kind == FeedbackKind::kTaskCompleted && active_task &&
       feedback.mission_time_s > active_task->end_s() + policy.delay_tolerance_s) {
     return absl::StrFormat("task %s completed %.0f s late (tolerance %.0f s)", active_task->id,
-                           feedback.mission_time_s - active_task->end_s(), policy.delay_tolerance_s);
+                           feedback.mission_time_s - active_task->end_s(),
+                           policy.delay_tolerance_s);
   }
   return std::nullopt;
 }

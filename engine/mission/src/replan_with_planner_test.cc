@@ -24,8 +24,10 @@ TEST(ReplanWithPlannerTest, CaseBRegeneratedProblemIsPlannedFromPortS) {
   search::PlannerOptions opt;
   opt.time_limit_s = 20;
   opt.anytime = false;
-  auto res = search::Solve(domain_, r->problem_text, opt, StopToken::WithTimeout(std::chrono::seconds(30)));
-  if (res.status == search::PlanStatus::kError && res.message.find("not implemented") != std::string::npos) {
+  auto res = search::Solve(domain_, r->problem_text, opt,
+                           StopToken::WithTimeout(std::chrono::seconds(30)));
+  if (res.status == search::PlanStatus::kError &&
+      res.message.find("not implemented") != std::string::npos) {
     GTEST_SKIP() << "planner not implemented yet: " << res.message;
   }
   ASSERT_TRUE(res.status == search::PlanStatus::kSolvedSatisficing ||

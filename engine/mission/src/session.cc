@@ -11,7 +11,8 @@
 namespace seaplan::mission {
 
 FeedbackOutcome OnFeedback(const MissionDefinition& mission, const PlanVersion& current,
-                           const std::vector<std::string>& completed_task_ids, const Feedback& feedback) {
+                           const std::vector<std::string>& completed_task_ids,
+                           const Feedback& feedback) {
   FeedbackOutcome out;
   out.completed_task_ids = completed_task_ids;
   const Task* task = nullptr;
@@ -26,9 +27,12 @@ FeedbackOutcome OnFeedback(const MissionDefinition& mission, const PlanVersion& 
     out.completed_changed = true;
   }
   if (task) {
-    if (feedback.kind == FeedbackKind::kTaskStarted) out.log_messages.push_back(TaskStartedMessage(task->kind));
-    if (feedback.kind == FeedbackKind::kTaskCompleted) out.log_messages.push_back(TaskCompletedMessage(task->kind));
-    if (feedback.kind == FeedbackKind::kTaskFailed) out.log_messages.push_back(TaskFailedMessage(task->kind));
+    if (feedback.kind == FeedbackKind::kTaskStarted)
+      out.log_messages.push_back(TaskStartedMessage(task->kind));
+    if (feedback.kind == FeedbackKind::kTaskCompleted)
+      out.log_messages.push_back(TaskCompletedMessage(task->kind));
+    if (feedback.kind == FeedbackKind::kTaskFailed)
+      out.log_messages.push_back(TaskFailedMessage(task->kind));
   }
   if (feedback.kind == FeedbackKind::kCollisionAvoidance) {
     out.log_messages.push_back(feedback.detail.empty() ? std::string(messages::kPotentialCollision)
@@ -38,7 +42,8 @@ FeedbackOutcome OnFeedback(const MissionDefinition& mission, const PlanVersion& 
   const Task* active = task;
   if (!active) {
     for (const Task& t : current.tasks) {
-      if (t.kind == TaskKind::kMove && !done.contains(t.id) && t.start_s <= feedback.mission_time_s + 1e-6) {
+      if (t.kind == TaskKind::kMove && !done.contains(t.id) &&
+          t.start_s <= feedback.mission_time_s + 1e-6) {
         active = &t;
       }
     }
@@ -51,7 +56,8 @@ FeedbackOutcome OnFeedback(const MissionDefinition& mission, const PlanVersion& 
   return out;
 }
 
-ReplanInput MakeReplanInput(const PlanVersion& current, const std::vector<std::string>& completed_task_ids,
+ReplanInput MakeReplanInput(const PlanVersion& current,
+                            const std::vector<std::string>& completed_task_ids,
                             const std::vector<Feedback>& recent_feedback, std::string reason,
                             const ShipObservation& ship, double mission_time_s) {
   ReplanInput in;
@@ -81,7 +87,8 @@ ReplanInput MakeReplanInput(const PlanVersion& current, const std::vector<std::s
 std::string EncodeEngineState(const LocationTable& locations) {
   std::string out;
   for (const auto& [name, p] : locations) {
-    absl::StrAppend(&out, name, " ", validate::FormatTime(p.x_m), " ", validate::FormatTime(p.y_m), "\n");
+    absl::StrAppend(&out, name, " ", validate::FormatTime(p.x_m), " ", validate::FormatTime(p.y_m),
+                    "\n");
   }
   return out;
 }
@@ -89,12 +96,14 @@ std::string EncodeEngineState(const LocationTable& locations) {
 StatusOr<LocationTable> DecodeEngineState(std::string_view text) {
   LocationTable t;
   int line = 0;
-  for (absl::string_view l : absl::StrSplit(absl::string_view(text.data(), text.size()), '\n', absl::SkipEmpty())) {
+  for (absl::string_view l :
+       absl::StrSplit(absl::string_view(text.data(), text.size()), '\n', absl::SkipEmpty())) {
     ++line;
     std::vector<std::string> w = absl::StrSplit(l, ' ', absl::SkipEmpty());
     double x, y;
     if (w.size() != 3 || !absl::SimpleAtod(w[1], &x) || !absl::SimpleAtod(w[2], &y)) {
-      return absl::InvalidArgumentError(absl::StrCat("engine state line ", line, ": expected 'name x y'"));
+      return absl::InvalidArgumentError(
+          absl::StrCat("engine state line ", line, ": expected 'name x y'"));
     }
     t[w[0]] = {x, y};
   }

@@ -10,7 +10,8 @@ namespace {
 PlanVersion Version() {
   MissionDefinition def{testing::ReadTestData("domain.pddl"), testing::ReadTestData("case-a.pddl"),
                         testing::CaseALocations()};
-  auto refined = RefinePlan(def.domain, def.problem, testing::CaseAPlan(), def.locations, StraightLineRouter(5));
+  auto refined = RefinePlan(def.domain, def.problem, testing::CaseAPlan(), def.locations,
+                            StraightLineRouter(5));
   PlanVersion v;
   v.version = 1;
   v.tasks = ParseTasks(*refined, def.locations, MoveRecognition{}, 1);
@@ -22,7 +23,8 @@ TEST(SessionTest, CompletionFailureAndLog) {
   PlanVersion v = Version();
   std::vector<std::string> done;
   for (size_t i = 0; i + 1 < v.tasks.size(); ++i) {
-    Feedback f{FeedbackKind::kTaskCompleted, v.tasks[i].id, 1, v.tasks[i].end_s(), std::nullopt, 0.9, ""};
+    Feedback f{
+        FeedbackKind::kTaskCompleted, v.tasks[i].id, 1, v.tasks[i].end_s(), std::nullopt, 0.9, ""};
     FeedbackOutcome o = OnFeedback(def, v, done, f);
     EXPECT_FALSE(o.mission_completed);
     EXPECT_TRUE(o.completed_changed);
@@ -30,7 +32,13 @@ TEST(SessionTest, CompletionFailureAndLog) {
   }
   Feedback again{FeedbackKind::kTaskCompleted, v.tasks[0].id, 1, 10, std::nullopt, 0.9, ""};
   EXPECT_FALSE(OnFeedback(def, v, done, again).completed_changed);
-  Feedback last{FeedbackKind::kTaskCompleted, v.tasks.back().id, 1, v.tasks.back().end_s(), std::nullopt, 0.9, ""};
+  Feedback last{FeedbackKind::kTaskCompleted,
+                v.tasks.back().id,
+                1,
+                v.tasks.back().end_s(),
+                std::nullopt,
+                0.9,
+                ""};
   FeedbackOutcome o = OnFeedback(def, v, done, last);
   EXPECT_TRUE(o.mission_completed);
   EXPECT_EQ(o.log_messages.front(), "refuel task completed");

@@ -19,7 +19,8 @@ std::vector<Task> ParseTasks(const RefinedPlan& refined, const LocationTable& lo
     t.start_s = step.start_s;
     t.duration_s = step.duration_s;
     t.action = step;
-    const std::optional<Route>& route = i < refined.routes.size() ? refined.routes[i] : std::nullopt;
+    const std::optional<Route>& route =
+        i < refined.routes.size() ? refined.routes[i] : std::nullopt;
     if (std::optional<MoveLeg> leg = RecognizeMove(step, locations, recognition); leg && route) {
       t.kind = TaskKind::kMove;
       t.from_location = leg->from;

@@ -20,8 +20,11 @@ inline std::string ReadTestData(const std::string& name) {
 
 // A-B 1000 m, B-C 1500 m, C-D 500 m, D-E 2000 m.
 inline LocationTable CaseALocations() {
-  return {{"port-a", {0, 0}},      {"port-b", {1000, 0}},   {"port-c", {1000, 1500}},
-          {"port-d", {1000, 2000}}, {"port-e", {3000, 2000}}};
+  return {{"port-a", {0, 0}},
+          {"port-b", {1000, 0}},
+          {"port-c", {1000, 1500}},
+          {"port-d", {1000, 2000}},
+          {"port-e", {3000, 2000}}};
 }
 
 inline validate::Plan CaseAPlan() {

@@ -4,14 +4,20 @@
 
 namespace seaplan::mission {
 
-double Distance(Point a, Point b) { return std::hypot(a.x_m - b.x_m, a.y_m - b.y_m); }
+double Distance(Point a, Point b) {
+  return std::hypot(a.x_m - b.x_m, a.y_m - b.y_m);
+}
 
 std::string_view MsoModeName(MsoMode mode) {
   switch (mode) {
-    case MsoMode::kPto: return "PTO";
-    case MsoMode::kMec: return "MEC";
-    case MsoMode::kPti: return "PTI";
-    case MsoMode::kUnspecified: break;
+    case MsoMode::kPto:
+      return "PTO";
+    case MsoMode::kMec:
+      return "MEC";
+    case MsoMode::kPti:
+      return "PTI";
+    case MsoMode::kUnspecified:
+      break;
   }
   return "-";
 }
@@ -33,12 +39,18 @@ std::vector<ModeScheduleEntry> ModeSchedule(const Route& route) {
 
 std::string_view TaskKindName(TaskKind kind) {
   switch (kind) {
-    case TaskKind::kMove: return "move";
-    case TaskKind::kLoad: return "load";
-    case TaskKind::kUnload: return "unload";
-    case TaskKind::kRepair: return "repair";
-    case TaskKind::kRefuel: return "refuel";
-    case TaskKind::kOther: break;
+    case TaskKind::kMove:
+      return "move";
+    case TaskKind::kLoad:
+      return "load";
+    case TaskKind::kUnload:
+      return "unload";
+    case TaskKind::kRepair:
+      return "repair";
+    case TaskKind::kRefuel:
+      return "refuel";
+    case TaskKind::kOther:
+      break;
   }
   return "other";
 }

@@ -39,13 +39,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   options.max_actions = 20'000;  // keep each run fast; budgets are part of what is tested
   options.max_facts = 20'000;
   if (const auto split = text.find(kSeparator); split != std::string_view::npos) {
-    auto loaded = seaplan::task::LoadTask(text.substr(0, split), text.substr(split + kSeparator.size()), options);
+    auto loaded = seaplan::task::LoadTask(text.substr(0, split),
+                                          text.substr(split + kSeparator.size()), options);
     (void)loaded;
     return 0;
   }
   auto domain = seaplan::pddl::ParseDomain(text);
   (void)domain;
-  static const auto* fixed = new seaplan::pddl::DomainParseResult(seaplan::pddl::ParseDomain(kDomain));
+  static const auto* fixed =
+      new seaplan::pddl::DomainParseResult(seaplan::pddl::ParseDomain(kDomain));
   if (fixed->domain) {
     auto problem = seaplan::pddl::ParseProblem(text, *fixed->domain);
     if (problem.problem) {

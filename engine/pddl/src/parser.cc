@@ -6,8 +6,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <tuple>
 #include <cstdlib>
+#include <tuple>
 #include <unordered_map>
 #include <unordered_set>
 
@@ -29,8 +29,12 @@ bool IsNumberToken(std::string_view s) {
 // PDDL names: a letter (digits and '_' tolerated) then letters, digits, '-', '_'.
 bool IsValidName(std::string_view s) {
   if (s.empty()) return false;
-  auto ok_first = [](char c) { return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_'; };
-  auto ok_rest = [](char c) { return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_' || c == '-'; };
+  auto ok_first = [](char c) {
+    return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_';
+  };
+  auto ok_rest = [](char c) {
+    return (c >= 'a' && c <= 'z') || (c >= '0' && c <= '9') || c == '_' || c == '-';
+  };
   if (!ok_first(s[0])) return false;
   for (char c : s.substr(1)) {
     if (!ok_rest(c)) return false;
@@ -38,7 +42,9 @@ bool IsValidName(std::string_view s) {
   return true;
 }
 
-bool IsValidVariable(std::string_view s) { return s.size() >= 2 && s[0] == '?' && IsValidName(s.substr(1)); }
+bool IsValidVariable(std::string_view s) {
+  return s.size() >= 2 && s[0] == '?' && IsValidName(s.substr(1));
+}
 
 // Declared types and their parents, for subtype checks during parsing.
 class TypeGraph {
@@ -129,7 +135,8 @@ class Builder {
   }
   void Warn(const SExpr& at, std::string message, std::string expected = "") {
     diags_.push_back({Severity::kWarning, DiagnosticKind::kSemantic, Loc(at),
-                      at.is_list ? Describe(at) : at.atom, std::move(message), std::move(expected)});
+                      at.is_list ? Describe(at) : at.atom, std::move(message),
+                      std::move(expected)});
   }
   void Unsupported(const SExpr& at, const std::string& construct) {
     diags_.push_back({Severity::kError, DiagnosticKind::kUnsupported, Loc(at),
@@ -149,8 +156,8 @@ class Builder {
   // Parses a list of either variables or names with optional `- type`
   // specifiers, starting at items[begin]. Type names are checked when
   // `check_types` is set.
-  std::vector<TypedName> TypedList(const std::vector<SExpr>& items, std::size_t begin, bool variables,
-                                   bool check_types) {
+  std::vector<TypedName> TypedList(const std::vector<SExpr>& items, std::size_t begin,
+                                   bool variables, bool check_types) {
     std::vector<TypedName> out;
     std::size_t pending_from = 0;
     for (std::size_t i = begin; i < items.size(); ++i) {
@@ -177,7 +184,8 @@ class Builder {
       }
       if (variables ? !IsValidVariable(e.atom) : !IsValidName(e.atom)) {
         Error(DiagnosticKind::kSyntax, e, variables ? "invalid variable name" : "invalid name",
-              variables ? "'?' followed by a letter, digits, '-' or '_'" : "a letter followed by letters, digits, '-' or '_'");
+              variables ? "'?' followed by a letter, digits, '-' or '_'"
+                        : "a letter followed by letters, digits, '-' or '_'");
         continue;
       }
       out.push_back({e.atom, {"object"}, Loc(e)});
@@ -259,7 +267,8 @@ class Builder {
   // Resolves a term; returns its types ("" types on failure).
   std::optional<std::vector<std::string>> TermTypes(const SExpr& e) {
     if (e.is_list) {
-      Error(DiagnosticKind::kSyntax, e, "unexpected list as an argument", "a variable or an object name");
+      Error(DiagnosticKind::kSyntax, e, "unexpected list as an argument",
+            "a variable or an object name");
       return std::nullopt;
     }
     if (!e.atom.empty() && e.atom[0] == '?') {
@@ -273,7 +282,8 @@ class Builder {
     auto it = objects_.find(e.atom);
     if (it != objects_.end()) return it->second.types;
     if (IsNumberToken(e.atom)) {
-      Error(DiagnosticKind::kSemantic, e, "number where an object is expected", "a variable or an object name");
+      Error(DiagnosticKind::kSemantic, e, "number where an object is expected",
+            "a variable or an object name");
     } else {
       Error(DiagnosticKind::kSemantic, e, object_scope_message_,
             objects_is_problem_ ? "an object declared in :objects or a domain constant"
@@ -285,7 +295,8 @@ class Builder {
   std::vector<Term> Terms(const SExpr& list, std::size_t begin) {
     std::vector<Term> out;
     for (std::size_t i = begin; i < list.items.size(); ++i) {
-      out.push_back({list.items[i].is_list ? std::string() : list.items[i].atom, Loc(list.items[i])});
+      out.push_back(
+          {list.items[i].is_list ? std::string() : list.items[i].atom, Loc(list.items[i])});
     }
     return out;
   }
@@ -294,10 +305,12 @@ class Builder {
                       const Signature& sig) {
     const std::size_t got = list.items.size() - 1;
     if (got != sig.parameter_types.size()) {
-      Error(DiagnosticKind::kSemantic, list,
-            "wrong number of arguments for " + what_kind + " '" + name + "': " + std::to_string(got),
-            std::to_string(sig.parameter_types.size()) + " (declared at " + sig.location.ToString() + ")",
-            name);
+      Error(
+          DiagnosticKind::kSemantic, list,
+          "wrong number of arguments for " + what_kind + " '" + name + "': " + std::to_string(got),
+          std::to_string(sig.parameter_types.size()) + " (declared at " + sig.location.ToString() +
+              ")",
+          name);
     }
     for (std::size_t i = 1; i < list.items.size(); ++i) {
       auto types = TermTypes(list.items[i]);
@@ -310,10 +323,9 @@ class Builder {
                   "' has type " + JoinTypes(*types),
               "type " + JoinTypes(want));
       } else if (fit == TypeFit::kMaybe && warn_maybe_) {
-        Warn(list.items[i],
-             "argument " + std::to_string(i) + " of " + what_kind + " '" + name + "' has type " +
-                 JoinTypes(*types) + ", wider than the declared " + JoinTypes(want) +
-                 "; only objects of the declared type can match");
+        Warn(list.items[i], "argument " + std::to_string(i) + " of " + what_kind + " '" + name +
+                                "' has type " + JoinTypes(*types) + ", wider than the declared " +
+                                JoinTypes(want) + "; only objects of the declared type can match");
       }
     }
   }
@@ -335,7 +347,8 @@ class Builder {
     }
     auto it = predicates_.find(name);
     if (it == predicates_.end()) {
-      Error(DiagnosticKind::kSemantic, e.items[0], "undeclared predicate", "a predicate declared in :predicates");
+      Error(DiagnosticKind::kSemantic, e.items[0], "undeclared predicate",
+            "a predicate declared in :predicates");
       for (std::size_t i = 1; i < e.items.size(); ++i) TermTypes(e.items[i]);
       return std::nullopt;
     }
@@ -358,8 +371,8 @@ class Builder {
       }
       if (e.atom == "?duration") {
         if (!allow_duration) {
-          Error(DiagnosticKind::kSemantic, e, "?duration outside a durative action's effect or duration",
-                "a number or a fluent");
+          Error(DiagnosticKind::kSemantic, e,
+                "?duration outside a durative action's effect or duration", "a number or a fluent");
           return std::nullopt;
         }
         out.kind = NumExpr::Kind::kDuration;
@@ -367,7 +380,8 @@ class Builder {
       }
       if (e.atom == "total-time") {
         if (!allow_total_time) {
-          Error(DiagnosticKind::kSemantic, e, "total-time outside the metric", "a number or a fluent");
+          Error(DiagnosticKind::kSemantic, e, "total-time outside the metric",
+                "a number or a fluent");
           return std::nullopt;
         }
         out.kind = NumExpr::Kind::kTotalTime;
@@ -388,7 +402,8 @@ class Builder {
       return std::nullopt;
     }
     if (e.items.empty() || e.items[0].is_list) {
-      Error(DiagnosticKind::kSyntax, e, "expected a numeric expression", "a number, (function args) or (op a b)");
+      Error(DiagnosticKind::kSyntax, e, "expected a numeric expression",
+            "a number, (function args) or (op a b)");
       return std::nullopt;
     }
     const std::string& head = e.items[0].atom;
@@ -404,7 +419,7 @@ class Builder {
         if (!child) return std::nullopt;
         out.children.push_back(std::move(*child));
       }
-      out.kind = head == "+" ? NumExpr::Kind::kAdd
+      out.kind = head == "+"   ? NumExpr::Kind::kAdd
                  : head == "-" ? (n == 1 ? NumExpr::Kind::kNeg : NumExpr::Kind::kSub)
                  : head == "*" ? NumExpr::Kind::kMul
                                : NumExpr::Kind::kDiv;
@@ -412,7 +427,8 @@ class Builder {
     }
     if (head == "total-time" && e.items.size() == 1) {
       if (!allow_total_time) {
-        Error(DiagnosticKind::kSemantic, e, "total-time outside the metric", "a number or a fluent");
+        Error(DiagnosticKind::kSemantic, e, "total-time outside the metric",
+              "a number or a fluent");
         return std::nullopt;
       }
       out.kind = NumExpr::Kind::kTotalTime;
@@ -427,7 +443,8 @@ class Builder {
       return std::nullopt;
     }
     if (functions_.count(head) == 0) {
-      Error(DiagnosticKind::kSemantic, e.items[0], "undeclared function", "a function declared in :functions");
+      Error(DiagnosticKind::kSemantic, e.items[0], "undeclared function",
+            "a function declared in :functions");
       return std::nullopt;
     }
     out.kind = NumExpr::Kind::kFluent;
@@ -482,7 +499,8 @@ class Builder {
   }
 
   static std::optional<TimeSpec> TimeFromList(const SExpr& e) {
-    if (!e.is_list || e.items.size() != 3 || !e.items[2].is_list || e.items[1].is_list) return std::nullopt;
+    if (!e.is_list || e.items.size() != 3 || !e.items[2].is_list || e.items[1].is_list)
+      return std::nullopt;
     std::string_view head = e.Head();
     if (head == "at" && e.items[1].atom == "start") return TimeSpec::kAtStart;
     if (head == "at" && e.items[1].atom == "end") return TimeSpec::kAtEnd;
@@ -497,7 +515,8 @@ class Builder {
     Condition out;
     out.location = Loc(e);
     if (!e.is_list) {
-      Error(DiagnosticKind::kSyntax, e, "expected a condition", "a list such as (predicate args) or (and ...)");
+      Error(DiagnosticKind::kSyntax, e, "expected a condition",
+            "a list such as (predicate args) or (and ...)");
       return std::nullopt;
     }
     if (e.items.empty()) {
@@ -511,8 +530,8 @@ class Builder {
     const std::string& head = e.items[0].atom;
     if (auto time = TimeFromList(e)) {
       if (!durative) {
-        Error(DiagnosticKind::kSemantic, e, "time specifier outside a durative action", "an untimed condition",
-              head + " " + e.items[1].atom);
+        Error(DiagnosticKind::kSemantic, e, "time specifier outside a durative action",
+              "an untimed condition", head + " " + e.items[1].atom);
         return std::nullopt;
       }
       if (timed) {
@@ -559,7 +578,8 @@ class Builder {
     }
     if (head == "imply") {
       if (e.items.size() != 3) {
-        Error(DiagnosticKind::kSyntax, e, "'imply' takes two conditions", "(imply condition condition)", "imply");
+        Error(DiagnosticKind::kSyntax, e, "'imply' takes two conditions",
+              "(imply condition condition)", "imply");
         return std::nullopt;
       }
       auto a = ParseCondition(e.items[1], durative, timed);
@@ -572,7 +592,8 @@ class Builder {
     }
     if (head == "exists" || head == "forall") {
       if (e.items.size() != 3 || !e.items[1].is_list) {
-        Error(DiagnosticKind::kSyntax, e, "malformed quantifier", "(" + head + " (?x - type ...) condition)", head);
+        Error(DiagnosticKind::kSyntax, e, "malformed quantifier",
+              "(" + head + " (?x - type ...) condition)", head);
         return std::nullopt;
       }
       out.kind = head == "exists" ? Condition::Kind::kExists : Condition::Kind::kForall;
@@ -591,7 +612,8 @@ class Builder {
     }
     if (auto cmp = ComparatorFromHead(head)) {
       if (e.items.size() != 3) {
-        Error(DiagnosticKind::kSyntax, e, "comparison takes two operands", "(" + head + " a b)", head);
+        Error(DiagnosticKind::kSyntax, e, "comparison takes two operands", "(" + head + " a b)",
+              head);
         return std::nullopt;
       }
       // (= a b) between two terms is equality of objects.
@@ -620,7 +642,8 @@ class Builder {
 
   // A symbol that is not a number and not a 0-ary function: an object or variable.
   bool IsTermLike(const SExpr& e) const {
-    return !e.is_list && !IsNumberToken(e.atom) && e.atom != "?duration" && functions_.count(e.atom) == 0;
+    return !e.is_list && !IsNumberToken(e.atom) && e.atom != "?duration" &&
+           functions_.count(e.atom) == 0;
   }
 
   // ---- effects -----------------------------------------------------------------
@@ -629,7 +652,8 @@ class Builder {
     Effect out;
     out.location = Loc(e);
     if (!e.is_list) {
-      Error(DiagnosticKind::kSyntax, e, "expected an effect", "(predicate args), (not ...), (and ...)");
+      Error(DiagnosticKind::kSyntax, e, "expected an effect",
+            "(predicate args), (not ...), (and ...)");
       return std::nullopt;
     }
     if (e.items.empty()) {
@@ -637,7 +661,8 @@ class Builder {
       return out;
     }
     if (e.items[0].is_list) {
-      Error(DiagnosticKind::kSyntax, e.items[0], "expected a predicate or an effect keyword", "a name");
+      Error(DiagnosticKind::kSyntax, e.items[0], "expected a predicate or an effect keyword",
+            "a name");
       return std::nullopt;
     }
     const std::string& head = e.items[0].atom;
@@ -645,8 +670,10 @@ class Builder {
       if (!durative || timed || *time == TimeSpec::kOverAll) {
         Error(DiagnosticKind::kSemantic, e,
               *time == TimeSpec::kOverAll ? "'over all' is not allowed on effects"
-                                          : (durative ? "nested time specifier" : "time specifier outside a durative action"),
-              "(at start effect) or (at end effect) in a durative action", head + " " + e.items[1].atom);
+                                          : (durative ? "nested time specifier"
+                                                      : "time specifier outside a durative action"),
+              "(at start effect) or (at end effect) in a durative action",
+              head + " " + e.items[1].atom);
         return std::nullopt;
       }
       auto inner = ParseEffect(e.items[2], durative, true);
@@ -687,7 +714,8 @@ class Builder {
       auto atom = ParseAtom(e.items[1]);
       if (!atom) return std::nullopt;
       if (atom->predicate == "=") {
-        Error(DiagnosticKind::kSemantic, e.items[1], "equality cannot be an effect", "(predicate args)", "=");
+        Error(DiagnosticKind::kSemantic, e.items[1], "equality cannot be an effect",
+              "(predicate args)", "=");
         return std::nullopt;
       }
       out.kind = Effect::Kind::kDelete;
@@ -696,7 +724,8 @@ class Builder {
     }
     if (head == "forall") {
       if (e.items.size() != 3 || !e.items[1].is_list) {
-        Error(DiagnosticKind::kSyntax, e, "malformed forall", "(forall (?x - type ...) effect)", head);
+        Error(DiagnosticKind::kSyntax, e, "malformed forall", "(forall (?x - type ...) effect)",
+              head);
         return std::nullopt;
       }
       out.kind = Effect::Kind::kForall;
@@ -732,7 +761,8 @@ class Builder {
     for (const auto& [name, op] : kOps) {
       if (head != name) continue;
       if (e.items.size() != 3) {
-        Error(DiagnosticKind::kSyntax, e, "malformed numeric effect", "(" + head + " (function args) expression)", head);
+        Error(DiagnosticKind::kSyntax, e, "malformed numeric effect",
+              "(" + head + " (function args) expression)", head);
         return std::nullopt;
       }
       if (ContainsHashT(e.items[2])) {
@@ -742,8 +772,8 @@ class Builder {
       auto fluent = ParseNumExpr(e.items[1], false, false);
       if (!fluent) return std::nullopt;
       if (fluent->kind != NumExpr::Kind::kFluent) {
-        Error(DiagnosticKind::kSemantic, e.items[1], "the target of a numeric effect must be a fluent",
-              "(function args)");
+        Error(DiagnosticKind::kSemantic, e.items[1],
+              "the target of a numeric effect must be a fluent", "(function args)");
         return std::nullopt;
       }
       auto value = ParseNumExpr(e.items[2], durative, false);
@@ -768,16 +798,21 @@ class Builder {
   // The file's one top-level form, `(define (<kind> name) ...)`. Reports an
   // empty file, text after the form and a file of the `other` kind (domain
   // vs problem); returns nullptr when there is no usable definition.
-  const SExpr* Definition(const std::vector<SExpr>& top, const internal::ReadResult& read, const std::string& kind,
-                          const std::string& other) {
+  const SExpr* Definition(const std::vector<SExpr>& top, const internal::ReadResult& read,
+                          const std::string& kind, const std::string& other) {
     const std::string form = "(define (" + kind + " name) ...)";
     if (top.empty()) {
-      diags_.push_back({Severity::kError, DiagnosticKind::kSyntax, {file_, read.eof_line, read.eof_column},
-                        "end of file", "empty " + kind, form});
+      diags_.push_back({Severity::kError,
+                        DiagnosticKind::kSyntax,
+                        {file_, read.eof_line, read.eof_column},
+                        "end of file",
+                        "empty " + kind,
+                        form});
       return nullptr;
     }
     for (std::size_t i = 1; i < top.size(); ++i) {
-      Error(DiagnosticKind::kSyntax, top[i], "text after the " + kind + " definition", "end of file");
+      Error(DiagnosticKind::kSyntax, top[i], "text after the " + kind + " definition",
+            "end of file");
     }
     const SExpr& def = top[0];
     if (def.Head() != "define" || def.items.size() < 2 || def.items[1].Head() != kind ||
@@ -831,11 +866,22 @@ const char* UnsupportedRequirement(std::string_view r) {
 }
 
 bool KnownRequirement(std::string_view r) {
-  static const char* kKnown[] = {":strips", ":typing", ":negative-preconditions", ":disjunctive-preconditions",
-                                 ":equality", ":existential-preconditions", ":universal-preconditions",
-                                 ":quantified-preconditions", ":conditional-effects", ":adl",
-                                 ":numeric-fluents", ":fluents", ":durative-actions", ":duration-inequalities",
-                                 ":timed-initial-literals", ":action-costs"};
+  static const char* kKnown[] = {":strips",
+                                 ":typing",
+                                 ":negative-preconditions",
+                                 ":disjunctive-preconditions",
+                                 ":equality",
+                                 ":existential-preconditions",
+                                 ":universal-preconditions",
+                                 ":quantified-preconditions",
+                                 ":conditional-effects",
+                                 ":adl",
+                                 ":numeric-fluents",
+                                 ":fluents",
+                                 ":durative-actions",
+                                 ":duration-inequalities",
+                                 ":timed-initial-literals",
+                                 ":action-costs"};
   for (const char* k : kKnown) {
     if (r == k) return true;
   }
@@ -863,7 +909,8 @@ class DomainBuilder : public Builder {
         for (std::size_t k = 1; k < section.items.size(); ++k) {
           const SExpr& r = section.items[k];
           if (r.is_list) {
-            Error(DiagnosticKind::kSyntax, r, "unexpected list in :requirements", "a requirement such as :typing");
+            Error(DiagnosticKind::kSyntax, r, "unexpected list in :requirements",
+                  "a requirement such as :typing");
             continue;
           }
           if (const char* what = UnsupportedRequirement(r.atom)) {
@@ -888,10 +935,12 @@ class DomainBuilder : public Builder {
       } else if (head == ":constraints") {
         Unsupported(section, "state trajectory constraints (:constraints)");
       } else if (head == ":process" || head == ":event") {
-        Unsupported(section, std::string("PDDL+ ") + std::string(head.substr(1)) + " (" + std::string(head) + ")");
+        Unsupported(section, std::string("PDDL+ ") + std::string(head.substr(1)) + " (" +
+                                 std::string(head) + ")");
       } else {
         Error(DiagnosticKind::kSyntax, section, "unknown domain section",
-              ":requirements, :types, :constants, :predicates, :functions, :action or :durative-action");
+              ":requirements, :types, :constants, :predicates, :functions, :action or "
+              ":durative-action");
       }
     }
     if (std::string cycle = types_.FindCycle(); !cycle.empty()) {
@@ -918,7 +967,8 @@ class DomainBuilder : public Builder {
   }
 
   void AddObject(const TypedName& object, bool constant, const SExpr& at) {
-    auto [it, inserted] = objects_.try_emplace(object.name, ObjectInfo{object.types, object.location, constant});
+    auto [it, inserted] =
+        objects_.try_emplace(object.name, ObjectInfo{object.types, object.location, constant});
     if (inserted) return;
     SExpr where = at;
     where.is_list = false;
@@ -926,8 +976,9 @@ class DomainBuilder : public Builder {
     where.line = object.location.line;
     where.column = object.location.column;
     if (it->second.types == object.types) {
-      Warn(where, std::string(it->second.is_constant ? "repeats the domain constant" : "declared twice") +
-                      " (first at " + it->second.location.ToString() + ")");
+      Warn(where,
+           std::string(it->second.is_constant ? "repeats the domain constant" : "declared twice") +
+               " (first at " + it->second.location.ToString() + ")");
     } else {
       Error(DiagnosticKind::kSemantic, where,
             "declared again with a different type " + JoinTypes(object.types) + " (first as " +
@@ -969,13 +1020,15 @@ class DomainBuilder : public Builder {
     for (std::size_t i = 1; i < section.items.size(); ++i) {
       const SExpr& p = section.items[i];
       if (!p.is_list || p.items.empty() || p.items[0].is_list || !IsValidName(p.items[0].atom)) {
-        Error(DiagnosticKind::kSyntax, p, "malformed predicate declaration", "(name ?x - type ...)");
+        Error(DiagnosticKind::kSyntax, p, "malformed predicate declaration",
+              "(name ?x - type ...)");
         continue;
       }
       PredicateDecl decl{p.items[0].atom, TypedList(p.items, 1, true, true), Loc(p)};
       if (predicates_.count(decl.name) > 0) {
         Error(DiagnosticKind::kSemantic, p.items[0], "predicate declared twice",
-              "a unique predicate name (first at " + predicates_[decl.name].location.ToString() + ")");
+              "a unique predicate name (first at " + predicates_[decl.name].location.ToString() +
+                  ")");
         continue;
       }
       predicates_[decl.name] = MakeSignature(decl.parameters, decl.location);
@@ -1000,7 +1053,8 @@ class DomainBuilder : public Builder {
             Error(DiagnosticKind::kSemantic, type, "unknown function type", "number");
           }
         }
-        for (std::size_t k = first_pending; k < domain.functions.size(); ++k) domain.functions[k].result_type = type.atom;
+        for (std::size_t k = first_pending; k < domain.functions.size(); ++k)
+          domain.functions[k].result_type = type.atom;
         first_pending = domain.functions.size();
         ++i;
         continue;
@@ -1011,7 +1065,8 @@ class DomainBuilder : public Builder {
       }
       FunctionDecl decl{f.items[0].atom, TypedList(f.items, 1, true, true), "number", Loc(f)};
       if (functions_.count(decl.name) > 0 || predicates_.count(decl.name) > 0) {
-        Error(DiagnosticKind::kSemantic, f.items[0], "function name declared twice", "a unique name");
+        Error(DiagnosticKind::kSemantic, f.items[0], "function name declared twice",
+              "a unique name");
         continue;
       }
       functions_[decl.name] = MakeSignature(decl.parameters, decl.location);
@@ -1022,7 +1077,8 @@ class DomainBuilder : public Builder {
   std::optional<Action> ParseAction(const SExpr& a) {
     const bool durative = a.Head() == ":durative-action";
     if (a.items.size() < 2 || a.items[1].is_list || !IsValidName(a.items[1].atom)) {
-      Error(DiagnosticKind::kSyntax, a, "action without a valid name", "(" + std::string(a.Head()) + " name ...)");
+      Error(DiagnosticKind::kSyntax, a, "action without a valid name",
+            "(" + std::string(a.Head()) + " name ...)");
       return std::nullopt;
     }
     Action action;
@@ -1043,7 +1099,8 @@ class DomainBuilder : public Builder {
       const SExpr& key = a.items[i];
       if (key.is_list || key.atom.empty() || key.atom[0] != ':') {
         Error(DiagnosticKind::kSyntax, key, "expected an action keyword",
-              durative ? ":parameters, :duration, :condition or :effect" : ":parameters, :precondition or :effect");
+              durative ? ":parameters, :duration, :condition or :effect"
+                       : ":parameters, :precondition or :effect");
         ok = false;
         continue;
       }
@@ -1057,13 +1114,15 @@ class DomainBuilder : public Builder {
         parameters = value;
       } else if (key.atom == ":duration" && durative) {
         duration = value;
-      } else if ((key.atom == ":condition" && durative) || (key.atom == ":precondition" && !durative)) {
+      } else if ((key.atom == ":condition" && durative) ||
+                 (key.atom == ":precondition" && !durative)) {
         condition = value;
       } else if (key.atom == ":effect") {
         effect = value;
       } else {
         Error(DiagnosticKind::kSyntax, key, "unexpected keyword in " + std::string(a.Head()),
-              durative ? ":parameters, :duration, :condition or :effect" : ":parameters, :precondition or :effect");
+              durative ? ":parameters, :duration, :condition or :effect"
+                       : ":parameters, :precondition or :effect");
         ok = false;
       }
     }
@@ -1076,8 +1135,9 @@ class DomainBuilder : public Builder {
         for (std::size_t k = 0; k < action.parameters.size(); ++k) {
           for (std::size_t m = 0; m < k; ++m) {
             if (action.parameters[m].name == action.parameters[k].name) {
-              diags_.push_back({Severity::kError, DiagnosticKind::kSemantic, action.parameters[k].location,
-                                action.parameters[k].name, "parameter declared twice", "unique parameter names"});
+              diags_.push_back({Severity::kError, DiagnosticKind::kSemantic,
+                                action.parameters[k].location, action.parameters[k].name,
+                                "parameter declared twice", "unique parameter names"});
               ok = false;
             }
           }
@@ -1087,7 +1147,8 @@ class DomainBuilder : public Builder {
     for (const auto& p : action.parameters) scope_.push_back({p.name, p.types});
     if (durative) {
       if (duration == nullptr) {
-        Warn(a, "durative action without :duration; any duration is allowed", ":duration (= ?duration ...)");
+        Warn(a, "durative action without :duration; any duration is allowed",
+             ":duration (= ?duration ...)");
       } else if (!ParseDuration(*duration, action.duration)) {
         ok = false;
       }
@@ -1110,7 +1171,8 @@ class DomainBuilder : public Builder {
       }
     }
     if (!has_effect) {
-      Warn(a.items[1], std::string(durative ? "durative action" : "action") + " has no :effect", ":effect");
+      Warn(a.items[1], std::string(durative ? "durative action" : "action") + " has no :effect",
+           ":effect");
     }
     scope_.clear();
     if (!ok) return std::nullopt;
@@ -1153,8 +1215,10 @@ class ProblemBuilder : public Builder {
   ProblemBuilder(std::string file, std::vector<Diagnostic>& diagnostics, const Domain& domain)
       : Builder(std::move(file), diagnostics), domain_(domain) {
     for (const auto& t : domain.types) types_.Add(t.name, t.parents);
-    for (const auto& p : domain.predicates) predicates_[p.name] = MakeSignature(p.parameters, p.location);
-    for (const auto& f : domain.functions) functions_[f.name] = MakeSignature(f.parameters, f.location);
+    for (const auto& p : domain.predicates)
+      predicates_[p.name] = MakeSignature(p.parameters, p.location);
+    for (const auto& f : domain.functions)
+      functions_[f.name] = MakeSignature(f.parameters, f.location);
     for (const auto& c : domain.constants) objects_[c.name] = {c.types, c.location, true};
     objects_is_problem_ = true;
     object_scope_message_ = "undeclared object";
@@ -1181,13 +1245,14 @@ class ProblemBuilder : public Builder {
         }
         problem.domain_name = section.items[1].atom;
         if (problem.domain_name != domain_.name) {
-          Warn(section.items[1], "problem names domain '" + problem.domain_name + "' but the domain is '" +
-                                     domain_.name + "'");
+          Warn(section.items[1], "problem names domain '" + problem.domain_name +
+                                     "' but the domain is '" + domain_.name + "'");
         }
       } else if (head == ":requirements") {
         for (std::size_t k = 1; k < section.items.size(); ++k) {
           if (!section.items[k].is_list) {
-            if (const char* what = UnsupportedRequirement(section.items[k].atom)) Unsupported(section.items[k], what);
+            if (const char* what = UnsupportedRequirement(section.items[k].atom))
+              Unsupported(section.items[k], what);
           }
         }
       } else if (head == ":objects") {
@@ -1226,15 +1291,17 @@ class ProblemBuilder : public Builder {
                           " (first at " + it->second.location.ToString() + ")");
         } else {
           Error(DiagnosticKind::kSemantic, where,
-                "object declared again with a different type " + JoinTypes(o.types) + " (first as " +
-                    JoinTypes(it->second.types) + " at " + it->second.location.ToString() + ")",
+                "object declared again with a different type " + JoinTypes(o.types) +
+                    " (first as " + JoinTypes(it->second.types) + " at " +
+                    it->second.location.ToString() + ")",
                 "each object declared once, with one type");
         }
       }
     }
     if (init != nullptr) ParseInit(*init, problem);
     if (goal == nullptr) {
-      Error(DiagnosticKind::kSyntax, def, "problem without :goal", "(:goal condition)", problem.name);
+      Error(DiagnosticKind::kSyntax, def, "problem without :goal", "(:goal condition)",
+            problem.name);
     } else if (goal->items.size() != 2) {
       Error(DiagnosticKind::kSyntax, *goal, "malformed :goal", "(:goal condition)");
     } else if (auto g = ParseCondition(goal->items[1], false, false)) {
@@ -1243,7 +1310,8 @@ class ProblemBuilder : public Builder {
     if (metric != nullptr) {
       if (metric->items.size() != 3 || metric->items[1].is_list ||
           (metric->items[1].atom != "minimize" && metric->items[1].atom != "maximize")) {
-        Error(DiagnosticKind::kSyntax, *metric, "malformed :metric", "(:metric minimize|maximize expression)");
+        Error(DiagnosticKind::kSyntax, *metric, "malformed :metric",
+              "(:metric minimize|maximize expression)");
       } else if (auto m = ParseNumExpr(metric->items[2], false, true)) {
         problem.metric.present = true;
         problem.metric.minimize = metric->items[1].atom == "minimize";
@@ -1259,21 +1327,24 @@ class ProblemBuilder : public Builder {
     for (std::size_t i = 1; i < section.items.size(); ++i) {
       const SExpr& e = section.items[i];
       if (!e.is_list || e.items.empty() || e.items[0].is_list) {
-        Error(DiagnosticKind::kSyntax, e, "malformed initial element", "(predicate objects), (= (f objects) number) or (at time literal)");
+        Error(DiagnosticKind::kSyntax, e, "malformed initial element",
+              "(predicate objects), (= (f objects) number) or (at time literal)");
         continue;
       }
       const std::string& head = e.items[0].atom;
-      if (head == "at" && e.items.size() == 3 && !e.items[1].is_list && IsNumberToken(e.items[1].atom) &&
-          e.items[2].is_list) {
+      if (head == "at" && e.items.size() == 3 && !e.items[1].is_list &&
+          IsNumberToken(e.items[1].atom) && e.items[2].is_list) {
         auto time = Number(e.items[1]);
         if (!time) continue;
         if (*time < 0) {
-          Error(DiagnosticKind::kSemantic, e.items[1], "timed initial literal at a negative time", "a time >= 0");
+          Error(DiagnosticKind::kSemantic, e.items[1], "timed initial literal at a negative time",
+                "a time >= 0");
           continue;
         }
         const SExpr& lit = e.items[2];
         if (lit.Head() == "=") {
-          if (auto n = NumericInitOf(lit)) problem.timed_numeric_init.push_back({*time, std::move(*n)});
+          if (auto n = NumericInitOf(lit))
+            problem.timed_numeric_init.push_back({*time, std::move(*n)});
           continue;
         }
         bool positive = true;
@@ -1313,7 +1384,8 @@ class ProblemBuilder : public Builder {
     }
     auto atom = ParseAtom(e);
     if (atom && atom->predicate == "=") {
-      Error(DiagnosticKind::kSemantic, e, "equality in :init", "(predicate objects) or (= (function objects) number)", "=");
+      Error(DiagnosticKind::kSemantic, e, "equality in :init",
+            "(predicate objects) or (= (function objects) number)", "=");
       return std::nullopt;
     }
     return atom;
@@ -1321,7 +1393,8 @@ class ProblemBuilder : public Builder {
 
   std::optional<NumericInit> NumericInitOf(const SExpr& e) {
     if (e.items.size() != 3) {
-      Error(DiagnosticKind::kSyntax, e, "malformed numeric initialisation", "(= (function objects) number)", "=");
+      Error(DiagnosticKind::kSyntax, e, "malformed numeric initialisation",
+            "(= (function objects) number)", "=");
       return std::nullopt;
     }
     const SExpr& head = e.items[1];
@@ -1329,7 +1402,8 @@ class ProblemBuilder : public Builder {
     out.location = Loc(e);
     if (!head.is_list) {
       if (functions_.count(head.atom) == 0) {
-        Error(DiagnosticKind::kSemantic, head, "undeclared function", "a function declared in :functions");
+        Error(DiagnosticKind::kSemantic, head, "undeclared function",
+              "a function declared in :functions");
         return std::nullopt;
       }
       out.function = head.atom;
@@ -1342,9 +1416,11 @@ class ProblemBuilder : public Builder {
       auto it = functions_.find(out.function);
       if (it == functions_.end()) {
         if (predicates_.count(out.function) > 0) {
-          Error(DiagnosticKind::kSemantic, head.items[0], "a predicate used as a function", "a function declared in :functions");
+          Error(DiagnosticKind::kSemantic, head.items[0], "a predicate used as a function",
+                "a function declared in :functions");
         } else {
-          Error(DiagnosticKind::kSemantic, head.items[0], "undeclared function", "a function declared in :functions");
+          Error(DiagnosticKind::kSemantic, head.items[0], "undeclared function",
+                "a function declared in :functions");
         }
         return std::nullopt;
       }
@@ -1377,9 +1453,11 @@ class ProblemBuilder : public Builder {
 
 // Reading order, so a user fixes them top to bottom.
 void SortByPosition(std::vector<Diagnostic>& diagnostics) {
-  std::stable_sort(diagnostics.begin(), diagnostics.end(), [](const Diagnostic& a, const Diagnostic& b) {
-    return std::tie(a.location.line, a.location.column) < std::tie(b.location.line, b.location.column);
-  });
+  std::stable_sort(diagnostics.begin(), diagnostics.end(),
+                   [](const Diagnostic& a, const Diagnostic& b) {
+                     return std::tie(a.location.line, a.location.column) <
+                            std::tie(b.location.line, b.location.column);
+                   });
 }
 
 }  // namespace
@@ -1437,7 +1515,8 @@ DomainParseResult ParseDomain(std::string_view text, std::string_view file_name)
   return result;
 }
 
-ProblemParseResult ParseProblem(std::string_view text, const Domain& domain, std::string_view file_name) {
+ProblemParseResult ParseProblem(std::string_view text, const Domain& domain,
+                                std::string_view file_name) {
   ProblemParseResult result;
   std::string file(file_name);
   auto read = internal::ReadSExprs(text, file, result.diagnostics);
@@ -1451,21 +1530,30 @@ ProblemParseResult ParseProblem(std::string_view text, const Domain& domain, std
 
 const char* ComparatorSymbol(Comparator comparator) {
   switch (comparator) {
-    case Comparator::kLess: return "<";
-    case Comparator::kLessEqual: return "<=";
-    case Comparator::kEqual: return "=";
-    case Comparator::kGreaterEqual: return ">=";
-    case Comparator::kGreater: return ">";
+    case Comparator::kLess:
+      return "<";
+    case Comparator::kLessEqual:
+      return "<=";
+    case Comparator::kEqual:
+      return "=";
+    case Comparator::kGreaterEqual:
+      return ">=";
+    case Comparator::kGreater:
+      return ">";
   }
   return "?";
 }
 
 const char* TimeSpecName(TimeSpec time) {
   switch (time) {
-    case TimeSpec::kNone: return "";
-    case TimeSpec::kAtStart: return "at start";
-    case TimeSpec::kOverAll: return "over all";
-    case TimeSpec::kAtEnd: return "at end";
+    case TimeSpec::kNone:
+      return "";
+    case TimeSpec::kAtStart:
+      return "at start";
+    case TimeSpec::kOverAll:
+      return "over all";
+    case TimeSpec::kAtEnd:
+      return "at end";
   }
   return "";
 }

@@ -167,7 +167,8 @@ TEST(ParseDomainTest, ReportsEveryErrorWithPosition) {
   ASSERT_NE(var, nullptr);
   EXPECT_EQ(var->location.line, 5);
   EXPECT_EQ(var->location.column, 18);
-  EXPECT_EQ(var->ToString().rfind("domain:5:18: error: undeclared variable (found '?z'", 0), 0u) << var->ToString();
+  EXPECT_EQ(var->ToString().rfind("domain:5:18: error: undeclared variable (found '?z'", 0), 0u)
+      << var->ToString();
 }
 
 TEST(ParseDomainTest, ToleratesByteOrderMarkCrlfAndTabs) {
@@ -198,9 +199,11 @@ TEST(ParseDomainTest, SemanticDeclarationErrors) {
       "(define (domain d) (:types t) (:predicates (p ?x - t)) (:functions (f ?x - t))\n"
       "(:action a :parameters (?x - t) :precondition (and (p ?x ?x) (> (f) 1)) :effect (p)))");
   EXPECT_FALSE(arity.domain);
-  EXPECT_EQ(CountDiag(arity.diagnostics, "wrong number of arguments"), 3) << FormatDiagnostics(arity.diagnostics);
+  EXPECT_EQ(CountDiag(arity.diagnostics, "wrong number of arguments"), 3)
+      << FormatDiagnostics(arity.diagnostics);
 
-  auto either_parent = ParseDomain("(define (domain d) (:types car - (either vehicle asset)) (:predicates (p ?c - car)))");
+  auto either_parent = ParseDomain(
+      "(define (domain d) (:types car - (either vehicle asset)) (:predicates (p ?c - car)))");
   ASSERT_TRUE(either_parent.domain) << FormatDiagnostics(either_parent.diagnostics);
   EXPECT_TRUE(either_parent.domain->IsSubtype("car", "asset"));
   EXPECT_TRUE(either_parent.domain->IsSubtype("car", "vehicle"));
@@ -220,7 +223,8 @@ TEST(ParseDomainTest, SyntaxErrorsHaveClearPositions) {
   EXPECT_EQ(d->kind, DiagnosticKind::kSyntax);
 
   auto untimed = ParseDomain(
-      "(define (domain d) (:predicates (p)) (:durative-action a :parameters () :duration (= ?duration 1)"
+      "(define (domain d) (:predicates (p)) (:durative-action a :parameters () :duration (= "
+      "?duration 1)"
       " :condition (p) :effect (at end (p))))");
   EXPECT_NE(FindDiag(untimed.diagnostics, "without a time specifier"), nullptr);
 
@@ -234,33 +238,41 @@ TEST(ParseDomainTest, UnsupportedConstructsNameTheConstruct) {
     const char* construct;
   };
   const Case cases[] = {
-      {"(define (domain d) (:requirements :derived-predicates) (:predicates (p)))", "derived predicates"},
+      {"(define (domain d) (:requirements :derived-predicates) (:predicates (p)))",
+       "derived predicates"},
       {"(define (domain d) (:predicates (p) (q)) (:derived (p) (q)))", "derived predicate"},
-      {"(define (domain d) (:predicates (p)) (:action a :parameters () :precondition (preference x (p))"
+      {"(define (domain d) (:predicates (p)) (:action a :parameters () :precondition (preference x "
+       "(p))"
        " :effect (p)))",
        "preference"},
-      {"(define (domain d) (:functions (f)) (:durative-action a :parameters () :duration (= ?duration 1)"
+      {"(define (domain d) (:functions (f)) (:durative-action a :parameters () :duration (= "
+       "?duration 1)"
        " :condition () :effect (increase (f) (* #t 2))))",
        "continuous effect"},
-      {"(define (domain d) (:predicates (p)) (:process flow :parameters () :precondition (p) :effect ()))",
+      {"(define (domain d) (:predicates (p)) (:process flow :parameters () :precondition (p) "
+       ":effect ()))",
        "process"},
       {"(define (domain d) (:predicates (p)) (:constraints (always (p))))", "constraints"},
   };
   {
     auto d = ParseDomain("(define (domain d) (:predicates (p)))");
     ASSERT_TRUE(d.domain);
-    auto p = ParseProblem("(define (problem q) (:domain d) (:goal (p)) (:metric minimize (is-violated pref1)))",
-                          *d.domain);
+    auto p = ParseProblem(
+        "(define (problem q) (:domain d) (:goal (p)) (:metric minimize (is-violated pref1)))",
+        *d.domain);
     EXPECT_TRUE(HasUnsupported(p.diagnostics)) << FormatDiagnostics(p.diagnostics);
     EXPECT_NE(FindDiag(p.diagnostics, "is-violated"), nullptr);
   }
   for (const auto& c : cases) {
     auto result = ParseDomain(c.text);
     EXPECT_FALSE(result.domain.has_value()) << c.text;
-    EXPECT_TRUE(HasUnsupported(result.diagnostics)) << c.text << "\n" << FormatDiagnostics(result.diagnostics);
+    EXPECT_TRUE(HasUnsupported(result.diagnostics)) << c.text << "\n"
+                                                    << FormatDiagnostics(result.diagnostics);
     bool named = false;
     for (const auto& d : result.diagnostics) {
-      if (d.kind == DiagnosticKind::kUnsupported && d.message.find(c.construct) != std::string::npos) named = true;
+      if (d.kind == DiagnosticKind::kUnsupported &&
+          d.message.find(c.construct) != std::string::npos)
+        named = true;
     }
     EXPECT_TRUE(named) << c.construct << "\n" << FormatDiagnostics(result.diagnostics);
   }
@@ -283,7 +295,8 @@ TEST(ParseDomainTest, MalformedInputEndsInDiagnosticNotCrash) {
   EXPECT_TRUE(HasErrors(r3.diagnostics));
 
   auto r4 = ParseDomain(
-      "(define (domain d) (:functions (f)) (:action a :parameters () :precondition (> (f) 1e999) :effect ()))");
+      "(define (domain d) (:functions (f)) (:action a :parameters () :precondition (> (f) 1e999) "
+      ":effect ()))");
   EXPECT_FALSE(r4.domain);
   EXPECT_NE(FindDiag(r4.diagnostics, "number out of range"), nullptr);
 
@@ -327,7 +340,8 @@ TEST(ParseProblemTest, ForgivingOnRepeatedDeclarationsStrictOnConflicts) {
   auto d = ParseDomain(kSmallDomain);
   ASSERT_TRUE(d.domain) << FormatDiagnostics(d.diagnostics);
   auto repeated = ParseProblem(
-      "(define (problem p) (:domain d) (:objects home - place box box - thing) (:init (at box home)) (:goal (at box home)))",
+      "(define (problem p) (:domain d) (:objects home - place box box - thing) (:init (at box "
+      "home)) (:goal (at box home)))",
       *d.domain);
   EXPECT_TRUE(repeated.problem.has_value()) << FormatDiagnostics(repeated.diagnostics);
   EXPECT_EQ(CountDiag(repeated.diagnostics, "repeats the domain constant"), 1);
@@ -335,7 +349,8 @@ TEST(ParseProblemTest, ForgivingOnRepeatedDeclarationsStrictOnConflicts) {
   EXPECT_EQ(repeated.problem->objects.size(), 1u);
 
   auto conflict = ParseProblem(
-      "(define (problem p) (:domain d) (:objects box - thing\n box - place) (:goal (at box home)))", *d.domain);
+      "(define (problem p) (:domain d) (:objects box - thing\n box - place) (:goal (at box home)))",
+      *d.domain);
   EXPECT_FALSE(conflict.problem.has_value());
   const Diagnostic* diag = FindDiag(conflict.diagnostics, "different type");
   ASSERT_NE(diag, nullptr);
@@ -364,12 +379,16 @@ TEST(ParseProblemTest, TypeChecksAgainstTheDomain) {
 
 std::string PaperDomain() {
   // SEAPLAN_PDDL_TESTDATA is set by CMake (the test does not depend on the working directory).
-  return seaplan::testing::ReadFile(std::filesystem::path(SEAPLAN_PDDL_TESTDATA) / "paper000_domain_verbatim.pddl");
+  return seaplan::testing::ReadFile(std::filesystem::path(SEAPLAN_PDDL_TESTDATA) /
+                                    "paper000_domain_verbatim.pddl");
 }
 
-const Diagnostic* DiagAt(const std::vector<Diagnostic>& diags, const std::string& text, int line, int column) {
+const Diagnostic* DiagAt(const std::vector<Diagnostic>& diags, const std::string& text, int line,
+                         int column) {
   for (const auto& d : diags) {
-    if (d.message.find(text) != std::string::npos && d.location.line == line && d.location.column == column) return &d;
+    if (d.message.find(text) != std::string::npos && d.location.line == line &&
+        d.location.column == column)
+      return &d;
   }
   return nullptr;
 }
@@ -384,9 +403,11 @@ TEST(PaperDomainTest, VehicleWhereAtExpectsSubjectIsATypeError) {
   EXPECT_EQ(d->symbol, "?v");
   EXPECT_NE(d->expected.find("subject"), std::string::npos);
   EXPECT_NE(d->message.find("vehicle"), std::string::npos);
-  // Every use is reported, not only the first: move-ship (3), move-fueling-ship (3), load, unload, repair, refuel.
+  // Every use is reported, not only the first: move-ship (3), move-fueling-ship (3), load, unload,
+  // repair, refuel.
   EXPECT_EQ(CountDiag(result.diagnostics, "type mismatch"), 10);
-  EXPECT_NE(DiagAt(result.diagnostics, "type mismatch", 114, 19), nullptr);  // refuel-ship's (at ?V ?L)
+  EXPECT_NE(DiagAt(result.diagnostics, "type mismatch", 114, 19),
+            nullptr);  // refuel-ship's (at ?V ?L)
 }
 
 TEST(PaperDomainTest, ZeroForOIsAnUndeclaredVariable) {

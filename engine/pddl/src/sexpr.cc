@@ -1,14 +1,17 @@
-#include "sexpr_internal.h"
-
 #include "seaplan/pddl/parser.h"
+#include "sexpr_internal.h"
 
 namespace seaplan::pddl::internal {
 namespace {
 
-bool IsSpace(unsigned char c) { return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v'; }
+bool IsSpace(unsigned char c) {
+  return c == ' ' || c == '\t' || c == '\n' || c == '\r' || c == '\f' || c == '\v';
+}
 
 // Characters that end an atom.
-bool IsDelimiter(unsigned char c) { return IsSpace(c) || c == '(' || c == ')' || c == ';'; }
+bool IsDelimiter(unsigned char c) {
+  return IsSpace(c) || c == '(' || c == ')' || c == ';';
+}
 
 }  // namespace
 
@@ -44,9 +47,13 @@ ReadResult ReadSExprs(std::string_view text, const std::string& file,
     }
     if (c == '(') {
       if (static_cast<int>(stack.size()) > kMaxNestingDepth) {
-        diagnostics.push_back({Severity::kError, DiagnosticKind::kSyntax, {file, line, column}, "(",
-                               "nesting deeper than " + std::to_string(kMaxNestingDepth) + " levels",
-                               "a shallower expression"});
+        diagnostics.push_back(
+            {Severity::kError,
+             DiagnosticKind::kSyntax,
+             {file, line, column},
+             "(",
+             "nesting deeper than " + std::to_string(kMaxNestingDepth) + " levels",
+             "a shallower expression"});
         result.ok = false;
         return result;
       }
@@ -61,8 +68,12 @@ ReadResult ReadSExprs(std::string_view text, const std::string& file,
     }
     if (c == ')') {
       if (stack.size() == 1) {
-        diagnostics.push_back({Severity::kError, DiagnosticKind::kSyntax, {file, line, column}, ")",
-                               "unmatched ')'", "'(' before it or end of file"});
+        diagnostics.push_back({Severity::kError,
+                               DiagnosticKind::kSyntax,
+                               {file, line, column},
+                               ")",
+                               "unmatched ')'",
+                               "'(' before it or end of file"});
       } else {
         SExpr done = std::move(stack.back());
         stack.pop_back();
@@ -104,8 +115,12 @@ ReadResult ReadSExprs(std::string_view text, const std::string& file,
             break;
           }
         }
-        diagnostics.push_back({Severity::kError, DiagnosticKind::kSyntax, {file, line, start_column},
-                               shown, "invalid character in token", "printable ASCII"});
+        diagnostics.push_back({Severity::kError,
+                               DiagnosticKind::kSyntax,
+                               {file, line, start_column},
+                               shown,
+                               "invalid character in token",
+                               "printable ASCII"});
       }
       ++bad_chars_reported;
       result.ok = result.ok && bad_chars_reported < 1000;
@@ -125,14 +140,17 @@ ReadResult ReadSExprs(std::string_view text, const std::string& file,
     const SExpr& innermost = stack.back();
     std::string what = "(";
     if (!innermost.items.empty() && innermost.items[0].IsAtom()) what += innermost.items[0].atom;
-    if (innermost.items.size() > 1 && innermost.items[1].IsAtom()) what += " " + innermost.items[1].atom;
-    diagnostics.push_back(
-        {Severity::kError, DiagnosticKind::kSyntax, {file, line, column}, "end of file",
-         "unexpected end of file: " + std::to_string(stack.size() - 1) +
-             " list(s) not closed; the innermost, '" + what + "' opened at " +
-             std::to_string(innermost.line) + ":" + std::to_string(innermost.column) +
-             ", may be cut off",
-         "')'"});
+    if (innermost.items.size() > 1 && innermost.items[1].IsAtom())
+      what += " " + innermost.items[1].atom;
+    diagnostics.push_back({Severity::kError,
+                           DiagnosticKind::kSyntax,
+                           {file, line, column},
+                           "end of file",
+                           "unexpected end of file: " + std::to_string(stack.size() - 1) +
+                               " list(s) not closed; the innermost, '" + what + "' opened at " +
+                               std::to_string(innermost.line) + ":" +
+                               std::to_string(innermost.column) + ", may be cut off",
+                           "')'"});
     while (stack.size() > 1) {
       SExpr done = std::move(stack.back());
       stack.pop_back();

@@ -25,14 +25,14 @@ struct SExpr {
   // The first item's atom text when this is a list starting with an atom; "" otherwise.
   std::string_view Head() const {
     return is_list && !items.empty() && !items[0].is_list ? std::string_view(items[0].atom)
-                                                           : std::string_view();
+                                                          : std::string_view();
   }
 };
 
 struct ReadResult {
   std::vector<SExpr> top_level;
-  bool ok = true;      // false when the input was hopeless (too deep): ignore top_level
-  int eof_line = 1;    // position just past the last character
+  bool ok = true;    // false when the input was hopeless (too deep): ignore top_level
+  int eof_line = 1;  // position just past the last character
   int eof_column = 1;
 };
 

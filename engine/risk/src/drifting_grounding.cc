@@ -12,8 +12,12 @@ namespace {
 using E = RecoveryEvent;
 using C = Component;
 
-constexpr PathElement Occ(E e) { return {e, true}; }
-constexpr PathElement Not(E e) { return {e, false}; }
+constexpr PathElement Occ(E e) {
+  return {e, true};
+}
+constexpr PathElement Not(E e) {
+  return {e, false};
+}
 
 ModeScenarios MakePto() {
   ModeScenarios m;
@@ -80,15 +84,17 @@ double TreeProbability(const EventTree& tree, const std::array<double, kNumRecov
 
 std::string_view LognormalReadingName(LognormalReading r) {
   switch (r) {
-    case LognormalReading::kScipyCode: return "scipy-code";
-    case LognormalReading::kDurationMoments: return "duration-moments";
+    case LognormalReading::kScipyCode:
+      return "scipy-code";
+    case LognormalReading::kDurationMoments:
+      return "duration-moments";
   }
   return "?";
 }
 
 std::string_view RecoveryEventName(RecoveryEvent e) {
   static constexpr std::array<std::string_view, kNumRecoveryEvents> kNames = {
-      "start ME", "restart ME", "start DG1", "start DG2",
+      "start ME",    "restart ME",  "start DG1", "start DG2",
       "restart DG1", "restart DG2", "start HSG", "restart HSG"};
   const int i = static_cast<int>(e);
   return i >= 0 && i < kNumRecoveryEvents ? kNames[i] : "?";
@@ -99,9 +105,12 @@ const ModeScenarios& ScenariosOf(MsoMode mode) {
   static const ModeScenarios kMec = MakeMec();
   static const ModeScenarios kPti = MakePti();
   switch (mode) {
-    case MsoMode::kPto: return kPto;
-    case MsoMode::kMec: return kMec;
-    case MsoMode::kPti: return kPti;
+    case MsoMode::kPto:
+      return kPto;
+    case MsoMode::kMec:
+      return kMec;
+    case MsoMode::kPti:
+      return kPti;
   }
   return kPto;
 }
@@ -140,9 +149,9 @@ double ShiftedLognormal::Cdf(double t) const {
 Status DriftingGroundingParams::Validate() const {
   for (int i = 0; i < kNumComponents; ++i) {
     if (!(failure_rate_per_s[i] >= 0.0) || !std::isfinite(failure_rate_per_s[i])) {
-      return absl::InvalidArgumentError(absl::StrCat(
-          "DriftingGroundingParams.failure_rate_per_s[", i, "] = ", failure_rate_per_s[i],
-          " must be finite and >= 0"));
+      return absl::InvalidArgumentError(absl::StrCat("DriftingGroundingParams.failure_rate_per_s[",
+                                                     i, "] = ", failure_rate_per_s[i],
+                                                     " must be finite and >= 0"));
     }
   }
   for (int i = 0; i < kNumRecoveryEvents; ++i) {
@@ -157,8 +166,8 @@ Status DriftingGroundingParams::Validate() const {
     if (!cdf.ok()) {
       return absl::InvalidArgumentError(
           absl::StrCat("DriftingGroundingParams.events[", i, "] (",
-                       std::string(RecoveryEventName(static_cast<RecoveryEvent>(i))), "): ",
-                       cdf.status().message()));
+                       std::string(RecoveryEventName(static_cast<RecoveryEvent>(i))),
+                       "): ", cdf.status().message()));
     }
   }
   if (!(risk_interval_s > 0.0) || !std::isfinite(risk_interval_s)) {
@@ -248,7 +257,8 @@ double DriftingGroundingModel::GroundingProbability(MsoMode mode, double ttg_s) 
 
 ModeProbabilities DriftingGroundingModel::GroundingProbabilities(double ttg_s) const {
   ModeProbabilities out;
-  for (MsoMode mode : ship::kAllMsoModes) out.p[static_cast<int>(mode)] = GroundingProbability(mode, ttg_s);
+  for (MsoMode mode : ship::kAllMsoModes)
+    out.p[static_cast<int>(mode)] = GroundingProbability(mode, ttg_s);
   return out;
 }
 

@@ -43,7 +43,7 @@ TEST(LognormalTest, DurationMomentsReading) {
   const double s2 = std::log1p(100.0 / 900.0);
   EXPECT_NEAR(d->sigma(), std::sqrt(s2), 1e-15);
   EXPECT_NEAR(std::exp(d->mu() + 0.5 * s2), 30.0, 1e-12);  // E[X] = 30
-  EXPECT_GT(d->Cdf(50.0), 0.5);  // median below mean for a lognormal
+  EXPECT_GT(d->Cdf(50.0), 0.5);                            // median below mean for a lognormal
   EXPECT_LT(d->Cdf(50.0), 0.6);
   EXPECT_GT(d->Cdf(50.0 + 4 * 10.0), 0.99);
   // mean must exceed the minimum time.
@@ -93,8 +93,7 @@ TEST(DriftingGroundingTest, PtiByHandWithRestartDg2) {
   EXPECT_EQ(pti.scenarios[0].recovery.paths[2].elements[2].event, RecoveryEvent::kRestartDg2);
   DriftingGroundingParams q = p;
   q.events[static_cast<int>(RecoveryEvent::kRestartDg2)].nominal_probability = 0.0;
-  EXPECT_GT(Model(q).RestoreProbability(pti.scenarios[0].recovery, t),
-            0.0);
+  EXPECT_GT(Model(q).RestoreProbability(pti.scenarios[0].recovery, t), 0.0);
   EXPECT_LT(Model(q).RestoreProbability(pti.scenarios[0].recovery, t),
             m.RestoreProbability(pti.scenarios[0].recovery, t));
 }
@@ -201,7 +200,8 @@ TEST(DriftingGroundingTest, PaperStdForMainEngineIsAParameter) {
   paper.events[0].std = paper.events[1].std = 1.4;
   const DriftingGroundingModel code = Model(), pap = Model(paper);
   // Wider spread: more probability of a slow restart beyond the median time.
-  EXPECT_NE(code.GroundingProbability(MsoMode::kMec, 40.0), pap.GroundingProbability(MsoMode::kMec, 40.0));
+  EXPECT_NE(code.GroundingProbability(MsoMode::kMec, 40.0),
+            pap.GroundingProbability(MsoMode::kMec, 40.0));
   EXPECT_EQ(code.EventProbability(RecoveryEvent::kRestartMe, 70.0),
             pap.EventProbability(RecoveryEvent::kRestartMe, 70.0));  // both medians at 70 s
 }

@@ -15,8 +15,10 @@ Status GroundingRiskOptions::Validate() const {
 StatusOr<GroundingRiskEvaluator> GroundingRiskEvaluator::Create(const ship::ShipParams& ship,
                                                                 const GroundingRiskOptions& o) {
   SEAPLAN_RETURN_IF_ERROR(o.Validate());
-  SEAPLAN_ASSIGN_OR_RETURN(TimeToGroundingSimulator sim, TimeToGroundingSimulator::Create(ship, o.ttg));
-  SEAPLAN_ASSIGN_OR_RETURN(DriftingGroundingModel model, DriftingGroundingModel::Create(o.probability));
+  SEAPLAN_ASSIGN_OR_RETURN(TimeToGroundingSimulator sim,
+                           TimeToGroundingSimulator::Create(ship, o.ttg));
+  SEAPLAN_ASSIGN_OR_RETURN(DriftingGroundingModel model,
+                           DriftingGroundingModel::Create(o.probability));
   return GroundingRiskEvaluator(std::move(sim), std::move(model), o.ungrounded);
 }
 
@@ -35,7 +37,8 @@ StatusOr<HorizonRisk> GroundingRiskEvaluator::RouteRisk(std::span<const ship::Sh
                                                         const ship::Environment& env,
                                                         const GroundingTest& obstacles, double cost,
                                                         std::span<double> interval_p) const {
-  if (samples.size() != modes.size() || (!interval_p.empty() && interval_p.size() != samples.size())) {
+  if (samples.size() != modes.size() ||
+      (!interval_p.empty() && interval_p.size() != samples.size())) {
     return absl::InvalidArgumentError(absl::StrCat("RouteRisk: ", samples.size(), " samples, ",
                                                    modes.size(), " modes, ", interval_p.size(),
                                                    " outputs (need equal sizes)"));

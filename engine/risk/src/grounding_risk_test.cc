@@ -74,7 +74,8 @@ TEST(GroundingRiskTest, RouteRiskAccumulatesPerIntervalModes) {
   const std::vector<MsoMode> pto(3, MsoMode::kPto), mec(3, MsoMode::kMec);
   EXPECT_GT(eval->RouteRisk(samples, pto, env, shore, 1.0)->probability,
             eval->RouteRisk(samples, mec, env, shore, 1.0)->probability);
-  EXPECT_FALSE(eval->RouteRisk(samples, std::span<const MsoMode>(modes).first(2), env, shore, 1.0).ok());
+  EXPECT_FALSE(
+      eval->RouteRisk(samples, std::span<const MsoMode>(modes).first(2), env, shore, 1.0).ok());
 }
 
 }  // namespace

@@ -99,8 +99,8 @@ StatusOr<PolygonObstacles> PolygonObstacles::Create(std::vector<std::vector<Vec>
     std::vector<Vec>& v = polygons[i];
     if (v.size() >= 2 && v.front() == v.back()) v.pop_back();
     if (v.size() < 3) {
-      return absl::InvalidArgumentError(
-          absl::StrCat("PolygonObstacles: polygon ", i, " has ", v.size(), " distinct vertices (< 3)"));
+      return absl::InvalidArgumentError(absl::StrCat("PolygonObstacles: polygon ", i, " has ",
+                                                     v.size(), " distinct vertices (< 3)"));
     }
     Polygon p;
     for (size_t k = 0; k < v.size(); ++k) {
@@ -127,7 +127,8 @@ bool PolygonObstacles::Intersects(const Polygon& poly, const HullPolygon& hull) 
     eb.Extend(v[i]);
     if (!eb.Overlaps(hull.bounds)) continue;
     for (int k = 0; k < 4; ++k) {
-      if (SegmentsIntersect(hull.corners_ne[k], hull.corners_ne[(k + 1) % 4], v[j], v[i])) return true;
+      if (SegmentsIntersect(hull.corners_ne[k], hull.corners_ne[(k + 1) % 4], v[j], v[i]))
+        return true;
     }
   }
   // No edge crossing: either disjoint or one contains the other.
@@ -148,7 +149,8 @@ double PolygonObstacles::Clearance(const HullPolygon& hull) const {
     const std::vector<Vec>& v = p.vertices;
     for (size_t i = 0, j = v.size() - 1; i < v.size(); j = i++) {
       for (int k = 0; k < 4; ++k) {
-        best = std::min(best, SegmentDistance(hull.corners_ne[k], hull.corners_ne[(k + 1) % 4], v[j], v[i]));
+        best = std::min(
+            best, SegmentDistance(hull.corners_ne[k], hull.corners_ne[(k + 1) % 4], v[j], v[i]));
       }
     }
   }

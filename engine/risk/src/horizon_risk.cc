@@ -7,8 +7,8 @@
 namespace seaplan::risk {
 
 Status GroundingCost::Validate() const {
-  for (double c : {ship_eur, recovery_eur, cargo_eur, environment_eur, infrastructure_eur,
-                   reputation_eur}) {
+  for (double c :
+       {ship_eur, recovery_eur, cargo_eur, environment_eur, infrastructure_eur, reputation_eur}) {
     if (!(c >= 0.0) || !std::isfinite(c)) {
       return absl::InvalidArgumentError(
           absl::StrCat("GroundingCost: every component must be finite and >= 0, got ", c));
@@ -26,9 +26,9 @@ StatusOr<HorizonRisk> AccumulateOverHorizon(std::span<const double> conditional_
                                                    " intervals (need 1 or one per interval)"));
   }
   if (!interval_p.empty() && interval_p.size() != conditional_p.size()) {
-    return absl::InvalidArgumentError(
-        absl::StrCat("AccumulateOverHorizon: interval output has ", interval_p.size(),
-                     " entries for ", conditional_p.size(), " intervals"));
+    return absl::InvalidArgumentError(absl::StrCat("AccumulateOverHorizon: interval output has ",
+                                                   interval_p.size(), " entries for ",
+                                                   conditional_p.size(), " intervals"));
   }
   HorizonRisk r;
   for (size_t i = 0; i < conditional_p.size(); ++i) {
@@ -39,7 +39,8 @@ StatusOr<HorizonRisk> AccumulateOverHorizon(std::span<const double> conditional_
     }
     const double c = cost.size() == 1 ? cost[0] : cost[i];
     if (!std::isfinite(c)) {
-      return absl::InvalidArgumentError(absl::StrCat("AccumulateOverHorizon: cost[", i, "] not finite"));
+      return absl::InvalidArgumentError(
+          absl::StrCat("AccumulateOverHorizon: cost[", i, "] not finite"));
     }
     const double pi = p * (1.0 - r.probability);
     if (!interval_p.empty()) interval_p[i] = pi;

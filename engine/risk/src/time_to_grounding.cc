@@ -8,21 +8,21 @@ namespace seaplan::risk {
 
 Status TtgOptions::Validate() const {
   if (!(horizon_s > 0.0) || !std::isfinite(horizon_s) || !(dt_s > 0.0) || !std::isfinite(dt_s)) {
-    return absl::InvalidArgumentError(absl::StrCat("TtgOptions: horizon_s ", horizon_s, " and dt_s ",
-                                                   dt_s, " must be finite and > 0"));
+    return absl::InvalidArgumentError(absl::StrCat("TtgOptions: horizon_s ", horizon_s,
+                                                   " and dt_s ", dt_s, " must be finite and > 0"));
   }
   if (!std::isfinite(hull_length_m) || !std::isfinite(hull_beam_m)) {
     return absl::InvalidArgumentError("TtgOptions: hull dimensions must be finite");
   }
   if (horizon_s / dt_s + 1.0 > max_steps) {
-    return absl::InvalidArgumentError(absl::StrCat("TtgOptions: horizon_s/dt_s = ",
-                                                   horizon_s / dt_s, " exceeds max_steps ",
-                                                   max_steps));
+    return absl::InvalidArgumentError(absl::StrCat(
+        "TtgOptions: horizon_s/dt_s = ", horizon_s / dt_s, " exceeds max_steps ", max_steps));
   }
   return absl::OkStatus();
 }
 
-TimeToGroundingSimulator::TimeToGroundingSimulator(const ship::ShipParams& ship, const TtgOptions& o)
+TimeToGroundingSimulator::TimeToGroundingSimulator(const ship::ShipParams& ship,
+                                                   const TtgOptions& o)
     : dynamics_(ship),
       options_(o),
       length_m_(o.hull_length_m > 0 ? o.hull_length_m : ship.length_m),
@@ -57,8 +57,8 @@ TtgResult TimeToGroundingSimulator::Run(const ship::ShipState& start, const ship
   // derivative; the environment's trigonometry is done once.
   const ship::PreparedEnvironment penv = ship::PreparedEnvironment::From(env);
   double c = std::cos(s.eta[2]), sn = std::sin(s.eta[2]);
-  if (options_.check_initial_pose &&
-      obstacles.HullIntersects(HullPolygon::Rectangle(s.eta[0], s.eta[1], c, sn, length_m_, beam_m_))) {
+  if (options_.check_initial_pose && obstacles.HullIntersects(HullPolygon::Rectangle(
+                                         s.eta[0], s.eta[1], c, sn, length_m_, beam_m_))) {
     result.grounded = true;
     return result;
   }
@@ -70,7 +70,8 @@ TtgResult TimeToGroundingSimulator::Run(const ship::ShipState& start, const ship
     if (track != nullptr) track->push_back({t, s});
     c = std::cos(s.eta[2]);
     sn = std::sin(s.eta[2]);
-    if (obstacles.HullIntersects(HullPolygon::Rectangle(s.eta[0], s.eta[1], c, sn, length_m_, beam_m_))) {
+    if (obstacles.HullIntersects(
+            HullPolygon::Rectangle(s.eta[0], s.eta[1], c, sn, length_m_, beam_m_))) {
       result.grounded = true;
       break;
     }

@@ -79,7 +79,8 @@ TEST(TimeToGroundingTest, UpwindShoreIsNotReached) {
   Environment env;
   env.wind_speed_mps = 20;
   env.wind_direction_from_rad = -std::numbers::pi / 2;
-  auto west = PolygonObstacles::Create({{{-5000, -400}, {5000, -400}, {5000, -3000}, {-5000, -3000}}});
+  auto west =
+      PolygonObstacles::Create({{{-5000, -400}, {5000, -400}, {5000, -3000}, {-5000, -3000}}});
   ASSERT_TRUE(west.ok());
   EXPECT_FALSE(Simulator().Run(ShipState::At(0, 0, 0), env, *west).grounded);
   const TtgResult east = Simulator().Run(ShipState::At(0, 0, 0), env, ShoreEastOf(100));
@@ -101,10 +102,12 @@ TEST(TimeToGroundingTest, HullSizeComesFromOptions) {
   env.current_east_mps = 1.0;
   TtgOptions fine;
   fine.dt_s = 1.0;
-  const TtgResult across = Simulator(fine).Run(ShipState::At(0, 0, std::numbers::pi / 2, 1.0), env, shore);
+  const TtgResult across =
+      Simulator(fine).Run(ShipState::At(0, 0, std::numbers::pi / 2, 1.0), env, shore);
   EXPECT_NEAR(across.ttg_s, 260.0, 1.5);
   fine.hull_length_m = 200;
-  const TtgResult longer = Simulator(fine).Run(ShipState::At(0, 0, std::numbers::pi / 2, 1.0), env, shore);
+  const TtgResult longer =
+      Simulator(fine).Run(ShipState::At(0, 0, std::numbers::pi / 2, 1.0), env, shore);
   EXPECT_NEAR(longer.ttg_s, 200.0, 1.5);
 }
 

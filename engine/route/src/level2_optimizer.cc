@@ -18,7 +18,9 @@
 namespace seaplan::route {
 namespace {
 
-double Dist(Vec2 a, Vec2 b) { return std::hypot(a.x - b.x, a.y - b.y); }
+double Dist(Vec2 a, Vec2 b) {
+  return std::hypot(a.x - b.x, a.y - b.y);
+}
 
 // Points at fractions k/n (k = 0..n) of the polyline's length.
 std::vector<Vec2> Resample(const std::vector<Vec2>& line, int n) {
@@ -61,13 +63,13 @@ class RiskEvaluator {
 
 // The drift of an unpowered ship relative to its start point.
 struct DriftTrack {
-  std::vector<Vec2> offset;      // after each Euler step
-  std::vector<double> heading;   // rad
-  std::vector<double> time_s;    // model time after each step
+  std::vector<Vec2> offset;     // after each Euler step
+  std::vector<double> heading;  // rad
+  std::vector<double> time_s;   // model time after each step
 };
 
-DriftTrack SimulateDrift(const ship::HullDynamics& dyn, const ship::Environment& env, double heading,
-                         double speed, double horizon_s, double dt_s) {
+DriftTrack SimulateDrift(const ship::HullDynamics& dyn, const ship::Environment& env,
+                         double heading, double speed, double horizon_s, double dt_s) {
   DriftTrack t;
   ship::ShipModelWithoutPropulsion model(dyn, env, ship::ShipState::At(0.0, 0.0, heading, speed));
   while (model.time_s() <= horizon_s) {  // SITS loop convention
@@ -90,7 +92,8 @@ class FastEvaluator final : public RiskEvaluator {
     const size_t n = track_.offset.size();
     size_t k = 0;
     for (; k < n; ++k) {
-      if (field_.HullHits({w.x + track_.offset[k].x, w.y + track_.offset[k].y}, track_.heading[k])) break;
+      if (field_.HullHits({w.x + track_.offset[k].x, w.y + track_.offset[k].y}, track_.heading[k]))
+        break;
     }
     if (k == n) k = n - 1;
     out->ttg_s = track_.time_s[k];
@@ -107,14 +110,22 @@ class FastEvaluator final : public RiskEvaluator {
 // kExact: everything from scratch at every evaluation.
 class ExactEvaluator final : public RiskEvaluator {
  public:
-  ExactEvaluator(const ObstacleField& field, const ship::HullDynamics& dyn, const ship::Environment& env,
-                 const ModeGroundingModel& grounding, double heading, const Level2Options& o)
-      : field_(field), dyn_(dyn), env_(env), grounding_(grounding), heading_(heading),
-        speed_(o.drift_initial_speed_mps), horizon_(o.ttg_horizon_s), dt_(o.ttg_step_s),
+  ExactEvaluator(const ObstacleField& field, const ship::HullDynamics& dyn,
+                 const ship::Environment& env, const ModeGroundingModel& grounding, double heading,
+                 const Level2Options& o)
+      : field_(field),
+        dyn_(dyn),
+        env_(env),
+        grounding_(grounding),
+        heading_(heading),
+        speed_(o.drift_initial_speed_mps),
+        horizon_(o.ttg_horizon_s),
+        dt_(o.ttg_step_s),
         zeta_(o.weights.zeta1_per_m) {}
   void Evaluate(Vec2 w, RiskSample* out) override {
     out->proximity = field_.SumExpDistanceBruteForce(w, zeta_);
-    ship::ShipModelWithoutPropulsion model(dyn_, env_, ship::ShipState::At(w.y, w.x, heading_, speed_));
+    ship::ShipModelWithoutPropulsion model(dyn_, env_,
+                                           ship::ShipState::At(w.y, w.x, heading_, speed_));
     while (model.time_s() <= horizon_) {
       model.Step(dt_);
       const auto& s = model.state();
@@ -151,7 +162,8 @@ void ComputeCost(const CostWeights& w, const Refs& r, Vec2 p, const RiskSample& 
   const double to_next = Dist(p, r.next);
   int best = 0;
   for (int m = 0; m < kModeCount; ++m) {
-    out->mode_cost[m] = ground + w.grounding_cost * w.mu4 * s.p[m] + w.consumption[m] * w.mu5_per_m * to_next;
+    out->mode_cost[m] =
+        ground + w.grounding_cost * w.mu4 * s.p[m] + w.consumption[m] * w.mu5_per_m * to_next;
     if (out->mode_cost[m] < out->mode_cost[best]) best = m;
   }
   out->best_mode = best;
@@ -267,9 +279,12 @@ Vec2 RunPso(const PsoOptions& o, const CostWeights& w, const Refs& r, RiskEvalua
   for (int it = 0; it < o.iterations; ++it) {
     if (stop.StopRequested()) break;
     for (auto& p : ps) {
-      const double r1x = rng.Uniform(), r1y = rng.Uniform(), r2x = rng.Uniform(), r2y = rng.Uniform();
-      p.v.x = o.inertia * p.v.x + o.cognitive * r1x * (p.best.x - p.x.x) + o.social * r2x * (gbest.x - p.x.x);
-      p.v.y = o.inertia * p.v.y + o.cognitive * r1y * (p.best.y - p.x.y) + o.social * r2y * (gbest.y - p.x.y);
+      const double r1x = rng.Uniform(), r1y = rng.Uniform(), r2x = rng.Uniform(),
+                   r2y = rng.Uniform();
+      p.v.x = o.inertia * p.v.x + o.cognitive * r1x * (p.best.x - p.x.x) +
+              o.social * r2x * (gbest.x - p.x.x);
+      p.v.y = o.inertia * p.v.y + o.cognitive * r1y * (p.best.y - p.x.y) +
+              o.social * r2y * (gbest.y - p.x.y);
       p.v.x = std::clamp(p.v.x, -vmax, vmax);
       p.v.y = std::clamp(p.v.y, -vmax, vmax);
       p.x = clamp_pos({p.x.x + p.v.x, p.x.y + p.v.y});
@@ -298,8 +313,8 @@ double PolishObjective(unsigned /*n*/, const double* x, double* /*grad*/, void* 
   return t.path + t.mode_cost[d->mode];
 }
 
-Vec2 Polish(const PolishOptions& o, const CostWeights& w, const Refs& r, RiskEvaluator& eval, Vec2 start,
-            int mode, Vec2 lo, Vec2 hi, int64_t* evaluations) {
+Vec2 Polish(const PolishOptions& o, const CostWeights& w, const Refs& r, RiskEvaluator& eval,
+            Vec2 start, int mode, Vec2 lo, Vec2 hi, int64_t* evaluations) {
   PolishData data{&w, &r, &eval, mode, evaluations};
   double x0[2] = {start.x, start.y};
   const double f0 = PolishObjective(2, x0, nullptr, &data);
@@ -379,13 +394,15 @@ void RunParallel(int count, int threads, const std::function<void(int)>& fn) {
 }  // namespace
 
 StatusOr<double> SimulateTimeToGrounding(const ObstacleField& field, const ship::ShipParams& ship,
-                                         const ship::Environment& env, Vec2 start, double heading_rad,
-                                         double speed_mps, double horizon_s, double step_s) {
+                                         const ship::Environment& env, Vec2 start,
+                                         double heading_rad, double speed_mps, double horizon_s,
+                                         double step_s) {
   if (!(step_s > 0.0) || !(horizon_s > 0.0) || horizon_s / step_s > 1e5) {
     return absl::InvalidArgumentError("TTG needs step > 0, horizon > 0 and at most 1e5 steps");
   }
   SEAPLAN_ASSIGN_OR_RETURN(ship::HullDynamics dyn, ship::HullDynamics::Create(ship));
-  ship::ShipModelWithoutPropulsion model(dyn, env, ship::ShipState::At(start.y, start.x, heading_rad, speed_mps));
+  ship::ShipModelWithoutPropulsion model(
+      dyn, env, ship::ShipState::At(start.y, start.x, heading_rad, speed_mps));
   while (model.time_s() <= horizon_s) {
     model.Step(step_s);
     const auto& s = model.state();
@@ -398,7 +415,8 @@ absl::Status CostWeights::Validate() const {
   for (double v : {mu1_per_m2, mu2_per_m6, grounding_cost, mu3, zeta1_per_m, mu4, mu5_per_m,
                    mode_switch_cost, consumption[0], consumption[1], consumption[2]}) {
     if (!(v >= 0.0 && std::isfinite(v))) {
-      return absl::InvalidArgumentError(absl::StrCat("cost weights must be finite and >= 0, got ", v));
+      return absl::InvalidArgumentError(
+          absl::StrCat("cost weights must be finite and >= 0, got ", v));
     }
   }
   if (!(zeta1_per_m > 0.0)) return absl::InvalidArgumentError("zeta1_per_m must be > 0");
@@ -407,13 +425,16 @@ absl::Status CostWeights::Validate() const {
 
 absl::Status PsoOptions::Validate() const {
   if (particles < 1 || particles > 10000) {
-    return absl::InvalidArgumentError(absl::StrCat("pso.particles must be in [1, 10000], got ", particles));
+    return absl::InvalidArgumentError(
+        absl::StrCat("pso.particles must be in [1, 10000], got ", particles));
   }
   if (iterations < 0 || iterations > 100000) {
-    return absl::InvalidArgumentError(absl::StrCat("pso.iterations must be in [0, 100000], got ", iterations));
+    return absl::InvalidArgumentError(
+        absl::StrCat("pso.iterations must be in [0, 100000], got ", iterations));
   }
   for (double v : {inertia, cognitive, social}) {
-    if (!(v >= 0.0 && v <= 10.0)) return absl::InvalidArgumentError("pso weights must be in [0, 10]");
+    if (!(v >= 0.0 && v <= 10.0))
+      return absl::InvalidArgumentError("pso weights must be in [0, 10]");
   }
   if (!(velocity_limit > 0.0 && velocity_limit <= 100.0)) {
     return absl::InvalidArgumentError("pso.velocity_limit must be in (0, 100]");
@@ -423,12 +444,14 @@ absl::Status PsoOptions::Validate() const {
 
 absl::Status Level2Options::Validate() const {
   if (segments < 2 || segments > 1000) {
-    return absl::InvalidArgumentError(absl::StrCat("segments must be in [2, 1000], got ", segments));
+    return absl::InvalidArgumentError(
+        absl::StrCat("segments must be in [2, 1000], got ", segments));
   }
   SEAPLAN_RETURN_IF_ERROR(pso.Validate());
   SEAPLAN_RETURN_IF_ERROR(weights.Validate());
   if (polish.max_evaluations < 0 || !(polish.initial_step_m > 0) || !(polish.xtol_m > 0)) {
-    return absl::InvalidArgumentError("polish needs max_evaluations >= 0, initial_step_m > 0, xtol_m > 0");
+    return absl::InvalidArgumentError(
+        "polish needs max_evaluations >= 0, initial_step_m > 0, xtol_m > 0");
   }
   if (!(ttg_step_s > 0.0) || !(ttg_horizon_s > 0.0) || ttg_horizon_s / ttg_step_s > 100000) {
     return absl::InvalidArgumentError("TTG needs step > 0, horizon > 0 and at most 1e5 steps");
@@ -436,7 +459,8 @@ absl::Status Level2Options::Validate() const {
   if (!(drift_initial_speed_mps >= 0.0 && drift_initial_speed_mps < 50.0)) {
     return absl::InvalidArgumentError("drift_initial_speed_mps must be in [0, 50)");
   }
-  if (threads < 1 || threads > 256) return absl::InvalidArgumentError("threads must be in [1, 256]");
+  if (threads < 1 || threads > 256)
+    return absl::InvalidArgumentError("threads must be in [1, 256]");
   return absl::OkStatus();
 }
 
@@ -450,11 +474,13 @@ StatusOr<Level2Result> OptimizeLevel2(const Level2Problem& problem, const Level2
   for (size_t a = 0; a < problem.alternatives.size(); ++a) {
     const auto& alt = problem.alternatives[a];
     if (alt.size() < 2) {
-      return absl::InvalidArgumentError(absl::StrCat("alternative ", a, " has ", alt.size(), " points (need >= 2)"));
+      return absl::InvalidArgumentError(
+          absl::StrCat("alternative ", a, " has ", alt.size(), " points (need >= 2)"));
     }
     for (const Vec2& p : alt) {
       if (!std::isfinite(p.x) || !std::isfinite(p.y)) {
-        return absl::InvalidArgumentError(absl::StrCat("alternative ", a, " has a non-finite point"));
+        return absl::InvalidArgumentError(
+            absl::StrCat("alternative ", a, " has a non-finite point"));
       }
     }
   }
@@ -467,8 +493,8 @@ StatusOr<Level2Result> OptimizeLevel2(const Level2Problem& problem, const Level2
   // P(G) per Euler step of the TTG loop (the only TTG values it produces).
   std::vector<ModeArray> table;
   {
-    const DriftTrack probe = SimulateDrift(dyn, problem.environment, 0.0, 0.0, options.ttg_horizon_s,
-                                           options.ttg_step_s);
+    const DriftTrack probe = SimulateDrift(dyn, problem.environment, 0.0, 0.0,
+                                           options.ttg_horizon_s, options.ttg_step_s);
     for (double t : probe.time_s) table.push_back(problem.grounding->Probabilities(t));
   }
 
@@ -485,7 +511,8 @@ StatusOr<Level2Result> OptimizeLevel2(const Level2Problem& problem, const Level2
       t.refs.next = refs[std::min(k + 1, n)];
       const Vec2 d{t.refs.next.x - t.refs.prev.x, t.refs.next.y - t.refs.prev.y};
       t.refs.heading_rad = std::atan2(d.x, d.y);
-      t.refs.scale_m = std::max(1.0, Dist(t.refs.prev, t.refs.next) / (k == 0 || k == n ? 1.0 : 2.0));
+      t.refs.scale_m =
+          std::max(1.0, Dist(t.refs.prev, t.refs.next) / (k == 0 || k == n ? 1.0 : 2.0));
       t.refs.movable = k > 0 && k < n;
       t.position = refs[k];
       tasks.push_back(t);
@@ -508,8 +535,9 @@ StatusOr<Level2Result> OptimizeLevel2(const Level2Problem& problem, const Level2
     WaypointTask& t = tasks[i];
     if (!t.refs.movable) return;
     auto eval = make_evaluator(t.refs);
-    const uint64_t seed = SplitMix64(options.pso.seed ^ SplitMix64((static_cast<uint64_t>(t.alt) << 32) |
-                                                                   static_cast<uint64_t>(t.k)));
+    const uint64_t seed =
+        SplitMix64(options.pso.seed ^
+                   SplitMix64((static_cast<uint64_t>(t.alt) << 32) | static_cast<uint64_t>(t.k)));
     t.position = RunPso(options.pso, w, t.refs, *eval, lo, hi, seed, stop, &t.evaluations);
   });
 
@@ -548,7 +576,8 @@ StatusOr<Level2Result> OptimizeLevel2(const Level2Problem& problem, const Level2
       WaypointTask& t = tasks[i];
       if (!t.refs.movable) return;
       auto eval = make_evaluator(t.refs);
-      t.position = Polish(options.polish, w, t.refs, *eval, t.position, modes[i], lo, hi, &t.evaluations);
+      t.position =
+          Polish(options.polish, w, t.refs, *eval, t.position, modes[i], lo, hi, &t.evaluations);
     });
     evaluate_all(&samples, &terms);
     modes = assign(terms);
@@ -576,7 +605,8 @@ StatusOr<Level2Result> OptimizeLevel2(const Level2Problem& problem, const Level2
       out.evaluations += t.evaluations;
       if (k < n) {
         const int m = modes[base + k];
-        const double ground = w.grounding_cost * (w.mu3 * wr.proximity + w.mu4 * wr.grounding_probability[m]);
+        const double ground =
+            w.grounding_cost * (w.mu3 * wr.proximity + w.mu4 * wr.grounding_probability[m]);
         out.grounding_cost += ground;
         out.mso_cost += wr.mode_cost[m] - ground;
         if (k > 0 && modes[base + k - 1] != m) {
@@ -586,7 +616,8 @@ StatusOr<Level2Result> OptimizeLevel2(const Level2Problem& problem, const Level2
       }
       out.path_cost += wr.path_cost;
       if (field.Inside(wr.position)) out.crosses_obstacle = true;
-      if (k > 0 && field.SegmentHits(out.waypoints.back().position, wr.position)) out.crosses_obstacle = true;
+      if (k > 0 && field.SegmentHits(out.waypoints.back().position, wr.position))
+        out.crosses_obstacle = true;
       out.waypoints.push_back(wr);
     }
     out.expected_cost = out.grounding_cost + out.mso_cost + out.switching_cost;

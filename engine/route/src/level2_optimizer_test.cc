@@ -30,15 +30,15 @@ std::unique_ptr<Scenario> MakeScenario() {
   EXPECT_TRUE(field.ok()) << field.status();
   auto model = risk::DriftingGroundingModel::Create();
   EXPECT_TRUE(model.ok()) << model.status();
-  auto s = std::unique_ptr<Scenario>(
-      new Scenario{std::move(field).value(), std::move(model).value(), DriftingGroundingAdapter(*model), {}});
+  auto s = std::unique_ptr<Scenario>(new Scenario{
+      std::move(field).value(), std::move(model).value(), DriftingGroundingAdapter(*model), {}});
   s->grounding = DriftingGroundingAdapter(s->risk_model);
   s->problem.field = &s->field;
   s->problem.grounding = &s->grounding;
   s->problem.environment.wind_speed_mps = 20.0;
   s->problem.environment.wind_direction_from_rad = M_PI;  // from the south
   s->problem.environment.current_north_mps = 1.0;
-  s->problem.alternatives = {{{-2000, 0}, {-1000, 300}, {1000, 300}, {2000, 0}},    // north
+  s->problem.alternatives = {{{-2000, 0}, {-1000, 300}, {1000, 300}, {2000, 0}},     // north
                              {{-2000, 0}, {-1000, -300}, {1000, -300}, {2000, 0}}};  // south
   return s;
 }
@@ -62,8 +62,10 @@ TEST(Level2OptimizerTest, RobustModeOnDownwindShoreSegmentAndSaferAlternativeCho
   EXPECT_FALSE(south.crosses_obstacle);
   // The south route's drift runs onto the island: higher P(G) there.
   double max_p_south = 0, max_p_north = 0;
-  for (const auto& w : south.waypoints) max_p_south = std::max(max_p_south, w.grounding_probability[0]);
-  for (const auto& w : north.waypoints) max_p_north = std::max(max_p_north, w.grounding_probability[0]);
+  for (const auto& w : south.waypoints)
+    max_p_south = std::max(max_p_south, w.grounding_probability[0]);
+  for (const auto& w : north.waypoints)
+    max_p_north = std::max(max_p_north, w.grounding_probability[0]);
   EXPECT_GT(max_p_south, 10 * max_p_north);
   // MEC on the segments passing south of (upwind of) the island, PTO at the
   // open-water ends and everywhere on the north route.
@@ -99,7 +101,8 @@ TEST(Level2OptimizerTest, DeterministicForASeedAndIndependentOfThreads) {
   for (size_t i = 0; i < 2; ++i) {
     for (size_t k = 0; k < a->alternatives[i].waypoints.size(); ++k) {
       const auto& wa = a->alternatives[i].waypoints[k];
-      for (const auto* other : {&b->alternatives[i].waypoints[k], &c->alternatives[i].waypoints[k]}) {
+      for (const auto* other :
+           {&b->alternatives[i].waypoints[k], &c->alternatives[i].waypoints[k]}) {
         EXPECT_EQ(wa.position.x, other->position.x);
         EXPECT_EQ(wa.position.y, other->position.y);
         EXPECT_EQ(wa.mode, other->mode);
@@ -113,7 +116,8 @@ TEST(Level2OptimizerTest, DeterministicForASeedAndIndependentOfThreads) {
   ASSERT_TRUE(d.ok());
   bool differs = false;
   for (size_t k = 1; k < 20; ++k) {
-    differs |= d->alternatives[1].waypoints[k].position.x != a->alternatives[1].waypoints[k].position.x;
+    differs |=
+        d->alternatives[1].waypoints[k].position.x != a->alternatives[1].waypoints[k].position.x;
   }
   EXPECT_TRUE(differs);
 }
@@ -130,7 +134,8 @@ TEST(Level2OptimizerTest, FastEvaluationEqualsExactEvaluation) {
     EXPECT_NEAR(fast->alternatives[i].expected_cost, exact->alternatives[i].expected_cost,
                 1e-6 * exact->alternatives[i].expected_cost);
     for (size_t k = 0; k < fast->alternatives[i].waypoints.size(); ++k) {
-      EXPECT_EQ(fast->alternatives[i].waypoints[k].ttg_s, exact->alternatives[i].waypoints[k].ttg_s);
+      EXPECT_EQ(fast->alternatives[i].waypoints[k].ttg_s,
+                exact->alternatives[i].waypoints[k].ttg_s);
     }
   }
   EXPECT_EQ(fast->chosen, exact->chosen);

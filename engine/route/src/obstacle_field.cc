@@ -12,8 +12,12 @@ namespace {
 
 constexpr double kMaxExponent = 50.0;
 
-double Cross(Vec2 a, Vec2 b) { return a.x * b.y - a.y * b.x; }
-Vec2 Sub(Vec2 a, Vec2 b) { return {a.x - b.x, a.y - b.y}; }
+double Cross(Vec2 a, Vec2 b) {
+  return a.x * b.y - a.y * b.x;
+}
+Vec2 Sub(Vec2 a, Vec2 b) {
+  return {a.x - b.x, a.y - b.y};
+}
 
 int Orientation(Vec2 a, Vec2 b, Vec2 c) {
   const double v = Cross(Sub(b, a), Sub(c, a));
@@ -57,15 +61,16 @@ absl::Status ObstacleFieldOptions::Validate() const {
     return absl::InvalidArgumentError(absl::StrCat("cell_m must be in [1, 10000], got ", cell_m));
   }
   if (!(far_cutoff_m > 0.0 && far_cutoff_m <= 1e5)) {
-    return absl::InvalidArgumentError(absl::StrCat("far_cutoff_m must be in (0, 1e5], got ", far_cutoff_m));
+    return absl::InvalidArgumentError(
+        absl::StrCat("far_cutoff_m must be in (0, 1e5], got ", far_cutoff_m));
   }
   if (!(margin_m >= 0.0 && margin_m <= 1e5)) {
     return absl::InvalidArgumentError(absl::StrCat("margin_m must be in [0, 1e5], got ", margin_m));
   }
   if (!(hull.length_m > 0.0 && hull.beam_m > 0.0 && hull.beam_m <= hull.length_m &&
         hull.length_m < 1000.0)) {
-    return absl::InvalidArgumentError(absl::StrCat("hull must have 0 < beam <= length < 1000 m, got ",
-                                                   hull.length_m, " x ", hull.beam_m));
+    return absl::InvalidArgumentError(absl::StrCat(
+        "hull must have 0 < beam <= length < 1000 m, got ", hull.length_m, " x ", hull.beam_m));
   }
   return absl::OkStatus();
 }
@@ -82,8 +87,8 @@ StatusOr<ObstacleField> ObstacleField::Build(std::vector<ObstaclePolygon> obstac
   const double cells = (width / options.cell_m + 1) * (height / options.cell_m + 1);
   if (cells > 4e6) {
     return absl::ResourceExhaustedError(absl::StrCat(
-        "obstacle field grid would need ", cells, " cells (area ", width, " x ", height,
-        " m at ", options.cell_m, " m); use a larger cell_m or a smaller area"));
+        "obstacle field grid would need ", cells, " cells (area ", width, " x ", height, " m at ",
+        options.cell_m, " m); use a larger cell_m or a smaller area"));
   }
 
   ObstacleField f;
@@ -106,7 +111,8 @@ StatusOr<ObstacleField> ObstacleField::Build(std::vector<ObstaclePolygon> obstac
       for (size_t k = 0; k < n; ++k) {
         const Vec2 a = ring[k], b = ring[(k + 1) % n];
         if (!std::isfinite(a.x) || !std::isfinite(a.y)) {
-          return absl::InvalidArgumentError(absl::StrCat("obstacle ", i, " has a non-finite vertex"));
+          return absl::InvalidArgumentError(
+              absl::StrCat("obstacle ", i, " has a non-finite vertex"));
         }
         const Vec2 d = Sub(b, a);
         const double len2 = d.x * d.x + d.y * d.y;
@@ -373,14 +379,19 @@ double ObstacleField::SignedDistanceBruteForce(Vec2 p) const {
   return best;
 }
 
-bool ObstacleField::Inside(Vec2 p) const { return SignedDistance(p) <= 0.0; }
+bool ObstacleField::Inside(Vec2 p) const {
+  return SignedDistance(p) <= 0.0;
+}
 
 void ObstacleField::HullVertices(Vec2 c, double heading_rad, Vec2 out[5]) const {
   const double half_l = options_.hull.length_m / 2, half_b = options_.hull.beam_m / 2;
   const double fx = std::sin(heading_rad), fy = std::cos(heading_rad);  // forward
-  const double sx = fy, sy = -fx;                                        // starboard
-  const double pts[5][2] = {{-half_l, -half_b}, {half_l - half_b, -half_b}, {half_l, 0.0},
-                            {half_l - half_b, half_b}, {-half_l, half_b}};
+  const double sx = fy, sy = -fx;                                       // starboard
+  const double pts[5][2] = {{-half_l, -half_b},
+                            {half_l - half_b, -half_b},
+                            {half_l, 0.0},
+                            {half_l - half_b, half_b},
+                            {-half_l, half_b}};
   for (int i = 0; i < 5; ++i) {
     out[i] = {c.x + pts[i][0] * fx + pts[i][1] * sx, c.y + pts[i][0] * fy + pts[i][1] * sy};
   }

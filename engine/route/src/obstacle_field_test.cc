@@ -76,7 +76,8 @@ TEST(ObstacleFieldTest, LargeJaggedCoastEqualsBruteForceAndDeepInsideIsInside) {
     const double a = 2 * M_PI * i / 400, r = 2300 + 300 * std::sin(17 * a) * std::cos(5 * a);
     coast.rings[0].push_back({r * std::cos(a), r * std::sin(a)});
   }
-  auto built = ObstacleField::Build({coast, Circle({3200, 0}, 40, 9)}, {-4000, -4000}, {4000, 4000}, {});
+  auto built =
+      ObstacleField::Build({coast, Circle({3200, 0}, 40, 9)}, {-4000, -4000}, {4000, 4000}, {});
   ASSERT_TRUE(built.ok()) << built.status();
   const ObstacleField& f = *built;
   std::mt19937 rng(11);
@@ -119,7 +120,8 @@ TEST(ObstacleFieldTest, SegmentHits) {
 }
 
 TEST(ObstacleFieldTest, RejectsBadInput) {
-  EXPECT_FALSE(ObstacleField::Build({ObstaclePolygon{{{{0, 0}, {1, 1}}}}}, {0, 0}, {10, 10}, {}).ok());
+  EXPECT_FALSE(
+      ObstacleField::Build({ObstaclePolygon{{{{0, 0}, {1, 1}}}}}, {0, 0}, {10, 10}, {}).ok());
   EXPECT_FALSE(ObstacleField::Build({}, {0, 0}, {0, 10}, {}).ok());
   ObstacleFieldOptions o;
   o.cell_m = 0;

@@ -12,8 +12,12 @@ namespace {
 
 constexpr double kDegToRad = M_PI / 180.0;
 
-Vec2 ToVec(chart::LocalPoint p) { return {p.x_m, p.y_m}; }
-chart::LocalPoint ToLocal(Vec2 p) { return {p.x, p.y}; }
+Vec2 ToVec(chart::LocalPoint p) {
+  return {p.x_m, p.y_m};
+}
+chart::LocalPoint ToLocal(Vec2 p) {
+  return {p.x, p.y};
+}
 
 std::vector<ObstaclePolygon> ToObstacles(const std::vector<chart::Polygon>& polygons) {
   std::vector<ObstaclePolygon> out;
@@ -34,18 +38,18 @@ std::vector<ObstaclePolygon> ToObstacles(const std::vector<chart::Polygon>& poly
   return out;
 }
 
-absl::Status CheckEndpoint(const chart::ObstacleMap& map, const ObstacleField& field, chart::LocalPoint p,
-                           const char* name) {
+absl::Status CheckEndpoint(const chart::ObstacleMap& map, const ObstacleField& field,
+                           chart::LocalPoint p, const char* name) {
   if (!std::isfinite(p.x_m) || !std::isfinite(p.y_m)) {
     return absl::InvalidArgumentError(absl::StrCat(name, " is not a finite position"));
   }
   if (!map.Covers(p)) {
-    return absl::InvalidArgumentError(absl::StrCat(name, " (", p.x_m, ", ", p.y_m,
-                                                   ") is outside the chart coverage"));
+    return absl::InvalidArgumentError(
+        absl::StrCat(name, " (", p.x_m, ", ", p.y_m, ") is outside the chart coverage"));
   }
   if (field.Inside(ToVec(p))) {
-    return absl::InvalidArgumentError(absl::StrCat(name, " (", p.x_m, ", ", p.y_m,
-                                                   ") lies inside a grounding obstacle"));
+    return absl::InvalidArgumentError(
+        absl::StrCat(name, " (", p.x_m, ", ", p.y_m, ") lies inside a grounding obstacle"));
   }
   return absl::OkStatus();
 }
@@ -57,10 +61,12 @@ absl::Status Environment::Validate() const {
     if (!std::isfinite(v)) return absl::InvalidArgumentError("environment values must be finite");
   }
   if (wind_speed_mps < 0 || wind_speed_mps > 100) {
-    return absl::InvalidArgumentError(absl::StrCat("wind_speed_mps must be in [0, 100], got ", wind_speed_mps));
+    return absl::InvalidArgumentError(
+        absl::StrCat("wind_speed_mps must be in [0, 100], got ", wind_speed_mps));
   }
   if (current_speed_mps < 0 || current_speed_mps > 20) {
-    return absl::InvalidArgumentError(absl::StrCat("current_speed_mps must be in [0, 20], got ", current_speed_mps));
+    return absl::InvalidArgumentError(
+        absl::StrCat("current_speed_mps must be in [0, 20], got ", current_speed_mps));
   }
   return absl::OkStatus();
 }
@@ -68,10 +74,12 @@ absl::Status Environment::Validate() const {
 absl::Status ShipParticulars::Validate() const {
   SEAPLAN_RETURN_IF_ERROR(hull.Validate());
   if (!(service_throttle > 0.0 && service_throttle <= 1.1)) {
-    return absl::InvalidArgumentError(absl::StrCat("service_throttle must be in (0, 1.1], got ", service_throttle));
+    return absl::InvalidArgumentError(
+        absl::StrCat("service_throttle must be in (0, 1.1], got ", service_throttle));
   }
   if (!(service_speed_mps >= 0.0 && std::isfinite(service_speed_mps))) {
-    return absl::InvalidArgumentError(absl::StrCat("service_speed_mps must be >= 0 and finite, got ", service_speed_mps));
+    return absl::InvalidArgumentError(
+        absl::StrCat("service_speed_mps must be >= 0 and finite, got ", service_speed_mps));
   }
   return absl::OkStatus();
 }
@@ -81,7 +89,8 @@ absl::Status RouteOptions::Validate() const {
   SEAPLAN_RETURN_IF_ERROR(alternatives.Validate());
   SEAPLAN_RETURN_IF_ERROR(risk.Validate());
   if (max_alternatives < 1 || max_alternatives > 64) {
-    return absl::InvalidArgumentError(absl::StrCat("max_alternatives must be in [1, 64], got ", max_alternatives));
+    return absl::InvalidArgumentError(
+        absl::StrCat("max_alternatives must be in [1, 64], got ", max_alternatives));
   }
   if (!(min_depth_m >= 0.0 && min_depth_m < 1000.0)) {
     return absl::InvalidArgumentError("min_depth_m must be in [0, 1000)");
@@ -101,15 +110,17 @@ ship::Environment ToShipEnvironment(const Environment& env) {
 }
 
 StatusOr<RoutePlanner> RoutePlanner::Create(std::shared_ptr<const chart::ObstacleMap> map,
-                                            const ShipParticulars& ship, const RouteOptions& options) {
+                                            const ShipParticulars& ship,
+                                            const RouteOptions& options) {
   if (map == nullptr) return absl::InvalidArgumentError("RoutePlanner needs a chart");
   SEAPLAN_RETURN_IF_ERROR(ship.Validate());
   SEAPLAN_RETURN_IF_ERROR(options.Validate());
   const double chart_depth = map->summary().options.min_depth_m;
   if (options.min_depth_m > chart_depth) {
-    return absl::FailedPreconditionError(absl::StrCat(
-        "the chart's obstacles were built for a minimum depth of ", chart_depth, " m but the route needs ",
-        options.min_depth_m, " m: reload the chart with min_depth_m >= ", options.min_depth_m));
+    return absl::FailedPreconditionError(
+        absl::StrCat("the chart's obstacles were built for a minimum depth of ", chart_depth,
+                     " m but the route needs ", options.min_depth_m,
+                     " m: reload the chart with min_depth_m >= ", options.min_depth_m));
   }
   RoutePlanner p;
   p.map_ = std::move(map);
@@ -120,22 +131,26 @@ StatusOr<RoutePlanner> RoutePlanner::Create(std::shared_ptr<const chart::Obstacl
     double throttle = ship.service_throttle;
     if (ship.service_speed_mps > 0.0) {
       // OutOfRange: the mode's top speed is below the ordered speed.
-      const StatusOr<double> t = ship::ThrottleForSpeed(ship.hull, ship.machinery, mode, ship.service_speed_mps);
+      const StatusOr<double> t =
+          ship::ThrottleForSpeed(ship.hull, ship.machinery, mode, ship.service_speed_mps);
       throttle = t.ok() ? *t : 1.0;
     }
-    const ship::OperatingPoint op = ship::CalmWaterOperatingPoint(ship.hull, ship.machinery, mode, throttle);
+    const ship::OperatingPoint op =
+        ship::CalmWaterOperatingPoint(ship.hull, ship.machinery, mode, throttle);
     p.speed_mps_[m] = op.speed_mps;
     p.fuel_kgps_[m] = op.fuel_rate.total_kgps();
     if (!(op.speed_mps > 0.1)) {
-      return absl::InvalidArgumentError(absl::StrCat("mode ", std::string(ship::MsoModeName(static_cast<MsoMode>(m))),
-                                                     " has no service speed at throttle ", throttle));
+      return absl::InvalidArgumentError(
+          absl::StrCat("mode ", std::string(ship::MsoModeName(static_cast<MsoMode>(m))),
+                       " has no service speed at throttle ", throttle));
     }
   }
   const chart::LocalBox cov = p.map_->summary().coverage;
   ObstacleFieldOptions fo;
   // Large charts (a 1:80 000 ENC cell is ~50 x 80 km): coarser cells keep
   // the grid near 250k cells; queries stay exact, candidate lists get longer.
-  const double area_m2 = (cov.max.x_m - cov.min.x_m + 2 * fo.margin_m) * (cov.max.y_m - cov.min.y_m + 2 * fo.margin_m);
+  const double area_m2 =
+      (cov.max.x_m - cov.min.x_m + 2 * fo.margin_m) * (cov.max.y_m - cov.min.y_m + 2 * fo.margin_m);
   fo.cell_m = std::max(options.field_cell_m, std::sqrt(std::max(area_m2, 0.0) / 250e3));
   fo.far_cutoff_m = std::min(3000.0, 30.0 / options.level2.weights.zeta1_per_m);
   fo.hull = {ship.hull.length_m, ship.hull.beam_m};
@@ -149,8 +164,8 @@ StatusOr<RoutePlanner> RoutePlanner::Create(std::shared_ptr<const chart::Obstacl
   return p;
 }
 
-StatusOr<RouteResult> RoutePlanner::Plan(chart::LatLon start, chart::LatLon goal, const Environment& env,
-                                         const StopToken& stop) const {
+StatusOr<RouteResult> RoutePlanner::Plan(chart::LatLon start, chart::LatLon goal,
+                                         const Environment& env, const StopToken& stop) const {
   return Plan(map_->frame().ToLocal(start), map_->frame().ToLocal(goal), env, stop);
 }
 
@@ -162,11 +177,13 @@ StatusOr<RouteResult> RoutePlanner::Plan(chart::LocalPoint start, chart::LocalPo
   auto level1 = chart::PlanAlternatives(*map_, start, goal, options_.alternatives);
   if (!level1.ok()) {
     if (level1.status().code() == absl::StatusCode::kNotFound) {
-      return absl::FailedPreconditionError(absl::StrCat("no safe route: ", level1.status().message()));
+      return absl::FailedPreconditionError(
+          absl::StrCat("no safe route: ", level1.status().message()));
     }
     return level1.status();
   }
-  if (level1->alternatives.empty()) return absl::FailedPreconditionError("no safe route: Level 1 found none");
+  if (level1->alternatives.empty())
+    return absl::FailedPreconditionError("no safe route: Level 1 found none");
 
   DriftingGroundingAdapter grounding(*risk_model_);
   Level2Problem problem;
@@ -220,8 +237,8 @@ StatusOr<RouteResult> RoutePlanner::Plan(chart::LocalPoint start, chart::LocalPo
     }
     out.alternatives.push_back(std::move(alt));
   }
-  log::Info("route: {} alternatives, chosen {}, {} evaluations, level-2 {:.3f} s", out.alternatives.size(),
-            out.chosen, out.evaluations, out.level2_wall_s);
+  log::Info("route: {} alternatives, chosen {}, {} evaluations, level-2 {:.3f} s",
+            out.alternatives.size(), out.chosen, out.evaluations, out.level2_wall_s);
   if (out.chosen < 0 && !out.stopped) {
     return absl::FailedPreconditionError(
         "no safe route: every optimised alternative touches a grounding obstacle");
@@ -238,7 +255,8 @@ StatusOr<std::vector<PointRisk>> RoutePlanner::EstimateRisk(const std::vector<Tr
   for (size_t i = 0; i < track.size(); ++i) {
     const chart::LocalPoint p = map_->frame().ToLocal(track[i].latlon);
     if (!std::isfinite(p.x_m) || !std::isfinite(p.y_m)) {
-      return absl::InvalidArgumentError(absl::StrCat("track point ", i, " is not a valid position"));
+      return absl::InvalidArgumentError(
+          absl::StrCat("track point ", i, " is not a valid position"));
     }
     local.push_back(ToVec(p));
   }
@@ -249,16 +267,19 @@ StatusOr<std::vector<PointRisk>> RoutePlanner::EstimateRisk(const std::vector<Tr
     if (t.heading_deg) {
       heading = *t.heading_deg * kDegToRad;
     } else if (track.size() > 1) {
-      const Vec2 a = local[i + 1 < local.size() ? i : i - 1], b = local[i + 1 < local.size() ? i + 1 : i];
+      const Vec2 a = local[i + 1 < local.size() ? i : i - 1],
+                 b = local[i + 1 < local.size() ? i + 1 : i];
       heading = std::atan2(b.x - a.x, b.y - a.y);
     }
     const double speed = t.speed_mps.value_or(options_.level2.drift_initial_speed_mps);
     if (!(speed >= 0 && speed < 50)) {
-      return absl::InvalidArgumentError(absl::StrCat("track point ", i, " speed must be in [0, 50) m/s"));
+      return absl::InvalidArgumentError(
+          absl::StrCat("track point ", i, " speed must be in [0, 50) m/s"));
     }
     SEAPLAN_ASSIGN_OR_RETURN(
-        double ttg, SimulateTimeToGrounding(*field_, ship_.hull, senv, local[i], heading, speed,
-                                            options_.level2.ttg_horizon_s, options_.level2.ttg_step_s));
+        double ttg,
+        SimulateTimeToGrounding(*field_, ship_.hull, senv, local[i], heading, speed,
+                                options_.level2.ttg_horizon_s, options_.level2.ttg_step_s));
     PointRisk r;
     r.mode = t.mode.value_or(MsoMode::kPto);
     r.ttg_s = ttg;
@@ -275,9 +296,10 @@ std::shared_ptr<const chart::ObstacleMap> Borrow(const chart::ObstacleMap& map) 
 }
 }  // namespace
 
-StatusOr<RouteResult> PlanRoute(const chart::ObstacleMap& map, chart::LatLon start, chart::LatLon goal,
-                                const ShipParticulars& ship, const Environment& env,
-                                const RouteOptions& options, const StopToken& stop) {
+StatusOr<RouteResult> PlanRoute(const chart::ObstacleMap& map, chart::LatLon start,
+                                chart::LatLon goal, const ShipParticulars& ship,
+                                const Environment& env, const RouteOptions& options,
+                                const StopToken& stop) {
   SEAPLAN_ASSIGN_OR_RETURN(RoutePlanner planner, RoutePlanner::Create(Borrow(map), ship, options));
   return planner.Plan(start, goal, env, stop);
 }

@@ -100,7 +100,8 @@ TEST(RoutePlannerDataTest, AlesundTwoAlternativesRiskAndModes) {
   // EstimateRisk along the chosen route agrees with the planner's TTG.
   std::vector<TrackPoint> track;
   const auto& chosen = r->alternatives[r->chosen];
-  for (const auto& w : chosen.waypoints) track.push_back({w.latlon, std::nullopt, std::nullopt, w.mode});
+  for (const auto& w : chosen.waypoints)
+    track.push_back({w.latlon, std::nullopt, std::nullopt, w.mode});
   auto risk = planner->EstimateRisk(track, AlesundWeather());
   ASSERT_TRUE(risk.ok()) << risk.status();
   ASSERT_EQ(risk->size(), track.size());
@@ -116,9 +117,11 @@ TEST(RoutePlannerDataTest, StartInsideAnObstacleIsInvalidArgument) {
   // A point on the island's land (shapefile land layer covers it).
   const auto& poly = map->polygons().front().outer;
   chart::LocalPoint inside{0, 0};
-  for (const auto& p : poly) inside = {inside.x_m + p.x_m / poly.size(), inside.y_m + p.y_m / poly.size()};
-  auto planner = RoutePlanner::Create(std::shared_ptr<const chart::ObstacleMap>(&*map, [](auto*) {}),
-                                      ShipParticulars{}, RouteOptions{});
+  for (const auto& p : poly)
+    inside = {inside.x_m + p.x_m / poly.size(), inside.y_m + p.y_m / poly.size()};
+  auto planner =
+      RoutePlanner::Create(std::shared_ptr<const chart::ObstacleMap>(&*map, [](auto*) {}),
+                           ShipParticulars{}, RouteOptions{});
   ASSERT_TRUE(planner.ok());
   if (!planner->field().Inside({inside.x_m, inside.y_m})) GTEST_SKIP() << "centroid not inside";
   auto r = planner->Plan(inside, {38000, 6961100}, AlesundWeather());

@@ -11,16 +11,22 @@ namespace {
 constexpr double kE0 = 500000.0, kN0 = 7000000.0;  // UTM33 near 63.1 N, 15 E
 
 chart::Polygon Rect(double x0, double y0, double x1, double y1) {
-  return chart::Polygon{{{kE0 + x0, kN0 + y0}, {kE0 + x1, kN0 + y0}, {kE0 + x1, kN0 + y1}, {kE0 + x0, kN0 + y1}}, {}};
+  return chart::Polygon{
+      {{kE0 + x0, kN0 + y0}, {kE0 + x1, kN0 + y0}, {kE0 + x1, kN0 + y1}, {kE0 + x0, kN0 + y1}}, {}};
 }
-chart::LocalPoint P(double x, double y) { return {kE0 + x, kN0 + y}; }
+chart::LocalPoint P(double x, double y) {
+  return {kE0 + x, kN0 + y};
+}
 
 // A long island x in [-800, 800], y in [-200, 200]; a square "harbour wall"
 // ring far east encloses the point (3000, 0).
 std::shared_ptr<const chart::ObstacleMap> Map() {
   std::vector<chart::Polygon> polys = {Rect(-800, -200, 800, 200)};
   chart::Polygon ring = Rect(2800, -200, 3200, 200);
-  ring.holes.push_back({{kE0 + 2900, kN0 - 100}, {kE0 + 3100, kN0 - 100}, {kE0 + 3100, kN0 + 100}, {kE0 + 2900, kN0 + 100}});
+  ring.holes.push_back({{kE0 + 2900, kN0 - 100},
+                        {kE0 + 3100, kN0 - 100},
+                        {kE0 + 3100, kN0 + 100},
+                        {kE0 + 2900, kN0 + 100}});
   polys.push_back(ring);
   chart::ChartOptions co;
   co.safety_buffer_m = 10.0;
@@ -104,7 +110,8 @@ TEST(RoutePlannerTest, BadEndpointsAndNoRoute) {
   EXPECT_EQ(enclosed.status().code(), absl::StatusCode::kFailedPrecondition) << enclosed.status();
   Environment bad = SouthWind();
   bad.wind_speed_mps = -1;
-  EXPECT_EQ(planner->Plan(P(-2000, 0), P(2000, 0), bad).status().code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_EQ(planner->Plan(P(-2000, 0), P(2000, 0), bad).status().code(),
+            absl::StatusCode::kInvalidArgument);
   RouteOptions deeper = FastOptions();
   deeper.min_depth_m = 50.0;  // the map was built for 5 m
   EXPECT_EQ(RoutePlanner::Create(map, ShipParticulars{}, deeper).status().code(),
@@ -148,7 +155,8 @@ TEST(RoutePlannerTest, ServiceSpeedSetsEveryModesSpeedAndFuel) {
 
   ShipParticulars bad;
   bad.service_speed_mps = -1.0;
-  EXPECT_EQ(RoutePlanner::Create(map, bad, FastOptions()).status().code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_EQ(RoutePlanner::Create(map, bad, FastOptions()).status().code(),
+            absl::StatusCode::kInvalidArgument);
 }
 
 TEST(RoutePlannerTest, EstimateRiskHigherUpwindOfTheShore) {
@@ -159,7 +167,7 @@ TEST(RoutePlannerTest, EstimateRiskHigherUpwindOfTheShore) {
   std::vector<TrackPoint> track = {
       {f.ToLatLon(P(0, -320)), 90.0, 2.0, MsoMode::kPto},  // south of the island, drifting onto it
       {f.ToLatLon(P(0, -320)), 90.0, 2.0, MsoMode::kMec},
-      {f.ToLatLon(P(0, 320)), 90.0, 2.0, MsoMode::kPto},   // north: drifting away
+      {f.ToLatLon(P(0, 320)), 90.0, 2.0, MsoMode::kPto},  // north: drifting away
   };
   auto risk = planner->EstimateRisk(track, SouthWind());
   ASSERT_TRUE(risk.ok()) << risk.status();

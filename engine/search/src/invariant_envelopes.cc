@@ -20,7 +20,8 @@ double MinDurationBound(const task::Action& action) {
   for (const auto& c : action.duration) {
     if (!c.value.IsConstant()) continue;
     const double v = c.value.ConstantValue();
-    if (c.comparator == task::Comparator::kEqual || c.comparator == task::Comparator::kGreaterEqual ||
+    if (c.comparator == task::Comparator::kEqual ||
+        c.comparator == task::Comparator::kGreaterEqual ||
         c.comparator == task::Comparator::kGreater) {
       lo = std::max(lo, v);
     }
@@ -73,7 +74,8 @@ InvariantEnvelopes::InvariantEnvelopes(const task::GroundTask& task) {
       if (needed_over_all[f] && end_surely_deletes(action, f)) end_deletes_[a].push_back(f);
     }
     std::sort(end_deletes_[a].begin(), end_deletes_[a].end());
-    end_deletes_[a].erase(std::unique(end_deletes_[a].begin(), end_deletes_[a].end()), end_deletes_[a].end());
+    end_deletes_[a].erase(std::unique(end_deletes_[a].begin(), end_deletes_[a].end()),
+                          end_deletes_[a].end());
   }
 
   std::vector<bool> end_deleted(num_facts, false);

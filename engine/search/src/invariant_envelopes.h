@@ -36,7 +36,9 @@ class InvariantEnvelopes {
   // True when `inner` needs over all a fact that the end of `outer` deletes.
   bool MustEndWithin(task::ActionId inner, task::ActionId outer) const;
   // True when the end of `a` deletes a fact some action needs over all.
-  bool IsEnvelope(task::ActionId a) const { return !end_deletes_[static_cast<std::size_t>(a)].empty(); }
+  bool IsEnvelope(task::ActionId a) const {
+    return !end_deletes_[static_cast<std::size_t>(a)].empty();
+  }
   // True when `a` needs over all some fact over a longer time than that fact can hold.
   bool Unschedulable(task::ActionId a) const { return unschedulable_[static_cast<std::size_t>(a)]; }
   // Sorted facts the end of `a` deletes that some action needs over all.

@@ -76,9 +76,12 @@ TEST(InvariantEnvelopesTest, ActionLongerThanEveryWindowOfItsInvariantIsUnschedu
   EXPECT_FALSE(env.Unschedulable(ActionIdOf(*task, "(bake-slow a k20)")));
   EXPECT_FALSE(env.Unschedulable(ActionIdOf(*task, "(fire-short k8)")));
   EXPECT_EQ(env.num_unschedulable(), 3);  // bake-slow of a, b and c in k8
-  EXPECT_TRUE(env.MustEndWithin(ActionIdOf(*task, "(bake-fast a k8)"), ActionIdOf(*task, "(fire-short k8)")));
-  EXPECT_FALSE(env.MustEndWithin(ActionIdOf(*task, "(bake-fast a k8)"), ActionIdOf(*task, "(fire-long k20)")));
-  EXPECT_FALSE(env.MustEndWithin(ActionIdOf(*task, "(cool a)"), ActionIdOf(*task, "(fire-short k8)")));
+  EXPECT_TRUE(env.MustEndWithin(ActionIdOf(*task, "(bake-fast a k8)"),
+                                ActionIdOf(*task, "(fire-short k8)")));
+  EXPECT_FALSE(env.MustEndWithin(ActionIdOf(*task, "(bake-fast a k8)"),
+                                 ActionIdOf(*task, "(fire-long k20)")));
+  EXPECT_FALSE(
+      env.MustEndWithin(ActionIdOf(*task, "(cool a)"), ActionIdOf(*task, "(fire-short k8)")));
   EXPECT_TRUE(env.IsEnvelope(ActionIdOf(*task, "(fire-short k8)")));
   EXPECT_FALSE(env.IsEnvelope(ActionIdOf(*task, "(bake-fast a k8)")));
 }
@@ -94,7 +97,8 @@ TEST(InvariantEnvelopesTest, FactTrueInitiallyIsNoEnvelope) {
 TEST(InvariantEnvelopesTest, DurationBoundsReadConstantConstraints) {
   auto task = MustLoad(Problem("k8", "(short k8)", "(baked a)"));
   ASSERT_TRUE(task);
-  const task::Action& fire = task->actions[static_cast<std::size_t>(ActionIdOf(*task, "(fire-short k8)"))];
+  const task::Action& fire =
+      task->actions[static_cast<std::size_t>(ActionIdOf(*task, "(fire-short k8)"))];
   EXPECT_EQ(MinDurationBound(fire), 8.0);
   EXPECT_EQ(MaxDurationBound(fire), 8.0);
 }
@@ -170,7 +174,8 @@ TEST(InvariantEnvelopesTest, PlannerBakesSlowPiecesInTheLongKiln) {
   PlannerOptions o;
   o.time_limit_s = 5;
   const PlanResult r = SolveTask(*task, o, StopToken());
-  ASSERT_TRUE(r.status == PlanStatus::kSolvedSatisficing || r.status == PlanStatus::kSolvedOptimally)
+  ASSERT_TRUE(r.status == PlanStatus::kSolvedSatisficing ||
+              r.status == PlanStatus::kSolvedOptimally)
       << ToString(r.status) << ": " << r.message;
   ExpectValid(*task, r);
   int slow = 0;

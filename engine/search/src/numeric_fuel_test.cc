@@ -56,7 +56,8 @@ class FuelTest : public ::testing::Test {
     StateRegistry registry(snap_->num_facts(), snap_->num_vars());
     state_ = registry.MakeEmpty();
     for (auto f : task_->initial_facts) state_.Set(f);
-    for (std::size_t v = 0; v < state_.values.size(); ++v) state_.values[v] = task_->initial_values[v];
+    for (std::size_t v = 0; v < state_.values.size(); ++v)
+      state_.values[v] = task_->initial_values[v];
   }
   task::ActionId Action(const std::string& display_name) const {
     for (std::size_t a = 0; a < task_->actions.size(); ++a) {

@@ -1,11 +1,11 @@
 #include "plan_builder.h"
 
-#include "plan_lifting.h"
-#include "seaplan/common/log.h"
-
 #include <algorithm>
 #include <cmath>
 #include <memory>
+
+#include "plan_lifting.h"
+#include "seaplan/common/log.h"
 
 namespace seaplan::search {
 
@@ -109,7 +109,7 @@ std::optional<BuiltPlan> BuildValidatedPlan(const SnapTask& task, std::span<cons
   // Post-processing: the partial-order lift, kept only when it validates as
   // printed and is not longer (see plan_lifting.h).
   if (auto lifted_times = LiftAndReschedule(task, events, times, validator.epsilon_s(),
-                                                 timeline.bound_concurrency())) {
+                                            timeline.bound_concurrency())) {
     std::string lift_error;
     auto lifted = PlanAtTimes(task, events, *lifted_times, validator, &lift_error);
     if (lifted && lifted->makespan_s <= built->makespan_s) return lifted;

@@ -93,8 +93,7 @@ bool ChangesInvariant(const Footprint& x, const Footprint& y) {
 std::optional<std::vector<double>> LiftAndReschedule(const SnapTask& task,
                                                      std::span<const Event> events,
                                                      std::span<const double> times,
-                                                     double epsilon_s,
-                                                     bool bound_concurrency) {
+                                                     double epsilon_s, bool bound_concurrency) {
   const std::size_t n = events.size();
   if (times.size() != n) return std::nullopt;
   std::vector<std::size_t> order(n);

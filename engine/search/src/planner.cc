@@ -8,9 +8,9 @@
 #include "heuristics/relaxed_plan_heuristic.h"
 #include "heuristics/temporal_reachability.h"
 #include "plan_builder.h"
-#include "search_engine.h"
 #include "seaplan/common/log.h"
 #include "seaplan/task/grounder.h"
+#include "search_engine.h"
 #include "snap_task.h"
 #include "state_registry.h"
 #include "timeline.h"
@@ -20,30 +20,39 @@ namespace seaplan::search {
 
 const char* ToString(PlanStatus status) {
   switch (status) {
-    case PlanStatus::kSolvedSatisficing: return "solved";
-    case PlanStatus::kSolvedOptimally: return "solved-optimally";
-    case PlanStatus::kUnsolvableProven: return "unsolvable";
-    case PlanStatus::kTimeout: return "timeout";
-    case PlanStatus::kMemout: return "memout";
-    case PlanStatus::kUnsupported: return "unsupported";
-    case PlanStatus::kCancelled: return "cancelled";
-    case PlanStatus::kError: return "error";
+    case PlanStatus::kSolvedSatisficing:
+      return "solved";
+    case PlanStatus::kSolvedOptimally:
+      return "solved-optimally";
+    case PlanStatus::kUnsolvableProven:
+      return "unsolvable";
+    case PlanStatus::kTimeout:
+      return "timeout";
+    case PlanStatus::kMemout:
+      return "memout";
+    case PlanStatus::kUnsupported:
+      return "unsupported";
+    case PlanStatus::kCancelled:
+      return "cancelled";
+    case PlanStatus::kError:
+      return "error";
   }
   return "unknown";
 }
 
 absl::Status PlannerOptions::Validate() const {
   if (!(time_limit_s > 0) || !std::isfinite(time_limit_s)) {
-    return absl::InvalidArgumentError(
-        absl::StrCat("time_limit_s must be a positive finite number of seconds, got ", time_limit_s));
+    return absl::InvalidArgumentError(absl::StrCat(
+        "time_limit_s must be a positive finite number of seconds, got ", time_limit_s));
   }
   if (memory_limit_mb == 0) return absl::InvalidArgumentError("memory_limit_mb must be > 0");
   if (max_concurrent_actions < 0) {
-    return absl::InvalidArgumentError(
-        absl::StrCat("max_concurrent_actions must be >= 0 (0 = unbounded), got ", max_concurrent_actions));
+    return absl::InvalidArgumentError(absl::StrCat(
+        "max_concurrent_actions must be >= 0 (0 = unbounded), got ", max_concurrent_actions));
   }
   if (!(epsilon_s > 0) || !(epsilon_s < 1)) {
-    return absl::InvalidArgumentError(absl::StrCat("epsilon_s must be in (0, 1) seconds, got ", epsilon_s));
+    return absl::InvalidArgumentError(
+        absl::StrCat("epsilon_s must be in (0, 1) seconds, got ", epsilon_s));
   }
   return absl::OkStatus();
 }
@@ -187,7 +196,8 @@ PlanResult PlannerRun::Run() {
       best_.status = status_if_no_plan;
       best_.message = std::move(message);
     } else if (best_.message.empty()) {
-      best_.message = absl::StrCat(best_.stats.plans_found, " plan(s), best makespan ", best_.makespan_s);
+      best_.message =
+          absl::StrCat(best_.stats.plans_found, " plan(s), best makespan ", best_.makespan_s);
     }
     return best_;
   };
@@ -215,7 +225,8 @@ PlanResult PlannerRun::Run() {
       const Outcome poll = Poll(search);
       if (poll != Outcome::kContinue) {
         AddCounters(search);
-        if (poll == Outcome::kMemout) return finish(PlanStatus::kMemout, "memory limit reached before a plan");
+        if (poll == Outcome::kMemout)
+          return finish(PlanStatus::kMemout, "memory limit reached before a plan");
         return finish(stopped_status(), stop_.Reason() == StopReason::kCancelled
                                             ? "cancelled before a plan was found"
                                             : "time limit reached before a plan was found");

@@ -24,7 +24,8 @@ PlanResult SolveFiles(const std::filesystem::path& domain, const std::filesystem
 
 TEST(PlannerDataTest, FjordCaseA) {
   const auto dir = testing::SourceDir() / "examples/fjord";
-  if (!std::filesystem::exists(dir / "case-a.pddl")) GTEST_SKIP() << "examples/fjord/case-a.pddl absent";
+  if (!std::filesystem::exists(dir / "case-a.pddl"))
+    GTEST_SKIP() << "examples/fjord/case-a.pddl absent";
   std::shared_ptr<const task::GroundTask> task;
   const PlanResult r = SolveFiles(dir / "domain.pddl", dir / "case-a.pddl", 5, &task);
   ASSERT_FALSE(r.plan.steps.empty()) << ToString(r.status) << ": " << r.message;
@@ -40,9 +41,11 @@ TEST(PlannerDataTest, FjordCaseA) {
 
 TEST(PlannerDataTest, FjordCaseCNumericRefuels) {
   const auto dir = testing::SourceDir() / "examples/fjord";
-  if (!std::filesystem::exists(dir / "case-c-numeric.pddl")) GTEST_SKIP() << "case-c-numeric absent";
+  if (!std::filesystem::exists(dir / "case-c-numeric.pddl"))
+    GTEST_SKIP() << "case-c-numeric absent";
   std::shared_ptr<const task::GroundTask> task;
-  const PlanResult r = SolveFiles(dir / "domain-numeric.pddl", dir / "case-c-numeric.pddl", 10, &task);
+  const PlanResult r =
+      SolveFiles(dir / "domain-numeric.pddl", dir / "case-c-numeric.pddl", 10, &task);
   ASSERT_FALSE(r.plan.steps.empty()) << ToString(r.status) << ": " << r.message;
   const auto v = validate::ValidatePlan(*task, *validate::ParsePlan(validate::FormatPlan(r.plan)));
   EXPECT_TRUE(v.valid) << v.ToString();

@@ -22,7 +22,8 @@ struct Loaded {
 };
 
 Loaded Load(const std::string& domain, const std::string& problem) {
-  auto loaded = task::LoadTask(testing::ReadFile(TestData(domain)), testing::ReadFile(TestData(problem)));
+  auto loaded =
+      task::LoadTask(testing::ReadFile(TestData(domain)), testing::ReadFile(TestData(problem)));
   EXPECT_TRUE(loaded.ok()) << loaded.ErrorText();
   return {loaded.task};
 }
@@ -74,7 +75,8 @@ TEST(PlannerTest, RequiredConcurrencyMatchCellar) {
   auto loaded = Load("match-domain.pddl", "match-problem.pddl");
   ASSERT_TRUE(loaded.task);
   const PlanResult r = SolveTask(*loaded.task, Quick(2), StopToken());
-  ASSERT_TRUE(r.status == PlanStatus::kSolvedSatisficing || r.status == PlanStatus::kSolvedOptimally)
+  ASSERT_TRUE(r.status == PlanStatus::kSolvedSatisficing ||
+              r.status == PlanStatus::kSolvedOptimally)
       << ToString(r.status) << ": " << r.message;
   ExpectValid(*loaded.task, r);
   // Every mend overlaps a light.
@@ -97,7 +99,8 @@ TEST(PlannerTest, NumericFuelNeedsRefuelling) {
   auto loaded = Load("fuel-domain.pddl", "fuel-problem.pddl");
   ASSERT_TRUE(loaded.task);
   const PlanResult r = SolveTask(*loaded.task, Quick(2), StopToken());
-  ASSERT_TRUE(r.status == PlanStatus::kSolvedSatisficing || r.status == PlanStatus::kSolvedOptimally)
+  ASSERT_TRUE(r.status == PlanStatus::kSolvedSatisficing ||
+              r.status == PlanStatus::kSolvedOptimally)
       << r.message;
   ExpectValid(*loaded.task, r);
   int refuels = 0;
@@ -109,7 +112,8 @@ TEST(PlannerTest, TimedInitialLiteralsWindow) {
   auto loaded = Load("til-domain.pddl", "til-problem.pddl");
   ASSERT_TRUE(loaded.task);
   const PlanResult r = SolveTask(*loaded.task, Quick(2), StopToken());
-  ASSERT_TRUE(r.status == PlanStatus::kSolvedSatisficing || r.status == PlanStatus::kSolvedOptimally)
+  ASSERT_TRUE(r.status == PlanStatus::kSolvedSatisficing ||
+              r.status == PlanStatus::kSolvedOptimally)
       << r.message;
   ExpectValid(*loaded.task, r);
   for (const auto& s : r.plan.steps) {
@@ -133,7 +137,8 @@ TEST(PlannerTest, DurationInequalitiesChooseShortDurations) {
   auto loaded = Load("ineq-domain.pddl", "ineq-problem.pddl");
   ASSERT_TRUE(loaded.task);
   const PlanResult r = SolveTask(*loaded.task, Quick(2), StopToken());
-  ASSERT_TRUE(r.status == PlanStatus::kSolvedSatisficing || r.status == PlanStatus::kSolvedOptimally)
+  ASSERT_TRUE(r.status == PlanStatus::kSolvedSatisficing ||
+              r.status == PlanStatus::kSolvedOptimally)
       << r.message;
   ExpectValid(*loaded.task, r);
   // Two mends of >= 2 s inside one 5 s match.
@@ -144,7 +149,8 @@ TEST(PlannerTest, ConditionalEffects) {
   auto loaded = Load("cond-domain.pddl", "cond-problem.pddl");
   ASSERT_TRUE(loaded.task);
   const PlanResult r = SolveTask(*loaded.task, Quick(2), StopToken());
-  ASSERT_TRUE(r.status == PlanStatus::kSolvedSatisficing || r.status == PlanStatus::kSolvedOptimally)
+  ASSERT_TRUE(r.status == PlanStatus::kSolvedSatisficing ||
+              r.status == PlanStatus::kSolvedOptimally)
       << r.message;
   ExpectValid(*loaded.task, r);
 }
@@ -162,7 +168,8 @@ TEST(PlannerTest, TinyTimeLimitTimesOutQuickly) {
   ASSERT_TRUE(loaded.task);
   const auto start = std::chrono::steady_clock::now();
   const PlanResult r = SolveTask(*loaded.task, Quick(0.05), StopToken());
-  const double elapsed = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  const double elapsed =
+      std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
   EXPECT_EQ(r.status, PlanStatus::kTimeout);
   EXPECT_LT(elapsed, 0.5);
 }

@@ -5,7 +5,8 @@ namespace {
 
 void AddExprVars(const task::NumericExpr& expr, std::vector<bool>& vars) {
   for (const auto& node : expr.nodes) {
-    if (node.op == task::NumericExpr::Op::kVariable) vars[static_cast<std::size_t>(node.var)] = true;
+    if (node.op == task::NumericExpr::Op::kVariable)
+      vars[static_cast<std::size_t>(node.var)] = true;
   }
 }
 

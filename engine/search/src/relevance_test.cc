@@ -44,7 +44,8 @@ constexpr char kProblem[] = R"(
   (:goal (packed a)))
 )";
 
-bool Relevant(const task::GroundTask& task, const std::vector<bool>& relevant, const std::string& name) {
+bool Relevant(const task::GroundTask& task, const std::vector<bool>& relevant,
+              const std::string& name) {
   for (std::size_t a = 0; a < task.actions.size(); ++a) {
     if (task.actions[a].DisplayName() == name) return relevant[a];
   }

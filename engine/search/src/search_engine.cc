@@ -25,8 +25,7 @@ LazySearch::NodeInfo& LazySearch::Info(StateId id) {
 
 std::size_t LazySearch::MemoryBytes() const {
   return info_.capacity() * sizeof(NodeInfo) + slack_pool_.capacity() * sizeof(double) +
-         pending_.capacity() * sizeof(Pending) +
-         open_all_.MemoryBytes() +
+         pending_.capacity() * sizeof(Pending) + open_all_.MemoryBytes() +
          open_preferred_.MemoryBytes() + path_.capacity() * sizeof(Event);
 }
 
@@ -56,14 +55,18 @@ void LazySearch::ExtractPath(std::int32_t state, std::vector<Event>* out) const 
 bool LazySearch::SlackAtLeast(const NodeInfo& n, const std::vector<double>& slack) const {
   // Same logical state, so the same window actions in the same order.
   for (int i = 0; i < n.slack_count; ++i) {
-    if (slack_pool_[static_cast<std::size_t>(n.slack_begin + i)] < slack[static_cast<std::size_t>(i)] - 1e-9) return false;
+    if (slack_pool_[static_cast<std::size_t>(n.slack_begin + i)] <
+        slack[static_cast<std::size_t>(i)] - 1e-9)
+      return false;
   }
   return true;
 }
 
 bool LazySearch::SlackAtMost(const NodeInfo& n, const std::vector<double>& slack) const {
   for (int i = 0; i < n.slack_count; ++i) {
-    if (slack_pool_[static_cast<std::size_t>(n.slack_begin + i)] > slack[static_cast<std::size_t>(i)] + 1e-9) return false;
+    if (slack_pool_[static_cast<std::size_t>(n.slack_begin + i)] >
+        slack[static_cast<std::size_t>(i)] + 1e-9)
+      return false;
   }
   return true;
 }
@@ -142,7 +145,8 @@ std::int32_t LazySearch::Materialize(std::int32_t pending_index) {
   if (out.lower_bound_s >= params_.bound_s - params_.epsilon_s / 2) return reject();
   slack_scratch_.clear();
   for (const auto& r : next_.running) {
-    if (task_.IsWindowAction(r.action)) slack_scratch_.push_back(timeline_.WindowSlack(r.action, out.makespan_s));
+    if (task_.IsWindowAction(r.action))
+      slack_scratch_.push_back(timeline_.WindowSlack(r.action, out.makespan_s));
   }
   const bool greedy = params_.weight < 0;
   // Find the copy of this state to use: an unvisited one, one we improve
@@ -228,10 +232,10 @@ LazySearch::Status LazySearch::Step() {
     }
     usable = reachability_->usable_snaps();
   }
-  int h = heuristic_.Evaluate(
-      current_, &preferred_,
-      std::span<const double>(slack_pool_.data() + cur.slack_begin, static_cast<std::size_t>(cur.slack_count)),
-      usable);
+  int h = heuristic_.Evaluate(current_, &preferred_,
+                              std::span<const double>(slack_pool_.data() + cur.slack_begin,
+                                                      static_cast<std::size_t>(cur.slack_count)),
+                              usable);
   if (timed_check && h < RelaxedPlanHeuristic::kDeadEnd) {
     // The untimed relaxed plan counts a fact of the state as free even when
     // the state got it too late for a window (an image taken after its
@@ -268,7 +272,8 @@ LazySearch::Status LazySearch::Step() {
   const double parent_g_s = info_[static_cast<std::size_t>(s)].g_s;
   const double parent_lb_s = info_[static_cast<std::size_t>(s)].lb_s;
   for (Event ev : candidates_) {
-    if (stop_ != nullptr && (++tried & 255) == 0 && stop_->StopRequested()) return Status::kInProgress;
+    if (stop_ != nullptr && (++tried & 255) == 0 && stop_->StopRequested())
+      return Status::kInProgress;
     // Starts are even SnapIds (snap_task.h); reading the SnapAction would
     // cost a cache miss per candidate.
     if (greedy && !ev.is_til() && (ev.snap & 1) == 0 &&

@@ -25,8 +25,8 @@
 
 #include "heuristics/relaxed_plan_heuristic.h"
 #include "heuristics/temporal_reachability.h"
-#include "seaplan/common/stop_token.h"
 #include "open_lists/tie_breaking_open_list.h"
+#include "seaplan/common/stop_token.h"
 #include "snap_task.h"
 #include "state_registry.h"
 #include "timeline.h"
@@ -35,9 +35,9 @@
 namespace seaplan::search {
 
 struct SearchParams {
-  double weight = -1;         // < 0: greedy
-  double scale_s = 1;         // seconds per heuristic unit (weighted A*)
-  double bound_s = kInfinity; // only plans with makespan < bound - epsilon/2
+  double weight = -1;          // < 0: greedy
+  double scale_s = 1;          // seconds per heuristic unit (weighted A*)
+  double bound_s = kInfinity;  // only plans with makespan < bound - epsilon/2
   double epsilon_s = 0.001;
   std::uint64_t seed = 1;
   // Copies kept per logical state (schedules that do not dominate each
@@ -93,8 +93,8 @@ class LazySearch {
   struct NodeInfo {
     std::int32_t parent = -1;
     Event event{};
-    double g_s = 0;    // makespan of the path's schedule
-    double lb_s = 0;   // lower bound on any completion's makespan
+    double g_s = 0;   // makespan of the path's schedule
+    double lb_s = 0;  // lower bound on any completion's makespan
     std::int32_t h = -1;
     std::uint8_t status = 0;  // 0 new, 1 open, 2 closed
     // Slack of the running window actions (Timeline::WindowSlack), in

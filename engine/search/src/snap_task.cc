@@ -121,7 +121,8 @@ SnapTask::SnapTask(const task::GroundTask& task) : task_(task), envelopes_(task)
   tils_.resize(times.size());
   for (std::size_t i = 0; i < times.size(); ++i) tils_[i].time_s = times[i];
   auto index_of = [&](double t) {
-    return static_cast<std::size_t>(std::lower_bound(times.begin(), times.end(), t) - times.begin());
+    return static_cast<std::size_t>(std::lower_bound(times.begin(), times.end(), t) -
+                                    times.begin());
   };
   for (const auto& til : task.timed_literals) {
     TilEvent& ev = tils_[index_of(til.time_s)];

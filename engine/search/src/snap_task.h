@@ -31,8 +31,8 @@ struct SnapAction {
   bool is_end = false;
   const task::Condition* condition = nullptr;  // at start / at end
   const task::Effects* effects = nullptr;
-  std::vector<task::FactId> reads;   // sorted, unique
-  std::vector<task::FactId> writes;  // sorted, unique
+  std::vector<task::FactId> reads;             // sorted, unique
+  std::vector<task::FactId> writes;            // sorted, unique
   std::vector<task::NumericVarId> num_reads;   // sorted, unique
   std::vector<task::NumericVarId> num_writes;  // sorted, unique
   // The action's over-all facts (positive and negative) and the variables

@@ -35,8 +35,8 @@ struct RunningAction {
 
 // An unpacked state, used as scratch by successor generation and heuristics.
 struct StateData {
-  std::vector<std::uint64_t> facts;  // bitset
-  std::vector<double> values;        // per numeric variable
+  std::vector<std::uint64_t> facts;    // bitset
+  std::vector<double> values;          // per numeric variable
   std::vector<RunningAction> running;  // sorted by action
   std::int32_t next_til = 0;
   // Distinguishes copies of one logical state reached with schedules that

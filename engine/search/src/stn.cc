@@ -68,7 +68,8 @@ bool Stn::FinishNode() {
   // A label-correcting pass; a positive cycle must run through v, so any
   // attempt to raise v, time zero or a fixed node is a contradiction. The
   // relaxation budget guards against pathological float drift.
-  std::size_t budget = 64 + 4 * static_cast<std::size_t>(num_nodes()) * static_cast<std::size_t>(num_nodes());
+  std::size_t budget =
+      64 + 4 * static_cast<std::size_t>(num_nodes()) * static_cast<std::size_t>(num_nodes());
   for (std::size_t head = 0; head < queue_.size(); ++head) {
     const int u = queue_[head];
     const double tu = time_[u];

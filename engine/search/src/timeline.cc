@@ -177,7 +177,8 @@ void Timeline::AddEnvelopeEdges(const Event& event, const SnapAction& snap) {
 
 void Timeline::TrackEnvelopes(task::ActionId a, bool started) {
   const InvariantEnvelopes& env = task_.envelopes();
-  auto update = [&](std::vector<std::vector<task::ActionId>>& lists, const std::vector<task::FactId>& facts) {
+  auto update = [&](std::vector<std::vector<task::ActionId>>& lists,
+                    const std::vector<task::FactId>& facts) {
     for (auto f : facts) {
       auto& list = lists[f];
       if (started) {
@@ -264,7 +265,8 @@ Timeline::Outcome Timeline::Current() const {
   }
   out.lower_bound_s = out.makespan_s;
   for (auto a : open_actions_) {
-    out.lower_bound_s = std::max(out.lower_bound_s, stn_.time(open_start_[a]) + open_min_duration_[a]);
+    out.lower_bound_s =
+        std::max(out.lower_bound_s, stn_.time(open_start_[a]) + open_min_duration_[a]);
   }
   return out;
 }
@@ -283,7 +285,8 @@ bool Timeline::TryAdd(const Event& event, Outcome* outcome) {
   outcome->makespan_s = makespan;
   outcome->lower_bound_s = makespan;
   for (auto a : open_actions_) {
-    outcome->lower_bound_s = std::max(outcome->lower_bound_s, stn_.time(open_start_[a]) + open_min_duration_[a]);
+    outcome->lower_bound_s =
+        std::max(outcome->lower_bound_s, stn_.time(open_start_[a]) + open_min_duration_[a]);
   }
   if (!event.is_til()) {
     const SnapAction& snap = task_.snap(event.snap);

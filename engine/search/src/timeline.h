@@ -6,8 +6,8 @@
 // it reads or writes, and after the readers (since that writer) of anything
 // it writes. Over-all conditions follow the validator instead (no mutex):
 // the start comes at or after the last writer of an invariant's fact or
-// variable, and a later writer at or after the end (gap 0). Start and end of an action are tied by [min, max] duration
-// edges; timed literals are nodes fixed at their time, and an event that
+// variable, and a later writer at or after the end (gap 0). Start and end of an action are tied by
+// [min, max] duration edges; timed literals are nodes fixed at their time, and an event that
 // interferes with a literal not yet applied must precede it by epsilon. The
 // earliest STN solution is the schedule; an inconsistent network prunes the
 // path (a deadline passed, or a duration window cannot be met).
@@ -87,7 +87,9 @@ class Timeline {
   Outcome Current() const;
 
  private:
-  int EventNode(std::size_t i) const { return 1 + static_cast<int>(task_.tils().size()) + static_cast<int>(i); }
+  int EventNode(std::size_t i) const {
+    return 1 + static_cast<int>(task_.tils().size()) + static_cast<int>(i);
+  }
   int TilNode(int k) const { return 1 + k; }
   bool AddToStn(const Event& event);
   void Commit(const Event& event, int node);
@@ -108,8 +110,8 @@ class Timeline {
   double path_makespan_s_ = 0.0;
   double tentative_makespan_s_ = 0.0;  // of the last TryAdd, for Keep
   int next_til_ = 0;
-  std::vector<std::int32_t> last_writer_;                 // per fact, STN node or -1
-  std::vector<std::vector<std::int32_t>> readers_;        // per fact, since last writer
+  std::vector<std::int32_t> last_writer_;           // per fact, STN node or -1
+  std::vector<std::vector<std::int32_t>> readers_;  // per fact, since last writer
   std::vector<std::int32_t> var_last_writer_;
   std::vector<std::vector<std::int32_t>> var_readers_;
   // Ends of actions whose invariant reads the fact / variable, since its

@@ -49,7 +49,7 @@ class TimelineTest : public ::testing::Test {
   // start a, start b, start c, end c, end b, end a.
   std::vector<Event> Path() const {
     const int a = Action("work-a"), b = Action("work-b"), c = Action("work-c");
-    return {{2 * a, 10, 10},      {2 * b, 15, 15},     {2 * c, 20, 20},
+    return {{2 * a, 10, 10},     {2 * b, 15, 15},     {2 * c, 20, 20},
             {2 * c + 1, 20, 20}, {2 * b + 1, 15, 15}, {2 * a + 1, 10, 10}};
   }
 
@@ -78,7 +78,8 @@ TEST_F(TimelineTest, KeepAfterTryAddEqualsBuildingTheLongerPath) {
     const Timeline::Outcome now = incremental.Current();
     EXPECT_DOUBLE_EQ(now.makespan_s, rebuilt.Current().makespan_s) << i;
     EXPECT_DOUBLE_EQ(now.lower_bound_s, rebuilt.Current().lower_bound_s) << i;
-    for (std::size_t k = 0; k <= i; ++k) EXPECT_DOUBLE_EQ(incremental.EventTime(k), rebuilt.EventTime(k)) << i << " " << k;
+    for (std::size_t k = 0; k <= i; ++k)
+      EXPECT_DOUBLE_EQ(incremental.EventTime(k), rebuilt.EventTime(k)) << i << " " << k;
   }
   EXPECT_NEAR(incremental.Current().makespan_s, 25.002, 1e-9);
 }

@@ -114,18 +114,30 @@ bool Transitions::DurationWindow(task::ActionId a, const StateData& state, doubl
     auto v = c.value.Evaluate(state.values);
     if (!v || std::isnan(*v)) return false;
     switch (c.comparator) {
-      case task::Comparator::kEqual: lo = std::max(lo, *v); hi = std::min(hi, *v); break;
-      case task::Comparator::kGreaterEqual: lo = std::max(lo, *v); break;
-      case task::Comparator::kGreater: lo = std::max(lo, *v + epsilon_s_); break;
-      case task::Comparator::kLessEqual: hi = std::min(hi, *v); break;
-      case task::Comparator::kLess: hi = std::min(hi, *v - epsilon_s_); break;
+      case task::Comparator::kEqual:
+        lo = std::max(lo, *v);
+        hi = std::min(hi, *v);
+        break;
+      case task::Comparator::kGreaterEqual:
+        lo = std::max(lo, *v);
+        break;
+      case task::Comparator::kGreater:
+        lo = std::max(lo, *v + epsilon_s_);
+        break;
+      case task::Comparator::kLessEqual:
+        hi = std::min(hi, *v);
+        break;
+      case task::Comparator::kLess:
+        hi = std::min(hi, *v - epsilon_s_);
+        break;
     }
   }
   // A durative action needs a positive duration (validator); one whose
   // window allows only 0 (zenotravel's zoom from a city to itself) could
   // never end: a trap for the search, not a step.
   if (lo > hi + 1e-9 || hi <= 0) return false;
-  if (task_.EffectsReadDuration(a) || action.over_all.numeric.size() + action.at_end.numeric.size() > 0) {
+  if (task_.EffectsReadDuration(a) ||
+      action.over_all.numeric.size() + action.at_end.numeric.size() > 0) {
     // One concrete value keeps effects and conditions that read ?duration exact.
     hi = lo;
   }
@@ -149,8 +161,8 @@ void Transitions::ApplyEffects(const task::Effects& effects, const StateData& be
   }
   auto apply_numeric = [&](const task::NumericEffect& e) {
     auto v = e.value.Evaluate(before.values, duration);
-    next->values[e.var] = v ? task::ApplyAssign(e.op, next->values[e.var], *v)
-                            : task::NumericExpr::kUndefined;
+    next->values[e.var] =
+        v ? task::ApplyAssign(e.op, next->values[e.var], *v) : task::NumericExpr::kUndefined;
   };
   for (const auto& e : effects.numeric) apply_numeric(e);
   for (const auto& ce : effects.conditional) {
@@ -161,7 +173,8 @@ void Transitions::ApplyEffects(const task::Effects& effects, const StateData& be
 
 bool Transitions::RunningInvariantsHold(const StateData& state) const {
   for (const auto& r : state.running) {
-    if (!ConditionHolds(task_.task().actions[r.action].over_all, state, r.min_duration_s)) return false;
+    if (!ConditionHolds(task_.task().actions[r.action].over_all, state, r.min_duration_s))
+      return false;
   }
   return true;
 }
@@ -180,9 +193,9 @@ bool Transitions::Apply(const StateData& state, Event* event, StateData* next) c
   const SnapAction& snap = task_.snap(event->snap);
   const task::ActionId a = snap.action;
   const auto& action = task_.task().actions[a];
-  auto running_it = std::lower_bound(
-      state.running.begin(), state.running.end(), a,
-      [](const RunningAction& r, task::ActionId id) { return r.action < id; });
+  auto running_it =
+      std::lower_bound(state.running.begin(), state.running.end(), a,
+                       [](const RunningAction& r, task::ActionId id) { return r.action < id; });
   const bool is_running = running_it != state.running.end() && running_it->action == a;
   if (!snap.is_end) {
     if (is_running) return false;  // no self-overlap

@@ -21,10 +21,12 @@ double PiController::Update(double setpoint, double measurement) {
   return error * kp_ + integral_ * ki_;
 }
 
-double PiController::UpdateSaturated(double setpoint, double measurement, double out_lo, double out_hi) {
+double PiController::UpdateSaturated(double setpoint, double measurement, double out_lo,
+                                     double out_hi) {
   const double error = setpoint - measurement;
   const double unsaturated = error * kp_ + integral_ * ki_;
-  const bool pushing_out = (unsaturated >= out_hi && error > 0.0) || (unsaturated <= out_lo && error < 0.0);
+  const bool pushing_out =
+      (unsaturated >= out_hi && error > 0.0) || (unsaturated <= out_lo && error < 0.0);
   if (!pushing_out) integral_ = std::clamp(integral_ + error * dt_s_, lo_, hi_);
   return std::clamp(error * kp_ + integral_ * ki_, out_lo, out_hi);
 }
@@ -87,7 +89,8 @@ double HeadingController::RudderAngle(double setpoint, double measured) {
 
 Status LosOptions::Validate() const {
   if (!(acceptance_radius_m > 0.0) || !(lookahead_m > 0.0) || !std::isfinite(k_i) ||
-      !(max_integral >= 0.0) || !std::isfinite(acceptance_radius_m) || !std::isfinite(lookahead_m)) {
+      !(max_integral >= 0.0) || !std::isfinite(acceptance_radius_m) ||
+      !std::isfinite(lookahead_m)) {
     return absl::InvalidArgumentError(
         absl::StrCat("LosOptions: acceptance_radius_m ", acceptance_radius_m, ", lookahead_m ",
                      lookahead_m, " must be > 0; k_i finite; max_integral >= 0"));
@@ -104,7 +107,8 @@ StatusOr<LosGuidance> LosGuidance::Create(std::vector<Eigen::Vector2d> waypoints
   }
   for (size_t i = 0; i < waypoints.size(); ++i) {
     if (!waypoints[i].allFinite()) {
-      return absl::InvalidArgumentError(absl::StrCat("LosGuidance: waypoint ", i, " is not finite"));
+      return absl::InvalidArgumentError(
+          absl::StrCat("LosGuidance: waypoint ", i, " is not finite"));
     }
     if (i > 0 && waypoints[i] == waypoints[i - 1]) {
       return absl::InvalidArgumentError(

@@ -60,7 +60,8 @@ TEST(ControlTest, ClosedLoopRouteFollowing) {
   while (!los->finished() && model->time_s() < 4000) {
     const ShipState& s = model->state();
     const double psi_d = los->Update(s.eta[0], s.eta[1]);
-    if (model->time_s() > 600) max_cross_track_m = std::max(max_cross_track_m, std::abs(los->cross_track_error_m()));
+    if (model->time_s() > 600)
+      max_cross_track_m = std::max(max_cross_track_m, std::abs(los->cross_track_error_m()));
     model->Step(speed.Throttle(7.0, s.nu[0]), heading.RudderAngle(psi_d, s.eta[2]), dt);
   }
   EXPECT_TRUE(los->finished());
@@ -76,8 +77,8 @@ TEST(ControlTest, ClosedLoopRouteFollowing) {
 // on a wound-up integral.
 TEST(ControlTest, SpeedControllerFollowsALowerSetpointAfterALongAcceleration) {
   const double dt = 0.5;
-  auto model = ShipModel::Create(ShipParams{}, MachineryParams{}, Environment{}, ShipState::At(0, 0, 0, 0),
-                                 MsoMode::kPto);
+  auto model = ShipModel::Create(ShipParams{}, MachineryParams{}, Environment{},
+                                 ShipState::At(0, 0, 0, 0), MsoMode::kPto);
   ASSERT_TRUE(model.ok());
   SpeedController speed(SpeedControllerOptions{}, dt);
   while (model->time_s() < 60) model->Step(speed.Throttle(9.0, model->state().nu[0]), 0.0, dt);
@@ -88,7 +89,8 @@ TEST(ControlTest, SpeedControllerFollowsALowerSetpointAfterALongAcceleration) {
     model->Step(speed.Throttle(3.6, model->state().nu[0]), 0.0, dt);
     peak = std::max(peak, model->state().nu[0]);
   }
-  EXPECT_LT(peak, at_order + 0.5) << "kept accelerating after the order (a wound-up integral: +1.5 m/s)";
+  EXPECT_LT(peak, at_order + 0.5)
+      << "kept accelerating after the order (a wound-up integral: +1.5 m/s)";
   EXPECT_NEAR(model->state().nu[0], 3.6, 0.4);
 }
 

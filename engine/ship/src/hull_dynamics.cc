@@ -15,7 +15,7 @@ HullDynamics::HullDynamics(const ShipParams& params)
   area_side_m2_ = params.length_m * params.side_height_m;
   const double mxg = mass_ * params.x_g_m;
   m_ << mass_ + x_du_, 0.0, 0.0,  //
-      0.0, mass_ + y_dv_, mxg,     //
+      0.0, mass_ + y_dv_, mxg,    //
       0.0, mxg, i_z_ + n_dr_;
   m_inv_ = m_.inverse();
   d_l_.setZero();
@@ -88,7 +88,8 @@ StateDerivative HullDynamics::Derivative(const ShipState& s, double c, double sn
   // C_RB(nu) nu.
   const Eigen::Vector3d crb(-m * (xg * r + v) * r, m * u * r, m * (xg * r + v) * u - m * u * v);
   // C_A(u_r, v_r) (nu - nu_c); nu - nu_c = [u_r, v_r, r].
-  const Eigen::Vector3d ca(y_dv_ * v_r * r, -x_du_ * u_r * r, -y_dv_ * v_r * u_r + x_du_ * u_r * v_r);
+  const Eigen::Vector3d ca(y_dv_ * v_r * r, -x_du_ * u_r * r,
+                           -y_dv_ * v_r * u_r + x_du_ * u_r * v_r);
   // (D_L + D_NL(nu)) (nu - nu_c); D_NL uses the signed absolute velocities as SITS.
   const Eigen::Vector3d damp((d_l_(0, 0) + params_.nonlinear_damping_surge * u) * u_r,
                              (d_l_(1, 1) + params_.nonlinear_damping_sway * v) * v_r,
@@ -97,8 +98,8 @@ StateDerivative HullDynamics::Derivative(const ShipState& s, double c, double sn
   return d;
 }
 
-void HullDynamics::EulerStep(ShipState& s, const Environment& env,
-                             const Eigen::Vector3d& tau_ctrl, double dt_s) const {
+void HullDynamics::EulerStep(ShipState& s, const Environment& env, const Eigen::Vector3d& tau_ctrl,
+                             double dt_s) const {
   const StateDerivative d = Derivative(s, env, tau_ctrl);
   s.eta += d.eta_dot * dt_s;
   s.nu += d.nu_dot * dt_s;

@@ -2,9 +2,8 @@
 #include "seaplan/ship/hull_dynamics.h"
 
 #include <cmath>
-#include <numbers>
-
 #include <cstdio>
+#include <numbers>
 
 #include "gtest/gtest.h"
 
@@ -19,8 +18,8 @@ void ExpectWithin1Percent(double actual, double expected, const char* what,
   std::printf("  %-10s actual %.6g reference %.6g error %+.4f %%\n", what, actual, expected,
               100.0 * (actual - expected) / expected);
   const double tol = std::max(0.01 * std::abs(expected), abs_floor);
-  EXPECT_NEAR(actual, expected, tol) << what << ": error "
-                                     << 100.0 * (actual - expected) / expected << " %";
+  EXPECT_NEAR(actual, expected, tol)
+      << what << ": error " << 100.0 * (actual - expected) / expected << " %";
 }
 
 TEST(ShipParamsTest, DerivedMassAndInertiaMatchSpecTable) {

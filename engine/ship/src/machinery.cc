@@ -10,9 +10,12 @@ namespace seaplan::ship {
 
 std::string_view MsoModeName(MsoMode mode) {
   switch (mode) {
-    case MsoMode::kPto: return "PTO";
-    case MsoMode::kMec: return "MEC";
-    case MsoMode::kPti: return "PTI";
+    case MsoMode::kPto:
+      return "PTO";
+    case MsoMode::kMec:
+      return "MEC";
+    case MsoMode::kPti:
+      return "PTI";
   }
   return "?";
 }
@@ -32,9 +35,9 @@ Status MachineryParams::Validate() const {
   }
   if (hotel_load_w >= main_engine_capacity_w || hotel_load_w >= 2 * diesel_generator_capacity_w ||
       hotel_load_w > diesel_generator_capacity_w) {
-    return absl::InvalidArgumentError(absl::StrCat(
-        "MachineryParams.hotel_load_w ", hotel_load_w,
-        " must be below the ME capacity and within one DG's capacity"));
+    return absl::InvalidArgumentError(
+        absl::StrCat("MachineryParams.hotel_load_w ", hotel_load_w,
+                     " must be below the ME capacity and within one DG's capacity"));
   }
   if (!(power_to_thrust_ratio_mps > 0.0) || !std::isfinite(power_to_thrust_ratio_mps))
     return bad("power_to_thrust_ratio_mps", power_to_thrust_ratio_mps);
@@ -63,9 +66,12 @@ Status ShaftParams::Validate() const {
 
 ModeCapacity CapacityOf(const MachineryParams& p, MsoMode mode) {
   switch (mode) {
-    case MsoMode::kPto: return {p.main_engine_capacity_w, 0.0, HsgState::kGenerator};
-    case MsoMode::kMec: return {p.main_engine_capacity_w, p.diesel_generator_capacity_w, HsgState::kOff};
-    case MsoMode::kPti: return {0.0, 2.0 * p.diesel_generator_capacity_w, HsgState::kMotor};
+    case MsoMode::kPto:
+      return {p.main_engine_capacity_w, 0.0, HsgState::kGenerator};
+    case MsoMode::kMec:
+      return {p.main_engine_capacity_w, p.diesel_generator_capacity_w, HsgState::kOff};
+    case MsoMode::kPti:
+      return {0.0, 2.0 * p.diesel_generator_capacity_w, HsgState::kMotor};
   }
   return {};
 }
@@ -114,7 +120,8 @@ FuelRate FuelRateAt(const MachineryParams& p, MsoMode mode, double load_fraction
   const LoadOnPowerSources load = DistributeLoad(p, mode, load_fraction);
   FuelRate rate;
   if (load.main_engine_w != 0.0) {
-    rate.main_engine_kgps = load.main_engine_w * p.sfc_main_engine(load.main_engine_fraction) / 3.6e9;
+    rate.main_engine_kgps =
+        load.main_engine_w * p.sfc_main_engine(load.main_engine_fraction) / 3.6e9;
   }
   if (load.electrical_fraction != 0.0) {
     rate.electrical_kgps =
@@ -148,9 +155,8 @@ double ShaftPropulsion::HsgTorque(MsoMode mode, double load) const {
 }
 
 double ShaftPropulsion::OmegaDerivative(MsoMode mode, double load) const {
-  const double eq_me =
-      (MainEngineTorque(mode, load) - shaft_.main_engine_friction * omega_radps_) /
-      shaft_.main_engine_gear_ratio;
+  const double eq_me = (MainEngineTorque(mode, load) - shaft_.main_engine_friction * omega_radps_) /
+                       shaft_.main_engine_gear_ratio;
   const double eq_hsg =
       (HsgTorque(mode, load) - shaft_.hsg_friction * omega_radps_) / shaft_.hsg_gear_ratio;
   return (eq_me + eq_hsg - shaft_.propeller_torque_coefficient * omega_radps_ * omega_radps_) /

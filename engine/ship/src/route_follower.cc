@@ -11,7 +11,8 @@ namespace seaplan::ship {
 
 Status RouteFollowerOptions::Validate() const {
   if (!(dt_s > 0.0) || !std::isfinite(dt_s)) {
-    return absl::InvalidArgumentError(absl::StrCat("RouteFollowerOptions.dt_s ", dt_s, " must be > 0"));
+    return absl::InvalidArgumentError(
+        absl::StrCat("RouteFollowerOptions.dt_s ", dt_s, " must be > 0"));
   }
   SEAPLAN_RETURN_IF_ERROR(los.Validate());
   SEAPLAN_RETURN_IF_ERROR(heading.Validate());
@@ -27,14 +28,15 @@ StatusOr<RouteFollower> RouteFollower::Create(const ShipParams& ship,
   const size_t legs = route.waypoints_ne.size() < 2 ? 0 : route.waypoints_ne.size() - 1;
   if (legs == 0 || route.leg_modes.size() != legs || route.leg_speeds_mps.size() != legs) {
     return absl::InvalidArgumentError(absl::StrCat(
-        "PlannedRoute: ", route.waypoints_ne.size(), " waypoints need >= 2 waypoints and one mode and "
-        "speed per leg; got ", route.leg_modes.size(), " modes and ", route.leg_speeds_mps.size(),
-        " speeds"));
+        "PlannedRoute: ", route.waypoints_ne.size(),
+        " waypoints need >= 2 waypoints and one mode and "
+        "speed per leg; got ",
+        route.leg_modes.size(), " modes and ", route.leg_speeds_mps.size(), " speeds"));
   }
   for (size_t i = 0; i < legs; ++i) {
     if (!(route.leg_speeds_mps[i] > 0.0) || !std::isfinite(route.leg_speeds_mps[i])) {
-      return absl::InvalidArgumentError(
-          absl::StrCat("PlannedRoute: leg ", i, " speed ", route.leg_speeds_mps[i], " must be > 0"));
+      return absl::InvalidArgumentError(absl::StrCat("PlannedRoute: leg ", i, " speed ",
+                                                     route.leg_speeds_mps[i], " must be > 0"));
     }
   }
   SEAPLAN_ASSIGN_OR_RETURN(LosGuidance los, LosGuidance::Create(route.waypoints_ne, options.los));
@@ -46,12 +48,13 @@ StatusOr<RouteFollower> RouteFollower::Create(const ShipParams& ship,
     const Eigen::Vector2d d = route.waypoints_ne[1] - route.waypoints_ne[0];
     const MsoMode mode = route.leg_modes[0];
     const double speed = std::min(route.leg_speeds_mps[0], TopSpeed(ship, machinery, mode));
-    start = ShipState::At(route.waypoints_ne[0][0], route.waypoints_ne[0][1], std::atan2(d[1], d[0]), speed);
+    start = ShipState::At(route.waypoints_ne[0][0], route.waypoints_ne[0][1],
+                          std::atan2(d[1], d[0]), speed);
     auto throttle = ThrottleForSpeed(ship, machinery, mode, speed);
     if (throttle.ok()) thrust = SteadyThrust(machinery, mode, *throttle);
   }
-  SEAPLAN_ASSIGN_OR_RETURN(ShipModel model,
-                           ShipModel::Create(ship, machinery, env, start, route.leg_modes[0], thrust));
+  SEAPLAN_ASSIGN_OR_RETURN(
+      ShipModel model, ShipModel::Create(ship, machinery, env, start, route.leg_modes[0], thrust));
   return RouteFollower(std::move(model), std::move(los), std::move(route), options);
 }
 

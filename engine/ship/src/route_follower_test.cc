@@ -29,9 +29,10 @@ TEST(RouteFollowerTest, SailsRouteSwitchingModesAndTracksFuel) {
   EXPECT_LT(f->time_s(), 8000.0 / 6.0);
   // Fuel close to the calm-water steady rate times time (within 15 %:
   // turning and the speed transient cost a little).
-  const double rate = FuelRateAt(MachineryParams{}, MsoMode::kMec,
-                                 *ThrottleForSpeed(ShipParams{}, MachineryParams{}, MsoMode::kMec, 7.0))
-                          .total_kgps();
+  const double rate =
+      FuelRateAt(MachineryParams{}, MsoMode::kMec,
+                 *ThrottleForSpeed(ShipParams{}, MachineryParams{}, MsoMode::kMec, 7.0))
+          .total_kgps();
   EXPECT_NEAR(f->ship().fuel_consumed_kg(), rate * f->time_s(), 0.15 * rate * f->time_s());
 }
 
@@ -52,8 +53,9 @@ TEST(RouteFollowerTest, HoldsTrackInCrossCurrent) {
 
 TEST(RouteFollowerTest, RejectsInconsistentPlans) {
   PlannedRoute bad{{{0, 0}, {1000, 0}, {1000, 1000}}, {MsoMode::kPto}, {5.0, 5.0}};
-  EXPECT_EQ(RouteFollower::Create(ShipParams{}, MachineryParams{}, Environment{}, bad).status().code(),
-            absl::StatusCode::kInvalidArgument);
+  EXPECT_EQ(
+      RouteFollower::Create(ShipParams{}, MachineryParams{}, Environment{}, bad).status().code(),
+      absl::StatusCode::kInvalidArgument);
   PlannedRoute neg{{{0, 0}, {1000, 0}}, {MsoMode::kPto}, {-1.0}};
   EXPECT_FALSE(RouteFollower::Create(ShipParams{}, MachineryParams{}, Environment{}, neg).ok());
 }

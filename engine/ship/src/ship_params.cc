@@ -54,10 +54,10 @@ Status ShipParams::Validate() const {
   if (!std::isfinite(x_g_m)) return absl::InvalidArgumentError("ShipParams.x_g_m must be finite");
   SEAPLAN_RETURN_IF_ERROR(RequireNonNegative("ShipParams", "added_mass_coefficient_surge",
                                              added_mass_coefficient_surge));
-  SEAPLAN_RETURN_IF_ERROR(RequireNonNegative("ShipParams", "added_mass_coefficient_sway",
-                                             added_mass_coefficient_sway));
-  SEAPLAN_RETURN_IF_ERROR(RequireNonNegative("ShipParams", "added_mass_coefficient_yaw",
-                                             added_mass_coefficient_yaw));
+  SEAPLAN_RETURN_IF_ERROR(
+      RequireNonNegative("ShipParams", "added_mass_coefficient_sway", added_mass_coefficient_sway));
+  SEAPLAN_RETURN_IF_ERROR(
+      RequireNonNegative("ShipParams", "added_mass_coefficient_yaw", added_mass_coefficient_yaw));
   SEAPLAN_RETURN_IF_ERROR(
       RequirePositive("damping_time_constant_surge_s", damping_time_constant_surge_s));
   SEAPLAN_RETURN_IF_ERROR(

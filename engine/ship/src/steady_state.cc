@@ -42,8 +42,8 @@ Status CheckPolyline(std::span<const Eigen::Vector2d> p) {
 }
 
 // Cost of sailing a checked polyline at a steady speed reached with `throttle`.
-SailingCost CostAt(const MachineryParams& machinery, std::span<const Eigen::Vector2d> polyline, MsoMode mode,
-                   double speed_mps, double throttle) {
+SailingCost CostAt(const MachineryParams& machinery, std::span<const Eigen::Vector2d> polyline,
+                   MsoMode mode, double speed_mps, double throttle) {
   SailingCost c;
   c.length_m = PolylineLength(polyline);
   c.time_s = c.length_m / speed_mps;
@@ -79,18 +79,18 @@ OperatingPoint CalmWaterOperatingPoint(const ShipParams& ship, const MachineryPa
 StatusOr<double> ThrottleForSpeed(const ShipParams& ship, const MachineryParams& machinery,
                                   MsoMode mode, double speed_mps, double max_throttle) {
   if (!std::isfinite(speed_mps) || speed_mps < 0.0) {
-    return absl::InvalidArgumentError(absl::StrCat("ThrottleForSpeed: speed ", speed_mps,
-                                                   " m/s must be finite and >= 0"));
+    return absl::InvalidArgumentError(
+        absl::StrCat("ThrottleForSpeed: speed ", speed_mps, " m/s must be finite and >= 0"));
   }
   const SurgeBalance b = CalmSurge(ship);
   const double f = b.lin * speed_mps + b.quad * speed_mps * speed_mps;
   const double p_per_throttle = PropulsionPower(machinery, mode, 1.0);
   const double throttle = f * machinery.power_to_thrust_ratio_mps / p_per_throttle;
   if (throttle > max_throttle) {
-    return absl::OutOfRangeError(absl::StrCat(
-        "ThrottleForSpeed: ", speed_mps, " m/s needs throttle ", throttle, " in ",
-        std::string(MsoModeName(mode)), " (max ", max_throttle, ", top speed ",
-        TopSpeed(ship, machinery, mode, max_throttle), " m/s)"));
+    return absl::OutOfRangeError(
+        absl::StrCat("ThrottleForSpeed: ", speed_mps, " m/s needs throttle ", throttle, " in ",
+                     std::string(MsoModeName(mode)), " (max ", max_throttle, ", top speed ",
+                     TopSpeed(ship, machinery, mode, max_throttle), " m/s)"));
   }
   return throttle;
 }
@@ -132,8 +132,9 @@ StatusOr<OperatingPoint> SimulateSteadyState(const ShipParams& ship,
     const double rudder = autopilot.RudderAngle(options.heading_rad, model.state().eta[2]);
     model.Step(throttle, rudder, options.dt_s);
     const double u_dot = (model.state().nu[0] - u_before) / options.dt_s;
-    settled_s = std::abs(u_dot) < options.surge_acceleration_tolerance_mps2 ? settled_s + options.dt_s
-                                                                             : 0.0;
+    settled_s = std::abs(u_dot) < options.surge_acceleration_tolerance_mps2
+                    ? settled_s + options.dt_s
+                    : 0.0;
     if (settled_s >= options.settle_time_s && settled_s > 0.0) break;
   }
   OperatingPoint op;
@@ -161,8 +162,8 @@ StatusOr<SailingCost> SailingCostAtSpeed(const ShipParams& ship, const Machinery
 
 StatusOr<SailingCost> SailingCostAtThrottle(const ShipParams& ship,
                                             const MachineryParams& machinery,
-                                            std::span<const Eigen::Vector2d> polyline,
-                                            MsoMode mode, double throttle) {
+                                            std::span<const Eigen::Vector2d> polyline, MsoMode mode,
+                                            double throttle) {
   SEAPLAN_RETURN_IF_ERROR(CheckPolyline(polyline));
   if (!(throttle > 0.0) || !std::isfinite(throttle)) {
     return absl::InvalidArgumentError(

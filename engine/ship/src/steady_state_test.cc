@@ -2,9 +2,8 @@
 #include "seaplan/ship/steady_state.h"
 
 #include <cmath>
-#include <vector>
-
 #include <cstdio>
+#include <vector>
 
 #include "gtest/gtest.h"
 #include "seaplan/ship/ship_model.h"
@@ -30,8 +29,8 @@ class CaseDTest : public ::testing::TestWithParam<CaseD> {};
 // rudder, calm water, from rest.
 TEST_P(CaseDTest, SimulatedSteadyStateMatchesReference) {
   const CaseD& ref = GetParam();
-  auto model = ShipModel::Create(ShipParams{}, MachineryParams{}, Environment{}, ShipState{},
-                                 ref.mode);
+  auto model =
+      ShipModel::Create(ShipParams{}, MachineryParams{}, Environment{}, ShipState{}, ref.mode);
   ASSERT_TRUE(model.ok()) << model.status();
   StepReport last;
   while (model->time_s() <= 3000.0) last = model->Step(0.8, 0.0, 0.5);
@@ -59,12 +58,13 @@ TEST_P(CaseDTest, ClosedFormMatchesReferenceAndSimulation) {
   EXPECT_NEAR(sim->speed_mps, op.speed_mps, 1e-4);
 }
 
-INSTANTIATE_TEST_SUITE_P(
-    Modes, CaseDTest,
-    ::testing::Values(CaseD{MsoMode::kPto, 9.153, 573.5, 1768, 0, 0.09572},
-                      CaseD{MsoMode::kMec, 9.835, 632.0, 1728, 200, 0.10587},
-                      CaseD{MsoMode::kPti, 4.619, 239.9, 0, 856, 0.03761}),
-    [](const auto& param_info) { return std::string(MsoModeName(param_info.param.mode)); });
+INSTANTIATE_TEST_SUITE_P(Modes, CaseDTest,
+                         ::testing::Values(CaseD{MsoMode::kPto, 9.153, 573.5, 1768, 0, 0.09572},
+                                           CaseD{MsoMode::kMec, 9.835, 632.0, 1728, 200, 0.10587},
+                                           CaseD{MsoMode::kPti, 4.619, 239.9, 0, 856, 0.03761}),
+                         [](const auto& param_info) {
+                           return std::string(MsoModeName(param_info.param.mode));
+                         });
 
 TEST(SteadyStateTest, ThrottleForSpeedInvertsSteadySpeed) {
   const ShipParams ship;

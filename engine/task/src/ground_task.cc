@@ -1,11 +1,11 @@
 #include "seaplan/task/ground_task.h"
 
-#include "seaplan/pddl/parser.h"
-
 #include <cassert>
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+
+#include "seaplan/pddl/parser.h"
 
 namespace seaplan::task {
 namespace {
@@ -66,21 +66,36 @@ std::optional<double> NumericExpr::Evaluate(std::span<const double> values, doub
     const Node& node = nodes[i];
     double r = 0.0;
     switch (node.op) {
-      case Op::kConstant: r = node.value; break;
+      case Op::kConstant:
+        r = node.value;
+        break;
       case Op::kVariable:
-        if (node.var < 0 || static_cast<std::size_t>(node.var) >= values.size()) return std::nullopt;
+        if (node.var < 0 || static_cast<std::size_t>(node.var) >= values.size())
+          return std::nullopt;
         r = values[static_cast<std::size_t>(node.var)];
         break;
-      case Op::kDuration: r = duration; break;
-      case Op::kTotalTime: r = total_time; break;
-      case Op::kAdd: r = results[node.lhs] + results[node.rhs]; break;
-      case Op::kSub: r = results[node.lhs] - results[node.rhs]; break;
-      case Op::kMul: r = results[node.lhs] * results[node.rhs]; break;
+      case Op::kDuration:
+        r = duration;
+        break;
+      case Op::kTotalTime:
+        r = total_time;
+        break;
+      case Op::kAdd:
+        r = results[node.lhs] + results[node.rhs];
+        break;
+      case Op::kSub:
+        r = results[node.lhs] - results[node.rhs];
+        break;
+      case Op::kMul:
+        r = results[node.lhs] * results[node.rhs];
+        break;
       case Op::kDiv:
         if (results[node.rhs] == 0.0) return std::nullopt;
         r = results[node.lhs] / results[node.rhs];
         break;
-      case Op::kNeg: r = -results[node.lhs]; break;
+      case Op::kNeg:
+        r = -results[node.lhs];
+        break;
     }
     if (std::isnan(r)) return std::nullopt;
     results[i] = r;
@@ -103,7 +118,9 @@ bool NumericExpr::ReadsDuration() const {
   return false;
 }
 
-std::string Action::DisplayName() const { return Parenthesised(name, args); }
+std::string Action::DisplayName() const {
+  return Parenthesised(name, args);
+}
 
 std::optional<double> Action::ConstantDuration() const {
   if (!is_durative) return 0.0;
@@ -120,16 +137,25 @@ std::optional<double> Action::ConstantDuration() const {
   return value;
 }
 
-std::string Fact::DisplayName() const { return Parenthesised(predicate, args); }
-std::string NumericVar::DisplayName() const { return Parenthesised(function, args); }
+std::string Fact::DisplayName() const {
+  return Parenthesised(predicate, args);
+}
+std::string NumericVar::DisplayName() const {
+  return Parenthesised(function, args);
+}
 
 bool Compare(double lhs, Comparator comparator, double rhs) {
   switch (comparator) {
-    case Comparator::kLess: return lhs < rhs;
-    case Comparator::kLessEqual: return lhs <= rhs;
-    case Comparator::kEqual: return lhs == rhs;
-    case Comparator::kGreaterEqual: return lhs >= rhs;
-    case Comparator::kGreater: return lhs > rhs;
+    case Comparator::kLess:
+      return lhs < rhs;
+    case Comparator::kLessEqual:
+      return lhs <= rhs;
+    case Comparator::kEqual:
+      return lhs == rhs;
+    case Comparator::kGreaterEqual:
+      return lhs >= rhs;
+    case Comparator::kGreater:
+      return lhs > rhs;
   }
   return false;
 }
@@ -138,10 +164,13 @@ bool Compare(double lhs, Comparator comparator, double rhs) {
 // types), but it lists the same comparators in the same order as
 // pddl::Comparator; the spelling lives once, in the parser.
 static_assert(static_cast<int>(Comparator::kLess) == static_cast<int>(pddl::Comparator::kLess));
-static_assert(static_cast<int>(Comparator::kLessEqual) == static_cast<int>(pddl::Comparator::kLessEqual));
+static_assert(static_cast<int>(Comparator::kLessEqual) ==
+              static_cast<int>(pddl::Comparator::kLessEqual));
 static_assert(static_cast<int>(Comparator::kEqual) == static_cast<int>(pddl::Comparator::kEqual));
-static_assert(static_cast<int>(Comparator::kGreaterEqual) == static_cast<int>(pddl::Comparator::kGreaterEqual));
-static_assert(static_cast<int>(Comparator::kGreater) == static_cast<int>(pddl::Comparator::kGreater));
+static_assert(static_cast<int>(Comparator::kGreaterEqual) ==
+              static_cast<int>(pddl::Comparator::kGreaterEqual));
+static_assert(static_cast<int>(Comparator::kGreater) ==
+              static_cast<int>(pddl::Comparator::kGreater));
 
 const char* ComparatorSymbol(Comparator comparator) {
   return pddl::ComparatorSymbol(static_cast<pddl::Comparator>(comparator));
@@ -149,11 +178,16 @@ const char* ComparatorSymbol(Comparator comparator) {
 
 double ApplyAssign(AssignOp op, double current, double value) {
   switch (op) {
-    case AssignOp::kAssign: return value;
-    case AssignOp::kIncrease: return current + value;
-    case AssignOp::kDecrease: return current - value;
-    case AssignOp::kScaleUp: return current * value;
-    case AssignOp::kScaleDown: return current / value;
+    case AssignOp::kAssign:
+      return value;
+    case AssignOp::kIncrease:
+      return current + value;
+    case AssignOp::kDecrease:
+      return current - value;
+    case AssignOp::kScaleUp:
+      return current * value;
+    case AssignOp::kScaleDown:
+      return current / value;
   }
   return value;
 }
@@ -165,19 +199,35 @@ std::string ToString(const NumericExpr& expr, const GroundTask& task) {
     const auto& node = expr.nodes[i];
     using Op = NumericExpr::Op;
     switch (node.op) {
-      case Op::kConstant: parts[i] = FormatNumber(node.value); break;
+      case Op::kConstant:
+        parts[i] = FormatNumber(node.value);
+        break;
       case Op::kVariable:
         parts[i] = node.var >= 0 && static_cast<std::size_t>(node.var) < task.numeric_vars.size()
                        ? task.numeric_vars[static_cast<std::size_t>(node.var)].DisplayName()
                        : "<var?>";
         break;
-      case Op::kDuration: parts[i] = "?duration"; break;
-      case Op::kTotalTime: parts[i] = "(total-time)"; break;
-      case Op::kAdd: parts[i] = "(+ " + parts[node.lhs] + " " + parts[node.rhs] + ")"; break;
-      case Op::kSub: parts[i] = "(- " + parts[node.lhs] + " " + parts[node.rhs] + ")"; break;
-      case Op::kMul: parts[i] = "(* " + parts[node.lhs] + " " + parts[node.rhs] + ")"; break;
-      case Op::kDiv: parts[i] = "(/ " + parts[node.lhs] + " " + parts[node.rhs] + ")"; break;
-      case Op::kNeg: parts[i] = "(- " + parts[node.lhs] + ")"; break;
+      case Op::kDuration:
+        parts[i] = "?duration";
+        break;
+      case Op::kTotalTime:
+        parts[i] = "(total-time)";
+        break;
+      case Op::kAdd:
+        parts[i] = "(+ " + parts[node.lhs] + " " + parts[node.rhs] + ")";
+        break;
+      case Op::kSub:
+        parts[i] = "(- " + parts[node.lhs] + " " + parts[node.rhs] + ")";
+        break;
+      case Op::kMul:
+        parts[i] = "(* " + parts[node.lhs] + " " + parts[node.rhs] + ")";
+        break;
+      case Op::kDiv:
+        parts[i] = "(/ " + parts[node.lhs] + " " + parts[node.rhs] + ")";
+        break;
+      case Op::kNeg:
+        parts[i] = "(- " + parts[node.lhs] + ")";
+        break;
     }
   }
   return parts.back();

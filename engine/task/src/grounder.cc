@@ -26,8 +26,8 @@
 #include <chrono>
 #include <cmath>
 #include <fstream>
-#include <sstream>
 #include <limits>
+#include <sstream>
 #include <unordered_map>
 #include <utility>
 
@@ -46,9 +46,15 @@ constexpr double kNaN = std::numeric_limits<double>::quiet_NaN();
 constexpr std::size_t kMaxDisjuncts = 256;
 
 // An argument: >= 0 is an object, < 0 is variable slot (-1 - arg).
-inline bool IsVar(std::int32_t arg) { return arg < 0; }
-inline int Slot(std::int32_t arg) { return -1 - arg; }
-inline std::int32_t VarArg(int slot) { return -1 - slot; }
+inline bool IsVar(std::int32_t arg) {
+  return arg < 0;
+}
+inline int Slot(std::int32_t arg) {
+  return -1 - arg;
+}
+inline std::int32_t VarArg(int slot) {
+  return -1 - slot;
+}
 
 struct NExpr {
   enum class K { kNum, kFluent, kDuration, kTotalTime, kAdd, kSub, kMul, kDiv, kNeg };
@@ -89,7 +95,7 @@ struct EffItem {
 
 struct VarInfo {
   std::string name;
-  std::vector<Obj> objects;        // objects of the variable's type(s)
+  std::vector<Obj> objects;           // objects of the variable's type(s)
   std::vector<std::uint8_t> allowed;  // per object
 };
 
@@ -133,34 +139,45 @@ struct GroundLits {
 
 Comparator ToTask(pddl::Comparator c) {
   switch (c) {
-    case pddl::Comparator::kLess: return Comparator::kLess;
-    case pddl::Comparator::kLessEqual: return Comparator::kLessEqual;
-    case pddl::Comparator::kEqual: return Comparator::kEqual;
-    case pddl::Comparator::kGreaterEqual: return Comparator::kGreaterEqual;
-    case pddl::Comparator::kGreater: return Comparator::kGreater;
+    case pddl::Comparator::kLess:
+      return Comparator::kLess;
+    case pddl::Comparator::kLessEqual:
+      return Comparator::kLessEqual;
+    case pddl::Comparator::kEqual:
+      return Comparator::kEqual;
+    case pddl::Comparator::kGreaterEqual:
+      return Comparator::kGreaterEqual;
+    case pddl::Comparator::kGreater:
+      return Comparator::kGreater;
   }
   return Comparator::kEqual;
 }
 
 AssignOp ToTask(pddl::AssignOp op) {
   switch (op) {
-    case pddl::AssignOp::kAssign: return AssignOp::kAssign;
-    case pddl::AssignOp::kIncrease: return AssignOp::kIncrease;
-    case pddl::AssignOp::kDecrease: return AssignOp::kDecrease;
-    case pddl::AssignOp::kScaleUp: return AssignOp::kScaleUp;
-    case pddl::AssignOp::kScaleDown: return AssignOp::kScaleDown;
+    case pddl::AssignOp::kAssign:
+      return AssignOp::kAssign;
+    case pddl::AssignOp::kIncrease:
+      return AssignOp::kIncrease;
+    case pddl::AssignOp::kDecrease:
+      return AssignOp::kDecrease;
+    case pddl::AssignOp::kScaleUp:
+      return AssignOp::kScaleUp;
+    case pddl::AssignOp::kScaleDown:
+      return AssignOp::kScaleDown;
   }
   return AssignOp::kAssign;
 }
 
 double Millis(std::chrono::steady_clock::time_point since) {
-  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - since).count();
+  return std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - since)
+      .count();
 }
 
 class Grounder {
  public:
-  Grounder(const pddl::Domain& domain, const pddl::Problem& problem, const GroundingOptions& options,
-           std::vector<pddl::Diagnostic>& diagnostics)
+  Grounder(const pddl::Domain& domain, const pddl::Problem& problem,
+           const GroundingOptions& options, std::vector<pddl::Diagnostic>& diagnostics)
       : domain_(domain), problem_(problem), options_(options), diags_(diagnostics) {}
 
   // Steps 1-3. False when grounding cannot go on (diagnostics say why).
@@ -177,20 +194,22 @@ class Grounder {
 
   std::shared_ptr<GroundTask> Build();
 
-  std::string Explain(std::string_view name, std::span<const std::string> args, const GroundTask* task);
+  std::string Explain(std::string_view name, std::span<const std::string> args,
+                      const GroundTask* task);
 
   std::size_t reachable_atoms() const { return atoms_.size(); }
   std::size_t static_atoms() const { return static_true_; }
 
  private:
   // ---- diagnostics -----------------------------------------------------------
-  void Error(pddl::DiagnosticKind kind, const pddl::SourceLocation& at, std::string symbol, std::string message,
-             std::string expected = "") {
-    diags_.push_back({pddl::Severity::kError, kind, at, std::move(symbol), std::move(message), std::move(expected)});
+  void Error(pddl::DiagnosticKind kind, const pddl::SourceLocation& at, std::string symbol,
+             std::string message, std::string expected = "") {
+    diags_.push_back({pddl::Severity::kError, kind, at, std::move(symbol), std::move(message),
+                      std::move(expected)});
   }
   void Warn(const pddl::SourceLocation& at, std::string symbol, std::string message) {
-    diags_.push_back({pddl::Severity::kWarning, pddl::DiagnosticKind::kSemantic, at, std::move(symbol),
-                      std::move(message), ""});
+    diags_.push_back({pddl::Severity::kWarning, pddl::DiagnosticKind::kSemantic, at,
+                      std::move(symbol), std::move(message), ""});
   }
 
   // Counts one elementary step; false once the work budget is spent.
@@ -215,7 +234,8 @@ class Grounder {
     type_index_["object"] = 0;
     type_names_.push_back("object");
     for (const auto& t : domain_.types) {
-      if (type_index_.emplace(t.name, static_cast<int>(type_names_.size())).second) type_names_.push_back(t.name);
+      if (type_index_.emplace(t.name, static_cast<int>(type_names_.size())).second)
+        type_names_.push_back(t.name);
     }
     auto add_object = [&](const pddl::TypedName& o) {
       auto [it, inserted] = object_index_.emplace(o.name, static_cast<Obj>(object_names_.size()));
@@ -234,7 +254,8 @@ class Grounder {
       const int child = TypeId(t.name);
       for (const auto& p : t.parents) {
         const int parent = TypeId(p);
-        if (child >= 0 && parent >= 0 && parent != child) parents[static_cast<std::size_t>(child)].push_back(parent);
+        if (child >= 0 && parent >= 0 && parent != child)
+          parents[static_cast<std::size_t>(child)].push_back(parent);
       }
     }
     std::vector<std::vector<std::uint8_t>> ancestor(n_types, std::vector<std::uint8_t>(n_types, 0));
@@ -289,15 +310,18 @@ class Grounder {
     bool ok = true;
     auto check_atom = [&](const pddl::Atom& atom) {
       auto it = pred_index_.find(atom.predicate);
-      if (it == pred_index_.end() || pred_arity_[static_cast<std::size_t>(it->second)] != static_cast<int>(atom.args.size())) {
+      if (it == pred_index_.end() ||
+          pred_arity_[static_cast<std::size_t>(it->second)] != static_cast<int>(atom.args.size())) {
         Error(pddl::DiagnosticKind::kSemantic, atom.location, atom.predicate,
-              "initial atom does not match a predicate of the domain", "a declared predicate with its arity");
+              "initial atom does not match a predicate of the domain",
+              "a declared predicate with its arity");
         ok = false;
         return;
       }
       for (const auto& t : atom.args) {
         if (ObjectId(t.name) < 0) {
-          Error(pddl::DiagnosticKind::kSemantic, t.location, t.name, "unknown object", "a declared object");
+          Error(pddl::DiagnosticKind::kSemantic, t.location, t.name, "unknown object",
+                "a declared object");
           ok = false;
         }
       }
@@ -305,15 +329,18 @@ class Grounder {
     auto check_numeric = [&](const pddl::NumericInit& n) {
       auto it = func_index_.find(n.function);
       if (it == func_index_.end() ||
-          domain_.functions[static_cast<std::size_t>(it->second)].parameters.size() != n.args.size()) {
+          domain_.functions[static_cast<std::size_t>(it->second)].parameters.size() !=
+              n.args.size()) {
         Error(pddl::DiagnosticKind::kSemantic, n.location, n.function,
-              "numeric initialisation does not match a function of the domain", "a declared function");
+              "numeric initialisation does not match a function of the domain",
+              "a declared function");
         ok = false;
         return;
       }
       for (const auto& a : n.args) {
         if (ObjectId(a) < 0) {
-          Error(pddl::DiagnosticKind::kSemantic, n.location, a, "unknown object", "a declared object");
+          Error(pddl::DiagnosticKind::kSemantic, n.location, a, "unknown object",
+                "a declared object");
           ok = false;
         }
       }
@@ -329,13 +356,14 @@ class Grounder {
       todo.pop_back();
       if (c->kind == pddl::Condition::Kind::kAtom) {
         if (c->atom.predicate != "=" && pred_index_.count(c->atom.predicate) == 0) {
-          Error(pddl::DiagnosticKind::kSemantic, c->atom.location, c->atom.predicate, "goal uses an unknown predicate",
-                "a declared predicate");
+          Error(pddl::DiagnosticKind::kSemantic, c->atom.location, c->atom.predicate,
+                "goal uses an unknown predicate", "a declared predicate");
           ok = false;
         }
         for (const auto& t : c->atom.args) {
           if (!t.IsVariable() && ObjectId(t.name) < 0) {
-            Error(pddl::DiagnosticKind::kSemantic, t.location, t.name, "unknown object", "a declared object");
+            Error(pddl::DiagnosticKind::kSemantic, t.location, t.name, "unknown object",
+                  "a declared object");
             ok = false;
           }
         }
@@ -349,7 +377,8 @@ class Grounder {
       const pddl::NumExpr* e = exprs.back();
       exprs.pop_back();
       if (e->kind == pddl::NumExpr::Kind::kFluent && func_index_.count(e->function) == 0) {
-        Error(pddl::DiagnosticKind::kSemantic, e->location, e->function, "unknown function", "a declared function");
+        Error(pddl::DiagnosticKind::kSemantic, e->location, e->function, "unknown function",
+              "a declared function");
         ok = false;
       }
       for (const auto& kid : e->children) exprs.push_back(&kid);
@@ -377,7 +406,8 @@ class Grounder {
         if (it != func_index_.end()) func_static_[static_cast<std::size_t>(it->second)] = false;
         break;
       }
-      default: break;
+      default:
+        break;
     }
     for (const auto& kid : e.children) MarkEffects(kid);
   }
@@ -422,9 +452,10 @@ class Grounder {
     if (atom_queued_[static_cast<std::size_t>(id)]) return true;
     if (atoms_.size() > options_.max_facts) {
       if (!budget_exceeded_) {
-        Error(pddl::DiagnosticKind::kSemantic, problem_.location, "",
-              "grounding exceeds the fact budget of " + std::to_string(options_.max_facts) + " atoms",
-              "a smaller problem or a larger GroundingOptions::max_facts");
+        Error(
+            pddl::DiagnosticKind::kSemantic, problem_.location, "",
+            "grounding exceeds the fact budget of " + std::to_string(options_.max_facts) + " atoms",
+            "a smaller problem or a larger GroundingOptions::max_facts");
       }
       budget_exceeded_ = true;
       return false;
@@ -449,7 +480,8 @@ class Grounder {
       if (index_cells_ > 4 * options_.max_facts + (1u << 20)) {
         if (!budget_exceeded_) {
           Error(pddl::DiagnosticKind::kSemantic, problem_.location, "",
-                "grounding index exceeds the fact budget (" + std::to_string(index_cells_) + " cells)",
+                "grounding index exceeds the fact budget (" + std::to_string(index_cells_) +
+                    " cells)",
                 "fewer predicates or objects, or a larger GroundingOptions::max_facts");
         }
         budget_exceeded_ = true;
@@ -457,7 +489,8 @@ class Grounder {
       }
       index.assign(key.size() - 1, std::vector<std::vector<std::int32_t>>(object_names_.size()));
     }
-    for (std::size_t i = 1; i < key.size(); ++i) index[i - 1][static_cast<std::size_t>(key[i])].push_back(id);
+    for (std::size_t i = 1; i < key.size(); ++i)
+      index[i - 1][static_cast<std::size_t>(key[i])].push_back(id);
   }
 
   bool LoadInit() {
@@ -540,9 +573,16 @@ class Grounder {
   NExpr ConvertExpr(const pddl::NumExpr& e) {
     NExpr out;
     switch (e.kind) {
-      case pddl::NumExpr::Kind::kNumber: out.k = NExpr::K::kNum; out.value = e.value; return out;
-      case pddl::NumExpr::Kind::kDuration: out.k = NExpr::K::kDuration; return out;
-      case pddl::NumExpr::Kind::kTotalTime: out.k = NExpr::K::kTotalTime; return out;
+      case pddl::NumExpr::Kind::kNumber:
+        out.k = NExpr::K::kNum;
+        out.value = e.value;
+        return out;
+      case pddl::NumExpr::Kind::kDuration:
+        out.k = NExpr::K::kDuration;
+        return out;
+      case pddl::NumExpr::Kind::kTotalTime:
+        out.k = NExpr::K::kTotalTime;
+        return out;
       case pddl::NumExpr::Kind::kFluent:
         out.k = NExpr::K::kFluent;
         out.func = func_index_.at(e.function);
@@ -585,11 +625,16 @@ class Grounder {
 
   static pddl::Comparator Negate(pddl::Comparator c) {
     switch (c) {
-      case pddl::Comparator::kLess: return pddl::Comparator::kGreaterEqual;
-      case pddl::Comparator::kLessEqual: return pddl::Comparator::kGreater;
-      case pddl::Comparator::kGreaterEqual: return pddl::Comparator::kLess;
-      case pddl::Comparator::kGreater: return pddl::Comparator::kLessEqual;
-      case pddl::Comparator::kEqual: return pddl::Comparator::kEqual;  // handled by the caller
+      case pddl::Comparator::kLess:
+        return pddl::Comparator::kGreaterEqual;
+      case pddl::Comparator::kLessEqual:
+        return pddl::Comparator::kGreater;
+      case pddl::Comparator::kGreaterEqual:
+        return pddl::Comparator::kLess;
+      case pddl::Comparator::kGreater:
+        return pddl::Comparator::kLessEqual;
+      case pddl::Comparator::kEqual:
+        return pddl::Comparator::kEqual;  // handled by the caller
     }
     return c;
   }
@@ -600,7 +645,9 @@ class Grounder {
     out.time = time;
     using CK = pddl::Condition::Kind;
     switch (c.kind) {
-      case CK::kTrue: out.k = negated ? F::K::kFalse : F::K::kTrue; return out;
+      case CK::kTrue:
+        out.k = negated ? F::K::kFalse : F::K::kTrue;
+        return out;
       case CK::kAtom:
         if (c.atom.predicate == "=") {
           out.k = F::K::kEq;
@@ -611,11 +658,13 @@ class Grounder {
         out.positive = !negated;
         for (const auto& a : c.atom.args) out.args.push_back(ArgOf(a));
         return out;
-      case CK::kNot: return ConvertCondition(s, c.children[0], !negated, time);
+      case CK::kNot:
+        return ConvertCondition(s, c.children[0], !negated, time);
       case CK::kAnd:
       case CK::kOr:
         out.k = ((c.kind == CK::kAnd) != negated) ? F::K::kAnd : F::K::kOr;
-        for (const auto& kid : c.children) out.kids.push_back(ConvertCondition(s, kid, negated, time));
+        for (const auto& kid : c.children)
+          out.kids.push_back(ConvertCondition(s, kid, negated, time));
         return out;
       case CK::kImply:
         // a -> b  ==  (not a) or b;  not (a -> b)  ==  a and (not b)
@@ -655,19 +704,24 @@ class Grounder {
         out.rhs = std::move(rhs);
         return out;
       }
-      case CK::kTimed: return ConvertCondition(s, c.children[0], negated, c.time);
+      case CK::kTimed:
+        return ConvertCondition(s, c.children[0], negated, c.time);
     }
     return out;
   }
 
   void FlattenEffect(Schema& s, const pddl::Effect& e, TimeSpec time, std::vector<int>& forall_vars,
-                     std::vector<const pddl::Condition*>& conds, std::vector<TimeSpec>& cond_times) {
+                     std::vector<const pddl::Condition*>& conds,
+                     std::vector<TimeSpec>& cond_times) {
     using EK = pddl::Effect::Kind;
     switch (e.kind) {
       case EK::kAnd:
-        for (const auto& kid : e.children) FlattenEffect(s, kid, time, forall_vars, conds, cond_times);
+        for (const auto& kid : e.children)
+          FlattenEffect(s, kid, time, forall_vars, conds, cond_times);
         return;
-      case EK::kTimed: FlattenEffect(s, e.children[0], e.time, forall_vars, conds, cond_times); return;
+      case EK::kTimed:
+        FlattenEffect(s, e.children[0], e.time, forall_vars, conds, cond_times);
+        return;
       case EK::kForall: {
         const std::size_t mark = scope_.size();
         const std::size_t vmark = forall_vars.size();
@@ -723,16 +777,22 @@ class Grounder {
 
   bool Dnf(const F& f, std::vector<Disjunct>& out) {
     switch (f.k) {
-      case F::K::kTrue: out.push_back({}); return true;
-      case F::K::kFalse: return true;
+      case F::K::kTrue:
+        out.push_back({});
+        return true;
+      case F::K::kFalse:
+        return true;
       case F::K::kAtom:
       case F::K::kEq:
       case F::K::kCmp:
-      case F::K::kForall: out.push_back({{&f}, {}}); return true;
+      case F::K::kForall:
+        out.push_back({{&f}, {}});
+        return true;
       case F::K::kExists: {
         std::vector<Disjunct> body;
         if (!Dnf(f.kids[0], body)) return false;
-        for (auto& d : body) d.exists_vars.insert(d.exists_vars.end(), f.vars.begin(), f.vars.end());
+        for (auto& d : body)
+          d.exists_vars.insert(d.exists_vars.end(), f.vars.begin(), f.vars.end());
         out.insert(out.end(), body.begin(), body.end());
         return true;
       }
@@ -778,14 +838,15 @@ class Grounder {
     std::vector<const pddl::Condition*> conds;
     std::vector<TimeSpec> cond_times;
     FlattenEffect(s, action.effect, TimeSpec::kNone, forall_vars, conds, cond_times);
-    for (const auto& d : action.duration) s.duration.push_back({d.comparator, ConvertExpr(d.value)});
+    for (const auto& d : action.duration)
+      s.duration.push_back({d.comparator, ConvertExpr(d.value)});
     scope_.clear();
 
     std::vector<Disjunct> disjuncts;
     if (!Dnf(s.cond, disjuncts)) {
       Error(pddl::DiagnosticKind::kUnsupported, action.location, action.name,
-            "the precondition's disjunctive normal form has more than " + std::to_string(kMaxDisjuncts) +
-                " disjuncts");
+            "the precondition's disjunctive normal form has more than " +
+                std::to_string(kMaxDisjuncts) + " disjuncts");
       return false;
     }
     const int schema_id = static_cast<int>(schemas_.size());
@@ -832,19 +893,26 @@ class Grounder {
 
   double EvalStatic(const NExpr& e, const std::vector<Obj>& binding) {
     switch (e.k) {
-      case NExpr::K::kNum: return e.value;
+      case NExpr::K::kNum:
+        return e.value;
       case NExpr::K::kFluent: {
         fargs_scratch_.clear();
-        for (auto a : e.args) fargs_scratch_.push_back(IsVar(a) ? binding[static_cast<std::size_t>(Slot(a))] : a);
+        for (auto a : e.args)
+          fargs_scratch_.push_back(IsVar(a) ? binding[static_cast<std::size_t>(Slot(a))] : a);
         std::vector<Obj> args = fargs_scratch_;
         return InitValue(e.func, args);
       }
       case NExpr::K::kDuration:
-      case NExpr::K::kTotalTime: return kNaN;
-      case NExpr::K::kNeg: return -EvalStatic(e.kids[0], binding);
-      case NExpr::K::kAdd: return EvalStatic(e.kids[0], binding) + EvalStatic(e.kids[1], binding);
-      case NExpr::K::kSub: return EvalStatic(e.kids[0], binding) - EvalStatic(e.kids[1], binding);
-      case NExpr::K::kMul: return EvalStatic(e.kids[0], binding) * EvalStatic(e.kids[1], binding);
+      case NExpr::K::kTotalTime:
+        return kNaN;
+      case NExpr::K::kNeg:
+        return -EvalStatic(e.kids[0], binding);
+      case NExpr::K::kAdd:
+        return EvalStatic(e.kids[0], binding) + EvalStatic(e.kids[1], binding);
+      case NExpr::K::kSub:
+        return EvalStatic(e.kids[0], binding) - EvalStatic(e.kids[1], binding);
+      case NExpr::K::kMul:
+        return EvalStatic(e.kids[0], binding) * EvalStatic(e.kids[1], binding);
       case NExpr::K::kDiv: {
         const double d = EvalStatic(e.kids[1], binding);
         return d == 0.0 ? kNaN : EvalStatic(e.kids[0], binding) / d;
@@ -861,15 +929,18 @@ class Grounder {
     for (const F* item : spec.items) {
       switch (item->k) {
         case F::K::kEq: {
-          Obj x = IsVar(item->args[0]) ? b[static_cast<std::size_t>(Slot(item->args[0]))] : item->args[0];
-          Obj y = IsVar(item->args[1]) ? b[static_cast<std::size_t>(Slot(item->args[1]))] : item->args[1];
+          Obj x = IsVar(item->args[0]) ? b[static_cast<std::size_t>(Slot(item->args[0]))]
+                                       : item->args[0];
+          Obj y = IsVar(item->args[1]) ? b[static_cast<std::size_t>(Slot(item->args[1]))]
+                                       : item->args[1];
           if ((x == y) != item->positive) return false;
           break;
         }
         case F::K::kAtom:
           if (!item->positive && pred_static_[static_cast<std::size_t>(item->pred)]) {
             args_scratch_.clear();
-            for (auto a : item->args) args_scratch_.push_back(IsVar(a) ? b[static_cast<std::size_t>(Slot(a))] : a);
+            for (auto a : item->args)
+              args_scratch_.push_back(IsVar(a) ? b[static_cast<std::size_t>(Slot(a))] : a);
             std::vector<Obj> args = args_scratch_;
             std::int32_t id = FindAtom(item->pred, args);
             if (id >= 0 && atom_popped_[static_cast<std::size_t>(id)]) return false;
@@ -882,7 +953,8 @@ class Grounder {
             if (std::isnan(l) || std::isnan(r) || !Compare(l, ToTask(item->cmp), r)) return false;
           }
           break;
-        default: break;
+        default:
+          break;
       }
     }
     const Schema& s = *schemas_[static_cast<std::size_t>(spec.schema)];
@@ -894,7 +966,8 @@ class Grounder {
 
   // Binds `item`'s arguments against atom `id`; false on a clash or a type
   // mismatch. `bound` records which slots this call bound (for undoing).
-  bool Unify(const Schema& s, const F& item, std::int32_t id, std::vector<Obj>& b, std::vector<int>& bound) {
+  bool Unify(const Schema& s, const F& item, std::int32_t id, std::vector<Obj>& b,
+             std::vector<int>& bound) {
     auto key = atoms_.Get(id);
     for (std::size_t i = 0; i < item.args.size(); ++i) {
       const Obj value = key[i + 1];
@@ -923,8 +996,8 @@ class Grounder {
   }
 
   // Joins the remaining atoms of `spec` (bit i of `done` set = atom i handled).
-  bool Join(const Spec& spec, std::vector<Obj>& b, std::vector<int>& bound, std::vector<std::uint8_t>& done,
-            std::size_t remaining) {
+  bool Join(const Spec& spec, std::vector<Obj>& b, std::vector<int>& bound,
+            std::vector<std::uint8_t>& done, std::size_t remaining) {
     const Schema& s = *schemas_[static_cast<std::size_t>(spec.schema)];
     if (remaining == 0) return EnumerateFree(spec, b, 0);
     // Pick the most selective remaining atom.
@@ -958,14 +1031,16 @@ class Grounder {
         best_list = all_bound ? nullptr : list;
       }
     }
-    const F& item = *spec.items[static_cast<std::size_t>(spec.atoms[static_cast<std::size_t>(best)])];
+    const F& item =
+        *spec.items[static_cast<std::size_t>(spec.atoms[static_cast<std::size_t>(best)])];
     done[static_cast<std::size_t>(best)] = 1;
     bool ok = true;
     if (best_list == nullptr) {
       std::vector<Obj> args;
       for (auto a : item.args) args.push_back(IsVar(a) ? b[static_cast<std::size_t>(Slot(a))] : a);
       std::int32_t id = FindAtom(item.pred, args);
-      if (id >= 0 && atom_popped_[static_cast<std::size_t>(id)]) ok = Join(spec, b, bound, done, remaining - 1);
+      if (id >= 0 && atom_popped_[static_cast<std::size_t>(id)])
+        ok = Join(spec, b, bound, done, remaining - 1);
     } else {
       // The list may grow while we iterate (Pop during effects is deferred,
       // so it does not); iterate by index for safety.
@@ -975,7 +1050,8 @@ class Grounder {
           break;
         }
         const std::size_t mark = bound.size();
-        if (Unify(s, item, (*best_list)[j], b, bound)) ok = Join(spec, b, bound, done, remaining - 1);
+        if (Unify(s, item, (*best_list)[j], b, bound))
+          ok = Join(spec, b, bound, done, remaining - 1);
         Unbind(b, bound, mark);
       }
     }
@@ -1011,7 +1087,8 @@ class Grounder {
     if (!fresh) return true;
     if (instances_.size() > options_.max_actions) {
       Error(pddl::DiagnosticKind::kSemantic, problem_.location, "",
-            "grounding exceeds the action budget of " + std::to_string(options_.max_actions) + " actions",
+            "grounding exceeds the action budget of " + std::to_string(options_.max_actions) +
+                " actions",
             "a smaller problem or a larger GroundingOptions::max_actions");
       budget_exceeded_ = true;
       return false;
@@ -1046,7 +1123,8 @@ class Grounder {
 
   bool RunExploration() {
     // Specs without fluent atoms fire once, against the static atoms.
-    std::vector<std::vector<std::pair<int, int>>> triggers(pred_names_.size());  // pred -> (spec, atom index)
+    std::vector<std::vector<std::pair<int, int>>> triggers(
+        pred_names_.size());  // pred -> (spec, atom index)
     for (std::size_t si = 0; si < specs_.size(); ++si) {
       const Spec& spec = specs_[si];
       const Schema& s = *schemas_[static_cast<std::size_t>(spec.schema)];
@@ -1060,7 +1138,8 @@ class Grounder {
       for (std::size_t i = 0; i < spec.atoms.size(); ++i) {
         const F& item = *spec.items[static_cast<std::size_t>(spec.atoms[i])];
         if (!pred_static_[static_cast<std::size_t>(item.pred)]) {
-          triggers[static_cast<std::size_t>(item.pred)].push_back({static_cast<int>(si), static_cast<int>(i)});
+          triggers[static_cast<std::size_t>(item.pred)].push_back(
+              {static_cast<int>(si), static_cast<int>(i)});
         }
       }
     }
@@ -1077,7 +1156,8 @@ class Grounder {
         const Schema& s = *schemas_[static_cast<std::size_t>(spec.schema)];
         b.assign(s.vars.size(), -1);
         bound.clear();
-        const F& item = *spec.items[static_cast<std::size_t>(spec.atoms[static_cast<std::size_t>(ai)])];
+        const F& item =
+            *spec.items[static_cast<std::size_t>(spec.atoms[static_cast<std::size_t>(ai)])];
         if (!Unify(s, item, id, b, bound)) continue;
         done.assign(spec.atoms.size(), 0);
         done[static_cast<std::size_t>(ai)] = 1;
@@ -1133,9 +1213,16 @@ class Grounder {
     using Op = NumericExpr::Op;
     NumericExpr::Node node;
     switch (e.k) {
-      case NExpr::K::kNum: node.op = Op::kConstant; node.value = e.value; break;
-      case NExpr::K::kDuration: node.op = Op::kDuration; break;
-      case NExpr::K::kTotalTime: node.op = Op::kTotalTime; break;
+      case NExpr::K::kNum:
+        node.op = Op::kConstant;
+        node.value = e.value;
+        break;
+      case NExpr::K::kDuration:
+        node.op = Op::kDuration;
+        break;
+      case NExpr::K::kTotalTime:
+        node.op = Op::kTotalTime;
+        break;
       case NExpr::K::kFluent: {
         std::vector<Obj> args;
         for (auto a : e.args) args.push_back(IsVar(a) ? b[static_cast<std::size_t>(Slot(a))] : a);
@@ -1166,7 +1253,10 @@ class Grounder {
         const auto lhs = static_cast<std::int32_t>(out.nodes.size()) - 1;
         if (!EmitExpr(e.kids[1], b, out)) return false;
         const auto rhs = static_cast<std::int32_t>(out.nodes.size()) - 1;
-        node.op = e.k == NExpr::K::kAdd ? Op::kAdd : e.k == NExpr::K::kSub ? Op::kSub : e.k == NExpr::K::kMul ? Op::kMul : Op::kDiv;
+        node.op = e.k == NExpr::K::kAdd   ? Op::kAdd
+                  : e.k == NExpr::K::kSub ? Op::kSub
+                  : e.k == NExpr::K::kMul ? Op::kMul
+                                          : Op::kDiv;
         node.lhs = lhs;
         node.rhs = rhs;
         const auto& l = out.nodes[static_cast<std::size_t>(lhs)];
@@ -1174,9 +1264,15 @@ class Grounder {
         if (l.op == Op::kConstant && r.op == Op::kConstant) {
           double v = 0;
           switch (node.op) {
-            case Op::kAdd: v = l.value + r.value; break;
-            case Op::kSub: v = l.value - r.value; break;
-            case Op::kMul: v = l.value * r.value; break;
+            case Op::kAdd:
+              v = l.value + r.value;
+              break;
+            case Op::kSub:
+              v = l.value - r.value;
+              break;
+            case Op::kMul:
+              v = l.value * r.value;
+              break;
             default:
               if (r.value == 0.0) return false;
               v = l.value / r.value;
@@ -1201,8 +1297,12 @@ class Grounder {
     GF out;
     out.time = f.time;
     switch (f.k) {
-      case F::K::kTrue: out.k = GF::K::kTrue; return out;
-      case F::K::kFalse: out.k = GF::K::kFalse; return out;
+      case F::K::kTrue:
+        out.k = GF::K::kTrue;
+        return out;
+      case F::K::kFalse:
+        out.k = GF::K::kFalse;
+        return out;
       case F::K::kEq: {
         Obj x = IsVar(f.args[0]) ? b[static_cast<std::size_t>(Slot(f.args[0]))] : f.args[0];
         Obj y = IsVar(f.args[1]) ? b[static_cast<std::size_t>(Slot(f.args[1]))] : f.args[1];
@@ -1252,7 +1352,9 @@ class Grounder {
           return out;
         }
         if (c.lhs.IsConstant() && c.rhs.IsConstant()) {
-          out.k = Compare(c.lhs.ConstantValue(), c.comparator, c.rhs.ConstantValue()) ? GF::K::kTrue : GF::K::kFalse;
+          out.k = Compare(c.lhs.ConstantValue(), c.comparator, c.rhs.ConstantValue())
+                      ? GF::K::kTrue
+                      : GF::K::kFalse;
           return out;
         }
         out.k = GF::K::kCmp;
@@ -1284,7 +1386,8 @@ class Grounder {
   // Adds a child to an and/or node; false once the node is decided
   // (a false child of an and, a true child of an or).
   static bool AddKid(GF& node, GF kid, bool is_and) {
-    if (node.kids.size() == 1 && node.kids[0].k == (is_and ? GF::K::kFalse : GF::K::kTrue)) return false;
+    if (node.kids.size() == 1 && node.kids[0].k == (is_and ? GF::K::kFalse : GF::K::kTrue))
+      return false;
     if (kid.k == (is_and ? GF::K::kTrue : GF::K::kFalse)) return true;  // neutral
     if (kid.k == (is_and ? GF::K::kFalse : GF::K::kTrue)) {
       node.kids.clear();
@@ -1309,8 +1412,8 @@ class Grounder {
     return node;
   }
 
-  bool Quantify(const F& f, std::size_t i, std::vector<Obj>& b, const Schema& s, bool goal_mode, GF& out,
-                bool is_and) {
+  bool Quantify(const F& f, std::size_t i, std::vector<Obj>& b, const Schema& s, bool goal_mode,
+                GF& out, bool is_and) {
     if (i == f.vars.size()) return AddKid(out, GroundF(f.kids[0], b, s, goal_mode), is_and);
     const auto slot = static_cast<std::size_t>(f.vars[i]);
     for (Obj o : s.vars[slot].objects) {
@@ -1323,10 +1426,15 @@ class Grounder {
   // Ground DNF; false when it would have more than kMaxDisjuncts disjuncts.
   static bool GroundDnf(const GF& g, std::vector<GroundLits>& out) {
     switch (g.k) {
-      case GF::K::kTrue: out.push_back({}); return true;
-      case GF::K::kFalse: return true;
+      case GF::K::kTrue:
+        out.push_back({});
+        return true;
+      case GF::K::kFalse:
+        return true;
       case GF::K::kLit:
-      case GF::K::kCmp: out.push_back({{&g}}); return true;
+      case GF::K::kCmp:
+        out.push_back({{&g}});
+        return true;
       case GF::K::kOr:
         for (const auto& kid : g.kids) {
           if (!GroundDnf(kid, out) || out.size() > kMaxDisjuncts) return false;
@@ -1338,7 +1446,8 @@ class Grounder {
           std::vector<GroundLits> part;
           if (!GroundDnf(kid, part)) return false;
           if (part.size() == 1) {
-            for (auto& a : acc) a.leaves.insert(a.leaves.end(), part[0].leaves.begin(), part[0].leaves.end());
+            for (auto& a : acc)
+              a.leaves.insert(a.leaves.end(), part[0].leaves.begin(), part[0].leaves.end());
             continue;
           }
           std::vector<GroundLits> next;
@@ -1374,9 +1483,15 @@ class Grounder {
     for (const GF* leaf : lits.leaves) {
       switch (leaf->time) {
         case TimeSpec::kNone:
-        case TimeSpec::kAtStart: AddLeaf(a.at_start, *leaf); break;
-        case TimeSpec::kOverAll: AddLeaf(a.over_all, *leaf); break;
-        case TimeSpec::kAtEnd: AddLeaf(a.at_end, *leaf); break;
+        case TimeSpec::kAtStart:
+          AddLeaf(a.at_start, *leaf);
+          break;
+        case TimeSpec::kOverAll:
+          AddLeaf(a.over_all, *leaf);
+          break;
+        case TimeSpec::kAtEnd:
+          AddLeaf(a.at_end, *leaf);
+          break;
       }
     }
     for (const Condition* c : {&a.at_start, &a.over_all, &a.at_end}) {
@@ -1395,7 +1510,8 @@ class Grounder {
     return true;
   }
 
-  bool GroundEffect(const Schema& s, const EffItem& eff, std::vector<Obj>& b, std::size_t i, Action& a) {
+  bool GroundEffect(const Schema& s, const EffItem& eff, std::vector<Obj>& b, std::size_t i,
+                    Action& a) {
     if (i < eff.forall_vars.size()) {
       const auto slot = static_cast<std::size_t>(eff.forall_vars[i]);
       for (Obj o : s.vars[slot].objects) {
@@ -1526,7 +1642,8 @@ class Grounder {
       atom_fact_[id] = static_cast<FactId>(task_->facts.size());
       Fact f;
       f.predicate = pred_names_[static_cast<std::size_t>(key[0])];
-      for (std::size_t i = 1; i < key.size(); ++i) f.args.push_back(object_names_[static_cast<std::size_t>(key[i])]);
+      for (std::size_t i = 1; i < key.size(); ++i)
+        f.args.push_back(object_names_[static_cast<std::size_t>(key[i])]);
       task_->facts.push_back(std::move(f));
     }
   }
@@ -1542,20 +1659,24 @@ class Grounder {
     ok = true;
     for (const F* item : spec.items) {
       if (item->k == F::K::kEq) {
-        Obj x = IsVar(item->args[0]) ? b[static_cast<std::size_t>(Slot(item->args[0]))] : item->args[0];
-        Obj y = IsVar(item->args[1]) ? b[static_cast<std::size_t>(Slot(item->args[1]))] : item->args[1];
+        Obj x =
+            IsVar(item->args[0]) ? b[static_cast<std::size_t>(Slot(item->args[0]))] : item->args[0];
+        Obj y =
+            IsVar(item->args[1]) ? b[static_cast<std::size_t>(Slot(item->args[1]))] : item->args[1];
         if ((x == y) != item->positive) ok = false;
         continue;
       }
       args_scratch_.clear();
-      for (auto x : item->args) args_scratch_.push_back(IsVar(x) ? b[static_cast<std::size_t>(Slot(x))] : x);
+      for (auto x : item->args)
+        args_scratch_.push_back(IsVar(x) ? b[static_cast<std::size_t>(Slot(x))] : x);
       const std::int32_t id = FindAtom(item->pred, args_scratch_);
       if (pred_static_[static_cast<std::size_t>(item->pred)]) {
         const bool known_true = id >= 0 && atom_popped_[static_cast<std::size_t>(id)];
         if (known_true != item->positive) ok = false;
         continue;
       }
-      const FactId fact = id >= 0 && static_cast<std::size_t>(id) < atom_fact_.size() ? FactOf(id) : -1;
+      const FactId fact =
+          id >= 0 && static_cast<std::size_t>(id) < atom_fact_.size() ? FactOf(id) : -1;
       if (fact < 0) {
         if (item->positive) ok = false;  // unreachable; a negative literal on it is true
         continue;
@@ -1603,7 +1724,9 @@ class Grounder {
       if (dnf.empty()) continue;
       Action base = std::move(simple);
       base.name = s.action->name;
-      for (int p = 0; p < s.n_params; ++p) base.args.push_back(object_names_[static_cast<std::size_t>(b[static_cast<std::size_t>(p)])]);
+      for (int p = 0; p < s.n_params; ++p)
+        base.args.push_back(
+            object_names_[static_cast<std::size_t>(b[static_cast<std::size_t>(p)])]);
       base.is_durative = s.action->durative;
       bool duration_ok = true;
       for (const auto& d : s.duration) {
@@ -1642,7 +1765,8 @@ class Grounder {
         task_->actions.push_back(std::move(a));
         if (task_->actions.size() > options_.max_actions) {
           Error(pddl::DiagnosticKind::kSemantic, problem_.location, "",
-                "grounding exceeds the action budget of " + std::to_string(options_.max_actions) + " actions",
+                "grounding exceeds the action budget of " + std::to_string(options_.max_actions) +
+                    " actions",
                 "a smaller problem or a larger GroundingOptions::max_actions");
           return false;
         }
@@ -1661,7 +1785,8 @@ class Grounder {
     if (budget_exceeded_) return false;
     if (g.k == GF::K::kFalse) {
       Warn(problem_.goal.location, "",
-           "the goal is statically false (it contradicts facts that never change); the task has no solution");
+           "the goal is statically false (it contradicts facts that never change); the task has no "
+           "solution");
       // A fact nothing achieves stands for the impossible goal.
       task_->goal.positive.push_back(static_cast<FactId>(task_->facts.size()));
       task_->facts.push_back({"@false", {}});
@@ -1669,12 +1794,14 @@ class Grounder {
     }
     std::vector<GroundLits> dnf;
     if (!GroundDnf(g, dnf)) {
-      Error(pddl::DiagnosticKind::kUnsupported, problem_.goal.location, "", "goal too large in disjunctive normal form");
+      Error(pddl::DiagnosticKind::kUnsupported, problem_.goal.location, "",
+            "goal too large in disjunctive normal form");
       return false;
     }
     if (dnf.size() > 1) {
       Error(pddl::DiagnosticKind::kUnsupported, problem_.goal.location, "",
-            "disjunctive goal (a goal with 'or', 'imply' or 'exists' that does not simplify to a conjunction)");
+            "disjunctive goal (a goal with 'or', 'imply' or 'exists' that does not simplify to a "
+            "conjunction)");
       return false;
     }
     for (const GF* leaf : dnf[0].leaves) AddLeaf(task_->goal, *leaf);
@@ -1757,7 +1884,6 @@ class Grounder {
   bool effect_undefined_ = false;
   std::size_t reachable_facts_ = 0;
   std::shared_ptr<GroundTask> task_;
-
 };
 
 std::shared_ptr<GroundTask> Grounder::Build() {
@@ -1816,8 +1942,8 @@ std::shared_ptr<GroundTask> Grounder::Build() {
   return task_;
 }
 
-
-std::string Grounder::Explain(std::string_view name, std::span<const std::string> args, const GroundTask* task) {
+std::string Grounder::Explain(std::string_view name, std::span<const std::string> args,
+                              const GroundTask* task) {
   const pddl::Action* action = domain_.FindAction(name);
   std::string call = "(" + std::string(name);
   for (const auto& a : args) call += " " + a;
@@ -1830,8 +1956,9 @@ std::string Grounder::Explain(std::string_view name, std::span<const std::string
   if (args.size() != action->parameters.size()) {
     std::string params;
     for (const auto& p : action->parameters) params += (params.empty() ? "" : " ") + p.name;
-    return call + ": wrong number of arguments: " + std::to_string(args.size()) + " given, '" + action->name +
-           "' takes " + std::to_string(action->parameters.size()) + " (" + params + ")";
+    return call + ": wrong number of arguments: " + std::to_string(args.size()) + " given, '" +
+           action->name + "' takes " + std::to_string(action->parameters.size()) + " (" + params +
+           ")";
   }
   InternSymbols();
   if (!CheckProblemMatchesDomain()) return call + ": the problem does not match the domain";
@@ -1842,14 +1969,16 @@ std::string Grounder::Explain(std::string_view name, std::span<const std::string
     if (o < 0) return call + ": unknown object '" + args[i] + "'";
     bool fits = false;
     for (const auto& want : action->parameters[i].types) {
-      for (const auto& have : object_types_[static_cast<std::size_t>(o)]) fits = fits || domain_.IsSubtype(have, want);
+      for (const auto& have : object_types_[static_cast<std::size_t>(o)])
+        fits = fits || domain_.IsSubtype(have, want);
     }
     if (!fits) {
       std::string have, want;
-      for (const auto& t : object_types_[static_cast<std::size_t>(o)]) have += (have.empty() ? "" : " or ") + t;
+      for (const auto& t : object_types_[static_cast<std::size_t>(o)])
+        have += (have.empty() ? "" : " or ") + t;
       for (const auto& t : action->parameters[i].types) want += (want.empty() ? "" : " or ") + t;
-      return call + ": type mismatch: argument " + std::to_string(i + 1) + " '" + args[i] + "' is a " + have +
-             ", but " + action->parameters[i].name + " must be a " + want;
+      return call + ": type mismatch: argument " + std::to_string(i + 1) + " '" + args[i] +
+             "' is a " + have + ", but " + action->parameters[i].name + " must be a " + want;
     }
     objs.push_back(o);
   }
@@ -1860,17 +1989,22 @@ std::string Grounder::Explain(std::string_view name, std::span<const std::string
   if (!RunExploration()) return call + ": grounding budget exceeded";
   if (task != nullptr) {
     for (const auto& a : task->actions) {
-      if (a.name == action->name && std::equal(a.args.begin(), a.args.end(), args.begin(), args.end())) return "";
+      if (a.name == action->name &&
+          std::equal(a.args.begin(), a.args.end(), args.begin(), args.end()))
+        return "";
     }
   }
   std::size_t schema_id = 0;
   while (schemas_[schema_id]->action != action) ++schema_id;
   const Schema& s = *schemas_[schema_id];
   auto show_atom = [&](const F& item, const std::vector<Obj>& b) {
-    std::string out = "(" + (item.k == F::K::kEq ? std::string("=") : pred_names_[static_cast<std::size_t>(item.pred)]);
+    std::string out =
+        "(" +
+        (item.k == F::K::kEq ? std::string("=") : pred_names_[static_cast<std::size_t>(item.pred)]);
     for (auto x : item.args) {
       const Obj o = IsVar(x) ? b[static_cast<std::size_t>(Slot(x))] : x;
-      out += " " + (o < 0 ? s.vars[static_cast<std::size_t>(Slot(x))].name : object_names_[static_cast<std::size_t>(o)]);
+      out += " " + (o < 0 ? s.vars[static_cast<std::size_t>(Slot(x))].name
+                          : object_names_[static_cast<std::size_t>(o)]);
     }
     return out + ")";
   };
@@ -1889,21 +2023,26 @@ std::string Grounder::Explain(std::string_view name, std::span<const std::string
     for (const F* item : spec.items) {
       if ((item->k == F::K::kAtom || item->k == F::K::kEq) && bound(*item, b)) {
         if (item->k == F::K::kEq) {
-          Obj x = IsVar(item->args[0]) ? b[static_cast<std::size_t>(Slot(item->args[0]))] : item->args[0];
-          Obj y = IsVar(item->args[1]) ? b[static_cast<std::size_t>(Slot(item->args[1]))] : item->args[1];
+          Obj x = IsVar(item->args[0]) ? b[static_cast<std::size_t>(Slot(item->args[0]))]
+                                       : item->args[0];
+          Obj y = IsVar(item->args[1]) ? b[static_cast<std::size_t>(Slot(item->args[1]))]
+                                       : item->args[1];
           if ((x == y) != item->positive) {
-            reason = "the precondition " + std::string(item->positive ? "" : "(not ") + show_atom(*item, b) +
-                     (item->positive ? "" : ")") + " is false";
+            reason = "the precondition " + std::string(item->positive ? "" : "(not ") +
+                     show_atom(*item, b) + (item->positive ? "" : ")") + " is false";
           }
         } else {
           std::vector<Obj> a;
-          for (auto x : item->args) a.push_back(IsVar(x) ? b[static_cast<std::size_t>(Slot(x))] : x);
+          for (auto x : item->args)
+            a.push_back(IsVar(x) ? b[static_cast<std::size_t>(Slot(x))] : x);
           const std::int32_t id = FindAtom(item->pred, a);
           const bool reached = id >= 0 && atom_popped_[static_cast<std::size_t>(id)];
           if (pred_static_[static_cast<std::size_t>(item->pred)] && reached != item->positive) {
-            reason = "the precondition " + std::string(item->positive ? "" : "(not ") + show_atom(*item, b) +
-                     (item->positive ? "" : ")") + " is false and never changes (static)";
-          } else if (!pred_static_[static_cast<std::size_t>(item->pred)] && item->positive && !reached) {
+            reason = "the precondition " + std::string(item->positive ? "" : "(not ") +
+                     show_atom(*item, b) + (item->positive ? "" : ")") +
+                     " is false and never changes (static)";
+          } else if (!pred_static_[static_cast<std::size_t>(item->pred)] && item->positive &&
+                     !reached) {
             reason = "the precondition " + show_atom(*item, b) +
                      " can never become true (unreachable from the initial state)";
           }
@@ -1915,8 +2054,8 @@ std::string Grounder::Explain(std::string_view name, std::span<const std::string
         if (std::isnan(l) || std::isnan(r)) {
           reason = "a numeric precondition reads a function with no value in :init";
         } else if (!Compare(l, ToTask(item->cmp), r)) {
-          reason = "a numeric precondition over static functions is false (" + std::to_string(l) + " " +
-                   pddl::ComparatorSymbol(item->cmp) + " " + std::to_string(r) + ")";
+          reason = "a numeric precondition over static functions is false (" + std::to_string(l) +
+                   " " + pddl::ComparatorSymbol(item->cmp) + " " + std::to_string(r) + ")";
         }
       }
       if (!reason.empty()) break;
@@ -1930,10 +2069,14 @@ std::string Grounder::Explain(std::string_view name, std::span<const std::string
     }
     if (reason.empty()) {
       if (task == nullptr) {
-        return call + ": no reason found: its static preconditions hold and its fact preconditions are reachable";
+        return call +
+               ": no reason found: its static preconditions hold and its fact preconditions are "
+               "reachable";
       }
-      return call + ": its preconditions cannot hold together (a quantified, numeric or duration condition is "
-                    "false or undefined for these arguments; pruned by grounding)";
+      return call +
+             ": its preconditions cannot hold together (a quantified, numeric or duration "
+             "condition is "
+             "false or undefined for these arguments; pruned by grounding)";
     }
     if (first_reason.empty()) first_reason = reason;
   }
@@ -1945,16 +2088,22 @@ std::string Grounder::Explain(std::string_view name, std::span<const std::string
 
 absl::Status GroundingOptions::Validate() const {
   if (max_actions == 0 || max_facts == 0 || max_work == 0) {
-    return absl::InvalidArgumentError("GroundingOptions: max_actions, max_facts and max_work must be > 0");
+    return absl::InvalidArgumentError(
+        "GroundingOptions: max_actions, max_facts and max_work must be > 0");
   }
   return absl::OkStatus();
 }
 
-LoadResult Ground(const pddl::Domain& domain, const pddl::Problem& problem, const GroundingOptions& options) {
+LoadResult Ground(const pddl::Domain& domain, const pddl::Problem& problem,
+                  const GroundingOptions& options) {
   LoadResult result;
   if (absl::Status status = options.Validate(); !status.ok()) {
-    result.diagnostics.push_back({pddl::Severity::kError, pddl::DiagnosticKind::kSemantic, {}, "",
-                                  std::string(status.message()), ""});
+    result.diagnostics.push_back({pddl::Severity::kError,
+                                  pddl::DiagnosticKind::kSemantic,
+                                  {},
+                                  "",
+                                  std::string(status.message()),
+                                  ""});
     return result;
   }
   const auto start = std::chrono::steady_clock::now();
@@ -1970,8 +2119,9 @@ LoadResult Ground(const pddl::Domain& domain, const pddl::Problem& problem, cons
   return result;
 }
 
-LoadResult LoadTask(std::string_view domain_text, std::string_view problem_text, const GroundingOptions& options,
-                    std::string_view domain_file, std::string_view problem_file) {
+LoadResult LoadTask(std::string_view domain_text, std::string_view problem_text,
+                    const GroundingOptions& options, std::string_view domain_file,
+                    std::string_view problem_file) {
   LoadResult result;
   const auto start = std::chrono::steady_clock::now();
   auto parsed_domain = pddl::ParseDomain(domain_text, domain_file);
@@ -1990,7 +2140,8 @@ LoadResult LoadTask(std::string_view domain_text, std::string_view problem_text,
   auto problem = std::make_shared<const pddl::Problem>(std::move(*parsed_problem.problem));
   result.problem = problem;
   LoadResult grounded = Ground(*domain, *problem, options);
-  result.diagnostics.insert(result.diagnostics.end(), grounded.diagnostics.begin(), grounded.diagnostics.end());
+  result.diagnostics.insert(result.diagnostics.end(), grounded.diagnostics.begin(),
+                            grounded.diagnostics.end());
   result.task = std::move(grounded.task);
   const double parse_ms = result.stats.parse_ms;
   result.stats = grounded.stats;
@@ -2012,8 +2163,12 @@ LoadResult LoadTaskFromFiles(const std::string& domain_path, const std::string& 
   LoadResult result;
   for (const auto* path : {&domain_path, &problem_path}) {
     if (!read(*path, path == &domain_path ? domain_text : problem_text)) {
-      result.diagnostics.push_back({pddl::Severity::kError, pddl::DiagnosticKind::kSyntax, {*path, 0, 0}, *path,
-                                    "cannot read the file", "a readable PDDL file"});
+      result.diagnostics.push_back({pddl::Severity::kError,
+                                    pddl::DiagnosticKind::kSyntax,
+                                    {*path, 0, 0},
+                                    *path,
+                                    "cannot read the file",
+                                    "a readable PDDL file"});
     }
   }
   if (pddl::HasErrors(result.diagnostics)) return result;
@@ -2023,14 +2178,17 @@ LoadResult LoadTaskFromFiles(const std::string& domain_path, const std::string& 
 ActionIndex::ActionIndex(const GroundTask& task) : task_(&task) {
   by_hash_.reserve(task.actions.size());
   for (std::size_t i = 0; i < task.actions.size(); ++i) {
-    by_hash_.emplace_back(Hash(task.actions[i].name, task.actions[i].args), static_cast<ActionId>(i));
+    by_hash_.emplace_back(Hash(task.actions[i].name, task.actions[i].args),
+                          static_cast<ActionId>(i));
   }
   std::sort(by_hash_.begin(), by_hash_.end());
 }
 
 namespace {
 
-char AsciiLower(char c) { return static_cast<char>(c >= 'A' && c <= 'Z' ? c - 'A' + 'a' : c); }
+char AsciiLower(char c) {
+  return static_cast<char>(c >= 'A' && c <= 'Z' ? c - 'A' + 'a' : c);
+}
 
 bool EqualsLowered(std::string_view query, std::string_view lower) {
   if (query.size() != lower.size()) return false;
@@ -2057,7 +2215,8 @@ std::uint64_t ActionIndex::Hash(std::string_view name, std::span<const std::stri
   return h;
 }
 
-std::vector<ActionId> ActionIndex::Find(std::string_view name, std::span<const std::string> args) const {
+std::vector<ActionId> ActionIndex::Find(std::string_view name,
+                                        std::span<const std::string> args) const {
   std::vector<ActionId> out;
   const std::uint64_t h = Hash(name, args);
   auto it = std::lower_bound(by_hash_.begin(), by_hash_.end(), std::make_pair(h, ActionId{0}),
@@ -2066,7 +2225,8 @@ std::vector<ActionId> ActionIndex::Find(std::string_view name, std::span<const s
     const Action& action = task_->actions[static_cast<std::size_t>(it->second)];
     if (action.args.size() != args.size() || !EqualsLowered(name, action.name)) continue;
     bool same = true;
-    for (std::size_t k = 0; k < args.size() && same; ++k) same = EqualsLowered(args[k], action.args[k]);
+    for (std::size_t k = 0; k < args.size() && same; ++k)
+      same = EqualsLowered(args[k], action.args[k]);
     if (same) out.push_back(it->second);
   }
   return out;
@@ -2076,8 +2236,9 @@ std::vector<ActionId> ActionIndex::Find(std::string_view name, std::span<const s
 
 namespace seaplan::task {
 
-std::string ExplainMissingAction(const pddl::Domain& domain, const pddl::Problem& problem, std::string_view name,
-                                 std::span<const std::string> args, const GroundTask* task) {
+std::string ExplainMissingAction(const pddl::Domain& domain, const pddl::Problem& problem,
+                                 std::string_view name, std::span<const std::string> args,
+                                 const GroundTask* task) {
   auto lower = [](std::string_view in) {
     std::string out(in);
     for (auto& c : out) c = static_cast<char>(c >= 'A' && c <= 'Z' ? c - 'A' + 'a' : c);

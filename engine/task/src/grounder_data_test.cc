@@ -33,7 +33,8 @@ TEST(GrounderDataTest, EveryBenchProblemGroundsOrIsClearlyRejected) {
         continue;
       }
       if (r.unsupported()) {
-        ADD_FAILURE() << where << " unsupported (no bench domain is expected to be):\n" << r.ErrorText();
+        ADD_FAILURE() << where << " unsupported (no bench domain is expected to be):\n"
+                      << r.ErrorText();
         continue;
       }
       ASSERT_TRUE(r.ok()) << where << "\n" << r.ErrorText();

@@ -15,7 +15,8 @@ namespace {
 
 std::string Names(const GroundTask& task) {
   std::string out;
-  for (const auto& a : task.actions) out += a.DisplayName() + "#" + std::to_string(a.variant) + "\n";
+  for (const auto& a : task.actions)
+    out += a.DisplayName() + "#" + std::to_string(a.variant) + "\n";
   return out;
 }
 
@@ -70,7 +71,8 @@ TEST(GrounderTest, ReachabilityDrivenWithStaticFactsFolded) {
   EXPECT_EQ(t.actions.size(), 3u) << Names(t);
   EXPECT_NE(FindAction(t, "(move r1 p1 p2)"), nullptr);
   EXPECT_NE(FindAction(t, "(move r1 p3 p2)"), nullptr);
-  // Facts: (at r1 p1..p3), (visited p2), (visited p3); no static (road/blocked) and no never-added (broken).
+  // Facts: (at r1 p1..p3), (visited p2), (visited p3); no static (road/blocked) and no never-added
+  // (broken).
   EXPECT_EQ(t.facts.size(), 5u);
   EXPECT_FALSE(HasFact(t, "(road p1 p2)"));
   EXPECT_FALSE(HasFact(t, "(broken r1)"));
@@ -208,7 +210,7 @@ TEST(GrounderTest, NumericExpressionsStaticFoldedDynamicKept) {
   EXPECT_EQ(t.actions.size(), 5u) << Names(t);
   const Action* go = FindAction(t, "(go r1 w1 w2)");
   ASSERT_NE(go, nullptr);
-  EXPECT_EQ(go->ConstantDuration(), 5.0);  // 10 / 2 folded
+  EXPECT_EQ(go->ConstantDuration(), 5.0);      // 10 / 2 folded
   ASSERT_EQ(go->at_start.numeric.size(), 1u);  // energy >= 8 stays (energy changes)
   EXPECT_EQ(FindAction(t, "(go r1 w1 w3)"), nullptr);
   const Action* rech = FindAction(t, "(recharge r1 w1)");
@@ -260,7 +262,8 @@ TEST(GrounderTest, StaticallyFalseGoalsAreKeptNotDropped) {
   // (visited p1) is never added: kept as a goal fact nothing achieves, with a warning.
   const FactId v1 = FactIdOf(*r.task, "(visited p1)");
   ASSERT_GE(v1, 0);
-  EXPECT_NE(std::find(r.task->goal.positive.begin(), r.task->goal.positive.end(), v1), r.task->goal.positive.end());
+  EXPECT_NE(std::find(r.task->goal.positive.begin(), r.task->goal.positive.end(), v1),
+            r.task->goal.positive.end());
   EXPECT_NE(r.ErrorText().find("unreachable"), std::string::npos);
 
   const char* problem_false = R"(
@@ -301,9 +304,11 @@ TEST(GrounderTest, BudgetsEndInAnErrorNotUnboundedMemory) {
   // A universally quantified goal over 60^4 combinations hits the work budget.
   GroundingOptions small_work;
   small_work.max_work = 1'000'000;
-  const std::string no_actions = "(define (domain big) (:requirements :typing) (:types obj) (:predicates (p ?a ?b ?c - obj)))";
-  auto q = LoadTask(no_actions, "(define (problem q) (:domain big) (:objects" + objects +
-                                " - obj) (:init) (:goal (forall (?a ?b ?c ?d - obj) (p ?a ?b ?c))))",
+  const std::string no_actions =
+      "(define (domain big) (:requirements :typing) (:types obj) (:predicates (p ?a ?b ?c - obj)))";
+  auto q = LoadTask(no_actions,
+                    "(define (problem q) (:domain big) (:objects" + objects +
+                        " - obj) (:init) (:goal (forall (?a ?b ?c ?d - obj) (p ?a ?b ?c))))",
                     small_work);
   EXPECT_FALSE(q.ok());
   EXPECT_NE(q.ErrorText().find("work budget"), std::string::npos) << q.ErrorText();
@@ -316,12 +321,14 @@ TEST(GrounderTest, BudgetsEndInAnErrorNotUnboundedMemory) {
   for (int i = 0; i < 4000; ++i) objs += " o" + std::to_string(i);
   GroundingOptions few_facts;
   few_facts.max_facts = 1000;
-  auto wide = LoadTask("(define (domain wide) (:requirements :typing) (:types obj) (:predicates" + preds + "))",
-                       "(define (problem w) (:domain wide) (:objects" + objs + " - obj) (:init" + init +
-                           ") (:goal (q0 o0 o1 o2)))",
-                       few_facts);
+  auto wide = LoadTask(
+      "(define (domain wide) (:requirements :typing) (:types obj) (:predicates" + preds + "))",
+      "(define (problem w) (:domain wide) (:objects" + objs + " - obj) (:init" + init +
+          ") (:goal (q0 o0 o1 o2)))",
+      few_facts);
   EXPECT_FALSE(wide.ok());
-  EXPECT_NE(wide.ErrorText().find("index exceeds the fact budget"), std::string::npos) << wide.ErrorText();
+  EXPECT_NE(wide.ErrorText().find("index exceeds the fact budget"), std::string::npos)
+      << wide.ErrorText();
   options.max_actions = 0;
   EXPECT_FALSE(options.Validate().ok());
 }
@@ -336,18 +343,21 @@ TEST(GrounderTest, ActionIndexAndExplainMissingAction) {
   ActionIndex index(*r.task);
   std::vector<std::string> args{"r1", "p1", "p2"};
   ASSERT_EQ(index.Find("move", args).size(), 1u);
-  EXPECT_EQ(r.task->actions[static_cast<std::size_t>(index.Find("MOVE", args)[0])].DisplayName(), "(move r1 p1 p2)");
+  EXPECT_EQ(r.task->actions[static_cast<std::size_t>(index.Find("MOVE", args)[0])].DisplayName(),
+            "(move r1 p1 p2)");
   EXPECT_EQ(ExplainMissingAction(*r.domain, *r.problem, "move", args, r.task.get()), "");
   // Case-insensitive arguments too; unreachable, unknown and wrong-arity
   // queries find nothing.
-  EXPECT_EQ(index.Find("Move", std::vector<std::string>{"R1", "P1", "p2"}), index.Find("move", args));
+  EXPECT_EQ(index.Find("Move", std::vector<std::string>{"R1", "P1", "p2"}),
+            index.Find("move", args));
   EXPECT_TRUE(index.Find("move", std::vector<std::string>{"r1", "p1", "p3"}).empty());
   EXPECT_TRUE(index.Find("move", std::vector<std::string>{"r1", "p1"}).empty());
   EXPECT_TRUE(index.Find("fly", args).empty());
   for (std::size_t a = 0; a < r.task->actions.size(); ++a) {
     const auto& action = r.task->actions[a];
     const auto found = index.Find(action.name, action.args);
-    EXPECT_NE(std::find(found.begin(), found.end(), static_cast<ActionId>(a)), found.end()) << action.DisplayName();
+    EXPECT_NE(std::find(found.begin(), found.end(), static_cast<ActionId>(a)), found.end())
+        << action.DisplayName();
   }
 
   auto explain = [&](const std::string& name, std::vector<std::string> a) {
@@ -373,7 +383,8 @@ TEST(GrounderTest, EditedProblemThatNoLongerMatchesTheDomainIsADiagnostic) {
   edited.init.push_back({"teleported", {{"r1", {}}}, {}});
   auto g = Ground(*r.domain, edited);
   EXPECT_FALSE(g.ok());
-  EXPECT_NE(g.ErrorText().find("unknown object (found 'port-x'"), std::string::npos) << g.ErrorText();
+  EXPECT_NE(g.ErrorText().find("unknown object (found 'port-x'"), std::string::npos)
+      << g.ErrorText();
   EXPECT_NE(g.ErrorText().find("teleported"), std::string::npos) << g.ErrorText();
 }
 
@@ -387,7 +398,8 @@ TEST(GrounderTest, LoadTaskFromFilesNamesThePaths) {
   EXPECT_TRUE(ok.ok()) << ok.ErrorText();
   auto bad = LoadTaskFromFiles(dir + "/paper000_domain_verbatim.pddl", dir + "/fjord_case_a.pddl");
   EXPECT_FALSE(bad.ok());
-  EXPECT_NE(bad.ErrorText().find("paper000_domain_verbatim.pddl:34:17: error: type mismatch"), std::string::npos)
+  EXPECT_NE(bad.ErrorText().find("paper000_domain_verbatim.pddl:34:17: error: type mismatch"),
+            std::string::npos)
       << bad.ErrorText();
   auto missing = LoadTaskFromFiles(dir + "/no-such-file.pddl", dir + "/fjord_case_a.pddl");
   EXPECT_FALSE(missing.ok());

@@ -68,7 +68,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   for (std::size_t i = 0; i < plan->steps.size(); ++i) {
     const auto& a = plan->steps[i];
     const auto& b = again->steps[i];
-    if (a.start_s != b.start_s || a.duration_s != b.duration_s || a.name != b.name || a.args != b.args) {
+    if (a.start_s != b.start_s || a.duration_s != b.duration_s || a.name != b.name ||
+        a.args != b.args) {
       std::abort();
     }
   }

@@ -33,11 +33,11 @@ Plan PlanFile(const std::string& name) {
 }
 
 TEST(FjordExamplesTest, EveryMissionGroundsWithoutErrors) {
-  for (const auto& [domain, problem] :
-       std::vector<std::pair<std::string, std::string>>{{"domain.pddl", "case-a.pddl"},
-                                                        {"domain.pddl", "case-b.pddl"},
-                                                        {"domain-fuel.pddl", "case-c.pddl"},
-                                                        {"domain-numeric.pddl", "case-c-numeric.pddl"}}) {
+  for (const auto& [domain, problem] : std::vector<std::pair<std::string, std::string>>{
+           {"domain.pddl", "case-a.pddl"},
+           {"domain.pddl", "case-b.pddl"},
+           {"domain-fuel.pddl", "case-c.pddl"},
+           {"domain-numeric.pddl", "case-c-numeric.pddl"}}) {
     const task::LoadResult loaded = task::LoadTask(Example(domain), Example(problem));
     EXPECT_TRUE(loaded.ok()) << domain << " + " << problem << ":\n" << loaded.ErrorText();
     if (!loaded.ok()) continue;
@@ -166,7 +166,7 @@ TEST(FjordExamplesTest, CaseBReplanIsAccepted) {
   const Plan plan = PlanFile("case-b.plan");
   const ValidationResult r = ValidatePlan(*loaded.task, plan);
   EXPECT_TRUE(r.valid) << r.ToString();
-  EXPECT_EQ(r.action_count, 12u);  // the paper: 12 actions after the replan
+  EXPECT_EQ(r.action_count, 12u);                      // the paper: 12 actions after the replan
   EXPECT_NEAR(plan.steps[0].duration_s, 66.67, 0.01);  // port-s -> port-b, 12 / 0.18
   // Case A's first move does not exist any more: the ship is not at port-a.
   Plan stale = plan;

@@ -46,7 +46,8 @@ class LineScanner {
       return ErrorAt(start_col, absl::StrCat(std::string(what), " is out of range"));
     }
     if (ec != std::errc() || ptr == begin) {
-      return ErrorAt(start_col, absl::StrCat("expected ", std::string(what), ", found ", Describe()));
+      return ErrorAt(start_col,
+                     absl::StrCat("expected ", std::string(what), ", found ", Describe()));
     }
     if (!std::isfinite(value)) {
       return ErrorAt(start_col, absl::StrCat(std::string(what), " must be a finite number"));
@@ -117,7 +118,8 @@ absl::StatusOr<PlanStep> ParseStep(std::string_view line, int line_number) {
     scan.Advance();
     SEAPLAN_ASSIGN_OR_RETURN(step.duration_s, scan.Number("a duration"));
     scan.SkipSpace();
-    if (scan.Peek() != ']') return scan.Error(absl::StrCat("expected ']', found ", scan.Describe()));
+    if (scan.Peek() != ']')
+      return scan.Error(absl::StrCat("expected ']', found ", scan.Describe()));
     scan.Advance();
     scan.SkipSpace();
   }
@@ -156,7 +158,7 @@ absl::StatusOr<Plan> ParsePlan(std::string_view text) {
 
 std::string FormatTime(double value) {
   if (value == 0.0) return "0";  // also folds -0
-  char buffer[512];  // fixed notation of the largest double needs ~330 characters
+  char buffer[512];              // fixed notation of the largest double needs ~330 characters
   const auto [ptr, ec] =
       std::to_chars(buffer, buffer + sizeof buffer, value, std::chars_format::fixed);
   if (ec != std::errc()) return std::to_string(value);  // unreachable for finite values

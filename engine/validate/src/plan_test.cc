@@ -72,7 +72,8 @@ INSTANTIATE_TEST_SUITE_P(
         BadPlan{"nan: (a b) [1]", "plan line 1, column 1", "finite"},
         BadPlan{"0: (a b) [inf]", "plan line 1, column 11", "finite"},
         BadPlan{"1e999: (a)", "plan line 1, column 1", "out of range"},
-        BadPlan{"\r\n\r\n  0.5 (a b c\r\n", "plan line 3, column 13", "expected an argument or ')'"}));
+        BadPlan{"\r\n\r\n  0.5 (a b c\r\n", "plan line 3, column 13",
+                "expected an argument or ')'"}));
 
 TEST(ParsePlanTest, ArbitraryBytesGiveAPlanOrAnErrorNeverACrash) {
   // Deterministic pseudo-random lines built from plan-like characters.

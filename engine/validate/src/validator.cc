@@ -29,10 +29,14 @@ using Kind = ValidationFailure::Kind;
 constexpr double kNsPerS = 1e9;
 constexpr double kMaxTimeS = 1e9;
 
-std::int64_t ToNs(double seconds) { return std::llround(seconds * kNsPerS); }
+std::int64_t ToNs(double seconds) {
+  return std::llround(seconds * kNsPerS);
+}
 
 // Seconds for messages: short and readable (not the exact round-trip form).
-std::string Secs(double seconds) { return absl::StrFormat("%.9g", seconds); }
+std::string Secs(double seconds) {
+  return absl::StrFormat("%.9g", seconds);
+}
 
 // Sort rank of events at the same nanosecond: ends, then timed literals, then
 // starts. Any order is correct for non-interfering events (and interfering
@@ -113,26 +117,34 @@ struct Conflict {
 };
 
 std::optional<Conflict> Interfere(const Footprint& a, const Footprint& b) {
-  auto fact = [](std::int32_t id, const char* how) {
-    return Conflict{false, id, how};
-  };
-  auto var = [](std::int32_t id, const char* how) {
-    return Conflict{true, id, how};
-  };
+  auto fact = [](std::int32_t id, const char* how) { return Conflict{false, id, how}; };
+  auto var = [](std::int32_t id, const char* how) { return Conflict{true, id, how}; };
   std::int32_t id;
-  if ((id = FirstCommon(a.add, b.del)) >= 0) return fact(id, "added by the first and deleted by the second");
-  if ((id = FirstCommon(a.del, b.add)) >= 0) return fact(id, "deleted by the first and added by the second");
-  if ((id = FirstCommon(a.add, b.read)) >= 0) return fact(id, "added by the first and read by the second");
-  if ((id = FirstCommon(a.del, b.read)) >= 0) return fact(id, "deleted by the first and read by the second");
-  if ((id = FirstCommon(a.read, b.add)) >= 0) return fact(id, "read by the first and added by the second");
-  if ((id = FirstCommon(a.read, b.del)) >= 0) return fact(id, "read by the first and deleted by the second");
-  if ((id = FirstCommon(a.num_additive, b.num_read)) >= 0) return var(id, "updated by the first and read by the second");
-  if ((id = FirstCommon(a.num_assign, b.num_read)) >= 0) return var(id, "assigned by the first and read by the second");
-  if ((id = FirstCommon(a.num_read, b.num_additive)) >= 0) return var(id, "read by the first and updated by the second");
-  if ((id = FirstCommon(a.num_read, b.num_assign)) >= 0) return var(id, "read by the first and assigned by the second");
+  if ((id = FirstCommon(a.add, b.del)) >= 0)
+    return fact(id, "added by the first and deleted by the second");
+  if ((id = FirstCommon(a.del, b.add)) >= 0)
+    return fact(id, "deleted by the first and added by the second");
+  if ((id = FirstCommon(a.add, b.read)) >= 0)
+    return fact(id, "added by the first and read by the second");
+  if ((id = FirstCommon(a.del, b.read)) >= 0)
+    return fact(id, "deleted by the first and read by the second");
+  if ((id = FirstCommon(a.read, b.add)) >= 0)
+    return fact(id, "read by the first and added by the second");
+  if ((id = FirstCommon(a.read, b.del)) >= 0)
+    return fact(id, "read by the first and deleted by the second");
+  if ((id = FirstCommon(a.num_additive, b.num_read)) >= 0)
+    return var(id, "updated by the first and read by the second");
+  if ((id = FirstCommon(a.num_assign, b.num_read)) >= 0)
+    return var(id, "assigned by the first and read by the second");
+  if ((id = FirstCommon(a.num_read, b.num_additive)) >= 0)
+    return var(id, "read by the first and updated by the second");
+  if ((id = FirstCommon(a.num_read, b.num_assign)) >= 0)
+    return var(id, "read by the first and assigned by the second");
   if ((id = FirstCommon(a.num_assign, b.num_assign)) >= 0) return var(id, "assigned by both");
-  if ((id = FirstCommon(a.num_assign, b.num_additive)) >= 0) return var(id, "assigned by the first and updated by the second");
-  if ((id = FirstCommon(a.num_additive, b.num_assign)) >= 0) return var(id, "updated by the first and assigned by the second");
+  if ((id = FirstCommon(a.num_assign, b.num_additive)) >= 0)
+    return var(id, "assigned by the first and updated by the second");
+  if ((id = FirstCommon(a.num_additive, b.num_assign)) >= 0)
+    return var(id, "updated by the first and assigned by the second");
   return std::nullopt;
 }
 
@@ -177,7 +189,8 @@ std::string DescribeLiteral(const GroundTask& task, const Condition& c, const Li
     case LiteralFailure::Type::kPositive:
       return task.facts[static_cast<std::size_t>(c.positive[f.index])].DisplayName();
     case LiteralFailure::Type::kNegative:
-      return "(not " + task.facts[static_cast<std::size_t>(c.negative[f.index])].DisplayName() + ")";
+      return "(not " + task.facts[static_cast<std::size_t>(c.negative[f.index])].DisplayName() +
+             ")";
     case LiteralFailure::Type::kNumeric:
       return task::ToString(c.numeric[f.index], task);
   }
@@ -186,8 +199,10 @@ std::string DescribeLiteral(const GroundTask& task, const Condition& c, const Li
 
 std::string WhyFalse(const LiteralFailure& f) {
   switch (f.type) {
-    case LiteralFailure::Type::kPositive: return "is false";
-    case LiteralFailure::Type::kNegative: return "is false (the fact is true)";
+    case LiteralFailure::Type::kPositive:
+      return "is false";
+    case LiteralFailure::Type::kNegative:
+      return "is false (the fact is true)";
     case LiteralFailure::Type::kNumeric:
       if (f.undefined) return "reads an undefined value";
       return absl::StrCat("is false (", Secs(f.lhs), " vs ", Secs(f.rhs), ")");
@@ -197,11 +212,16 @@ std::string WhyFalse(const LiteralFailure& f) {
 
 bool DurationOk(double d, Comparator cmp, double v, double tol) {
   switch (cmp) {
-    case Comparator::kEqual: return std::fabs(d - v) <= tol;
-    case Comparator::kLessEqual: return d <= v + tol;
-    case Comparator::kGreaterEqual: return d >= v - tol;
-    case Comparator::kLess: return d < v;
-    case Comparator::kGreater: return d > v;
+    case Comparator::kEqual:
+      return std::fabs(d - v) <= tol;
+    case Comparator::kLessEqual:
+      return d <= v + tol;
+    case Comparator::kGreaterEqual:
+      return d >= v - tol;
+    case Comparator::kLess:
+      return d < v;
+    case Comparator::kGreater:
+      return d > v;
   }
   return false;
 }
@@ -244,8 +264,8 @@ class Run {
   struct StepState {
     std::int64_t start_ns = 0;
     std::int64_t end_ns = 0;
-    ActionId effects_from = -1;      // variant whose effects apply
-    std::vector<std::uint8_t> alive;  // per candidate variant
+    ActionId effects_from = -1;                // variant whose effects apply
+    std::vector<std::uint8_t> alive;           // per candidate variant
     std::vector<std::uint8_t> end_cond_fired;  // end conditional effects decided at start
   };
 
@@ -335,12 +355,12 @@ std::optional<ValidationFailure> Run::CheckStructure() {
       return f;
     };
     if (!std::isfinite(step.start_s) || step.start_s < 0.0 || step.start_s > kMaxTimeS) {
-      return bad(Kind::kBadStep, absl::StrCat("start time ", Secs(step.start_s),
-                                              " is not in [0, ", Secs(kMaxTimeS), "] s"));
+      return bad(Kind::kBadStep, absl::StrCat("start time ", Secs(step.start_s), " is not in [0, ",
+                                              Secs(kMaxTimeS), "] s"));
     }
     if (!std::isfinite(step.duration_s) || step.duration_s < 0.0 || step.duration_s > kMaxTimeS) {
-      return bad(Kind::kBadStep, absl::StrCat("duration ", Secs(step.duration_s),
-                                              " is not in [0, ", Secs(kMaxTimeS), "] s"));
+      return bad(Kind::kBadStep, absl::StrCat("duration ", Secs(step.duration_s), " is not in [0, ",
+                                              Secs(kMaxTimeS), "] s"));
     }
     if (candidates_[i].empty()) {
       std::string why = options_.explain_missing_action
@@ -356,15 +376,16 @@ std::optional<ValidationFailure> Run::CheckStructure() {
     const Action& a = action(candidates_[i].front());
     if (a.is_durative) {
       if (ToNs(step.start_s + step.duration_s) <= ToNs(step.start_s)) {
-        return bad(Kind::kBadStep,
-                   "a durative action needs a positive duration (\"[d]\" with d >= 1 ns); the "
-                   "step has " +
-                       (step.duration_s == 0.0 ? std::string("none")
-                                               : "[" + Secs(step.duration_s) + "]"));
+        return bad(
+            Kind::kBadStep,
+            "a durative action needs a positive duration (\"[d]\" with d >= 1 ns); the "
+            "step has " +
+                (step.duration_s == 0.0 ? std::string("none") : "[" + Secs(step.duration_s) + "]"));
       }
     } else if (step.duration_s != 0.0) {
-      return bad(Kind::kBadStep, absl::StrCat("an instantaneous action takes no duration; the step has [",
-                                              Secs(step.duration_s), "]"));
+      return bad(Kind::kBadStep,
+                 absl::StrCat("an instantaneous action takes no duration; the step has [",
+                              Secs(step.duration_s), "]"));
     }
   }
   return std::nullopt;
@@ -374,7 +395,8 @@ std::string Run::DescribeEvent(const Event& e) const {
   switch (e.kind) {
     case EventKind::kStart: {
       const auto& step = plan_.steps[static_cast<std::size_t>(e.index)];
-      const bool durative = action(candidates_[static_cast<std::size_t>(e.index)].front()).is_durative;
+      const bool durative =
+          action(candidates_[static_cast<std::size_t>(e.index)].front()).is_durative;
       return absl::StrCat(step.DisplayName(), durative ? " start" : "", " at t=", Secs(e.t));
     }
     case EventKind::kEnd:
@@ -456,27 +478,28 @@ std::optional<ValidationFailure> Run::CheckMutex(std::size_t i) {
   for (std::size_t k = i + 1; k < events_.size(); ++k) {
     const Event& b = events_[k];
     if (b.t_ns != a.t_ns && !(b.t - a.t < limit)) break;  // events are sorted by time
-    if (a.IsStep() && b.IsStep() && a.index == b.index) continue;  // a step never conflicts with itself
+    if (a.IsStep() && b.IsStep() && a.index == b.index)
+      continue;                                // a step never conflicts with itself
     if (!a.IsStep() && !b.IsStep()) continue;  // timed literals are the task's own business
     // FootprintOf may grow footprints_, so take both references afterwards.
     FootprintOf(i);
     FootprintOf(k);
-    const auto conflict =
-        Interfere(footprints_[static_cast<std::size_t>(footprint_of_event_[i])],
-                  footprints_[static_cast<std::size_t>(footprint_of_event_[k])]);
+    const auto conflict = Interfere(footprints_[static_cast<std::size_t>(footprint_of_event_[i])],
+                                    footprints_[static_cast<std::size_t>(footprint_of_event_[k])]);
     if (!conflict) continue;
     ValidationFailure f;
     f.kind = Kind::kMutex;
     f.time_s = a.t;
     f.step_index = a.IsStep() ? a.index : -1;
-    f.action = a.IsStep() ? plan_.steps[static_cast<std::size_t>(a.index)].DisplayName() : DescribeEvent(a);
+    f.action = a.IsStep() ? plan_.steps[static_cast<std::size_t>(a.index)].DisplayName()
+                          : DescribeEvent(a);
     f.other_step_index = b.IsStep() ? b.index : -1;
-    f.other_action = b.IsStep() ? plan_.steps[static_cast<std::size_t>(b.index)].DisplayName() : DescribeEvent(b);
+    f.other_action = b.IsStep() ? plan_.steps[static_cast<std::size_t>(b.index)].DisplayName()
+                                : DescribeEvent(b);
     f.condition = conflict->numeric
                       ? task_.numeric_vars[static_cast<std::size_t>(conflict->id)].DisplayName()
                       : task_.facts[static_cast<std::size_t>(conflict->id)].DisplayName();
-    f.reason = absl::StrCat(DescribeEvent(a), " and ", DescribeEvent(b), " are ",
-                            Secs(b.t - a.t),
+    f.reason = absl::StrCat(DescribeEvent(a), " and ", DescribeEvent(b), " are ", Secs(b.t - a.t),
                             " s apart (less than epsilon ", Secs(options_.epsilon_s),
                             " s) and interfere: ", f.condition, " is ", conflict->how);
     return f;
@@ -484,8 +507,8 @@ std::optional<ValidationFailure> Run::CheckMutex(std::size_t i) {
   return std::nullopt;
 }
 
-std::optional<ValidationFailure> Run::Filter(int step, Condition Action::*part, Kind kind,
-                                             double t, const char* when, FailedLiteral* failed) {
+std::optional<ValidationFailure> Run::Filter(int step, Condition Action::*part, Kind kind, double t,
+                                             const char* when, FailedLiteral* failed) {
   StepState& ss = steps_[static_cast<std::size_t>(step)];
   const auto& cands = candidates_[static_cast<std::size_t>(step)];
   const double duration = plan_.steps[static_cast<std::size_t>(step)].duration_s;
@@ -503,7 +526,8 @@ std::optional<ValidationFailure> Run::Filter(int step, Condition Action::*part, 
     if (!last) {
       last = StepFailure(kind, t, step);
       last->condition = DescribeLiteral(task_, c, *failing);
-      last->reason = absl::StrCat(KindName(kind), " ", last->condition, " ", WhyFalse(*failing), " ", when);
+      last->reason =
+          absl::StrCat(KindName(kind), " ", last->condition, " ", WhyFalse(*failing), " ", when);
       if (failed != nullptr) *failed = FailedLiteral{&c, *failing};
     }
   }
@@ -515,7 +539,8 @@ std::optional<std::string> Run::Apply(const Effects& effects, task::TimePoint po
                                       const std::vector<std::uint8_t>* decided, double duration) {
   // Operands and conditional-effect conditions read the state before the event.
   updates_.clear();
-  auto collect = [&](const std::vector<task::NumericEffect>& numeric) -> std::optional<std::string> {
+  auto collect =
+      [&](const std::vector<task::NumericEffect>& numeric) -> std::optional<std::string> {
     for (const auto& n : numeric) {
       const auto operand = n.value.Evaluate(state_.values, duration);
       if (!operand) {
@@ -647,23 +672,26 @@ std::optional<ValidationFailure> Run::CheckInvariants(std::size_t last) {
     if (just_started) f->time_s = step.start_s;
     if (other != nullptr) {
       f->time_s = other->t;
-      f->reason = just_started
-                      ? absl::StrCat(what, " is false just after the action starts: ",
-                                     DescribeEvent(*other), ", in the same happening, breaks it")
-                      : absl::StrCat(what, " of the running action is broken by ", DescribeEvent(*other));
+      f->reason =
+          just_started
+              ? absl::StrCat(what,
+                             " is false just after the action starts: ", DescribeEvent(*other),
+                             ", in the same happening, breaks it")
+              : absl::StrCat(what, " of the running action is broken by ", DescribeEvent(*other));
       if (other->IsStep()) {
         f->other_step_index = other->index;
         f->other_action = plan_.steps[static_cast<std::size_t>(other->index)].DisplayName();
       }
     } else if (just_started) {
-      f->reason = absl::StrCat(what, " ", WhyFalse(failed.literal),
-                               culprit >= 0 ? " just after the action starts (its own start effects "
-                                              "break it)"
-                                            : " just after the action starts (invariants hold on "
-                                              "the open interval)");
+      f->reason =
+          absl::StrCat(what, " ", WhyFalse(failed.literal),
+                       culprit >= 0 ? " just after the action starts (its own start effects "
+                                      "break it)"
+                                    : " just after the action starts (invariants hold on "
+                                      "the open interval)");
     } else {
-      f->reason = absl::StrCat(what, " ", WhyFalse(failed.literal), " after the happening at t=",
-                               Secs(h.t));
+      f->reason = absl::StrCat(what, " ", WhyFalse(failed.literal),
+                               " after the happening at t=", Secs(h.t));
     }
     return f;
   }
@@ -755,7 +783,8 @@ ValidationResult Run::Execute() {
 
   // Events.
   steps_.resize(plan_.steps.size());
-  events_.reserve(plan_.steps.size() * 2 + task_.timed_literals.size() + task_.timed_fluents.size());
+  events_.reserve(plan_.steps.size() * 2 + task_.timed_literals.size() +
+                  task_.timed_fluents.size());
   for (std::size_t i = 0; i < plan_.steps.size(); ++i) {
     const PlanStep& step = plan_.steps[i];
     StepState& ss = steps_[i];
@@ -856,16 +885,26 @@ ValidationResult InvalidOptions(const absl::Status& status, const Plan& plan) {
 
 const char* KindName(ValidationFailure::Kind kind) {
   switch (kind) {
-    case Kind::kInvalidOptions: return "invalid options";
-    case Kind::kUnknownAction: return "unknown action";
-    case Kind::kBadStep: return "bad step";
-    case Kind::kDuration: return "duration constraint";
-    case Kind::kAtStart: return "at-start condition";
-    case Kind::kOverAll: return "over-all condition";
-    case Kind::kAtEnd: return "at-end condition";
-    case Kind::kEffect: return "effect";
-    case Kind::kMutex: return "mutex";
-    case Kind::kGoal: return "goal";
+    case Kind::kInvalidOptions:
+      return "invalid options";
+    case Kind::kUnknownAction:
+      return "unknown action";
+    case Kind::kBadStep:
+      return "bad step";
+    case Kind::kDuration:
+      return "duration constraint";
+    case Kind::kAtStart:
+      return "at-start condition";
+    case Kind::kOverAll:
+      return "over-all condition";
+    case Kind::kAtEnd:
+      return "at-end condition";
+    case Kind::kEffect:
+      return "effect";
+    case Kind::kMutex:
+      return "mutex";
+    case Kind::kGoal:
+      return "goal";
   }
   return "?";
 }
@@ -885,8 +924,8 @@ absl::Status ValidationOptions::Validate() const {
 
 std::string ValidationResult::ToString() const {
   if (valid) {
-    std::string out = absl::StrCat("valid plan: ", action_count, " actions, makespan ",
-                                   Secs(makespan_s), " s");
+    std::string out =
+        absl::StrCat("valid plan: ", action_count, " actions, makespan ", Secs(makespan_s), " s");
     if (metric_value) absl::StrAppend(&out, ", metric ", Secs(*metric_value));
     return out;
   }

@@ -31,7 +31,9 @@ using testing::TaskBuilder;
 constexpr int kSteps = 100;
 constexpr int kDistractors = 20000;
 
-std::string Loc(int i) { return "l" + std::to_string(i); }
+std::string Loc(int i) {
+  return "l" + std::to_string(i);
+}
 
 // Sequential moves l0 -> l1 -> ... -> l100.
 std::shared_ptr<const task::GroundTask> ChainTask() {
@@ -41,11 +43,12 @@ std::shared_ptr<const task::GroundTask> ChainTask() {
   for (int i = 0; i < kSteps; ++i) {
     auto a = TaskBuilder::Durative("(move " + Loc(i) + " " + Loc(i + 1) + ")", 10);
     a.at_start.positive = {b.Fact("(at " + Loc(i) + ")")};
-    a.at_start.numeric = {{b.VarExpr("(fuel)"), task::Comparator::kGreaterEqual,
-                           task::NumericExpr::Constant(1)}};
+    a.at_start.numeric = {
+        {b.VarExpr("(fuel)"), task::Comparator::kGreaterEqual, task::NumericExpr::Constant(1)}};
     a.over_all.positive = {b.Fact("(open " + Loc(i) + ")")};
     a.start_effects.del = {b.Fact("(at " + Loc(i) + ")")};
-    a.start_effects.numeric = {{b.Var("(fuel)"), task::AssignOp::kDecrease, task::NumericExpr::Constant(1)}};
+    a.start_effects.numeric = {
+        {b.Var("(fuel)"), task::AssignOp::kDecrease, task::NumericExpr::Constant(1)}};
     a.end_effects.add = {b.Fact("(at " + Loc(i + 1) + ")")};
     b.Init("(open " + Loc(i) + ")");
     b.Add(a);
@@ -129,7 +132,8 @@ std::string ReadFile(const std::string& path) {
 
 void BM_ValidatorFjordCaseA(benchmark::State& state) {
   const char* env = std::getenv("SEAPLAN_SOURCE_DIR");
-  const std::string dir = std::string(env != nullptr ? env : SEAPLAN_SOURCE_DIR_DEFAULT) + "/examples/fjord/";
+  const std::string dir =
+      std::string(env != nullptr ? env : SEAPLAN_SOURCE_DIR_DEFAULT) + "/examples/fjord/";
   const auto loaded = task::LoadTask(ReadFile(dir + "domain.pddl"), ReadFile(dir + "case-a.pddl"));
   const auto plan = ParsePlan(ReadFile(dir + "case-a-repaired.plan"));
   if (!loaded.ok() || !plan.ok()) {

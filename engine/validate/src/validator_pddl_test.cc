@@ -39,7 +39,7 @@ class PddlValidatorTest : public ::testing::Test {
 
 #define EXPECT_VALID(result) EXPECT_TRUE((result).valid) << (result).ToString()
 
-#define EXPECT_FAILS(result, expected_kind, expected_step)                       \
+#define EXPECT_FAILS(result, expected_kind, expected_step)                     \
   do {                                                                         \
     const ValidationResult& r_ = (result);                                     \
     ASSERT_FALSE(r_.valid) << "expected an invalid plan";                      \
@@ -87,9 +87,10 @@ TEST_F(MatchCellarTest, InvariantsAreNotPartOfTheEpsilonMutex) {
   // interfere: the mend may start within epsilon of the match, or with it
   // (the state after that happening has the light).
   for (const char* mend_start : {"0.001", "0.0005", "0"}) {
-    EXPECT_VALID(Validate(absl::StrCat("0: (light-match m1) [8]\n", mend_start,
-                                       ": (mend-fuse f1 m1) [5]\n"
-                                       "5.002: (light-match m2) [8]\n5.003: (mend-fuse f2 m2) [5]\n")))
+    EXPECT_VALID(
+        Validate(absl::StrCat("0: (light-match m1) [8]\n", mend_start,
+                              ": (mend-fuse f1 m1) [5]\n"
+                              "5.002: (light-match m2) [8]\n5.003: (mend-fuse f2 m2) [5]\n")))
         << mend_start;
   }
   // Snap actions that do interfere still need epsilon: both mends read and
@@ -120,7 +121,8 @@ TEST_F(MatchCellarTest, AMatchBurnsOnce) {
 }
 
 TEST_F(MatchCellarTest, TheGoalMustHold) {
-  EXPECT_FAILS(Validate("0: (light-match m1) [8]\n0.001: (mend-fuse f1 m1) [5]\n"), Kind::kGoal, -1);
+  EXPECT_FAILS(Validate("0: (light-match m1) [8]\n0.001: (mend-fuse f1 m1) [5]\n"), Kind::kGoal,
+               -1);
 }
 
 class HarbourTest : public PddlValidatorTest {
@@ -154,10 +156,12 @@ TEST_F(HarbourTest, TimedInitialLiterals) {
   // The tide is only an invariant of the entry, which no snap action reads:
   // entering with the rising tide (in the same happening) or within epsilon
   // after it is fine, entering just before it is not.
-  EXPECT_VALID(Validate("10: (enter b1 x1) [10]\n20.001: (charge b1 x1) [10]\n"
-                        "30.002: (inspect b1 x1)\n"));
-  EXPECT_VALID(Validate("10.0005: (enter b1 x1) [10]\n20.0015: (charge b1 x1) [10]\n"
-                        "30.0025: (inspect b1 x1)\n"));
+  EXPECT_VALID(
+      Validate("10: (enter b1 x1) [10]\n20.001: (charge b1 x1) [10]\n"
+               "30.002: (inspect b1 x1)\n"));
+  EXPECT_VALID(
+      Validate("10.0005: (enter b1 x1) [10]\n20.0015: (charge b1 x1) [10]\n"
+               "30.0025: (inspect b1 x1)\n"));
   const auto just_before = Validate("9.9995: (enter b1 x1) [10]\n");
   EXPECT_FAILS(just_before, Kind::kOverAll, 0);
   EXPECT_DOUBLE_EQ(just_before.first_failure->time_s, 9.9995);
@@ -165,7 +169,8 @@ TEST_F(HarbourTest, TimedInitialLiterals) {
   // fall just before the end is inside it.
   const auto at_end = Validate("90: (enter b1 x1) [10]\n");
   ASSERT_FALSE(at_end.valid);
-  EXPECT_EQ(at_end.first_failure->kind, Kind::kGoal) << at_end.ToString();  // only the goal is missing
+  EXPECT_EQ(at_end.first_failure->kind, Kind::kGoal)
+      << at_end.ToString();  // only the goal is missing
   const auto inside = Validate("90.0005: (enter b1 x1) [10]\n");
   EXPECT_FAILS(inside, Kind::kOverAll, 0);
   EXPECT_DOUBLE_EQ(inside.first_failure->time_s, 100.0);
@@ -191,9 +196,9 @@ TEST_F(HarbourTest, NumericPreconditions) {
 
 TEST_F(HarbourTest, AtEndConditions) {
   // Charging must end while the tide is still high (before 100).
-  EXPECT_VALID(Validate(
-      "10.001: (enter b1 x1) [10]\n79.9: (charge b1 x1) [20]\n"
-      "99.901: (inspect b1 x1)\n"));
+  EXPECT_VALID(
+      Validate("10.001: (enter b1 x1) [10]\n79.9: (charge b1 x1) [20]\n"
+               "99.901: (inspect b1 x1)\n"));
   const auto r = Validate(
       "10.001: (enter b1 x1) [10]\n85: (charge b1 x1) [20]\n"
       "105.001: (inspect b1 x1)\n");
@@ -210,15 +215,13 @@ TEST_F(HarbourTest, DurativeAtStartConditions) {
 }
 
 TEST_F(HarbourTest, DurationInequalities) {
-  EXPECT_VALID(Validate(
-      "10.001: (enter b1 x1) [10]\n20.002: (charge b1 x1) [20]\n"
-      "40.003: (inspect b1 x1)\n"));
-  const auto too_short = Validate(
-      "10.001: (enter b1 x1) [10]\n20.002: (charge b1 x1) [4]\n");
+  EXPECT_VALID(
+      Validate("10.001: (enter b1 x1) [10]\n20.002: (charge b1 x1) [20]\n"
+               "40.003: (inspect b1 x1)\n"));
+  const auto too_short = Validate("10.001: (enter b1 x1) [10]\n20.002: (charge b1 x1) [4]\n");
   EXPECT_FAILS(too_short, Kind::kDuration, 1);
   EXPECT_THAT(too_short.first_failure->condition, HasSubstr(">= ?duration 5"));
-  const auto too_long = Validate(
-      "10.001: (enter b1 x1) [10]\n20.002: (charge b1 x1) [20.5]\n");
+  const auto too_long = Validate("10.001: (enter b1 x1) [10]\n20.002: (charge b1 x1) [20.5]\n");
   EXPECT_FAILS(too_long, Kind::kDuration, 1);
   EXPECT_THAT(too_long.first_failure->condition, HasSubstr("<= ?duration"));
 }

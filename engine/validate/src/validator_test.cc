@@ -10,9 +10,9 @@
 namespace seaplan::validate {
 namespace {
 
-using ::testing::HasSubstr;
 using testing::Binary;
 using testing::DurationExpr;
+using ::testing::HasSubstr;
 using testing::TaskBuilder;
 using Kind = ValidationFailure::Kind;
 using Op = task::NumericExpr::Op;
@@ -25,7 +25,9 @@ PlanStep Step(double t, std::string_view display, double d = 0.0) {
   return PlanStep{t, name, args, d, 0};
 }
 
-Plan MakePlan(std::initializer_list<PlanStep> steps) { return Plan{std::vector<PlanStep>(steps)}; }
+Plan MakePlan(std::initializer_list<PlanStep> steps) {
+  return Plan{std::vector<PlanStep>(steps)};
+}
 
 // Validates with both entry points and checks they agree.
 ValidationResult Check(const task::GroundTask& task, const Plan& plan,
@@ -42,13 +44,13 @@ ValidationResult Check(const task::GroundTask& task, const Plan& plan,
 
 #define EXPECT_VALID(result) EXPECT_TRUE((result).valid) << (result).ToString()
 
-#define EXPECT_FAILS(result, expected_kind, expected_step, expected_condition)  \
-  do {                                                                        \
-    const ValidationResult& r_ = (result);                                    \
-    ASSERT_FALSE(r_.valid) << "expected an invalid plan";                     \
-    ASSERT_TRUE(r_.first_failure.has_value());                                \
-    EXPECT_EQ(r_.first_failure->kind, (expected_kind)) << r_.ToString();      \
-    EXPECT_EQ(r_.first_failure->step_index, (expected_step)) << r_.ToString(); \
+#define EXPECT_FAILS(result, expected_kind, expected_step, expected_condition)     \
+  do {                                                                             \
+    const ValidationResult& r_ = (result);                                         \
+    ASSERT_FALSE(r_.valid) << "expected an invalid plan";                          \
+    ASSERT_TRUE(r_.first_failure.has_value());                                     \
+    EXPECT_EQ(r_.first_failure->kind, (expected_kind)) << r_.ToString();           \
+    EXPECT_EQ(r_.first_failure->step_index, (expected_step)) << r_.ToString();     \
     EXPECT_EQ(r_.first_failure->condition, (expected_condition)) << r_.ToString(); \
   } while (false)
 
@@ -67,7 +69,8 @@ TEST(ValidatorTest, AtStartConditions) {
   b.Add(Move(b, "a", "b", 10));
   b.Add(Move(b, "b", "c", 10));
   b.Goal("(at c)");
-  EXPECT_VALID(Check(b.task(), MakePlan({Step(0, "(move a b)", 10), Step(10.001, "(move b c)", 10)})));
+  EXPECT_VALID(
+      Check(b.task(), MakePlan({Step(0, "(move a b)", 10), Step(10.001, "(move b c)", 10)})));
   // The second move starts before the first has arrived.
   const auto r = Check(b.task(), MakePlan({Step(0, "(move a b)", 10), Step(9, "(move b c)", 10)}));
   EXPECT_FAILS(r, Kind::kAtStart, 1, "(at b)");
@@ -113,8 +116,8 @@ TaskBuilder MatchCellar() {
 
 TEST(ValidatorTest, OverAllConditionsRequireConcurrency) {
   TaskBuilder b = MatchCellar();
-  const auto ok = Check(b.task(), MakePlan({Step(0, "(light-match match)", 8),
-                                            Step(0.001, "(mend-fuse fuse)", 5)}));
+  const auto ok = Check(
+      b.task(), MakePlan({Step(0, "(light-match match)", 8), Step(0.001, "(mend-fuse fuse)", 5)}));
   EXPECT_VALID(ok);
   EXPECT_DOUBLE_EQ(ok.makespan_s, 8.0);
   EXPECT_EQ(ok.action_count, 2u);
@@ -123,11 +126,11 @@ TEST(ValidatorTest, OverAllConditionsRequireConcurrency) {
                                          Step(8.001, "(mend-fuse fuse)", 5)})),
                Kind::kOverAll, 1, "(light match)");
   // Both start together: the state after that happening has the light.
-  EXPECT_VALID(Check(b.task(), MakePlan({Step(0, "(light-match match)", 8),
-                                         Step(0, "(mend-fuse fuse)", 5)})));
+  EXPECT_VALID(Check(
+      b.task(), MakePlan({Step(0, "(light-match match)", 8), Step(0, "(mend-fuse fuse)", 5)})));
   // Mending outlasts the match: the match's end breaks the invariant.
-  const auto r = Check(b.task(), MakePlan({Step(0, "(light-match match)", 8),
-                                           Step(4, "(mend-fuse fuse)", 5)}));
+  const auto r = Check(
+      b.task(), MakePlan({Step(0, "(light-match match)", 8), Step(4, "(mend-fuse fuse)", 5)}));
   EXPECT_FAILS(r, Kind::kOverAll, 1, "(light match)");
   EXPECT_EQ(r.first_failure->time_s, 8.0);
   EXPECT_EQ(r.first_failure->other_step_index, 0);
@@ -218,7 +221,8 @@ TEST(ValidatorTest, AnInvariantDeletedInTheStartingHappeningFails) {
     EXPECT_FAILS(r, Kind::kOverAll, load, "(at a)");
     EXPECT_EQ(r.first_failure->time_s, 0.0);
     EXPECT_EQ(r.first_failure->other_step_index, 1 - load);
-    EXPECT_THAT(r.first_failure->reason, HasSubstr("(move a b) start at t=0, in the same happening"));
+    EXPECT_THAT(r.first_failure->reason,
+                HasSubstr("(move a b) start at t=0, in the same happening"));
   }
 }
 
@@ -226,16 +230,17 @@ TEST(ValidatorTest, AnInvariantIsCheckedAfterTheWholeHappening) {
   // Match-cellar with both starts in one happening: the match's start adds
   // the mend's invariant, whichever step comes first in the plan.
   TaskBuilder b = MatchCellar();
-  EXPECT_VALID(Check(b.task(), MakePlan({Step(0, "(light-match match)", 8),
-                                         Step(0, "(mend-fuse fuse)", 5)})));
-  EXPECT_VALID(Check(b.task(), MakePlan({Step(0, "(mend-fuse fuse)", 5),
-                                         Step(0, "(light-match match)", 8)})));
+  EXPECT_VALID(Check(
+      b.task(), MakePlan({Step(0, "(light-match match)", 8), Step(0, "(mend-fuse fuse)", 5)})));
+  EXPECT_VALID(Check(
+      b.task(), MakePlan({Step(0, "(mend-fuse fuse)", 5), Step(0, "(light-match match)", 8)})));
   // Numeric: two additive updates in one happening commute and do not
   // interfere; the invariant sees their sum, not an intermediate value.
   TaskBuilder n;
   n.Var("(fuel)", 10);
   auto run = TaskBuilder::Durative("(run)", 10);
-  run.over_all.numeric = {{n.VarExpr("(fuel)"), Comparator::kGreaterEqual, NumericExpr::Constant(5)}};
+  run.over_all.numeric = {
+      {n.VarExpr("(fuel)"), Comparator::kGreaterEqual, NumericExpr::Constant(5)}};
   run.end_effects.add = {n.Fact("(ran)")};
   n.Add(run);
   auto burn = TaskBuilder::Instant("(burn)");
@@ -245,8 +250,10 @@ TEST(ValidatorTest, AnInvariantIsCheckedAfterTheWholeHappening) {
   fill.start_effects.numeric = {{n.Var("(fuel)"), AssignOp::kIncrease, NumericExpr::Constant(8)}};
   n.Add(fill);
   n.Goal("(ran)");
-  EXPECT_VALID(Check(n.task(), MakePlan({Step(0, "(run)", 10), Step(5, "(burn)"), Step(5, "(fill)")})));
-  const auto r = Check(n.task(), MakePlan({Step(0, "(run)", 10), Step(5, "(burn)"), Step(6, "(fill)")}));
+  EXPECT_VALID(
+      Check(n.task(), MakePlan({Step(0, "(run)", 10), Step(5, "(burn)"), Step(5, "(fill)")})));
+  const auto r =
+      Check(n.task(), MakePlan({Step(0, "(run)", 10), Step(5, "(burn)"), Step(6, "(fill)")}));
   EXPECT_FAILS(r, Kind::kOverAll, 0, "(>= (fuel) 5)");
   EXPECT_EQ(r.first_failure->other_step_index, 1);
   EXPECT_EQ(r.first_failure->time_s, 5.0);
@@ -307,17 +314,19 @@ TEST(ValidatorTest, NumericEffectsAtStartAndEndWithDuration) {
   // (drive): at start (>= (fuel) 15), decrease fuel by 15 at start,
   // increase odometer by 2 * ?duration at end, scale factor up by 2 at end.
   auto drive = TaskBuilder::Durative("(drive)", 10);
-  drive.at_start.numeric = {{b.VarExpr("(fuel)"), Comparator::kGreaterEqual, NumericExpr::Constant(15)}};
+  drive.at_start.numeric = {
+      {b.VarExpr("(fuel)"), Comparator::kGreaterEqual, NumericExpr::Constant(15)}};
   drive.start_effects.numeric = {{b.Var("(fuel)"), AssignOp::kDecrease, NumericExpr::Constant(15)}};
-  drive.end_effects.numeric = {
-      {b.Var("(odometer)"), AssignOp::kIncrease, Binary(Op::kMul, NumericExpr::Constant(2), DurationExpr())},
-      {b.Var("(factor)"), AssignOp::kScaleUp, NumericExpr::Constant(2)}};
+  drive.end_effects.numeric = {{b.Var("(odometer)"), AssignOp::kIncrease,
+                                Binary(Op::kMul, NumericExpr::Constant(2), DurationExpr())},
+                               {b.Var("(factor)"), AssignOp::kScaleUp, NumericExpr::Constant(2)}};
   b.Add(drive);
   auto refuel = TaskBuilder::Instant("(refuel)");
   refuel.start_effects.numeric = {{b.Var("(fuel)"), AssignOp::kAssign, NumericExpr::Constant(100)}};
   b.Add(refuel);
   auto halve = TaskBuilder::Instant("(halve)");
-  halve.start_effects.numeric = {{b.Var("(factor)"), AssignOp::kScaleDown, NumericExpr::Constant(8)}};
+  halve.start_effects.numeric = {
+      {b.Var("(factor)"), AssignOp::kScaleDown, NumericExpr::Constant(8)}};
   b.Add(halve);
   // Goal: odometer >= 60 (three drives) and factor = 1 after the halving.
   b.task().goal.numeric = {
@@ -361,7 +370,8 @@ TEST(ValidatorTest, DurationEqualityWithTolerance) {
   b.Var("(speed)", 0.18);
   b.Init("(at a)");
   auto move = Move(b, "a", "b", 0);
-  move.duration = {{Comparator::kEqual, Binary(Op::kDiv, b.VarExpr("(length)"), b.VarExpr("(speed)"))}};
+  move.duration = {
+      {Comparator::kEqual, Binary(Op::kDiv, b.VarExpr("(length)"), b.VarExpr("(speed)"))}};
   b.Add(move);
   b.Goal("(at b)");
   EXPECT_VALID(Check(b.task(), MakePlan({Step(0, "(move a b)", 52 / 0.18)})));
@@ -382,7 +392,8 @@ TEST(ValidatorTest, DurationInequalitiesEvaluatedInTheStateAtStart) {
   // must not matter (the bound is read in the state before the start).
   charge.duration = {{Comparator::kGreaterEqual, NumericExpr::Constant(5)},
                      {Comparator::kLessEqual, b.VarExpr("(battery)")}};
-  charge.start_effects.numeric = {{b.Var("(battery)"), AssignOp::kScaleDown, NumericExpr::Constant(2)}};
+  charge.start_effects.numeric = {
+      {b.Var("(battery)"), AssignOp::kScaleDown, NumericExpr::Constant(2)}};
   charge.end_effects.add = {b.Fact("(charged)")};
   b.Add(charge);
   b.Goal("(charged)");
@@ -411,9 +422,11 @@ TEST(ValidatorTest, InstantaneousAndDurativeStepShapes) {
   b.Goal("(ticked)");
   EXPECT_VALID(Check(b.task(), MakePlan({Step(0, "(tick)"), Step(0, "(wait)", 3)})));
   EXPECT_FAILS(Check(b.task(), MakePlan({Step(0, "(tick)", 2)})), Kind::kBadStep, 0, "");
-  EXPECT_FAILS(Check(b.task(), MakePlan({Step(0, "(tick)"), Step(1, "(wait)")})), Kind::kBadStep, 1, "");
+  EXPECT_FAILS(Check(b.task(), MakePlan({Step(0, "(tick)"), Step(1, "(wait)")})), Kind::kBadStep, 1,
+               "");
   EXPECT_FAILS(Check(b.task(), MakePlan({Step(-1, "(tick)")})), Kind::kBadStep, 0, "");
-  EXPECT_FAILS(Check(b.task(), MakePlan({Step(0, "(tick)"), Step(1, "(wait)", -3)})), Kind::kBadStep, 1, "");
+  EXPECT_FAILS(Check(b.task(), MakePlan({Step(0, "(tick)"), Step(1, "(wait)", -3)})),
+               Kind::kBadStep, 1, "");
 }
 
 TEST(ValidatorTest, TimedInitialLiteralsHappenAtTheirTimes) {
@@ -427,7 +440,8 @@ TEST(ValidatorTest, TimedInitialLiteralsHappenAtTheirTimes) {
   b.Add(survey);
   b.Goal("(surveyed)");
   EXPECT_VALID(Check(b.task(), MakePlan({Step(10.5, "(survey)", 5)})));
-  EXPECT_FAILS(Check(b.task(), MakePlan({Step(5, "(survey)", 5)})), Kind::kAtStart, 0, "(daylight)");
+  EXPECT_FAILS(Check(b.task(), MakePlan({Step(5, "(survey)", 5)})), Kind::kAtStart, 0,
+               "(daylight)");
   // Dusk falls during the survey.
   const auto r = Check(b.task(), MakePlan({Step(17, "(survey)", 5)}));
   EXPECT_FAILS(r, Kind::kOverAll, 0, "(daylight)");
@@ -462,12 +476,14 @@ TEST(ValidatorTest, TimedInitialFluents) {
   b.Var("(tide)", 1);
   b.task().timed_fluents.push_back({50, b.Var("(tide)"), 4});
   auto enter = TaskBuilder::Instant("(enter)");
-  enter.at_start.numeric = {{b.VarExpr("(tide)"), Comparator::kGreaterEqual, NumericExpr::Constant(3)}};
+  enter.at_start.numeric = {
+      {b.VarExpr("(tide)"), Comparator::kGreaterEqual, NumericExpr::Constant(3)}};
   enter.start_effects.add = {b.Fact("(inside)")};
   b.Add(enter);
   b.Goal("(inside)");
   EXPECT_VALID(Check(b.task(), MakePlan({Step(51, "(enter)")})));
-  EXPECT_FAILS(Check(b.task(), MakePlan({Step(49, "(enter)")})), Kind::kAtStart, 0, "(>= (tide) 3)");
+  EXPECT_FAILS(Check(b.task(), MakePlan({Step(49, "(enter)")})), Kind::kAtStart, 0,
+               "(>= (tide) 3)");
 }
 
 // Two lamps share a switch fact; toggling it interferes with anything reading it.
@@ -546,8 +562,8 @@ TEST(ValidatorTest, SeparationsOfEpsilonComputedInFloatingPointCount) {
 TEST(ValidatorTest, SimultaneousNonInterferingEventsAreFine) {
   TaskBuilder b = Interfering();
   b.Goal("(painted)");
-  EXPECT_VALID(Check(b.task(), MakePlan({Step(0, "(weld)", 1), Step(0, "(paint)", 1),
-                                         Step(1.001, "(cut)")})));
+  EXPECT_VALID(Check(
+      b.task(), MakePlan({Step(0, "(weld)", 1), Step(0, "(paint)", 1), Step(1.001, "(cut)")})));
   // Two readers of the same fact at once are fine too.
   auto weld2 = TaskBuilder::Durative("(weld2)", 1);
   weld2.at_start.positive = {b.Fact("(power)")};
@@ -571,7 +587,8 @@ TEST(ValidatorTest, NumericMutexRules) {
   auto reset = TaskBuilder::Instant("(reset)");
   reset.start_effects.numeric = {{b.Var("(stock)"), AssignOp::kAssign, NumericExpr::Constant(5)}};
   b.Add(reset);
-  b.task().goal.numeric = {{b.VarExpr("(stock)"), Comparator::kGreaterEqual, NumericExpr::Constant(0)}};
+  b.task().goal.numeric = {
+      {b.VarExpr("(stock)"), Comparator::kGreaterEqual, NumericExpr::Constant(0)}};
   // Additive updates commute.
   EXPECT_VALID(Check(b.task(), MakePlan({Step(1, "(take)"), Step(1, "(give)")})));
   // An update and a read do not.
@@ -670,13 +687,15 @@ TEST(ValidatorTest, ConditionalEffects) {
 
 TEST(ValidatorTest, MetricValue) {
   TaskBuilder b = MatchCellar();
-  const Plan plan = MakePlan({Step(0, "(light-match match)", 8), Step(0.001, "(mend-fuse fuse)", 5)});
+  const Plan plan =
+      MakePlan({Step(0, "(light-match match)", 8), Step(0.001, "(mend-fuse fuse)", 5)});
   auto r = Check(b.task(), plan);
   ASSERT_TRUE(r.metric_value.has_value());
   EXPECT_DOUBLE_EQ(*r.metric_value, 8.0);  // total-time = makespan
   b.Var("(cost)", 7);
   b.task().metric.expression =
-      Binary(Op::kAdd, b.VarExpr("(cost)"), Binary(Op::kMul, NumericExpr::Constant(2), testing::TotalTimeExpr()));
+      Binary(Op::kAdd, b.VarExpr("(cost)"),
+             Binary(Op::kMul, NumericExpr::Constant(2), testing::TotalTimeExpr()));
   r = Check(b.task(), plan);
   ASSERT_TRUE(r.metric_value.has_value());
   EXPECT_DOUBLE_EQ(*r.metric_value, 23.0);

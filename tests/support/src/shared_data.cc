@@ -18,7 +18,9 @@ std::filesystem::path SourceDir() {
   return FromEnv("SEAPLAN_SOURCE_DIR", SEAPLAN_DEFAULT_SOURCE_DIR);
 }
 
-std::filesystem::path BinDir() { return FromEnv("SEAPLAN_BIN_DIR", SEAPLAN_DEFAULT_BIN_DIR); }
+std::filesystem::path BinDir() {
+  return FromEnv("SEAPLAN_BIN_DIR", SEAPLAN_DEFAULT_BIN_DIR);
+}
 
 std::optional<std::filesystem::path> SharedDir() {
   const auto dir = FromEnv("SEAPLAN_SHARED", SEAPLAN_DEFAULT_SHARED_DIR);

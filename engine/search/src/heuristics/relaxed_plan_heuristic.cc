@@ -25,7 +25,10 @@ bool ConditionHoldsNumeric(const task::NumericCondition& c, const StateData& sta
 }  // namespace
 
 RelaxedPlanHeuristic::RelaxedPlanHeuristic(const SnapTask& task, double epsilon_s)
-    : task_(task), num_facts_(task.num_facts()), num_ops_(2 * task.num_actions()), epsilon_s_(epsilon_s) {
+    : task_(task),
+      num_facts_(task.num_facts()),
+      num_ops_(2 * task.num_actions()),
+      epsilon_s_(epsilon_s) {
   const int total_facts = num_facts_ + task.num_actions();
   const auto& actions = task.task().actions;
   pre_begin_.push_back(0);
@@ -57,7 +60,8 @@ RelaxedPlanHeuristic::RelaxedPlanHeuristic(const SnapTask& task, double epsilon_
       if (!is_end && action.is_durative) tmp.push_back(num_facts_ + a);
       std::sort(tmp.begin(), tmp.end());
       tmp.erase(std::unique(tmp.begin(), tmp.end()), tmp.end());
-      for (const auto& c : (is_end ? action.at_end : action.at_start).numeric) num_pre_[op].push_back(&c);
+      for (const auto& c : (is_end ? action.at_end : action.at_start).numeric)
+        num_pre_[op].push_back(&c);
       if (action.is_durative) {
         for (const auto& c : action.over_all.numeric) num_pre_[op].push_back(&c);
       }
@@ -127,8 +131,8 @@ RelaxedPlanHeuristic::RelaxedPlanHeuristic(const SnapTask& task, double epsilon_
   pair_check_.assign(static_cast<std::size_t>(num_ops_), PairCheck{});
   for (int op = 0; op < num_ops_; op += 2) {
     const int end = op + 1;
-    if (!op_exists_[op] || !actions[static_cast<std::size_t>(op / 2)].is_durative || has_num_eff_[op] ||
-        has_num_eff_[end] || has_num_pre_[end]) {
+    if (!op_exists_[op] || !actions[static_cast<std::size_t>(op / 2)].is_durative ||
+        has_num_eff_[op] || has_num_eff_[end] || has_num_pre_[end]) {
       continue;
     }
     PairCheck& c = pair_check_[static_cast<std::size_t>(op)];
@@ -137,7 +141,8 @@ RelaxedPlanHeuristic::RelaxedPlanHeuristic(const SnapTask& task, double epsilon_
     for (int i = add_begin_[op]; i < add_begin_[op + 1]; ++i) {
       if (add_[i] < num_facts_) pair_facts_.push_back(add_[i]);
     }
-    pair_facts_.insert(pair_facts_.end(), add_.begin() + add_begin_[end], add_.begin() + add_begin_[end + 1]);
+    pair_facts_.insert(pair_facts_.end(), add_.begin() + add_begin_[end],
+                       add_.begin() + add_begin_[end + 1]);
     for (int i = pre_begin_[end]; i < pre_begin_[end + 1]; ++i) {
       if (pre_[i] != num_facts_ + op / 2) pair_facts_.push_back(pre_[i]);
     }
@@ -161,9 +166,15 @@ RelaxedPlanHeuristic::Interval RelaxedPlanHeuristic::EvalInterval(const task::Nu
     const auto& n = expr.nodes[i];
     Interval r{0, 0};
     switch (n.op) {
-      case Op::kConstant: r = {n.value, n.value}; break;
-      case Op::kVariable: r = interval_[n.var]; break;
-      case Op::kTotalTime: r = {0, kInf}; break;
+      case Op::kConstant:
+        r = {n.value, n.value};
+        break;
+      case Op::kVariable:
+        r = interval_[n.var];
+        break;
+      case Op::kTotalTime:
+        r = {0, kInf};
+        break;
       case Op::kDuration: {
         // The duration as it would be in this state (rovers' recharge).
         double lo = 0, hi = kInf;
@@ -174,7 +185,8 @@ RelaxedPlanHeuristic::Interval RelaxedPlanHeuristic::EvalInterval(const task::Nu
             if (d.comparator == task::Comparator::kEqual) {
               lo = std::max(lo, *v);
               hi = std::min(hi, *v);
-            } else if (d.comparator == task::Comparator::kGreaterEqual || d.comparator == task::Comparator::kGreater) {
+            } else if (d.comparator == task::Comparator::kGreaterEqual ||
+                       d.comparator == task::Comparator::kGreater) {
               lo = std::max(lo, *v);
             } else {
               hi = std::min(hi, *v);
@@ -248,11 +260,16 @@ bool RelaxedPlanHeuristic::Satisfiable(const task::NumericCondition& c, const St
   if (std::isnan(l.lo) || std::isnan(r.lo) || std::isnan(l.hi) || std::isnan(r.hi)) return false;
   constexpr double kTol = 1e-9;
   switch (c.comparator) {
-    case task::Comparator::kLess: return l.lo < r.hi - kTol;
-    case task::Comparator::kLessEqual: return l.lo <= r.hi + kTol;
-    case task::Comparator::kEqual: return l.lo <= r.hi + kTol && r.lo <= l.hi + kTol;
-    case task::Comparator::kGreaterEqual: return l.hi >= r.lo - kTol;
-    case task::Comparator::kGreater: return l.hi > r.lo + kTol;
+    case task::Comparator::kLess:
+      return l.lo < r.hi - kTol;
+    case task::Comparator::kLessEqual:
+      return l.lo <= r.hi + kTol;
+    case task::Comparator::kEqual:
+      return l.lo <= r.hi + kTol && r.lo <= l.hi + kTol;
+    case task::Comparator::kGreaterEqual:
+      return l.hi >= r.lo - kTol;
+    case task::Comparator::kGreater:
+      return l.hi > r.lo + kTol;
   }
   return false;
 }
@@ -387,8 +404,8 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
     const double slack = window_index < window_slack.size() ? window_slack[window_index] : kInf;
     ++window_index;
     for (auto f : window_facts_[r.action]) {
-      if (min_invariant_duration_[f] < kInf && slack < min_invariant_duration_[f] + 2 * epsilon_s_ - 1e-9 &&
-          !suppressed_[f]) {
+      if (min_invariant_duration_[f] < kInf &&
+          slack < min_invariant_duration_[f] + 2 * epsilon_s_ - 1e-9 && !suppressed_[f]) {
         suppressed_[f] = 1;
         suppressed_list_.push_back(f);
         ++num_suppressed;
@@ -513,19 +530,34 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
           const Interval cur = interval_[e->var];
           Interval cand = cur;
           switch (e->op) {
-            case task::AssignOp::kAssign: cand = v; break;
-            case task::AssignOp::kIncrease: cand = {cur.lo + v.lo, cur.hi + v.hi}; break;
-            case task::AssignOp::kDecrease: cand = {cur.lo - v.hi, cur.hi - v.lo}; break;
+            case task::AssignOp::kAssign:
+              cand = v;
+              break;
+            case task::AssignOp::kIncrease:
+              cand = {cur.lo + v.lo, cur.hi + v.hi};
+              break;
+            case task::AssignOp::kDecrease:
+              cand = {cur.lo - v.hi, cur.hi - v.lo};
+              break;
             case task::AssignOp::kScaleUp:
             case task::AssignOp::kScaleDown: {
               const bool up = e->op == task::AssignOp::kScaleUp;
               double p[4];
               if (up) {
-                p[0] = cur.lo * v.lo; p[1] = cur.lo * v.hi; p[2] = cur.hi * v.lo; p[3] = cur.hi * v.hi;
+                p[0] = cur.lo * v.lo;
+                p[1] = cur.lo * v.hi;
+                p[2] = cur.hi * v.lo;
+                p[3] = cur.hi * v.hi;
               } else if (v.lo > 0 || v.hi < 0) {
-                p[0] = cur.lo / v.lo; p[1] = cur.lo / v.hi; p[2] = cur.hi / v.lo; p[3] = cur.hi / v.hi;
+                p[0] = cur.lo / v.lo;
+                p[1] = cur.lo / v.hi;
+                p[2] = cur.hi / v.lo;
+                p[3] = cur.hi / v.hi;
               } else {
-                p[0] = -kInf; p[1] = kInf; p[2] = -kInf; p[3] = kInf;
+                p[0] = -kInf;
+                p[1] = kInf;
+                p[2] = -kInf;
+                p[3] = kInf;
               }
               cand = {*std::min_element(p, p + 4), *std::max_element(p, p + 4)};
               break;

@@ -60,9 +60,11 @@ class RelaxedPlanHeuristic {
   // See pair_check_: true when the start `op` can achieve nothing new now.
   // Takes the raw tables so that the hot loop keeps them in registers.
   struct PairCheck;
-  static bool PairRedundant(const PairCheck& c, const std::int32_t* fact_layer, const std::int32_t* pair_facts) {
+  static bool PairRedundant(const PairCheck& c, const std::int32_t* fact_layer,
+                            const std::int32_t* pair_facts) {
     if (c.begin < 0 || fact_layer[c.started] >= 0) return false;
-    for (const std::int32_t *it = pair_facts + c.begin, *end = pair_facts + c.end; it != end; ++it) {
+    for (const std::int32_t *it = pair_facts + c.begin, *end = pair_facts + c.end; it != end;
+         ++it) {
       if (fact_layer[*it] < 0) return false;
     }
     return true;
@@ -72,13 +74,14 @@ class RelaxedPlanHeuristic {
   // Marks the changers of the condition's variables: the first operator
   // that raised a variable's interval, or lowered it, whichever direction
   // the condition needs (refuel, not the flight that burnt fuel).
-  void MarkNumeric(const task::NumericCondition& c, int layer, const StateData& state, task::ActionId a);
+  void MarkNumeric(const task::NumericCondition& c, int layer, const StateData& state,
+                   task::ActionId a);
 
   const SnapTask& task_;
   bool dead_end_proven_ = true;
   int skipped_pairs_ = 0;
-  int num_facts_;    // real facts; started(a) is num_facts_ + a
-  int num_ops_;      // 2 * actions
+  int num_facts_;  // real facts; started(a) is num_facts_ + a
+  int num_ops_;    // 2 * actions
   // CSR tables.
   std::vector<std::int32_t> pre_begin_, pre_;
   std::vector<std::int32_t> add_begin_, add_;
@@ -90,7 +93,7 @@ class RelaxedPlanHeuristic {
   std::vector<std::uint8_t> has_num_pre_, has_num_eff_;  // compact copies for the hot loop
   double epsilon_s_;
   std::vector<std::vector<task::FactId>> window_facts_;  // per action: start adds deleted at end
-  std::vector<double> min_invariant_duration_;           // per fact: shortest action needing it over all
+  std::vector<double> min_invariant_duration_;  // per fact: shortest action needing it over all
   std::vector<std::uint8_t> suppressed_;
   std::vector<std::int32_t> suppressed_list_;
   // (suppressed fact, end operator of a running action exempted from it).

@@ -79,7 +79,8 @@ TEST_F(RelaxedPlanHeuristicTest, RedundantTurnsAreSkippedWithoutChangingThePlan)
   // skipped. Relaxed plan: turn d3<-d0, turn d1<-d0, image d3 (start and
   // end each) = 6; helpful: the two turns' starts.
   std::vector<SnapId> preferred;
-  const int h = heuristic_->Evaluate(State({"(pointing d0)", "(calibrated)", "(power)"}), &preferred);
+  const int h =
+      heuristic_->Evaluate(State({"(pointing d0)", "(calibrated)", "(power)"}), &preferred);
   EXPECT_EQ(h, 6);
   EXPECT_EQ(heuristic_->last_skipped_pairs(), 10);
   std::vector<SnapId> expected = {2 * Action("(turn_to d3 d0)"), 2 * Action("(turn_to d1 d0)")};

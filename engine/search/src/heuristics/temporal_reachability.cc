@@ -29,7 +29,8 @@ void AddWrittenVars(const task::Effects& e, std::vector<std::uint8_t>& written) 
 bool ReadsOnly(const task::NumericExpr& expr, const std::vector<std::uint8_t>& written) {
   for (const auto& n : expr.nodes) {
     if (n.op == task::NumericExpr::Op::kVariable && written[n.var]) return false;
-    if (n.op == task::NumericExpr::Op::kDuration || n.op == task::NumericExpr::Op::kTotalTime) return false;
+    if (n.op == task::NumericExpr::Op::kDuration || n.op == task::NumericExpr::Op::kTotalTime)
+      return false;
   }
   return true;
 }
@@ -76,11 +77,18 @@ TemporalReachability::TemporalReachability(const SnapTask& task)
       const auto v = c.value.Evaluate(gt.initial_values);
       if (!v || std::isnan(*v)) continue;
       switch (c.comparator) {
-        case task::Comparator::kEqual: lo = std::max(lo, *v); hi = std::min(hi, *v); break;
+        case task::Comparator::kEqual:
+          lo = std::max(lo, *v);
+          hi = std::min(hi, *v);
+          break;
         case task::Comparator::kGreaterEqual:
-        case task::Comparator::kGreater: lo = std::max(lo, *v); break;
+        case task::Comparator::kGreater:
+          lo = std::max(lo, *v);
+          break;
         case task::Comparator::kLessEqual:
-        case task::Comparator::kLess: hi = std::min(hi, *v); break;
+        case task::Comparator::kLess:
+          hi = std::min(hi, *v);
+          break;
       }
     }
     if (hi < lo) hi = lo;  // the successor generator rejects such starts anyway
@@ -178,7 +186,8 @@ TemporalReachability::TemporalReachability(const SnapTask& task)
   running_.assign(num_actions, 0);
 }
 
-double TemporalReachability::NextAllowed(const WindowCondition& c, double t, task::ActionId a) const {
+double TemporalReachability::NextAllowed(const WindowCondition& c, double t,
+                                         task::ActionId a) const {
   const double min_d = min_d_[static_cast<std::size_t>(a)];
   const double max_d = max_d_[static_cast<std::size_t>(a)];
   for (const Interval& w : windows_[c.fact]) {
@@ -331,7 +340,8 @@ bool TemporalReachability::Evaluate(const StateData& state, const Timeline& time
   return alive;
 }
 
-int TemporalReachability::RelaxedPlanLength(const StateData& state, std::vector<SnapId>* preferred) {
+int TemporalReachability::RelaxedPlanLength(const StateData& state,
+                                            std::vector<SnapId>* preferred) {
   for (auto op : marked_ops_) op_marked_[op] = 0;
   for (auto f : marked_facts_) fact_marked_[f] = 0;
   marked_ops_.clear();

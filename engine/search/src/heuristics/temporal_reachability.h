@@ -17,12 +17,11 @@
 // adds from the literal's time, started(a) of a running action from its
 // start. Every snap also comes after what the schedule orders before any
 // new event like it: the last writers of what it reads or writes and the
-// readers of what it writes (a satellite already busy cannot turn at 0). start(a) happens at the earliest time, not before its conditions,
-// at which its window facts allow it: at-start ones hold then, over-all ones
-// hold for the whole minimum duration, at-end ones somewhere in the
-// duration range. end(a) comes no earlier than start + minimum duration,
-// inside its window facts' windows, and for a running action before the
-// current window of its over-all window facts closes.
+// readers of what it writes (a satellite already busy cannot turn at 0). start(a) happens at the
+// earliest time, not before its conditions, at which its window facts allow it: at-start ones hold
+// then, over-all ones hold for the whole minimum duration, at-end ones somewhere in the duration
+// range. end(a) comes no earlier than start + minimum duration, inside its window facts' windows,
+// and for a running action before the current window of its over-all window facts closes.
 //
 // This is a relaxation (epsilon separations are ignored too): a snap with
 // no finite time happens in no extension of the path with its schedule,
@@ -115,8 +114,8 @@ class TemporalReachability {
   std::vector<std::int32_t> marked_ops_, marked_facts_, stack_;
   std::vector<std::int32_t> missing_;
   std::vector<std::uint8_t> usable_;
-  std::vector<double> min_d_, max_d_;          // per action; running ones from their record
-  std::vector<std::uint8_t> running_;          // per action
+  std::vector<double> min_d_, max_d_;  // per action; running ones from their record
+  std::vector<std::uint8_t> running_;  // per action
   std::vector<std::pair<double, std::int32_t>> heap_;
 };
 

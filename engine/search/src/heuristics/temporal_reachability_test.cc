@@ -51,9 +51,12 @@ std::string CourierProblem(const std::string& goal, double deadline_a_s, double 
          (= (drive-time depot b) 5) (= (drive-time b depot) 5)
          (= (drive-time a b) 12) (= (drive-time b a) 12)
          (deliverable pa a) (deliverable pb b)
-         (at )" + std::to_string(deadline_a_s) + R"( (not (deliverable pa a)))
-         (at )" + std::to_string(deadline_b_s) + R"( (not (deliverable pb b))))
-  (:goal )" + goal + "))";
+         (at )" +
+         std::to_string(deadline_a_s) + R"( (not (deliverable pa a)))
+         (at )" +
+         std::to_string(deadline_b_s) + R"( (not (deliverable pb b))))
+  (:goal )" +
+         goal + "))";
 }
 
 // A gate opens at 10 s, closes at `close_s` (never when negative) and
@@ -96,7 +99,8 @@ class Fixture {
     StateRegistry registry(snap_->num_facts(), snap_->num_vars());
     state_ = registry.MakeEmpty();
     for (auto f : task_->initial_facts) state_.Set(f);
-    for (std::size_t v = 0; v < state_.values.size(); ++v) state_.values[v] = task_->initial_values[v];
+    for (std::size_t v = 0; v < state_.values.size(); ++v)
+      state_.values[v] = task_->initial_values[v];
   }
 
   bool ok() const { return task_ != nullptr; }
@@ -245,12 +249,14 @@ TEST(TemporalReachabilityTest, InactiveWhenNoWindowEverCloses) {
 
 // The planner meets both deadlines (pa first) with a plan the validator accepts.
 TEST(TemporalReachabilityTest, PlannerDeliversBeforeDeadlines) {
-  auto loaded = task::LoadTask(kCourierDomain, CourierProblem("(and (delivered pa) (delivered pb))", 8, 25));
+  auto loaded =
+      task::LoadTask(kCourierDomain, CourierProblem("(and (delivered pa) (delivered pb))", 8, 25));
   ASSERT_TRUE(loaded.ok()) << loaded.ErrorText();
   PlannerOptions options;
   options.time_limit_s = 2;
   const PlanResult r = SolveTask(*loaded.task, options, StopToken());
-  ASSERT_TRUE(r.status == PlanStatus::kSolvedSatisficing || r.status == PlanStatus::kSolvedOptimally)
+  ASSERT_TRUE(r.status == PlanStatus::kSolvedSatisficing ||
+              r.status == PlanStatus::kSolvedOptimally)
       << ToString(r.status) << ": " << r.message;
   auto parsed = validate::ParsePlan(validate::FormatPlan(r.plan));
   ASSERT_TRUE(parsed.ok()) << parsed.status();

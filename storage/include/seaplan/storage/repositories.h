@@ -51,11 +51,11 @@ struct ChartRecord {
   std::int64_t seq = 0;  // insertion order (assigned by storage; listing cursor)
   std::string id;
   std::string name;
-  int format = 0;               // seaplan.v1.ChartFormat value
-  std::string options;          // opaque blob (load options)
-  std::string summary;          // opaque blob (obstacle summary)
-  std::string obstacles;        // opaque blob (serialised obstacle map); may be large
-  std::string source_files;     // opaque blob (original upload); may be empty
+  int format = 0;            // seaplan.v1.ChartFormat value
+  std::string options;       // opaque blob (load options)
+  std::string summary;       // opaque blob (obstacle summary)
+  std::string obstacles;     // opaque blob (serialised obstacle map); may be large
+  std::string source_files;  // opaque blob (original upload); may be empty
   TimestampMs created_at_ms = 0;
 };
 
@@ -76,13 +76,13 @@ struct MissionRecord {
   std::string id;
   std::string name;
   std::string vessel_id;
-  std::string request_id;       // client idempotency key; empty = none
-  std::string spec;             // opaque blob (the mission spec)
-  int state = 0;                // seaplan.v1.MissionState value
-  int current_version = 0;      // 0 = no plan yet
+  std::string request_id;   // client idempotency key; empty = none
+  std::string spec;         // opaque blob (the mission spec)
+  int state = 0;            // seaplan.v1.MissionState value
+  int current_version = 0;  // 0 = no plan yet
   TimestampMs created_at_ms = 0;
   TimestampMs updated_at_ms = 0;
-  std::string last_state;       // opaque blob (last reported ship state); may be empty
+  std::string last_state;  // opaque blob (last reported ship state); may be empty
   std::vector<std::string> completed_tasks;
   std::string failure_reason;
 };
@@ -143,10 +143,12 @@ class MissionRepository {
                               const std::vector<NewLogEvent>& events) = 0;
   virtual absl::StatusOr<MissionRecord> Get(const std::string& id) = 0;
   // The mission created with this idempotency key, if any.
-  virtual absl::StatusOr<std::optional<MissionRecord>> FindByRequestId(const std::string& request_id) = 0;
+  virtual absl::StatusOr<std::optional<MissionRecord>> FindByRequestId(
+      const std::string& request_id) = 0;
   // Missions with seq > after (oldest first), optionally only in `state`
   // (0 = all), at most page_size (1..1000).
-  virtual absl::StatusOr<Page<MissionRecord>> List(int state, int page_size, std::int64_t after) = 0;
+  virtual absl::StatusOr<Page<MissionRecord>> List(int state, int page_size,
+                                                   std::int64_t after) = 0;
 
   // Applies `update` and appends `events` atomically. NotFound when absent.
   virtual absl::Status Update(const std::string& id, const MissionUpdate& update,
@@ -158,29 +160,33 @@ class MissionRepository {
   // in one transaction. Versions are immutable once stored.
   virtual absl::Status AppendVersion(const PlanVersionRecord& version, const MissionUpdate& update,
                                      const std::vector<NewLogEvent>& events) = 0;
-  virtual absl::StatusOr<PlanVersionRecord> GetVersion(const std::string& mission_id, int version) = 0;
+  virtual absl::StatusOr<PlanVersionRecord> GetVersion(const std::string& mission_id,
+                                                       int version) = 0;
   // Versions > after_version in order, at most `limit`.
   virtual absl::StatusOr<std::vector<PlanVersionRecord>> ListVersions(const std::string& mission_id,
-                                                                       int after_version, int limit) = 0;
+                                                                      int after_version,
+                                                                      int limit) = 0;
 
   // Stores a feedback report unless (vessel_id, sequence_number) is already
   // stored. When new: also applies `update` and appends `events` in the same
   // transaction, and returns true. When already stored: changes nothing and
   // returns false (the caller answers "duplicate").
-  virtual absl::StatusOr<bool> RecordFeedback(const FeedbackRecord& feedback, const MissionUpdate& update,
+  virtual absl::StatusOr<bool> RecordFeedback(const FeedbackRecord& feedback,
+                                              const MissionUpdate& update,
                                               const std::vector<NewLogEvent>& events) = 0;
-  virtual absl::StatusOr<std::optional<FeedbackRecord>> FindFeedback(const std::string& vessel_id,
-                                                                      std::int64_t sequence_number) = 0;
+  virtual absl::StatusOr<std::optional<FeedbackRecord>> FindFeedback(
+      const std::string& vessel_id, std::int64_t sequence_number) = 0;
   // The latest `limit` feedback reports of a mission, in arrival order.
   virtual absl::StatusOr<std::vector<FeedbackRecord>> ListFeedback(const std::string& mission_id,
                                                                    int limit) = 0;
 
   // Appends log events (ids assigned in order) and returns them.
-  virtual absl::StatusOr<std::vector<LogEventRecord>> AppendEvents(const std::string& mission_id,
-                                                                   const std::vector<NewLogEvent>& events) = 0;
+  virtual absl::StatusOr<std::vector<LogEventRecord>> AppendEvents(
+      const std::string& mission_id, const std::vector<NewLogEvent>& events) = 0;
   // Events with id > after_event_id in order, at most `limit`.
   virtual absl::StatusOr<std::vector<LogEventRecord>> ListEvents(const std::string& mission_id,
-                                                                 std::int64_t after_event_id, int limit) = 0;
+                                                                 std::int64_t after_event_id,
+                                                                 int limit) = 0;
 };
 
 // One open database: the repositories over it.

@@ -170,7 +170,7 @@ struct NearestObstacle {
   // Distance from the query point to the obstacle, metres; 0 inside;
   // +infinity when the map has no obstacle.
   double distance_m = std::numeric_limits<double>::infinity();
-  LocalPoint nearest;  // closest point on that obstacle (the query point if inside)
+  LocalPoint nearest;      // closest point on that obstacle (the query point if inside)
   int polygon_index = -1;  // index into ObstacleMap::polygons()
 };
 

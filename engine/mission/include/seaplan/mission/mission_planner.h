@@ -53,9 +53,8 @@ struct MissionDefinition {
 // Plans, refines and parses version 1 (reason "initial plan", origin 0).
 // A planner result that is not solved is FailedPrecondition with the status.
 StatusOr<PlanVersion> PlanInitialVersion(const MissionDefinition& mission,
-                                         const TemporalPlanner& planner,
-                                         const RoutePlanner& router, const StopToken& stop,
-                                         NavigationLog* log);
+                                         const TemporalPlanner& planner, const RoutePlanner& router,
+                                         const StopToken& stop, NavigationLog* log);
 
 struct ReplanInput {
   std::string reason;

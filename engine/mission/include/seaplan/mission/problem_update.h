@@ -62,10 +62,10 @@ struct RegenerationOptions {
 
 struct RegeneratedProblem {
   std::string problem_text;
-  std::string ship_location;   // where the new problem puts the ship
-  bool added_location = false; // ship_location is a new object
-  LocationTable locations;     // input locations plus the new one
-  bool goal_satisfied = false; // the mission's goal already holds now
+  std::string ship_location;    // where the new problem puts the ship
+  bool added_location = false;  // ship_location is a new object
+  LocationTable locations;      // input locations plus the new one
+  bool goal_satisfied = false;  // the mission's goal already holds now
 };
 
 // True when the domain declares a one-argument numeric function whose name
@@ -73,10 +73,12 @@ struct RegeneratedProblem {
 // unparsable text. Use it to set ReplanPolicy::fuel_planned.
 bool DomainPlansFuel(std::string_view domain_text);
 
-StatusOr<RegeneratedProblem> RegenerateProblem(
-    std::string_view domain_text, std::string_view problem_text,
-    const std::vector<validate::PlanStep>& completed,
-    const std::vector<validate::PlanStep>& interrupted, const LocationTable& locations,
-    const ShipObservation& ship, const RegenerationOptions& options = {});
+StatusOr<RegeneratedProblem> RegenerateProblem(std::string_view domain_text,
+                                               std::string_view problem_text,
+                                               const std::vector<validate::PlanStep>& completed,
+                                               const std::vector<validate::PlanStep>& interrupted,
+                                               const LocationTable& locations,
+                                               const ShipObservation& ship,
+                                               const RegenerationOptions& options = {});
 
 }  // namespace seaplan::mission

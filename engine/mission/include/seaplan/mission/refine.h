@@ -100,13 +100,15 @@ struct RefinedPlan {
 // order impossible.
 StatusOr<RefinedPlan> RefinePlan(std::string_view domain_text, std::string_view problem_text,
                                  const validate::Plan& plan, const LocationTable& locations,
-                                 const RoutePlanner& route_planner, const RefineOptions& options = {});
+                                 const RoutePlanner& route_planner,
+                                 const RefineOptions& options = {});
 
 // Reschedules `plan` with new durations (durations_s[i] for plan.steps[i])
 // keeping the partial order described above. Returns the steps in the input
 // order (not sorted). FailedPrecondition when the order cannot be kept.
 StatusOr<validate::Plan> Reschedule(std::string_view domain_text, std::string_view problem_text,
                                     const validate::Plan& plan,
-                                    const std::vector<double>& durations_s, double epsilon_s = 0.001);
+                                    const std::vector<double>& durations_s,
+                                    double epsilon_s = 0.001);
 
 }  // namespace seaplan::mission

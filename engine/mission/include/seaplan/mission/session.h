@@ -23,7 +23,7 @@ namespace seaplan::mission {
 
 struct FeedbackOutcome {
   std::optional<std::string> replan_reason;
-  bool mission_completed = false;   // every task of the current version completed
+  bool mission_completed = false;               // every task of the current version completed
   std::vector<std::string> completed_task_ids;  // updated list (current version's ids)
   bool completed_changed = false;
   std::vector<std::string> log_messages;  // navigation-log lines, paper wording
@@ -33,14 +33,16 @@ struct FeedbackOutcome {
 // completed (ids of any version; only the current version's count for
 // completion). Pure and fast (no planning).
 FeedbackOutcome OnFeedback(const MissionDefinition& mission, const PlanVersion& current,
-                           const std::vector<std::string>& completed_task_ids, const Feedback& feedback);
+                           const std::vector<std::string>& completed_task_ids,
+                           const Feedback& feedback);
 
 // The replan input from the runtime state: completed ids of `current`; the
 // move under way (started, not completed; or the failed task in
 // `recent_feedback`) is interrupted; port operations under way are counted
 // as completed (they are let finish) and the new version starts at the
 // latest of `mission_time_s` and their planned end.
-ReplanInput MakeReplanInput(const PlanVersion& current, const std::vector<std::string>& completed_task_ids,
+ReplanInput MakeReplanInput(const PlanVersion& current,
+                            const std::vector<std::string>& completed_task_ids,
                             const std::vector<Feedback>& recent_feedback, std::string reason,
                             const ShipObservation& ship, double mission_time_s);
 

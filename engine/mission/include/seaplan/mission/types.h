@@ -40,10 +40,10 @@ struct RouteWaypoint {
   MsoMode mode = MsoMode::kUnspecified;  // of the segment that starts here
   double eta_s = 0.0;                    // sailing time from the route start
   double distance_from_start_m = 0.0;
-  double time_to_grounding_s = 0.0;      // 0 when not estimated
+  double time_to_grounding_s = 0.0;  // 0 when not estimated
   double grounding_probability = 0.0;
   double expected_grounding_cost = 0.0;
-  double fuel_kg = 0.0;                  // fuel of the segment that starts here
+  double fuel_kg = 0.0;  // fuel of the segment that starts here
 };
 
 // A refined route for one move. sailing_time_s is what replaces the PDDL
@@ -93,7 +93,7 @@ struct PlanVersion {
   int version = 0;
   std::string reason;  // "initial plan", "task v1-t2 move-ship failed", "fuel 28% <= 30%"
   double mission_time_origin_s = 0.0;
-  validate::Plan plan;  // refined, in mission time
+  validate::Plan plan;      // refined, in mission time
   double makespan_s = 0.0;  // end of the last task, mission time
   std::vector<Task> tasks;
   std::string problem;  // the PDDL problem this version was planned from

@@ -86,12 +86,15 @@ struct NumExpr {
     kFluent,     // (function args...) or a 0-ary `function`
     kDuration,   // ?duration
     kTotalTime,  // total-time (metric only)
-    kAdd, kSub, kMul, kDiv,  // children[0] op children[1] (+ and * may have more children)
-    kNeg,        // -children[0]
+    kAdd,
+    kSub,
+    kMul,
+    kDiv,  // children[0] op children[1] (+ and * may have more children)
+    kNeg,  // -children[0]
   };
   Kind kind = Kind::kNumber;
   double value = 0.0;
-  std::string function;  // kFluent
+  std::string function;    // kFluent
   std::vector<Term> args;  // kFluent
   std::vector<NumExpr> children;
   SourceLocation location;
@@ -157,8 +160,8 @@ struct Action {
   std::vector<TypedName> parameters;
   bool durative = false;
   std::vector<DurationConstraint> duration;  // durative only; empty = unconstrained
-  Condition condition;  // kTrue when absent
-  Effect effect;        // kAnd with no children when absent
+  Condition condition;                       // kTrue when absent
+  Effect effect;                             // kAnd with no children when absent
   SourceLocation location;
 };
 
@@ -213,7 +216,8 @@ struct Problem {
   std::string name;
   std::string domain_name;
   std::vector<TypedName> objects;  // deduplicated; constants of the domain not repeated
-  std::vector<Atom> init;  // ground positive facts (negative literals in :init are dropped with a warning)
+  std::vector<Atom>
+      init;  // ground positive facts (negative literals in :init are dropped with a warning)
   std::vector<NumericInit> numeric_init;
   std::vector<TimedLiteral> timed_literals;
   std::vector<TimedNumericInit> timed_numeric_init;

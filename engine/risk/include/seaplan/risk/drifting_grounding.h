@@ -63,7 +63,7 @@ std::string_view LognormalReadingName(LognormalReading r);
 struct RecoveryEventParams {
   double nominal_probability = 1.0;  // p_nom
   double mean_s = 0.0;
-  double std = 0.0;       // see LognormalReading for its unit/meaning
+  double std = 0.0;         // see LognormalReading for its unit/meaning
   double min_time_s = 0.0;  // shift / minimum start-up time
 };
 
@@ -74,7 +74,10 @@ class ShiftedLognormal {
   static StatusOr<ShiftedLognormal> Create(const RecoveryEventParams& p, LognormalReading reading);
   // Direct construction from ln-space parameters (sigma > 0; unchecked).
   ShiftedLognormal(double mu, double sigma, double shift)
-      : mu_(mu), sigma_(sigma), shift_(shift), inv_sigma_sqrt2_(1.0 / (sigma * 1.4142135623730951)) {}
+      : mu_(mu),
+        sigma_(sigma),
+        shift_(shift),
+        inv_sigma_sqrt2_(1.0 / (sigma * 1.4142135623730951)) {}
   double Cdf(double t_s) const;
   double mu() const { return mu_; }
   double sigma() const { return sigma_; }

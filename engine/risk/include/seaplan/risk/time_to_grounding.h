@@ -67,7 +67,8 @@ class TimeToGroundingSimulator {
   // non-null it is cleared and receives the state after every step (and the
   // start state first). Inputs are assumed finite (CheckInputs validates).
   TtgResult Run(const ship::ShipState& start, const ship::Environment& env,
-                const GroundingTest& obstacles, std::vector<DriftTrackPoint>* track = nullptr) const;
+                const GroundingTest& obstacles,
+                std::vector<DriftTrackPoint>* track = nullptr) const;
 
   // Validation for untrusted inputs (the optimiser calls Run directly).
   static Status CheckInputs(const ship::ShipState& start, const ship::Environment& env);

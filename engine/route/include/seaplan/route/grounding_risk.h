@@ -19,7 +19,9 @@ namespace seaplan::route {
 using ship::MsoMode;
 inline constexpr int kModeCount = 3;
 using ModeArray = std::array<double, kModeCount>;  // indexed by MsoMode
-inline std::string_view MsoModeName(MsoMode mode) { return ship::MsoModeName(mode); }
+inline std::string_view MsoModeName(MsoMode mode) {
+  return ship::MsoModeName(mode);
+}
 
 class ModeGroundingModel {
  public:

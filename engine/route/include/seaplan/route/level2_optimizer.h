@@ -141,8 +141,8 @@ struct Level2Problem {
   // Not owned; must outlive the call. The field's hull is the drifting hull.
   const ObstacleField* field = nullptr;
   const ModeGroundingModel* grounding = nullptr;
-  ship::ShipParams drift_ship;       // hull dynamics of the drifting ship
-  ship::Environment environment;     // wind and current
+  ship::ShipParams drift_ship;    // hull dynamics of the drifting ship
+  ship::Environment environment;  // wind and current
   // Level-1 alternatives, each a polyline start..goal (>= 2 points).
   std::vector<std::vector<Vec2>> alternatives;
 };
@@ -162,12 +162,12 @@ struct WaypointResult {
 
 struct AlternativeResult {
   std::vector<WaypointResult> waypoints;  // segments + 1: start .. goal
-  double expected_cost = 0.0;  // sum of mode_cost[mode] + switching
-  double grounding_cost = 0.0; // sum of C_grounding at the chosen modes
+  double expected_cost = 0.0;             // sum of mode_cost[mode] + switching
+  double grounding_cost = 0.0;            // sum of C_grounding at the chosen modes
   double mso_cost = 0.0;
   double switching_cost = 0.0;
   double path_cost = 0.0;
-  double objective = 0.0;      // expected_cost + path_cost
+  double objective = 0.0;  // expected_cost + path_cost
   int mode_switches = 0;
   bool crosses_obstacle = false;  // a waypoint or segment touches an obstacle
   int64_t evaluations = 0;
@@ -175,7 +175,7 @@ struct AlternativeResult {
 
 struct Level2Result {
   std::vector<AlternativeResult> alternatives;
-  int chosen = -1;  // -1: every alternative crosses an obstacle
+  int chosen = -1;       // -1: every alternative crosses an obstacle
   bool stopped = false;  // the StopToken fired: results are partial
   int64_t evaluations = 0;
   double wall_s = 0.0;
@@ -186,8 +186,9 @@ struct Level2Result {
 // hull touches an obstacle, or the loop's end time (horizon + step) if none.
 // Exact (per-call simulation). Errors: InvalidArgument for bad ship params.
 StatusOr<double> SimulateTimeToGrounding(const ObstacleField& field, const ship::ShipParams& ship,
-                                         const ship::Environment& env, Vec2 start, double heading_rad,
-                                         double speed_mps, double horizon_s, double step_s);
+                                         const ship::Environment& env, Vec2 start,
+                                         double heading_rad, double speed_mps, double horizon_s,
+                                         double step_s);
 
 // Errors: InvalidArgument for bad options or problem (null field/model, an
 // alternative with < 2 points or non-finite coordinates).

@@ -101,8 +101,8 @@ class ObstacleField {
 
   struct Edge {
     Vec2 a;
-    Vec2 d;          // b - a
-    double inv_len2; // 1 / |d|^2 (0 for a degenerate edge)
+    Vec2 d;           // b - a
+    double inv_len2;  // 1 / |d|^2 (0 for a degenerate edge)
   };
   struct CellObstacle {
     int32_t obstacle;

@@ -44,8 +44,8 @@ struct Environment {
 };
 
 struct ShipParticulars {
-  ship::ShipParams hull;             // drift dynamics; length/beam = grounding footprint
-  ship::MachineryParams machinery;   // fuel and speed per mode
+  ship::ShipParams hull;            // drift dynamics; length/beam = grounding footprint
+  ship::MachineryParams machinery;  // fuel and speed per mode
   // Sailing speed and fuel per mode come from engine/ship's calm-water
   // steady state at this throttle (0.8: SITS example, PTO 9.15 m/s,
   // MEC 9.84 m/s, PTI 4.62 m/s).
@@ -131,8 +131,8 @@ class RoutePlanner {
   // Errors: InvalidArgument when start or goal is outside the chart coverage
   // or inside an obstacle (the message says which); FailedPrecondition when
   // no safe route exists.
-  StatusOr<RouteResult> Plan(chart::LocalPoint start, chart::LocalPoint goal, const Environment& env,
-                             const StopToken& stop = StopToken()) const;
+  StatusOr<RouteResult> Plan(chart::LocalPoint start, chart::LocalPoint goal,
+                             const Environment& env, const StopToken& stop = StopToken()) const;
   StatusOr<RouteResult> Plan(chart::LatLon start, chart::LatLon goal, const Environment& env,
                              const StopToken& stop = StopToken()) const;
   // Grounding risk along a track (e.g. a planned or sailed route).
@@ -153,9 +153,10 @@ class RoutePlanner {
 };
 
 // One-shot helpers (build the field each call; prefer RoutePlanner in loops).
-StatusOr<RouteResult> PlanRoute(const chart::ObstacleMap& map, chart::LatLon start, chart::LatLon goal,
-                                const ShipParticulars& ship, const Environment& env,
-                                const RouteOptions& options, const StopToken& stop = StopToken());
+StatusOr<RouteResult> PlanRoute(const chart::ObstacleMap& map, chart::LatLon start,
+                                chart::LatLon goal, const ShipParticulars& ship,
+                                const Environment& env, const RouteOptions& options,
+                                const StopToken& stop = StopToken());
 StatusOr<std::vector<PointRisk>> EstimateRisk(const chart::ObstacleMap& map,
                                               const std::vector<TrackPoint>& track,
                                               const ShipParticulars& ship, const Environment& env,

@@ -53,7 +53,8 @@ class PiController {
 
 class PidController {
  public:
-  PidController(double kp, double kd, double ki, double dt_s) : kp_(kp), kd_(kd), ki_(ki), dt_s_(dt_s) {}
+  PidController(double kp, double kd, double ki, double dt_s)
+      : kp_(kp), kd_(kd), ki_(ki), dt_s_(dt_s) {}
   void set_integral_limits(double lo, double hi) { lo_ = lo, hi_ = hi; }
   // `error` is setpoint - measurement (callers wrap it when they need to).
   double UpdateFromError(double error);
@@ -161,7 +162,8 @@ class LosGuidance {
   const std::vector<Eigen::Vector2d>& waypoints() const { return waypoints_; }
 
  private:
-  LosGuidance(std::vector<Eigen::Vector2d> w, const LosOptions& o) : waypoints_(std::move(w)), options_(o) {}
+  LosGuidance(std::vector<Eigen::Vector2d> w, const LosOptions& o)
+      : waypoints_(std::move(w)), options_(o) {}
   std::vector<Eigen::Vector2d> waypoints_;
   LosOptions options_;
   int target_ = 1;

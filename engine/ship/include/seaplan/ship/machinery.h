@@ -105,7 +105,8 @@ class SimplifiedPropulsion {
   double thrust_n() const { return thrust_n_; }
   void set_thrust_n(double f) { thrust_n_ = f; }
   double ThrustDerivative(MsoMode mode, double throttle) const {
-    return (-params_.power_to_thrust_ratio_mps * thrust_n_ + PropulsionPower(params_, mode, throttle)) /
+    return (-params_.power_to_thrust_ratio_mps * thrust_n_ +
+            PropulsionPower(params_, mode, throttle)) /
            params_.thrust_time_constant_s;
   }
   void Integrate(double thrust_dot, double dt_s) { thrust_n_ += thrust_dot * dt_s; }

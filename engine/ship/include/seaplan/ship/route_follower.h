@@ -62,8 +62,12 @@ class RouteFollower {
 
  private:
   RouteFollower(ShipModel ship, LosGuidance los, PlannedRoute route, const RouteFollowerOptions& o)
-      : ship_(std::move(ship)), los_(std::move(los)), route_(std::move(route)), options_(o),
-        heading_(o.heading, o.dt_s), speed_(o.speed, o.dt_s) {}
+      : ship_(std::move(ship)),
+        los_(std::move(los)),
+        route_(std::move(route)),
+        options_(o),
+        heading_(o.heading, o.dt_s),
+        speed_(o.speed, o.dt_s) {}
   ShipModel ship_;
   LosGuidance los_;
   PlannedRoute route_;

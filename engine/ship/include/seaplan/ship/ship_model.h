@@ -34,8 +34,8 @@ struct StepReport {
 class ShipModel {
  public:
   static StatusOr<ShipModel> Create(const ShipParams& ship, const MachineryParams& machinery,
-                                    const Environment& env, const ShipState& initial,
-                                    MsoMode mode, double initial_thrust_n = 0.0);
+                                    const Environment& env, const ShipState& initial, MsoMode mode,
+                                    double initial_thrust_n = 0.0);
 
   StepReport Step(double throttle, double rudder_angle_rad, double dt_s);
 
@@ -56,8 +56,12 @@ class ShipModel {
  private:
   ShipModel(const ShipParams& ship, const MachineryParams& machinery, const Environment& env,
             const ShipState& initial, MsoMode mode, double thrust)
-      : dynamics_(ship), machinery_(machinery), propulsion_(machinery, thrust), env_(env),
-        state_(initial), mode_(mode) {}
+      : dynamics_(ship),
+        machinery_(machinery),
+        propulsion_(machinery, thrust),
+        env_(env),
+        state_(initial),
+        mode_(mode) {}
   HullDynamics dynamics_;
   MachineryParams machinery_;
   SimplifiedPropulsion propulsion_;
@@ -89,7 +93,11 @@ class ShaftShipModel {
  private:
   ShaftShipModel(const ShipParams& ship, const MachineryParams& machinery, const ShaftParams& shaft,
                  const Environment& env, const ShipState& initial, MsoMode mode)
-      : dynamics_(ship), machinery_(machinery), shaft_(machinery, shaft), env_(env), state_(initial),
+      : dynamics_(ship),
+        machinery_(machinery),
+        shaft_(machinery, shaft),
+        env_(env),
+        state_(initial),
         mode_(mode) {}
   HullDynamics dynamics_;
   MachineryParams machinery_;

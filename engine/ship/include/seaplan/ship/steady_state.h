@@ -75,8 +75,8 @@ struct SailingCost {
 };
 // At a given speed (throttle found by ThrottleForSpeed).
 StatusOr<SailingCost> SailingCostAtSpeed(const ShipParams& ship, const MachineryParams& machinery,
-                                         std::span<const Eigen::Vector2d> polyline_ne,
-                                         MsoMode mode, double speed_mps);
+                                         std::span<const Eigen::Vector2d> polyline_ne, MsoMode mode,
+                                         double speed_mps);
 // At a given throttle (speed = CalmWaterSteadySpeed).
 StatusOr<SailingCost> SailingCostAtThrottle(const ShipParams& ship,
                                             const MachineryParams& machinery,

@@ -50,10 +50,10 @@ struct NumericExpr {
   };
   struct Node {
     Op op = Op::kConstant;
-    double value = 0.0;      // kConstant
-    NumericVarId var = -1;   // kVariable
-    std::int32_t lhs = -1;   // child node index
-    std::int32_t rhs = -1;   // child node index
+    double value = 0.0;     // kConstant
+    NumericVarId var = -1;  // kVariable
+    std::int32_t lhs = -1;  // child node index
+    std::int32_t rhs = -1;  // child node index
   };
   std::vector<Node> nodes;
 
@@ -120,7 +120,9 @@ struct Effects {
   std::vector<NumericEffect> numeric;
   std::vector<ConditionalEffect> conditional;
 
-  bool empty() const { return add.empty() && del.empty() && numeric.empty() && conditional.empty(); }
+  bool empty() const {
+    return add.empty() && del.empty() && numeric.empty() && conditional.empty();
+  }
 };
 
 // ?duration `comparator` value, with value evaluated in the state at start.
@@ -196,8 +198,8 @@ struct GroundTask {
   std::vector<NumericVar> numeric_vars;
   std::vector<Action> actions;
 
-  std::vector<FactId> initial_facts;  // true at time 0; every other fact is false
-  std::vector<double> initial_values;  // per NumericVarId; NaN when undefined
+  std::vector<FactId> initial_facts;                // true at time 0; every other fact is false
+  std::vector<double> initial_values;               // per NumericVarId; NaN when undefined
   std::vector<TimedInitialLiteral> timed_literals;  // sorted by time
   std::vector<TimedInitialFluent> timed_fluents;    // sorted by time
 

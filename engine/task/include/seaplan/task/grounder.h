@@ -68,15 +68,15 @@ struct GroundingOptions {
 };
 
 struct GroundingStats {
-  double parse_ms = 0.0;   // both files (LoadTask only)
-  double ground_ms = 0.0;  // reachability + instantiation + task building
+  double parse_ms = 0.0;            // both files (LoadTask only)
+  double ground_ms = 0.0;           // reachability + instantiation + task building
   std::size_t reachable_atoms = 0;  // incl. static ones
   std::size_t static_atoms = 0;     // true static atoms (folded away)
   TaskSize size;                    // same as task->Size()
 };
 
 struct LoadResult {
-  std::shared_ptr<const GroundTask> task;  // null when grounding failed
+  std::shared_ptr<const GroundTask> task;     // null when grounding failed
   std::vector<pddl::Diagnostic> diagnostics;  // errors and warnings of every stage
   GroundingStats stats;
   // The parsed inputs (set by LoadTask when parsing succeeded), for callers

@@ -139,11 +139,11 @@ struct ValidationFailure {
     kGoal,            // the goal does not hold after the last event
   };
   Kind kind = Kind::kAtStart;
-  double time_s = 0.0;   // when it fails (the event's time)
-  int step_index = -1;   // index into Plan::steps; -1 for the goal or a timed literal
-  std::string action;    // "(name args)" of that step, "" for the goal
-  std::string condition; // the failing literal/comparison, or the contested fact/variable
-  std::string reason;    // one sentence for a user
+  double time_s = 0.0;    // when it fails (the event's time)
+  int step_index = -1;    // index into Plan::steps; -1 for the goal or a timed literal
+  std::string action;     // "(name args)" of that step, "" for the goal
+  std::string condition;  // the failing literal/comparison, or the contested fact/variable
+  std::string reason;     // one sentence for a user
   // kMutex and over-all failures caused by another event: the other side
   // (-1 / "" when it is a timed literal or there is none).
   int other_step_index = -1;
@@ -155,9 +155,9 @@ const char* KindName(ValidationFailure::Kind kind);  // "at-start condition", ..
 struct ValidationResult {
   bool valid = false;
   std::optional<ValidationFailure> first_failure;  // set iff !valid
-  double makespan_s = 0.0;        // latest step end (0 for an empty plan)
-  std::size_t action_count = 0;   // steps in the plan
-  std::optional<double> metric_value;  // the task's metric, set iff valid and defined
+  double makespan_s = 0.0;                         // latest step end (0 for an empty plan)
+  std::size_t action_count = 0;                    // steps in the plan
+  std::optional<double> metric_value;              // the task's metric, set iff valid and defined
 
   // "valid plan: 13 actions, makespan 2403.33733 s, metric 2403.33733" or
   // "invalid plan: t=60.2 step 1 (move-ship ship0 port-a port-b): duration

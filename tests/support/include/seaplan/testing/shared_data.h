@@ -23,10 +23,10 @@ std::string ReadFile(const std::filesystem::path& path);
 }  // namespace seaplan::testing
 
 // Binds `var` to SharedDir()/relative or skips the test with the reason.
-#define SEAPLAN_REQUIRE_SHARED(var, relative)                                              \
-  auto var##_shared_root = ::seaplan::testing::SharedDir();                                \
-  if (!var##_shared_root || !std::filesystem::exists(*var##_shared_root / (relative))) {   \
-    GTEST_SKIP() << "shared data '" << (relative)                                          \
-                 << "' not found (set SEAPLAN_SHARED to the shared folder)";               \
-  }                                                                                        \
+#define SEAPLAN_REQUIRE_SHARED(var, relative)                                            \
+  auto var##_shared_root = ::seaplan::testing::SharedDir();                              \
+  if (!var##_shared_root || !std::filesystem::exists(*var##_shared_root / (relative))) { \
+    GTEST_SKIP() << "shared data '" << (relative)                                        \
+                 << "' not found (set SEAPLAN_SHARED to the shared folder)";             \
+  }                                                                                      \
   const std::filesystem::path var = *var##_shared_root / (relative)
