@@ -1,12 +1,13 @@
 // Helpers of the mission end-to-end tests: the real seaplan-server on a
 // loopback ephemeral port with a fresh database, the real seaplan-sim as a
 // child process with a wall-clock limit, and the few report.json fields the
-// tests read. Same approach as mission_e2e_test.cc (which predates this
-// header and keeps its own copy). Header-only: each test binary includes it
-// once. Not thread-safe (processes and files are per test).
+// tests read, for mission_e2e_test.cc and trondheim_e2e_test.cc.
+// Header-only: each test binary includes it once. Not thread-safe
+// (processes and files are per test).
 #pragma once
 
 #include <fcntl.h>
+#include <grpcpp/grpcpp.h>
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
@@ -23,6 +24,8 @@
 #include <thread>
 #include <utility>
 #include <vector>
+
+#include "seaplan/v1/mission.grpc.pb.h"
 
 namespace seaplan::e2e {
 
@@ -96,6 +99,22 @@ class ServerProcess {
   pid_t pid_ = -1;
   std::string address_;
 };
+
+// Whether the server plans missions: a CreateMission with an empty spec
+// answers UNIMPLEMENTED (returned with its message) while no mission engine
+// is wired; any other answer means it is.
+inline std::optional<std::string> MissionEngineMissing(const std::string& address) {
+  auto stub =
+      v1::MissionService::NewStub(grpc::CreateChannel(address, grpc::InsecureChannelCredentials()));
+  v1::CreateMissionRequest req;
+  req.mutable_spec()->set_name("probe");
+  v1::Mission m;
+  grpc::ClientContext ctx;
+  ctx.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(30));
+  const grpc::Status s = stub->CreateMission(&ctx, req, &m);
+  if (s.error_code() != grpc::StatusCode::UNIMPLEMENTED) return std::nullopt;
+  return s.error_message();
+}
 
 struct ProcessResult {
   int exit_code = -1;      // -1: killed by a signal or did not start

@@ -3,7 +3,6 @@
 // scenarios, checked through the sim's report and the server's API.
 #include <grpcpp/grpcpp.h>
 #include <gtest/gtest.h>
-#include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -12,14 +11,13 @@
 #include <cmath>
 #include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <regex>
 #include <set>
-#include <sstream>
 #include <string>
 #include <thread>
 #include <vector>
 
+#include "e2e_support.h"
 #include "seaplan/chart/obstacle_map.h"
 #include "seaplan/testing/shared_data.h"
 #include "seaplan/v1/chart.grpc.pb.h"
@@ -33,50 +31,10 @@ using seaplan::testing::BinDir;
 using seaplan::testing::ReadFile;
 using seaplan::testing::SourceDir;
 
-class ServerProcess {
- public:
-  bool Start(const fs::path& dir) {
-    fs::create_directories(dir);
-    port_file_ = dir / "ports";
-    fs::remove(port_file_);
-    pid_ = fork();
-    if (pid_ == 0) {
-      std::string data = (dir / "data").string(), ports = port_file_.string();
-      std::string bin = (BinDir() / "seaplan-server").string();
-      execl(bin.c_str(), bin.c_str(), "--grpc-addr", "127.0.0.1:0", "--http-addr", "", "--data-dir",
-            data.c_str(), "--port-file", ports.c_str(), "--log-level", "warn",
-            static_cast<char*>(nullptr));
-      _exit(127);
-    }
-    for (int i = 0; i < 300; ++i) {
-      std::ifstream in(port_file_);
-      std::string line;
-      while (std::getline(in, line)) {
-        if (line.rfind("grpc=", 0) == 0) {
-          address_ = "127.0.0.1:" + line.substr(5);
-          return true;
-        }
-      }
-      int status = 0;
-      if (waitpid(pid_, &status, WNOHANG) == pid_) return false;
-      std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    }
-    return false;
-  }
-  ~ServerProcess() {
-    if (pid_ > 0) {
-      kill(pid_, SIGTERM);
-      int status = 0;
-      waitpid(pid_, &status, 0);
-    }
-  }
-  const std::string& address() const { return address_; }
-
- private:
-  pid_t pid_ = -1;
-  fs::path port_file_;
-  std::string address_;
-};
+using e2e::Flag;
+using e2e::Numbers;
+using e2e::ReadWholeFile;
+using e2e::Strings;
 
 struct SimRun {
   int exit_code = -1;
@@ -84,26 +42,24 @@ struct SimRun {
   fs::path dir;
 };
 
-std::vector<double> Numbers(const std::string& text, const std::string& key) {
-  std::vector<double> out;
-  std::regex re("\"" + key + "\": (-?[0-9.eE+-]+)");
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), re); it != std::sregex_iterator();
-       ++it) {
-    out.push_back(std::stod((*it)[1]));
+// The fjord's five ports (case A) with the given positions, speed 3.6 m/s.
+v1::CreateMissionRequest FjordMission(const std::string& name, const std::string& vessel_id,
+                                      const double (&lat)[5], const double (&lon)[5]) {
+  v1::CreateMissionRequest create;
+  auto* spec = create.mutable_spec();
+  spec->set_name(name);
+  spec->set_domain(ReadFile(SourceDir() / "examples/fjord/domain.pddl"));
+  spec->set_problem(ReadFile(SourceDir() / "examples/fjord/case-a.pddl"));
+  const char* names[] = {"port-a", "port-b", "port-c", "port-d", "port-e"};
+  for (int i = 0; i < 5; ++i) {
+    auto* l = spec->add_locations();
+    l->set_name(names[i]);
+    l->mutable_position()->set_latitude_deg(lat[i]);
+    l->mutable_position()->set_longitude_deg(lon[i]);
   }
-  return out;
-}
-std::vector<std::string> Strings(const std::string& text, const std::string& key) {
-  std::vector<std::string> out;
-  std::regex re("\"" + key + "\": \"([^\"]*)\"");
-  for (auto it = std::sregex_iterator(text.begin(), text.end(), re); it != std::sregex_iterator();
-       ++it) {
-    out.push_back((*it)[1]);
-  }
-  return out;
-}
-bool Flag(const std::string& text, const std::string& key) {
-  return text.find("\"" + key + "\": true") != std::string::npos;
+  spec->mutable_ship()->set_service_speed_mps(3.6);
+  spec->set_vessel_id(vessel_id);
+  return create;
 }
 
 class MissionE2eTest : public ::testing::Test {
@@ -116,20 +72,14 @@ class MissionE2eTest : public ::testing::Test {
            ("seaplan-mission-e2e-" + std::to_string(getpid()) + "-" +
             ::testing::UnitTest::GetInstance()->current_test_info()->name());
     fs::remove_all(dir_);
-    ASSERT_TRUE(server_.Start(dir_ / "server")) << "seaplan-server did not start";
+    ASSERT_TRUE(server_.Start(BinDir() / "seaplan-server", dir_ / "server"))
+        << "seaplan-server did not start";
     channel_ = grpc::CreateChannel(server_.address(), grpc::InsecureChannelCredentials());
     stub_ = v1::MissionService::NewStub(channel_);
-    // Skip while the server has no mission engine.
-    v1::CreateMissionRequest req;
-    req.mutable_spec()->set_name("probe");
-    v1::Mission m;
-    grpc::ClientContext ctx;
-    ctx.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(30));
-    grpc::Status s = stub_->CreateMission(&ctx, req, &m);
-    if (s.error_code() == grpc::StatusCode::UNIMPLEMENTED) {
+    if (const auto missing = e2e::MissionEngineMissing(server_.address())) {
       GTEST_SKIP()
           << "the server answers UNIMPLEMENTED for CreateMission (mission engine not wired yet): "
-          << s.error_message();
+          << *missing;
     }
   }
   void TearDown() override {
@@ -147,21 +97,15 @@ class MissionE2eTest : public ::testing::Test {
                       " > " + (dir_ / (scenario + ".out")).string() + " 2>&1";
     int status = std::system(cmd.c_str());
     r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-    std::ifstream in(r.dir / "report.json");
-    std::stringstream ss;
-    ss << in.rdbuf();
-    r.report = ss.str();
+    r.report = ReadWholeFile(r.dir / "report.json");
     return r;
   }
   std::string SimOutput(const std::string& scenario) {
-    std::ifstream in(dir_ / (scenario + ".out"));
-    std::stringstream ss;
-    ss << in.rdbuf();
-    return ss.str();
+    return ReadWholeFile(dir_ / (scenario + ".out"));
   }
 
   fs::path dir_;
-  ServerProcess server_;
+  e2e::ServerProcess server_;
   std::shared_ptr<grpc::Channel> channel_;
   std::unique_ptr<v1::MissionService::Stub> stub_;
 };
@@ -183,14 +127,10 @@ TEST_F(MissionE2eTest, CaseAOneVersionGoalsReachedNoGroundingSafeCpa) {
       chart::LoadChartFile((SourceDir() / "examples/scenarios/fjord-entrance.geojson").string(), o);
   ASSERT_TRUE(map.ok()) << map.status();
   chart::ObstacleQuery q(*map);
-  std::regex pt("\\[(-?[0-9.]+), (-?[0-9.]+), (-?[0-9.]+)\\]");
-  std::string traj = r.report.substr(r.report.find("\"trajectory\""));
   int points = 0;
-  for (auto it = std::sregex_iterator(traj.begin(), traj.end(), pt); it != std::sregex_iterator();
-       ++it) {
+  for (const e2e::TrackPoint& p : e2e::Trajectory(r.report)) {
     ++points;
-    EXPECT_FALSE(q.Inside({std::stod((*it)[2]), std::stod((*it)[3])}))
-        << "aground at t=" << (*it)[1];
+    EXPECT_FALSE(q.Inside({p.x_m, p.y_m})) << "aground at t=" << p.time_s;
   }
   EXPECT_GT(points, 10);
   // The sim's own check, every 2 s of the track against the same land.
@@ -198,18 +138,12 @@ TEST_F(MissionE2eTest, CaseAOneVersionGoalsReachedNoGroundingSafeCpa) {
   EXPECT_EQ(Numbers(r.report, "aground_s").at(0), 0.0);
   // The refined routes themselves never touch the land (they are planned
   // against the buffered obstacles): every move's polyline, sampled every 5 m.
-  std::regex task_re("\"id\": \"([^\"]+)\"[^{}]*\"route\": \\[([^{}]*)\\]\\]");
-  std::regex wp("\\[(-?[0-9.]+), (-?[0-9.]+), \"[A-Z-]+\"\\]");
   int routes = 0;
-  for (auto it = std::sregex_iterator(r.report.begin(), r.report.end(), task_re);
-       it != std::sregex_iterator(); ++it) {
+  for (const e2e::RoutedMove& move : e2e::RoutedMoves(r.report)) {
     ++routes;
-    const std::string id = (*it)[1], pts = std::string((*it)[2]) + "]";
+    const std::string& id = move.id;
     std::vector<chart::LocalPoint> line;
-    for (auto w = std::sregex_iterator(pts.begin(), pts.end(), wp); w != std::sregex_iterator();
-         ++w) {
-      line.push_back({std::stod((*w)[1]), std::stod((*w)[2])});
-    }
+    for (const auto& [x, y] : move.waypoints) line.push_back({x, y});
     ASSERT_GE(line.size(), 2u) << id;
     for (size_t i = 0; i + 1 < line.size(); ++i) {
       const double len = std::hypot(line[i + 1].x_m - line[i].x_m, line[i + 1].y_m - line[i].y_m);
@@ -305,22 +239,9 @@ TEST_F(MissionE2eTest, ReconnectingWatcherMissesNothingAndFeedbackIsIdempotent) 
 
   // A repeated report (same vessel, same sequence number) is stored once;
   // on a fresh, active mission (the one above is completed).
-  v1::CreateMissionRequest create;
-  auto* spec = create.mutable_spec();
-  spec->set_name("idempotency");
-  spec->set_domain(ReadFile(SourceDir() / "examples/fjord/domain.pddl"));
-  spec->set_problem(ReadFile(SourceDir() / "examples/fjord/case-a.pddl"));
   const double lat[] = {63.4418, 63.4458, 63.4422, 63.4458, 63.4427};
   const double lon[] = {10.3271, 10.3462, 10.3864, 10.4286, 10.4627};
-  const char* names[] = {"port-a", "port-b", "port-c", "port-d", "port-e"};
-  for (int i = 0; i < 5; ++i) {
-    auto* l = spec->add_locations();
-    l->set_name(names[i]);
-    l->mutable_position()->set_latitude_deg(lat[i]);
-    l->mutable_position()->set_longitude_deg(lon[i]);
-  }
-  spec->mutable_ship()->set_service_speed_mps(3.6);
-  spec->set_vessel_id("e2e-vessel");
+  const v1::CreateMissionRequest create = FjordMission("idempotency", "e2e-vessel", lat, lon);
   v1::Mission live;
   {
     grpc::ClientContext ctx;
@@ -373,24 +294,11 @@ TEST_F(MissionE2eTest, MoveStartingInsideTheBufferLeavesItInsteadOfFailing) {
     grpc::Status st = charts->UploadChart(&ctx, upload, &chart);
     ASSERT_TRUE(st.ok()) << st.error_message();
   }
-  v1::CreateMissionRequest create;
-  auto* spec = create.mutable_spec();
-  spec->set_name("start-in-buffer");
-  spec->set_chart_id(chart.chart().chart_id());
-  spec->set_domain(ReadFile(SourceDir() / "examples/fjord/domain.pddl"));
-  spec->set_problem(ReadFile(SourceDir() / "examples/fjord/case-a.pddl"));
   // The south shore runs through (63.44 N, 10.327122 E): port-a 5 m north of it.
   const double lat[] = {63.440045, 63.445835, 63.442244, 63.445835, 63.442693};
   const double lon[] = {10.327122, 10.346208, 10.386389, 10.428579, 10.462732};
-  const char* names[] = {"port-a", "port-b", "port-c", "port-d", "port-e"};
-  for (int i = 0; i < 5; ++i) {
-    auto* l = spec->add_locations();
-    l->set_name(names[i]);
-    l->mutable_position()->set_latitude_deg(lat[i]);
-    l->mutable_position()->set_longitude_deg(lon[i]);
-  }
-  spec->mutable_ship()->set_service_speed_mps(3.6);
-  spec->set_vessel_id("e2e-buffer");
+  v1::CreateMissionRequest create = FjordMission("start-in-buffer", "e2e-buffer", lat, lon);
+  create.mutable_spec()->set_chart_id(chart.chart().chart_id());
   v1::Mission m;
   {
     grpc::ClientContext ctx;

@@ -105,21 +105,10 @@ TEST(TrondheimE2eTest, CaseAOnRealLandAreasOneVersionNoGroundingSafeCpa) {
   e2e::ServerProcess server;
   ASSERT_TRUE(server.Start(BinDir() / "seaplan-server", dir / "server"))
       << "seaplan-server did not start: " << e2e::ReadWholeFile(dir / "server" / "server.log");
-  {
-    // Skip while the server has no mission engine.
-    auto stub = v1::MissionService::NewStub(
-        grpc::CreateChannel(server.address(), grpc::InsecureChannelCredentials()));
-    v1::CreateMissionRequest req;
-    req.mutable_spec()->set_name("probe");
-    v1::Mission m;
-    grpc::ClientContext ctx;
-    ctx.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(30));
-    grpc::Status s = stub->CreateMission(&ctx, req, &m);
-    if (s.error_code() == grpc::StatusCode::UNIMPLEMENTED) {
-      GTEST_SKIP()
-          << "the server answers UNIMPLEMENTED for CreateMission (mission engine not wired yet): "
-          << s.error_message();
-    }
+  if (const auto missing = e2e::MissionEngineMissing(server.address())) {
+    GTEST_SKIP()
+        << "the server answers UNIMPLEMENTED for CreateMission (mission engine not wired yet): "
+        << *missing;
   }
 
   // The sim resolves "shared:" paths with SEAPLAN_SHARED: give it the
