@@ -106,11 +106,18 @@ bool LazySearch::Pop(std::int32_t* state) {
     }
     const OpenEntry e = list->Pop();
     const Pending& p = pending_[static_cast<std::size_t>(e.state)];
-    if (p.lb_s >= params_.bound_s - params_.epsilon_s / 2) continue;
+    if (OverBound(p.lb_s)) continue;
     *state = e.state;
     return true;
   }
   return false;
+}
+
+void LazySearch::EnsureTimeline(std::int32_t state) {
+  if (timeline_path_of_ == state) return;  // usually the state just expanded
+  ExtractPath(state, &path_);
+  timeline_.Build(path_);
+  timeline_path_of_ = state;
 }
 
 std::int32_t LazySearch::Materialize(std::int32_t pending_index) {
@@ -126,23 +133,25 @@ std::int32_t LazySearch::Materialize(std::int32_t pending_index) {
   registry_.Unpack(StateId(rec.parent), &parent_state_);
   Event ev = rec.event;
   if (!transitions_.Apply(parent_state_, &ev, &next_)) return -1;  // cannot happen: deterministic
-  // Usually the parent was just expanded and its schedule is still built.
-  if (timeline_path_of_ != rec.parent) {
-    ExtractPath(rec.parent, &path_);
-    timeline_.Build(path_);
-    timeline_path_of_ = rec.parent;
-  }
+  EnsureTimeline(rec.parent);
   Timeline::Outcome out;
   const auto reject = [this]() {
     timeline_.Undo();
     return std::int32_t{-1};
+  };
+  // A state dropped for another copy's schedule: with running actions or
+  // timed literals the times of single facts also matter (a deadline met on
+  // one path, missed on the other), so exhaustion is no proof then.
+  const auto reject_merged = [&]() {
+    if (!next_.running.empty() || !task_.tils().empty()) merged_timed_ = true;
+    return reject();
   };
   // Only deferred successors can fail here: theirs was not checked at generation.
   if (!timeline_.TryAdd(ev, &out)) {
     stn_pruned_ = true;
     return reject();
   }
-  if (out.lower_bound_s >= params_.bound_s - params_.epsilon_s / 2) return reject();
+  if (OverBound(out.lower_bound_s)) return reject();
   slack_scratch_.clear();
   for (const auto& r : next_.running) {
     if (task_.IsWindowAction(r.action))
@@ -164,20 +173,10 @@ std::int32_t LazySearch::Materialize(std::int32_t pending_index) {
     merged_any_ = true;
     const bool bound_ok = params_.bound_dominance ? n.lb_s <= out.lower_bound_s + 1e-9
                                                   : std::abs(n.lb_s - out.lower_bound_s) <= 1e-9;
-    if (bound_ok && SlackAtLeast(n, slack_scratch_)) {
-      // Dominated by bound and slack only: with running actions or timed
-      // literals the times of single facts also matter (a deadline met on
-      // one path, missed on the other), so exhaustion is no proof then.
-      if (!next_.running.empty() || !task_.tils().empty()) merged_timed_ = true;
-      return reject();
-    }
+    if (bound_ok && SlackAtLeast(n, slack_scratch_)) return reject_merged();  // dominated
     const bool new_dominates = out.lower_bound_s <= n.lb_s + 1e-9 && SlackAtMost(n, slack_scratch_);
     if (new_dominates) {
-      if (greedy && n.status == kClosed) {
-        // The better schedule is dropped: no proof either (see above).
-        if (!next_.running.empty() || !task_.tils().empty()) merged_timed_ = true;
-        return reject();
-      }
+      if (greedy && n.status == kClosed) return reject_merged();  // the better schedule is dropped
       // Stored bounds of descendants can be stale after an ancestor
       // improved; never let a state become its own ancestor.
       if (IsAncestor(id.value(), rec.parent)) return reject();
@@ -185,10 +184,7 @@ std::int32_t LazySearch::Materialize(std::int32_t pending_index) {
       break;
     }
   }
-  if (chosen < 0) {
-    if (!next_.running.empty() || !task_.tils().empty()) merged_timed_ = true;
-    return reject();
-  }
+  if (chosen < 0) return reject_merged();
   // The chosen state's schedule is the parent's plus this event: keep it
   // for the expansion that follows.
   timeline_.Keep(ev);
@@ -220,11 +216,7 @@ LazySearch::Status LazySearch::Step() {
   std::span<const std::uint8_t> usable;
   const bool timed_check = reachability_ != nullptr && reachability_->active();
   if (timed_check) {
-    if (timeline_path_of_ != s) {
-      ExtractPath(s, &path_);
-      timeline_.Build(path_);
-      timeline_path_of_ = s;
-    }
+    EnsureTimeline(s);
     if (!reachability_->Evaluate(current_, timeline_)) {
       // Like an inconsistent schedule, this depends on the path's times.
       stn_pruned_ = true;
@@ -254,30 +246,31 @@ LazySearch::Status LazySearch::Step() {
     priority_preferred_ -= 1000;
   }
   ++counters_.expanded;
-  if (timeline_path_of_ != s) {
-    ExtractPath(s, &path_);
-    timeline_.Build(path_);
-    timeline_path_of_ = s;
-  }
+  EnsureTimeline(s);
 
   candidates_.clear();
   transitions_.Candidates(current_, &candidates_);
   std::shuffle(candidates_.begin(), candidates_.end(), rng_);
   // Helpful events first, so FIFO ties favour them.
-  std::stable_partition(candidates_.begin(), candidates_.end(), [&](const Event& e) {
-    return !e.is_til() && std::binary_search(preferred_.begin(), preferred_.end(), e.snap);
-  });
+  const std::size_t num_helpful = static_cast<std::size_t>(
+      std::stable_partition(candidates_.begin(), candidates_.end(),
+                            [&](const Event& e) {
+                              return !e.is_til() && std::binary_search(preferred_.begin(),
+                                                                       preferred_.end(), e.snap);
+                            }) -
+      candidates_.begin());
   std::size_t tried = 0;
   const bool greedy = params_.weight < 0;
   const double parent_g_s = info_[static_cast<std::size_t>(s)].g_s;
   const double parent_lb_s = info_[static_cast<std::size_t>(s)].lb_s;
-  for (Event ev : candidates_) {
+  for (std::size_t i = 0; i < candidates_.size(); ++i) {
+    Event ev = candidates_[i];
     if (stop_ != nullptr && (++tried & 255) == 0 && stop_->StopRequested())
       return Status::kInProgress;
+    const bool helpful = i < num_helpful;  // a snap of the relaxed plan (never a TIL)
     // Starts are even SnapIds (snap_task.h); reading the SnapAction would
     // cost a cache miss per candidate.
-    if (greedy && !ev.is_til() && (ev.snap & 1) == 0 &&
-        !std::binary_search(preferred_.begin(), preferred_.end(), ev.snap)) {
+    if (greedy && !ev.is_til() && (ev.snap & 1) == 0 && !helpful) {
       // Deferred: applied and scheduled only if popped (Materialize), with
       // the parent's makespan and bound, both valid lower bounds.
       ++counters_.generated;
@@ -292,13 +285,13 @@ LazySearch::Status LazySearch::Step() {
       stn_pruned_ = true;
       continue;
     }
-    if (out.lower_bound_s >= params_.bound_s - params_.epsilon_s / 2) continue;
+    if (OverBound(out.lower_bound_s)) continue;
     ++counters_.generated;
     bool preferred = false;
     if (ev.is_til()) {
       preferred = !task_.tils()[static_cast<std::size_t>(ev.til())].add.empty();
     } else {
-      preferred = std::binary_search(preferred_.begin(), preferred_.end(), ev.snap);
+      preferred = helpful;
     }
     // A goal reached is taken at once (best first among goals is the
     // anytime phase's job): put it first in both lists.

@@ -109,6 +109,12 @@ class LazySearch {
 
   NodeInfo& Info(StateId id);
   void ExtractPath(std::int32_t state, std::vector<Event>* out) const;
+  // Builds timeline_ for the path to `state` unless it already is.
+  void EnsureTimeline(std::int32_t state);
+  // A lower bound that cannot beat the incumbent (anytime bound).
+  bool OverBound(double lower_bound_s) const {
+    return lower_bound_s >= params_.bound_s - params_.epsilon_s / 2;
+  }
   bool SlackAtLeast(const NodeInfo& n, const std::vector<double>& slack) const;
   bool SlackAtMost(const NodeInfo& n, const std::vector<double>& slack) const;
   bool IsAncestor(std::int32_t maybe_ancestor, std::int32_t state) const;

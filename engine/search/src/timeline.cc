@@ -263,12 +263,17 @@ Timeline::Outcome Timeline::Current() const {
   for (int n = 0; n < stn_.num_nodes(); ++n) {
     if (is_action_node_[n]) out.makespan_s = std::max(out.makespan_s, stn_.time(n));
   }
-  out.lower_bound_s = out.makespan_s;
-  for (auto a : open_actions_) {
-    out.lower_bound_s =
-        std::max(out.lower_bound_s, stn_.time(open_start_[a]) + open_min_duration_[a]);
-  }
+  out.lower_bound_s = LowerBound(out.makespan_s, task::ActionId{-1});
   return out;
+}
+
+double Timeline::LowerBound(double makespan_s, task::ActionId skip) const {
+  double bound = makespan_s;
+  for (auto a : open_actions_) {
+    if (a == skip) continue;
+    bound = std::max(bound, stn_.time(open_start_[a]) + open_min_duration_[a]);
+  }
+  return bound;
 }
 
 bool Timeline::TryAdd(const Event& event, Outcome* outcome) {
@@ -283,27 +288,14 @@ bool Timeline::TryAdd(const Event& event, Outcome* outcome) {
   });
   tentative_makespan_s_ = makespan;
   outcome->makespan_s = makespan;
-  outcome->lower_bound_s = makespan;
-  for (auto a : open_actions_) {
+  // An ending action no longer bounds from below beyond its end node; a
+  // durative start bounds it by its minimum duration.
+  const SnapAction* snap = event.is_til() ? nullptr : &task_.snap(event.snap);
+  outcome->lower_bound_s =
+      LowerBound(makespan, snap != nullptr && snap->is_end ? snap->action : task::ActionId{-1});
+  if (snap != nullptr && !snap->is_end && task_.task().actions[snap->action].is_durative) {
     outcome->lower_bound_s =
-        std::max(outcome->lower_bound_s, stn_.time(open_start_[a]) + open_min_duration_[a]);
-  }
-  if (!event.is_til()) {
-    const SnapAction& snap = task_.snap(event.snap);
-    if (!snap.is_end && task_.task().actions[snap.action].is_durative) {
-      outcome->lower_bound_s =
-          std::max(outcome->lower_bound_s, stn_.time(new_node) + event.min_duration_s);
-    } else if (snap.is_end) {
-      // The ended action no longer bounds from below beyond its end node.
-      Outcome recomputed = *outcome;
-      recomputed.lower_bound_s = recomputed.makespan_s;
-      for (auto a : open_actions_) {
-        if (a == snap.action) continue;
-        recomputed.lower_bound_s =
-            std::max(recomputed.lower_bound_s, stn_.time(open_start_[a]) + open_min_duration_[a]);
-      }
-      *outcome = recomputed;
-    }
+        std::max(outcome->lower_bound_s, stn_.time(new_node) + event.min_duration_s);
   }
   return true;
 }

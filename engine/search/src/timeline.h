@@ -87,6 +87,8 @@ class Timeline {
   Outcome Current() const;
 
  private:
+  // max(makespan, start + minimum duration of every open action but `skip`).
+  double LowerBound(double makespan_s, task::ActionId skip) const;
   int EventNode(std::size_t i) const {
     return 1 + static_cast<int>(task_.tils().size()) + static_cast<int>(i);
   }

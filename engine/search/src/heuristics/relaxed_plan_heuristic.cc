@@ -389,10 +389,9 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
   for (auto f : suppressed_list_) suppressed_[f] = 0;
   suppressed_list_.clear();
   exempt_ends_.clear();
-  std::size_t num_suppressed = 0;
   auto reach = [&](int f, int layer, int achiever) {
     if (fact_layer_[f] >= 0) return;
-    if (num_suppressed > 0 && suppressed_[f]) PayBackExemptEnds(f);
+    if (!suppressed_list_.empty() && f < num_facts_ && suppressed_[f]) PayBackExemptEnds(f);
     fact_layer_[f] = layer;
     fact_achiever_[f] = achiever;
     goals_left -= goal_fact_[f];
@@ -408,7 +407,6 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
           slack < min_invariant_duration_[f] + 2 * epsilon_s_ - 1e-9 && !suppressed_[f]) {
         suppressed_[f] = 1;
         suppressed_list_.push_back(f);
-        ++num_suppressed;
       }
     }
   }
@@ -418,11 +416,11 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
       const int b = __builtin_ctzll(bits);
       bits &= bits - 1;
       const int f = static_cast<int>(w * 64) + b;
-      if (num_suppressed > 0 && suppressed_[f]) continue;
+      if (!suppressed_list_.empty() && suppressed_[f]) continue;
       reach(f, 0, -1);
     }
   }
-  if (num_suppressed > 0) ExemptRunningEnds(state);
+  if (!suppressed_list_.empty()) ExemptRunningEnds(state);
   const auto& tils = task_.tils();
   for (std::size_t k = static_cast<std::size_t>(state.next_til); k < tils.size(); ++k) {
     for (auto f : tils[k].add) reach(f, 0, -1);
@@ -624,7 +622,12 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
     const int op = stack_.back();
     stack_.pop_back();
     for (int i = pre_begin_[op]; i < pre_begin_[op + 1]; ++i) {
-      if (!exempt_ends_.empty() && IsExemptEnd(pre_[i], op)) continue;
+      // Every exempt fact is suppressed (ExemptRunningEnds): the scan only
+      // for those.
+      if (!exempt_ends_.empty() && pre_[i] < num_facts_ && suppressed_[pre_[i]] &&
+          IsExemptEnd(pre_[i], op)) {
+        continue;
+      }
       MarkFact(pre_[i]);
     }
     for (const auto* c : num_pre_[op]) {
