@@ -368,11 +368,11 @@ class Adapter final : public MissionEngine {
     auto frame = FrameFor(spec);
     const mission::Feedback f = FeedbackFromProto(feedback, state.mission.current_version(),
                                                   frame.ok() ? &*frame : nullptr);
-    // Tasks done so far (this report's included): a refuel still ahead is
-    // "left" whatever its planned time (a late ship is past it on paper).
-    std::set<std::string> done(state.mission.completed_tasks().begin(),
-                               state.mission.completed_tasks().end());
-    if (feedback.kind() == v1::Feedback::KIND_TASK_COMPLETED) done.insert(feedback.task_id());
+    // Tasks done so far (DecideReplan counts the one this report completes):
+    // a refuel still ahead is "left" whatever its planned time (a late ship
+    // is past it on paper).
+    const std::set<std::string> done(state.mission.completed_tasks().begin(),
+                                     state.mission.completed_tasks().end());
     if (auto reason = mission::DecideReplan(f, current, task, Policy(spec), &done)) {
       d.replan = true;
       d.replan_reason = *reason;

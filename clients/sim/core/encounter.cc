@@ -57,14 +57,13 @@ double MinDistance(Vec2 p_rel, Vec2 v_rel, double horizon) {
   return (p_rel - v_rel * t).Norm();
 }
 
-// Smallest distance to `other` within the horizon when the own ship keeps
-// its present velocity for the manoeuvre delay, then sails `v`: how deep a
-// candidate cuts into the safety circle (the measure of "least bad" when
-// every candidate does).
-double MinDistanceDelayed(const Kinematics& own, Vec2 v, const Kinematics& other, double horizon,
-                          const AvoidanceOptions& o) {
+// The own ship keeps its present velocity for `delay` (a ManoeuvreDelay,
+// at most `horizon`), then sails `v`. Smallest distance to `other` within
+// the horizon: how deep a candidate cuts into the safety circle (the
+// measure of "least bad" when every candidate does).
+double MinDistanceDelayed(const Kinematics& own, Vec2 v, double delay, const Kinematics& other,
+                          double horizon) {
   Vec2 p_rel = other.position - own.position;
-  const double delay = std::min(ManoeuvreDelay(own.velocity, v, o), horizon);
   double best = std::numeric_limits<double>::infinity();
   if (delay > 0) {
     const Vec2 v_now = own.velocity - other.velocity;
@@ -74,12 +73,12 @@ double MinDistanceDelayed(const Kinematics& own, Vec2 v, const Kinematics& other
   return std::min(best, MinDistance(p_rel, v - other.velocity, horizon - delay));
 }
 
-// Does taking velocity `v` (after the manoeuvre delay at the present
-// velocity) bring the own ship within `r` of `other` within the horizon?
-bool CollidesDelayed(const Kinematics& own, Vec2 v, const Kinematics& other, double r,
-                     double horizon, const AvoidanceOptions& o) {
+// Same motion: does it bring the own ship within `r` of `other` within the
+// horizon? (Not MinDistanceDelayed < r: inside the circle already, only a
+// closing velocity collides.)
+bool CollidesDelayed(const Kinematics& own, Vec2 v, double delay, const Kinematics& other, double r,
+                     double horizon) {
   Vec2 p_rel = other.position - own.position;
-  double delay = std::min(ManoeuvreDelay(own.velocity, v, o), horizon);
   if (delay > 0) {
     Vec2 v_now = own.velocity - other.velocity;
     if (Collides(p_rel, v_now, r, delay)) return true;
@@ -160,13 +159,6 @@ Role ClassifyEncounter(const Kinematics& own, const Kinematics& other, const Col
 
 namespace {
 
-double PointSegment(Vec2 p, Vec2 a, Vec2 b) {
-  const Vec2 d = b - a;
-  const double len2 = d.Dot(d);
-  const double t = len2 > 0 ? std::clamp((p - a).Dot(d) / len2, 0.0, 1.0) : 0.0;
-  return (p - (a + d * t)).Norm();
-}
-
 bool SegmentsCross(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
   const double d1 = (b - a).Cross(c - a), d2 = (b - a).Cross(d - a);
   const double d3 = (d - c).Cross(a - c), d4 = (d - c).Cross(b - c);
@@ -186,6 +178,13 @@ bool InsideRing(const std::vector<Vec2>& ring, Vec2 p) {
 
 }  // namespace
 
+double PointSegmentDistance(Vec2 p, Vec2 a, Vec2 b) {
+  const Vec2 d = b - a;
+  const double len2 = d.Dot(d);
+  const double t = len2 > 0 ? std::clamp((p - a).Dot(d) / len2, 0.0, 1.0) : 0.0;
+  return (p - (a + d * t)).Norm();
+}
+
 double LandClearance(const std::vector<std::vector<Vec2>>& rings, Vec2 a, Vec2 b) {
   double best = std::numeric_limits<double>::infinity();
   for (const std::vector<Vec2>& ring : rings) {
@@ -194,8 +193,8 @@ double LandClearance(const std::vector<std::vector<Vec2>>& rings, Vec2 a, Vec2 b
     for (size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++) {
       const Vec2 c = ring[j], d = ring[i];
       if (SegmentsCross(a, b, c, d)) return 0.0;
-      best = std::min({best, PointSegment(a, c, d), PointSegment(b, c, d), PointSegment(c, a, b),
-                       PointSegment(d, a, b)});
+      best = std::min({best, PointSegmentDistance(a, c, d), PointSegmentDistance(b, c, d),
+                       PointSegmentDistance(c, a, b), PointSegmentDistance(d, a, b)});
     }
   }
   return best;
@@ -238,8 +237,8 @@ double LandIndex::Clearance(Vec2 a, Vec2 b, double limit_m) const {
         seen_[static_cast<size_t>(id)] = query_;
         const auto& [c, d] = edges_[static_cast<size_t>(id)];
         if (SegmentsCross(a, b, c, d)) return 0.0;
-        best = std::min({best, PointSegment(a, c, d), PointSegment(b, c, d), PointSegment(c, a, b),
-                         PointSegment(d, a, b)});
+        best = std::min({best, PointSegmentDistance(a, c, d), PointSegmentDistance(b, c, d),
+                         PointSegmentDistance(c, a, b), PointSegmentDistance(d, a, b)});
       }
     }
   }
@@ -326,7 +325,10 @@ AvoidanceDecision ChooseVelocity(const Kinematics& own, Vec2 desired,
     bool dangerous = (cpa.dcpa_m < r && cpa.tcpa_s < options.horizon_s) ||
                      (now.dcpa_m < r && now.tcpa_s < options.horizon_s) ||
                      (options.turn_rate_rad_s > 0 &&
-                      CollidesDelayed(own, desired, o.kinematics, r, options.horizon_s, options));
+                      CollidesDelayed(own, desired,
+                                      std::min(ManoeuvreDelay(own.velocity, desired, options),
+                                               options.horizon_s),
+                                      o.kinematics, r, options.horizon_s));
     if (!dangerous) continue;
     Role role = ClassifyEncounter(own, o.kinematics, options.colreg);
     bool must_act =
@@ -362,23 +364,22 @@ AvoidanceDecision ChooseVelocity(const Kinematics& own, Vec2 desired,
     for (int k = -steps; k <= steps; ++k) {
       double course = desired_course + k * options.course_step_rad;
       Vec2 v = VelocityOf(course, speed);
+      const double delay = std::min(ManoeuvreDelay(own.velocity, v, options), options.horizon_s);
       bool ok = true;
       double violation = 0;
       for (const Active& a : active) {
         Vec2 p_rel = a.o->kinematics.position - own.position;
         Vec2 v_rel = v - a.o->kinematics.velocity;
-        if (CollidesDelayed(own, v, a.o->kinematics, r, options.horizon_s, options)) {
+        if (CollidesDelayed(own, v, delay, a.o->kinematics, r, options.horizon_s)) {
           ok = false;
           // Depth of the cut under the modelled delay, less a tenth of the
           // clearance the velocity would give if taken at once (bounded by
           // r, so one vessel's wide berth cannot hide a cut into another's
           // circle): the delay is an estimate, and of candidates it makes
           // equal, the one that turns away more decisively is the safer bet.
-          const Vec2 p_now = a.o->kinematics.position - own.position;
-          const double at_once =
-              MinDistance(p_now, v - a.o->kinematics.velocity, options.horizon_s);
-          violation += std::max(0.0, r - MinDistanceDelayed(own, v, a.o->kinematics,
-                                                            options.horizon_s, options)) +
+          const double at_once = MinDistance(p_rel, v_rel, options.horizon_s);
+          violation += std::max(0.0, r - MinDistanceDelayed(own, v, delay, a.o->kinematics,
+                                                            options.horizon_s)) +
                        0.1 * std::clamp(r - at_once, -r, r);
         }
         // COLREG: give way to starboard (rules 14, 15): the relative
@@ -396,12 +397,12 @@ AvoidanceDecision ChooseVelocity(const Kinematics& own, Vec2 desired,
       double cost = dev * dev + dev_y * dev_y +
                     (k < 0 ? 0.5 : 0.0) * desired_speed * desired_speed * 0.01 +
                     (f <= 1.0 ? (1.0 - f) * 0.5 : (f - 1.0)) * desired_speed * desired_speed;
-      // Land, checked only for a candidate that could be chosen (the check
-      // is the costly part: every land edge against the track).
       // Among candidates that all cut into the circle by about as much (a
       // slow-turning hull: the delay dominates), the one nearest the desired
       // velocity, so the choice does not swing between far-apart courses.
       violation += ok ? 0.0 : kViolationPerCost * cost;
+      // Land, checked only for a candidate that could be chosen (the check
+      // is the costly part: the land's edges against the track).
       if (options.land != nullptr && (ok ? cost < best_cost : violation < least_violation)) {
         const double clear = options.land->Clearance(
             own.position, own.position + v * options.land_lookahead_s, options.land_clearance_m);

@@ -126,6 +126,9 @@ PathApproach PathAheadClosestApproach(const std::vector<Vec2>& path, size_t next
                                       double step_s = 5.0, double start_speed_mps = -1.0,
                                       double acceleration_mps2 = 0.0);
 
+// Distance from p to the segment a-b.
+double PointSegmentDistance(Vec2 p, Vec2 a, Vec2 b);
+
 // Smallest distance from the segment a-b to the rings' edges, 0 when it
 // crosses one or starts inside a ring. Scans every edge (tests, small maps).
 double LandClearance(const std::vector<std::vector<Vec2>>& rings, Vec2 a, Vec2 b);

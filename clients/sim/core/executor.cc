@@ -44,13 +44,22 @@ Executor::Executor(const ExecutorConfig& config, ship::ShipModel model)
     : config_(config),
       model_(std::move(model)),
       land_(config.land),
+      planning_(config.avoidance),
       heading_(config.heading, config.dt_s),
       speed_(ship::SpeedControllerOptions{}, config.dt_s),
       tank_(config.fuel, config.initial_fuel_fraction) {
   report_.safety_distance_m = config.avoidance.safety_distance_m;
+  report_.land_known = !land_.empty();
   for (ship::MsoMode m : ship::kAllMsoModes) {
     top_speed_mps_[static_cast<size_t>(m)] =
-        ship::TopSpeed(ship::ShipParams{}, ship::MachineryParams{}, m);
+        ship::TopSpeed(ship::ShipParams{}, model_.machinery(), m);
+  }
+  // The VO assumes velocities change at once; this hull needs minutes to
+  // turn, so the manoeuvre is planned with a margin on the safety distance.
+  planning_.safety_distance_m *= config.avoidance_margin_factor;
+  if (planning_.turn_rate_rad_s <= 0) {
+    planning_.turn_rate_rad_s = config.turn_rate_rad_s;
+    planning_.manoeuvre_lag_s = config.manoeuvre_lag_s;
   }
   for (const TrafficVessel& v : config.traffic) report_.cpa[v.id].vessel = v.name;
   report_.min_fuel_fraction = config.initial_fuel_fraction;
@@ -163,10 +172,8 @@ void Executor::StartMove(const mission::Task& task) {
     size_t join = 0;
     double best = std::numeric_limits<double>::infinity(), along_start = 0.0;
     for (size_t i = 0; i + 1 < path.size() && along_start <= config_.path.lookahead_m; ++i) {
-      const Vec2 d = path[i + 1] - path[i];
-      const double len = d.Norm();
-      const double s = std::clamp((here - path[i]).Dot(d) / len, 0.0, len);
-      const double dist = (here - (path[i] + d * (s / len))).Norm();
+      const double len = (path[i + 1] - path[i]).Norm();
+      const double dist = PointSegmentDistance(here, path[i], path[i + 1]);
       if (dist < best) {
         best = dist;
         join = i;
@@ -262,53 +269,39 @@ void Executor::StepMove(std::vector<FeedbackOut>* out) {
   // Collision avoidance.
   Vec2 vel = VelocityOf(s.heading_rad(), s.surge_mps());
   Kinematics own{here, vel};
-  std::vector<Obstacle> others;
-  for (const TrafficVessel& v : config_.traffic) others.push_back({v.At(time_s_), v.id});
-  // The VO assumes velocities change at once; this hull needs minutes to
-  // turn, so the manoeuvre is planned with a margin on the safety distance.
-  AvoidanceOptions planning = config_.avoidance;
-  if (!land_.empty()) planning.land = &land_;
-  planning.safety_distance_m *= config_.avoidance_margin_factor;
-  speed = PathAheadSpeed(here, speed, others, planning.safety_distance_m);
-  if (planning.max_speed_mps <= 0)
-    planning.max_speed_mps = top_speed_mps_[static_cast<size_t>(model_.mode())];
-  if (planning.turn_rate_rad_s <= 0) {
-    planning.turn_rate_rad_s = config_.turn_rate_rad_s;
-    planning.manoeuvre_lag_s = config_.manoeuvre_lag_s;
+  others_.clear();
+  for (const TrafficVessel& v : config_.traffic) others_.push_back({v.At(time_s_), v.id});
+  planning_.land = land_.empty() ? nullptr : &land_;  // not in the constructor: executors move
+  speed = PathAheadSpeed(here, speed, others_, planning_.safety_distance_m);
+  if (config_.avoidance.max_speed_mps <= 0) {
+    planning_.max_speed_mps = top_speed_mps_[static_cast<size_t>(model_.mode())];
   }
   // A vessel the ship clears along its route (the path ahead at the speed it
   // is ramping to) and that is not closing in on its present motion is no
   // encounter: the straight-line models would call a ship leaving its berth
   // "in danger" of a vessel it will pass well ahead of, and its give-way turn
   // then takes it off the route towards the shore (issue #6, case C).
-  std::vector<Obstacle> encounters;
-  encounters.reserve(others.size());
+  encounters_.clear();
+  std::set<int> dangerous_now;
   const size_t next_point = static_cast<size_t>(los_->leg()) + 1;
-  for (const Obstacle& o : others) {
+  for (const Obstacle& o : others_) {
+    const Cpa now = ComputeCpa(own, o.kinematics);
+    const bool closing_now = now.dcpa_m < config_.avoidance.safety_distance_m &&
+                             now.tcpa_s < config_.avoidance.horizon_s;
+    if (closing_now) dangerous_now.insert(o.id);
     const PathApproach along = PathAheadClosestApproach(los_->path(), next_point, here, speed,
                                                         o.kinematics, config_.path_lookahead_s, 5.0,
-                                                        vel.Norm(), planning.acceleration_mps2);
-    const Cpa now = ComputeCpa(own, o.kinematics);
-    const bool closing_now =
-        now.dcpa_m < config_.avoidance.safety_distance_m && now.tcpa_s < planning.horizon_s;
-    if (along.distance_m >= planning.safety_distance_m && !closing_now) continue;
-    encounters.push_back(o);
+                                                        vel.Norm(), planning_.acceleration_mps2);
+    if (along.distance_m >= planning_.safety_distance_m && !closing_now) continue;
+    encounters_.push_back(o);
   }
-  AvoidanceDecision d = ChooseVelocity(own, VelocityOf(psi_d, speed), encounters, planning);
-  std::set<int> dangerous_now;
-  for (const Obstacle& o : others) {
-    Cpa cpa = ComputeCpa(own, o.kinematics);
-    if (cpa.dcpa_m < config_.avoidance.safety_distance_m &&
-        cpa.tcpa_s < config_.avoidance.horizon_s) {
-      dangerous_now.insert(o.id);
-    }
-  }
+  AvoidanceDecision d = ChooseVelocity(own, VelocityOf(psi_d, speed), encounters_, planning_);
   if (d.role != Role::kNone) dangerous_now.insert(d.vessel_id);
   for (int id : dangerous_now) {
     if (!dangerous_.contains(id)) {
       const std::string& name = report_.cpa[id].vessel;
-      Role role = ClassifyEncounter(own, others[0].kinematics);
-      for (const Obstacle& o : others) {
+      Role role = ClassifyEncounter(own, others_[0].kinematics);
+      for (const Obstacle& o : others_) {
         if (o.id == id) role = ClassifyEncounter(own, o.kinematics);
       }
       Log(absl::StrFormat("%s with %s (%s)", std::string(mission::messages::kPotentialCollision),
@@ -348,10 +341,13 @@ double Executor::PathAheadSpeed(Vec2 here, double speed, const std::vector<Obsta
                                 double safety_m) {
   if (config_.path_lookahead_s <= 0 || others.empty()) return speed;
   const size_t next = static_cast<size_t>(los_->leg()) + 1;
-  int blocking = -1;
+  // The highest of these speeds at which no vessel comes within safety_m;
+  // when none clears them all (a vessel from astern, or one already close),
+  // full speed, left to the velocity obstacles.
+  int blocking_at_full = -1;
   double chosen = speed;
   for (double f : {1.0, 0.75, 0.5, 0.3}) {
-    blocking = -1;
+    int blocking = -1;
     for (const Obstacle& o : others) {
       const PathApproach a = PathAheadClosestApproach(los_->path(), next, here, speed * f,
                                                       o.kinematics, config_.path_lookahead_s);
@@ -360,30 +356,19 @@ double Executor::PathAheadSpeed(Vec2 here, double speed, const std::vector<Obsta
         break;
       }
     }
+    if (f == 1.0) blocking_at_full = blocking;
     if (blocking < 0) {
       chosen = speed * f;
       break;
     }
   }
-  // No slower speed clears it either (a vessel from astern, or one already
-  // close): leave it to the velocity obstacles at full speed.
-  if (blocking >= 0) chosen = speed;
   const bool slowed = chosen < speed - 1e-9;
-  if (slowed && path_slowed_for_ < 0) {
-    for (const Obstacle& o : others) {
-      const PathApproach a = PathAheadClosestApproach(los_->path(), next, here, speed, o.kinematics,
-                                                      config_.path_lookahead_s);
-      if (a.distance_m < safety_m) {
-        path_slowed_for_ = o.id;
-        Log(absl::StrFormat("%s with %s ahead on the route: speed reduced to %.1f m/s",
-                            std::string(mission::messages::kPotentialCollision),
-                            report_.cpa[o.id].vessel, chosen));
-        break;
-      }
-    }
-  } else if (!slowed) {
-    path_slowed_for_ = -1;
+  if (slowed && !path_slowed_) {
+    Log(absl::StrFormat("%s with %s ahead on the route: speed reduced to %.1f m/s",
+                        std::string(mission::messages::kPotentialCollision),
+                        report_.cpa[blocking_at_full].vessel, chosen));
   }
+  path_slowed_ = slowed;
   return chosen;
 }
 
@@ -448,7 +433,6 @@ void Executor::TrackTraffic() {
   }
   if (!land_.empty() && time_s_ - last_land_sample_s_ >= kLandSampleS) {
     last_land_sample_s_ = time_s_;
-    report_.land_known = true;
     const double clearance = land_.SignedClearance(here, 1000.0);
     if (clearance < report_.min_land_clearance_m) {
       report_.min_land_clearance_m = clearance;

@@ -168,9 +168,14 @@ class Executor {
 
   ExecutorConfig config_;
   ship::ShipModel model_;
-  LandIndex land_;                         // config_.land, indexed for the avoidance
+  LandIndex land_;  // config_.land, indexed for the avoidance
+  // config_.avoidance as the avoidance plans with it: safety distance x
+  // avoidance_margin_factor, this hull's turn rate and lag; land and top
+  // speed set each step.
+  AvoidanceOptions planning_;
+  std::vector<Obstacle> others_, encounters_;  // per-step scratch
   std::array<double, 3> top_speed_mps_{};  // calm-water top speed per MSO mode, for the avoidance
-  int path_slowed_for_ = -1;  // vessel the path-ahead check last slowed the ship for, -1 none
+  bool path_slowed_ = false;               // the path-ahead check is holding the speed down
   ship::HeadingController heading_;
   ship::SpeedController speed_;
   std::optional<PathFollower> los_;
