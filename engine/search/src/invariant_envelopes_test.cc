@@ -11,6 +11,7 @@
 #include "seaplan/search/planner.h"
 #include "seaplan/task/grounder.h"
 #include "seaplan/validate/validator.h"
+#include "search_test_util.h"
 #include "snap_task.h"
 #include "state_registry.h"
 #include "timeline.h"
@@ -52,13 +53,7 @@ std::string Problem(const std::string& kilns, const std::string& init, const std
          " - kiln) (:init (energy) " + init + ") (:goal (and " + goal + ")))";
 }
 
-task::ActionId ActionIdOf(const task::GroundTask& task, const std::string& display_name) {
-  for (std::size_t a = 0; a < task.actions.size(); ++a) {
-    if (task.actions[a].DisplayName() == display_name) return static_cast<task::ActionId>(a);
-  }
-  ADD_FAILURE() << "no action " << display_name;
-  return -1;
-}
+using testing::ActionIdOf;
 
 std::shared_ptr<const task::GroundTask> MustLoad(const std::string& problem) {
   auto loaded = task::LoadTask(kDomain, problem);

@@ -7,6 +7,7 @@
 
 #include "heuristics/relaxed_plan_heuristic.h"
 #include "seaplan/task/grounder.h"
+#include "search_test_util.h"
 #include "snap_task.h"
 #include "state_registry.h"
 #include "transitions.h"
@@ -53,18 +54,10 @@ class FuelTest : public ::testing::Test {
     ASSERT_TRUE(loaded.ok()) << loaded.ErrorText();
     task_ = loaded.task;
     snap_ = std::make_unique<SnapTask>(*task_);
-    StateRegistry registry(snap_->num_facts(), snap_->num_vars());
-    state_ = registry.MakeEmpty();
-    for (auto f : task_->initial_facts) state_.Set(f);
-    for (std::size_t v = 0; v < state_.values.size(); ++v)
-      state_.values[v] = task_->initial_values[v];
+    state_ = testing::InitialState(*task_, *snap_);
   }
   task::ActionId Action(const std::string& display_name) const {
-    for (std::size_t a = 0; a < task_->actions.size(); ++a) {
-      if (task_->actions[a].DisplayName() == display_name) return static_cast<task::ActionId>(a);
-    }
-    ADD_FAILURE() << "no action " << display_name;
-    return 0;
+    return testing::ActionIdOf(*task_, display_name);
   }
 
   std::shared_ptr<const task::GroundTask> task_;

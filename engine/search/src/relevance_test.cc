@@ -5,6 +5,7 @@
 #include <string>
 
 #include "seaplan/task/grounder.h"
+#include "search_test_util.h"
 
 namespace seaplan::search {
 namespace {
@@ -46,11 +47,7 @@ constexpr char kProblem[] = R"(
 
 bool Relevant(const task::GroundTask& task, const std::vector<bool>& relevant,
               const std::string& name) {
-  for (std::size_t a = 0; a < task.actions.size(); ++a) {
-    if (task.actions[a].DisplayName() == name) return relevant[a];
-  }
-  ADD_FAILURE() << "no action " << name;
-  return false;
+  return relevant[static_cast<std::size_t>(testing::ActionIdOf(task, name))];
 }
 
 TEST(RelevanceTest, KeepsWhatTheGoalNeedsThroughFactsNegationsAndNumbers) {

@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "../search_test_util.h"
 #include "seaplan/task/grounder.h"
 
 namespace seaplan::search {
@@ -47,18 +48,10 @@ class RelaxedPlanHeuristicTest : public ::testing::Test {
   }
 
   int Action(const std::string& display_name) const {
-    for (std::size_t a = 0; a < task_->actions.size(); ++a) {
-      if (task_->actions[a].DisplayName() == display_name) return static_cast<int>(a);
-    }
-    ADD_FAILURE() << display_name << " not grounded";
-    return 0;
+    return testing::ActionIdOf(*task_, display_name);
   }
   int Fact(const std::string& display_name) const {
-    for (std::size_t f = 0; f < task_->facts.size(); ++f) {
-      if (task_->facts[f].DisplayName() == display_name) return static_cast<int>(f);
-    }
-    ADD_FAILURE() << display_name << " not grounded";
-    return 0;
+    return testing::FactIdOf(*task_, display_name);
   }
   StateData State(const std::vector<std::string>& facts) const {
     StateData s = registry_->MakeEmpty();

@@ -5,6 +5,7 @@
 #include <memory>
 #include <string>
 
+#include "../search_test_util.h"
 #include "../state_registry.h"
 #include "../timeline.h"
 #include "../transitions.h"
@@ -96,11 +97,7 @@ class Fixture {
     transitions_ = std::make_unique<Transitions>(*snap_, 0, kEpsilon);
     timeline_ = std::make_unique<Timeline>(*snap_, kEpsilon);
     reachability_ = std::make_unique<TemporalReachability>(*snap_);
-    StateRegistry registry(snap_->num_facts(), snap_->num_vars());
-    state_ = registry.MakeEmpty();
-    for (auto f : task_->initial_facts) state_.Set(f);
-    for (std::size_t v = 0; v < state_.values.size(); ++v)
-      state_.values[v] = task_->initial_values[v];
+    state_ = testing::InitialState(*task_, *snap_);
   }
 
   bool ok() const { return task_ != nullptr; }
@@ -108,18 +105,10 @@ class Fixture {
   const StateData& state() const { return state_; }
 
   task::ActionId Action(const std::string& display_name) const {
-    for (std::size_t a = 0; a < task_->actions.size(); ++a) {
-      if (task_->actions[a].DisplayName() == display_name) return static_cast<task::ActionId>(a);
-    }
-    ADD_FAILURE() << "no action " << display_name;
-    return 0;
+    return testing::ActionIdOf(*task_, display_name);
   }
   int Fact(const std::string& display_name) const {
-    for (std::size_t f = 0; f < task_->facts.size(); ++f) {
-      if (task_->facts[f].DisplayName() == display_name) return static_cast<int>(f);
-    }
-    ADD_FAILURE() << "no fact " << display_name;
-    return 0;
+    return testing::FactIdOf(*task_, display_name);
   }
   SnapId Start(const std::string& name) const { return 2 * Action(name); }
   SnapId End(const std::string& name) const { return 2 * Action(name) + 1; }

@@ -1,0 +1,43 @@
+// Lookups the engine/search unit tests share: ground actions and facts by
+// their display name, and the initial state of a task. A name that is not
+// grounded is a test failure (ADD_FAILURE) and yields id 0, a valid index,
+// so the test goes on to report its other checks.
+#pragma once
+
+#include <gtest/gtest.h>
+
+#include <cstddef>
+#include <string_view>
+
+#include "seaplan/task/ground_task.h"
+#include "snap_task.h"
+#include "state_registry.h"
+
+namespace seaplan::search::testing {
+
+inline task::ActionId ActionIdOf(const task::GroundTask& task, std::string_view display_name) {
+  for (std::size_t a = 0; a < task.actions.size(); ++a) {
+    if (task.actions[a].DisplayName() == display_name) return static_cast<task::ActionId>(a);
+  }
+  ADD_FAILURE() << "no action " << display_name;
+  return 0;
+}
+
+inline task::FactId FactIdOf(const task::GroundTask& task, std::string_view display_name) {
+  for (std::size_t f = 0; f < task.facts.size(); ++f) {
+    if (task.facts[f].DisplayName() == display_name) return static_cast<task::FactId>(f);
+  }
+  ADD_FAILURE() << "no fact " << display_name;
+  return 0;
+}
+
+// The task's initial facts and numeric values, no running action.
+inline StateData InitialState(const task::GroundTask& task, const SnapTask& snap) {
+  StateRegistry registry(snap.num_facts(), snap.num_vars());
+  StateData state = registry.MakeEmpty();
+  for (auto f : task.initial_facts) state.Set(f);
+  for (std::size_t v = 0; v < state.values.size(); ++v) state.values[v] = task.initial_values[v];
+  return state;
+}
+
+}  // namespace seaplan::search::testing
