@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "encounter.h"
+#include "seaplan/common/json.h"  // JsonString, used with the report
 #include "seaplan/common/status.h"
 #include "seaplan/mission/navigation_log.h"
 #include "seaplan/mission/types.h"
@@ -62,8 +63,5 @@ std::string GanttSvg(const MissionReport& report);
 // Writes <dir>/report.json, trajectory.svg and gantt.svg.
 Status WriteReport(const std::string& dir, const MissionReport& report, const Rings& obstacles,
                    const mission::LocationTable& locations);
-
-// JSON string escaping (quotes included).
-std::string JsonString(std::string_view s);
 
 }  // namespace seaplan::sim
