@@ -62,6 +62,15 @@ v1::CreateMissionRequest FjordMission(const std::string& name, const std::string
   return create;
 }
 
+// The fjord chart's land as drawn (no safety buffer, no simplification).
+StatusOr<chart::ObstacleMap> FjordLand() {
+  chart::ChartOptions o;
+  o.safety_buffer_m = 0;
+  o.simplify_tolerance_m = 0;
+  return chart::LoadChartFile((SourceDir() / "examples/scenarios/fjord-entrance.geojson").string(),
+                              o);
+}
+
 class MissionE2eTest : public ::testing::Test {
  protected:
   void SetUp() override {
@@ -120,11 +129,7 @@ TEST_F(MissionE2eTest, CaseAOneVersionGoalsReachedNoGroundingSafeCpa) {
   EXPECT_EQ(cpas.size(), 3u);
   for (double d : cpas) EXPECT_GT(d, safety);
   // No grounding: every trajectory point is outside the land polygons.
-  chart::ChartOptions o;
-  o.safety_buffer_m = 0;
-  o.simplify_tolerance_m = 0;
-  auto map =
-      chart::LoadChartFile((SourceDir() / "examples/scenarios/fjord-entrance.geojson").string(), o);
+  auto map = FjordLand();
   ASSERT_TRUE(map.ok()) << map.status();
   chart::ObstacleQuery q(*map);
   int points = 0;
@@ -322,11 +327,7 @@ TEST_F(MissionE2eTest, MoveStartingInsideTheBufferLeavesItInsteadOfFailing) {
     if (e.has_plan_version() && e.plan_version().version() == 1) first = &e.plan_version();
   }
   ASSERT_NE(first, nullptr);
-  chart::ChartOptions o;
-  o.safety_buffer_m = 0;
-  o.simplify_tolerance_m = 0;
-  auto map =
-      chart::LoadChartFile((SourceDir() / "examples/scenarios/fjord-entrance.geojson").string(), o);
+  auto map = FjordLand();
   ASSERT_TRUE(map.ok()) << map.status();
   chart::ObstacleQuery q(*map);
   int from_a = 0;
