@@ -11,7 +11,7 @@ RUN CMAKE_ARGS="-DSEAPLAN_BUILD_TESTS=OFF -DSEAPLAN_BUILD_BENCH=OFF" BUILD_TYPE=
 FROM debian:12 AS runtime
 COPY scripts/install-deps.sh /tmp/install-deps.sh
 RUN bash /tmp/install-deps.sh --runtime && rm -rf /var/lib/apt/lists/* /tmp/install-deps.sh
-COPY --from=build /src/build/bin/seaplan-server /src/build/bin/seaplan /src/build/bin/seaplan-sim /usr/local/bin/
+COPY --from=build /src/build/bin/seaplan-server /src/build/bin/seaplan /src/build/bin/seaplan-remote /src/build/bin/seaplan-charts /src/build/bin/seaplan-sim /usr/local/bin/
 COPY --from=build /src/examples /usr/share/seaplan/examples
 VOLUME /data
 EXPOSE 50051 8080

@@ -1,7 +1,9 @@
-// The operator CLI talks to seaplan through a Backend: either a server over
-// gRPC (RemoteBackend) or the server's own transport-agnostic core linked
-// in-process (LocalBackend, for plan/validate/route/risk without a server).
-// Both speak the seaplan.v1 messages, so the CLI's output code is shared.
+// The operator CLI talks to seaplan through a Backend: a server over gRPC
+// (RemoteBackend, in seaplan-remote), the server's planning handlers linked
+// in-process (PlanningBackend, in seaplan: plan and validate), or the
+// server's whole transport-agnostic core in-process (LocalBackend, in
+// seaplan-charts: charts, route, risk). All speak the seaplan.v1 messages,
+// so the CLI's output code is shared.
 #pragma once
 
 #include <functional>
@@ -58,5 +60,9 @@ std::unique_ptr<Backend> MakeRemoteBackend(const std::string& address, double ti
 
 // The server core in-process, with charts kept in memory for the call.
 std::unique_ptr<Backend> MakeLocalBackend();
+
+// The server's planning handlers in-process: Plan, PlanStream and Validate
+// only (mission calls need a server, the rest answer UNIMPLEMENTED).
+std::unique_ptr<Backend> MakePlanningBackend();
 
 }  // namespace seaplan::cli

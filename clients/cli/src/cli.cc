@@ -1,8 +1,7 @@
-// seaplan: the operator's command line. Subcommands mirror the API; plan,
-// validate, route and risk run in-process when no --server is given.
-//
-// Exit codes: 0 success, 1 no plan / plan invalid, 2 bad input or usage,
-// 3 the server is unreachable or failed.
+// The operator's command line (cli.h). Subcommands mirror the API; plan,
+// validate, chart, route and risk run in-process when no --server is given.
+#include "cli.h"
+
 #include <cstdlib>
 #include <fstream>
 #include <iostream>
@@ -11,7 +10,6 @@
 #include <vector>
 
 #include "CLI/CLI.hpp"
-#include "backend.h"
 #include "google/protobuf/util/json_util.h"
 #include "output.h"
 #include "seaplan/common/log.h"
@@ -24,6 +22,7 @@ struct GlobalOptions {
   std::string server;  // empty: in-process
   bool json = false;
   double timeout_s = 0;
+  const CliExecutable* executable = nullptr;
 };
 
 absl::Status ReadFile(const std::string& path, std::string* content) {
@@ -64,8 +63,7 @@ absl::Status ParseLatLon(const std::string& text, v1::LatLon* position) {
 }
 
 std::unique_ptr<Backend> MakeBackend(const GlobalOptions& options) {
-  if (options.server.empty()) return MakeLocalBackend();
-  return MakeRemoteBackend(options.server, options.timeout_s);
+  return options.executable->make_backend(options.server, options.timeout_s);
 }
 
 void PrintJsonOr(const GlobalOptions& options, const google::protobuf::Message& message,
@@ -491,10 +489,11 @@ void AddRouteOptions(CLI::App* command, RouteArgs& args) {
 
 }  // namespace
 
-int Main(int argc, char** argv) {
+int RunCli(int argc, char** argv, const CliExecutable& executable) {
   CLI::App app{"seaplan: mission planning for autonomous ships (operator CLI)"};
   app.require_subcommand(1);
   GlobalOptions options;
+  options.executable = &executable;
   if (const char* env = std::getenv("SEAPLAN_SERVER")) options.server = env;
   app.add_option("--server", options.server,
                  "Server address host:port (env SEAPLAN_SERVER); in-process when empty");
@@ -512,6 +511,17 @@ int Main(int argc, char** argv) {
   });
 
   int exit_code = kExitSuccess;
+  std::string handed_over;  // a command this executable does not run
+  // The callback of `command`: runs it here, or notes it for hand-over.
+  auto runner = [&](const char* command, std::function<int()> run) {
+    return [&, command, run = std::move(run)] {
+      if (executable.runs(command, options.server)) {
+        exit_code = run();
+      } else {
+        handed_over = command;
+      }
+    };
+  };
 
   PlanArgs plan;
   auto* plan_cmd = app.add_subcommand("plan", "Plan a PDDL 2.1 temporal problem");
@@ -527,7 +537,7 @@ int Main(int argc, char** argv) {
                        "Separation of interfering events (s), default 0.001");
   plan_cmd->add_flag("--stream", plan.stream, "Show progress and each improved plan");
   plan_cmd->add_option("-o,--output", plan.output, "Write the plan to this file");
-  plan_cmd->callback([&] { exit_code = RunPlan(options, plan); });
+  plan_cmd->callback(runner("plan", [&] { return RunPlan(options, plan); }));
 
   std::string v_domain, v_problem, v_plan;
   double v_epsilon = 0;
@@ -537,8 +547,8 @@ int Main(int argc, char** argv) {
   validate_cmd->add_option("plan", v_plan, "Plan file (IPC format)")->required();
   validate_cmd->add_option("--epsilon", v_epsilon,
                            "Separation of interfering events (s), default 0.001");
-  validate_cmd->callback(
-      [&] { exit_code = RunValidate(options, v_domain, v_problem, v_plan, v_epsilon); });
+  validate_cmd->callback(runner(
+      "validate", [&] { return RunValidate(options, v_domain, v_problem, v_plan, v_epsilon); }));
 
   auto* chart_cmd = app.add_subcommand("chart", "Upload, list and show charts");
   chart_cmd->require_subcommand(1);
@@ -550,15 +560,16 @@ int Main(int argc, char** argv) {
   upload_cmd->add_option("--format", chart.format, "auto, s57, geojson or zip");
   upload_cmd->add_option("--min-depth", chart.minimum_depth_m, "Minimum depth (m), default 10");
   upload_cmd->add_option("--buffer", chart.safety_buffer_m, "Safety buffer (m), default 10");
-  upload_cmd->callback([&] { exit_code = RunChartUpload(options, chart); });
-  chart_cmd->add_subcommand("list", "List charts")->callback([&] {
-    exit_code = RunChartList(options);
-  });
+  upload_cmd->callback(runner("chart upload", [&] { return RunChartUpload(options, chart); }));
+  chart_cmd->add_subcommand("list", "List charts")->callback(runner("chart list", [&] {
+    return RunChartList(options);
+  }));
   std::string chart_id, chart_geojson;
   auto* get_cmd = chart_cmd->add_subcommand("get", "Show a chart");
   get_cmd->add_option("id", chart_id, "Chart id")->required();
   get_cmd->add_option("--geojson", chart_geojson, "Write the obstacles as GeoJSON to this file");
-  get_cmd->callback([&] { exit_code = RunChartGet(options, chart_id, chart_geojson); });
+  get_cmd->callback(
+      runner("chart get", [&] { return RunChartGet(options, chart_id, chart_geojson); }));
 
   RouteArgs route;
   auto* route_cmd =
@@ -574,7 +585,7 @@ int Main(int argc, char** argv) {
                         "Level-1 margin (m), default 50");
   route_cmd->add_option("--speed", route.speed_mps, "Planning speed (m/s)");
   route_cmd->add_option("--geojson", route.geojson, "Write routes and obstacles as GeoJSON");
-  route_cmd->callback([&] { exit_code = RunRoute(options, route); });
+  route_cmd->callback(runner("route", [&] { return RunRoute(options, route); }));
 
   RouteArgs risk;
   auto* risk_cmd = app.add_subcommand("risk", "Grounding risk along a route or track");
@@ -582,7 +593,7 @@ int Main(int argc, char** argv) {
   risk_cmd
       ->add_option("--track", risk.track, "CSV: lat,lon[,heading_deg[,speed_mps[,mode]]] per line")
       ->required();
-  risk_cmd->callback([&] { exit_code = RunRisk(options, risk); });
+  risk_cmd->callback(runner("risk", [&] { return RunRisk(options, risk); }));
 
   auto* mission_cmd = app.add_subcommand("mission", "Create, watch and steer missions");
   mission_cmd->require_subcommand(1);
@@ -591,27 +602,30 @@ int Main(int argc, char** argv) {
   create_cmd->add_option("--spec", mission.spec, "MissionSpec as JSON");
   create_cmd->add_option("--domain", mission.domain, "PDDL domain (overrides the spec's)");
   create_cmd->add_option("--problem", mission.problem, "PDDL problem (overrides the spec's)");
-  create_cmd->callback([&] { exit_code = RunMissionCreate(options, mission); });
+  create_cmd->callback(
+      runner("mission create", [&] { return RunMissionCreate(options, mission); }));
   auto* mget_cmd = mission_cmd->add_subcommand("get", "Show a mission");
   mget_cmd->add_option("id", mission.id, "Mission id")->required();
-  mget_cmd->callback([&] { exit_code = RunMissionGet(options, mission.id); });
-  mission_cmd->add_subcommand("list", "List missions")->callback([&] {
-    exit_code = RunMissionList(options);
-  });
+  mget_cmd->callback(runner("mission get", [&] { return RunMissionGet(options, mission.id); }));
+  mission_cmd->add_subcommand("list", "List missions")->callback(runner("mission list", [&] {
+    return RunMissionList(options);
+  }));
   auto* watch_cmd =
       mission_cmd->add_subcommand("watch", "Follow a mission's plan versions and log");
   watch_cmd->add_option("id", mission.id, "Mission id")->required();
   watch_cmd->add_option("--after-version", mission.after_version, "Resume after this plan version");
   watch_cmd->add_option("--after-event", mission.after_event, "Resume after this log event id");
-  watch_cmd->callback([&] { exit_code = RunMissionWatch(options, mission); });
+  watch_cmd->callback(runner("mission watch", [&] { return RunMissionWatch(options, mission); }));
   auto* replan_cmd = mission_cmd->add_subcommand("replan", "Ask for a new plan");
   replan_cmd->add_option("id", mission.id, "Mission id")->required();
   replan_cmd->add_option("--reason", mission.reason, "Why");
-  replan_cmd->callback([&] { exit_code = RunMissionReplan(options, mission); });
+  replan_cmd->callback(
+      runner("mission replan", [&] { return RunMissionReplan(options, mission); }));
   auto* cancel_cmd = mission_cmd->add_subcommand("cancel", "Cancel a mission");
   cancel_cmd->add_option("id", mission.id, "Mission id")->required();
   cancel_cmd->add_option("--reason", mission.reason, "Why");
-  cancel_cmd->callback([&] { exit_code = RunMissionCancel(options, mission); });
+  cancel_cmd->callback(
+      runner("mission cancel", [&] { return RunMissionCancel(options, mission); }));
 
   try {
     app.parse(argc, argv);
@@ -619,11 +633,8 @@ int Main(int argc, char** argv) {
     const int code = app.exit(e);
     return code == 0 ? kExitSuccess : kExitBadInput;
   }
+  if (!handed_over.empty()) return executable.hand_over(handed_over, options.server, argv);
   return exit_code;
 }
 
 }  // namespace seaplan::cli
-
-int main(int argc, char** argv) {
-  return seaplan::cli::Main(argc, argv);
-}
