@@ -224,6 +224,7 @@ ProcessOutcome RunProcess(const Planner& planner, const Job& job, const Settings
     return o;
   }
   o.plan_text = plan_text;
+  if (!planner.is_seaplan) o.status = "solved";
   o.run.solved = true;
   o.run.time_s = first_plan_at >= 0 ? first_plan_at : child.wall_s;
   o.run.makespan = v.makespan_s;
@@ -546,11 +547,13 @@ int main(int argc, char** argv) {
       continue;
     }
     const double mo = Median(ours), mt = Median(theirs), mi = Median(ours_in_process);
-    std::printf(
-        "  vs %-18s: %3zu problems, seaplan whole process %.4f s, %s %.4f s, ratio %.3f; "
-        "seaplan in-process %.4f s (ratio %.3f, not like for like)\n",
-        p.c_str(), ours.size(), mo, p.c_str(), mt, mt > 0 ? mo / mt : 0.0, mi,
-        mt > 0 ? mi / mt : 0.0);
+    std::printf("  vs %-18s: %3zu problems, seaplan whole process %.4f s, %s %.4f s, ratio %.3f",
+                p.c_str(), ours.size(), mo, p.c_str(), mt, mt > 0 ? mo / mt : 0.0);
+    if (!ours_in_process.empty()) {
+      std::printf("; seaplan in-process %.4f s on %zu of them (ratio %.3f, not like for like)", mi,
+                  ours_in_process.size(), mt > 0 ? mi / mt : 0.0);
+    }
+    std::printf("\n");
   }
   int invalid = 0;
   for (const auto& o : outcomes) {
