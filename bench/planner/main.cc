@@ -37,6 +37,8 @@
 #include "seaplan/validate/validator.h"
 
 namespace fs = std::filesystem;
+using seaplan::bench::IsPlanLine;
+using seaplan::bench::LastPlan;
 using seaplan::bench::Run;
 
 namespace {
@@ -80,38 +82,6 @@ std::string ReadAll(const fs::path& p) {
   std::stringstream ss;
   ss << in.rdbuf();
   return ss.str();
-}
-
-// "12.5: (action a b) [3.0]" (the IPC plan format every planner prints).
-bool IsPlanLine(const std::string& line) {
-  std::size_t i = line.find_first_not_of(" \t");
-  if (i == std::string::npos || !(std::isdigit(static_cast<unsigned char>(line[i])))) return false;
-  while (i < line.size() && (std::isdigit(static_cast<unsigned char>(line[i])) || line[i] == '.'))
-    ++i;
-  i = line.find_first_not_of(" \t", i);
-  if (i == std::string::npos || line[i] != ':') return false;
-  i = line.find_first_not_of(" \t", i + 1);
-  return i != std::string::npos && line[i] == '(';
-}
-
-// The last block of consecutive plan lines in `text` (planners that improve
-// their plan print each one; the last is the best).
-std::string LastPlan(const std::string& text) {
-  std::istringstream in(text);
-  std::string line, block, last;
-  bool in_block = false;
-  while (std::getline(in, line)) {
-    if (IsPlanLine(line)) {
-      if (!in_block) block.clear();
-      block += line + "\n";
-      in_block = true;
-    } else if (in_block && !line.empty() && line[0] != ';') {
-      last = block;
-      in_block = false;
-    }
-  }
-  if (in_block) last = block;
-  return last;
 }
 
 std::string Replace(std::string text, const std::string& from, const std::string& to) {

@@ -1,5 +1,6 @@
 #include "peers.h"
 
+#include <cctype>
 #include <cmath>
 #include <cstdlib>
 #include <sstream>
@@ -42,6 +43,35 @@ std::vector<Run> ParsePeerRuns(const std::string& markdown) {
     runs.push_back(r);
   }
   return runs;
+}
+
+bool IsPlanLine(const std::string& line) {
+  std::size_t i = line.find_first_not_of(" \t");
+  if (i == std::string::npos || !(std::isdigit(static_cast<unsigned char>(line[i])))) return false;
+  while (i < line.size() && (std::isdigit(static_cast<unsigned char>(line[i])) || line[i] == '.'))
+    ++i;
+  i = line.find_first_not_of(" \t", i);
+  if (i == std::string::npos || line[i] != ':') return false;
+  i = line.find_first_not_of(" \t", i + 1);
+  return i != std::string::npos && line[i] == '(';
+}
+
+std::string LastPlan(const std::string& text) {
+  std::istringstream in(text);
+  std::string line, block, last;
+  bool in_block = false;
+  while (std::getline(in, line)) {
+    if (IsPlanLine(line)) {
+      if (!in_block) block.clear();
+      block += line + "\n";
+      in_block = true;
+    } else if (in_block) {
+      last = block;
+      in_block = false;
+    }
+  }
+  if (in_block) last = block;
+  return last;
 }
 
 double TimeScore(const Run& run, double limit_s) {
