@@ -39,13 +39,15 @@ std::string Quote(const std::string& arg) {
   return quoted + "'";
 }
 
-// Runs build/bin/seaplan with `args`; stdout and stderr captured separately.
-CommandResult RunSeaplan(const std::vector<std::string>& args) {
+// Runs `binary` (default build/bin/seaplan) with `args`; stdout and stderr
+// captured separately.
+CommandResult RunSeaplan(const std::vector<std::string>& args,
+                         const fs::path& binary = BinDir() / "seaplan") {
   static int counter = 0;
   const auto dir = ScratchDir();
   const auto out = dir / ("out" + std::to_string(counter));
   const auto err = dir / ("err" + std::to_string(counter++));
-  std::string command = Quote((BinDir() / "seaplan").string());
+  std::string command = Quote(binary.string());
   for (const auto& arg : args) command += " " + Quote(arg);
   command += " >" + Quote(out.string()) + " 2>" + Quote(err.string());
   const int status = std::system(command.c_str());
@@ -168,6 +170,24 @@ TEST(CliInProcessTest, MissionsNeedAServer) {
   auto result = RunSeaplan({"mission", "list"});
   EXPECT_EQ(result.exit_code, 2);
   EXPECT_NE(result.err.find("--server"), std::string::npos) << result.err;
+}
+
+// seaplan runs plan and validate itself and hands chart, route and risk to
+// seaplan-charts beside it; without it those fail clearly, plan still works.
+TEST(CliInProcessTest, ChartCommandsRunInSeaplanChartsBesideIt) {
+  auto listed = RunSeaplan({"chart", "list"});
+  EXPECT_EQ(listed.exit_code, 0) << listed.err;
+  EXPECT_NE(listed.out.find("no charts"), std::string::npos) << listed.out;
+
+  const auto alone = ScratchDir() / "alone";
+  fs::create_directories(alone);
+  fs::copy_file(BinDir() / "seaplan", alone / "seaplan", fs::copy_options::overwrite_existing);
+  auto missing = RunSeaplan({"chart", "list"}, alone / "seaplan");
+  EXPECT_EQ(missing.exit_code, 3);
+  EXPECT_NE(missing.err.find("seaplan-charts"), std::string::npos) << missing.err;
+  auto plan =
+      RunSeaplan({"plan", Example("domain.pddl"), Example("case-a.pddl")}, alone / "seaplan");
+  EXPECT_EQ(plan.exit_code, 0) << plan.err;
 }
 
 TEST(CliRemoteTest, UnreachableServerExitsThree) {
