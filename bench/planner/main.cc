@@ -171,8 +171,10 @@ ProcessOutcome RunProcess(const Planner& planner, const Job& job, const Settings
     o.status = plan_text.empty() ? "rc=" + std::to_string(child.exit_code) : "plan";
   }
   if (plan_text.empty()) {
-    const std::string& err = child.err.empty() ? child.out : child.err;
-    o.note = err.substr(0, std::min<std::size_t>(err.find('\n'), 200));
+    // The last line the planner wrote (its error, or its last progress report).
+    std::string err = child.err.empty() ? child.out : child.err;
+    while (!err.empty() && err.back() == '\n') err.pop_back();
+    o.note = err.substr(err.find_last_of('\n') + 1, 200);
     return o;
   }
   // Independent check of the printed plan, as VAL checked the peers'.
