@@ -65,7 +65,8 @@ struct ChartOptions {
   // Operator's minimum depth (draught + under-keel clearance), metres. The
   // paper uses 10 m. Areas and hazards shallower than this are obstacles.
   double min_depth_m = 5.0;
-  // Safety buffer added around every obstacle, metres (paper: 10 m).
+  // Safety buffer kept around every obstacle, metres (paper: 10 m): the
+  // obstacles are grown by ObstacleGrowthM, slightly more than this.
   double safety_buffer_m = 10.0;
   // Radius of the area a point (or line) hazard becomes, before the safety
   // buffer, metres.
@@ -83,6 +84,15 @@ struct ChartOptions {
 
   absl::Status Validate() const;
 };
+
+// How far the obstacles are grown, metres: the safety buffer plus the
+// simplification tolerance (the simplified outline may cut in by that much),
+// over cos(pi/32) (the buffer's arcs are 8 chords per quarter circle, whose
+// midpoints lie that much closer): so every point outside the final
+// obstacles keeps at least safety_buffer_m from the charted ones. Charts
+// whose layers are thinned before the union (Kartverket) split the
+// tolerance: half before, half after.
+double ObstacleGrowthM(const ChartOptions& options);
 
 // A ring of local points, not repeated closing point, any orientation.
 using Ring = std::vector<LocalPoint>;
@@ -155,6 +165,10 @@ class ObstacleMap {
   bool Covers(LocalPoint p) const { return summary().coverage.Contains(p); }
   // The unioned obstacle geometry as ISO WKB (MultiPolygon, local frame).
   const std::string& wkb() const;
+  // True when the map keeps the obstacles as charted, before the safety
+  // buffer (every map built or loaded now; blobs stored by older versions
+  // lack them).
+  bool has_unbuffered_obstacles() const;
 
   // Internal (engine/chart/src): the GEOS side of the map.
   struct Impl;
@@ -172,6 +186,15 @@ struct NearestObstacle {
   double distance_m = std::numeric_limits<double>::infinity();
   LocalPoint nearest;      // closest point on that obstacle (the query point if inside)
   int polygon_index = -1;  // index into ObstacleMap::polygons()
+};
+
+// Clearance of a route from the obstacles as charted (before the buffer).
+struct Clearance {
+  // Exact (GEOS) distance, metres; 0 when the route touches an obstacle;
+  // +infinity when the chart has none.
+  double distance_m = std::numeric_limits<double>::infinity();
+  LocalPoint route_point;     // where the route comes closest
+  LocalPoint obstacle_point;  // the obstacle point nearest to it
 };
 
 // Per-thread query object over an ObstacleMap (which must outlive it).
@@ -204,6 +227,18 @@ class ObstacleQuery {
   // Distance from the closed polygon `ring` to the nearest obstacle, metres;
   // 0 when they touch or overlap; +inf if the map has no obstacle.
   double PolygonDistanceM(std::span<const LocalPoint> ring);
+  // Clearance of the polyline from the UNBUFFERED obstacles (the map's
+  // obstacles are grown by safety_buffer_m plus the simplification
+  // tolerance, so a polyline outside them keeps >= safety_buffer_m here).
+  // nullopt when the map has no unbuffered obstacles
+  // (has_unbuffered_obstacles()). The geometry is read on the first call.
+  std::optional<Clearance> UnbufferedClearance(std::span<const LocalPoint> polyline);
+  // The navigable point (outside every obstacle, inside the coverage box)
+  // nearest to p: p itself when it is navigable; otherwise the nearest
+  // obstacle-boundary point stepped `step_out_m` further out (or a point of
+  // the coverage box's edge, moved out of obstacles the same way). nullopt
+  // when none is found (the coverage is all obstacle).
+  std::optional<LocalPoint> NearestNavigable(LocalPoint p, double step_out_m = 5.0);
 
  private:
   struct State;
