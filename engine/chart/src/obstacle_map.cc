@@ -612,46 +612,39 @@ std::optional<Clearance> ObstacleQuery::UnbufferedClearance(std::span<const Loca
 
 std::optional<LocalPoint> ObstacleQuery::NearestNavigable(LocalPoint p, double step_out_m) {
   State& s = *state_;
-  const LocalBox box = s.map->summary().coverage;
-  auto clamp = [&](LocalPoint q) {
-    const double inset_x = std::min(step_out_m, 0.5 * (box.max.x_m - box.min.x_m));
-    const double inset_y = std::min(step_out_m, 0.5 * (box.max.y_m - box.min.y_m));
-    return LocalPoint{std::clamp(q.x_m, box.min.x_m + inset_x, box.max.x_m - inset_x),
-                      std::clamp(q.y_m, box.min.y_m + inset_y, box.max.y_m - inset_y)};
-  };
   if (!std::isfinite(p.x_m) || !std::isfinite(p.y_m)) return std::nullopt;
-  LocalPoint q = box.Contains(p) ? p : clamp(p);
-  // Each pass leaves the obstacle q is in across its nearest boundary point;
-  // a few passes cover a step into a neighbouring obstacle or the box edge.
-  for (int pass = 0; pass < 8; ++pass) {
-    GeomPtr pt = internal::MakePoint(s.ctx, q);
-    s.Candidates(pt.get());
-    int owner = -1;
-    for (int i : s.hits) {
-      if (GEOSPreparedIntersects_r(s.ctx.get(), s.Prepared(i), pt.get()) == 1) {
-        owner = s.owner[i];
-        break;
-      }
-    }
-    if (owner < 0) return q;
-    GEOSCoordSequence* seq =
-        GEOSPreparedNearestPoints_r(s.ctx.get(), s.PreparedBoundary(owner), pt.get());
-    if (seq == nullptr) return std::nullopt;
-    LocalPoint b = q;
-    GEOSCoordSeq_getXY_r(s.ctx.get(), seq, 0, &b.x_m, &b.y_m);
-    GEOSCoordSeq_destroy_r(s.ctx.get(), seq);
-    double dx = b.x_m - q.x_m, dy = b.y_m - q.y_m;
-    const double len = std::hypot(dx, dy);
-    if (len > 0.0) {
-      dx /= len;
-      dy /= len;
-    } else {
-      dx = 1.0;  // on the boundary itself: try east, later passes correct it
-      dy = 0.0;
-    }
-    q = clamp({b.x_m + dx * step_out_m, b.y_m + dy * step_out_m});
+  const LocalBox box = s.map->summary().coverage;
+  auto navigable = [&](LocalPoint q) { return box.Contains(q) && !Inside(q); };
+  if (navigable(p)) return p;
+  // The navigable water: the coverage box (inset by the step, so a point
+  // stepped towards it stays inside) minus the obstacles. Built per call:
+  // this answers error messages, not a hot loop.
+  const double inset = std::max(0.0, std::min({step_out_m, 0.25 * (box.max.x_m - box.min.x_m),
+                                               0.25 * (box.max.y_m - box.min.y_m)}));
+  GeomPtr water = internal::MakeBox(s.ctx, {{box.min.x_m + inset, box.min.y_m + inset},
+                                            {box.max.x_m - inset, box.max.y_m - inset}});
+  for (const GeomPtr& obstacle : s.originals) {
+    if (!water || !obstacle) continue;
+    water = Own(s.ctx, GEOSDifference_r(s.ctx.get(), water.get(), obstacle.get()));
   }
-  return std::nullopt;
+  if (!water || GEOSisEmpty_r(s.ctx.get(), water.get()) == 1) return std::nullopt;
+  GeomPtr pt = internal::MakePoint(s.ctx, p);
+  GEOSCoordSequence* seq = GEOSNearestPoints_r(s.ctx.get(), water.get(), pt.get());
+  if (seq == nullptr) return std::nullopt;
+  LocalPoint q = p;
+  GEOSCoordSeq_getXY_r(s.ctx.get(), seq, 0, &q.x_m, &q.y_m);
+  GEOSCoordSeq_destroy_r(s.ctx.get(), seq);
+  // q is on the water's edge (which counts as obstacle): step on into the
+  // water, as far as step_out_m when it is that wide.
+  const double dx = q.x_m - p.x_m, dy = q.y_m - p.y_m;
+  const double len = std::hypot(dx, dy);
+  if (len > 0.0) {
+    for (double step = step_out_m; step > 1e-3; step *= 0.25) {
+      const LocalPoint r{q.x_m + dx / len * step, q.y_m + dy / len * step};
+      if (navigable(r)) return r;
+    }
+  }
+  return navigable(q) ? std::optional<LocalPoint>(q) : std::nullopt;
 }
 
 // ---------------------------------------------------------------------------

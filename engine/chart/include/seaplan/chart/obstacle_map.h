@@ -234,10 +234,11 @@ class ObstacleQuery {
   // (has_unbuffered_obstacles()). The geometry is read on the first call.
   std::optional<Clearance> UnbufferedClearance(std::span<const LocalPoint> polyline);
   // The navigable point (outside every obstacle, inside the coverage box)
-  // nearest to p: p itself when it is navigable; otherwise the nearest
-  // obstacle-boundary point stepped `step_out_m` further out (or a point of
-  // the coverage box's edge, moved out of obstacles the same way). nullopt
-  // when none is found (the coverage is all obstacle).
+  // nearest to p: p itself when it is navigable; otherwise the nearest point
+  // of the navigable water (the coverage box inset by step_out_m, minus the
+  // obstacles), stepped up to step_out_m further in. nullopt when there is
+  // no navigable water. Builds that water per call (GEOS difference): meant
+  // for error messages, not loops.
   std::optional<LocalPoint> NearestNavigable(LocalPoint p, double step_out_m = 5.0);
 
  private:
