@@ -4,10 +4,16 @@
 //   LoadChartFile / LoadChartBytes read a chart with GDAL (IHO S-57 cells and
 //   their updates, Kartverket FileGDB, shapefiles / GeoJSON / zipped sets),
 //   pick every feature that grounds a ship of the operator's minimum depth,
-//   project it to a UTM frame (geodesy.h), buffer it by the safety distance,
-//   simplify and union it with GEOS. The result is an immutable ObstacleMap.
-//   Queries (distance, inside, segment / polygon intersection) go through an
+//   project it to a UTM frame (geodesy.h), union it, grow it by the safety
+//   distance (ObstacleGrowthM: enough that the simplified outline still keeps
+//   the whole buffer) and simplify it with GEOS. The result is an immutable
+//   ObstacleMap, which also keeps the unioned obstacles before the buffer
+//   for exact clearance checks. Queries (distance, inside, segment / polygon
+//   intersection, clearance, nearest navigable point) go through an
 //   ObstacleQuery, one per thread.
+//   Layers are recognised by the chart product's layer names (S-57 object
+//   classes, Kartverket's product layers, seacharts' seabed<N>m) or by their
+//   schema (depth attributes), never by the name of the file they came in.
 //
 // What is an obstacle (min depth D = ChartOptions::min_depth_m)
 //   S-57:  LNDARE (areas; points buffered by point_hazard_radius_m),
@@ -26,16 +32,15 @@
 //          skjer (rocks, no depth), ikkekartlagtsjomaltomr (unsurveyed sea,
 //          like UNSARE), dybdeareal with minimumsdybde < D,
 //          grunne (shoal points) with dybde < D.
-//   Other vector sets (shapefile folders, GeoJSON; layer = file stem):
-//          land*, shore*, obstacle*, torrfall*: every feature.
-//          seabed<N>m ("sea deeper than N m", the Alesund set): obstacles =
-//          chart box (extent of all recognised layers) minus the seabed<N>m
-//          polygon with the largest N <= D: that water is surely deeper than
-//          N and N is as close to D as the set allows without calling
-//          shallower water navigable. No N <= D -> InvalidArgument.
-//          A layer with a DRVAL1 / minimumsdybde / VALSOU / dybde field: the
-//          features below D (or of unknown depth). Any other layer: every
-//          feature (plain land/obstacle polygons).
+//   seacharts' processed sets (shapefile folders such as the Alesund set):
+//          seabed<N>m ("sea deeper than N m"): obstacles = chart box (extent
+//          of all recognised layers) minus the seabed<N>m polygon with the
+//          largest N <= D: that water is surely deeper than N and N is as
+//          close to D as the set allows. No N <= D -> InvalidArgument.
+//   Any other layer (shapefiles, GeoJSON), by its schema: one with a DRVAL1 /
+//          minimumsdybde / VALSOU / dybde field gives the features below D
+//          (or of unknown depth); one without a depth field gives every
+//          feature (plain land or obstacle polygons, coastlines, hazards).
 //
 // Thread-safety
 //   ObstacleMap is immutable after construction: every const method may be
@@ -262,7 +267,10 @@ struct ChartFile {
 StatusOr<ObstacleMap> LoadChartFile(const std::string& path, const ChartOptions& options);
 
 // Same from bytes (server uploads). Files are written to a private /vsimem/
-// folder (zips are opened through /vsizip/), never to disk.
+// folder (zips are opened through /vsizip/), never to disk. A name is a file
+// name or a relative path inside an uploaded folder ("Trondheim.gdb/
+// a00000009.gdbtable"), so a FileGDB or a shapefile set can be sent as its
+// files; absolute paths, "." and ".." parts are InvalidArgument.
 StatusOr<ObstacleMap> LoadChartBytes(const std::vector<ChartFile>& files,
                                      const ChartOptions& options);
 
