@@ -163,7 +163,24 @@ TEST(CliInProcessTest, RouteFromInsideLandIsBadInput) {
   auto result = RunSeaplan(
       {"route", "--chart-file", Chart(), "--from", "63.43,10.40", "--to", "63.442244,10.386389"});
   EXPECT_EQ(result.exit_code, 2) << result.out << result.err;
-  EXPECT_NE(result.err.find("start"), std::string::npos) << result.err;
+  // In the user's latitude/longitude, with where the water is.
+  EXPECT_NE(result.err.find("start 63.43000,10.40000"), std::string::npos) << result.err;
+  EXPECT_NE(result.err.find("nearest navigable point is"), std::string::npos) << result.err;
+}
+
+TEST(CliInProcessTest, RouteTakesAChartFolderByPath) {
+  // A folder of chart files (as a shapefile set or a FileGDB comes): every
+  // file in it is sent, named by its path inside the folder.
+  const fs::path folder = ScratchDir() / "chart-folder";
+  fs::create_directories(folder / "layers");
+  fs::copy_file(Chart(), folder / "layers" / fs::path(Chart()).filename(),
+                fs::copy_options::overwrite_existing);
+  std::vector<std::string> args = {"route", "--chart-file", folder.string() + "/", "--min-depth",
+                                   "5"};
+  args.insert(args.end(), kRouteArgs.begin(), kRouteArgs.end());
+  auto result = RunSeaplan(args);
+  ASSERT_EQ(result.exit_code, 0) << result.err;
+  EXPECT_NE(result.out.find("alternative(s); chosen"), std::string::npos) << result.out;
 }
 
 TEST(CliInProcessTest, MissionsNeedAServer) {

@@ -2,7 +2,9 @@
 // validate, chart, route and risk run in-process when no --server is given.
 #include "cli.h"
 
+#include <algorithm>
 #include <cstdlib>
+#include <filesystem>
 #include <fstream>
 #include <iostream>
 #include <sstream>
@@ -171,12 +173,37 @@ struct ChartArgs {
 
 absl::Status BuildUpload(const ChartArgs& args, v1::UploadChartRequest* request) {
   if (args.files.empty()) return absl::InvalidArgumentError("no chart file given");
-  for (const auto& path : args.files) {
-    auto* file = request->add_files();
-    file->set_name(path.substr(path.find_last_of('/') + 1));
-    SEAPLAN_RETURN_IF_ERROR(ReadFile(path, file->mutable_content()));
+  for (std::string path : args.files) {
+    while (path.size() > 1 && path.back() == '/') path.pop_back();
+    const std::string base = path.substr(path.find_last_of('/') + 1);
+    std::error_code error;
+    if (!std::filesystem::is_directory(path, error)) {
+      auto* file = request->add_files();
+      file->set_name(base);
+      SEAPLAN_RETURN_IF_ERROR(ReadFile(path, file->mutable_content()));
+      continue;
+    }
+    // A folder (a FileGDB .gdb, a set of shapefiles): every file in it, named
+    // by its path inside the folder so the loader sees the same tree.
+    std::vector<std::string> inner;
+    for (const auto& entry : std::filesystem::recursive_directory_iterator(path, error)) {
+      if (entry.is_regular_file()) {
+        inner.push_back(std::filesystem::relative(entry.path(), path).generic_string());
+      }
+    }
+    if (error) {
+      return absl::InvalidArgumentError("cannot read folder '" + path + "': " + error.message());
+    }
+    if (inner.empty()) return absl::InvalidArgumentError("folder '" + path + "' has no files");
+    std::sort(inner.begin(), inner.end());
+    for (const std::string& relative : inner) {
+      auto* file = request->add_files();
+      file->set_name(base + "/" + relative);
+      SEAPLAN_RETURN_IF_ERROR(ReadFile(path + "/" + relative, file->mutable_content()));
+    }
   }
-  request->set_name(args.name.empty() ? request->files(0).name() : args.name);
+  const std::string& first = request->files(0).name();
+  request->set_name(args.name.empty() ? first.substr(0, first.find('/')) : args.name);
   if (args.format == "s57")
     request->set_format(v1::CHART_FORMAT_S57);
   else if (args.format == "geojson")
@@ -554,7 +581,10 @@ int RunCli(int argc, char** argv, const CliExecutable& executable) {
   chart_cmd->require_subcommand(1);
   ChartArgs chart;
   auto* upload_cmd = chart_cmd->add_subcommand("upload", "Upload a chart");
-  upload_cmd->add_option("files", chart.files, "S-57 .000 (+ .001 ...), GeoJSON, or zip")
+  upload_cmd
+      ->add_option(
+          "files", chart.files,
+          "S-57 .000 (+ .001 ...), GeoJSON, shapefiles, a FileGDB or shapefile folder, or zip")
       ->required();
   upload_cmd->add_option("--name", chart.name, "Chart name");
   upload_cmd->add_option("--format", chart.format, "auto, s57, geojson or zip");

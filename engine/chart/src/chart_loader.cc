@@ -18,6 +18,7 @@
 #include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_join.h"
+#include "absl/strings/str_split.h"
 #include "cpl_conv.h"
 #include "cpl_error.h"
 #include "cpl_string.h"
@@ -168,31 +169,32 @@ LayerRule Classify(const std::string& driver, const std::string& layer, OGRFeatu
     if (layer == "M_COVR") return {Role::kCoverage};
     return {Role::kSkip};
   }
-  // Kartverket "Sjokart - Dybdedata" (FileGDB or its GeoJSON exports).
-  if (l == "landareal" || l == "torrfall" || l == "skjer" || l == "ikkekartlagtsjomaltomr" ||
-      absl::StartsWith(l, "trondheim_landareal")) {
+  // Kartverket "Sjokart - Dybdedata" product layers (FileGDB, or exports of
+  // them that keep the layer names, e.g. GeoJSON with its "name" member).
+  if (l == "landareal" || l == "torrfall" || l == "skjer" || l == "ikkekartlagtsjomaltomr") {
     return {Role::kAll};
   }
   if (l == "dybdeareal") return {Role::kDepthArea, "minimumsdybde"};
-  if (l == "grunne" || absl::StartsWith(l, "trondheim_grunne")) return {Role::kHazard, "dybde"};
+  if (l == "grunne") return {Role::kHazard, "dybde"};
   if (driver == "OpenFileGDB") return {Role::kSkip};
-  // Processed sets (Alesund): seabed<N>m = sea deeper than N m.
+  // seacharts' processed product (the Alesund set): seabed<N>m = sea deeper
+  // than N m.
   if (absl::StartsWith(l, "seabed")) {
     double n = 0;
     const std::string digits =
         l.substr(6, l.find('m', 6) == std::string::npos ? std::string::npos : l.find('m', 6) - 6);
     const auto [ptr, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), n);
-    if (ec == std::errc() && ptr == digits.data() + digits.size()) {
+    if (ec == std::errc() && ptr == digits.data() + digits.size() && l == "seabed" + digits + "m") {
       LayerRule r{Role::kSeabed};
       r.seabed_depth_m = n;
       return r;
     }
     return {Role::kSkip};
   }
-  if (absl::StartsWith(l, "land") || absl::StartsWith(l, "shore") ||
-      absl::StartsWith(l, "obstacle") || absl::StartsWith(l, "torrfall")) {
-    return {Role::kAll};
-  }
+  // Anything else by its schema: a depth attribute (S-57 DRVAL1 / VALSOU,
+  // Kartverket minimumsdybde / dybde) makes the features shallower than the
+  // minimum depth obstacles; without one, every feature is (plain land or
+  // obstacle polygons, coastlines, hazard points).
   for (const char* field : {"DRVAL1", "minimumsdybde", "VALSOU", "dybde"}) {
     if (defn != nullptr && defn->GetFieldIndex(field) >= 0) return {Role::kDepthArea, field};
   }
@@ -411,7 +413,7 @@ StatusOr<ObstacleMap> LoadFromRoot(const std::string& root, const std::string& d
     return absl::InvalidArgumentError(absl::StrCat(
         "'", display, "' has no obstacle layer (layers: ", absl::StrJoin(layer_names, ", "),
         "); expected S-57 LNDARE/DEPARE, Kartverket landareal/"
-        "dybdeareal, land*/seabed<N>m or plain polygons"));
+        "dybdeareal, seabed<N>m or plain polygons"));
   }
   const std::vector<ExtentInSrs>& box_sources = m_covr.empty() ? extents : m_covr;
   // Chart centre in WGS84 -> frame.
@@ -567,26 +569,48 @@ StatusOr<ObstacleMap> LoadChartBytes(const std::vector<ChartFile>& files,
   const std::string dir = absl::StrCat("/vsimem/seaplan_chart_", ++counter);
   VSIMkdir(dir.c_str(), 0755);
   std::vector<std::string> written;
+  std::vector<std::string> tops;  // top-level names, for messages
   std::string display;
+  std::vector<std::string> folders;  // created below `dir`, deepest last
+  auto clean_up = [&] {
+    for (const std::string& w : written) VSIUnlink(w.c_str());
+    for (auto it = folders.rbegin(); it != folders.rend(); ++it) VSIRmdir(it->c_str());
+    VSIRmdir(dir.c_str());
+  };
   for (const ChartFile& f : files) {
-    const std::string base = BaseName(f.name);
-    if (base.empty() || base == "." || base == ".." || f.name.find("..") != std::string::npos) {
-      for (const std::string& w : written) VSIUnlink(w.c_str());
-      return absl::InvalidArgumentError(
-          absl::StrCat("chart file name '", f.name, "' is not a plain file name"));
+    // A name is a file name or a relative path inside an uploaded folder
+    // ("Trondheim.gdb/a00000009.gdbtable", "alesund/land/land.shp").
+    std::vector<std::string> parts = absl::StrSplit(f.name, '/');
+    const bool plain = !parts.empty() && std::all_of(parts.begin(), parts.end(), [](const auto& p) {
+      return !p.empty() && p != "." && p != "..";
+    });
+    if (!plain) {
+      clean_up();
+      return absl::InvalidArgumentError(absl::StrCat(
+          "chart file name '", f.name, "' is not a file name or a relative path in a folder"));
     }
-    const std::string path = absl::StrCat(dir, "/", base);
+    std::string path = dir;
+    for (size_t i = 0; i + 1 < parts.size(); ++i) {
+      path = absl::StrCat(path, "/", parts[i]);
+      if (std::find(folders.begin(), folders.end(), path) == folders.end()) {
+        VSIMkdir(path.c_str(), 0755);
+        folders.push_back(path);
+      }
+    }
+    path = absl::StrCat(path, "/", parts.back());
     // No copy: the bytes outlive the load (GDAL only reads them).
     VSILFILE* fp = VSIFileFromMemBuffer(path.c_str(),
                                         reinterpret_cast<GByte*>(const_cast<char*>(f.bytes.data())),
                                         static_cast<vsi_l_offset>(f.bytes.size()), FALSE);
     if (fp != nullptr) VSIFCloseL(fp);
     written.push_back(path);
-    display = display.empty() ? base : absl::StrCat(display, "+", base);
+    if (std::find(tops.begin(), tops.end(), parts.front()) == tops.end()) {
+      tops.push_back(parts.front());
+      display = display.empty() ? parts.front() : absl::StrCat(display, "+", parts.front());
+    }
   }
   auto result = LoadFromRoot(written.size() == 1 ? written[0] : dir, display, options);
-  for (const std::string& w : written) VSIUnlink(w.c_str());
-  VSIRmdir(dir.c_str());
+  clean_up();
   return result;
 }
 

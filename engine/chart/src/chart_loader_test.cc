@@ -1,9 +1,15 @@
 #include <gtest/gtest.h>
+#include <unistd.h>
 
 #include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <memory>
 #include <string>
 
 #include "cpl_vsi.h"
+#include "gdal_priv.h"
+#include "ogrsf_frmts.h"
 #include "seaplan/chart/obstacle_map.h"
 #include "seaplan/testing/shared_data.h"
 
@@ -186,8 +192,12 @@ TEST(ChartLoader, BadInputGivesClearErrors) {
   EXPECT_EQ(LoadChartFile("/nonexistent/chart.000", ChartOptions{}).status().code(),
             absl::StatusCode::kNotFound);
   EXPECT_EQ(LoadChartBytes({}, ChartOptions{}).status().code(), absl::StatusCode::kInvalidArgument);
-  EXPECT_EQ(LoadChartBytes({{"../etc/passwd", "x"}}, ChartOptions{}).status().code(),
-            absl::StatusCode::kInvalidArgument);
+  for (const char* name :
+       {"../etc/passwd", "/etc/passwd", "set//land.geojson", "set/./x", "set/"}) {
+    EXPECT_EQ(LoadChartBytes({{name, "x"}}, ChartOptions{}).status().code(),
+              absl::StatusCode::kInvalidArgument)
+        << name;
+  }
   ChartOptions bad;
   bad.min_depth_m = -3;
   EXPECT_EQ(LoadChartFile(HarbourPath(), bad).status().code(), absl::StatusCode::kInvalidArgument);
@@ -205,6 +215,111 @@ TEST(ChartLoader, BadInputGivesClearErrors) {
   ASSERT_EQ(projected.status().code(), absl::StatusCode::kInvalidArgument);
   EXPECT_NE(projected.status().message().find("coordinate system"), absl::string_view::npos)
       << projected.status();
+}
+
+// Points with a "dybde" (depth) attribute, 2 m and 20 m deep.
+std::string Soundings(const std::string& layer_name) {
+  return "{\"type\":\"FeatureCollection\"," +
+         (layer_name.empty() ? std::string() : "\"name\":\"" + layer_name + "\",") +
+         "\"features\":["
+         "{\"type\":\"Feature\",\"properties\":{\"dybde\":2.0},"
+         "\"geometry\":{\"type\":\"Point\",\"coordinates\":[6.101,62.471]}},"
+         "{\"type\":\"Feature\",\"properties\":{\"dybde\":20.0},"
+         "\"geometry\":{\"type\":\"Point\",\"coordinates\":[6.109,62.479]}}]}";
+}
+
+TEST(ChartLoader, LayersAreRecognisedBySchemaNotByFileName) {
+  ChartOptions o;
+  o.min_depth_m = 5;
+  // The same depth-attributed points under three file names, one of them
+  // named like a land-area export: the depth field decides (2 m < 5 m is an
+  // obstacle, 20 m is not), whatever the file is called.
+  for (const char* file :
+       {"soundings.geojson", "trondheim_landareal_points.geojson", "x.geojson"}) {
+    auto map = LoadChartBytes({{file, Soundings("")}}, o);
+    ASSERT_TRUE(map.ok()) << file << ": " << map.status();
+    const std::string layer = std::filesystem::path(file).stem().string();
+    EXPECT_EQ(map->summary().features_per_layer.at(layer), 1) << file;
+    ObstacleQuery q(*map);
+    EXPECT_TRUE(q.Inside(map->frame().ToLocal({62.471, 6.101}))) << file;
+    EXPECT_FALSE(q.Inside(map->frame().ToLocal({62.479, 6.109}))) << file;
+  }
+  // A Kartverket product layer name (the GeoJSON "name" member) is
+  // recognised whatever the file is called.
+  auto named = LoadChartBytes({{"export.geojson", Soundings("grunne")}}, o);
+  ASSERT_TRUE(named.ok()) << named.status();
+  EXPECT_EQ(named->summary().features_per_layer.at("grunne"), 1);
+}
+
+// Writes a small FileGDB (GDAL's OpenFileGDB writer) with a Kartverket
+// "landareal" layer: one land square, 6.100-6.102 E, 62.470-62.472 N.
+std::filesystem::path WriteFileGdb(const std::filesystem::path& folder) {
+  GDALAllRegister();
+  GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("OpenFileGDB");
+  if (driver == nullptr) return {};
+  const std::filesystem::path gdb = folder / "Harbour.gdb";
+  std::unique_ptr<GDALDataset> ds(
+      driver->Create(gdb.string().c_str(), 0, 0, 0, GDT_Unknown, nullptr));
+  if (!ds) return {};
+  OGRSpatialReference wgs84;
+  wgs84.SetWellKnownGeogCS("WGS84");
+  wgs84.SetAxisMappingStrategy(OAMS_TRADITIONAL_GIS_ORDER);
+  OGRLayer* layer = ds->CreateLayer("landareal", &wgs84, wkbPolygon, nullptr);
+  if (layer == nullptr) return {};
+  OGRPolygon square;
+  OGRLinearRing ring;
+  for (const auto& [lon, lat] : std::vector<std::pair<double, double>>{
+           {6.100, 62.470}, {6.102, 62.470}, {6.102, 62.472}, {6.100, 62.472}, {6.100, 62.470}}) {
+    ring.addPoint(lon, lat);
+  }
+  square.addRing(&ring);
+  OGRFeature feature(layer->GetLayerDefn());
+  feature.SetGeometry(&square);
+  if (layer->CreateFeature(&feature) != OGRERR_NONE) return {};
+  return gdb;
+}
+
+TEST(ChartLoader, FileGdbAndShapefileFoldersByPathAndAsUploadedFolders) {
+  const std::filesystem::path folder =
+      std::filesystem::temp_directory_path() / ("seaplan_chart_folder_" + std::to_string(getpid()));
+  std::filesystem::remove_all(folder);
+  std::filesystem::create_directories(folder);
+  const std::filesystem::path gdb = WriteFileGdb(folder);
+  ASSERT_FALSE(gdb.empty()) << "GDAL could not write a FileGDB";
+  ChartOptions o;
+  o.safety_buffer_m = 0;
+  o.simplify_tolerance_m = 0;
+  auto by_path = LoadChartFile(gdb.string() + "/", o);
+  ASSERT_TRUE(by_path.ok()) << by_path.status();
+  EXPECT_EQ(by_path->summary().source_format, "OpenFileGDB");
+  EXPECT_EQ(by_path->summary().features_per_layer.at("landareal"), 1);
+  double per = 0;
+  const double area = RectArea(by_path->frame(), 6.100, 62.470, 6.102, 62.472, &per);
+  EXPECT_NEAR(by_path->summary().total_area_m2, area, 1e-3 * area);
+
+  // The same folder uploaded file by file, named by paths inside it (what
+  // the CLI sends for --chart-file Harbour.gdb).
+  std::vector<ChartFile> files;
+  for (const auto& entry : std::filesystem::directory_iterator(gdb)) {
+    files.push_back({"Harbour.gdb/" + entry.path().filename().string(),
+                     testing::ReadFile(entry.path().string())});
+  }
+  ASSERT_GT(files.size(), 1u);
+  auto uploaded = LoadChartBytes(files, o);
+  ASSERT_TRUE(uploaded.ok()) << uploaded.status();
+  EXPECT_DOUBLE_EQ(uploaded->summary().total_area_m2, by_path->summary().total_area_m2);
+
+  // A folder of sets in subfolders (the seacharts layout), by path and uploaded.
+  std::filesystem::create_directories(folder / "set" / "soundings");
+  std::ofstream(folder / "set" / "soundings" / "soundings.geojson") << Soundings("");
+  o.min_depth_m = 5;
+  auto set = LoadChartFile((folder / "set").string(), o);
+  ASSERT_TRUE(set.ok()) << set.status();
+  EXPECT_EQ(set->summary().features_per_layer.at("soundings"), 1);
+  auto set_uploaded = LoadChartBytes({{"set/soundings/soundings.geojson", Soundings("")}}, o);
+  ASSERT_TRUE(set_uploaded.ok()) << set_uploaded.status();
+  EXPECT_DOUBLE_EQ(set_uploaded->summary().total_area_m2, set->summary().total_area_m2);
+  std::filesystem::remove_all(folder);
 }
 
 }  // namespace

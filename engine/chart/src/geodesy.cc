@@ -5,6 +5,7 @@
 #include <numbers>
 
 #include "absl/strings/str_cat.h"
+#include "absl/strings/str_format.h"
 
 namespace seaplan::chart {
 namespace {
@@ -56,6 +57,10 @@ const KruegerSeries& Series() {
 }
 
 }  // namespace
+
+std::string FormatLatLon(LatLon p) {
+  return absl::StrFormat("%.5f,%.5f", p.lat_deg, p.lon_deg);
+}
 
 double HaversineDistanceM(LatLon a, LatLon b) {
   const double lat1 = a.lat_deg * kDegToRad, lat2 = b.lat_deg * kDegToRad;

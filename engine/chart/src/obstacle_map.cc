@@ -44,6 +44,15 @@ absl::Status ChartOptions::Validate() const {
   return absl::OkStatus();
 }
 
+namespace {
+// Half the angle of one buffer chord (8 per quarter circle).
+constexpr double kChordHalfAngle = M_PI / 32.0;
+}  // namespace
+
+double ObstacleGrowthM(const ChartOptions& options) {
+  return (options.safety_buffer_m + options.simplify_tolerance_m) / std::cos(kChordHalfAngle);
+}
+
 ObstacleMap::ObstacleMap(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
 ObstacleMap::ObstacleMap(ObstacleMap&&) noexcept = default;
 ObstacleMap& ObstacleMap::operator=(ObstacleMap&&) noexcept = default;
@@ -64,13 +73,28 @@ LocalBox ObstacleMap::bounds() const {
 const std::string& ObstacleMap::wkb() const {
   return impl_->wkb;
 }
+bool ObstacleMap::has_unbuffered_obstacles() const {
+  return !impl_->unbuffered_wkb.empty();
+}
 
 namespace internal {
 
+std::string WriteWkb(const GeosContext& c, const GEOSGeometry* g) {
+  GEOSWKBWriter* writer = GEOSWKBWriter_create_r(c.get());
+  size_t size = 0;
+  unsigned char* buf = GEOSWKBWriter_write_r(c.get(), writer, g, &size);
+  GEOSWKBWriter_destroy_r(c.get(), writer);
+  if (buf == nullptr) return "";
+  std::string out(reinterpret_cast<const char*>(buf), size);
+  GEOSFree_r(c.get(), buf);
+  return out;
+}
+
 StatusOr<ObstacleMap> FinishObstacleMap(GeosContext& c, GeomPtr obstacles, LocalFrame frame,
-                                        ObstacleSummary summary) {
+                                        ObstacleSummary summary, std::string unbuffered_wkb) {
   auto impl = std::make_unique<ObstacleMap::Impl>();
   impl->frame = frame;
+  impl->unbuffered_wkb = std::move(unbuffered_wkb);
   if (obstacles) ExportPolygons(c, obstacles.get(), &impl->polygons);
   // WKB of a MultiPolygon of exactly the exported polygons.
   {
@@ -81,14 +105,9 @@ StatusOr<ObstacleMap> FinishObstacleMap(GeosContext& c, GeomPtr obstacles, Local
     if (!multi)
       return absl::InternalError(
           absl::StrCat("GEOS: cannot build obstacle multipolygon: ", c.TakeError()));
-    GEOSWKBWriter* writer = GEOSWKBWriter_create_r(c.get());
-    size_t size = 0;
-    unsigned char* buf = GEOSWKBWriter_write_r(c.get(), writer, multi.get(), &size);
-    GEOSWKBWriter_destroy_r(c.get(), writer);
-    if (buf == nullptr)
+    impl->wkb = WriteWkb(c, multi.get());
+    if (impl->wkb.empty())
       return absl::InternalError(absl::StrCat("GEOS: cannot write WKB: ", c.TakeError()));
-    impl->wkb.assign(reinterpret_cast<const char*>(buf), size);
-    GEOSFree_r(c.get(), buf);
   }
   const double inf = std::numeric_limits<double>::infinity();
   LocalBox all{{inf, inf}, {-inf, -inf}};
@@ -218,6 +237,7 @@ StatusOr<ObstacleMap> BuildObstacleMap(GeosContext& c, std::vector<GeomPtr> area
   const double coverage_ms = ms(t0);
   const auto t1 = std::chrono::steady_clock::now();
   GeomPtr result;
+  std::string unbuffered_wkb;
   double union_ms = 0, buffer_ms = 0;
   if (!rest.empty()) {
     GeomPtr collection = MakeCollection(c, GEOS_GEOMETRYCOLLECTION, std::move(rest));
@@ -226,20 +246,27 @@ StatusOr<ObstacleMap> BuildObstacleMap(GeosContext& c, std::vector<GeomPtr> area
       return absl::InvalidArgumentError(
           absl::StrCat("chart: union of obstacles failed: ", c.TakeError()));
     union_ms = ms(t1);
+    unbuffered_wkb = WriteWkb(c, unioned.get());
     const auto t2 = std::chrono::steady_clock::now();
-    if (options.safety_buffer_m > 0.0) {
-      // 8 segments per quarter circle: the chord error is r(1-cos(pi/32)) < 0.5% of r.
-      result = Own(c, GEOSBuffer_r(c.get(), unioned.get(), options.safety_buffer_m, 8));
+    const double simplify_final =
+        groups.rbegin() != groups.rend() && groups.rbegin()->first >= kPreSimplifyGroup
+            ? 0.5 * options.simplify_tolerance_m
+            : options.simplify_tolerance_m;
+    if (options.safety_buffer_m + simplify_final > 0.0) {
+      // The outline is simplified below (it may cut in by up to the
+      // tolerance) and the buffer's arcs are chords (8 per quarter circle,
+      // cutting in by r (1 - cos(pi/32))): grow the buffer by both so that
+      // every point outside the final obstacles keeps safety_buffer_m from
+      // the unbuffered ones.
+      const double buffer_m =
+          (options.safety_buffer_m + simplify_final) / std::cos(kChordHalfAngle);
+      result = Own(c, GEOSBuffer_r(c.get(), unioned.get(), buffer_m, 8));
       if (!result)
         return absl::InvalidArgumentError(
             absl::StrCat("chart: safety buffer failed: ", c.TakeError()));
     } else {
       result = std::move(unioned);
     }
-    const double simplify_final =
-        groups.rbegin() != groups.rend() && groups.rbegin()->first >= kPreSimplifyGroup
-            ? 0.5 * options.simplify_tolerance_m
-            : options.simplify_tolerance_m;
     if (simplify_final > 0.0) {
       GeomPtr simple =
           Own(c, GEOSTopologyPreserveSimplify_r(c.get(), result.get(), simplify_final));
@@ -255,7 +282,8 @@ StatusOr<ObstacleMap> BuildObstacleMap(GeosContext& c, std::vector<GeomPtr> area
       "chart build: coverage union {:.0f} ms ({} clean, {} not), union {:.0f} ms, buffer+simplify "
       "{:.0f} ms",
       coverage_ms, clean_groups, dirty_groups, union_ms, buffer_ms);
-  return FinishObstacleMap(c, std::move(result), frame, std::move(summary));
+  return FinishObstacleMap(c, std::move(result), frame, std::move(summary),
+                           std::move(unbuffered_wkb));
 }
 
 }  // namespace internal
@@ -322,8 +350,14 @@ struct ObstacleQuery::State {
   std::vector<int> hits;  // scratch for tree queries
   int query_sentinel = -1;
   const GEOSGeometry* query_geom = nullptr;
+  // The unbuffered obstacles, read from the map's WKB on first use.
+  bool unbuffered_read = false;
+  GeomPtr unbuffered;
+  const GEOSPreparedGeometry* prepared_unbuffered = nullptr;
 
   ~State() {
+    if (prepared_unbuffered != nullptr) GEOSPreparedGeom_destroy_r(ctx.get(), prepared_unbuffered);
+    unbuffered.reset();
     for (const GEOSPreparedGeometry* p : prepared) {
       if (p != nullptr) GEOSPreparedGeom_destroy_r(ctx.get(), p);
     }
@@ -539,6 +573,80 @@ bool ObstacleQuery::PolygonHits(std::span<const LocalPoint> ring) {
   return s.Hits(poly.get());
 }
 
+std::optional<Clearance> ObstacleQuery::UnbufferedClearance(std::span<const LocalPoint> polyline) {
+  State& s = *state_;
+  const std::string& wkb = s.map->impl().unbuffered_wkb;
+  if (wkb.empty()) return std::nullopt;
+  if (!s.unbuffered_read) {
+    s.unbuffered_read = true;
+    GEOSWKBReader* reader = GEOSWKBReader_create_r(s.ctx.get());
+    s.unbuffered = Own(s.ctx, GEOSWKBReader_read_r(
+                                  s.ctx.get(), reader,
+                                  reinterpret_cast<const unsigned char*>(wkb.data()), wkb.size()));
+    GEOSWKBReader_destroy_r(s.ctx.get(), reader);
+    if (s.unbuffered) s.prepared_unbuffered = GEOSPrepare_r(s.ctx.get(), s.unbuffered.get());
+  }
+  if (s.prepared_unbuffered == nullptr) return std::nullopt;
+  Clearance out;
+  if (polyline.empty() || GEOSisEmpty_r(s.ctx.get(), s.unbuffered.get()) == 1) return out;
+  GeomPtr g = polyline.size() == 1 ? internal::MakePoint(s.ctx, polyline[0])
+                                   : internal::MakeLine(s.ctx, polyline.data(), polyline.size());
+  if (!g) g = internal::MakePoint(s.ctx, polyline[0]);
+  out.route_point = polyline[0];
+  out.obstacle_point = polyline[0];
+  if (GEOSPreparedIntersects_r(s.ctx.get(), s.prepared_unbuffered, g.get()) == 1) {
+    out.distance_m = 0.0;
+  } else if (GEOSPreparedDistance_r(s.ctx.get(), s.prepared_unbuffered, g.get(), &out.distance_m) !=
+             1) {
+    return std::nullopt;
+  }
+  // Nearest points: [0] on the prepared geometry, [1] on the route.
+  if (GEOSCoordSequence* seq =
+          GEOSPreparedNearestPoints_r(s.ctx.get(), s.prepared_unbuffered, g.get())) {
+    GEOSCoordSeq_getXY_r(s.ctx.get(), seq, 0, &out.obstacle_point.x_m, &out.obstacle_point.y_m);
+    GEOSCoordSeq_getXY_r(s.ctx.get(), seq, 1, &out.route_point.x_m, &out.route_point.y_m);
+    GEOSCoordSeq_destroy_r(s.ctx.get(), seq);
+  }
+  return out;
+}
+
+std::optional<LocalPoint> ObstacleQuery::NearestNavigable(LocalPoint p, double step_out_m) {
+  State& s = *state_;
+  if (!std::isfinite(p.x_m) || !std::isfinite(p.y_m)) return std::nullopt;
+  const LocalBox box = s.map->summary().coverage;
+  auto navigable = [&](LocalPoint q) { return box.Contains(q) && !Inside(q); };
+  if (navigable(p)) return p;
+  // The navigable water: the coverage box (inset by the step, so a point
+  // stepped towards it stays inside) minus the obstacles. Built per call:
+  // this answers error messages, not a hot loop.
+  const double inset = std::max(0.0, std::min({step_out_m, 0.25 * (box.max.x_m - box.min.x_m),
+                                               0.25 * (box.max.y_m - box.min.y_m)}));
+  GeomPtr water = internal::MakeBox(s.ctx, {{box.min.x_m + inset, box.min.y_m + inset},
+                                            {box.max.x_m - inset, box.max.y_m - inset}});
+  for (const GeomPtr& obstacle : s.originals) {
+    if (!water || !obstacle) continue;
+    water = Own(s.ctx, GEOSDifference_r(s.ctx.get(), water.get(), obstacle.get()));
+  }
+  if (!water || GEOSisEmpty_r(s.ctx.get(), water.get()) == 1) return std::nullopt;
+  GeomPtr pt = internal::MakePoint(s.ctx, p);
+  GEOSCoordSequence* seq = GEOSNearestPoints_r(s.ctx.get(), water.get(), pt.get());
+  if (seq == nullptr) return std::nullopt;
+  LocalPoint q = p;
+  GEOSCoordSeq_getXY_r(s.ctx.get(), seq, 0, &q.x_m, &q.y_m);
+  GEOSCoordSeq_destroy_r(s.ctx.get(), seq);
+  // q is on the water's edge (which counts as obstacle): step on into the
+  // water, as far as step_out_m when it is that wide.
+  const double dx = q.x_m - p.x_m, dy = q.y_m - p.y_m;
+  const double len = std::hypot(dx, dy);
+  if (len > 0.0) {
+    for (double step = step_out_m; step > 1e-3; step *= 0.25) {
+      const LocalPoint r{q.x_m + dx / len * step, q.y_m + dy / len * step};
+      if (navigable(r)) return r;
+    }
+  }
+  return navigable(q) ? std::optional<LocalPoint>(q) : std::nullopt;
+}
+
 // ---------------------------------------------------------------------------
 // Serialization: "SPCHART" 0x01, then little-endian fields, then an FNV-1a
 // 64-bit checksum of everything before it.
@@ -576,6 +684,7 @@ class Reader {
     pos_ += n;
     return true;
   }
+  bool AtEnd() const { return pos_ == in_.size(); }
   bool Raw(void* p, size_t n) {
     if (n > in_.size() - pos_) return false;
     std::memcpy(p, in_.data() + pos_, n);
@@ -622,6 +731,8 @@ std::string SerializeObstacleMap(const ObstacleMap& map) {
   w.I32(o.frame_epsg);
   w.I32(o.unknown_depth_is_obstacle ? 1 : 0);
   w.Str(map.wkb());
+  // Appended field: blobs written before it end here and still load.
+  w.Str(map.impl().unbuffered_wkb);
   const uint64_t sum = Fnv1a(w.out());
   w.Raw(&sum, 8);
   return std::move(w.out());
@@ -676,7 +787,10 @@ StatusOr<ObstacleMap> DeserializeObstacleMap(std::string_view bytes) {
                                   reinterpret_cast<const unsigned char*>(wkb.data()), wkb.size()));
   GEOSWKBReader_destroy_r(c.get(), reader);
   if (!g) return corrupt(absl::StrCat("WKB: ", c.TakeError()));
-  return internal::FinishObstacleMap(c, std::move(g), *frame, std::move(s));
+  std::string unbuffered_wkb;
+  if (!r.AtEnd() && !r.Str(&unbuffered_wkb)) return corrupt("unbuffered geometry");
+  return internal::FinishObstacleMap(c, std::move(g), *frame, std::move(s),
+                                     std::move(unbuffered_wkb));
 }
 
 }  // namespace seaplan::chart

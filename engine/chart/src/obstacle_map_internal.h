@@ -16,6 +16,9 @@ struct ObstacleMap::Impl {
   std::vector<LocalBox> polygon_boxes;
   LocalBox bounds;
   std::string wkb;
+  // The obstacles as selected from the chart, unioned, before the safety
+  // buffer (ISO WKB, local frame); empty for blobs stored before it was kept.
+  std::string unbuffered_wkb;
 };
 
 namespace internal {
@@ -33,9 +36,13 @@ StatusOr<ObstacleMap> BuildObstacleMap(GeosContext& c, std::vector<GeomPtr> area
                                        std::vector<int> tiled_group, LocalFrame frame,
                                        const ChartOptions& options, ObstacleSummary summary);
 
-// Builds the map from the final (already buffered) obstacle geometry.
+// Builds the map from the final (already buffered) obstacle geometry and the
+// WKB of the unbuffered one ("" = unknown).
 StatusOr<ObstacleMap> FinishObstacleMap(GeosContext& c, GeomPtr obstacles, LocalFrame frame,
-                                        ObstacleSummary summary);
+                                        ObstacleSummary summary, std::string unbuffered_wkb);
+
+// ISO WKB of g ("" on failure).
+std::string WriteWkb(const GeosContext& c, const GEOSGeometry* g);
 
 }  // namespace internal
 }  // namespace seaplan::chart

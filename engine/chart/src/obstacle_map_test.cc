@@ -35,15 +35,18 @@ TEST(ObstacleMap, SquareIslandBufferedArea) {
   auto map = ObstacleMap::FromPolygons({Square(kCx, kCy, 50)}, Utm33(), Buffer10NoSimplify());
   ASSERT_TRUE(map.ok()) << map.status();
   ASSERT_EQ(map->polygons().size(), 1u);
-  // 100x100 square + four 100x10 strips + four quarter discs of radius 10
-  // (polygonised with 8 chords per quarter: area slightly below pi r^2).
-  const double exact = 100.0 * 100.0 + 4 * 100.0 * 10.0 + M_PI * 100.0;
+  // 100x100 square + four 100 x g strips + four quarter discs of radius g,
+  // g = the growth (10 m over cos(pi/32): the 8 chords per quarter circle
+  // keep the 10 m), so the area is slightly below pi g^2.
+  const double g = ObstacleGrowthM(Buffer10NoSimplify());
+  EXPECT_NEAR(g, 10.0484, 1e-4);
+  const double exact = 100.0 * 100.0 + 4 * 100.0 * g + M_PI * g * g;
   EXPECT_NEAR(map->summary().total_area_m2, exact, 0.005 * exact);
   EXPECT_LT(map->summary().total_area_m2, exact);
   EXPECT_EQ(map->summary().features_per_layer.at("polygons"), 1);
   EXPECT_EQ(map->summary().frame_epsg, 32633);
-  EXPECT_NEAR(map->bounds().min.x_m, kCx - 60, 1e-6);
-  EXPECT_NEAR(map->bounds().max.y_m, kCy + 60, 1e-6);
+  EXPECT_NEAR(map->bounds().min.x_m, kCx - 50 - g, 1e-6);
+  EXPECT_NEAR(map->bounds().max.y_m, kCy + 50 + g, 1e-6);
   // Bounding box in lat/lon contains the island's centre.
   const LatLon c = map->frame().ToLatLon({kCx, kCy});
   EXPECT_LT(map->summary().bbox_min.lat_deg, c.lat_deg);
@@ -54,20 +57,21 @@ TEST(ObstacleMap, DistanceQueriesByHand) {
   auto map = ObstacleMap::FromPolygons({Square(kCx, kCy, 50)}, Utm33(), Buffer10NoSimplify());
   ASSERT_TRUE(map.ok());
   ObstacleQuery q(*map);
-  // East of the island: the buffered edge is at x = cx + 60.
-  EXPECT_NEAR(q.DistanceM({kCx + 150, kCy}), 90.0, 1e-6);
+  const double g = ObstacleGrowthM(Buffer10NoSimplify());
+  // East of the island: the buffered edge is at x = cx + 50 + g.
+  EXPECT_NEAR(q.DistanceM({kCx + 150, kCy}), 100.0 - g, 1e-6);
   const NearestObstacle n = q.Nearest({kCx + 150, kCy + 10});
-  EXPECT_NEAR(n.distance_m, 90.0, 1e-6);
-  EXPECT_NEAR(n.nearest.x_m, kCx + 60, 1e-6);
+  EXPECT_NEAR(n.distance_m, 100.0 - g, 1e-6);
+  EXPECT_NEAR(n.nearest.x_m, kCx + 50 + g, 1e-6);
   EXPECT_NEAR(n.nearest.y_m, kCy + 10, 1e-6);
   EXPECT_EQ(n.polygon_index, 0);
   // Diagonal from the corner: |(100,100)| - 10 (45 degrees is a chord vertex).
-  EXPECT_NEAR(q.DistanceM({kCx + 150, kCy + 150}), std::sqrt(2.0) * 100.0 - 10.0, 1e-6);
+  EXPECT_NEAR(q.DistanceM({kCx + 150, kCy + 150}), std::sqrt(2.0) * 100.0 - g, 1e-6);
   // Inside: 0, and the signed distance is minus the distance to the edge.
   EXPECT_TRUE(q.Inside({kCx, kCy}));
   EXPECT_DOUBLE_EQ(q.DistanceM({kCx, kCy}), 0.0);
-  EXPECT_NEAR(q.SignedDistanceM({kCx, kCy}), -60.0, 1e-6);
-  EXPECT_NEAR(q.SignedDistanceM({kCx + 150, kCy}), 90.0, 1e-6);
+  EXPECT_NEAR(q.SignedDistanceM({kCx, kCy}), -50.0 - g, 1e-6);
+  EXPECT_NEAR(q.SignedDistanceM({kCx + 150, kCy}), 100.0 - g, 1e-6);
   EXPECT_FALSE(q.Inside({kCx + 61, kCy}));
 }
 
@@ -88,7 +92,7 @@ TEST(ObstacleMap, SegmentAndPolygonIntersection) {
   const std::vector<LocalPoint> away = {
       {kCx + 100, kCy - 5}, {kCx + 110, kCy - 5}, {kCx + 110, kCy + 5}, {kCx + 100, kCy + 5}};
   EXPECT_FALSE(q.PolygonHits(away));
-  EXPECT_NEAR(q.PolygonDistanceM(away), 40.0, 1e-6);
+  EXPECT_NEAR(q.PolygonDistanceM(away), 50.0 - ObstacleGrowthM(Buffer10NoSimplify()), 1e-6);
 }
 
 TEST(ObstacleMap, NearestPicksTheCloserIsland) {
@@ -97,10 +101,73 @@ TEST(ObstacleMap, NearestPicksTheCloserIsland) {
   ASSERT_TRUE(map.ok());
   ASSERT_EQ(map->polygons().size(), 2u);
   ObstacleQuery q(*map);
-  EXPECT_NEAR(q.DistanceM({kCx + 800, kCy}), 140.0, 1e-6);
-  EXPECT_NEAR(q.DistanceM({kCx + 300, kCy}), 240.0, 1e-6);
+  const double g = ObstacleGrowthM(Buffer10NoSimplify());
+  EXPECT_NEAR(q.DistanceM({kCx + 800, kCy}), 150.0 - g, 1e-6);
+  EXPECT_NEAR(q.DistanceM({kCx + 300, kCy}), 250.0 - g, 1e-6);
   const NearestObstacle n = q.Nearest({kCx + 800, kCy});
   EXPECT_NEAR(map->polygons()[n.polygon_index].outer[0].x_m, kCx + 1000, 70.0);
+}
+
+TEST(ObstacleMap, UnbufferedClearanceIsTheDistanceToTheChartedObstacle) {
+  ChartOptions o = Buffer10NoSimplify();
+  o.simplify_tolerance_m = 4.0;  // grows the buffer by 4 m more
+  auto map = ObstacleMap::FromPolygons({Square(kCx, kCy, 50)}, Utm33(), o);
+  ASSERT_TRUE(map.ok());
+  ASSERT_TRUE(map->has_unbuffered_obstacles());
+  ObstacleQuery q(*map);
+  // A route along y = cy + 80 passes 30 m north of the charted square.
+  const std::vector<LocalPoint> north = {{kCx - 200, kCy + 80}, {kCx + 200, kCy + 80}};
+  auto c = q.UnbufferedClearance(north);
+  ASSERT_TRUE(c.has_value());
+  EXPECT_NEAR(c->distance_m, 30.0, 1e-9);
+  EXPECT_NEAR(c->route_point.y_m, kCy + 80, 1e-9);
+  EXPECT_NEAR(c->obstacle_point.y_m, kCy + 50, 1e-9);
+  EXPECT_GE(c->obstacle_point.x_m, kCx - 50 - 1e-9);
+  EXPECT_LE(c->obstacle_point.x_m, kCx + 50 + 1e-9);
+  // Grazing the buffered outline keeps at least the 10 m buffer from the
+  // square, at the straight edges and at the corners (chords) alike.
+  const double edge = 50.0 + ObstacleGrowthM(o);
+  for (const std::vector<LocalPoint>& graze :
+       {std::vector<LocalPoint>{{kCx - 200, kCy + edge + 1e-6}, {kCx + 200, kCy + edge + 1e-6}},
+        std::vector<LocalPoint>{{kCx + 50 + edge, kCy + 50 - edge},
+                                {kCx + 50 - edge, kCy + 50 + edge}}}) {
+    if (q.PolylineHits(graze)) continue;  // inside the polygonised corner: no claim
+    auto g = q.UnbufferedClearance(graze);
+    ASSERT_TRUE(g.has_value());
+    EXPECT_GE(g->distance_m, o.safety_buffer_m);
+  }
+  // Through the island: 0.
+  const std::vector<LocalPoint> through = {{kCx - 200, kCy}, {kCx + 200, kCy}};
+  EXPECT_DOUBLE_EQ(q.UnbufferedClearance(through)->distance_m, 0.0);
+  // Kept through serialization.
+  auto back = DeserializeObstacleMap(SerializeObstacleMap(*map));
+  ASSERT_TRUE(back.ok());
+  ObstacleQuery qb(*back);
+  EXPECT_NEAR(qb.UnbufferedClearance(north)->distance_m, 30.0, 1e-9);
+}
+
+TEST(ObstacleMap, NearestNavigableLeavesTheObstacleTheShortestWay) {
+  auto map = ObstacleMap::FromPolygons({Square(kCx, kCy, 50)}, Utm33(), Buffer10NoSimplify());
+  ASSERT_TRUE(map.ok());
+  ObstacleQuery q(*map);
+  const double g = ObstacleGrowthM(Buffer10NoSimplify());
+  // 20 m west of the east edge of the buffered island: out eastwards.
+  const LocalPoint inside{kCx + 50 + g - 20, kCy + 3};
+  ASSERT_TRUE(q.Inside(inside));
+  auto out = q.NearestNavigable(inside, 5.0);
+  ASSERT_TRUE(out.has_value());
+  EXPECT_FALSE(q.Inside(*out));
+  EXPECT_NEAR(out->x_m, kCx + 50 + g + 5, 1e-6);
+  EXPECT_NEAR(out->y_m, kCy + 3, 1e-6);
+  // Navigable points are their own answer.
+  const LocalPoint free{kCx + 300, kCy};
+  EXPECT_EQ(q.NearestNavigable(free), free);
+  // Outside the coverage box: brought inside it.
+  const LocalBox box = map->summary().coverage;
+  auto in_box = q.NearestNavigable({box.max.x_m + 500, kCy + 300});
+  ASSERT_TRUE(in_box.has_value());
+  EXPECT_TRUE(map->Covers(*in_box));
+  EXPECT_FALSE(q.Inside(*in_box));
 }
 
 TEST(ObstacleMap, OverlappingObstaclesAreUnioned) {

@@ -45,11 +45,18 @@ TEST(MissionPlannerTest, ReplanShiftsToMissionTimeAndNumbersTheVersion) {
   auto v1 = PlanInitialVersion(def, FixedPlanner{CaseAPlan(), &asked}, StraightLineRouter(5.0),
                                StopToken(), nullptr);
   ASSERT_TRUE(v1.ok());
-  // A hand-made replan: from port-s straight to port-b, then unload.
+  // A hand-made replan: from port-s straight to port-b, unload, then the rest
+  // of case A (a refined plan is validated, so it must reach the goal).
   validate::Plan rest;
   rest.steps.push_back(
       {0, "move-ship", {"ship0", "port-s", "port-s", "port-b", "port-b", "r-port-s-port-b"}, 10});
   rest.steps.push_back({10.001, "unload-cont", {"cont-x", "port-b", "ship0"}, 50});
+  const validate::Plan case_a = CaseAPlan();
+  for (size_t i = 3; i < case_a.steps.size(); ++i) {
+    validate::PlanStep step = case_a.steps[i];
+    step.start_s += 60.002 - case_a.steps[3].start_s;
+    rest.steps.push_back(step);
+  }
   NavigationLog log;
   ReplanInput in{"task v1-t2 move-ship failed", 120.0, {"v1-t1"}, {"v1-t2"}, {{400, 600}, 0.8}};
   auto r = Replan(def, *v1, def.locations, in, FixedPlanner{rest, &asked}, StraightLineRouter(5.0),
@@ -60,7 +67,7 @@ TEST(MissionPlannerTest, ReplanShiftsToMissionTimeAndNumbersTheVersion) {
   EXPECT_EQ(r->version->reason, "task v1-t2 move-ship failed");
   EXPECT_TRUE(r->locations.contains("port-s"));
   EXPECT_NE(asked.find("(at ship0 port-s)"), std::string::npos);
-  ASSERT_EQ(r->version->tasks.size(), 2u);
+  ASSERT_EQ(r->version->tasks.size(), 12u);
   const Task& move = r->version->tasks[0];
   EXPECT_EQ(move.kind, TaskKind::kMove);
   EXPECT_EQ(move.from_location, "port-s");

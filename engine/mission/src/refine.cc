@@ -2,11 +2,16 @@
 
 #include <algorithm>
 #include <cmath>
+#include <map>
 #include <numeric>
+#include <optional>
+#include <set>
 
 #include "absl/strings/str_cat.h"
 #include "action_model.h"
 #include "seaplan/common/log.h"
+#include "seaplan/task/grounder.h"
+#include "seaplan/validate/validator.h"
 
 namespace seaplan::mission {
 namespace {
@@ -111,6 +116,143 @@ double EarliestStart(const validate::Plan& plan) {
   double origin = plan.steps.empty() ? 0.0 : plan.steps[0].start_s;
   for (const auto& s : plan.steps) origin = std::min(origin, s.start_s);
   return origin;
+}
+
+// A numeric expression over fluent values (nullopt: undefined or ?duration).
+std::optional<double> EvalDuration(const pddl::NumExpr& e, const internal::Binding& binding,
+                                   const std::map<std::string, double>& fluents) {
+  using Kind = pddl::NumExpr::Kind;
+  switch (e.kind) {
+    case Kind::kNumber:
+      return e.value;
+    case Kind::kFluent: {
+      std::vector<std::string> args;
+      for (const pddl::Term& t : e.args) {
+        auto it = binding.find(t.name);
+        args.push_back(it != binding.end() ? it->second : t.name);
+      }
+      auto it = fluents.find(internal::AtomKey(e.function, args));
+      if (it == fluents.end()) return std::nullopt;
+      return it->second;
+    }
+    case Kind::kNeg: {
+      if (e.children.empty()) return std::nullopt;
+      auto v = EvalDuration(e.children[0], binding, fluents);
+      if (!v) return std::nullopt;
+      return -*v;
+    }
+    case Kind::kAdd:
+    case Kind::kSub:
+    case Kind::kMul:
+    case Kind::kDiv:
+      break;
+    default:
+      return std::nullopt;
+  }
+  if (e.children.empty()) return std::nullopt;
+  auto acc = EvalDuration(e.children[0], binding, fluents);
+  for (size_t i = 1; acc && i < e.children.size(); ++i) {
+    auto v = EvalDuration(e.children[i], binding, fluents);
+    if (!v || (e.kind == Kind::kDiv && *v == 0.0)) return std::nullopt;
+    if (e.kind == Kind::kAdd) *acc += *v;
+    if (e.kind == Kind::kSub) *acc -= *v;
+    if (e.kind == Kind::kMul) *acc *= *v;
+    if (e.kind == Kind::kDiv) *acc /= *v;
+  }
+  return acc;
+}
+
+// Keys ("(distance port-a port-b)") of the fluents an expression reads.
+void FluentKeys(const pddl::NumExpr& e, const internal::Binding& binding,
+                std::vector<std::pair<std::string, std::string>>* out) {
+  if (e.kind == pddl::NumExpr::Kind::kFluent) {
+    std::vector<std::string> args;
+    for (const pddl::Term& t : e.args) {
+      auto it = binding.find(t.name);
+      args.push_back(it != binding.end() ? it->second : t.name);
+    }
+    out->emplace_back(e.function, internal::AtomKey(e.function, args));
+  }
+  for (const pddl::NumExpr& c : e.children) FluentKeys(c, binding, out);
+}
+
+// The problem with the refined durations, and the plan checked against it.
+//  * A move whose duration is `(= ?duration expr)` with expr proportional to
+//    a static fluent (the fjord's (distance ?from ?to), a (route-length ?r))
+//    gets that fluent scaled so that expr gives the route's sailing time: the
+//    route's length in the problem's own units, so effects reading it (fuel
+//    use) see the route too.
+//  * Where that is impossible (no such fluent, or one leg sailed twice with
+//    different times) and for port operations with measured durations, the
+//    action's duration constraint is lifted: its duration is the one given.
+// Everything else (conditions, effects, mutual exclusion, the goal) is
+// checked by engine/validate as for any plan.
+Status ValidateRefined(const internal::ActionModel& model, const validate::Plan& plan,
+                       const std::vector<bool>& is_move, const std::set<std::string>& overridden,
+                       double epsilon_s) {
+  const pddl::Domain& domain = model.domain();
+  pddl::Domain checked_domain = domain;
+  pddl::Problem problem = model.problem();
+  std::map<std::string, double> fluents;
+  for (const pddl::NumericInit& n : problem.numeric_init) {
+    fluents[internal::AtomKey(n.function, n.args)] = n.value;
+  }
+  std::map<std::string, double> scaled;  // key -> new value
+  std::set<std::string> lifted(overridden.begin(), overridden.end());
+  for (size_t i = 0; i < plan.steps.size(); ++i) {
+    if (!is_move[i]) continue;
+    const validate::PlanStep& step = plan.steps[i];
+    const pddl::Action* action = domain.FindAction(step.name);
+    if (action == nullptr || action->parameters.size() != step.args.size()) continue;
+    internal::Binding binding;
+    for (size_t k = 0; k < step.args.size(); ++k) {
+      binding[action->parameters[k].name] = step.args[k];
+    }
+    bool done = false;
+    for (const pddl::DurationConstraint& c : action->duration) {
+      if (done || c.comparator != pddl::Comparator::kEqual) continue;
+      const std::optional<double> model_s = EvalDuration(c.value, binding, fluents);
+      if (!model_s || !(*model_s > 0.0)) continue;
+      std::vector<std::pair<std::string, std::string>> keys;
+      FluentKeys(c.value, binding, &keys);
+      for (const auto& [function, key] : keys) {
+        if (done || !model.IsStaticFunction(function)) continue;
+        std::map<std::string, double> doubled = fluents;
+        doubled[key] *= 2.0;
+        const std::optional<double> twice = EvalDuration(c.value, binding, doubled);
+        if (!twice || std::abs(*twice - 2.0 * *model_s) > 1e-9 * *model_s) continue;
+        const double value = fluents[key] * step.duration_s / *model_s;
+        auto [it, fresh] = scaled.emplace(key, value);
+        if (!fresh && std::abs(it->second - value) > 1e-9 * std::max(1.0, std::abs(value))) {
+          break;  // the same leg at two different times: lift instead
+        }
+        done = true;
+      }
+    }
+    if (!done) lifted.insert(step.name);
+  }
+  for (pddl::NumericInit& n : problem.numeric_init) {
+    auto it = scaled.find(internal::AtomKey(n.function, n.args));
+    if (it != scaled.end()) n.value = it->second;
+  }
+  for (pddl::Action& a : checked_domain.actions) {
+    if (lifted.contains(a.name)) a.duration.clear();
+  }
+  const task::LoadResult loaded = task::Ground(checked_domain, problem);
+  if (!loaded.ok()) {
+    return absl::InternalError(absl::StrCat(
+        "the problem with the routes' durations does not ground: ", loaded.ErrorText()));
+  }
+  validate::ValidationOptions options;
+  options.epsilon_s = epsilon_s;
+  const validate::ValidationResult result = validate::ValidatePlan(*loaded.task, plan, options);
+  if (!result.valid) {
+    return absl::FailedPreconditionError(
+        absl::StrCat("the plan refined with route durations is not valid against the problem "
+                     "with those durations: ",
+                     result.ToString()));
+  }
+  return absl::OkStatus();
 }
 
 }  // namespace
@@ -258,6 +400,7 @@ StatusOr<RefinedPlan> RefinePlan(std::string_view domain_text, std::string_view 
   std::iota(order.begin(), order.end(), 0);
   std::stable_sort(order.begin(), order.end(),
                    [&](size_t a, size_t b) { return starts[a] < starts[b]; });
+  std::vector<bool> is_move;
   for (size_t k : order) {
     validate::PlanStep s = plan.steps[k];
     s.start_s = starts[k];
@@ -265,7 +408,12 @@ StatusOr<RefinedPlan> RefinePlan(std::string_view domain_text, std::string_view 
     result.makespan_s = std::max(result.makespan_s, s.end_s());
     result.plan.steps.push_back(std::move(s));
     result.routes.push_back(routes[k]);
+    is_move.push_back(legs[k].has_value());
   }
+  std::set<std::string> overridden;
+  for (const auto& [name, d] : options.port_operation_durations_s) overridden.insert(name);
+  SEAPLAN_RETURN_IF_ERROR(
+      ValidateRefined(model, result.plan, is_move, overridden, options.epsilon_s));
   return result;
 }
 

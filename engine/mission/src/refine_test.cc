@@ -105,6 +105,96 @@ TEST_F(RefineTest, UnknownActionIsInvalidArgument) {
   EXPECT_TRUE(absl::IsInvalidArgument(refined.status())) << refined.status();
 }
 
+// A ship that burns one fuel unit per metre of route: whether the refined
+// plan is valid depends on the routes' lengths, which only the validation of
+// the problem with the routes' durations (route-length scaled) can see.
+constexpr char kFuelDomain[] = R"(
+(define (domain fuel-legs)
+  (:requirements :typing :durative-actions :fluents)
+  (:types ship port route)
+  (:predicates (at ?v - ship ?p - port) (connects ?r - route ?a ?b - port))
+  (:functions (route-length ?r - route) (speed ?v - ship) (fuel-level ?v - ship))
+  (:durative-action move-ship
+    :parameters (?v - ship ?a - port ?b - port ?r - route)
+    :duration (= ?duration (/ (route-length ?r) (speed ?v)))
+    :condition (and (at start (at ?v ?a)) (at start (connects ?r ?a ?b))
+                    (at start (>= (fuel-level ?v) (route-length ?r))))
+    :effect (and (at start (not (at ?v ?a))) (at end (at ?v ?b))
+                 (at start (decrease (fuel-level ?v) (route-length ?r)))))
+  (:durative-action unload
+    :parameters (?v - ship ?p - port)
+    :duration (= ?duration 60)
+    :condition (at start (at ?v ?p))
+    :effect (at end (at ?v ?p))))
+)";
+constexpr char kFuelProblem[] = R"(
+(define (problem two-legs) (:domain fuel-legs)
+  (:objects ship0 - ship port-a port-b port-c - port r-ab r-bc - route)
+  (:init (at ship0 port-a) (connects r-ab port-a port-b) (connects r-bc port-b port-c)
+         (= (route-length r-ab) 1000) (= (route-length r-bc) 1000)
+         (= (speed ship0) 5) (= (fuel-level ship0) 2500))
+  (:goal (at ship0 port-c)))
+)";
+
+class RefineValidationTest : public ::testing::Test {
+ protected:
+  RefineValidationTest() {
+    plan_.steps = {{0.0, "move-ship", {"ship0", "port-a", "port-b", "r-ab"}, 200.0},
+                   {200.001, "unload", {"ship0", "port-b"}, 60.0},
+                   {260.002, "move-ship", {"ship0", "port-b", "port-c", "r-bc"}, 200.0}};
+  }
+  // Straight lines, but every route `detour` times the distance.
+  static RoutePlanner Detour(double detour) {
+    return [detour](const RouteRequest& r) -> StatusOr<Route> {
+      auto route = StraightLineRouter(5.0)(r);
+      if (route.ok()) {
+        route->length_m *= detour;
+        route->sailing_time_s *= detour;
+      }
+      return route;
+    };
+  }
+  LocationTable locations_ = {{"port-a", {0, 0}}, {"port-b", {1000, 0}}, {"port-c", {1000, 1000}}};
+  validate::Plan plan_;
+};
+
+TEST_F(RefineValidationTest, RoutesWithinTheFuelGiveAValidPlan) {
+  // 2 x 1200 m of route against 2500 units of fuel.
+  auto refined = RefinePlan(kFuelDomain, kFuelProblem, plan_, locations_, Detour(1.2));
+  ASSERT_TRUE(refined.ok()) << refined.status();
+  EXPECT_NEAR(refined->plan.steps[0].duration_s, 240.0, 1e-9);
+  EXPECT_NEAR(refined->plan.steps[2].duration_s, 240.0, 1e-9);
+}
+
+TEST_F(RefineValidationTest, RoutesBeyondTheFuelAreAMissionError) {
+  // 2 x 1500 m of route: the second leg's fuel condition fails, although the
+  // plan as planned (2 x 1000 m) was valid and the schedule is consistent.
+  auto refined = RefinePlan(kFuelDomain, kFuelProblem, plan_, locations_, Detour(1.5));
+  ASSERT_FALSE(refined.ok());
+  EXPECT_TRUE(absl::IsFailedPrecondition(refined.status())) << refined.status();
+  const std::string message(refined.status().message());
+  EXPECT_NE(message.find("not valid"), std::string::npos) << message;
+  EXPECT_NE(message.find("fuel-level"), std::string::npos) << message;
+}
+
+TEST_F(RefineValidationTest, MeasuredPortDurationsAreAccepted) {
+  RefineOptions options;
+  options.port_operation_durations_s["unload"] = 95.0;  // the domain says 60
+  auto refined = RefinePlan(kFuelDomain, kFuelProblem, plan_, locations_, Detour(1.0), options);
+  ASSERT_TRUE(refined.ok()) << refined.status();
+  EXPECT_NEAR(refined->plan.steps[1].duration_s, 95.0, 1e-9);
+}
+
+TEST_F(RefineValidationTest, AGoalTheRefinedPlanMissesIsAMissionError) {
+  // Dropping the last move (a route planner cannot, but a broken input plan
+  // can) leaves the goal unreached: the refined plan is not sent.
+  plan_.steps.pop_back();
+  auto refined = RefinePlan(kFuelDomain, kFuelProblem, plan_, locations_, Detour(1.0));
+  ASSERT_FALSE(refined.ok());
+  EXPECT_TRUE(absl::IsFailedPrecondition(refined.status())) << refined.status();
+  EXPECT_NE(refined.status().message().find("goal"), std::string::npos) << refined.status();
+}
+
 TEST(RecognizeMoveTest, ByNameAndByArguments) {
   LocationTable loc = {{"a", {0, 0}}, {"b", {1, 0}}};
   MoveRecognition rec;

@@ -391,6 +391,69 @@ void RunParallel(int count, int threads, const std::function<void(int)>& fn) {
   for (auto& th : pool) th.join();
 }
 
+// Keeps an optimised route as safe as its Level-1 polyline. The optimiser
+// moves each waypoint on its own, so the straight segment between two moved
+// waypoints can cut a headland that the Level-1 path went round (long
+// segments on large charts do so often). Repair, until nothing changes: a
+// waypoint inside an obstacle goes back to its reference (a point of the
+// Level-1 polyline); a segment that touches an obstacle sends both its ends
+// back to their references; a segment whose ends are both references and
+// still touches (the chord cuts a corner of the Level-1 path) follows the
+// Level-1 polyline between them. Every step only moves towards the Level-1
+// path, which touches no obstacle, so the loop ends with a safe route.
+struct Repair {
+  std::vector<bool> snapped;  // per waypoint: moved back to its reference
+  std::vector<bool> follow;   // per segment k -> k+1: follows the Level-1 path
+  int snapped_count = 0;
+  int followed_count = 0;
+};
+
+Repair RepairRoute(const ObstacleField& field, const std::vector<Vec2>& refs,
+                   std::vector<Vec2>* positions) {
+  std::vector<Vec2>& w = *positions;
+  const size_t n = w.size() - 1;
+  Repair r;
+  r.snapped.assign(n + 1, false);
+  r.follow.assign(n, false);
+  r.snapped[0] = r.snapped[n] = true;  // start and goal are fixed
+  auto snap = [&](size_t k) {
+    if (r.snapped[k]) return false;
+    r.snapped[k] = true;
+    w[k] = refs[k];
+    ++r.snapped_count;
+    return true;
+  };
+  for (size_t k = 1; k < n; ++k) {
+    if (field.Inside(w[k])) snap(k);
+  }
+  for (bool changed = true; changed;) {
+    changed = false;
+    for (size_t k = 0; k < n; ++k) {
+      if (r.follow[k] || !field.SegmentHits(w[k], w[k + 1])) continue;
+      if (r.snapped[k] && r.snapped[k + 1]) {
+        r.follow[k] = true;
+        ++r.followed_count;
+      } else {
+        snap(k);
+        snap(k + 1);
+      }
+      changed = true;
+    }
+  }
+  return r;
+}
+
+// The Level-1 vertices strictly between arc lengths s0 < s1 of `line`.
+std::vector<Vec2> VerticesBetween(const std::vector<Vec2>& line, double s0, double s1) {
+  std::vector<Vec2> out;
+  double cum = 0.0;
+  for (size_t i = 1; i + 1 < line.size(); ++i) {
+    cum += Dist(line[i - 1], line[i]);
+    if (cum > s0 && cum < s1) out.push_back(line[i]);
+  }
+  return out;
+}
+
 }  // namespace
 
 StatusOr<double> SimulateTimeToGrounding(const ObstacleField& field, const ship::ShipParams& ship,
@@ -590,26 +653,91 @@ StatusOr<Level2Result> OptimizeLevel2(const Level2Problem& problem, const Level2
   for (size_t a = 0; a < alt_count; ++a) {
     AlternativeResult& out = result.alternatives[a];
     const size_t base = a * (n + 1);
+    // This alternative's waypoints, samples, costs and modes; rebuilt when
+    // the repair changed the route.
+    std::vector<WaypointTask> route(tasks.begin() + base, tasks.begin() + base + n + 1);
+    std::vector<RiskSample> route_samples(samples.begin() + base, samples.begin() + base + n + 1);
+    std::vector<CostTerms> route_terms(terms.begin() + base, terms.begin() + base + n + 1);
+    std::vector<int> route_modes(modes.begin() + base, modes.begin() + base + n + 1);
+    for (const WaypointTask& t : route) out.evaluations += t.evaluations;
+
+    std::vector<Vec2> refs(n + 1), positions(n + 1);
     for (int k = 0; k <= n; ++k) {
-      const WaypointTask& t = tasks[base + k];
+      refs[k] = route[k].refs.ref;
+      positions[k] = route[k].position;
+    }
+    const Repair repair = RepairRoute(field, refs, &positions);
+    out.snapped_waypoints = repair.snapped_count;
+    if (repair.snapped_count > 0 || repair.followed_count > 0) {
+      const std::vector<Vec2>& line = problem.alternatives[a];
+      double total = 0.0;
+      for (size_t i = 1; i < line.size(); ++i) total += Dist(line[i - 1], line[i]);
+      std::vector<WaypointTask> repaired;
+      for (int k = 0; k <= n; ++k) {
+        WaypointTask t = route[k];
+        t.position = positions[k];
+        t.evaluations = 0;
+        repaired.push_back(t);
+        if (k == n || !repair.follow[k]) continue;
+        for (Vec2 v : VerticesBetween(line, total * k / n, total * (k + 1) / n)) {
+          WaypointTask inserted;
+          inserted.alt = static_cast<int>(a);
+          inserted.k = k;
+          inserted.refs.ref = v;
+          inserted.refs.movable = false;  // a Level-1 vertex, not optimised
+          inserted.position = v;
+          repaired.push_back(inserted);
+          ++out.inserted_waypoints;
+        }
+      }
+      // Inserted vertices: neighbours and drift heading along the repaired
+      // route. The others keep their references (their cost terms are
+      // defined on them; the fuel term's |w - r_{k+1}| is then the chord).
+      const size_t m = repaired.size();
+      for (size_t k = 0; k < m; ++k) {
+        Refs& r = repaired[k].refs;
+        if (!r.movable && k > 0 && k + 1 < m) {
+          r.prev = repaired[k - 1].position;
+          r.next = repaired[k + 1].position;
+          const Vec2 d{r.next.x - r.prev.x, r.next.y - r.prev.y};
+          r.heading_rad = std::atan2(d.x, d.y);
+        }
+      }
+      route_samples.assign(m, {});
+      route_terms.assign(m, {});
+      for (size_t k = 0; k < m; ++k) {
+        auto eval = make_evaluator(repaired[k].refs);
+        eval->Evaluate(repaired[k].position, &route_samples[k]);
+        ComputeCost(w, repaired[k].refs, repaired[k].position, route_samples[k], &route_terms[k]);
+        ++out.evaluations;
+      }
+      std::vector<ModeArray> costs(m - 1);
+      for (size_t k = 0; k + 1 < m; ++k) costs[k] = route_terms[k].mode_cost;
+      route_modes = AssignModes(costs, w.mode_switch_cost);
+      route_modes.push_back(route_modes.back());
+      route = std::move(repaired);
+    }
+
+    const size_t m = route.size();
+    for (size_t k = 0; k < m; ++k) {
+      const WaypointTask& t = route[k];
       WaypointResult wr;
       wr.position = t.position;
       wr.reference = t.refs.ref;
       wr.heading_rad = t.refs.heading_rad;
-      wr.mode = static_cast<MsoMode>(modes[base + k]);
-      wr.ttg_s = samples[base + k].ttg_s;
-      wr.grounding_probability = samples[base + k].p;
-      wr.proximity = samples[base + k].proximity;
-      wr.mode_cost = terms[base + k].mode_cost;
-      wr.path_cost = terms[base + k].path;
-      out.evaluations += t.evaluations;
-      if (k < n) {
-        const int m = modes[base + k];
+      wr.mode = static_cast<MsoMode>(route_modes[k]);
+      wr.ttg_s = route_samples[k].ttg_s;
+      wr.grounding_probability = route_samples[k].p;
+      wr.proximity = route_samples[k].proximity;
+      wr.mode_cost = route_terms[k].mode_cost;
+      wr.path_cost = route_terms[k].path;
+      if (k + 1 < m) {
+        const int mode = route_modes[k];
         const double ground =
-            w.grounding_cost * (w.mu3 * wr.proximity + w.mu4 * wr.grounding_probability[m]);
+            w.grounding_cost * (w.mu3 * wr.proximity + w.mu4 * wr.grounding_probability[mode]);
         out.grounding_cost += ground;
-        out.mso_cost += wr.mode_cost[m] - ground;
-        if (k > 0 && modes[base + k - 1] != m) {
+        out.mso_cost += wr.mode_cost[mode] - ground;
+        if (k > 0 && route_modes[k - 1] != mode) {
           ++out.mode_switches;
           out.switching_cost += w.mode_switch_cost;
         }

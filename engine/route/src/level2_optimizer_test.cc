@@ -51,6 +51,62 @@ Level2Options SmallOptions() {
   return o;
 }
 
+TEST(Level2OptimizerTest, SegmentsThatWouldCutTheIslandFollowTheLevel1Path) {
+  // Two segments on the north alternative: the references are start, the
+  // path's midpoint (0, 300) and goal, and both chords between them cut the
+  // island's corners (at x = -800 the first is at y = 180 < 200). With one
+  // particle and no iterations the waypoint stays on its reference, so only
+  // the repair can make the route safe: it inserts the Level-1 vertices.
+  auto s = MakeScenario();
+  s->problem.alternatives.resize(1);
+  Level2Options o;
+  o.segments = 2;
+  o.pso.particles = 1;
+  o.pso.iterations = 0;
+  o.polish.max_evaluations = 0;
+  auto r = OptimizeLevel2(s->problem, o);
+  ASSERT_TRUE(r.ok()) << r.status();
+  const AlternativeResult& north = r->alternatives[0];
+  EXPECT_FALSE(north.crosses_obstacle);
+  EXPECT_EQ(r->chosen, 0);
+  EXPECT_EQ(north.inserted_waypoints, 2);
+  ASSERT_EQ(north.waypoints.size(), 5u);
+  const double expected[5][2] = {{-2000, 0}, {-1000, 300}, {0, 300}, {1000, 300}, {2000, 0}};
+  for (size_t k = 0; k < 5; ++k) {
+    EXPECT_NEAR(north.waypoints[k].position.x, expected[k][0], 1e-6) << k;
+    EXPECT_NEAR(north.waypoints[k].position.y, expected[k][1], 1e-6) << k;
+    if (k > 0) {
+      EXPECT_FALSE(
+          s->field.SegmentHits(north.waypoints[k - 1].position, north.waypoints[k].position))
+          << k;
+    }
+    // Inserted waypoints are evaluated like the others (TTG and P(G) set).
+    EXPECT_GT(north.waypoints[k].ttg_s, 0.0) << k;
+  }
+  // Without the inserted vertices the two chords would cut the island.
+  EXPECT_TRUE(s->field.SegmentHits({-2000, 0}, {0, 300}));
+  EXPECT_TRUE(s->field.SegmentHits({0, 300}, {2000, 0}));
+}
+
+TEST(Level2OptimizerTest, CoarseOptimisedRoutesTouchNoObstacle) {
+  // Three segments of ~1.4 km around a 1.6 km island: chords between freely
+  // moved waypoints can cut it; whatever the swarm does, the returned routes
+  // (after the repair) keep off every obstacle.
+  auto s = MakeScenario();
+  Level2Options o = SmallOptions();
+  o.segments = 3;
+  auto r = OptimizeLevel2(s->problem, o);
+  ASSERT_TRUE(r.ok()) << r.status();
+  for (const AlternativeResult& alt : r->alternatives) {
+    EXPECT_FALSE(alt.crosses_obstacle);
+    for (size_t k = 1; k < alt.waypoints.size(); ++k) {
+      EXPECT_FALSE(s->field.Inside(alt.waypoints[k].position)) << k;
+      EXPECT_FALSE(s->field.SegmentHits(alt.waypoints[k - 1].position, alt.waypoints[k].position))
+          << k;
+    }
+  }
+}
+
 TEST(Level2OptimizerTest, RobustModeOnDownwindShoreSegmentAndSaferAlternativeChosen) {
   auto s = MakeScenario();
   auto r = OptimizeLevel2(s->problem, Level2Options{});

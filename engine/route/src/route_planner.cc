@@ -2,6 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
+#include <memory>
+#include <mutex>
+#include <optional>
 
 #include "absl/strings/str_cat.h"
 #include "seaplan/common/log.h"
@@ -38,23 +42,68 @@ std::vector<ObstaclePolygon> ToObstacles(const std::vector<chart::Polygon>& poly
   return out;
 }
 
+// Where the nearest navigable point is, for an endpoint the route cannot
+// start or end at: "; the nearest navigable point is 38.98012,-76.37955,
+// 212 m away" (or why there is none).
+std::string NearestNavigableHint(const chart::ObstacleMap& map, chart::LocalPoint p) {
+  chart::ObstacleQuery query(map);
+  const std::optional<chart::LocalPoint> q = query.NearestNavigable(p);
+  if (!q) return "; the chart has no navigable water near it";
+  const double distance_m = std::hypot(q->x_m - p.x_m, q->y_m - p.y_m);
+  return absl::StrCat("; the nearest navigable point is ",
+                      chart::FormatLatLon(map.frame().ToLatLon(*q)), ", ",
+                      static_cast<int64_t>(std::lround(distance_m)), " m away");
+}
+
+// Positions in the user's latitude/longitude (the local frame is internal).
 absl::Status CheckEndpoint(const chart::ObstacleMap& map, const ObstacleField& field,
                            chart::LocalPoint p, const char* name) {
   if (!std::isfinite(p.x_m) || !std::isfinite(p.y_m)) {
     return absl::InvalidArgumentError(absl::StrCat(name, " is not a finite position"));
   }
+  const std::string where = chart::FormatLatLon(map.frame().ToLatLon(p));
   if (!map.Covers(p)) {
-    return absl::InvalidArgumentError(
-        absl::StrCat(name, " (", p.x_m, ", ", p.y_m, ") is outside the chart coverage"));
+    const chart::LocalBox box = map.summary().coverage;
+    return absl::InvalidArgumentError(absl::StrCat(
+        name, " ", where, " is outside the chart coverage (",
+        chart::FormatLatLon(map.frame().ToLatLon(box.min)), " to ",
+        chart::FormatLatLon(map.frame().ToLatLon(box.max)), ")", NearestNavigableHint(map, p)));
   }
   if (field.Inside(ToVec(p))) {
-    return absl::InvalidArgumentError(
-        absl::StrCat(name, " (", p.x_m, ", ", p.y_m, ") lies inside a grounding obstacle"));
+    const chart::ChartOptions& o = map.summary().options;
+    return absl::InvalidArgumentError(absl::StrCat(
+        name, " ", where, " lies inside a grounding obstacle (land or water under ", o.min_depth_m,
+        " m, with the ", o.safety_buffer_m, " m safety buffer)", NearestNavigableHint(map, p)));
   }
   return absl::OkStatus();
 }
 
 }  // namespace
+
+class RoutePlanner::QueryPool {
+ public:
+  explicit QueryPool(std::shared_ptr<const chart::ObstacleMap> map) : map_(std::move(map)) {}
+  std::unique_ptr<chart::ObstacleQuery> Take() {
+    {
+      std::lock_guard<std::mutex> lock(mutex_);
+      if (!free_.empty()) {
+        std::unique_ptr<chart::ObstacleQuery> q = std::move(free_.back());
+        free_.pop_back();
+        return q;
+      }
+    }
+    return std::make_unique<chart::ObstacleQuery>(*map_);
+  }
+  void Give(std::unique_ptr<chart::ObstacleQuery> q) {
+    std::lock_guard<std::mutex> lock(mutex_);
+    free_.push_back(std::move(q));
+  }
+
+ private:
+  std::shared_ptr<const chart::ObstacleMap> map_;
+  std::mutex mutex_;
+  std::vector<std::unique_ptr<chart::ObstacleQuery>> free_;
+};
 
 absl::Status Environment::Validate() const {
   for (double v : {wind_speed_mps, wind_from_deg, current_speed_mps, current_toward_deg}) {
@@ -124,6 +173,7 @@ StatusOr<RoutePlanner> RoutePlanner::Create(std::shared_ptr<const chart::Obstacl
   }
   RoutePlanner p;
   p.map_ = std::move(map);
+  p.queries_ = std::make_shared<QueryPool>(p.map_);
   p.ship_ = ship;
   p.options_ = options;
   for (int m = 0; m < kModeCount; ++m) {
@@ -213,6 +263,8 @@ StatusOr<RouteResult> RoutePlanner::Plan(chart::LocalPoint start, chart::LocalPo
     alt.expected_cost = src.expected_cost;
     alt.mode_switches = src.mode_switches;
     alt.safe = !src.crosses_obstacle;
+    alt.snapped_waypoints = src.snapped_waypoints;
+    alt.inserted_waypoints = src.inserted_waypoints;
     for (size_t k = 0; k < src.waypoints.size(); ++k) {
       const WaypointResult& wr = src.waypoints[k];
       RouteWaypoint rw;
@@ -237,9 +289,52 @@ StatusOr<RouteResult> RoutePlanner::Plan(chart::LocalPoint start, chart::LocalPo
     }
     out.alternatives.push_back(std::move(alt));
   }
+  // The exact check: every route against the obstacles as charted.
+  const double margin_m = map_->summary().options.safety_buffer_m;
+  std::string closest;  // the worst violation, for the error message
+  double closest_m = std::numeric_limits<double>::infinity();
+  {
+    std::unique_ptr<chart::ObstacleQuery> query = queries_->Take();
+    for (RouteAlternative& alt : out.alternatives) {
+      std::vector<chart::LocalPoint> line;
+      line.reserve(alt.waypoints.size());
+      for (const RouteWaypoint& wp : alt.waypoints) line.push_back(wp.local);
+      const std::optional<chart::Clearance> c = query->UnbufferedClearance(line);
+      if (!c) {
+        alt.clearance_m = std::numeric_limits<double>::quiet_NaN();
+        if (query->PolylineHits(line)) alt.safe = false;
+        continue;
+      }
+      alt.clearance_m = c->distance_m;
+      // 1 mm of slack for the rounding of GEOS distances.
+      if (c->distance_m < margin_m - 1e-3) {
+        alt.safe = false;
+        if (c->distance_m < closest_m) {
+          closest_m = c->distance_m;
+          closest = chart::FormatLatLon(map_->frame().ToLatLon(c->route_point));
+        }
+      }
+    }
+    queries_->Give(std::move(query));
+  }
+  if (out.chosen >= 0 && !out.alternatives[out.chosen].safe) {
+    out.chosen = -1;
+    for (size_t a = 0; a < out.alternatives.size(); ++a) {
+      if (out.alternatives[a].safe &&
+          (out.chosen < 0 ||
+           out.alternatives[a].expected_cost < out.alternatives[out.chosen].expected_cost)) {
+        out.chosen = static_cast<int>(a);
+      }
+    }
+  }
   log::Info("route: {} alternatives, chosen {}, {} evaluations, level-2 {:.3f} s",
             out.alternatives.size(), out.chosen, out.evaluations, out.level2_wall_s);
   if (out.chosen < 0 && !out.stopped) {
+    if (!closest.empty()) {
+      return absl::FailedPreconditionError(absl::StrCat(
+          "no safe route: the best route passes ", std::round(closest_m * 10.0) / 10.0,
+          " m from a charted obstacle at ", closest, " (safety buffer ", margin_m, " m)"));
+    }
     return absl::FailedPreconditionError(
         "no safe route: every optimised alternative touches a grounding obstacle");
   }

@@ -4,6 +4,7 @@
 
 #include <cmath>
 #include <memory>
+#include <string>
 
 namespace seaplan::route {
 namespace {
@@ -116,6 +117,55 @@ TEST(RoutePlannerTest, BadEndpointsAndNoRoute) {
   deeper.min_depth_m = 50.0;  // the map was built for 5 m
   EXPECT_EQ(RoutePlanner::Create(map, ShipParticulars{}, deeper).status().code(),
             absl::StatusCode::kFailedPrecondition);
+}
+
+TEST(RoutePlannerTest, EndpointErrorsSpeakLatLonAndPointToNavigableWater) {
+  auto map = Map();
+  auto planner = RoutePlanner::Create(map, ShipParticulars{}, FastOptions());
+  ASSERT_TRUE(planner.ok()) << planner.status();
+  // 30 m inside the island's buffered north shore (y = 200 + growth).
+  const double growth = chart::ObstacleGrowthM(map->summary().options);
+  const chart::LatLon start = map->frame().ToLatLon(P(0, 200 + growth - 30));
+  auto r = planner->Plan(start, map->frame().ToLatLon(P(2000, 0)), SouthWind());
+  ASSERT_EQ(r.status().code(), absl::StatusCode::kInvalidArgument) << r.status();
+  const std::string message(r.status().message());
+  // The position as the user gave it, not projected metres.
+  EXPECT_NE(message.find("start " + chart::FormatLatLon(start)), std::string::npos) << message;
+  EXPECT_EQ(message.find(std::to_string(static_cast<int>(kE0))), std::string::npos) << message;
+  // The nearest navigable point: straight north, 30 m + the 5 m step out.
+  const chart::LatLon nearest = map->frame().ToLatLon(P(0, 200 + growth + 5));
+  EXPECT_NE(message.find("nearest navigable point is " + chart::FormatLatLon(nearest) + ", 35 m"),
+            std::string::npos)
+      << message;
+  // Outside the coverage: the same, with the box.
+  auto outside = planner->Plan(map->frame().ToLatLon(P(-2000, 0)),
+                               map->frame().ToLatLon(P(4500, 0)), SouthWind());
+  ASSERT_EQ(outside.status().code(), absl::StatusCode::kInvalidArgument);
+  const std::string outside_message(outside.status().message());
+  EXPECT_NE(outside_message.find("outside the chart coverage"), std::string::npos);
+  EXPECT_NE(outside_message.find("nearest navigable point"), std::string::npos);
+}
+
+TEST(RoutePlannerTest, RoutesKeepTheSafetyBufferFromTheChartedObstacles) {
+  auto map = Map();
+  RouteOptions options = FastOptions();
+  options.level2.segments = 3;  // long chords that cut corners unless repaired
+  auto planner = RoutePlanner::Create(map, ShipParticulars{}, options);
+  ASSERT_TRUE(planner.ok()) << planner.status();
+  auto r = planner->Plan(P(-2000, -50), P(2000, 50), SouthWind());
+  ASSERT_TRUE(r.ok()) << r.status();
+  ASSERT_GE(r->chosen, 0);
+  for (const RouteAlternative& alt : r->alternatives) {
+    EXPECT_TRUE(alt.safe);
+    EXPECT_GE(alt.clearance_m, map->summary().options.safety_buffer_m);
+    // The clearance is the distance to the island itself (x in [-800, 800],
+    // |y| <= 200): no waypoint is closer than it.
+    for (const RouteWaypoint& w : alt.waypoints) {
+      const double dx = std::max(0.0, std::abs(w.local.x_m - kE0) - 800.0);
+      const double dy = std::max(0.0, std::abs(w.local.y_m - kN0) - 200.0);
+      EXPECT_GE(std::hypot(dx, dy), alt.clearance_m - 1e-6);
+    }
+  }
 }
 
 TEST(RoutePlannerTest, ServiceSpeedSetsEveryModesSpeedAndFuel) {

@@ -11,6 +11,8 @@
 // contexts are per thread), which is why we do not call PROJ per point.
 #pragma once
 
+#include <string>
+
 #include "seaplan/common/status.h"
 
 namespace seaplan::chart {
@@ -27,6 +29,10 @@ struct LocalPoint {
   double y_m = 0.0;
   friend bool operator==(const LocalPoint&, const LocalPoint&) = default;
 };
+
+// "38.98000,-76.38000": latitude, longitude in degrees (5 decimals, ~1 m),
+// the form the command line and the API take positions in.
+std::string FormatLatLon(LatLon p);
 
 // Mean Earth radius used by the great-circle formulas (IUGG), metres.
 inline constexpr double kEarthRadiusM = 6371008.8;

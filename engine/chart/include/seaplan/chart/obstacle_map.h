@@ -4,10 +4,16 @@
 //   LoadChartFile / LoadChartBytes read a chart with GDAL (IHO S-57 cells and
 //   their updates, Kartverket FileGDB, shapefiles / GeoJSON / zipped sets),
 //   pick every feature that grounds a ship of the operator's minimum depth,
-//   project it to a UTM frame (geodesy.h), buffer it by the safety distance,
-//   simplify and union it with GEOS. The result is an immutable ObstacleMap.
-//   Queries (distance, inside, segment / polygon intersection) go through an
+//   project it to a UTM frame (geodesy.h), union it, grow it by the safety
+//   distance (ObstacleGrowthM: enough that the simplified outline still keeps
+//   the whole buffer) and simplify it with GEOS. The result is an immutable
+//   ObstacleMap, which also keeps the unioned obstacles before the buffer
+//   for exact clearance checks. Queries (distance, inside, segment / polygon
+//   intersection, clearance, nearest navigable point) go through an
 //   ObstacleQuery, one per thread.
+//   Layers are recognised by the chart product's layer names (S-57 object
+//   classes, Kartverket's product layers, seacharts' seabed<N>m) or by their
+//   schema (depth attributes), never by the name of the file they came in.
 //
 // What is an obstacle (min depth D = ChartOptions::min_depth_m)
 //   S-57:  LNDARE (areas; points buffered by point_hazard_radius_m),
@@ -26,16 +32,15 @@
 //          skjer (rocks, no depth), ikkekartlagtsjomaltomr (unsurveyed sea,
 //          like UNSARE), dybdeareal with minimumsdybde < D,
 //          grunne (shoal points) with dybde < D.
-//   Other vector sets (shapefile folders, GeoJSON; layer = file stem):
-//          land*, shore*, obstacle*, torrfall*: every feature.
-//          seabed<N>m ("sea deeper than N m", the Alesund set): obstacles =
-//          chart box (extent of all recognised layers) minus the seabed<N>m
-//          polygon with the largest N <= D: that water is surely deeper than
-//          N and N is as close to D as the set allows without calling
-//          shallower water navigable. No N <= D -> InvalidArgument.
-//          A layer with a DRVAL1 / minimumsdybde / VALSOU / dybde field: the
-//          features below D (or of unknown depth). Any other layer: every
-//          feature (plain land/obstacle polygons).
+//   seacharts' processed sets (shapefile folders such as the Alesund set):
+//          seabed<N>m ("sea deeper than N m"): obstacles = chart box (extent
+//          of all recognised layers) minus the seabed<N>m polygon with the
+//          largest N <= D: that water is surely deeper than N and N is as
+//          close to D as the set allows. No N <= D -> InvalidArgument.
+//   Any other layer (shapefiles, GeoJSON), by its schema: one with a DRVAL1 /
+//          minimumsdybde / VALSOU / dybde field gives the features below D
+//          (or of unknown depth); one without a depth field gives every
+//          feature (plain land or obstacle polygons, coastlines, hazards).
 //
 // Thread-safety
 //   ObstacleMap is immutable after construction: every const method may be
@@ -65,7 +70,8 @@ struct ChartOptions {
   // Operator's minimum depth (draught + under-keel clearance), metres. The
   // paper uses 10 m. Areas and hazards shallower than this are obstacles.
   double min_depth_m = 5.0;
-  // Safety buffer added around every obstacle, metres (paper: 10 m).
+  // Safety buffer kept around every obstacle, metres (paper: 10 m): the
+  // obstacles are grown by ObstacleGrowthM, slightly more than this.
   double safety_buffer_m = 10.0;
   // Radius of the area a point (or line) hazard becomes, before the safety
   // buffer, metres.
@@ -83,6 +89,15 @@ struct ChartOptions {
 
   absl::Status Validate() const;
 };
+
+// How far the obstacles are grown, metres: the safety buffer plus the
+// simplification tolerance (the simplified outline may cut in by that much),
+// over cos(pi/32) (the buffer's arcs are 8 chords per quarter circle, whose
+// midpoints lie that much closer): so every point outside the final
+// obstacles keeps at least safety_buffer_m from the charted ones. Charts
+// whose layers are thinned before the union (Kartverket) split the
+// tolerance: half before, half after.
+double ObstacleGrowthM(const ChartOptions& options);
 
 // A ring of local points, not repeated closing point, any orientation.
 using Ring = std::vector<LocalPoint>;
@@ -155,6 +170,10 @@ class ObstacleMap {
   bool Covers(LocalPoint p) const { return summary().coverage.Contains(p); }
   // The unioned obstacle geometry as ISO WKB (MultiPolygon, local frame).
   const std::string& wkb() const;
+  // True when the map keeps the obstacles as charted, before the safety
+  // buffer (every map built or loaded now; blobs stored by older versions
+  // lack them).
+  bool has_unbuffered_obstacles() const;
 
   // Internal (engine/chart/src): the GEOS side of the map.
   struct Impl;
@@ -172,6 +191,15 @@ struct NearestObstacle {
   double distance_m = std::numeric_limits<double>::infinity();
   LocalPoint nearest;      // closest point on that obstacle (the query point if inside)
   int polygon_index = -1;  // index into ObstacleMap::polygons()
+};
+
+// Clearance of a route from the obstacles as charted (before the buffer).
+struct Clearance {
+  // Exact (GEOS) distance, metres; 0 when the route touches an obstacle;
+  // +infinity when the chart has none.
+  double distance_m = std::numeric_limits<double>::infinity();
+  LocalPoint route_point;     // where the route comes closest
+  LocalPoint obstacle_point;  // the obstacle point nearest to it
 };
 
 // Per-thread query object over an ObstacleMap (which must outlive it).
@@ -204,6 +232,19 @@ class ObstacleQuery {
   // Distance from the closed polygon `ring` to the nearest obstacle, metres;
   // 0 when they touch or overlap; +inf if the map has no obstacle.
   double PolygonDistanceM(std::span<const LocalPoint> ring);
+  // Clearance of the polyline from the UNBUFFERED obstacles (the map's
+  // obstacles are grown by safety_buffer_m plus the simplification
+  // tolerance, so a polyline outside them keeps >= safety_buffer_m here).
+  // nullopt when the map has no unbuffered obstacles
+  // (has_unbuffered_obstacles()). The geometry is read on the first call.
+  std::optional<Clearance> UnbufferedClearance(std::span<const LocalPoint> polyline);
+  // The navigable point (outside every obstacle, inside the coverage box)
+  // nearest to p: p itself when it is navigable; otherwise the nearest point
+  // of the navigable water (the coverage box inset by step_out_m, minus the
+  // obstacles), stepped up to step_out_m further in. nullopt when there is
+  // no navigable water. Builds that water per call (GEOS difference): meant
+  // for error messages, not loops.
+  std::optional<LocalPoint> NearestNavigable(LocalPoint p, double step_out_m = 5.0);
 
  private:
   struct State;
@@ -226,7 +267,10 @@ struct ChartFile {
 StatusOr<ObstacleMap> LoadChartFile(const std::string& path, const ChartOptions& options);
 
 // Same from bytes (server uploads). Files are written to a private /vsimem/
-// folder (zips are opened through /vsizip/), never to disk.
+// folder (zips are opened through /vsizip/), never to disk. A name is a file
+// name or a relative path inside an uploaded folder ("Trondheim.gdb/
+// a00000009.gdbtable"), so a FileGDB or a shapefile set can be sent as its
+// files; absolute paths, "." and ".." parts are InvalidArgument.
 StatusOr<ObstacleMap> LoadChartBytes(const std::vector<ChartFile>& files,
                                      const ChartOptions& options);
 

@@ -93,11 +93,19 @@ struct RefinedPlan {
   double makespan_s = 0.0;  // latest end among the steps
 };
 
-// Refines `plan` (actions of `domain_text`/`problem_text`). Errors:
-// InvalidArgument for an unknown action or bad options; FailedPrecondition
-// when a move has no safe route ("no safe route for leg port-a -> port-b
-// (move-ship, step 2): ...") or when the refined durations make the plan's
-// order impossible.
+// Refines `plan` (actions of `domain_text`/`problem_text`) and validates the
+// result with engine/validate against the problem with the refined
+// durations: each move's distance-like static fluent (the one its
+// `(= ?duration ...)` is proportional to, e.g. (distance ?from ?to)) is
+// scaled so that the duration is the route's sailing time; actions whose
+// duration cannot be expressed so (a constant, one leg sailed at two
+// different times, a port operation with a measured duration) have their
+// duration constraint lifted. Errors: InvalidArgument for an unknown action
+// or bad options; FailedPrecondition when a move has no safe route ("no safe
+// route for leg port-a -> port-b (move-ship, step 2): ..."), when the refined
+// durations make the plan's order impossible, or when the refined plan fails
+// validation ("the plan refined with route durations is not valid ...": the
+// validator's first failure); such a plan must not be sent to a ship.
 StatusOr<RefinedPlan> RefinePlan(std::string_view domain_text, std::string_view problem_text,
                                  const validate::Plan& plan, const LocationTable& locations,
                                  const RoutePlanner& route_planner,

@@ -29,6 +29,15 @@
 //  3. NLopt local polish (LN_BOBYQA) of each waypoint's position with its DP
 //     mode fixed; accepted only if it lowers that waypoint's cost. Then the DP
 //     runs again on the polished positions.
+//  4. Safety repair: the waypoints are optimised one by one, so the segment
+//     between two of them can cut an obstacle the Level-1 path went round.
+//     A waypoint inside an obstacle, and both ends of a segment that touches
+//     one, go back to their references on the Level-1 polyline; where the
+//     chord between two references still touches, the route follows the
+//     Level-1 polyline between them (its vertices are inserted, evaluated
+//     like the others, not moved). The DP runs again on the repaired route.
+//     A route is therefore obstacle-free whenever its Level-1 path is, and
+//     has segments + 1 waypoints plus the inserted ones.
 // The chosen alternative is the obstacle-free one with the lowest expected
 // cost (sum of C_grounding + C_mso + switching; C_path only shapes the route
 // and is not a cost of sailing it, so it is reported but not compared).
@@ -161,7 +170,7 @@ struct WaypointResult {
 };
 
 struct AlternativeResult {
-  std::vector<WaypointResult> waypoints;  // segments + 1: start .. goal
+  std::vector<WaypointResult> waypoints;  // start .. goal: segments + 1 (+ inserted)
   double expected_cost = 0.0;             // sum of mode_cost[mode] + switching
   double grounding_cost = 0.0;            // sum of C_grounding at the chosen modes
   double mso_cost = 0.0;
@@ -169,7 +178,13 @@ struct AlternativeResult {
   double path_cost = 0.0;
   double objective = 0.0;  // expected_cost + path_cost
   int mode_switches = 0;
-  bool crosses_obstacle = false;  // a waypoint or segment touches an obstacle
+  // A waypoint or segment touches an obstacle: after the repair (see below)
+  // only when the Level-1 polyline itself does.
+  bool crosses_obstacle = false;
+  // Safety repair: waypoints moved back to their references, and Level-1
+  // vertices inserted where the chord between two references cut a corner.
+  int snapped_waypoints = 0;
+  int inserted_waypoints = 0;
   int64_t evaluations = 0;
 };
 

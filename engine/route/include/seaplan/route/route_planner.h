@@ -2,9 +2,14 @@
 // route alternatives with MSO modes, sailing time, fuel and expected cost.
 //
 // PlanRoute = Level-1 alternatives (chart::PlanAlternatives, Algorithm A1)
-//           + Level-2 optimisation of each (level2_optimizer.h)
-//           + choice of the obstacle-free alternative with the lowest
-//             expected cost (fuel + grounding risk + mode switches).
+//           + Level-2 optimisation of each (level2_optimizer.h), repaired
+//             where a segment would cut an obstacle, so an optimised route
+//             exists whenever Level 1 finds one
+//           + an exact clearance check of every optimised route against the
+//             chart's unbuffered obstacles (GEOS): it must keep the chart's
+//             safety buffer
+//           + choice of the safe alternative with the lowest expected cost
+//             (fuel + grounding risk + mode switches).
 // The mission loop calls it for every move of a plan to learn its sailing
 // time. A RoutePlanner keeps the obstacle field (the expensive part that
 // depends only on chart and ship) for repeated calls.
@@ -95,7 +100,17 @@ struct RouteAlternative {
   double expected_cost = 0.0;            // objective used for the choice
   double expected_grounding_cost = 0.0;  // sum of C_G P(G)
   int mode_switches = 0;
-  bool safe = true;  // no waypoint or segment touches an obstacle
+  // No waypoint or segment touches an obstacle, and the route keeps the
+  // chart's safety buffer from the unbuffered obstacles (exact GEOS check).
+  bool safe = true;
+  // Distance from the unbuffered obstacles, metres (+infinity: none; NaN:
+  // unknown, the chart was stored without them and only the buffered
+  // obstacles were checked).
+  double clearance_m = 0.0;
+  // Level-2 safety repair (level2_optimizer.h): waypoints put back on the
+  // Level-1 path, Level-1 vertices inserted.
+  int snapped_waypoints = 0;
+  int inserted_waypoints = 0;
 };
 
 struct RouteResult {
@@ -129,8 +144,9 @@ class RoutePlanner {
                                        const ShipParticulars& ship, const RouteOptions& options);
 
   // Errors: InvalidArgument when start or goal is outside the chart coverage
-  // or inside an obstacle (the message says which); FailedPrecondition when
-  // no safe route exists.
+  // or inside an obstacle (the message says which, in latitude/longitude,
+  // with the nearest navigable point and its distance); FailedPrecondition
+  // when no safe route exists.
   StatusOr<RouteResult> Plan(chart::LocalPoint start, chart::LocalPoint goal,
                              const Environment& env, const StopToken& stop = StopToken()) const;
   StatusOr<RouteResult> Plan(chart::LatLon start, chart::LatLon goal, const Environment& env,
@@ -140,10 +156,15 @@ class RoutePlanner {
                                                 const Environment& env) const;
 
   const ObstacleField& field() const { return *field_; }
+  const RouteOptions& options() const { return options_; }
 
  private:
   RoutePlanner() = default;
+  // GEOS query objects (one per concurrent Plan) for the final clearance
+  // check, kept between calls: building one copies the chart's geometry.
+  class QueryPool;
   std::shared_ptr<const chart::ObstacleMap> map_;
+  std::shared_ptr<QueryPool> queries_;
   std::shared_ptr<const ObstacleField> field_;
   ShipParticulars ship_;
   RouteOptions options_;
