@@ -2,27 +2,34 @@
 
 #include <sqlite3.h>
 
+#include <algorithm>
 #include <mutex>
 #include <string_view>
 
 #include "absl/strings/str_cat.h"
-#include "absl/strings/str_join.h"
-#include "absl/strings/str_split.h"
 #include "seaplan/common/log.h"
+#include "store_internal.h"
 
 namespace seaplan::storage {
 namespace {
 
-// The migration list. NEVER edit a released entry: add a new one. Each runs
-// in one transaction with the bump of PRAGMA user_version to `version`.
+using internal::CheckPageSize;
+using internal::JoinTasks;
+using internal::LatestTime;
+using internal::NotFoundMessage;
+using internal::NowMs;
+using internal::SplitTasks;
+
+// The SQLite migrations, one per entry of internal::SchemaHistory() with the
+// same version. NEVER edit a released entry: add a new one. Each runs in one
+// transaction with the bump of PRAGMA user_version to `version`.
 struct Migration {
   int version;
-  const char* description;
   const char* sql;
 };
 
 constexpr Migration kMigrations[] = {
-    {1, "charts, missions, plan versions, feedback, log events", R"sql(
+    {1, R"sql(
 CREATE TABLE charts (
   seq INTEGER PRIMARY KEY AUTOINCREMENT,
   id TEXT NOT NULL UNIQUE,
@@ -75,14 +82,32 @@ CREATE TABLE log_events (
   message TEXT NOT NULL,
   PRIMARY KEY (mission_id, event_id)) WITHOUT ROWID;
 )sql"},
-    {2, "mission idempotency keys and completed tasks; charts keep the uploaded files", R"sql(
+    {2, R"sql(
 ALTER TABLE missions ADD COLUMN request_id TEXT;
 CREATE UNIQUE INDEX missions_by_request_id ON missions(request_id) WHERE request_id IS NOT NULL;
 ALTER TABLE missions ADD COLUMN completed_tasks TEXT NOT NULL DEFAULT '';
 ALTER TABLE charts ADD COLUMN source_files BLOB NOT NULL DEFAULT x'';
 ALTER TABLE plan_versions ADD COLUMN engine_state BLOB NOT NULL DEFAULT x'';
 )sql"},
+    // Change notifications need no schema on SQLite (one process: the store
+    // wakes its own watchers after each commit).
+    {3, R"sql(
+CREATE TABLE mission_work (
+  mission_id TEXT PRIMARY KEY REFERENCES missions(id),
+  reason TEXT NOT NULL,
+  base_version INTEGER NOT NULL,
+  requested_at_ms INTEGER NOT NULL,
+  requests INTEGER NOT NULL CHECK (requests >= 1),
+  done_requests INTEGER NOT NULL DEFAULT 0,
+  claimed_requests INTEGER NOT NULL DEFAULT 0,
+  holder TEXT CHECK (holder IS NULL OR length(holder) > 0),
+  token INTEGER NOT NULL DEFAULT 0,
+  lease_expires_at_ms INTEGER,
+  CHECK ((holder IS NULL) = (lease_expires_at_ms IS NULL))) WITHOUT ROWID;
+CREATE INDEX mission_work_pending ON mission_work(requested_at_ms) WHERE requests > done_requests;
+)sql"},
 };
+static_assert(std::size(kMigrations) == 3, "one SQLite migration per schema history entry");
 
 absl::Status SqliteError(sqlite3* db, int rc, const char* what) {
   const std::string msg = absl::StrCat(what, ": ", db ? sqlite3_errmsg(db) : sqlite3_errstr(rc));
@@ -189,30 +214,13 @@ absl::Status InTransaction(sqlite3* db, F&& body) {
   return status;
 }
 
-std::string JoinTasks(const std::vector<std::string>& tasks) {
-  return absl::StrJoin(tasks, "\n");
-}
-std::vector<std::string> SplitTasks(const std::string& text) {
-  if (text.empty()) return {};
-  return absl::StrSplit(text, '\n');
-}
-
-absl::Status CheckPageSize(int page_size) {
-  if (page_size < 1 || page_size > 1000) {
-    return absl::InvalidArgumentError(absl::StrCat("page size must be 1..1000, got ", page_size));
-  }
-  return absl::OkStatus();
-}
-
 }  // namespace
-
-int LatestSchemaVersion() {
-  return kMigrations[std::size(kMigrations) - 1].version;
-}
 
 struct SqliteStore::Impl final : ChartRepository, MissionRepository {
   sqlite3* db = nullptr;
   std::mutex mu;
+  // Bumped after each commit that touches a mission (outside mu).
+  internal::LocalChangeFeed feed;
 
   ~Impl() override { CloseLocked(); }
 
@@ -244,7 +252,16 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
           absl::StrCat("database schema version ", current, " is newer than this server knows (",
                        LatestSchemaVersion(), "); refusing to touch it"));
     }
-    for (const Migration& m : kMigrations) {
+    const auto history = internal::SchemaHistory();
+    if (history.size() != std::size(kMigrations)) {
+      return absl::InternalError("SQLite migrations do not match the schema history");
+    }
+    for (std::size_t i = 0; i < history.size(); ++i) {
+      const Migration& m = kMigrations[i];
+      const char* description = history[i].description;
+      if (m.version != history[i].version) {
+        return absl::InternalError("SQLite migrations do not match the schema history");
+      }
       if (m.version <= current) continue;
       absl::Status st = InTransaction(db, [&]() -> absl::Status {
         SEAPLAN_RETURN_IF_ERROR(Exec(db, m.sql));
@@ -252,9 +269,9 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
       });
       if (!st.ok()) {
         return absl::Status(st.code(), absl::StrCat("schema migration to version ", m.version, " (",
-                                                    m.description, ") failed: ", st.message()));
+                                                    description, ") failed: ", st.message()));
       }
-      log::Info("storage: migrated schema to version {} ({})", m.version, m.description);
+      log::Info("storage: migrated schema to version {} ({})", m.version, description);
     }
     return absl::OkStatus();
   }
@@ -312,15 +329,68 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
       s.Null(5);
     s.Int(6, now_ms);
     SEAPLAN_RETURN_IF_ERROR(s.Run());
-    if (sqlite3_changes(db) == 0)
-      return absl::NotFoundError(absl::StrCat("mission '", id, "' not found"));
+    if (sqlite3_changes(db) == 0) return absl::NotFoundError(NotFoundMessage("mission", id));
+    if (u.request_work) return RequestWorkLocked(id, *u.request_work).status();
     return absl::OkStatus();
   }
 
-  static TimestampMs LatestTime(const std::vector<NewLogEvent>& events, TimestampMs fallback) {
-    TimestampMs t = fallback;
-    for (const auto& e : events) t = std::max(t, e.time_ms);
-    return t;
+  // Runs a write of mission `id` in one transaction and wakes its watchers
+  // after the commit. Caller holds mu.
+  template <typename F>
+  absl::Status MissionWriteLocked(const std::string& id, F&& body) {
+    absl::Status st = InTransaction(db, std::forward<F>(body));
+    if (st.ok()) feed.Bump(id);
+    return st;
+  }
+
+  // ---- work leases (caller holds mu) ----
+  static constexpr const char* kWorkColumns =
+      "mission_id, reason, base_version, COALESCE(holder, ''), token, requests, claimed_requests, "
+      "done_requests, COALESCE(lease_expires_at_ms, 0)";
+
+  static WorkLease ReadWork(const Stmt& s) {
+    WorkLease w;
+    w.mission_id = s.ColText(0);
+    w.reason = s.ColText(1);
+    w.base_version = static_cast<int>(s.ColInt(2));
+    w.holder = s.ColText(3);
+    w.token = s.ColInt(4);
+    w.requests = s.ColInt(5);
+    w.claimed_requests = s.ColInt(6);
+    w.done_requests = s.ColInt(7);
+    w.expires_at_ms = s.ColInt(8);
+    return w;
+  }
+
+  // Returns true when the mission had no pending work before.
+  absl::StatusOr<bool> RequestWorkLocked(const std::string& mission_id, const WorkRequest& r) {
+    Stmt s(db, absl::StrCat(
+                   "INSERT INTO mission_work(mission_id, reason, base_version, requested_at_ms, "
+                   "requests) VALUES (?1, ?2, ?3, ?4, 1) "
+                   "ON CONFLICT(mission_id) DO UPDATE SET reason = excluded.reason, "
+                   "base_version = excluded.base_version, requests = requests + 1, "
+                   "requested_at_ms = CASE WHEN requests > done_requests THEN requested_at_ms "
+                   "ELSE excluded.requested_at_ms END "
+                   "RETURNING requests - done_requests"));
+    s.Text(1, mission_id).Text(2, r.reason).Int(3, r.base_version).Int(4, NowMs());
+    absl::StatusOr<bool> row = s.Step();
+    if (!row.ok() && sqlite3_extended_errcode(db) == SQLITE_CONSTRAINT_FOREIGNKEY) {
+      return absl::NotFoundError(NotFoundMessage("mission", mission_id));
+    }
+    SEAPLAN_RETURN_IF_ERROR(row.status());
+    if (!*row) return absl::InternalError("work request returned no row");
+    return s.ColInt(0) == 1;
+  }
+
+  // Runs an UPDATE ... RETURNING on the work table; the leases it returns.
+  absl::StatusOr<std::vector<WorkLease>> WorkRowsLocked(Stmt& s) {
+    std::vector<WorkLease> out;
+    while (true) {
+      SEAPLAN_ASSIGN_OR_RETURN(bool row, s.Step());
+      if (!row) break;
+      out.push_back(ReadWork(s));
+    }
+    return out;
   }
 
   // ---- ChartRepository ----
@@ -444,7 +514,7 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
     }
     std::lock_guard lock(mu);
     SEAPLAN_RETURN_IF_ERROR(Usable());
-    return InTransaction(db, [&]() -> absl::Status {
+    return MissionWriteLocked(m.id, [&]() -> absl::Status {
       Stmt s(db,
              "INSERT INTO missions(id, name, vessel_id, request_id, spec, state, current_version, "
              "created_at_ms, "
@@ -520,7 +590,7 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
                       const std::vector<NewLogEvent>& events) override {
     std::lock_guard lock(mu);
     SEAPLAN_RETURN_IF_ERROR(Usable());
-    return InTransaction(db, [&]() -> absl::Status {
+    return MissionWriteLocked(id, [&]() -> absl::Status {
       SEAPLAN_RETURN_IF_ERROR(ApplyUpdateLocked(id, update, LatestTime(events, NowMs())));
       return AppendEventsLocked(id, events).status();
     });
@@ -530,11 +600,11 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
                              const std::vector<NewLogEvent>& events) override {
     std::lock_guard lock(mu);
     SEAPLAN_RETURN_IF_ERROR(Usable());
-    return InTransaction(db, [&]() -> absl::Status {
+    return MissionWriteLocked(v.mission_id, [&]() -> absl::Status {
       Stmt cur(db, "SELECT current_version FROM missions WHERE id = ?1");
       cur.Text(1, v.mission_id);
       SEAPLAN_ASSIGN_OR_RETURN(bool row, cur.Step());
-      if (!row) return absl::NotFoundError(absl::StrCat("mission '", v.mission_id, "' not found"));
+      if (!row) return absl::NotFoundError(NotFoundMessage("mission", v.mission_id));
       const std::int64_t current = cur.ColInt(0);
       if (v.version != current + 1) {
         return absl::AbortedError(absl::StrCat("plan version ", v.version, " of mission '",
@@ -596,7 +666,7 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
     std::lock_guard lock(mu);
     SEAPLAN_RETURN_IF_ERROR(Usable());
     bool inserted = false;
-    absl::Status result = InTransaction(db, [&]() -> absl::Status {
+    absl::Status result = MissionWriteLocked(f.mission_id, [&]() -> absl::Status {
       Stmt s(db,
              "INSERT INTO feedback(mission_id, vessel_id, sequence_number, kind, payload, "
              "received_at_ms) "
@@ -611,7 +681,7 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
       if (!st.ok()) {
         // A foreign-key failure here means the mission does not exist.
         if (sqlite3_extended_errcode(db) == SQLITE_CONSTRAINT_FOREIGNKEY) {
-          return absl::NotFoundError(absl::StrCat("mission '", f.mission_id, "' not found"));
+          return absl::NotFoundError(NotFoundMessage("mission", f.mission_id));
         }
         return st;
       }
@@ -668,11 +738,11 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
     std::lock_guard lock(mu);
     SEAPLAN_RETURN_IF_ERROR(Usable());
     std::vector<LogEventRecord> out;
-    absl::Status result = InTransaction(db, [&]() -> absl::Status {
+    absl::Status result = MissionWriteLocked(mission_id, [&]() -> absl::Status {
       Stmt exists(db, "SELECT 1 FROM missions WHERE id = ?1");
       exists.Text(1, mission_id);
       SEAPLAN_ASSIGN_OR_RETURN(bool row, exists.Step());
-      if (!row) return absl::NotFoundError(absl::StrCat("mission '", mission_id, "' not found"));
+      if (!row) return absl::NotFoundError(NotFoundMessage("mission", mission_id));
       SEAPLAN_ASSIGN_OR_RETURN(out, AppendEventsLocked(mission_id, events));
       return absl::OkStatus();
     });
@@ -698,15 +768,143 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
     }
     return out;
   }
-
-  static TimestampMs NowMs() {
-    return std::chrono::duration_cast<std::chrono::milliseconds>(
-               std::chrono::system_clock::now().time_since_epoch())
-        .count();
-  }
 };
 
-SqliteStore::SqliteStore(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+// The work leases over the same connection and mutex (a separate object:
+// its Get() would clash with MissionRepository::Get()).
+class SqliteStore::Work final : public WorkLeaseRepository {
+ public:
+  explicit Work(Impl& impl) : impl_(impl) {}
+
+  absl::StatusOr<bool> Request(const std::string& mission_id, const WorkRequest& r) override {
+    std::lock_guard lock(impl_.mu);
+    SEAPLAN_RETURN_IF_ERROR(impl_.Usable());
+    bool was_idle = false;
+    const absl::Status written = InTransaction(impl_.db, [&]() -> absl::Status {
+      SEAPLAN_ASSIGN_OR_RETURN(was_idle, impl_.RequestWorkLocked(mission_id, r));
+      return absl::OkStatus();
+    });
+    if (!written.ok()) return written;
+    return was_idle;
+  }
+
+  absl::StatusOr<std::optional<WorkLease>> Claim(const std::string& mission_id,
+                                                 const std::string& holder,
+                                                 std::chrono::milliseconds ttl) override {
+    SEAPLAN_RETURN_IF_ERROR(internal::CheckLeaseArguments(holder, ttl));
+    SEAPLAN_ASSIGN_OR_RETURN(std::vector<WorkLease> claimed,
+                             ClaimWhere("mission_id = ?4", mission_id, holder, ttl, 1));
+    if (claimed.empty()) return std::optional<WorkLease>();
+    return std::optional<WorkLease>(std::move(claimed[0]));
+  }
+
+  absl::StatusOr<std::vector<WorkLease>> ClaimNext(const std::string& holder,
+                                                   std::chrono::milliseconds ttl,
+                                                   int limit) override {
+    SEAPLAN_RETURN_IF_ERROR(internal::CheckLeaseArguments(holder, ttl));
+    SEAPLAN_RETURN_IF_ERROR(CheckPageSize(limit));
+    return ClaimWhere("?4 = ''", "", holder, ttl, limit);
+  }
+
+  absl::StatusOr<WorkLease> Renew(const WorkLease& lease, std::chrono::milliseconds ttl) override {
+    SEAPLAN_RETURN_IF_ERROR(internal::CheckLeaseArguments(lease.holder, ttl));
+    SEAPLAN_ASSIGN_OR_RETURN(std::vector<WorkLease> rows,
+                             UpdateHeld(lease, "lease_expires_at_ms = ?4", NowMs() + ttl.count()));
+    return rows[0];
+  }
+
+  absl::Status Release(const WorkLease& lease) override {
+    return UpdateHeld(lease, "holder = NULL, lease_expires_at_ms = NULL", std::nullopt).status();
+  }
+
+  absl::StatusOr<bool> Complete(const WorkLease& lease) override {
+    SEAPLAN_ASSIGN_OR_RETURN(
+        std::vector<WorkLease> rows,
+        UpdateHeld(lease,
+                   "holder = NULL, lease_expires_at_ms = NULL, done_requests = claimed_requests",
+                   std::nullopt));
+    return rows[0].pending();
+  }
+
+  absl::StatusOr<int> ReleaseAll(const std::string& holder) override {
+    std::lock_guard lock(impl_.mu);
+    SEAPLAN_RETURN_IF_ERROR(impl_.Usable());
+    Stmt s(impl_.db,
+           "UPDATE mission_work SET holder = NULL, lease_expires_at_ms = NULL WHERE holder = ?1");
+    s.Text(1, holder);
+    SEAPLAN_RETURN_IF_ERROR(s.Run());
+    return sqlite3_changes(impl_.db);
+  }
+
+  absl::StatusOr<std::optional<WorkLease>> Get(const std::string& mission_id) override {
+    std::lock_guard lock(impl_.mu);
+    SEAPLAN_RETURN_IF_ERROR(impl_.Usable());
+    Stmt s(impl_.db,
+           absl::StrCat("SELECT ", Impl::kWorkColumns, " FROM mission_work WHERE mission_id = ?1"));
+    s.Text(1, mission_id);
+    SEAPLAN_ASSIGN_OR_RETURN(std::vector<WorkLease> rows, impl_.WorkRowsLocked(s));
+    if (rows.empty()) return std::optional<WorkLease>();
+    return std::optional<WorkLease>(std::move(rows[0]));
+  }
+
+ private:
+  // Claims pending items matching `filter` (over ?4) that are free or
+  // expired. One writer at a time (the mutex, and BEGIN IMMEDIATE against
+  // other connections), so two claimers never get the same item.
+  absl::StatusOr<std::vector<WorkLease>> ClaimWhere(const char* filter, const std::string& arg,
+                                                    const std::string& holder,
+                                                    std::chrono::milliseconds ttl, int limit) {
+    std::lock_guard lock(impl_.mu);
+    SEAPLAN_RETURN_IF_ERROR(impl_.Usable());
+    std::vector<WorkLease> out;
+    const absl::Status written = InTransaction(impl_.db, [&]() -> absl::Status {
+      const TimestampMs now = NowMs();
+      Stmt s(impl_.db,
+             absl::StrCat("UPDATE mission_work SET holder = ?1, token = token + 1, "
+                          "claimed_requests = requests, lease_expires_at_ms = ?2 "
+                          "WHERE mission_id IN (SELECT mission_id FROM mission_work WHERE ",
+                          filter,
+                          " AND requests > done_requests AND (holder IS NULL OR "
+                          "lease_expires_at_ms <= ?3) ORDER BY requested_at_ms, mission_id "
+                          "LIMIT ?5) RETURNING ",
+                          Impl::kWorkColumns));
+      s.Text(1, holder).Int(2, now + ttl.count()).Int(3, now).Text(4, arg).Int(5, limit);
+      SEAPLAN_ASSIGN_OR_RETURN(out, impl_.WorkRowsLocked(s));
+      return absl::OkStatus();
+    });
+    if (!written.ok()) return written;
+    // RETURNING gives rows in no particular order.
+    std::sort(out.begin(), out.end(),
+              [](const WorkLease& a, const WorkLease& b) { return a.mission_id < b.mission_id; });
+    return out;
+  }
+
+  // Applies `set` (which may use ?4 = value) to the item while `lease` still
+  // holds it; Aborted when it does not.
+  absl::StatusOr<std::vector<WorkLease>> UpdateHeld(const WorkLease& lease, const char* set,
+                                                    std::optional<std::int64_t> value) {
+    std::lock_guard lock(impl_.mu);
+    SEAPLAN_RETURN_IF_ERROR(impl_.Usable());
+    Stmt s(impl_.db,
+           absl::StrCat("UPDATE mission_work SET ", set,
+                        " WHERE mission_id = ?1 AND holder = ?2 AND token = ?3 RETURNING ",
+                        Impl::kWorkColumns));
+    s.Text(1, lease.mission_id).Text(2, lease.holder).Int(3, lease.token);
+    if (value) s.Int(4, *value);
+    SEAPLAN_ASSIGN_OR_RETURN(std::vector<WorkLease> rows, impl_.WorkRowsLocked(s));
+    if (rows.empty()) {
+      return absl::AbortedError(absl::StrCat("the work lease of mission '", lease.mission_id,
+                                             "' (token ", lease.token, ") is no longer held by '",
+                                             lease.holder, "'"));
+    }
+    return rows;
+  }
+
+  Impl& impl_;
+};
+
+SqliteStore::SqliteStore(std::unique_ptr<Impl> impl)
+    : impl_(std::move(impl)), work_(std::make_unique<Work>(*impl_)) {}
 SqliteStore::~SqliteStore() = default;
 
 absl::StatusOr<std::unique_ptr<SqliteStore>> SqliteStore::Open(const std::string& path,
@@ -749,10 +947,17 @@ ChartRepository& SqliteStore::charts() {
 MissionRepository& SqliteStore::missions() {
   return *impl_;
 }
+WorkLeaseRepository& SqliteStore::work() {
+  return *work_;
+}
+ChangeFeed& SqliteStore::changes() {
+  return impl_->feed;
+}
 
 absl::Status SqliteStore::Close() {
   std::lock_guard lock(impl_->mu);
   impl_->CloseLocked();
+  impl_->feed.Close();
   return absl::OkStatus();
 }
 
