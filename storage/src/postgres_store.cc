@@ -1194,7 +1194,9 @@ class PostgresStore::Work final : public WorkLeaseRepository {
 
   // Claims pending items (all missions when `mission_id` is empty) that are
   // free or expired. SKIP LOCKED: an item another claimer is taking right now
-  // is left to it, so concurrent claimers get disjoint items.
+  // is left to it, so concurrent claimers get disjoint items without waiting.
+  // The outer condition repeats the test because a row claimed meanwhile is
+  // re-checked against it (not against the subquery) before it is updated.
   absl::StatusOr<std::vector<WorkLease>> ClaimWhere(const std::string& mission_id,
                                                     const std::string& holder,
                                                     std::chrono::milliseconds ttl, int limit) {
@@ -1205,16 +1207,18 @@ class PostgresStore::Work final : public WorkLeaseRepository {
               Result r,
               Impl::Run(
                   conn,
-                  absl::StrCat("UPDATE mission_work SET holder = $1, token = token + 1, "
-                               "claimed_requests = requests, lease_expires_at_ms = ",
-                               kDbNowMs,
-                               " + $2 WHERE mission_id IN (SELECT mission_id FROM mission_work "
-                               "WHERE ($3 = '' OR mission_id = $3) AND requests > done_requests "
-                               "AND (holder IS NULL OR lease_expires_at_ms <= ",
-                               kDbNowMs,
-                               ") ORDER BY requested_at_ms, mission_id LIMIT $4 "
-                               "FOR UPDATE SKIP LOCKED) RETURNING ",
-                               kWorkColumns),
+                  absl::StrCat(
+                      "UPDATE mission_work SET holder = $1, token = token + 1, "
+                      "claimed_requests = requests, lease_expires_at_ms = ",
+                      kDbNowMs,
+                      " + $2 WHERE mission_id IN (SELECT mission_id FROM mission_work "
+                      "WHERE ($3 = '' OR mission_id = $3) AND requests > done_requests "
+                      "AND (holder IS NULL OR lease_expires_at_ms <= ",
+                      kDbNowMs,
+                      ") ORDER BY requested_at_ms, mission_id LIMIT $4 "
+                      "FOR UPDATE SKIP LOCKED) AND requests > done_requests AND (holder IS NULL "
+                      "OR lease_expires_at_ms <= ",
+                      kDbNowMs, ") RETURNING ", kWorkColumns),
                   Params().Text(holder).I8(ttl.count()).Text(mission_id).I8(limit)));
           return ReadAll(r);
         }));
