@@ -25,6 +25,8 @@ namespace {
 
 using internal::CheckPageSize;
 using internal::JoinTasks;
+using internal::kMissionColumns;
+using internal::kWorkColumns;
 using internal::LatestTime;
 using internal::NotFoundMessage;
 using internal::NowMs;
@@ -291,6 +293,15 @@ class Result {
 
  private:
   PGresult* r_;
+};
+
+// One row of a Result as the shared row readers (store_internal.h) want it.
+struct ResultRow {
+  const Result& r;
+  int row;
+  std::int64_t Int(int c) const { return r.Int(row, c); }
+  double Real(int c) const { return r.Real(row, c); }
+  std::string Bytes(int c) const { return r.Bytes(row, c); }
 };
 
 // Runs SQL without parameters (several statements allowed).
@@ -755,22 +766,6 @@ struct PostgresStore::Impl final : ChartRepository, MissionRepository {
     });
   }
 
-  static ChartRecord ReadChart(const Result& r, int row, bool with_blobs) {
-    ChartRecord c;
-    c.seq = r.Int(row, 0);
-    c.id = r.Bytes(row, 1);
-    c.name = r.Bytes(row, 2);
-    c.format = static_cast<int>(r.Int(row, 3));
-    c.options = r.Bytes(row, 4);
-    c.summary = r.Bytes(row, 5);
-    c.created_at_ms = r.Int(row, 6);
-    if (with_blobs) {
-      c.obstacles = r.Bytes(row, 7);
-      c.source_files = r.Bytes(row, 8);
-    }
-    return c;
-  }
-
   absl::StatusOr<ChartRecord> Get(const std::string& id, bool with_blobs) override {
     return WithConn([&](PGconn* conn) -> absl::StatusOr<ChartRecord> {
       SEAPLAN_ASSIGN_OR_RETURN(
@@ -782,7 +777,7 @@ struct PostgresStore::Impl final : ChartRepository, MissionRepository {
                            "created_at_ms FROM charts WHERE id = $1",
               Params().Text(id)));
       if (r.rows() == 0) return absl::NotFoundError(NotFoundMessage("chart", id));
-      return ReadChart(r, 0, with_blobs);
+      return internal::ReadChart(ResultRow{r, 0}, with_blobs);
     });
   }
 
@@ -808,34 +803,13 @@ struct PostgresStore::Impl final : ChartRepository, MissionRepository {
                         "SELECT seq, id, name, format, options, summary, created_at_ms FROM charts "
                         "WHERE seq > $1 ORDER BY seq LIMIT $2",
                         Params().I8(after).I8(page_size + 1)));
-      return ToPage<ChartRecord>(
-          r, page_size, [](const Result& res, int row) { return ReadChart(res, row, false); });
+      return ToPage<ChartRecord>(r, page_size, [](const Result& res, int row) {
+        return internal::ReadChart(ResultRow{res, row}, false);
+      });
     });
   }
 
   // ---- MissionRepository ----
-  static constexpr const char* kMissionColumns =
-      "seq, id, name, vessel_id, COALESCE(request_id, ''), spec, state, current_version, "
-      "created_at_ms, updated_at_ms, last_state, completed_tasks, failure_reason";
-
-  static MissionRecord ReadMission(const Result& r, int row) {
-    MissionRecord m;
-    m.seq = r.Int(row, 0);
-    m.id = r.Bytes(row, 1);
-    m.name = r.Bytes(row, 2);
-    m.vessel_id = r.Bytes(row, 3);
-    m.request_id = r.Bytes(row, 4);
-    m.spec = r.Bytes(row, 5);
-    m.state = static_cast<int>(r.Int(row, 6));
-    m.current_version = static_cast<int>(r.Int(row, 7));
-    m.created_at_ms = r.Int(row, 8);
-    m.updated_at_ms = r.Int(row, 9);
-    m.last_state = r.Bytes(row, 10);
-    m.completed_tasks = SplitTasks(r.Bytes(row, 11));
-    m.failure_reason = r.Bytes(row, 12);
-    return m;
-  }
-
   static absl::Status InsertVersionLocked(PGconn* conn, const PlanVersionRecord& v) {
     return Run(conn,
                "INSERT INTO plan_versions(mission_id, version, reason, created_at_ms, content, "
@@ -896,7 +870,7 @@ struct PostgresStore::Impl final : ChartRepository, MissionRepository {
           Run(conn, absl::StrCat("SELECT ", kMissionColumns, " FROM missions WHERE ", where),
               Params().Text(key)));
       if (r.rows() == 0) return std::optional<MissionRecord>();
-      return std::optional<MissionRecord>(ReadMission(r, 0));
+      return std::optional<MissionRecord>(internal::ReadMission(ResultRow{r, 0}));
     });
   }
 
@@ -921,7 +895,9 @@ struct PostgresStore::Impl final : ChartRepository, MissionRepository {
                            " FROM missions WHERE seq > $1 AND ($2 = 0 OR state = $2) ORDER BY seq "
                            "LIMIT $3"),
               Params().I8(after).I4(state).I8(page_size + 1)));
-      return ToPage<MissionRecord>(r, page_size, ReadMission);
+      return ToPage<MissionRecord>(r, page_size, [](const Result& res, int row) {
+        return internal::ReadMission(ResultRow{res, row});
+      });
     });
   }
 
@@ -953,12 +929,6 @@ struct PostgresStore::Impl final : ChartRepository, MissionRepository {
     });
   }
 
-  static PlanVersionRecord ReadVersion(const Result& r, int row) {
-    return {r.Bytes(row, 0), static_cast<int>(r.Int(row, 1)),
-            r.Bytes(row, 2), r.Int(row, 3),
-            r.Bytes(row, 4), r.Bytes(row, 5)};
-  }
-
   absl::StatusOr<std::vector<PlanVersionRecord>> QueryVersions(const std::string& mission_id,
                                                                const char* condition, int value,
                                                                int limit) {
@@ -970,7 +940,8 @@ struct PostgresStore::Impl final : ChartRepository, MissionRepository {
                                      condition, " ORDER BY version LIMIT $3"),
                         Params().Text(mission_id).I4(value).I8(limit)));
       std::vector<PlanVersionRecord> out;
-      for (int row = 0; row < r.rows(); ++row) out.push_back(ReadVersion(r, row));
+      for (int row = 0; row < r.rows(); ++row)
+        out.push_back(internal::ReadVersion(ResultRow{r, row}));
       return out;
     });
   }
@@ -1021,11 +992,6 @@ struct PostgresStore::Impl final : ChartRepository, MissionRepository {
     return inserted;
   }
 
-  static FeedbackRecord ReadFeedback(const Result& r, int row) {
-    return {r.Bytes(row, 0), r.Bytes(row, 1), r.Int(row, 2), static_cast<int>(r.Int(row, 3)),
-            r.Bytes(row, 4), r.Int(row, 5)};
-  }
-
   absl::StatusOr<std::optional<FeedbackRecord>> FindFeedback(
       const std::string& vessel_id, std::int64_t sequence_number) override {
     return WithConn([&](PGconn* conn) -> absl::StatusOr<std::optional<FeedbackRecord>> {
@@ -1036,7 +1002,7 @@ struct PostgresStore::Impl final : ChartRepository, MissionRepository {
               "received_at_ms FROM feedback WHERE vessel_id = $1 AND sequence_number = $2",
               Params().Text(vessel_id).I8(sequence_number)));
       if (r.rows() == 0) return std::optional<FeedbackRecord>();
-      return std::optional<FeedbackRecord>(ReadFeedback(r, 0));
+      return std::optional<FeedbackRecord>(internal::ReadFeedback(ResultRow{r, 0}));
     });
   }
 
@@ -1052,7 +1018,8 @@ struct PostgresStore::Impl final : ChartRepository, MissionRepository {
                         "ORDER BY seq DESC LIMIT $2) latest ORDER BY seq",
                         Params().Text(mission_id).I8(limit)));
       std::vector<FeedbackRecord> out;
-      for (int row = 0; row < r.rows(); ++row) out.push_back(ReadFeedback(r, row));
+      for (int row = 0; row < r.rows(); ++row)
+        out.push_back(internal::ReadFeedback(ResultRow{r, row}));
       return out;
     });
   }
@@ -1081,8 +1048,7 @@ struct PostgresStore::Impl final : ChartRepository, MissionRepository {
                         Params().Text(mission_id).I8(after_event_id).I8(limit)));
       std::vector<LogEventRecord> out;
       for (int row = 0; row < r.rows(); ++row) {
-        out.push_back({r.Bytes(row, 0), r.Int(row, 1), r.Int(row, 2), r.Real(row, 3),
-                       r.Bytes(row, 4), r.Bytes(row, 5)});
+        out.push_back(internal::ReadEvent(ResultRow{r, row}));
       }
       return out;
     });
@@ -1090,7 +1056,7 @@ struct PostgresStore::Impl final : ChartRepository, MissionRepository {
 };
 
 // ---------------------------------------------------------------------------
-class PostgresStore::Work final : public WorkLeaseRepository {
+class PostgresStore::Work final : public internal::WorkLeaseBase {
  public:
   explicit Work(Impl& impl) : impl_(impl) {}
 
@@ -1105,45 +1071,6 @@ class PostgresStore::Work final : public WorkLeaseRepository {
     return was_idle;
   }
 
-  absl::StatusOr<std::optional<WorkLease>> Claim(const std::string& mission_id,
-                                                 const std::string& holder,
-                                                 std::chrono::milliseconds ttl) override {
-    SEAPLAN_RETURN_IF_ERROR(internal::CheckLeaseArguments(holder, ttl));
-    SEAPLAN_ASSIGN_OR_RETURN(std::vector<WorkLease> claimed,
-                             ClaimWhere(mission_id, holder, ttl, 1));
-    if (claimed.empty()) return std::optional<WorkLease>();
-    return std::optional<WorkLease>(std::move(claimed[0]));
-  }
-
-  absl::StatusOr<std::vector<WorkLease>> ClaimNext(const std::string& holder,
-                                                   std::chrono::milliseconds ttl,
-                                                   int limit) override {
-    SEAPLAN_RETURN_IF_ERROR(internal::CheckLeaseArguments(holder, ttl));
-    SEAPLAN_RETURN_IF_ERROR(CheckPageSize(limit));
-    return ClaimWhere("", holder, ttl, limit);
-  }
-
-  absl::StatusOr<WorkLease> Renew(const WorkLease& lease, std::chrono::milliseconds ttl) override {
-    SEAPLAN_RETURN_IF_ERROR(internal::CheckLeaseArguments(lease.holder, ttl));
-    SEAPLAN_ASSIGN_OR_RETURN(
-        std::vector<WorkLease> rows,
-        UpdateHeld(lease, absl::StrCat("lease_expires_at_ms = ", kDbNowMs, " + $4"), ttl.count()));
-    return rows[0];
-  }
-
-  absl::Status Release(const WorkLease& lease) override {
-    return UpdateHeld(lease, "holder = NULL, lease_expires_at_ms = NULL", std::nullopt).status();
-  }
-
-  absl::StatusOr<bool> Complete(const WorkLease& lease) override {
-    SEAPLAN_ASSIGN_OR_RETURN(
-        std::vector<WorkLease> rows,
-        UpdateHeld(lease,
-                   "holder = NULL, lease_expires_at_ms = NULL, done_requests = claimed_requests",
-                   std::nullopt));
-    return rows[0].pending();
-  }
-
   absl::StatusOr<int> ReleaseAll(const std::string& holder) override {
     return impl_.WithConn([&](PGconn* conn) -> absl::StatusOr<int> {
       SEAPLAN_ASSIGN_OR_RETURN(
@@ -1156,102 +1083,56 @@ class PostgresStore::Work final : public WorkLeaseRepository {
   }
 
   absl::StatusOr<std::optional<WorkLease>> Get(const std::string& mission_id) override {
-    return impl_.WithConn([&](PGconn* conn) -> absl::StatusOr<std::optional<WorkLease>> {
-      SEAPLAN_ASSIGN_OR_RETURN(Result r,
-                               Impl::Run(conn,
-                                         absl::StrCat("SELECT ", kWorkColumns,
-                                                      " FROM mission_work WHERE mission_id = $1"),
-                                         Params().Text(mission_id)));
-      if (r.rows() == 0) return std::optional<WorkLease>();
-      return std::optional<WorkLease>(ReadWork(r, 0));
-    });
+    SEAPLAN_ASSIGN_OR_RETURN(
+        std::vector<WorkLease> rows,
+        Query(absl::StrCat("SELECT ", kWorkColumns, " FROM mission_work WHERE mission_id = $1"),
+              Params().Text(mission_id)));
+    if (rows.empty()) return std::optional<WorkLease>();
+    return std::optional<WorkLease>(std::move(rows[0]));
   }
 
  private:
-  static constexpr const char* kWorkColumns =
-      "mission_id, reason, base_version, COALESCE(holder, ''), token, requests, claimed_requests, "
-      "done_requests, COALESCE(lease_expires_at_ms, 0)";
-
-  static WorkLease ReadWork(const Result& r, int row) {
-    WorkLease w;
-    w.mission_id = r.Bytes(row, 0);
-    w.reason = r.Bytes(row, 1);
-    w.base_version = static_cast<int>(r.Int(row, 2));
-    w.holder = r.Bytes(row, 3);
-    w.token = r.Int(row, 4);
-    w.requests = r.Int(row, 5);
-    w.claimed_requests = r.Int(row, 6);
-    w.done_requests = r.Int(row, 7);
-    w.expires_at_ms = r.Int(row, 8);
-    return w;
+  absl::StatusOr<std::vector<WorkLease>> Query(const std::string& sql, const Params& params) {
+    return impl_.WithConn([&](PGconn* conn) -> absl::StatusOr<std::vector<WorkLease>> {
+      SEAPLAN_ASSIGN_OR_RETURN(Result r, Impl::Run(conn, sql, params));
+      std::vector<WorkLease> out;
+      for (int row = 0; row < r.rows(); ++row) out.push_back(internal::ReadWork(ResultRow{r, row}));
+      return out;
+    });
   }
 
-  static std::vector<WorkLease> ReadAll(const Result& r) {
-    std::vector<WorkLease> out;
-    for (int row = 0; row < r.rows(); ++row) out.push_back(ReadWork(r, row));
-    return out;
+  // SKIP LOCKED: an item another claimer is taking right now is left to it,
+  // so concurrent claimers get disjoint items without waiting. The outer
+  // condition repeats the test because a row claimed meanwhile is re-checked
+  // against it (not against the subquery) before it is updated.
+  absl::StatusOr<std::vector<WorkLease>> ClaimPending(const std::string& mission_id,
+                                                      const std::string& holder,
+                                                      std::chrono::milliseconds ttl,
+                                                      int limit) override {
+    const std::string claimable = absl::StrCat(
+        "requests > done_requests AND (holder IS NULL OR lease_expires_at_ms <= ", kDbNowMs, ")");
+    return Query(absl::StrCat("UPDATE mission_work SET holder = $1, token = token + 1, "
+                              "claimed_requests = requests, lease_expires_at_ms = ",
+                              kDbNowMs,
+                              " + $2 WHERE mission_id IN (SELECT mission_id FROM mission_work "
+                              "WHERE ($3 = '' OR mission_id = $3) AND ",
+                              claimable,
+                              " ORDER BY requested_at_ms, mission_id LIMIT $4 "
+                              "FOR UPDATE SKIP LOCKED) AND ",
+                              claimable, " RETURNING ", kWorkColumns),
+                 Params().Text(holder).I8(ttl.count()).Text(mission_id).I8(limit));
   }
 
-  // Claims pending items (all missions when `mission_id` is empty) that are
-  // free or expired. SKIP LOCKED: an item another claimer is taking right now
-  // is left to it, so concurrent claimers get disjoint items without waiting.
-  // The outer condition repeats the test because a row claimed meanwhile is
-  // re-checked against it (not against the subquery) before it is updated.
-  absl::StatusOr<std::vector<WorkLease>> ClaimWhere(const std::string& mission_id,
-                                                    const std::string& holder,
-                                                    std::chrono::milliseconds ttl, int limit) {
-    SEAPLAN_ASSIGN_OR_RETURN(
-        std::vector<WorkLease> out,
-        impl_.WithConn([&](PGconn* conn) -> absl::StatusOr<std::vector<WorkLease>> {
-          SEAPLAN_ASSIGN_OR_RETURN(
-              Result r,
-              Impl::Run(
-                  conn,
-                  absl::StrCat(
-                      "UPDATE mission_work SET holder = $1, token = token + 1, "
-                      "claimed_requests = requests, lease_expires_at_ms = ",
-                      kDbNowMs,
-                      " + $2 WHERE mission_id IN (SELECT mission_id FROM mission_work "
-                      "WHERE ($3 = '' OR mission_id = $3) AND requests > done_requests "
-                      "AND (holder IS NULL OR lease_expires_at_ms <= ",
-                      kDbNowMs,
-                      ") ORDER BY requested_at_ms, mission_id LIMIT $4 "
-                      "FOR UPDATE SKIP LOCKED) AND requests > done_requests AND (holder IS NULL "
-                      "OR lease_expires_at_ms <= ",
-                      kDbNowMs, ") RETURNING ", kWorkColumns),
-                  Params().Text(holder).I8(ttl.count()).Text(mission_id).I8(limit)));
-          return ReadAll(r);
-        }));
-    std::sort(out.begin(), out.end(),
-              [](const WorkLease& a, const WorkLease& b) { return a.mission_id < b.mission_id; });
-    return out;
-  }
-
-  // Applies `set` (which may use $4 = value) while `lease` still holds the
-  // item; Aborted when it does not.
-  absl::StatusOr<std::vector<WorkLease>> UpdateHeld(const WorkLease& lease, const std::string& set,
-                                                    std::optional<std::int64_t> value) {
-    SEAPLAN_ASSIGN_OR_RETURN(
-        std::vector<WorkLease> rows,
-        impl_.WithConn([&](PGconn* conn) -> absl::StatusOr<std::vector<WorkLease>> {
-          Params p;
-          p.Text(lease.mission_id).Text(lease.holder).I8(lease.token);
-          if (value) p.I8(*value);
-          SEAPLAN_ASSIGN_OR_RETURN(
-              Result r, Impl::Run(conn,
-                                  absl::StrCat("UPDATE mission_work SET ", set,
-                                               " WHERE mission_id = $1 AND holder = $2 AND "
-                                               "token = $3 RETURNING ",
-                                               kWorkColumns),
-                                  p));
-          return ReadAll(r);
-        }));
-    if (rows.empty()) {
-      return absl::AbortedError(absl::StrCat("the work lease of mission '", lease.mission_id,
-                                             "' (token ", lease.token, ") is no longer held by '",
-                                             lease.holder, "'"));
-    }
-    return rows;
+  absl::StatusOr<std::vector<WorkLease>> UpdateHeld(const WorkLease& lease, LeaseChange change,
+                                                    std::chrono::milliseconds ttl) override {
+    Params p;
+    p.Text(lease.mission_id).Text(lease.holder).I8(lease.token);
+    if (change == LeaseChange::kRenew) p.I8(ttl.count());
+    return Query(
+        absl::StrCat("UPDATE mission_work SET ", SetClause(change, absl::StrCat(kDbNowMs, " + $4")),
+                     " WHERE mission_id = $1 AND holder = $2 AND token = $3 RETURNING ",
+                     kWorkColumns),
+        p);
   }
 
   Impl& impl_;

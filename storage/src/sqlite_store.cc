@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <mutex>
+#include <optional>
 #include <string_view>
 
 #include "absl/strings/str_cat.h"
@@ -15,6 +16,7 @@ namespace {
 
 using internal::CheckPageSize;
 using internal::JoinTasks;
+using internal::kMissionColumns;
 using internal::LatestTime;
 using internal::NotFoundMessage;
 using internal::NowMs;
@@ -189,6 +191,15 @@ class Stmt {
   absl::Status status_;
 };
 
+// A statement's current row as the shared row readers (store_internal.h)
+// want it. sqlite3_column_blob gives a text column's bytes too.
+struct StmtRow {
+  const Stmt& s;
+  std::int64_t Int(int c) const { return s.ColInt(c); }
+  double Real(int c) const { return s.ColReal(c); }
+  std::string Bytes(int c) const { return s.ColBlob(c); }
+};
+
 absl::Status Exec(sqlite3* db, const char* sql) {
   char* err = nullptr;
   const int rc = sqlite3_exec(db, sql, nullptr, nullptr, &err);
@@ -344,24 +355,6 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
   }
 
   // ---- work leases (caller holds mu) ----
-  static constexpr const char* kWorkColumns =
-      "mission_id, reason, base_version, COALESCE(holder, ''), token, requests, claimed_requests, "
-      "done_requests, COALESCE(lease_expires_at_ms, 0)";
-
-  static WorkLease ReadWork(const Stmt& s) {
-    WorkLease w;
-    w.mission_id = s.ColText(0);
-    w.reason = s.ColText(1);
-    w.base_version = static_cast<int>(s.ColInt(2));
-    w.holder = s.ColText(3);
-    w.token = s.ColInt(4);
-    w.requests = s.ColInt(5);
-    w.claimed_requests = s.ColInt(6);
-    w.done_requests = s.ColInt(7);
-    w.expires_at_ms = s.ColInt(8);
-    return w;
-  }
-
   // Returns true when the mission had no pending work before.
   absl::StatusOr<bool> RequestWorkLocked(const std::string& mission_id, const WorkRequest& r) {
     Stmt s(db, absl::StrCat(
@@ -388,7 +381,7 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
     while (true) {
       SEAPLAN_ASSIGN_OR_RETURN(bool row, s.Step());
       if (!row) break;
-      out.push_back(ReadWork(s));
+      out.push_back(internal::ReadWork(StmtRow{s}));
     }
     return out;
   }
@@ -417,22 +410,6 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
     return c;
   }
 
-  static ChartRecord ReadChart(const Stmt& s, bool with_blobs) {
-    ChartRecord c;
-    c.seq = s.ColInt(0);
-    c.id = s.ColText(1);
-    c.name = s.ColText(2);
-    c.format = static_cast<int>(s.ColInt(3));
-    c.options = s.ColBlob(4);
-    c.summary = s.ColBlob(5);
-    c.created_at_ms = s.ColInt(6);
-    if (with_blobs) {
-      c.obstacles = s.ColBlob(7);
-      c.source_files = s.ColBlob(8);
-    }
-    return c;
-  }
-
   absl::StatusOr<ChartRecord> Get(const std::string& id, bool with_blobs) override {
     std::lock_guard lock(mu);
     SEAPLAN_RETURN_IF_ERROR(Usable());
@@ -444,7 +421,7 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
     s.Text(1, id);
     SEAPLAN_ASSIGN_OR_RETURN(bool row, s.Step());
     if (!row) return absl::NotFoundError(absl::StrCat("chart '", id, "' not found"));
-    return ReadChart(s, with_blobs);
+    return internal::ReadChart(StmtRow{s}, with_blobs);
   }
 
   absl::StatusOr<Page<ChartRecord>> List(int page_size, std::int64_t after) override {
@@ -463,35 +440,12 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
         page.next_after = page.items.back().seq;
         break;
       }
-      page.items.push_back(ReadChart(s, false));
+      page.items.push_back(internal::ReadChart(StmtRow{s}, false));
     }
     return page;
   }
 
   // ---- MissionRepository ----
-  static constexpr const char* kMissionColumns =
-      "seq, id, name, vessel_id, COALESCE(request_id, ''), spec, state, current_version, "
-      "created_at_ms, "
-      "updated_at_ms, last_state, completed_tasks, failure_reason";
-
-  static MissionRecord ReadMission(const Stmt& s) {
-    MissionRecord m;
-    m.seq = s.ColInt(0);
-    m.id = s.ColText(1);
-    m.name = s.ColText(2);
-    m.vessel_id = s.ColText(3);
-    m.request_id = s.ColText(4);
-    m.spec = s.ColBlob(5);
-    m.state = static_cast<int>(s.ColInt(6));
-    m.current_version = static_cast<int>(s.ColInt(7));
-    m.created_at_ms = s.ColInt(8);
-    m.updated_at_ms = s.ColInt(9);
-    m.last_state = s.ColBlob(10);
-    m.completed_tasks = SplitTasks(s.ColText(11));
-    m.failure_reason = s.ColText(12);
-    return m;
-  }
-
   absl::Status InsertVersionLocked(const PlanVersionRecord& v) {
     Stmt s(db,
            "INSERT INTO plan_versions(mission_id, version, reason, created_at_ms, content, "
@@ -550,7 +504,7 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
     s.Text(1, id);
     SEAPLAN_ASSIGN_OR_RETURN(bool row, s.Step());
     if (!row) return absl::NotFoundError(absl::StrCat("mission '", id, "' not found"));
-    return ReadMission(s);
+    return internal::ReadMission(StmtRow{s});
   }
 
   absl::StatusOr<std::optional<MissionRecord>> FindByRequestId(
@@ -561,7 +515,7 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
     s.Text(1, request_id);
     SEAPLAN_ASSIGN_OR_RETURN(bool row, s.Step());
     if (!row) return std::optional<MissionRecord>();
-    return std::optional<MissionRecord>(ReadMission(s));
+    return std::optional<MissionRecord>(internal::ReadMission(StmtRow{s}));
   }
 
   absl::StatusOr<Page<MissionRecord>> List(int state, int page_size, std::int64_t after) override {
@@ -581,7 +535,7 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
         page.next_after = page.items.back().seq;
         break;
       }
-      page.items.push_back(ReadMission(s));
+      page.items.push_back(internal::ReadMission(StmtRow{s}));
     }
     return page;
   }
@@ -621,11 +575,6 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
     });
   }
 
-  static PlanVersionRecord ReadVersion(const Stmt& s) {
-    return {s.ColText(0), static_cast<int>(s.ColInt(1)), s.ColText(2), s.ColInt(3), s.ColBlob(4),
-            s.ColBlob(5)};
-  }
-
   absl::StatusOr<PlanVersionRecord> GetVersion(const std::string& mission_id,
                                                int version) override {
     std::lock_guard lock(mu);
@@ -639,7 +588,7 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
     if (!row)
       return absl::NotFoundError(
           absl::StrCat("plan version ", version, " of mission '", mission_id, "' not found"));
-    return ReadVersion(s);
+    return internal::ReadVersion(StmtRow{s});
   }
 
   absl::StatusOr<std::vector<PlanVersionRecord>> ListVersions(const std::string& mission_id,
@@ -656,7 +605,7 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
     while (true) {
       SEAPLAN_ASSIGN_OR_RETURN(bool row, s.Step());
       if (!row) break;
-      out.push_back(ReadVersion(s));
+      out.push_back(internal::ReadVersion(StmtRow{s}));
     }
     return out;
   }
@@ -695,11 +644,6 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
     return inserted;
   }
 
-  static FeedbackRecord ReadFeedback(const Stmt& s) {
-    return {s.ColText(0), s.ColText(1), s.ColInt(2), static_cast<int>(s.ColInt(3)),
-            s.ColBlob(4), s.ColInt(5)};
-  }
-
   absl::StatusOr<std::optional<FeedbackRecord>> FindFeedback(
       const std::string& vessel_id, std::int64_t sequence_number) override {
     std::lock_guard lock(mu);
@@ -711,7 +655,7 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
     s.Text(1, vessel_id).Int(2, sequence_number);
     SEAPLAN_ASSIGN_OR_RETURN(bool row, s.Step());
     if (!row) return std::optional<FeedbackRecord>();
-    return std::optional<FeedbackRecord>(ReadFeedback(s));
+    return std::optional<FeedbackRecord>(internal::ReadFeedback(StmtRow{s}));
   }
 
   absl::StatusOr<std::vector<FeedbackRecord>> ListFeedback(const std::string& mission_id,
@@ -728,7 +672,7 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
     while (true) {
       SEAPLAN_ASSIGN_OR_RETURN(bool row, s.Step());
       if (!row) break;
-      out.push_back(ReadFeedback(s));
+      out.push_back(internal::ReadFeedback(StmtRow{s}));
     }
     return out;
   }
@@ -763,8 +707,7 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
     while (true) {
       SEAPLAN_ASSIGN_OR_RETURN(bool row, s.Step());
       if (!row) break;
-      out.push_back(
-          {s.ColText(0), s.ColInt(1), s.ColInt(2), s.ColReal(3), s.ColText(4), s.ColText(5)});
+      out.push_back(internal::ReadEvent(StmtRow{s}));
     }
     return out;
   }
@@ -772,7 +715,7 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
 
 // The work leases over the same connection and mutex (a separate object:
 // its Get() would clash with MissionRepository::Get()).
-class SqliteStore::Work final : public WorkLeaseRepository {
+class SqliteStore::Work final : public internal::WorkLeaseBase {
  public:
   explicit Work(Impl& impl) : impl_(impl) {}
 
@@ -788,44 +731,6 @@ class SqliteStore::Work final : public WorkLeaseRepository {
     return was_idle;
   }
 
-  absl::StatusOr<std::optional<WorkLease>> Claim(const std::string& mission_id,
-                                                 const std::string& holder,
-                                                 std::chrono::milliseconds ttl) override {
-    SEAPLAN_RETURN_IF_ERROR(internal::CheckLeaseArguments(holder, ttl));
-    SEAPLAN_ASSIGN_OR_RETURN(std::vector<WorkLease> claimed,
-                             ClaimWhere("mission_id = ?4", mission_id, holder, ttl, 1));
-    if (claimed.empty()) return std::optional<WorkLease>();
-    return std::optional<WorkLease>(std::move(claimed[0]));
-  }
-
-  absl::StatusOr<std::vector<WorkLease>> ClaimNext(const std::string& holder,
-                                                   std::chrono::milliseconds ttl,
-                                                   int limit) override {
-    SEAPLAN_RETURN_IF_ERROR(internal::CheckLeaseArguments(holder, ttl));
-    SEAPLAN_RETURN_IF_ERROR(CheckPageSize(limit));
-    return ClaimWhere("?4 = ''", "", holder, ttl, limit);
-  }
-
-  absl::StatusOr<WorkLease> Renew(const WorkLease& lease, std::chrono::milliseconds ttl) override {
-    SEAPLAN_RETURN_IF_ERROR(internal::CheckLeaseArguments(lease.holder, ttl));
-    SEAPLAN_ASSIGN_OR_RETURN(std::vector<WorkLease> rows,
-                             UpdateHeld(lease, "lease_expires_at_ms = ?4", NowMs() + ttl.count()));
-    return rows[0];
-  }
-
-  absl::Status Release(const WorkLease& lease) override {
-    return UpdateHeld(lease, "holder = NULL, lease_expires_at_ms = NULL", std::nullopt).status();
-  }
-
-  absl::StatusOr<bool> Complete(const WorkLease& lease) override {
-    SEAPLAN_ASSIGN_OR_RETURN(
-        std::vector<WorkLease> rows,
-        UpdateHeld(lease,
-                   "holder = NULL, lease_expires_at_ms = NULL, done_requests = claimed_requests",
-                   std::nullopt));
-    return rows[0].pending();
-  }
-
   absl::StatusOr<int> ReleaseAll(const std::string& holder) override {
     std::lock_guard lock(impl_.mu);
     SEAPLAN_RETURN_IF_ERROR(impl_.Usable());
@@ -839,8 +744,8 @@ class SqliteStore::Work final : public WorkLeaseRepository {
   absl::StatusOr<std::optional<WorkLease>> Get(const std::string& mission_id) override {
     std::lock_guard lock(impl_.mu);
     SEAPLAN_RETURN_IF_ERROR(impl_.Usable());
-    Stmt s(impl_.db,
-           absl::StrCat("SELECT ", Impl::kWorkColumns, " FROM mission_work WHERE mission_id = ?1"));
+    Stmt s(impl_.db, absl::StrCat("SELECT ", internal::kWorkColumns,
+                                  " FROM mission_work WHERE mission_id = ?1"));
     s.Text(1, mission_id);
     SEAPLAN_ASSIGN_OR_RETURN(std::vector<WorkLease> rows, impl_.WorkRowsLocked(s));
     if (rows.empty()) return std::optional<WorkLease>();
@@ -848,12 +753,12 @@ class SqliteStore::Work final : public WorkLeaseRepository {
   }
 
  private:
-  // Claims pending items matching `filter` (over ?4) that are free or
-  // expired. One writer at a time (the mutex, and BEGIN IMMEDIATE against
-  // other connections), so two claimers never get the same item.
-  absl::StatusOr<std::vector<WorkLease>> ClaimWhere(const char* filter, const std::string& arg,
-                                                    const std::string& holder,
-                                                    std::chrono::milliseconds ttl, int limit) {
+  // One writer at a time (the mutex, and BEGIN IMMEDIATE against other
+  // connections), so two claimers never get the same item.
+  absl::StatusOr<std::vector<WorkLease>> ClaimPending(const std::string& mission_id,
+                                                      const std::string& holder,
+                                                      std::chrono::milliseconds ttl,
+                                                      int limit) override {
     std::lock_guard lock(impl_.mu);
     SEAPLAN_RETURN_IF_ERROR(impl_.Usable());
     std::vector<WorkLease> out;
@@ -862,42 +767,30 @@ class SqliteStore::Work final : public WorkLeaseRepository {
       Stmt s(impl_.db,
              absl::StrCat("UPDATE mission_work SET holder = ?1, token = token + 1, "
                           "claimed_requests = requests, lease_expires_at_ms = ?2 "
-                          "WHERE mission_id IN (SELECT mission_id FROM mission_work WHERE ",
-                          filter,
-                          " AND requests > done_requests AND (holder IS NULL OR "
-                          "lease_expires_at_ms <= ?3) ORDER BY requested_at_ms, mission_id "
-                          "LIMIT ?5) RETURNING ",
-                          Impl::kWorkColumns));
-      s.Text(1, holder).Int(2, now + ttl.count()).Int(3, now).Text(4, arg).Int(5, limit);
+                          "WHERE mission_id IN (SELECT mission_id FROM mission_work WHERE "
+                          "(?4 = '' OR mission_id = ?4) AND requests > done_requests AND "
+                          "(holder IS NULL OR lease_expires_at_ms <= ?3) "
+                          "ORDER BY requested_at_ms, mission_id LIMIT ?5) RETURNING ",
+                          internal::kWorkColumns));
+      s.Text(1, holder).Int(2, now + ttl.count()).Int(3, now).Text(4, mission_id).Int(5, limit);
       SEAPLAN_ASSIGN_OR_RETURN(out, impl_.WorkRowsLocked(s));
       return absl::OkStatus();
     });
     if (!written.ok()) return written;
-    // RETURNING gives rows in no particular order.
-    std::sort(out.begin(), out.end(),
-              [](const WorkLease& a, const WorkLease& b) { return a.mission_id < b.mission_id; });
     return out;
   }
 
-  // Applies `set` (which may use ?4 = value) to the item while `lease` still
-  // holds it; Aborted when it does not.
-  absl::StatusOr<std::vector<WorkLease>> UpdateHeld(const WorkLease& lease, const char* set,
-                                                    std::optional<std::int64_t> value) {
+  absl::StatusOr<std::vector<WorkLease>> UpdateHeld(const WorkLease& lease, LeaseChange change,
+                                                    std::chrono::milliseconds ttl) override {
     std::lock_guard lock(impl_.mu);
     SEAPLAN_RETURN_IF_ERROR(impl_.Usable());
     Stmt s(impl_.db,
-           absl::StrCat("UPDATE mission_work SET ", set,
+           absl::StrCat("UPDATE mission_work SET ", SetClause(change, "?4"),
                         " WHERE mission_id = ?1 AND holder = ?2 AND token = ?3 RETURNING ",
-                        Impl::kWorkColumns));
+                        internal::kWorkColumns));
     s.Text(1, lease.mission_id).Text(2, lease.holder).Int(3, lease.token);
-    if (value) s.Int(4, *value);
-    SEAPLAN_ASSIGN_OR_RETURN(std::vector<WorkLease> rows, impl_.WorkRowsLocked(s));
-    if (rows.empty()) {
-      return absl::AbortedError(absl::StrCat("the work lease of mission '", lease.mission_id,
-                                             "' (token ", lease.token, ") is no longer held by '",
-                                             lease.holder, "'"));
-    }
-    return rows;
+    if (change == LeaseChange::kRenew) s.Int(4, NowMs() + ttl.count());
+    return impl_.WorkRowsLocked(s);
   }
 
   Impl& impl_;

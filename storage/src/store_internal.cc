@@ -62,6 +62,67 @@ std::string NotFoundMessage(const std::string& what, const std::string& id) {
   return absl::StrCat(what, " '", id, "' not found");
 }
 
+absl::StatusOr<std::optional<WorkLease>> WorkLeaseBase::Claim(const std::string& mission_id,
+                                                              const std::string& holder,
+                                                              std::chrono::milliseconds ttl) {
+  SEAPLAN_RETURN_IF_ERROR(CheckLeaseArguments(holder, ttl));
+  if (mission_id.empty()) return absl::InvalidArgumentError("a mission id must not be empty");
+  SEAPLAN_ASSIGN_OR_RETURN(std::vector<WorkLease> claimed,
+                           ClaimPending(mission_id, holder, ttl, 1));
+  if (claimed.empty()) return std::optional<WorkLease>();
+  return std::optional<WorkLease>(std::move(claimed[0]));
+}
+
+absl::StatusOr<std::vector<WorkLease>> WorkLeaseBase::ClaimNext(const std::string& holder,
+                                                                std::chrono::milliseconds ttl,
+                                                                int limit) {
+  SEAPLAN_RETURN_IF_ERROR(CheckLeaseArguments(holder, ttl));
+  SEAPLAN_RETURN_IF_ERROR(CheckPageSize(limit));
+  SEAPLAN_ASSIGN_OR_RETURN(std::vector<WorkLease> claimed, ClaimPending("", holder, ttl, limit));
+  // RETURNING gives rows in no particular order.
+  std::sort(claimed.begin(), claimed.end(),
+            [](const WorkLease& a, const WorkLease& b) { return a.mission_id < b.mission_id; });
+  return claimed;
+}
+
+absl::StatusOr<WorkLease> WorkLeaseBase::Renew(const WorkLease& lease,
+                                               std::chrono::milliseconds ttl) {
+  SEAPLAN_RETURN_IF_ERROR(CheckLeaseArguments(lease.holder, ttl));
+  return Change(lease, LeaseChange::kRenew, ttl);
+}
+
+absl::Status WorkLeaseBase::Release(const WorkLease& lease) {
+  return Change(lease, LeaseChange::kRelease, {}).status();
+}
+
+absl::StatusOr<bool> WorkLeaseBase::Complete(const WorkLease& lease) {
+  SEAPLAN_ASSIGN_OR_RETURN(WorkLease after, Change(lease, LeaseChange::kComplete, {}));
+  return after.pending();
+}
+
+absl::StatusOr<WorkLease> WorkLeaseBase::Change(const WorkLease& lease, LeaseChange change,
+                                                std::chrono::milliseconds ttl) {
+  SEAPLAN_ASSIGN_OR_RETURN(std::vector<WorkLease> rows, UpdateHeld(lease, change, ttl));
+  if (rows.empty()) {
+    return absl::AbortedError(absl::StrCat("the work lease of mission '", lease.mission_id,
+                                           "' (token ", lease.token, ") is no longer held by '",
+                                           lease.holder, "'"));
+  }
+  return rows[0];
+}
+
+std::string WorkLeaseBase::SetClause(LeaseChange change, const std::string& new_expiry) {
+  switch (change) {
+    case LeaseChange::kRenew:
+      return absl::StrCat("lease_expires_at_ms = ", new_expiry);
+    case LeaseChange::kRelease:
+      return "holder = NULL, lease_expires_at_ms = NULL";
+    case LeaseChange::kComplete:
+      return "holder = NULL, lease_expires_at_ms = NULL, done_requests = claimed_requests";
+  }
+  return "";
+}
+
 std::uint64_t LocalChangeFeed::GenerationLocked(const std::string& mission_id) {
   auto it = generation_.find(mission_id);
   return epoch_ + (it == generation_.end() ? 0 : it->second);
