@@ -144,7 +144,10 @@ absl::StatusOr<std::unique_ptr<TemporaryPostgresCluster>> TemporaryPostgresClust
   if (geteuid() == 0) {
     SEAPLAN_ASSIGN_OR_RETURN(cluster->run_as_, UnprivilegedUser());
   }
-  std::string folder_template = (fs::temp_directory_path() / "seaplan-pg-XXXXXX").string();
+  // The server's account must reach the folder: as root, TMPDIR may be
+  // under a private home, so use /tmp.
+  const fs::path parent = cluster->run_as_.empty() ? fs::temp_directory_path() : fs::path("/tmp");
+  std::string folder_template = (parent / "seaplan-pg-XXXXXX").string();
   if (mkdtemp(folder_template.data()) == nullptr) {
     return absl::UnavailableError(absl::StrCat("mkdtemp: ", std::strerror(errno)));
   }
