@@ -7,7 +7,7 @@
 #include <fstream>
 
 #include "seaplan/common/log.h"
-#include "seaplan/storage/sqlite_store.h"
+#include "seaplan/storage/open_store.h"
 #include "server/config/config.h"
 #include "server/core/mission_engine_adapter.h"
 #include "server/server.h"
@@ -31,25 +31,19 @@ int main(int argc, char** argv) {
   const server::ServerConfig& config = parsed.config;
   log::SetLevel(config.log_level);
 
-  std::error_code ec;
-  std::filesystem::create_directories(config.data_dir, ec);
-  if (ec) {
-    log::Error("cannot create data dir '{}': {}", config.data_dir, ec.message());
+  auto opened = storage::OpenStore(config.database, config.data_dir);
+  if (!opened.ok()) {
+    log::Error("{}", opened.status().ToString());
     return 1;
   }
-  const std::string db_path = (std::filesystem::path(config.data_dir) / "seaplan.db").string();
-  auto store = storage::SqliteStore::Open(db_path);
-  if (!store.ok()) {
-    log::Error("{}", store.status().ToString());
-    return 1;
-  }
-  log::Info("database {} (schema version {})", db_path, storage::LatestSchemaVersion());
+  auto store = std::move(opened->store);
+  log::Info("database {} (schema version {})", opened->description, storage::LatestSchemaVersion());
 
   // Null when the mission engine is not built in: MissionService then
   // answers UNIMPLEMENTED for planning RPCs.
   std::shared_ptr<server::MissionEngine> mission_engine =
-      server::MakeMissionEngine((*store)->charts());
-  auto server = server::Server::Start(config.server, **store, mission_engine);
+      server::MakeMissionEngine(store->charts());
+  auto server = server::Server::Start(config.server, *store, mission_engine);
   if (!server.ok()) {
     log::Error("cannot start: {}", server.status().ToString());
     return 1;
@@ -61,6 +55,7 @@ int main(int argc, char** argv) {
       std::ofstream out(tmp, std::ios::trunc);
       out << "grpc=" << (*server)->grpc_port() << "\nhttp=" << (*server)->http_port() << "\n";
     }
+    std::error_code ec;
     std::filesystem::rename(tmp, config.port_file, ec);
     if (ec) {
       log::Error("cannot write port file '{}': {}", config.port_file, ec.message());
@@ -73,7 +68,7 @@ int main(int argc, char** argv) {
   log::Info("received signal {}", signal_number);
   (*server)->Shutdown();
   server->reset();
-  absl::Status closed = (*store)->Close();
+  absl::Status closed = store->Close();
   if (!closed.ok()) {
     log::Error("closing the database: {}", closed.ToString());
     return 1;

@@ -23,6 +23,10 @@ ParsedConfig ParseConfig(int argc, const char* const* argv) {
   app.add_option("--data-dir", c.data_dir, "folder of the SQLite database (created if missing)")
       ->envname("SEAPLAN_DATA_DIR")
       ->capture_default_str();
+  app.add_option("--database", c.database,
+                 "postgresql://user:password@host:port/db to store in PostgreSQL (several servers "
+                 "may share it); empty: SQLite in --data-dir")
+      ->envname("SEAPLAN_DATABASE");
   app.add_option("--worker-threads", c.server.worker_threads,
                  "HTTP worker threads (gRPC thread cap: 4x)")
       ->envname("SEAPLAN_WORKER_THREADS")

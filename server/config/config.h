@@ -7,6 +7,8 @@
 //   --grpc-addr            SEAPLAN_GRPC_ADDR           127.0.0.1:50051
 //   --http-addr            SEAPLAN_HTTP_ADDR           127.0.0.1:8080 ("" disables HTTP)
 //   --data-dir             SEAPLAN_DATA_DIR            ./data   (database: <dir>/seaplan.db)
+//   --database             SEAPLAN_DATABASE            none     (postgresql://...: PostgreSQL
+//   instead of SQLite in --data-dir)
 //   --worker-threads       SEAPLAN_WORKER_THREADS      16
 //   --max-request-bytes    SEAPLAN_MAX_REQUEST_BYTES   67108864 (64 MiB: charts)
 //   --planning-threads     SEAPLAN_PLANNING_THREADS    2        (pool size; more ->
@@ -32,6 +34,9 @@ namespace seaplan::server {
 struct ServerConfig {
   ServerOptions server;
   std::string data_dir = "./data";
+  // Empty: SQLite in data_dir. postgresql://...: that PostgreSQL database
+  // (several servers may share it).
+  std::string database;
   std::string port_file;
   log::Level log_level = log::Level::kInfo;
 };

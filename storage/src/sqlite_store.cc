@@ -2,27 +2,36 @@
 
 #include <sqlite3.h>
 
+#include <algorithm>
 #include <mutex>
+#include <optional>
 #include <string_view>
 
 #include "absl/strings/str_cat.h"
-#include "absl/strings/str_join.h"
-#include "absl/strings/str_split.h"
 #include "seaplan/common/log.h"
+#include "store_internal.h"
 
 namespace seaplan::storage {
 namespace {
 
-// The migration list. NEVER edit a released entry: add a new one. Each runs
-// in one transaction with the bump of PRAGMA user_version to `version`.
+using internal::CheckPageSize;
+using internal::JoinTasks;
+using internal::kMissionColumns;
+using internal::LatestTime;
+using internal::NotFoundMessage;
+using internal::NowMs;
+using internal::SplitTasks;
+
+// The SQLite migrations, one per entry of internal::SchemaHistory() with the
+// same version. NEVER edit a released entry: add a new one. Each runs in one
+// transaction with the bump of PRAGMA user_version to `version`.
 struct Migration {
   int version;
-  const char* description;
   const char* sql;
 };
 
 constexpr Migration kMigrations[] = {
-    {1, "charts, missions, plan versions, feedback, log events", R"sql(
+    {1, R"sql(
 CREATE TABLE charts (
   seq INTEGER PRIMARY KEY AUTOINCREMENT,
   id TEXT NOT NULL UNIQUE,
@@ -75,14 +84,32 @@ CREATE TABLE log_events (
   message TEXT NOT NULL,
   PRIMARY KEY (mission_id, event_id)) WITHOUT ROWID;
 )sql"},
-    {2, "mission idempotency keys and completed tasks; charts keep the uploaded files", R"sql(
+    {2, R"sql(
 ALTER TABLE missions ADD COLUMN request_id TEXT;
 CREATE UNIQUE INDEX missions_by_request_id ON missions(request_id) WHERE request_id IS NOT NULL;
 ALTER TABLE missions ADD COLUMN completed_tasks TEXT NOT NULL DEFAULT '';
 ALTER TABLE charts ADD COLUMN source_files BLOB NOT NULL DEFAULT x'';
 ALTER TABLE plan_versions ADD COLUMN engine_state BLOB NOT NULL DEFAULT x'';
 )sql"},
+    // Change notifications need no schema on SQLite (one process: the store
+    // wakes its own watchers after each commit).
+    {3, R"sql(
+CREATE TABLE mission_work (
+  mission_id TEXT PRIMARY KEY REFERENCES missions(id),
+  reason TEXT NOT NULL,
+  base_version INTEGER NOT NULL,
+  requested_at_ms INTEGER NOT NULL,
+  requests INTEGER NOT NULL CHECK (requests >= 1),
+  done_requests INTEGER NOT NULL DEFAULT 0,
+  claimed_requests INTEGER NOT NULL DEFAULT 0,
+  holder TEXT CHECK (holder IS NULL OR length(holder) > 0),
+  token INTEGER NOT NULL DEFAULT 0,
+  lease_expires_at_ms INTEGER,
+  CHECK ((holder IS NULL) = (lease_expires_at_ms IS NULL))) WITHOUT ROWID;
+CREATE INDEX mission_work_pending ON mission_work(requested_at_ms) WHERE requests > done_requests;
+)sql"},
 };
+static_assert(std::size(kMigrations) == 3, "one SQLite migration per schema history entry");
 
 absl::Status SqliteError(sqlite3* db, int rc, const char* what) {
   const std::string msg = absl::StrCat(what, ": ", db ? sqlite3_errmsg(db) : sqlite3_errstr(rc));
@@ -164,6 +191,15 @@ class Stmt {
   absl::Status status_;
 };
 
+// A statement's current row as the shared row readers (store_internal.h)
+// want it. sqlite3_column_blob gives a text column's bytes too.
+struct StmtRow {
+  const Stmt& s;
+  std::int64_t Int(int c) const { return s.ColInt(c); }
+  double Real(int c) const { return s.ColReal(c); }
+  std::string Bytes(int c) const { return s.ColBlob(c); }
+};
+
 absl::Status Exec(sqlite3* db, const char* sql) {
   char* err = nullptr;
   const int rc = sqlite3_exec(db, sql, nullptr, nullptr, &err);
@@ -189,30 +225,13 @@ absl::Status InTransaction(sqlite3* db, F&& body) {
   return status;
 }
 
-std::string JoinTasks(const std::vector<std::string>& tasks) {
-  return absl::StrJoin(tasks, "\n");
-}
-std::vector<std::string> SplitTasks(const std::string& text) {
-  if (text.empty()) return {};
-  return absl::StrSplit(text, '\n');
-}
-
-absl::Status CheckPageSize(int page_size) {
-  if (page_size < 1 || page_size > 1000) {
-    return absl::InvalidArgumentError(absl::StrCat("page size must be 1..1000, got ", page_size));
-  }
-  return absl::OkStatus();
-}
-
 }  // namespace
-
-int LatestSchemaVersion() {
-  return kMigrations[std::size(kMigrations) - 1].version;
-}
 
 struct SqliteStore::Impl final : ChartRepository, MissionRepository {
   sqlite3* db = nullptr;
   std::mutex mu;
+  // Bumped after each commit that touches a mission (outside mu).
+  internal::LocalChangeFeed feed;
 
   ~Impl() override { CloseLocked(); }
 
@@ -244,7 +263,16 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
           absl::StrCat("database schema version ", current, " is newer than this server knows (",
                        LatestSchemaVersion(), "); refusing to touch it"));
     }
-    for (const Migration& m : kMigrations) {
+    const auto history = internal::SchemaHistory();
+    if (history.size() != std::size(kMigrations)) {
+      return absl::InternalError("SQLite migrations do not match the schema history");
+    }
+    for (std::size_t i = 0; i < history.size(); ++i) {
+      const Migration& m = kMigrations[i];
+      const char* description = history[i].description;
+      if (m.version != history[i].version) {
+        return absl::InternalError("SQLite migrations do not match the schema history");
+      }
       if (m.version <= current) continue;
       absl::Status st = InTransaction(db, [&]() -> absl::Status {
         SEAPLAN_RETURN_IF_ERROR(Exec(db, m.sql));
@@ -252,9 +280,9 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
       });
       if (!st.ok()) {
         return absl::Status(st.code(), absl::StrCat("schema migration to version ", m.version, " (",
-                                                    m.description, ") failed: ", st.message()));
+                                                    description, ") failed: ", st.message()));
       }
-      log::Info("storage: migrated schema to version {} ({})", m.version, m.description);
+      log::Info("storage: migrated schema to version {} ({})", m.version, description);
     }
     return absl::OkStatus();
   }
@@ -312,15 +340,50 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
       s.Null(5);
     s.Int(6, now_ms);
     SEAPLAN_RETURN_IF_ERROR(s.Run());
-    if (sqlite3_changes(db) == 0)
-      return absl::NotFoundError(absl::StrCat("mission '", id, "' not found"));
+    if (sqlite3_changes(db) == 0) return absl::NotFoundError(NotFoundMessage("mission", id));
+    if (u.request_work) return RequestWorkLocked(id, *u.request_work).status();
     return absl::OkStatus();
   }
 
-  static TimestampMs LatestTime(const std::vector<NewLogEvent>& events, TimestampMs fallback) {
-    TimestampMs t = fallback;
-    for (const auto& e : events) t = std::max(t, e.time_ms);
-    return t;
+  // Runs a write of mission `id` in one transaction and wakes its watchers
+  // after the commit. Caller holds mu.
+  template <typename F>
+  absl::Status MissionWriteLocked(const std::string& id, F&& body) {
+    absl::Status st = InTransaction(db, std::forward<F>(body));
+    if (st.ok()) feed.Bump(id);
+    return st;
+  }
+
+  // ---- work leases (caller holds mu) ----
+  // Returns true when the mission had no pending work before.
+  absl::StatusOr<bool> RequestWorkLocked(const std::string& mission_id, const WorkRequest& r) {
+    Stmt s(db, absl::StrCat(
+                   "INSERT INTO mission_work(mission_id, reason, base_version, requested_at_ms, "
+                   "requests) VALUES (?1, ?2, ?3, ?4, 1) "
+                   "ON CONFLICT(mission_id) DO UPDATE SET reason = excluded.reason, "
+                   "base_version = excluded.base_version, requests = requests + 1, "
+                   "requested_at_ms = CASE WHEN requests > done_requests THEN requested_at_ms "
+                   "ELSE excluded.requested_at_ms END "
+                   "RETURNING requests - done_requests"));
+    s.Text(1, mission_id).Text(2, r.reason).Int(3, r.base_version).Int(4, NowMs());
+    absl::StatusOr<bool> row = s.Step();
+    if (!row.ok() && sqlite3_extended_errcode(db) == SQLITE_CONSTRAINT_FOREIGNKEY) {
+      return absl::NotFoundError(NotFoundMessage("mission", mission_id));
+    }
+    SEAPLAN_RETURN_IF_ERROR(row.status());
+    if (!*row) return absl::InternalError("work request returned no row");
+    return s.ColInt(0) == 1;
+  }
+
+  // Runs an UPDATE ... RETURNING on the work table; the leases it returns.
+  absl::StatusOr<std::vector<WorkLease>> WorkRowsLocked(Stmt& s) {
+    std::vector<WorkLease> out;
+    while (true) {
+      SEAPLAN_ASSIGN_OR_RETURN(bool row, s.Step());
+      if (!row) break;
+      out.push_back(internal::ReadWork(StmtRow{s}));
+    }
+    return out;
   }
 
   // ---- ChartRepository ----
@@ -347,22 +410,6 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
     return c;
   }
 
-  static ChartRecord ReadChart(const Stmt& s, bool with_blobs) {
-    ChartRecord c;
-    c.seq = s.ColInt(0);
-    c.id = s.ColText(1);
-    c.name = s.ColText(2);
-    c.format = static_cast<int>(s.ColInt(3));
-    c.options = s.ColBlob(4);
-    c.summary = s.ColBlob(5);
-    c.created_at_ms = s.ColInt(6);
-    if (with_blobs) {
-      c.obstacles = s.ColBlob(7);
-      c.source_files = s.ColBlob(8);
-    }
-    return c;
-  }
-
   absl::StatusOr<ChartRecord> Get(const std::string& id, bool with_blobs) override {
     std::lock_guard lock(mu);
     SEAPLAN_RETURN_IF_ERROR(Usable());
@@ -374,7 +421,7 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
     s.Text(1, id);
     SEAPLAN_ASSIGN_OR_RETURN(bool row, s.Step());
     if (!row) return absl::NotFoundError(absl::StrCat("chart '", id, "' not found"));
-    return ReadChart(s, with_blobs);
+    return internal::ReadChart(StmtRow{s}, with_blobs);
   }
 
   absl::StatusOr<Page<ChartRecord>> List(int page_size, std::int64_t after) override {
@@ -393,35 +440,12 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
         page.next_after = page.items.back().seq;
         break;
       }
-      page.items.push_back(ReadChart(s, false));
+      page.items.push_back(internal::ReadChart(StmtRow{s}, false));
     }
     return page;
   }
 
   // ---- MissionRepository ----
-  static constexpr const char* kMissionColumns =
-      "seq, id, name, vessel_id, COALESCE(request_id, ''), spec, state, current_version, "
-      "created_at_ms, "
-      "updated_at_ms, last_state, completed_tasks, failure_reason";
-
-  static MissionRecord ReadMission(const Stmt& s) {
-    MissionRecord m;
-    m.seq = s.ColInt(0);
-    m.id = s.ColText(1);
-    m.name = s.ColText(2);
-    m.vessel_id = s.ColText(3);
-    m.request_id = s.ColText(4);
-    m.spec = s.ColBlob(5);
-    m.state = static_cast<int>(s.ColInt(6));
-    m.current_version = static_cast<int>(s.ColInt(7));
-    m.created_at_ms = s.ColInt(8);
-    m.updated_at_ms = s.ColInt(9);
-    m.last_state = s.ColBlob(10);
-    m.completed_tasks = SplitTasks(s.ColText(11));
-    m.failure_reason = s.ColText(12);
-    return m;
-  }
-
   absl::Status InsertVersionLocked(const PlanVersionRecord& v) {
     Stmt s(db,
            "INSERT INTO plan_versions(mission_id, version, reason, created_at_ms, content, "
@@ -444,7 +468,7 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
     }
     std::lock_guard lock(mu);
     SEAPLAN_RETURN_IF_ERROR(Usable());
-    return InTransaction(db, [&]() -> absl::Status {
+    return MissionWriteLocked(m.id, [&]() -> absl::Status {
       Stmt s(db,
              "INSERT INTO missions(id, name, vessel_id, request_id, spec, state, current_version, "
              "created_at_ms, "
@@ -480,7 +504,7 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
     s.Text(1, id);
     SEAPLAN_ASSIGN_OR_RETURN(bool row, s.Step());
     if (!row) return absl::NotFoundError(absl::StrCat("mission '", id, "' not found"));
-    return ReadMission(s);
+    return internal::ReadMission(StmtRow{s});
   }
 
   absl::StatusOr<std::optional<MissionRecord>> FindByRequestId(
@@ -491,7 +515,7 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
     s.Text(1, request_id);
     SEAPLAN_ASSIGN_OR_RETURN(bool row, s.Step());
     if (!row) return std::optional<MissionRecord>();
-    return std::optional<MissionRecord>(ReadMission(s));
+    return std::optional<MissionRecord>(internal::ReadMission(StmtRow{s}));
   }
 
   absl::StatusOr<Page<MissionRecord>> List(int state, int page_size, std::int64_t after) override {
@@ -511,7 +535,7 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
         page.next_after = page.items.back().seq;
         break;
       }
-      page.items.push_back(ReadMission(s));
+      page.items.push_back(internal::ReadMission(StmtRow{s}));
     }
     return page;
   }
@@ -520,7 +544,7 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
                       const std::vector<NewLogEvent>& events) override {
     std::lock_guard lock(mu);
     SEAPLAN_RETURN_IF_ERROR(Usable());
-    return InTransaction(db, [&]() -> absl::Status {
+    return MissionWriteLocked(id, [&]() -> absl::Status {
       SEAPLAN_RETURN_IF_ERROR(ApplyUpdateLocked(id, update, LatestTime(events, NowMs())));
       return AppendEventsLocked(id, events).status();
     });
@@ -530,11 +554,11 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
                              const std::vector<NewLogEvent>& events) override {
     std::lock_guard lock(mu);
     SEAPLAN_RETURN_IF_ERROR(Usable());
-    return InTransaction(db, [&]() -> absl::Status {
+    return MissionWriteLocked(v.mission_id, [&]() -> absl::Status {
       Stmt cur(db, "SELECT current_version FROM missions WHERE id = ?1");
       cur.Text(1, v.mission_id);
       SEAPLAN_ASSIGN_OR_RETURN(bool row, cur.Step());
-      if (!row) return absl::NotFoundError(absl::StrCat("mission '", v.mission_id, "' not found"));
+      if (!row) return absl::NotFoundError(NotFoundMessage("mission", v.mission_id));
       const std::int64_t current = cur.ColInt(0);
       if (v.version != current + 1) {
         return absl::AbortedError(absl::StrCat("plan version ", v.version, " of mission '",
@@ -551,11 +575,6 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
     });
   }
 
-  static PlanVersionRecord ReadVersion(const Stmt& s) {
-    return {s.ColText(0), static_cast<int>(s.ColInt(1)), s.ColText(2), s.ColInt(3), s.ColBlob(4),
-            s.ColBlob(5)};
-  }
-
   absl::StatusOr<PlanVersionRecord> GetVersion(const std::string& mission_id,
                                                int version) override {
     std::lock_guard lock(mu);
@@ -569,7 +588,7 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
     if (!row)
       return absl::NotFoundError(
           absl::StrCat("plan version ", version, " of mission '", mission_id, "' not found"));
-    return ReadVersion(s);
+    return internal::ReadVersion(StmtRow{s});
   }
 
   absl::StatusOr<std::vector<PlanVersionRecord>> ListVersions(const std::string& mission_id,
@@ -586,7 +605,7 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
     while (true) {
       SEAPLAN_ASSIGN_OR_RETURN(bool row, s.Step());
       if (!row) break;
-      out.push_back(ReadVersion(s));
+      out.push_back(internal::ReadVersion(StmtRow{s}));
     }
     return out;
   }
@@ -596,7 +615,7 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
     std::lock_guard lock(mu);
     SEAPLAN_RETURN_IF_ERROR(Usable());
     bool inserted = false;
-    absl::Status result = InTransaction(db, [&]() -> absl::Status {
+    absl::Status result = MissionWriteLocked(f.mission_id, [&]() -> absl::Status {
       Stmt s(db,
              "INSERT INTO feedback(mission_id, vessel_id, sequence_number, kind, payload, "
              "received_at_ms) "
@@ -611,7 +630,7 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
       if (!st.ok()) {
         // A foreign-key failure here means the mission does not exist.
         if (sqlite3_extended_errcode(db) == SQLITE_CONSTRAINT_FOREIGNKEY) {
-          return absl::NotFoundError(absl::StrCat("mission '", f.mission_id, "' not found"));
+          return absl::NotFoundError(NotFoundMessage("mission", f.mission_id));
         }
         return st;
       }
@@ -625,11 +644,6 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
     return inserted;
   }
 
-  static FeedbackRecord ReadFeedback(const Stmt& s) {
-    return {s.ColText(0), s.ColText(1), s.ColInt(2), static_cast<int>(s.ColInt(3)),
-            s.ColBlob(4), s.ColInt(5)};
-  }
-
   absl::StatusOr<std::optional<FeedbackRecord>> FindFeedback(
       const std::string& vessel_id, std::int64_t sequence_number) override {
     std::lock_guard lock(mu);
@@ -641,7 +655,7 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
     s.Text(1, vessel_id).Int(2, sequence_number);
     SEAPLAN_ASSIGN_OR_RETURN(bool row, s.Step());
     if (!row) return std::optional<FeedbackRecord>();
-    return std::optional<FeedbackRecord>(ReadFeedback(s));
+    return std::optional<FeedbackRecord>(internal::ReadFeedback(StmtRow{s}));
   }
 
   absl::StatusOr<std::vector<FeedbackRecord>> ListFeedback(const std::string& mission_id,
@@ -658,7 +672,7 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
     while (true) {
       SEAPLAN_ASSIGN_OR_RETURN(bool row, s.Step());
       if (!row) break;
-      out.push_back(ReadFeedback(s));
+      out.push_back(internal::ReadFeedback(StmtRow{s}));
     }
     return out;
   }
@@ -668,11 +682,11 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
     std::lock_guard lock(mu);
     SEAPLAN_RETURN_IF_ERROR(Usable());
     std::vector<LogEventRecord> out;
-    absl::Status result = InTransaction(db, [&]() -> absl::Status {
+    absl::Status result = MissionWriteLocked(mission_id, [&]() -> absl::Status {
       Stmt exists(db, "SELECT 1 FROM missions WHERE id = ?1");
       exists.Text(1, mission_id);
       SEAPLAN_ASSIGN_OR_RETURN(bool row, exists.Step());
-      if (!row) return absl::NotFoundError(absl::StrCat("mission '", mission_id, "' not found"));
+      if (!row) return absl::NotFoundError(NotFoundMessage("mission", mission_id));
       SEAPLAN_ASSIGN_OR_RETURN(out, AppendEventsLocked(mission_id, events));
       return absl::OkStatus();
     });
@@ -693,20 +707,97 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
     while (true) {
       SEAPLAN_ASSIGN_OR_RETURN(bool row, s.Step());
       if (!row) break;
-      out.push_back(
-          {s.ColText(0), s.ColInt(1), s.ColInt(2), s.ColReal(3), s.ColText(4), s.ColText(5)});
+      out.push_back(internal::ReadEvent(StmtRow{s}));
     }
     return out;
   }
-
-  static TimestampMs NowMs() {
-    return std::chrono::duration_cast<std::chrono::milliseconds>(
-               std::chrono::system_clock::now().time_since_epoch())
-        .count();
-  }
 };
 
-SqliteStore::SqliteStore(std::unique_ptr<Impl> impl) : impl_(std::move(impl)) {}
+// The work leases over the same connection and mutex (a separate object:
+// its Get() would clash with MissionRepository::Get()).
+class SqliteStore::Work final : public internal::WorkLeaseBase {
+ public:
+  explicit Work(Impl& impl) : impl_(impl) {}
+
+  absl::StatusOr<bool> Request(const std::string& mission_id, const WorkRequest& r) override {
+    std::lock_guard lock(impl_.mu);
+    SEAPLAN_RETURN_IF_ERROR(impl_.Usable());
+    bool was_idle = false;
+    const absl::Status written = InTransaction(impl_.db, [&]() -> absl::Status {
+      SEAPLAN_ASSIGN_OR_RETURN(was_idle, impl_.RequestWorkLocked(mission_id, r));
+      return absl::OkStatus();
+    });
+    if (!written.ok()) return written;
+    return was_idle;
+  }
+
+  absl::StatusOr<int> ReleaseAll(const std::string& holder) override {
+    std::lock_guard lock(impl_.mu);
+    SEAPLAN_RETURN_IF_ERROR(impl_.Usable());
+    Stmt s(impl_.db,
+           "UPDATE mission_work SET holder = NULL, lease_expires_at_ms = NULL WHERE holder = ?1");
+    s.Text(1, holder);
+    SEAPLAN_RETURN_IF_ERROR(s.Run());
+    return sqlite3_changes(impl_.db);
+  }
+
+  absl::StatusOr<std::optional<WorkLease>> Get(const std::string& mission_id) override {
+    std::lock_guard lock(impl_.mu);
+    SEAPLAN_RETURN_IF_ERROR(impl_.Usable());
+    Stmt s(impl_.db, absl::StrCat("SELECT ", internal::kWorkColumns,
+                                  " FROM mission_work WHERE mission_id = ?1"));
+    s.Text(1, mission_id);
+    SEAPLAN_ASSIGN_OR_RETURN(std::vector<WorkLease> rows, impl_.WorkRowsLocked(s));
+    if (rows.empty()) return std::optional<WorkLease>();
+    return std::optional<WorkLease>(std::move(rows[0]));
+  }
+
+ private:
+  // One writer at a time (the mutex, and BEGIN IMMEDIATE against other
+  // connections), so two claimers never get the same item.
+  absl::StatusOr<std::vector<WorkLease>> ClaimPending(const std::string& mission_id,
+                                                      const std::string& holder,
+                                                      std::chrono::milliseconds ttl,
+                                                      int limit) override {
+    std::lock_guard lock(impl_.mu);
+    SEAPLAN_RETURN_IF_ERROR(impl_.Usable());
+    std::vector<WorkLease> out;
+    const absl::Status written = InTransaction(impl_.db, [&]() -> absl::Status {
+      const TimestampMs now = NowMs();
+      Stmt s(impl_.db,
+             absl::StrCat("UPDATE mission_work SET holder = ?1, token = token + 1, "
+                          "claimed_requests = requests, lease_expires_at_ms = ?2 "
+                          "WHERE mission_id IN (SELECT mission_id FROM mission_work WHERE "
+                          "(?4 = '' OR mission_id = ?4) AND requests > done_requests AND "
+                          "(holder IS NULL OR lease_expires_at_ms <= ?3) "
+                          "ORDER BY requested_at_ms, mission_id LIMIT ?5) RETURNING ",
+                          internal::kWorkColumns));
+      s.Text(1, holder).Int(2, now + ttl.count()).Int(3, now).Text(4, mission_id).Int(5, limit);
+      SEAPLAN_ASSIGN_OR_RETURN(out, impl_.WorkRowsLocked(s));
+      return absl::OkStatus();
+    });
+    if (!written.ok()) return written;
+    return out;
+  }
+
+  absl::StatusOr<std::vector<WorkLease>> UpdateHeld(const WorkLease& lease, LeaseChange change,
+                                                    std::chrono::milliseconds ttl) override {
+    std::lock_guard lock(impl_.mu);
+    SEAPLAN_RETURN_IF_ERROR(impl_.Usable());
+    Stmt s(impl_.db,
+           absl::StrCat("UPDATE mission_work SET ", SetClause(change, "?4"),
+                        " WHERE mission_id = ?1 AND holder = ?2 AND token = ?3 RETURNING ",
+                        internal::kWorkColumns));
+    s.Text(1, lease.mission_id).Text(2, lease.holder).Int(3, lease.token);
+    if (change == LeaseChange::kRenew) s.Int(4, NowMs() + ttl.count());
+    return impl_.WorkRowsLocked(s);
+  }
+
+  Impl& impl_;
+};
+
+SqliteStore::SqliteStore(std::unique_ptr<Impl> impl)
+    : impl_(std::move(impl)), work_(std::make_unique<Work>(*impl_)) {}
 SqliteStore::~SqliteStore() = default;
 
 absl::StatusOr<std::unique_ptr<SqliteStore>> SqliteStore::Open(const std::string& path,
@@ -749,10 +840,17 @@ ChartRepository& SqliteStore::charts() {
 MissionRepository& SqliteStore::missions() {
   return *impl_;
 }
+WorkLeaseRepository& SqliteStore::work() {
+  return *work_;
+}
+ChangeFeed& SqliteStore::changes() {
+  return impl_->feed;
+}
 
 absl::Status SqliteStore::Close() {
   std::lock_guard lock(impl_->mu);
   impl_->CloseLocked();
+  impl_->feed.Close();
   return absl::OkStatus();
 }
 

@@ -3,12 +3,14 @@
 //
 // Overview
 //   The server talks to storage only through these abstract repositories, so
-//   another backend (PostgreSQL, an in-memory fake) can be added without
-//   touching the service layer. The SQLite implementation is in
-//   sqlite_store.h. Records are plain structs; structured payloads (the
-//   mission spec, a plan version, a feedback report, chart summaries) are
-//   opaque byte blobs that the caller serialises (the server stores
-//   serialised seaplan.v1 protos), so storage never interprets them.
+//   the backend is chosen at start-up without touching the service layer:
+//   SQLite (sqlite_store.h, one process, the embedded default) or PostgreSQL
+//   (postgres_store.h, any number of server processes on one database);
+//   open_store.h picks one from a setting. Both apply the same numbered
+//   schema migrations and give the guarantees below. Records are plain structs; structured payloads
+//   (the mission spec, a plan version, a feedback report, chart summaries) are opaque byte blobs
+//   that the caller serialises (the server stores serialised seaplan.v1 protos), so storage never
+//   interprets them.
 //
 // Durability and atomicity
 //   Every method that writes commits before it returns OK: when a caller has
@@ -24,9 +26,16 @@
 //   token, a value a constraint rejects), Internal / Unavailable (the
 //   database itself failed).
 //
+// Several processes: on PostgreSQL, writers in different processes are
+//   serialised per mission by row locks and unique constraints (plan
+//   versions stay 1, 2, 3 ... without gap or duplicate, a feedback report is
+//   stored once), WorkLeaseRepository hands each mission's work to one
+//   holder, and ChangeFeed wakes watchers of every process.
+//
 // Thread-safety: implementations must be safe to call from any thread.
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <optional>
 #include <string>
@@ -87,12 +96,22 @@ struct MissionRecord {
   std::string failure_reason;
 };
 
+// Work a mission needs done by some server process (a replan), recorded in
+// the database so that it survives the process that accepted it.
+struct WorkRequest {
+  std::string reason;
+  int base_version = 0;  // the plan version the request is about
+};
+
 // A partial update of a mission; unset fields keep their value.
 struct MissionUpdate {
   std::optional<int> state;
   std::optional<std::string> last_state;
   std::optional<std::vector<std::string>> completed_tasks;
   std::optional<std::string> failure_reason;
+  // Records work for the mission (WorkLeaseRepository::Request) in the same
+  // transaction, so an acknowledged report that needs a replan cannot lose it.
+  std::optional<WorkRequest> request_work;
 };
 
 struct PlanVersionRecord {
@@ -189,12 +208,99 @@ class MissionRepository {
                                                                  int limit) = 0;
 };
 
+// A mission's work with an expiring lease: exactly one holder (a server
+// process, named by a unique id) runs a mission's work at a time, and the
+// work of a holder that died is taken over once its lease expires.
+//
+// A mission has at most one work item. Request() records that work is
+// needed; requests that arrive while the item is pending or running are
+// counted into it, so none is lost: Complete() covers the requests seen at
+// claim time and leaves the item pending when more came meanwhile.
+// Claim()/ClaimNext() hand a pending item to a holder for `ttl`; the holder
+// Renew()s while it works, Complete()s when done, or Release()s to hand it
+// back unfinished (graceful shutdown). Once a lease has expired anyone may
+// claim the item; every claim increments the item's token, and the old
+// holder's Renew/Release/Complete with its stale token answer Aborted.
+//
+// Expiry is measured on the database's clock on PostgreSQL (processes on
+// machines with skewed clocks agree) and on this process's clock on SQLite.
+struct WorkLease {
+  std::string mission_id;
+  std::string reason;                 // of the latest request
+  int base_version = 0;               // of the latest request
+  std::string holder;                 // empty when nobody holds the item
+  std::int64_t token = 0;             // grows at every claim of this mission's work
+  std::int64_t requests = 0;          // requests ever made for the mission
+  std::int64_t claimed_requests = 0;  // requests the current claim covers
+  std::int64_t done_requests = 0;     // requests covered by completed runs
+  TimestampMs expires_at_ms = 0;      // 0 when nobody holds the item
+  bool pending() const { return requests > done_requests; }
+};
+
+class WorkLeaseRepository {
+ public:
+  virtual ~WorkLeaseRepository() = default;
+  // Records work for a mission (NotFound when absent). Returns true when the
+  // mission had no pending work, false when the request joined pending work.
+  virtual absl::StatusOr<bool> Request(const std::string& mission_id,
+                                       const WorkRequest& request) = 0;
+  // Claims this mission's pending work for `holder`; nullopt when there is
+  // none or another lease on it has not expired.
+  virtual absl::StatusOr<std::optional<WorkLease>> Claim(const std::string& mission_id,
+                                                         const std::string& holder,
+                                                         std::chrono::milliseconds ttl) = 0;
+  // Claims up to `limit` (1..1000) pending items that nobody holds or whose
+  // lease expired, oldest request first. Concurrent callers get disjoint
+  // items (PostgreSQL: FOR UPDATE SKIP LOCKED).
+  virtual absl::StatusOr<std::vector<WorkLease>> ClaimNext(const std::string& holder,
+                                                           std::chrono::milliseconds ttl,
+                                                           int limit) = 0;
+  // Extends a lease to now + ttl. Aborted when it was lost.
+  virtual absl::StatusOr<WorkLease> Renew(const WorkLease& lease,
+                                          std::chrono::milliseconds ttl) = 0;
+  // Hands the work back unfinished: pending and free at once. Aborted when
+  // the lease was lost.
+  virtual absl::Status Release(const WorkLease& lease) = 0;
+  // The work is done for the requests the claim covered. Returns true when
+  // the mission still has pending work (requests came meanwhile). Aborted
+  // when the lease was lost (someone else may have done the work).
+  virtual absl::StatusOr<bool> Complete(const WorkLease& lease) = 0;
+  // Releases every lease of `holder` (graceful shutdown); returns how many.
+  virtual absl::StatusOr<int> ReleaseAll(const std::string& holder) = 0;
+  // The mission's work item, if it ever had one.
+  virtual absl::StatusOr<std::optional<WorkLease>> Get(const std::string& mission_id) = 0;
+};
+
+// Wakes watchers when a mission changes. Every commit that touches a mission
+// (its row, a plan version, feedback, a log event) increments the mission's
+// generation AFTER the commit, in every process that has the database open
+// (PostgreSQL: LISTEN/NOTIFY; SQLite: in this process). A watcher reads the
+// generation, then reads storage, then waits for the generation to move: a
+// commit the read missed moves it afterwards, so nothing is missed. When
+// notifications may have been lost (the PostgreSQL listener reconnected)
+// every generation moves, and watchers re-read.
+class ChangeFeed {
+ public:
+  virtual ~ChangeFeed() = default;
+  virtual std::uint64_t Generation(const std::string& mission_id) = 0;
+  // Waits until the generation differs from `seen`, `timeout` passes or the
+  // store is closed; returns the current generation.
+  virtual std::uint64_t Wait(const std::string& mission_id, std::uint64_t seen,
+                             std::chrono::milliseconds timeout) = 0;
+};
+
+// The schema version this binary migrates to (the same numbering on every
+// backend).
+int LatestSchemaVersion();
+
 // One open database: the repositories over it.
 class Store {
  public:
   virtual ~Store() = default;
   virtual ChartRepository& charts() = 0;
   virtual MissionRepository& missions() = 0;
+  virtual WorkLeaseRepository& work() = 0;
+  virtual ChangeFeed& changes() = 0;
   // Flushes and closes; later calls fail with FailedPrecondition. Also done
   // by the destructor.
   virtual absl::Status Close() = 0;

@@ -9,7 +9,8 @@
 // RPC acknowledges is durable), foreign_keys=ON, busy_timeout 5 s.
 //
 // Schema migrations: the schema version lives in PRAGMA user_version. Open()
-// applies every migration in kMigrations (sqlite_store.cc) above the file's
+// applies every migration in kMigrations (sqlite_store.cc, numbered as the
+// PostgreSQL ones) above the file's
 // version in order, each in its own transaction together with the bump of
 // user_version, so a crash mid-migration leaves the previous version intact.
 // A file whose version is newer than this binary knows is refused
@@ -37,9 +38,6 @@ struct SqliteOptions {
   bool synchronous_full = true;
 };
 
-// The schema version this binary migrates to.
-int LatestSchemaVersion();
-
 class SqliteStore final : public Store {
  public:
   // Opens (creating if needed) the database at `path` (":memory:" for a
@@ -53,6 +51,10 @@ class SqliteStore final : public Store {
 
   ChartRepository& charts() override;
   MissionRepository& missions() override;
+  WorkLeaseRepository& work() override;
+  // Bumped by this store after each of its commits: one process owns a
+  // SQLite database, so no other process has watchers to wake.
+  ChangeFeed& changes() override;
   absl::Status Close() override;
 
   // PRAGMA user_version of the open database.
@@ -63,8 +65,10 @@ class SqliteStore final : public Store {
   struct Impl;
 
  private:
+  class Work;
   explicit SqliteStore(std::unique_ptr<Impl> impl);
   std::unique_ptr<Impl> impl_;
+  std::unique_ptr<Work> work_;
 };
 
 }  // namespace seaplan::storage

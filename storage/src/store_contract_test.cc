@@ -1,0 +1,422 @@
+// The guarantees of repositories.h, checked on every backend (SQLite and
+// PostgreSQL) by the same tests.
+#include <gtest/gtest.h>
+
+#include <atomic>
+#include <cmath>
+#include <set>
+#include <thread>
+
+#include "store_test_backends.h"
+
+namespace seaplan::storage {
+namespace {
+
+using std::chrono::milliseconds;
+
+INSTANTIATE_TEST_SUITE_P(Backends, StoreTest,
+                         ::testing::Values(Backend::kSqlite, Backend::kPostgres), BackendName);
+
+TEST_P(StoreTest, SchemaIsLatestAndReopeningKeepsData) {
+  ASSERT_TRUE(missions().Create(TestMission("m1"), TestVersion("m1", 1), {TestEvent("hi")}).ok());
+  ASSERT_TRUE(store().Close().ok());
+  EXPECT_EQ(missions().Get("m1").status().code(), absl::StatusCode::kFailedPrecondition);
+  std::unique_ptr<Store> again = OpenAnother();
+  ASSERT_NE(again, nullptr);
+  auto m = again->missions().Get("m1");
+  ASSERT_TRUE(m.ok()) << m.status();
+  EXPECT_EQ(m->spec, std::string("spec\0bytes", 10));
+  EXPECT_EQ(again->missions().GetVersion("m1", 1)->content, "content-1");
+  EXPECT_EQ(again->missions().ListEvents("m1", 0, 10)->size(), 1u);
+}
+
+TEST_P(StoreTest, FeedbackIsIdempotentByVesselAndSequence) {
+  MissionRepository& repo = missions();
+  ASSERT_TRUE(repo.Create(TestMission("m1"), TestVersion("m1", 1), {}).ok());
+  MissionUpdate update;
+  update.completed_tasks = std::vector<std::string>{"v1-t0"};
+  auto first = repo.RecordFeedback({"m1", "vessel-1", 7, 2, "payload-a", 100}, update,
+                                   {TestEvent("task done", "vessel-1")});
+  ASSERT_TRUE(first.ok()) << first.status();
+  EXPECT_TRUE(*first);
+  // The retry (even with different content) changes nothing.
+  MissionUpdate other;
+  other.completed_tasks = std::vector<std::string>{"v1-t0", "v1-t1"};
+  auto retry = repo.RecordFeedback({"m1", "vessel-1", 7, 3, "payload-b", 200}, other,
+                                   {TestEvent("again", "vessel-1")});
+  ASSERT_TRUE(retry.ok()) << retry.status();
+  EXPECT_FALSE(*retry);
+  auto all = repo.ListFeedback("m1", 100);
+  ASSERT_TRUE(all.ok());
+  ASSERT_EQ(all->size(), 1u);
+  EXPECT_EQ((*all)[0].payload, "payload-a");
+  EXPECT_EQ(repo.Get("m1")->completed_tasks, std::vector<std::string>{"v1-t0"});
+  EXPECT_EQ(repo.ListEvents("m1", 0, 100)->size(), 1u);
+  // Another sequence number is new.
+  EXPECT_TRUE(*repo.RecordFeedback({"m1", "vessel-1", 8, 2, "c", 300}, {}, {}));
+  auto found = repo.FindFeedback("vessel-1", 8);
+  ASSERT_TRUE(found.ok() && found->has_value());
+  EXPECT_EQ((*found)->payload, "c");
+  EXPECT_FALSE(repo.FindFeedback("vessel-1", 9)->has_value());
+  // ListFeedback gives the latest reports, oldest first.
+  auto latest = repo.ListFeedback("m1", 1);
+  ASSERT_EQ(latest->size(), 1u);
+  EXPECT_EQ((*latest)[0].sequence_number, 8);
+  // Feedback for a mission that does not exist is refused.
+  auto r = repo.RecordFeedback({"no-such-mission", "v", 1, 1, "p", 1}, {}, {});
+  EXPECT_EQ(r.status().code(), absl::StatusCode::kNotFound) << r.status();
+}
+
+TEST_P(StoreTest, FailingStatementInTheMiddleLeavesNothingHalfDone) {
+  MissionRepository& repo = missions();
+  ASSERT_TRUE(repo.Create(TestMission("m1"), TestVersion("m1", 1), {TestEvent("created")}).ok());
+  // Version 2 is inserted first, then the events: the second event violates
+  // CHECK(length(source) > 0), so the whole append must roll back.
+  MissionUpdate update;
+  update.state = 3;
+  absl::Status st =
+      repo.AppendVersion(TestVersion("m1", 2), update, {TestEvent("ok"), TestEvent("bad", "")});
+  EXPECT_EQ(st.code(), absl::StatusCode::kInvalidArgument) << st;
+  EXPECT_EQ(repo.GetVersion("m1", 2).status().code(), absl::StatusCode::kNotFound);
+  auto m = repo.Get("m1");
+  EXPECT_EQ(m->current_version, 1);
+  EXPECT_EQ(m->state, 2);
+  EXPECT_EQ(repo.ListEvents("m1", 0, 100)->size(), 1u);
+  // A mission whose first version is refused is not stored either.
+  st = repo.Create(TestMission("m2"), TestVersion("m2", 1), {TestEvent("x", "")});
+  EXPECT_FALSE(st.ok());
+  EXPECT_EQ(repo.Get("m2").status().code(), absl::StatusCode::kNotFound);
+  // Feedback with a bad event: the feedback row is rolled back, so the retry
+  // is not mistaken for a duplicate.
+  auto f = repo.RecordFeedback({"m1", "vessel-1", 1, 1, "p", 1}, {}, {TestEvent("bad", "")});
+  EXPECT_FALSE(f.ok());
+  auto again = repo.RecordFeedback({"m1", "vessel-1", 1, 1, "p", 1}, {}, {});
+  ASSERT_TRUE(again.ok());
+  EXPECT_TRUE(*again);
+  // A NaN mission time is refused the same way.
+  EXPECT_FALSE(repo.AppendEvents("m1", {{1, std::nan(""), "server", "nan"}}).ok());
+  EXPECT_EQ(repo.ListEvents("m1", 0, 100)->size(), 1u);
+  // The store is still usable after the failures.
+  EXPECT_TRUE(repo.AppendVersion(TestVersion("m1", 2), update, {TestEvent("ok")}).ok());
+}
+
+TEST_P(StoreTest, PlanVersionsAreNumberedWithoutGaps) {
+  MissionRepository& repo = missions();
+  ASSERT_TRUE(repo.Create(TestMission("m1"), TestVersion("m1", 1), {}).ok());
+  EXPECT_EQ(repo.AppendVersion(TestVersion("m1", 3), {}, {}).code(), absl::StatusCode::kAborted);
+  EXPECT_EQ(repo.AppendVersion(TestVersion("m1", 1), {}, {}).code(), absl::StatusCode::kAborted);
+  ASSERT_TRUE(repo.AppendVersion(TestVersion("m1", 2), {}, {}).ok());
+  PlanVersionRecord v3 = TestVersion("m1", 3);
+  v3.engine_state = std::string("\0state", 6);
+  ASSERT_TRUE(repo.AppendVersion(v3, {}, {}).ok());
+  EXPECT_EQ(repo.Get("m1")->current_version, 3);
+  auto versions = repo.ListVersions("m1", 1, 100);
+  ASSERT_TRUE(versions.ok());
+  ASSERT_EQ(versions->size(), 2u);
+  EXPECT_EQ((*versions)[0].version, 2);
+  EXPECT_EQ((*versions)[1].version, 3);
+  EXPECT_EQ((*versions)[1].content, "content-3");
+  EXPECT_EQ((*versions)[1].engine_state, std::string("\0state", 6));
+  EXPECT_EQ(repo.ListVersions("m1", 0, 1)->size(), 1u);
+  EXPECT_EQ(repo.AppendVersion(TestVersion("nope", 1), {}, {}).code(), absl::StatusCode::kNotFound);
+  EXPECT_EQ(repo.GetVersion("m1", 4).status().code(), absl::StatusCode::kNotFound);
+}
+
+TEST_P(StoreTest, ListsPageThroughMissionsAndCharts) {
+  for (int i = 0; i < 5; ++i) {
+    MissionRecord m = TestMission("m" + std::to_string(i));
+    m.state = i % 2 == 0 ? 2 : 6;
+    ASSERT_TRUE(missions().Create(m, TestVersion(m.id, 1), {}).ok());
+    ChartRecord c;
+    c.id = "c" + std::to_string(i);
+    c.name = "chart";
+    c.obstacles = "big";
+    ASSERT_TRUE(store().charts().Insert(c).ok());
+  }
+  std::vector<std::string> seen;
+  std::int64_t after = 0;
+  do {
+    auto page = missions().List(0, 2, after);
+    ASSERT_TRUE(page.ok());
+    for (const auto& m : page->items) seen.push_back(m.id);
+    after = page->next_after;
+  } while (after != 0);
+  EXPECT_EQ(seen, (std::vector<std::string>{"m0", "m1", "m2", "m3", "m4"}));
+  auto active = missions().List(2, 10, 0);
+  ASSERT_EQ(active->items.size(), 3u);
+  EXPECT_EQ(active->next_after, 0);
+  auto charts = store().charts().List(3, 0);
+  ASSERT_EQ(charts->items.size(), 3u);
+  EXPECT_TRUE(charts->items[0].obstacles.empty());  // listing leaves blobs out
+  EXPECT_NE(charts->next_after, 0);
+  EXPECT_EQ(store().charts().List(3, charts->next_after)->items.size(), 2u);
+  EXPECT_EQ(store().charts().Get("c1", true)->obstacles, "big");
+  EXPECT_TRUE(store().charts().Get("c1", false)->obstacles.empty());
+  EXPECT_EQ(store().charts().Get("c9", false).status().code(), absl::StatusCode::kNotFound);
+  EXPECT_EQ(store().charts().Insert(ChartRecord{.id = "c1"}).status().code(),
+            absl::StatusCode::kAlreadyExists);
+  EXPECT_EQ(missions().List(0, 0, 0).status().code(), absl::StatusCode::kInvalidArgument);
+}
+
+TEST_P(StoreTest, RequestIdIsUniqueAndConcurrentWritersAreSerialised) {
+  MissionRepository& repo = missions();
+  ASSERT_TRUE(repo.Create(TestMission("a", "same"), TestVersion("a", 1), {}).ok());
+  EXPECT_EQ(repo.Create(TestMission("b", "same"), TestVersion("b", 1), {}).code(),
+            absl::StatusCode::kAlreadyExists);
+  EXPECT_EQ(repo.Create(TestMission("a"), TestVersion("a", 1), {}).code(),
+            absl::StatusCode::kAlreadyExists);
+  auto found = repo.FindByRequestId("same");
+  ASSERT_TRUE(found.ok() && found->has_value());
+  EXPECT_EQ((*found)->id, "a");
+  EXPECT_FALSE(repo.FindByRequestId("other")->has_value());
+  // Many threads appending events: ids stay 1..N without gaps or repeats.
+  std::vector<std::thread> threads;
+  for (int t = 0; t < 4; ++t) {
+    threads.emplace_back([&] {
+      for (int i = 0; i < 25; ++i) ASSERT_TRUE(repo.AppendEvents("a", {TestEvent("e")}).ok());
+    });
+  }
+  for (auto& t : threads) t.join();
+  auto events = repo.ListEvents("a", 0, 1000);
+  ASSERT_EQ(events->size(), 100u);
+  for (std::size_t i = 0; i < events->size(); ++i)
+    EXPECT_EQ((*events)[i].event_id, static_cast<std::int64_t>(i + 1));
+  EXPECT_EQ(repo.ListEvents("a", 98, 10)->size(), 2u);
+}
+
+// Two connections (as two server processes would have) race on one mission:
+// each appends "the next version" and retries when told another was first.
+// Every version is stored exactly once, numbered 1..N; event ids likewise;
+// a report sent through both is stored once.
+TEST_P(StoreTest, WritersOnTwoConnectionsNeverCollide) {
+  std::unique_ptr<Store> other = OpenAnother();
+  ASSERT_NE(other, nullptr);
+  ASSERT_TRUE(missions().Create(TestMission("m"), TestVersion("m", 1), {}).ok());
+  constexpr int kPerWriter = 15;
+  std::atomic<int> stored{0}, aborted{0}, duplicates{0};
+  auto writer = [&](Store* s, const std::string& name) {
+    for (int i = 0; i < kPerWriter; ++i) {
+      while (true) {
+        auto m = s->missions().Get("m");
+        ASSERT_TRUE(m.ok()) << m.status();
+        PlanVersionRecord v = TestVersion("m", m->current_version + 1);
+        v.reason = name;
+        absl::Status st = s->missions().AppendVersion(v, {}, {TestEvent(name)});
+        if (st.ok()) {
+          ++stored;
+          break;
+        }
+        ASSERT_EQ(st.code(), absl::StatusCode::kAborted) << st;
+        ++aborted;
+      }
+      auto fresh = s->missions().RecordFeedback({"m", "vessel-1", i, 1, name, 1}, {}, {});
+      ASSERT_TRUE(fresh.ok()) << fresh.status();
+      if (!*fresh) ++duplicates;
+    }
+  };
+  std::thread a(writer, &store(), "a"), b(writer, other.get(), "b");
+  a.join();
+  b.join();
+  EXPECT_EQ(stored.load(), 2 * kPerWriter);
+  auto versions = missions().ListVersions("m", 0, 1000);
+  ASSERT_TRUE(versions.ok());
+  ASSERT_EQ(versions->size(), static_cast<std::size_t>(2 * kPerWriter + 1));
+  for (std::size_t i = 0; i < versions->size(); ++i) {
+    EXPECT_EQ((*versions)[i].version, static_cast<int>(i + 1));
+  }
+  EXPECT_EQ(missions().Get("m")->current_version, 2 * kPerWriter + 1);
+  auto events = missions().ListEvents("m", 0, 1000);
+  ASSERT_EQ(events->size(), static_cast<std::size_t>(2 * kPerWriter));
+  for (std::size_t i = 0; i < events->size(); ++i) {
+    EXPECT_EQ((*events)[i].event_id, static_cast<std::int64_t>(i + 1));
+  }
+  // Both wrote sequence numbers 0..kPerWriter-1 of the same vessel.
+  EXPECT_EQ(duplicates.load(), kPerWriter);
+  EXPECT_EQ(missions().ListFeedback("m", 1000)->size(), static_cast<std::size_t>(kPerWriter));
+  ASSERT_TRUE(other->Close().ok());
+}
+
+// ---- work leases ----
+
+TEST_P(StoreTest, WorkIsClaimedByOneHolderRenewedAndCompleted) {
+  ASSERT_TRUE(missions().Create(TestMission("m"), TestVersion("m", 1), {}).ok());
+  EXPECT_FALSE(work().Get("m")->has_value());
+  EXPECT_FALSE(work().Claim("m", "r1", milliseconds(60000))->has_value());  // nothing to do
+  auto first = work().Request("m", {"task failed", 1});
+  ASSERT_TRUE(first.ok()) << first.status();
+  EXPECT_TRUE(*first);
+  EXPECT_FALSE(*work().Request("m", {"deviation", 1}));  // joins the pending work
+  auto lease = work().Claim("m", "r1", milliseconds(60000));
+  ASSERT_TRUE(lease.ok()) << lease.status();
+  ASSERT_TRUE(lease->has_value());
+  EXPECT_EQ((*lease)->holder, "r1");
+  EXPECT_EQ((*lease)->reason, "deviation");
+  EXPECT_EQ((*lease)->claimed_requests, 2);
+  EXPECT_GT((*lease)->expires_at_ms, 0);
+  // Held and not expired: nobody else gets it, not even by ClaimNext.
+  EXPECT_FALSE(work().Claim("m", "r2", milliseconds(60000))->has_value());
+  EXPECT_TRUE(work().ClaimNext("r2", milliseconds(60000), 10)->empty());
+  auto renewed = work().Renew(**lease, milliseconds(120000));
+  ASSERT_TRUE(renewed.ok()) << renewed.status();
+  EXPECT_GE(renewed->expires_at_ms, (*lease)->expires_at_ms);
+  EXPECT_EQ(renewed->token, (*lease)->token);
+  auto more = work().Complete(**lease);
+  ASSERT_TRUE(more.ok()) << more.status();
+  EXPECT_FALSE(*more);
+  auto done = work().Get("m");
+  ASSERT_TRUE(done->has_value());
+  EXPECT_FALSE((*done)->pending());
+  EXPECT_TRUE((*done)->holder.empty());
+  EXPECT_FALSE(work().Claim("m", "r2", milliseconds(60000))->has_value());
+  // A completed lease cannot be used again.
+  EXPECT_EQ(work().Complete(**lease).status().code(), absl::StatusCode::kAborted);
+  // Bad arguments and unknown missions.
+  EXPECT_EQ(work().Request("nope", {"x", 1}).status().code(), absl::StatusCode::kNotFound);
+  EXPECT_EQ(work().Claim("m", "", milliseconds(1000)).status().code(),
+            absl::StatusCode::kInvalidArgument);
+  EXPECT_EQ(work().ClaimNext("r1", milliseconds(0), 1).status().code(),
+            absl::StatusCode::kInvalidArgument);
+}
+
+TEST_P(StoreTest, RequestsDuringARunAreNotLost) {
+  ASSERT_TRUE(missions().Create(TestMission("m"), TestVersion("m", 1), {}).ok());
+  ASSERT_TRUE(work().Request("m", {"first", 1}).ok());
+  auto lease = work().Claim("m", "r1", milliseconds(60000));
+  ASSERT_TRUE(lease.ok() && lease->has_value());
+  ASSERT_TRUE(work().Request("m", {"second", 2}).ok());  // arrives while r1 works
+  auto more = work().Complete(**lease);
+  ASSERT_TRUE(more.ok());
+  EXPECT_TRUE(*more);
+  auto next = work().ClaimNext("r2", milliseconds(60000), 10);
+  ASSERT_TRUE(next.ok());
+  ASSERT_EQ(next->size(), 1u);
+  EXPECT_EQ((*next)[0].reason, "second");
+  EXPECT_EQ((*next)[0].base_version, 2);
+  EXPECT_GT((*next)[0].token, (*lease)->token);
+}
+
+TEST_P(StoreTest, ExpiredLeaseIsTakenOverAndTheOldHolderIsFenced) {
+  ASSERT_TRUE(missions().Create(TestMission("m"), TestVersion("m", 1), {}).ok());
+  ASSERT_TRUE(work().Request("m", {"replan", 1}).ok());
+  auto dead = work().Claim("m", "dead-replica", milliseconds(1));
+  ASSERT_TRUE(dead.ok() && dead->has_value());
+  // Sleeping only guarantees a lower bound on the time passed, which is all
+  // this needs: the 1 ms lease has expired.
+  std::this_thread::sleep_for(milliseconds(50));
+  std::unique_ptr<Store> other = OpenAnother();
+  ASSERT_NE(other, nullptr);
+  auto taken = other->work().ClaimNext("live-replica", milliseconds(60000), 10);
+  ASSERT_TRUE(taken.ok()) << taken.status();
+  ASSERT_EQ(taken->size(), 1u);
+  EXPECT_EQ((*taken)[0].holder, "live-replica");
+  EXPECT_GT((*taken)[0].token, (*dead)->token);
+  EXPECT_EQ(work().Renew(**dead, milliseconds(60000)).status().code(), absl::StatusCode::kAborted);
+  EXPECT_EQ(work().Complete(**dead).status().code(), absl::StatusCode::kAborted);
+  EXPECT_EQ(work().Release(**dead).code(), absl::StatusCode::kAborted);
+  EXPECT_EQ((*work().Get("m"))->holder, "live-replica");
+  ASSERT_TRUE(other->Close().ok());
+}
+
+TEST_P(StoreTest, ReleasedWorkIsFreeAtOnce) {
+  for (const char* id : {"a", "b", "c"}) {
+    ASSERT_TRUE(missions().Create(TestMission(id), TestVersion(id, 1), {}).ok());
+    ASSERT_TRUE(work().Request(id, {"replan", 1}).ok());
+  }
+  auto mine = work().ClaimNext("r1", milliseconds(60000), 2);
+  ASSERT_TRUE(mine.ok());
+  ASSERT_EQ(mine->size(), 2u);
+  ASSERT_TRUE(work().Release((*mine)[0]).ok());
+  auto shutdown = work().ReleaseAll("r1");  // graceful shutdown hands back the rest
+  ASSERT_TRUE(shutdown.ok());
+  EXPECT_EQ(*shutdown, 1);
+  auto theirs = work().ClaimNext("r2", milliseconds(60000), 10);
+  ASSERT_TRUE(theirs.ok());
+  EXPECT_EQ(theirs->size(), 3u);
+}
+
+// Two connections claiming concurrently never get the same item.
+TEST_P(StoreTest, ConcurrentClaimersGetDisjointWork) {
+  constexpr int kMissions = 30;
+  for (int i = 0; i < kMissions; ++i) {
+    const std::string id = "m" + std::to_string(i);
+    ASSERT_TRUE(missions().Create(TestMission(id), TestVersion(id, 1), {}).ok());
+    ASSERT_TRUE(work().Request(id, {"replan", 1}).ok());
+  }
+  std::unique_ptr<Store> other = OpenAnother();
+  ASSERT_NE(other, nullptr);
+  std::mutex mu;
+  std::multiset<std::string> claimed;
+  auto claimer = [&](Store* s, const std::string& holder) {
+    while (true) {
+      auto got = s->work().ClaimNext(holder, milliseconds(60000), 2);
+      ASSERT_TRUE(got.ok()) << got.status();
+      if (got->empty()) return;
+      std::lock_guard lock(mu);
+      for (const WorkLease& w : *got) claimed.insert(w.mission_id);
+    }
+  };
+  std::thread a(claimer, &store(), "r1"), b(claimer, other.get(), "r2");
+  a.join();
+  b.join();
+  EXPECT_EQ(claimed.size(), static_cast<std::size_t>(kMissions));
+  for (const std::string& id : claimed) EXPECT_EQ(claimed.count(id), 1u) << id;
+  ASSERT_TRUE(other->Close().ok());
+}
+
+// Work requested with a feedback report is stored in the same transaction:
+// a duplicate report requests nothing, a failed one requests nothing.
+TEST_P(StoreTest, WorkRequestedWithFeedbackIsAtomic) {
+  ASSERT_TRUE(missions().Create(TestMission("m"), TestVersion("m", 1), {}).ok());
+  MissionUpdate update;
+  update.request_work = WorkRequest{"task failed", 1};
+  ASSERT_TRUE(*missions().RecordFeedback({"m", "vessel-1", 1, 1, "p", 1}, update, {}));
+  EXPECT_FALSE(*missions().RecordFeedback({"m", "vessel-1", 1, 1, "p", 1}, update, {}));
+  EXPECT_FALSE(missions()
+                   .RecordFeedback({"m", "vessel-1", 2, 1, "p", 1}, update, {TestEvent("x", "")})
+                   .ok());
+  auto w = work().Get("m");
+  ASSERT_TRUE(w.ok() && w->has_value());
+  EXPECT_EQ((*w)->requests, 1);
+  EXPECT_EQ((*w)->reason, "task failed");
+  EXPECT_TRUE((*w)->pending());
+}
+
+// ---- change feed ----
+
+TEST_P(StoreTest, ChangeFeedWakesAWatcherAfterEachCommit) {
+  ChangeFeed& feed = store().changes();
+  ASSERT_TRUE(missions().Create(TestMission("m"), TestVersion("m", 1), {}).ok());
+  std::uint64_t seen = feed.Generation("m");
+  // A watcher waiting before the write is woken by it.
+  std::atomic<std::uint64_t> woke_at{seen};
+  std::thread watcher([&] { woke_at = feed.Wait("m", seen, milliseconds(60000)); });
+  ASSERT_TRUE(missions().AppendEvents("m", {TestEvent("x")}).ok());
+  watcher.join();
+  EXPECT_NE(woke_at.load(), seen);
+  // Each kind of write moves the generation (eventually: PostgreSQL delivers
+  // notifications asynchronously, so wait for it).
+  auto moves = [&](const std::function<void()>& write) {
+    const std::uint64_t before = feed.Generation("m");
+    write();
+    return feed.Wait("m", before, milliseconds(60000)) != before;
+  };
+  EXPECT_TRUE(
+      moves([&] { ASSERT_TRUE(missions().AppendVersion(TestVersion("m", 2), {}, {}).ok()); }));
+  EXPECT_TRUE(moves([&] {
+    ASSERT_TRUE(*missions().RecordFeedback({"m", "v", 1, 1, "p", 1}, {}, {}));
+  }));
+  MissionUpdate update;
+  update.state = 4;
+  EXPECT_TRUE(moves([&] { ASSERT_TRUE(missions().Update("m", update, {}).ok()); }));
+  // Other missions' generations are independent of this one's writes.
+  const std::uint64_t quiet = feed.Generation("other");
+  EXPECT_EQ(feed.Wait("other", quiet, milliseconds(20)), quiet);
+  // Closing the store releases waiters at once.
+  const std::uint64_t now = feed.Generation("m");
+  std::thread closer([&] { EXPECT_TRUE(store().Close().ok()); });
+  EXPECT_EQ(feed.Wait("m", now, milliseconds(600000)), now);
+  closer.join();
+}
+
+}  // namespace
+}  // namespace seaplan::storage
