@@ -156,12 +156,39 @@ try {
   check(trackPoints >= 2, `ship track drawn (${trackPoints} points)`);
   await page.screenshot({ path: join(artifacts, "mission-underway.png") });
 
+  // A broken connection: the watch resumes after the last version and
+  // event it delivered (checked below: no duplicate, no gap in the log).
+  await page.evaluate(() => window.seaplanWatch.dropConnection());
+  await page.waitForFunction(() => /^stream: live \(resumed/.test(document.querySelector("#watch-status")?.textContent ?? ""), null, { timeout: 30000 });
+  check(true, "watch stream resumed after a dropped connection");
+
   // 5. Version 2 after the GNSS jump, with its reason, and both in the Gantt.
   await page.waitForFunction(() => document.querySelectorAll("#gantt .gantt-version").length >= 2, null, { timeout: 180000 });
   const versionLabel = await page.$eval("#mission-version", (e) => e.textContent ?? "");
   check(/^version 2: .+/.test(versionLabel) && !/initial plan/.test(versionLabel), `version 2 with its reason (${versionLabel})`);
   const heads = await page.$$eval("#gantt .gantt-head", (es) => es.map((e) => e.textContent));
   check(heads.length >= 2 && /^version 1: /.test(heads[0]) && /^version 2: /.test(heads[1]), `Gantt shows both versions (${heads.join(" | ")})`);
+  const ids = await page.$$eval("#navlog li", (lis) => lis.map((li) => Number(li.dataset.event)).reverse());
+  const inOrder = ids.every((id, i) => i === 0 || id > ids[i - 1]);
+  const fresh = await page.evaluate(async (missionId) => {
+    // The same events fetched afresh: the live log has every one of them.
+    const res = await fetch("/v1/MissionService/WatchMission", { method: "POST", body: JSON.stringify({ missionId }),
+                                                                   signal: AbortSignal.timeout(3000) }).catch(() => null);
+    if (!res) return null;
+    const reader = res.body.getReader();
+    let text = "";
+    const until = Date.now() + 2000;
+    while (Date.now() < until) {
+      const { value, done } = await Promise.race([reader.read(), new Promise((r) => setTimeout(() => r({ done: true }), 500))]);
+      if (value) text += new TextDecoder().decode(value);
+      if (done) break;
+    }
+    reader.cancel().catch(() => undefined);
+    return text.split("\n").filter(Boolean).map((l) => JSON.parse(l)).filter((e) => e.log).map((e) => Number(e.log.eventId));
+  }, missionId);
+  const missing = (fresh ?? []).filter((id) => id <= ids[ids.length - 1] && !ids.includes(id));
+  check(ids.length > 0 && inOrder && fresh !== null && missing.length === 0,
+        `navigation log without duplicate or gap across the reconnect (${ids.length} events, missing ${missing.join(",") || "none"})`);
   const targets = await page.$$eval("#traffic-body tr", (rows) => rows.length);
   check(targets > 0, `traffic listed (${targets} targets)`);
 
@@ -200,6 +227,12 @@ try {
     check(serious.length === 0, `axe: no serious violations on ${view}` +
           (serious.length ? ` (${serious.map((v) => `${v.id}: ${v.nodes.length}`).join(", ")})` : ""));
   }
+  await page.goto(`${server.url}#/mission/${missionId}`);
+  await page.waitForFunction(() => window.seaplanMap && window.seaplanMap.routeSegmentCount() > 0 &&
+                             window.seaplanMap.obstacleCount() > 0, null, { timeout: 30000 });
+  await page.selectOption("#palette", "night");
+  await page.waitForTimeout(500);
+  await page.screenshot({ path: join(artifacts, "mission-night.png") });
   for (const palette of ["dusk", "night"]) {
     await page.goto(`${server.url}#/missions`);
     await page.selectOption("#palette", palette);

@@ -141,8 +141,9 @@ export class MissionWatch {
   async run(): Promise<void> {
     let backoffMs = 250;
     while (!this.stopped) {
+      this.abort = new AbortController();
       try {
-        this.onStatus("live");
+        this.onStatus(this.reconnects ? `live (resumed after version ${this.lastVersion}, event ${this.lastEventId})` : "live");
         await stream<MissionEvent>("MissionService/WatchMission", {
           missionId: this.missionId,
           afterVersion: this.lastVersion,
@@ -179,6 +180,11 @@ export class MissionWatch {
 
   stop(): void {
     this.stopped = true;
+    this.abort.abort();
+  }
+
+  // Breaks the connection as a network fault would (the watch resumes).
+  dropConnection(): void {
     this.abort.abort();
   }
 }

@@ -113,5 +113,5 @@ export function chartsView(root: HTMLElement): () => void {
       previewStatus.textContent = `Cannot load obstacles: ${(e as Error).message}`;
     }
   });
-  return () => map.map.setTarget(undefined);
+  return () => map.dispose();
 }

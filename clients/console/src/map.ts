@@ -117,6 +117,8 @@ export class ChartMap {
       // North-up: no rotation.
       view: new View({ center: fromLonLat([10.4, 63.44]), zoom: 11, enableRotation: false }),
     });
+    // Styles read the palette's CSS variables: redraw when it changes.
+    window.addEventListener("seaplan-palette", this.onPalette);
     target.setAttribute("tabindex", "0");
     target.setAttribute("role", "application");
     target.setAttribute("aria-label", "Chart: arrow keys pan, + and - zoom");
@@ -134,8 +136,11 @@ export class ChartMap {
     });
   }
 
-  restyle(): void {
-    this.map.getAllLayers().forEach((l) => l.changed());
+  private readonly onPalette = () => this.map.getAllLayers().forEach((l) => l.changed());
+
+  dispose(): void {
+    window.removeEventListener("seaplan-palette", this.onPalette);
+    this.map.setTarget(undefined);
   }
 
   setObstacles(geojson: string): void {

@@ -126,6 +126,7 @@ export function missionView(root: HTMLElement, missionId: string): () => void {
       actionStatus.textContent = `Cannot load the mission: ${(e as Error).message}`;
     }
   })();
+  (window as unknown as Record<string, unknown>).seaplanWatch = watch;  // for tests
   void watch.run();
 
   replan.addEventListener("click", async () => {
@@ -149,7 +150,7 @@ export function missionView(root: HTMLElement, missionId: string): () => void {
   });
   return () => {
     watch.stop();
-    map.map.setTarget(undefined);
+    map.dispose();
   };
 }
 
