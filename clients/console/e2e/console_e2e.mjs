@@ -227,6 +227,27 @@ try {
     check(serious.length === 0, `axe: no serious violations on ${view}` +
           (serious.length ? ` (${serious.map((v) => `${v.id}: ${v.nodes.length}`).join(", ")})` : ""));
   }
+  // 8. Workbench: plan case A streamed, see it as a Gantt chart, validate it
+  // and a broken copy.
+  await page.goto(`${server.url}#/workbench`);
+  await page.fill("#wb-domain-text", readFileSync(join(sdir, scenario.domain), "utf8"));
+  await page.fill("#wb-problem-text", problemText);
+  await page.fill("#wb-limit", "3");
+  await page.click("#wb-run");
+  await page.waitForFunction(() => /^SOLVED/.test(document.querySelector("#wb-status")?.textContent ?? ""), null, { timeout: 60000 });
+  const bars = await page.$$eval("#wb-gantt .gantt-bar", (b) => b.length);
+  const improved = await page.$$eval("#wb-improvements li", (l) => l.length);
+  check(bars > 0 && improved > 0, `workbench: plan streamed (${improved} improvements) and drawn (${bars} actions)`);
+  await page.click("#wb-validate");
+  await page.waitForFunction(() => /^Valid:/.test(document.querySelector("#wb-status")?.textContent ?? ""), null, { timeout: 30000 });
+  const planText = await page.inputValue("#wb-plan-text");
+  await page.fill("#wb-plan-text", planText.split("\n").filter((l) => !/unload-cont/.test(l)).join("\n"));
+  await page.click("#wb-validate");
+  await page.waitForFunction(() => /^Invalid/.test(document.querySelector("#wb-status")?.textContent ?? ""), null, { timeout: 30000 });
+  const why = await page.textContent("#wb-status");
+  check(true, `workbench: valid plan accepted, broken plan refused (${why.slice(0, 100)})`);
+  await page.screenshot({ path: join(artifacts, "workbench.png"), fullPage: true });
+
   await page.goto(`${server.url}#/mission/${missionId}`);
   await page.waitForFunction(() => window.seaplanMap && window.seaplanMap.routeSegmentCount() > 0 &&
                              window.seaplanMap.obstacleCount() > 0, null, { timeout: 30000 });

@@ -17,8 +17,11 @@ import { Circle, Fill, Icon, RegularShape, Stroke, Style, Text } from "ol/style"
 import type { LatLon, NamedLocation, ShipState, Task, TrackedTarget } from "./api";
 import { cpa, degrees, distance, missionTime, percent, shortMode, speed } from "./units";
 
-export const MODE_COLOURS: Record<string, string> = {
-  PTO: "#2f7fd8", MEC: "#1fa37a", PTI: "#e08a1e", "-": "#888888",
+// Route colours per MSO mode: CSS variables of the palette (dimmed at
+// night), with the day values as fallbacks.
+const MODE_VARS: Record<string, [string, string]> = {
+  PTO: ["--pto", "#2f7fd8"], MEC: ["--mec", "#1fa37a"], PTI: ["--pti", "#e08a1e"],
+  "-": ["--muted", "#888888"],
 };
 
 function css(name: string, fallback: string): string {
@@ -63,12 +66,12 @@ class Legend extends Control {
     const swatch = (colour: string, label: string, dash = false) =>
       `<li><span class="swatch${dash ? " dash" : ""}" style="background:${colour}"></span>${label}</li>`;
     el.innerHTML = `<ul>
-      ${swatch(MODE_COLOURS.PTO, "route, PTO")}
-      ${swatch(MODE_COLOURS.MEC, "route, MEC")}
-      ${swatch(MODE_COLOURS.PTI, "route, PTI")}
+      ${swatch("var(--pto)", "route, PTO")}
+      ${swatch("var(--mec)", "route, MEC")}
+      ${swatch("var(--pti)", "route, PTI")}
       ${swatch("var(--track)", "ship track")}
       ${swatch("var(--land)", "land / shallower than the depth")}
-      <li><span class="glyph ship">▲</span>own ship</li>
+      <li><span class="glyph ship">⬆</span>own ship (heading)</li>
       <li><span class="glyph target">◆</span>traffic</li></ul>`;
     super({ element: el });
   }
@@ -234,7 +237,8 @@ export class ChartMap {
   }
 
   private routeStyle(f: Feature): Style {
-    const colour = MODE_COLOURS[f.get("mode") as string] ?? MODE_COLOURS["-"];
+    const [name, fallback] = MODE_VARS[f.get("mode") as string] ?? MODE_VARS["-"];
+    const colour = css(name, fallback);
     return new Style({ stroke: new Stroke({ color: colour, width: f.get("current") ? 5 : 3 }) });
   }
 

@@ -86,7 +86,7 @@ export function workbenchView(root: HTMLElement): () => void {
                              firstFailure?: { timeS: number; action: string; condition: string; reason: string } }>(
         "PlanningService/Validate", { domain: domain.text.value, problem: problem.text.value, plan: plan.text.value });
       status.textContent = r.valid ? `Valid: ${r.actionCount} actions, makespan ${r.makespanS.toFixed(1)} s`
-        : `Invalid at ${r.firstFailure?.timeS ?? 0} s: ${r.firstFailure?.action ?? ""} ${r.firstFailure?.condition ?? ""} — ${r.firstFailure?.reason ?? ""}`;
+        : `Invalid at ${(r.firstFailure?.timeS ?? 0).toFixed(1)} s: ${r.firstFailure?.action ?? ""} ${r.firstFailure?.condition ?? ""} — ${r.firstFailure?.reason ?? ""}`;
     } catch (e) {
       if (e instanceof ApiError) { errors.append(h("li", { text: e.message })); showDiagnostics(e.diagnostics, editors, errors); }
       else errors.append(h("li", { text: (e as Error).message }));
