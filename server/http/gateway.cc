@@ -81,6 +81,12 @@ bool ReadBody(const httplib::Request& req, const httplib::ContentReader& reader,
   });
 }
 
+// What the log says of a body ReadBody refused.
+absl::Status BodyError(const httplib::Response& res) {
+  if (res.status == 413) return absl::ResourceExhaustedError("request body too large");
+  return absl::InvalidArgumentError("request body not read");
+}
+
 // A stream in flight: the core handler runs on `worker` and queues lines;
 // httplib's content provider (the connection thread) writes them.
 struct StreamState {
@@ -166,30 +172,30 @@ void HttpGateway::RegisterRoutes() {
                    const std::string& method,
                    std::function<absl::StatusOr<Response>(const Request&, const CallContext&)> fn) {
     (void)this;
-    server_->Post(
-        "/v1/" + method, [&core, method, fn](const httplib::Request& hreq, httplib::Response& hres,
-                                             const httplib::ContentReader& reader) {
-          const auto started = StopToken::Clock::now();
-          std::string body;
-          if (!ReadBody(hreq, reader, hres, &body)) {
-            LogCall("http", method, absl::InvalidArgumentError("unreadable body"), started);
-            return;
-          }
-          absl::Status status = [&]() -> absl::Status {
-            Request request;
-            SEAPLAN_RETURN_IF_ERROR(FromJson(body, &request));
-            SEAPLAN_ASSIGN_OR_RETURN(auto deadline, Deadline(hreq));
-            CallContext call = core.NewCall("http", deadline, nullptr);
-            SEAPLAN_ASSIGN_OR_RETURN(Response response, fn(request, call));
-            std::string json;
-            SEAPLAN_RETURN_IF_ERROR(ToJson(response, &json));
-            hres.status = 200;
-            hres.set_content(json, kJson);
-            return absl::OkStatus();
-          }();
-          if (!status.ok()) Reply(hres, status);
-          LogCall("http", method, status, started);
-        });
+    server_->Post("/v1/" + method,
+                  [&core, method, fn](const httplib::Request& hreq, httplib::Response& hres,
+                                      const httplib::ContentReader& reader) {
+                    const auto started = StopToken::Clock::now();
+                    std::string body;
+                    if (!ReadBody(hreq, reader, hres, &body)) {
+                      LogCall("http", method, BodyError(hres), started);
+                      return;
+                    }
+                    absl::Status status = [&]() -> absl::Status {
+                      Request request;
+                      SEAPLAN_RETURN_IF_ERROR(FromJson(body, &request));
+                      SEAPLAN_ASSIGN_OR_RETURN(auto deadline, Deadline(hreq));
+                      CallContext call = core.NewCall("http", deadline, nullptr);
+                      SEAPLAN_ASSIGN_OR_RETURN(Response response, fn(request, call));
+                      std::string json;
+                      SEAPLAN_RETURN_IF_ERROR(ToJson(response, &json));
+                      hres.status = 200;
+                      hres.set_content(json, kJson);
+                      return absl::OkStatus();
+                    }();
+                    if (!status.ok()) Reply(hres, status);
+                    LogCall("http", method, status, started);
+                  });
   };
 
   auto stream =
@@ -204,7 +210,7 @@ void HttpGateway::RegisterRoutes() {
           const auto started = StopToken::Clock::now();
           std::string body;
           if (!ReadBody(hreq, reader, hres, &body)) {
-            LogCall("http", method, absl::InvalidArgumentError("unreadable body"), started);
+            LogCall("http", method, BodyError(hres), started);
             return;
           }
           auto request = std::make_shared<Request>();
