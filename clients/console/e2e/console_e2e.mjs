@@ -82,6 +82,13 @@ try {
   await page.waitForSelector("#charts-body tr td:nth-child(2)");
   const chartId = await page.$eval("#charts-body tr td:nth-child(2)", (e) => e.textContent);
   check(/^c-/.test(chartId ?? ""), `chart uploaded and listed (${chartId})`);
+  await page.selectOption("#p-chart", chartId);
+  await page.fill("#p-depth", "2");
+  await page.click("#p-show");
+  await page.waitForFunction(() => /obstacles at 2 m$/.test(document.querySelector("#p-status")?.textContent ?? ""), null, { timeout: 60000 });
+  const previewed = await page.evaluate(() => window.seaplanMap.obstacleCount());
+  check(previewed > 0, `chart preview at 2 m draws ${previewed} obstacles`);
+  await page.screenshot({ path: join(artifacts, "charts.png"), fullPage: true });
 
   // 2. New mission: case B typed into the form.
   await page.goto(`${server.url}#/new`);
