@@ -101,7 +101,7 @@ export class ChartMap {
     this.map = new Map({
       target,
       controls: [new Zoom(), new ScaleLine({ units: "nautical", bar: false, minWidth: 90 }),
-                 new ScaleLine({ units: "metric", bar: true, steps: 2, text: false, minWidth: 90,
+                 new ScaleLine({ units: "metric", bar: true, steps: 2, text: false, minWidth: 140,
                                  className: "ol-scale-bar ol-scale-metric" }),
                  new NorthArrow(), new Legend()],
       layers: [

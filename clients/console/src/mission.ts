@@ -118,8 +118,15 @@ export function missionView(root: HTMLElement, missionId: string): () => void {
       map.setLocations(mission.spec?.locations ?? []);
       map.fitOnce();
       if (mission.spec?.chartId) {
-        const obstacles = await call<{ geojson: string }>("ChartService/GetObstacles",
-                                                          { chartId: mission.spec.chartId });
+        // Obstacles at the ship's draft when the chart was loaded for
+        // shallower water than the ship needs; else the stored ones.
+        const chart = await call<{ chart: { minimumDepthM: number } }>(
+          "ChartService/GetChart", { chartId: mission.spec.chartId });
+        const draft = mission.spec.ship?.draftM ?? 0;
+        const obstacles = await call<{ geojson: string }>("ChartService/GetObstacles", {
+          chartId: mission.spec.chartId,
+          minimumDepthM: draft > chart.chart.minimumDepthM ? draft : 0,
+        });
         map.setObstacles(obstacles.geojson);
       }
     } catch (e) {
