@@ -141,6 +141,14 @@ try {
                              window.seaplanMap.obstacleCount() > 0, null, { timeout: 30000 });
   check(true, "route and obstacles drawn on the map");
 
+  // The chart pans from the keyboard.
+  const centre = () => page.evaluate(() => window.seaplanMap.map.getView().getCenter().join(","));
+  const before = await centre();
+  await page.focus("#mission-map");
+  await page.keyboard.press("ArrowRight");
+  await page.waitForTimeout(400);  // the pan animates
+  check((await centre()) !== before, "chart pans with the arrow keys");
+
   // 4. seaplan-sim executes it.
   const simOut = [];
   sim = spawn(simBin, ["--server", server.grpcAddress, "--scenario", scenarioPath, "--mission-id", missionId,

@@ -100,6 +100,8 @@ export class ChartMap {
     this.tipOverlay = new Overlay({ element: this.tip, offset: [12, 12], stopEvent: false });
     this.map = new Map({
       target,
+      // The focusable chart element itself takes the arrow keys and +/-.
+      keyboardEventTarget: target,
       controls: [new Zoom(), new ScaleLine({ units: "nautical", bar: false, minWidth: 90 }),
                  new ScaleLine({ units: "metric", bar: true, steps: 2, text: false, minWidth: 140,
                                  className: "ol-scale-bar ol-scale-metric" }),
