@@ -53,13 +53,19 @@ export function renderGantt(container: HTMLElement, versions: PlanVersion[],
   let previous = new Set<string>();
   for (const v of versions) {
     const g = el("g", { class: "gantt-version", "data-version": v.version });
+    const names = new Set(v.tasks.map(taskLabel));
+    // What changed against the version before: tasks added and dropped.
+    let change = "";
+    if (v.version > 1 && previous.size) {
+      const added = [...names].filter((n) => !previous.has(n)).length;
+      const dropped = [...previous].filter((n) => !names.has(n)).length;
+      change = ` (${added} task${added === 1 ? "" : "s"} new, ${dropped} dropped)`;
+    }
     g.append(el("text", { x: 4, y: y + 13, class: "gantt-head" },
-                `version ${v.version}: ${v.reason}`));
+                `version ${v.version}: ${v.reason}${change}`));
     y += rowH;
-    const names = new Set<string>();
     for (const t of v.tasks) {
       const label = taskLabel(t);
-      names.add(label);
       const isNew = v.version > 1 && !previous.has(label);
       g.append(el("text", { x: 12, y: y + 13, class: "gantt-task" }, `${isNew ? "+ " : ""}${label}`));
       const bar = el("rect", {
