@@ -12,6 +12,8 @@ FROM debian:12 AS runtime
 COPY scripts/install-deps.sh /tmp/install-deps.sh
 RUN bash /tmp/install-deps.sh --runtime && rm -rf /var/lib/apt/lists/* /tmp/install-deps.sh
 COPY --from=build /src/build/bin/seaplan-server /src/build/bin/seaplan /src/build/bin/seaplan-remote /src/build/bin/seaplan-charts /src/build/bin/seaplan-sim /usr/local/bin/
+# The operator console, beside the server (its default --console-dir).
+COPY --from=build /src/build/bin/console /usr/local/bin/console
 COPY --from=build /src/examples /usr/share/seaplan/examples
 VOLUME /data
 EXPOSE 50051 8080

@@ -5,8 +5,11 @@
 #   2. run case C (fuel-triggered replanning) end to end with the simulation
 #      client: the server plans, refines and replans, seaplan-sim executes and
 #      reports; prints the navigation log and where the mission report is.
+# It prints the operator console's URL (the server serves it on its HTTP port).
 # Environment: DATA_DIR (default ./data), OUT_DIR (default ./out), SCENARIO
-# (default examples/scenarios/case-c.scenario).
+# (default examples/scenarios/case-c.scenario), HTTP_ADDR (default
+# 127.0.0.1:0, any free port), KEEP_SERVING=1 (keep the server and its
+# console up after the mission until Ctrl-C).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/build.sh
@@ -18,7 +21,7 @@ SCENARIO=${SCENARIO:-examples/scenarios/case-c.scenario}
 mkdir -p "$DATA_DIR" "$OUT_DIR"
 PORT_FILE=$(mktemp)
 
-"$BIN/seaplan-server" --grpc-addr 127.0.0.1:0 --http-addr 127.0.0.1:0 --data-dir "$DATA_DIR" \
+"$BIN/seaplan-server" --grpc-addr 127.0.0.1:0 --http-addr "${HTTP_ADDR:-127.0.0.1:0}" --data-dir "$DATA_DIR" \
   --port-file "$PORT_FILE" --log-level warn &
 SERVER_PID=$!
 cleanup() {
@@ -37,6 +40,7 @@ GRPC_PORT=$(sed -n 's/^grpc=//p' "$PORT_FILE")
 HTTP_PORT=$(sed -n 's/^http=//p' "$PORT_FILE")
 SERVER=127.0.0.1:$GRPC_PORT
 echo "== seaplan-server on $SERVER (gRPC) and 127.0.0.1:$HTTP_PORT (HTTP), database in $DATA_DIR"
+echo "== operator console: http://127.0.0.1:$HTTP_PORT/ (open it in a browser while the demo runs)"
 
 echo
 echo "== Case A: temporal plan from the server"
@@ -45,3 +49,8 @@ echo "== Case A: temporal plan from the server"
 echo
 echo "== Mission loop: $SCENARIO through seaplan-server and seaplan-sim"
 "$BIN/seaplan-sim" --server "$SERVER" --scenario "$SCENARIO" --report-dir "$OUT_DIR"
+if [[ "${KEEP_SERVING:-0}" == "1" ]]; then
+  echo
+  echo "== serving the console at http://127.0.0.1:$HTTP_PORT/ until Ctrl-C"
+  wait "$SERVER_PID"
+fi

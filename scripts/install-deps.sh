@@ -18,10 +18,17 @@ build_packages=(
   libeigen3-dev libnlopt-cxx-dev libgeos-dev libgdal-dev gdal-bin libpagmo-dev
   libcli11-dev libcpp-httplib-dev libspdlog-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
-  clang libclang-rt-14-dev clang-format curl
+  clang libclang-rt-14-dev clang-format curl libexpat1-dev
+  chromium fonts-dejavu-core
 )
 
 packages=("${build_packages[@]}")
+# The operator console is built with Node.js and npm: Debian's, unless a
+# node is already installed (e.g. a newer one from elsewhere).
+if ! command -v node >/dev/null 2>&1 || ! command -v npm >/dev/null 2>&1; then
+  build_packages+=(nodejs npm)
+  packages=("${build_packages[@]}")
+fi
 if [[ "${1:-}" == "--runtime" ]]; then packages=("${runtime_packages[@]}"); fi
 
 missing=()

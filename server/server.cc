@@ -52,9 +52,9 @@ absl::StatusOr<std::unique_ptr<Server>> Server::Start(
   if (!options.http_address.empty()) {
     server->http_ = std::make_unique<HttpGateway>(
         *server->core_,
-        HttpGateway::Options{
-            // JSON carries bytes as base64 (4/3 larger) plus syntax.
-            options.max_request_bytes / 3 * 4 + (1u << 20), options.worker_threads});
+        HttpGateway::Options{// JSON carries bytes as base64 (4/3 larger) plus syntax.
+                             options.max_request_bytes / 3 * 4 + (1u << 20), options.worker_threads,
+                             options.console_dir});
     auto port = server->http_->Bind(options.http_address);
     if (!port.ok()) {
       server->Shutdown();

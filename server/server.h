@@ -35,6 +35,7 @@ struct ServerOptions {
   std::string http_address = "127.0.0.1:8080";   // port 0 = ephemeral; "" = no HTTP gateway
   int worker_threads = 16;                    // HTTP handler threads; gRPC sync-server thread cap
   std::size_t max_request_bytes = 64u << 20;  // one request message
+  std::string console_dir;                    // operator console's static files; "" = none
   CoreOptions core;
   std::chrono::milliseconds shutdown_grace{2000};
 };

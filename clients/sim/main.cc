@@ -223,6 +223,48 @@ std::string ShipLocation(const std::string& problem, const std::string& ship) {
   return problem.substr(p + needle.size(), e - p - needle.size());
 }
 
+// Degrees in [0, 360) clockwise from north.
+double CompassDeg(double rad) {
+  const double deg = std::fmod(rad / kDeg, 360.0);
+  return deg < 0 ? deg + 360 : deg;
+}
+
+void FillShipState(const sim::FeedbackOut& fb, const chart::LocalFrame& frame, v1::ShipState* st) {
+  chart::LatLon ll = frame.ToLatLon({fb.position.x, fb.position.y});
+  st->mutable_position()->set_latitude_deg(ll.lat_deg);
+  st->mutable_position()->set_longitude_deg(ll.lon_deg);
+  st->set_heading_deg(CompassDeg(fb.heading_rad));
+  st->set_speed_mps(fb.speed_mps);
+  st->set_fuel_fraction(fb.fuel_fraction);
+  st->set_mode(ToProtoMode(fb.mode));
+}
+
+// The live picture: the ship and the traffic it tracks (AIS-like: the
+// scripted vessels' positions, course and speed over ground).
+v1::ReportVesselStateRequest VesselState(const sim::Executor& executor,
+                                         const std::string& mission_id,
+                                         const std::string& vessel_id,
+                                         const chart::LocalFrame& frame) {
+  v1::ReportVesselStateRequest req;
+  req.set_mission_id(mission_id);
+  req.set_vessel_id(vessel_id);
+  req.set_mission_time_s(executor.time_s());
+  FillShipState(executor.CurrentState(), frame, req.mutable_state());
+  for (const sim::TrafficVessel& vessel : executor.traffic()) {
+    const sim::Kinematics k = vessel.At(executor.time_s());
+    v1::TrackedTarget* t = req.add_targets();
+    t->set_target_id(vessel.name);
+    t->set_kind(vessel.kind);
+    const chart::LatLon ll = frame.ToLatLon({k.position.x, k.position.y});
+    t->mutable_position()->set_latitude_deg(ll.lat_deg);
+    t->mutable_position()->set_longitude_deg(ll.lon_deg);
+    // Course over ground: atan2(east, north).
+    t->set_course_deg(CompassDeg(std::atan2(k.velocity.x, k.velocity.y)));
+    t->set_speed_mps(std::hypot(k.velocity.x, k.velocity.y));
+  }
+  return req;
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -385,6 +427,8 @@ int main(int argc, char** argv) {
   const auto wall_start = std::chrono::steady_clock::now();
   int exit_code = 0;
   std::vector<sim::FeedbackOut> out;
+  auto next_vessel_state = std::chrono::steady_clock::time_point{};
+  bool vessel_state_warned = false;
   auto drain_log = [&] {
     for (const v1::LogEvent& e : client.TakeLogEvents()) {
       executor->mutable_report().log.Add(e.mission_time_s(), e.message(), e.source());
@@ -412,6 +456,18 @@ int main(int argc, char** argv) {
     }
     out.clear();
     executor->Step(&out);
+    // The live picture for watchers, a few times a second of wall time
+    // (the server publishes at most once a second); failures only warn.
+    if (const auto now = std::chrono::steady_clock::now(); now >= next_vessel_state) {
+      next_vessel_state = now + std::chrono::milliseconds(250);
+      absl::Status sent =
+          client.ReportVesselState(VesselState(*executor, mission_id, scenario->vessel_id, frame));
+      if (!sent.ok() && !vessel_state_warned) {
+        vessel_state_warned = true;
+        std::fprintf(stderr, "seaplan-sim: warning: ReportVesselState: %s (live updates off)\n",
+                     sent.ToString().c_str());
+      }
+    }
     bool need_plan = executor->WaitingForPlan();
     for (const sim::FeedbackOut& fb : out) {
       v1::ReportFeedbackRequest req;
@@ -424,15 +480,7 @@ int main(int argc, char** argv) {
       p->set_plan_version(fb.plan_version);
       p->set_mission_time_s(fb.mission_time_s);
       p->set_detail(fb.detail);
-      chart::LatLon ll = frame.ToLatLon({fb.position.x, fb.position.y});
-      v1::ShipState* st = p->mutable_state();
-      st->mutable_position()->set_latitude_deg(ll.lat_deg);
-      st->mutable_position()->set_longitude_deg(ll.lon_deg);
-      double hdg = std::fmod(fb.heading_rad / kDeg, 360.0);
-      st->set_heading_deg(hdg < 0 ? hdg + 360 : hdg);
-      st->set_speed_mps(fb.speed_mps);
-      st->set_fuel_fraction(fb.fuel_fraction);
-      st->set_mode(ToProtoMode(fb.mode));
+      FillShipState(fb, frame, p->mutable_state());
       auto resp = client.Report(req);
       if (!resp.ok()) {
         std::fprintf(stderr, "seaplan-sim: ReportFeedback: %s\n", resp.status().ToString().c_str());

@@ -92,6 +92,13 @@ absl::StatusOr<v1::ReportFeedbackResponse> SimClient::Report(
   return FromGrpc(last);
 }
 
+absl::Status SimClient::ReportVesselState(const v1::ReportVesselStateRequest& request) {
+  v1::ReportVesselStateResponse out;
+  grpc::ClientContext ctx;
+  ctx.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(2));
+  return FromGrpc(missions_->ReportVesselState(&ctx, request, &out));
+}
+
 void SimClient::StartWatch(const std::string& mission_id) {
   stop_ = false;
   watcher_ = std::thread([this, mission_id] { WatchLoop(mission_id); });

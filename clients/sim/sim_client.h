@@ -1,5 +1,5 @@
 // The gRPC side of seaplan-sim: MissionService (CreateMission, GetMission,
-// WatchMission, ReportFeedback) and ChartService (UploadChart). Nothing else
+// WatchMission, ReportFeedback, ReportVesselState) and ChartService (UploadChart). Nothing else
 // of the server is used: the simulation talks to it only over gRPC.
 //
 // Watching runs on its own thread and survives a broken stream: it
@@ -45,6 +45,9 @@ class SimClient {
   // number up to `attempts` times.
   absl::StatusOr<v1::ReportFeedbackResponse> Report(const v1::ReportFeedbackRequest& request,
                                                     int attempts = 8);
+
+  // Posts the live picture once (no retry: the next one replaces it).
+  absl::Status ReportVesselState(const v1::ReportVesselStateRequest& request);
 
   // Starts the watch thread for `mission_id`.
   void StartWatch(const std::string& mission_id);

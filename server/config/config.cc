@@ -1,9 +1,21 @@
 #include "server/config/config.h"
 
 #include <CLI/CLI.hpp>
+#include <filesystem>
 #include <sstream>
 
 namespace seaplan::server {
+namespace {
+
+// The console is installed beside the binary (build/bin/console).
+std::string DefaultConsoleDir() {
+  std::error_code ec;
+  const std::filesystem::path exe = std::filesystem::read_symlink("/proc/self/exe", ec);
+  if (ec) return "";
+  return (exe.parent_path() / "console").string();
+}
+
+}  // namespace
 
 ParsedConfig ParseConfig(int argc, const char* const* argv) {
   ParsedConfig parsed;
@@ -48,6 +60,11 @@ ParsedConfig ParseConfig(int argc, const char* const* argv) {
   app.add_option("--port-file", c.port_file,
                  "write \"grpc=PORT\\nhttp=PORT\\n\" here once listening")
       ->envname("SEAPLAN_PORT_FILE");
+  c.server.console_dir = DefaultConsoleDir();
+  app.add_option("--console-dir", c.server.console_dir,
+                 "operator console files served at / (default: console/ beside the binary)")
+      ->envname("SEAPLAN_CONSOLE_DIR")
+      ->capture_default_str();
   app.add_option("--shutdown-grace-ms", grace_ms,
                  "time running requests get on SIGTERM before cancellation")
       ->envname("SEAPLAN_SHUTDOWN_GRACE_MS")

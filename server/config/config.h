@@ -16,6 +16,7 @@
 //   --log-level            SEAPLAN_LOG_LEVEL           info     (debug, info, warn, error, off)
 //   --port-file            SEAPLAN_PORT_FILE           none     (writes "grpc=P\nhttp=P\n" once
 //   listening)
+//   --console-dir          SEAPLAN_CONSOLE_DIR         <binary's folder>/console
 //   --shutdown-grace-ms    SEAPLAN_SHUTDOWN_GRACE_MS   2000
 //
 // Port 0 in an address picks a free port; the bound ports are logged and

@@ -1,6 +1,7 @@
 #include "server/core/chart_handlers.h"
 
 #include <algorithm>
+#include <cmath>
 
 #include "absl/strings/str_cat.h"
 #include "server/core/convert.h"
@@ -18,6 +19,40 @@ constexpr double kDefaultMinimumDepthM = 10.0;
 constexpr double kDefaultSafetyBufferM = 10.0;
 
 #if SEAPLAN_SERVER_HAS_CHART
+absl::StatusOr<chart::ChartOptions> MakeChartOptions(double min_depth_m, double safety_buffer_m) {
+  chart::ChartOptions options;
+  options.min_depth_m = min_depth_m;
+  options.safety_buffer_m = safety_buffer_m;
+  // Keep the simplification inside the buffer (ChartOptions' invariant).
+  options.simplify_tolerance_m =
+      std::min(options.simplify_tolerance_m, options.safety_buffer_m / 2);
+  if (absl::Status valid = options.Validate(); !valid.ok()) {
+    return absl::InvalidArgumentError(absl::StrCat("chart options: ", valid.message()));
+  }
+  return options;
+}
+
+// Loads uploaded files on the pool; `serialized` (optional) receives the
+// stored form of the map.
+absl::StatusOr<chart::ObstacleMap> LoadOnPool(
+    WorkPool& pool, const StopToken& root,
+    const google::protobuf::RepeatedPtrField<v1::ChartFile>& uploaded,
+    const chart::ChartOptions& options, const CallContext& ctx, const std::string& what,
+    std::string* serialized) {
+  std::vector<chart::ChartFile> files;
+  files.reserve(static_cast<std::size_t>(uploaded.size()));
+  for (const auto& f : uploaded) files.push_back({f.name(), f.content()});
+  absl::StatusOr<chart::ObstacleMap> map = absl::UnknownError("chart loader did not run");
+  SEAPLAN_RETURN_IF_ERROR(pool.Run(
+      [&] {
+        map = chart::LoadChartBytes(files, options);
+        if (map.ok() && serialized != nullptr) *serialized = chart::SerializeObstacleMap(*map);
+      },
+      [&] { ctx.ForwardCancellation(); }));
+  if (ctx.stop.StopRequested()) return StopStatus(ctx.stop, root.StopRequested(), what);
+  return map;
+}
+
 v1::ObstacleSummary ToProto(const chart::ObstacleSummary& s) {
   v1::ObstacleSummary out;
   out.set_obstacle_count(s.polygon_count);
@@ -62,31 +97,15 @@ absl::StatusOr<v1::UploadChartResponse> ChartHandlers::UploadChart(
     return absl::InvalidArgumentError("minimum_depth_m and safety_buffer_m must not be negative");
   }
 #if SEAPLAN_SERVER_HAS_CHART
-  chart::ChartOptions options;
-  options.min_depth_m =
-      request.minimum_depth_m() > 0 ? request.minimum_depth_m() : kDefaultMinimumDepthM;
-  options.safety_buffer_m =
-      request.safety_buffer_m() > 0 ? request.safety_buffer_m() : kDefaultSafetyBufferM;
-  // Keep the simplification inside the buffer (ChartOptions' invariant).
-  options.simplify_tolerance_m =
-      std::min(options.simplify_tolerance_m, options.safety_buffer_m / 2);
-  if (absl::Status valid = options.Validate(); !valid.ok()) {
-    return absl::InvalidArgumentError(absl::StrCat("chart options: ", valid.message()));
-  }
-  std::vector<chart::ChartFile> files;
-  files.reserve(static_cast<std::size_t>(request.files_size()));
-  for (const auto& f : request.files()) files.push_back({f.name(), f.content()});
-
-  absl::StatusOr<chart::ObstacleMap> map = absl::UnknownError("chart loader did not run");
+  SEAPLAN_ASSIGN_OR_RETURN(
+      chart::ChartOptions options,
+      MakeChartOptions(
+          request.minimum_depth_m() > 0 ? request.minimum_depth_m() : kDefaultMinimumDepthM,
+          request.safety_buffer_m() > 0 ? request.safety_buffer_m() : kDefaultSafetyBufferM));
   std::string serialized;
-  SEAPLAN_RETURN_IF_ERROR(pool_.Run(
-      [&] {
-        map = chart::LoadChartBytes(files, options);
-        if (map.ok()) serialized = chart::SerializeObstacleMap(*map);
-      },
-      [&] { ctx.ForwardCancellation(); }));
-  if (ctx.stop.StopRequested()) return StopStatus(ctx.stop, root_.StopRequested(), "chart upload");
-  if (!map.ok()) return map.status();
+  SEAPLAN_ASSIGN_OR_RETURN(
+      chart::ObstacleMap map,
+      LoadOnPool(pool_, root_, request.files(), options, ctx, "chart upload", &serialized));
 
   v1::UploadChartRequest stored_options = request;
   stored_options.clear_files();
@@ -100,14 +119,14 @@ absl::StatusOr<v1::UploadChartResponse> ChartHandlers::UploadChart(
   record.name = request.name();
   record.format = request.format();
   record.options = stored_options.SerializeAsString();
-  record.summary = ToProto(map->summary()).SerializeAsString();
+  record.summary = ToProto(map.summary()).SerializeAsString();
   record.obstacles = std::move(serialized);
   record.source_files = stored_files.SerializeAsString();
   record.created_at_ms = NowMs();
   SEAPLAN_ASSIGN_OR_RETURN(storage::ChartRecord stored, charts_.Insert(std::move(record)));
   v1::UploadChartResponse response;
   *response.mutable_chart() = ChartFromRecord(stored);
-  for (const auto& w : map->summary().warnings) response.add_warnings(w);
+  for (const auto& w : map.summary().warnings) response.add_warnings(w);
   return response;
 #else
   (void)ctx;
@@ -138,6 +157,45 @@ absl::StatusOr<v1::GetChartResponse> ChartHandlers::GetChart(const v1::GetChartR
 #endif
   }
   return response;
+}
+
+absl::StatusOr<v1::GetObstaclesResponse> ChartHandlers::GetObstacles(
+    const v1::GetObstaclesRequest& request, const CallContext& ctx) {
+  if (request.chart_id().empty()) return absl::InvalidArgumentError("chart_id is empty");
+  if (request.minimum_depth_m() < 0)
+    return absl::InvalidArgumentError("minimum_depth_m must not be negative");
+  SEAPLAN_ASSIGN_OR_RETURN(storage::ChartRecord record, charts_.Get(request.chart_id(), true));
+  const v1::Chart stored = ChartFromRecord(record);
+  v1::GetObstaclesResponse response;
+  response.set_chart_id(stored.chart_id());
+  response.set_safety_buffer_m(stored.safety_buffer_m());
+#if SEAPLAN_SERVER_HAS_CHART
+  const bool same_depth = request.minimum_depth_m() == 0 ||
+                          std::abs(request.minimum_depth_m() - stored.minimum_depth_m()) < 1e-9;
+  absl::StatusOr<chart::ObstacleMap> map = absl::UnknownError("no obstacles");
+  if (same_depth) {
+    response.set_minimum_depth_m(stored.minimum_depth_m());
+    map = chart::DeserializeObstacleMap(record.obstacles);
+  } else {
+    response.set_minimum_depth_m(request.minimum_depth_m());
+    v1::UploadChartRequest files;
+    if (!files.ParseFromString(record.source_files) || files.files_size() == 0) {
+      return absl::FailedPreconditionError(absl::StrCat(
+          "chart ", request.chart_id(), " has no stored source files to load at another depth"));
+    }
+    SEAPLAN_ASSIGN_OR_RETURN(chart::ChartOptions options,
+                             MakeChartOptions(request.minimum_depth_m(), stored.safety_buffer_m()));
+    map = LoadOnPool(pool_, root_, files.files(), options, ctx, "obstacles", nullptr);
+  }
+  if (!map.ok()) return map.status();
+  response.set_obstacle_count(map->summary().polygon_count);
+  response.set_geojson(chart::ToGeoJson(*map));
+  return response;
+#else
+  (void)ctx;
+  return absl::UnimplementedError(
+      "ChartService.GetObstacles needs engine/chart (seaplan_chart), not built into this server");
+#endif
 }
 
 absl::StatusOr<v1::ListChartsResponse> ChartHandlers::ListCharts(

@@ -1,6 +1,7 @@
 // ChartService handlers: UploadChart loads the chart with engine/chart on
 // the WorkPool and stores it (summary, serialized obstacles, the uploaded
-// files) in the ChartRepository; GetChart / ListCharts read storage only.
+// files) in the ChartRepository; GetChart / ListCharts read storage only;
+// GetObstacles reads storage or, at another minimum depth, reloads the files.
 #pragma once
 
 #include "seaplan/common/stop_token.h"
@@ -22,6 +23,10 @@ class ChartHandlers {
                                                 const CallContext& ctx);
   absl::StatusOr<v1::ListChartsResponse> ListCharts(const v1::ListChartsRequest& request,
                                                     const CallContext& ctx);
+  // The stored obstacles at the chart's own depth; at another depth the
+  // uploaded files are loaded again on the WorkPool (same buffer).
+  absl::StatusOr<v1::GetObstaclesResponse> GetObstacles(const v1::GetObstaclesRequest& request,
+                                                        const CallContext& ctx);
 
  private:
   storage::ChartRepository& charts_;

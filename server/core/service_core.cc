@@ -34,7 +34,8 @@ ServiceCore::ServiceCore(storage::Store& store, const CoreOptions& options,
       planning_(pool_, root_),
       charts_(store.charts(), pool_, root_),
       routes_(store.charts(), pool_, root_),
-      missions_(store.missions(), pool_, root_, std::move(mission_engine), options.missions) {}
+      missions_(store.missions(), pool_, root_, std::move(mission_engine), options.missions),
+      vessels_(store.missions()) {}
 
 ServiceCore::~ServiceCore() {
   Stop();
@@ -47,6 +48,7 @@ CallContext ServiceCore::NewCall(std::string transport, StopToken::Clock::time_p
 
 void ServiceCore::CloseStreams() {
   missions_.notifier().Close();
+  vessels_.Close();
 }
 
 void ServiceCore::CancelAllWork() {

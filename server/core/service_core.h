@@ -16,6 +16,7 @@
 #include "server/core/mission_engine.h"
 #include "server/core/planning_handlers.h"
 #include "server/core/route_handlers.h"
+#include "server/core/vessel_tracker.h"
 #include "server/core/work_pool.h"
 
 namespace seaplan::server {
@@ -43,6 +44,7 @@ class ServiceCore {
   ChartHandlers& charts() { return charts_; }
   RouteHandlers& routes() { return routes_; }
   MissionCoordinator& missions() { return missions_; }
+  VesselTracker& vessels() { return vessels_; }
   WorkPool& pool() { return pool_; }
 
   // A call's context: its token stops at `deadline` (steady clock; max() =
@@ -65,6 +67,7 @@ class ServiceCore {
   ChartHandlers charts_;
   RouteHandlers routes_;
   MissionCoordinator missions_;
+  VesselTracker vessels_;
 };
 
 // One log line per request: transport, method, status code, latency.

@@ -82,6 +82,11 @@ class GrpcServices::Charts final : public v1::ChartService::Service {
     return Unary(core_, "ChartService/GetChart", ctx, resp,
                  [&](const CallContext& c) { return core_.charts().GetChart(*req, c); });
   }
+  grpc::Status GetObstacles(grpc::ServerContext* ctx, const v1::GetObstaclesRequest* req,
+                            v1::GetObstaclesResponse* resp) override {
+    return Unary(core_, "ChartService/GetObstacles", ctx, resp,
+                 [&](const CallContext& c) { return core_.charts().GetObstacles(*req, c); });
+  }
   grpc::Status ListCharts(grpc::ServerContext* ctx, const v1::ListChartsRequest* req,
                           v1::ListChartsResponse* resp) override {
     return Unary(core_, "ChartService/ListCharts", ctx, resp,
@@ -132,7 +137,7 @@ class GrpcServices::Missions final : public v1::MissionService::Service {
                             grpc::ServerWriter<v1::MissionEvent>* writer) override {
     return Stream(core_, "MissionService/WatchMission", ctx, writer,
                   [&](const CallContext& c, const StreamSink<v1::MissionEvent>& sink) {
-                    return core_.missions().WatchMission(*req, c, sink);
+                    return core_.vessels().WatchMission(core_.missions(), *req, c, sink);
                   });
   }
   grpc::Status ReportFeedback(grpc::ServerContext* ctx, const v1::ReportFeedbackRequest* req,
@@ -149,6 +154,11 @@ class GrpcServices::Missions final : public v1::MissionService::Service {
                              v1::Mission* resp) override {
     return Unary(core_, "MissionService/CancelMission", ctx, resp,
                  [&](const CallContext& c) { return core_.missions().CancelMission(*req, c); });
+  }
+  grpc::Status ReportVesselState(grpc::ServerContext* ctx, const v1::ReportVesselStateRequest* req,
+                                 v1::ReportVesselStateResponse* resp) override {
+    return Unary(core_, "MissionService/ReportVesselState", ctx, resp,
+                 [&](const CallContext& c) { return core_.vessels().ReportVesselState(*req, c); });
   }
 
  private:

@@ -6,6 +6,7 @@
 #include <charconv>
 #include <condition_variable>
 #include <deque>
+#include <filesystem>
 #include <mutex>
 
 #include "absl/strings/str_cat.h"
@@ -56,6 +57,34 @@ absl::StatusOr<StopToken::Clock::time_point> Deadline(const httplib::Request& re
         absl::StrCat(kTimeoutHeader, ": expected a positive number of ms, got '", value, "'"));
   }
   return StopToken::Clock::now() + std::chrono::milliseconds(ms);
+}
+
+// Reads the whole body whatever its Content-Type: cpp-httplib would take an
+// application/x-www-form-urlencoded body (curl -d's default) as a form and
+// refuse it beyond 8 KiB, so every RPC reads its body through a content
+// reader, which skips form parsing. False when the response is already set
+// (multipart, too large, malformed).
+bool ReadBody(const httplib::Request& req, const httplib::ContentReader& reader,
+              httplib::Response& res, std::string* body) {
+  if (req.is_multipart_form_data()) {
+    res.set_header("Connection", "close");  // the unread body must not be taken as the next request
+    Reply(res, absl::InvalidArgumentError(
+                   "multipart/form-data is not accepted: send the request message itself as JSON "
+                   "in the body (any Content-Type)"));
+    return false;
+  }
+  // On failure read_content has set res.status (413 too large, 400
+  // malformed); the error handler writes the body.
+  return reader([body](const char* data, std::size_t size) {
+    body->append(data, size);
+    return true;
+  });
+}
+
+// What the log says of a body ReadBody refused.
+absl::Status BodyError(const httplib::Response& res) {
+  if (res.status == 413) return absl::ResourceExhaustedError("request body too large");
+  return absl::InvalidArgumentError("request body not read");
 }
 
 // A stream in flight: the core handler runs on `worker` and queues lines;
@@ -144,11 +173,17 @@ void HttpGateway::RegisterRoutes() {
                    std::function<absl::StatusOr<Response>(const Request&, const CallContext&)> fn) {
     (void)this;
     server_->Post("/v1/" + method,
-                  [&core, method, fn](const httplib::Request& hreq, httplib::Response& hres) {
+                  [&core, method, fn](const httplib::Request& hreq, httplib::Response& hres,
+                                      const httplib::ContentReader& reader) {
                     const auto started = StopToken::Clock::now();
+                    std::string body;
+                    if (!ReadBody(hreq, reader, hres, &body)) {
+                      LogCall("http", method, BodyError(hres), started);
+                      return;
+                    }
                     absl::Status status = [&]() -> absl::Status {
                       Request request;
-                      SEAPLAN_RETURN_IF_ERROR(FromJson(hreq.body, &request));
+                      SEAPLAN_RETURN_IF_ERROR(FromJson(body, &request));
                       SEAPLAN_ASSIGN_OR_RETURN(auto deadline, Deadline(hreq));
                       CallContext call = core.NewCall("http", deadline, nullptr);
                       SEAPLAN_ASSIGN_OR_RETURN(Response response, fn(request, call));
@@ -170,10 +205,16 @@ void HttpGateway::RegisterRoutes() {
               fn) {
         (void)this;
         server_->Post("/v1/" + method, [&core, method, fn](const httplib::Request& hreq,
-                                                           httplib::Response& hres) {
+                                                           httplib::Response& hres,
+                                                           const httplib::ContentReader& reader) {
           const auto started = StopToken::Clock::now();
+          std::string body;
+          if (!ReadBody(hreq, reader, hres, &body)) {
+            LogCall("http", method, BodyError(hres), started);
+            return;
+          }
           auto request = std::make_shared<Request>();
-          absl::Status parsed = FromJson(hreq.body, request.get());
+          absl::Status parsed = FromJson(body, request.get());
           auto deadline = Deadline(hreq);
           if (!parsed.ok() || !deadline.ok()) {
             const absl::Status& st = parsed.ok() ? deadline.status() : parsed;
@@ -293,6 +334,11 @@ void HttpGateway::RegisterRoutes() {
         return core.charts().ListCharts(r, c);
       });
 
+  unary.operator()<v1::GetObstaclesRequest, v1::GetObstaclesResponse>(
+      "ChartService/GetObstacles", [&core](const v1::GetObstaclesRequest& r, const R& c) {
+        return core.charts().GetObstacles(r, c);
+      });
+
   unary.operator()<v1::PlanRouteRequest, v1::PlanRouteResponse>(
       "RouteService/PlanRoute",
       [&core](const v1::PlanRouteRequest& r, const R& c) { return core.routes().PlanRoute(r, c); });
@@ -316,7 +362,7 @@ void HttpGateway::RegisterRoutes() {
   stream.operator()<v1::WatchMissionRequest, v1::MissionEvent>(
       "MissionService/WatchMission",
       [&core](const v1::WatchMissionRequest& r, const R& c, const StreamSink<v1::MissionEvent>& s) {
-        return core.missions().WatchMission(r, c, s);
+        return core.vessels().WatchMission(core.missions(), r, c, s);
       });
   unary.operator()<v1::ReportFeedbackRequest, v1::ReportFeedbackResponse>(
       "MissionService/ReportFeedback", [&core](const v1::ReportFeedbackRequest& r, const R& c) {
@@ -330,6 +376,34 @@ void HttpGateway::RegisterRoutes() {
       "MissionService/CancelMission", [&core](const v1::CancelMissionRequest& r, const R& c) {
         return core.missions().CancelMission(r, c);
       });
+
+  unary.operator()<v1::ReportVesselStateRequest, v1::ReportVesselStateResponse>(
+      "MissionService/ReportVesselState",
+      [&core](const v1::ReportVesselStateRequest& r, const R& c) {
+        return core.vessels().ReportVesselState(r, c);
+      });
+
+  // The operator console: static files (index.html, JS, CSS) from
+  // console_dir at "/". The page loads nothing from elsewhere.
+  std::error_code ec;
+  if (!options_.console_dir.empty() &&
+      std::filesystem::is_regular_file(std::filesystem::path(options_.console_dir) / "index.html",
+                                       ec)) {
+    server_->set_mount_point(
+        "/", options_.console_dir,
+        {{"Cache-Control", "no-cache"},
+         {"Content-Security-Policy",
+          "default-src 'self'; img-src 'self' data: blob:; style-src 'self' 'unsafe-inline'"}});
+  } else {
+    const std::string missing =
+        options_.console_dir.empty()
+            ? std::string("no console directory configured (--console-dir)")
+            : absl::StrCat("no index.html in the console directory '", options_.console_dir,
+                           "' (build clients/console or set --console-dir)");
+    server_->Get("/", [missing](const httplib::Request&, httplib::Response& res) {
+      Reply(res, absl::NotFoundError(absl::StrCat("operator console not installed: ", missing)));
+    });
+  }
 
   server_->Get("/healthz", [this](const httplib::Request&, httplib::Response& res) {
     const bool serving = serving_.load();

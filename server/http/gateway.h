@@ -9,7 +9,11 @@
 //   GET /healthz  200 {"status":"SERVING"} / 503 {"status":"NOT_SERVING"}
 // A client deadline may be given as header "X-Seaplan-Timeout-Ms: <ms>"
 // (the gRPC deadline's equivalent; without it a request has no deadline).
-// Bodies are limited to max_body_bytes (413 beyond).
+// Bodies are limited to max_body_bytes (413 beyond) and read as JSON
+// whatever their Content-Type (curl -d sends a form type); multipart bodies
+// are refused (400).
+//   GET /  and other paths: the operator console's static files
+//          (Options::console_dir), with a same-origin Content-Security-Policy.
 //
 // The gateway only parses, calls the same core handlers as the gRPC
 // services (server/core) and prints.
@@ -34,6 +38,9 @@ class HttpGateway {
   struct Options {
     std::size_t max_body_bytes = 64u << 20;
     int threads = 16;
+    // Folder of the built operator console (index.html ...), served at
+    // "/"; empty or without index.html: GET / answers 404 saying so.
+    std::string console_dir;
   };
 
   HttpGateway(ServiceCore& core, const Options& options);

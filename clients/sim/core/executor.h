@@ -140,6 +140,11 @@ class Executor {
   double fuel_fraction() const { return tank_.fraction(); }
   int plan_version() const { return version_.version; }
   const std::set<std::string>& completed_task_ids() const { return completed_; }
+  // The ship now, as a position report would carry it (for live updates).
+  FeedbackOut CurrentState() const {
+    return MakeFeedback(mission::FeedbackKind::kPosition, "", version_.version);
+  }
+  const std::vector<TrafficVessel>& traffic() const { return config_.traffic; }
 
   const MissionReport& report() const { return report_; }
   MissionReport& mutable_report() { return report_; }

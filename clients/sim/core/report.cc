@@ -23,6 +23,40 @@ std::string Num3(double v) {
   return absl::StrFormat("%.3f", v);
 }
 
+// Text and attribute values in the SVG plots: names and reasons such as
+// "fuel 30% <= 30%" must not break the XML.
+std::string XmlText(std::string_view text) {
+  std::string out;
+  out.reserve(text.size());
+  for (const char c : text) {
+    switch (c) {
+      case '&':
+        out += "&amp;";
+        break;
+      case '<':
+        out += "&lt;";
+        break;
+      case '>':
+        out += "&gt;";
+        break;
+      case '"':
+        out += "&quot;";
+        break;
+      case '\'':
+        out += "&apos;";
+        break;
+      default:
+        // Control characters other than tab/newline are not allowed in XML 1.0.
+        if (static_cast<unsigned char>(c) < 0x20 && c != '\t' && c != '\n' && c != '\r') {
+          out += ' ';
+        } else {
+          out += c;
+        }
+    }
+  }
+  return out;
+}
+
 const char* KindColour(mission::TaskKind k) {
   switch (k) {
     case mission::TaskKind::kMove:
@@ -170,7 +204,7 @@ std::string TrajectorySvg(const MissionReport& r, const Rings& obstacles,
     o << "\"/>\n";
     if (!track.empty()) {
       o << absl::StrFormat("<text x=\"%.1f\" y=\"%.1f\" font-size=\"12\">%s</text>\n",
-                           X(track.front().position.x), Y(track.front().position.y), name);
+                           X(track.front().position.x), Y(track.front().position.y), XmlText(name));
     }
   }
   o << "<polyline fill=\"none\" stroke=\"#1f3a93\" stroke-width=\"2\" points=\"";
@@ -181,7 +215,7 @@ std::string TrajectorySvg(const MissionReport& r, const Rings& obstacles,
     o << absl::StrFormat("<circle cx=\"%.1f\" cy=\"%.1f\" r=\"4\" fill=\"#000\"/>\n", X(p.x_m),
                          Y(p.y_m));
     o << absl::StrFormat("<text x=\"%.1f\" y=\"%.1f\" font-size=\"13\">%s</text>\n", X(p.x_m) + 6,
-                         Y(p.y_m) - 6, name);
+                         Y(p.y_m) - 6, XmlText(name));
   }
   o << "</svg>\n";
   return o.str();
@@ -205,11 +239,11 @@ std::string GanttSvg(const MissionReport& r) {
   for (const auto& v : r.versions) {
     o << absl::StrFormat(
         "<text x=\"4\" y=\"%.0f\" font-size=\"12\" font-weight=\"bold\">version %d: %s</text>\n",
-        y + 12, v.version, JsonString(v.reason).substr(1, JsonString(v.reason).size() - 2));
+        y + 12, v.version, XmlText(v.reason));
     y += row_h;
     for (const auto& t : v.tasks) {
       o << absl::StrFormat("<text x=\"12\" y=\"%.0f\" font-size=\"11\">%s</text>\n", y + 11,
-                           t.action.DisplayName());
+                           XmlText(t.action.DisplayName()));
       o << absl::StrFormat(
           "<rect x=\"%.1f\" y=\"%.0f\" width=\"%.1f\" height=\"%.0f\" fill=\"%s\"/>\n",
           left + t.start_s * scale, y + 2, std::max(1.0, t.duration_s * scale), row_h - 4,

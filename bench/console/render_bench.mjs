@@ -1,0 +1,234 @@
+// Render benchmark of the operator console in headless Chromium:
+//   - the Trondheim chart (trondheim_landareal_wgs84.geojson, ~55k land
+//     vertices) uploaded through the API and drawn by the chart view, plus a
+//     ship track of 10,000 points; frame times while panning (renderSync per
+//     frame), against the same pan over an empty map in the same page
+//     (baseline ratio);
+//   - the console's first load on loopback (navigation to the first view
+//     drawn), median of several cold loads, against a GET /healthz round
+//     trip in the same page (baseline ratio);
+//   - the bundle size.
+//
+//   node bench/console/render_bench.mjs [--frames 120] [--loads 5]
+//   env: SEAPLAN_SERVER_BIN, CONSOLE_DIR (default build/bin/...),
+//        SEAPLAN_SHARED (default ../shared beside the clone)
+import { existsSync, readdirSync, readFileSync, statSync } from "node:fs";
+import { dirname, join, resolve } from "node:path";
+import { fileURLToPath } from "node:url";
+
+const here = dirname(fileURLToPath(import.meta.url));
+const repo = resolve(here, "../..");
+const arg = (name, fallback) => {
+  const i = process.argv.indexOf(`--${name}`);
+  return i > 0 ? Number(process.argv[i + 1]) : fallback;
+};
+const frames = arg("frames", 120);
+const loads = arg("loads", 5);
+const trackPoints = arg("track-points", 10000);
+const serverBin = process.env.SEAPLAN_SERVER_BIN || join(repo, "build/bin/seaplan-server");
+const consoleDir = process.env.CONSOLE_DIR || join(repo, "build/bin/console");
+const shared = process.env.SEAPLAN_SHARED || resolve(repo, "../shared");
+const chartFile = join(shared, "enc/trondheim/trondheim_landareal_wgs84.geojson");
+for (const [path, what] of [[serverBin, "seaplan-server"], [join(consoleDir, "index.html"), "the built console"],
+                            [chartFile, "the Trondheim chart (SEAPLAN_SHARED)"]]) {
+  if (!existsSync(path)) {
+    console.log(`SKIP: ${what} not found (${path})`);
+    process.exit(process.env.CI ? 1 : 0);
+  }
+}
+const { launchBrowser, startServer } = await import("../../clients/console/e2e/support.mjs");
+
+const stats = (xs) => {
+  const s = [...xs].sort((a, b) => a - b);
+  const q = (p) => s[Math.min(s.length - 1, Math.floor(p * s.length))];
+  return { median: q(0.5), p95: q(0.95), max: s[s.length - 1], mean: s.reduce((a, b) => a + b, 0) / s.length };
+};
+const fmt = (x) => x.toFixed(2);
+
+const server = await startServer({ serverBin, consoleDir });
+const browser = await launchBrowser();
+try {
+  // The chart through the API, as the console's upload form sends it.
+  const upload = await fetch(`${server.url}v1/ChartService/UploadChart`, {
+    method: "POST",
+    headers: { "Content-Type": "application/json" },
+    body: JSON.stringify({ name: "trondheim", format: "CHART_FORMAT_GEOJSON", files: [
+      { name: "trondheim_landareal_wgs84.geojson", content: readFileSync(chartFile).toString("base64") }] }),
+  });
+  if (!upload.ok) throw new Error(`upload: ${upload.status} ${await upload.text()}`);
+  const chart = (await upload.json()).chart;
+
+  const page = await browser.context.newPage();
+  // First load: cold navigations (cache disabled) to the first view drawn.
+  const cdp = await browser.context.newCDPSession(page);
+  await cdp.send("Network.setCacheDisabled", { cacheDisabled: true });
+  const loadMs = [];
+  const healthMs = [];
+  for (let i = 0; i < loads; i++) {
+    const t0 = Date.now();
+    await page.goto(`${server.url}#/missions`);
+    await page.waitForSelector("main h1");
+    loadMs.push(Date.now() - t0);
+    healthMs.push(await page.evaluate(async () => {
+      const t = performance.now();
+      await (await fetch("/healthz", { cache: "no-store" })).text();
+      return performance.now() - t;
+    }));
+  }
+
+  // The chart view with the obstacles and a 10,000-point track.
+  await page.goto(`${server.url}#/charts`);
+  await page.waitForFunction((id) => !!document.querySelector(`#p-chart option[value="${id}"]`), chart.chartId);
+  await page.selectOption("#p-chart", chart.chartId);
+  const tLoad = Date.now();
+  await page.click("#p-show");
+  await page.waitForFunction(() => /obstacles at/.test(document.querySelector("#p-status")?.textContent ?? ""), null, { timeout: 120000 });
+  const obstaclesMs = Date.now() - tLoad;
+  const vertices = await page.evaluate((n) => {
+    const m = window.seaplanMap;
+    // A track wandering over the chart's extent.
+    const pts = [];
+    for (let i = 0; i < n; i++) {
+      const t = i / n;
+      pts.push({ latitudeDeg: 63.43 + 0.03 * Math.sin(t * 20) * t, longitudeDeg: 10.3 + 0.25 * t });
+    }
+    m.setTrack(pts);
+    let count = 0;
+    m.map.getAllLayers()[0].getSource().forEachFeature((f) => {
+      const g = f.getGeometry();
+      count += g.getFlatCoordinates().length / g.getStride();
+    });
+    return count;
+  }, trackPoints);
+
+  // Pan two ways: (a) work per frame: move the centre and renderSync(),
+  // timed in the page; (b) frame intervals: move the centre in each
+  // requestAnimationFrame callback and time the callbacks (what an operator
+  // sees; 16.7 ms at 60 Hz when the drawing keeps up).
+  const pan = (n) => page.evaluate((count) => {
+    const m = window.seaplanMap.map;
+    const view = m.getView();
+    const c = view.getCenter();
+    const res = view.getResolution();
+    const work = [];
+    for (let i = 0; i < count; i++) {
+      view.setCenter([c[0] + Math.sin(i / 10) * 200 * res, c[1] + Math.cos(i / 10) * 120 * res]);
+      const t = performance.now();
+      m.renderSync();
+      work.push(performance.now() - t);
+    }
+    return new Promise((resolve) => {
+      const frames = [];
+      let last = performance.now();
+      let i = 0;
+      const step = (now) => {
+        frames.push(now - last);
+        last = now;
+        if (++i >= count) {
+          view.setCenter(c);
+          resolve({ work, frames: frames.slice(1) });
+          return;
+        }
+        view.setCenter([c[0] + Math.sin(i / 10) * 200 * res, c[1] + Math.cos(i / 10) * 120 * res]);
+        requestAnimationFrame(step);
+      };
+      requestAnimationFrame(step);
+    });
+  }, n);
+  // (c) a real drag with the mouse (OpenLayers' DragPan), frames recorded
+  // by a requestAnimationFrame loop while Playwright moves the mouse.
+  const box = await page.locator("#preview-map").boundingBox();
+  const drag = async (n) => {
+    await page.evaluate(() => {
+      window.__frames = [];
+      let last = performance.now();
+      const tick = (now) => {
+        window.__frames.push(now - last);
+        last = now;
+        if (window.__frames) window.__raf = requestAnimationFrame(tick);
+      };
+      window.__raf = requestAnimationFrame(tick);
+    });
+    const x0 = box.x + box.width / 2, y0 = box.y + box.height / 2;
+    await page.mouse.move(x0, y0);
+    await page.mouse.down();
+    for (let i = 1; i <= n; i++) {
+      await page.mouse.move(x0 + Math.sin(i / 10) * 150, y0 + Math.cos(i / 10) * 90 - 90);
+    }
+    await page.mouse.up();
+    await page.waitForTimeout(300);  // the redraw after the drag
+    return page.evaluate(() => {
+      cancelAnimationFrame(window.__raf);
+      const f = window.__frames.slice(1);
+      window.__frames = undefined;
+      return f;
+    });
+  };
+  const measure = async () => {
+    await pan(10);  // warm-up
+    const r = await pan(frames);
+    const dragged = await drag(frames);
+    return { work: stats(r.work), frame: stats(r.frames), drag: stats(dragged),
+             slow: r.frames.filter((f) => f > 50).length + dragged.filter((f) => f > 50).length,
+             count: r.frames.length + dragged.length };
+  };
+  const runs = {};
+  await page.evaluate(() => window.seaplanMap.fitOnce(true));
+  runs["server obstacles, whole chart"] = await measure();
+  await page.evaluate(() => window.seaplanMap.map.getView().setZoom(window.seaplanMap.map.getView().getZoom() + 2));
+  runs["server obstacles, zoomed x4"] = await measure();
+  // The raw land file (every vertex, unsimplified, unbuffered) as the worst case.
+  const raw = readFileSync(chartFile, "utf8");
+  const rawVertices = await page.evaluate((text) => {
+    const m = window.seaplanMap;
+    m.setObstacles(text);
+    m.fitOnce(true);
+    let count = 0;
+    m.map.getAllLayers()[0].getSource().forEachFeature((f) => {
+      const g = f.getGeometry();
+      count += g.getFlatCoordinates().length / g.getStride();
+    });
+    return count;
+  }, raw);
+  runs["raw land file, whole chart"] = await measure();
+  await page.evaluate(() => window.seaplanMap.map.getView().setZoom(window.seaplanMap.map.getView().getZoom() + 2));
+  runs["raw land file, zoomed x4"] = await measure();
+  // Baseline: the same page and pans with nothing drawn.
+  await page.evaluate(() => {
+    const m = window.seaplanMap;
+    m.map.getAllLayers().forEach((l) => l.setVisible(false));
+    m.fitOnce(true);
+  });
+  const empty = await measure();
+
+  let bundle = 0;
+  for (const name of readdirSync(consoleDir)) if (!name.endsWith(".map") && !name.endsWith(".txt")) bundle += statSync(join(consoleDir, name)).size;
+  const ld = stats(loadMs);
+  const hl = stats(healthMs);
+  console.log(`chart: server obstacles ${vertices} vertices (fetched and drawn in ${obstaclesMs} ms), raw land file ${rawVertices} vertices; ` +
+              `ship track ${trackPoints} points`);
+  console.log(`pan, ${frames} frames each: work = renderSync ms; frame = requestAnimationFrame interval ms while the centre moves each frame; ` +
+              `drag = the same while the mouse drags the map (mean / p95 / max); ratio = mean work / empty map's`);
+  const worst = { work: 0, frame: 0 };
+  const slow = { over: 0, of: 0 };
+  for (const [name, r] of Object.entries(runs)) {
+    worst.work = Math.max(worst.work, r.work.max);
+    worst.frame = Math.max(worst.frame, r.frame.max, r.drag.max);
+    slow.over += r.slow;
+    slow.of += r.count;
+    console.log(`  ${name.padEnd(32)} work ${fmt(r.work.mean)} / ${fmt(r.work.p95)} / ${fmt(r.work.max)}   ` +
+                `frame ${fmt(r.frame.mean)} / ${fmt(r.frame.p95)} / ${fmt(r.frame.max)}   ` +
+                `drag ${fmt(r.drag.mean)} / ${fmt(r.drag.p95)} / ${fmt(r.drag.max)}   ` +
+                `ratio ${fmt(r.work.mean / Math.max(empty.work.mean, 0.001))}x`);
+  }
+  console.log(`  ${"empty map (baseline)".padEnd(32)} work ${fmt(empty.work.mean)} / ${fmt(empty.work.p95)} / ${fmt(empty.work.max)}   ` +
+              `frame ${fmt(empty.frame.mean)} / ${fmt(empty.frame.p95)} / ${fmt(empty.frame.max)}   ` +
+              `drag ${fmt(empty.drag.mean)} / ${fmt(empty.drag.p95)} / ${fmt(empty.drag.max)}`);
+  console.log(`first load ms (cold cache, ${loads} loads): ${loadMs.join(", ")}; median ${ld.median}; /healthz round trip median ${fmt(hl.median)} ms (ratio ${fmt(ld.median / Math.max(hl.median, 0.01))}x)`);
+  console.log(`bundle: ${(bundle / 1024).toFixed(1)} KiB (index.html, app.js, app.css)`);
+  console.log(`targets: frames under 50 ms: ${worst.frame < 50 ? "yes" : "NO"} (${slow.over} of ${slow.of} frames over 50 ms; worst frame ${fmt(worst.frame)} ms, worst renderSync ${fmt(worst.work)} ms); ` +
+              `first load under 1 s: ${ld.median < 1000 ? "yes" : "NO"} (median)`);
+} finally {
+  await browser.close();
+  await server.stop();
+}

@@ -1,0 +1,180 @@
+// One mission, live: the map (obstacles, routes by MSO mode, ship, track,
+// traffic), the plan versions as a Gantt chart, the navigation log, fuel
+// over time and the machinery mode, over the WatchMission NDJSON stream
+// (resumed after a broken connection).
+import { call, MissionWatch, type Mission, type PlanVersion, type VesselUpdate } from "./api";
+import { field, h } from "./dom";
+import { renderGantt } from "./gantt";
+import { ChartMap } from "./map";
+import { cpa, degrees, distance, missionTime, percent, shortMode, shortState, speed,
+         utc } from "./units";
+
+export function missionView(root: HTMLElement, missionId: string): () => void {
+  const title = h("h1", { id: "mission-title", text: `Mission ${missionId}` });
+  const stateBadge = h("span", { class: "badge", id: "mission-state" });
+  const versionLabel = h("span", { id: "mission-version" });
+  const clock = h("span", { id: "mission-clock" });
+  const link = h("span", { id: "watch-status", class: "watch-status", role: "status" });
+  const reason = h("input", { id: "replan-reason", value: "operator request" });
+  const replan = h("button", { type: "button", id: "replan", text: "Request replan" });
+  const cancel = h("button", { type: "button", id: "cancel", class: "danger", text: "Cancel mission" });
+  const actionStatus = h("p", { class: "status", role: "status" });
+  const mapBox = h("div", { class: "map", id: "mission-map" });
+  const shipPanel = h("dl", { class: "ship-panel", id: "ship-panel" });
+  const trafficBody = h("tbody", { id: "traffic-body" });
+  const gantt = h("div", { class: "gantt", id: "gantt", tabindex: 0, role: "region", "aria-label": "Plan versions" });
+  const log = h("ol", { class: "navlog", id: "navlog", "aria-live": "polite", tabindex: 0, "aria-label": "Navigation log" });
+  const fuelBox = h("div", { class: "fuel", id: "fuel-chart" });
+  root.append(h("section", { class: "mission", "aria-labelledby": "mission-title" },
+    h("div", { class: "toolbar" }, title, stateBadge, versionLabel, clock, link),
+    h("div", { class: "toolbar" }, field("Replan reason", reason), replan, cancel, actionStatus),
+    h("div", { class: "mission-grid" }, mapBox,
+      h("aside", { "aria-label": "Ship and traffic" },
+        h("h2", { text: "Own ship" }), shipPanel,
+        h("h2", { text: "Fuel" }), fuelBox,
+        h("h2", { text: "Traffic" }),
+        h("table", { class: "grid", "aria-label": "Traffic" }, h("thead", {}, h("tr", {},
+          ...["Target", "Course", "Speed", "CPA", "TCPA"].map((t) => h("th", { scope: "col", text: t })))),
+          trafficBody))),
+    h("h2", { text: "Plan versions" }), gantt,
+    h("h2", { text: "Navigation log" }), log));
+
+  const map = new ChartMap(mapBox);
+  const versions: PlanVersion[] = [];
+  let mission: Mission | undefined;
+  let vessel: VesselUpdate | undefined;
+  const fuel: [number, number][] = [];
+  (window as unknown as Record<string, unknown>).seaplanMap = map;  // for tests and the benchmark
+
+  const redrawPlan = () => {
+    const current = versions[versions.length - 1];
+    versionLabel.textContent = current ? `version ${current.version}: ${current.reason}` : "no plan yet";
+    if (current) map.setRoutes(current.tasks);
+    map.fitOnce();
+    const done = new Set(mission?.completedTasks ?? []);
+    const now = vessel?.missionTimeS;
+    const running = new Set(current?.tasks.filter((t) => !done.has(t.taskId) && now !== undefined &&
+      t.startS <= now && now < t.startS + t.durationS).map((t) => t.taskId));
+    renderGantt(gantt, versions, { nowS: now, completedTaskIds: done, runningTaskIds: running });
+  };
+  const redrawShip = () => {
+    if (!vessel) return;
+    const s = vessel.state;
+    shipPanel.replaceChildren(
+      ...[["Position", s.position ? `${s.position.latitudeDeg.toFixed(5)}°N ${s.position.longitudeDeg.toFixed(5)}°E` : "-"],
+          ["Heading", degrees(s.headingDeg)], ["Speed", speed(s.speedMps)],
+          ["Machinery mode", shortMode(s.mode)], ["Fuel", percent(s.fuelFraction)],
+          ["Mission time", missionTime(vessel.missionTimeS)]]
+        .flatMap(([k, v]) => [h("dt", { text: k }), h("dd", { text: v })]));
+    clock.textContent = `${missionTime(vessel.missionTimeS)} · ${utc(new Date().toISOString())}`;
+    trafficBody.replaceChildren(...vessel.targets.map((t) => {
+      const lat0 = ((s.position?.latitudeDeg ?? 0) * Math.PI) / 180;
+      const east = ((t.position.longitudeDeg - (s.position?.longitudeDeg ?? 0)) * Math.PI / 180) * 6371000 * Math.cos(lat0);
+      const north = ((t.position.latitudeDeg - (s.position?.latitudeDeg ?? 0)) * Math.PI / 180) * 6371000;
+      const hs = ((s.headingDeg ?? 0) * Math.PI) / 180;
+      const ht = (t.courseDeg * Math.PI) / 180;
+      const c = cpa(east, north, t.speedMps * Math.sin(ht) - (s.speedMps ?? 0) * Math.sin(hs),
+                    t.speedMps * Math.cos(ht) - (s.speedMps ?? 0) * Math.cos(hs));
+      return h("tr", {}, h("th", { scope: "row", text: `${t.targetId} (${t.kind})` }),
+               h("td", { text: degrees(t.courseDeg) }), h("td", { text: speed(t.speedMps) }),
+               h("td", { text: distance(c.dcpaM) }), h("td", { text: `${Math.round(c.tcpaS)} s` }));
+    }));
+    fuelBox.replaceChildren(fuelChart(fuel));
+  };
+
+  const watch = new MissionWatch(missionId, (e) => {
+    if (e.planVersion) {
+      versions.push(e.planVersion);
+      redrawPlan();
+    }
+    if (e.log) {
+      log.prepend(h("li", { "data-event": e.log.eventId },
+        h("time", { datetime: e.log.time ?? "", text: `${missionTime(e.log.missionTimeS)} · ${utc(e.log.time)}` }),
+        h("span", { class: "source", text: e.log.source }), h("span", { text: e.log.message })));
+    }
+    if (e.mission) {
+      mission = e.mission;
+      stateBadge.textContent = shortState(e.mission.state);
+      stateBadge.className = `badge ${shortState(e.mission.state)}`;
+    }
+    if (e.vessel) {
+      if (e.vessel.track?.length) map.setTrack([...e.vessel.track, e.vessel.state.position!]);
+      else if (e.vessel.state.position) map.appendTrack(e.vessel.state.position);
+      vessel = e.vessel;
+      map.setShip(e.vessel.state);
+      map.setTraffic(e.vessel.targets ?? []);
+      fuel.push([e.vessel.missionTimeS, e.vessel.state.fuelFraction ?? 0]);
+      redrawShip();
+      redrawPlan();
+    }
+  }, (s) => { link.textContent = `stream: ${s}`; });
+
+  void (async () => {
+    try {
+      mission = await call<Mission>("MissionService/GetMission", { missionId });
+      title.textContent = `Mission ${mission.spec?.name ?? ""} (${missionId})`;
+      stateBadge.textContent = shortState(mission.state);
+      stateBadge.className = `badge ${shortState(mission.state)}`;
+      map.setLocations(mission.spec?.locations ?? []);
+      map.fitOnce();
+      if (mission.spec?.chartId) {
+        // Obstacles at the ship's draft when the chart was loaded for
+        // shallower water than the ship needs; else the stored ones.
+        const chart = await call<{ chart: { minimumDepthM: number } }>(
+          "ChartService/GetChart", { chartId: mission.spec.chartId });
+        const draft = mission.spec.ship?.draftM ?? 0;
+        const obstacles = await call<{ geojson: string }>("ChartService/GetObstacles", {
+          chartId: mission.spec.chartId,
+          minimumDepthM: draft > chart.chart.minimumDepthM ? draft : 0,
+        });
+        map.setObstacles(obstacles.geojson);
+      }
+    } catch (e) {
+      actionStatus.textContent = `Cannot load the mission: ${(e as Error).message}`;
+    }
+  })();
+  (window as unknown as Record<string, unknown>).seaplanWatch = watch;  // for tests
+  void watch.run();
+
+  replan.addEventListener("click", async () => {
+    actionStatus.textContent = "Replanning…";
+    try {
+      const r = await call<{ version: PlanVersion }>("MissionService/RequestReplan",
+                                                     { missionId, reason: reason.value });
+      actionStatus.textContent = `Version ${r.version?.version} planned.`;
+    } catch (e) {
+      actionStatus.textContent = `Replan refused: ${(e as Error).message}`;
+    }
+  });
+  cancel.addEventListener("click", async () => {
+    if (!window.confirm("Cancel this mission?")) return;
+    try {
+      await call<Mission>("MissionService/CancelMission", { missionId, reason: reason.value });
+      actionStatus.textContent = "Cancelled.";
+    } catch (e) {
+      actionStatus.textContent = `Cancel refused: ${(e as Error).message}`;
+    }
+  });
+  return () => {
+    watch.stop();
+    map.dispose();
+  };
+}
+
+function fuelChart(points: [number, number][]): SVGElement {
+  const w = 260, hgt = 60;
+  const svg = document.createElementNS("http://www.w3.org/2000/svg", "svg");
+  svg.setAttribute("viewBox", `0 0 ${w} ${hgt}`);
+  svg.setAttribute("role", "img");
+  const last = points[points.length - 1];
+  svg.setAttribute("aria-label", last ? `Fuel ${percent(last[1])} at ${missionTime(last[0])}` : "No fuel data yet");
+  if (points.length > 1) {
+    const t0 = points[0][0], t1 = Math.max(t0 + 1, last[0]);
+    const line = document.createElementNS("http://www.w3.org/2000/svg", "polyline");
+    line.setAttribute("points", points.map(([t, f]) =>
+      `${((t - t0) / (t1 - t0)) * w},${hgt - f * hgt}`).join(" "));
+    line.setAttribute("class", "fuel-line");
+    svg.append(line);
+  }
+  return svg;
+}

@@ -1,0 +1,251 @@
+// What the operator console needs from the server, in the API for every
+// client: JSON bodies whatever their Content-Type, the console's files at
+// "/", the chart's obstacles as GeoJSON at a chosen depth, and the vessel's
+// live picture on WatchMission.
+#include <google/protobuf/util/json_util.h>
+#include <gtest/gtest.h>
+
+#include <fstream>
+#include <future>
+
+#include "seaplan/testing/shared_data.h"
+#include "test_support.h"
+
+namespace seaplan::server::testing {
+namespace {
+
+using grpc::StatusCode;
+
+std::vector<v1::MissionEvent> ParseNdjson(const std::string& body) {
+  std::vector<v1::MissionEvent> events;
+  std::size_t start = 0;
+  while (start < body.size()) {
+    const std::size_t end = body.find('\n', start);
+    if (end == std::string::npos) break;
+    v1::MissionEvent ev;
+    EXPECT_TRUE(
+        google::protobuf::util::JsonStringToMessage(body.substr(start, end - start), &ev).ok())
+        << body.substr(start, end - start);
+    events.push_back(ev);
+    start = end + 1;
+  }
+  return events;
+}
+
+TEST(ConsoleApiE2eTest, JsonBodyIsReadWhateverTheContentTypeAndBeyondEightKiB) {
+  InProcessServer s;
+  auto http = s.http();
+  // curl -d sends application/x-www-form-urlencoded; cpp-httplib used to
+  // take such a body as a form and refuse it beyond 8 KiB.
+  const std::string padding(20000, ' ');
+  const std::string body = "{\"pageSize\":5" + padding + "}";
+  for (const char* type : {"application/x-www-form-urlencoded", "text/plain", "application/json"}) {
+    auto res = http.Post("/v1/MissionService/ListMissions", body, type);
+    ASSERT_TRUE(res);
+    EXPECT_EQ(res->status, 200) << type << ": " << res->body;
+  }
+  // The body still has to be the request message.
+  auto bad = http.Post("/v1/MissionService/ListMissions", "pageSize=5",
+                       "application/x-www-form-urlencoded");
+  ASSERT_TRUE(bad);
+  EXPECT_EQ(bad->status, 400);
+  EXPECT_NE(bad->body.find("INVALID_ARGUMENT"), std::string::npos) << bad->body;
+  // Multipart forms are refused with a message saying what to send.
+  httplib::MultipartFormDataItems items = {{"request", "{}", "", "application/json"}};
+  auto multipart = http.Post("/v1/MissionService/ListMissions", items);
+  ASSERT_TRUE(multipart);
+  EXPECT_EQ(multipart->status, 400);
+  EXPECT_NE(multipart->body.find("multipart/form-data is not accepted"), std::string::npos)
+      << multipart->body;
+  // A POST without a body is still the empty message.
+  auto empty = http.Post("/v1/MissionService/ListMissions");
+  ASSERT_TRUE(empty);
+  EXPECT_EQ(empty->status, 200) << empty->body;
+}
+
+TEST(ConsoleApiE2eTest, ServesTheConsoleFromItsFolderWithASameOriginPolicy) {
+  TempDir dir;
+  const auto console = dir.path() / "console";
+  std::filesystem::create_directories(console);
+  std::ofstream(console / "index.html") << "<!doctype html><title>console</title>";
+  std::ofstream(console / "app.js") << "console.log('seaplan');";
+  auto store = storage::SqliteStore::Open((dir.path() / "seaplan.db").string());
+  ASSERT_TRUE(store.ok()) << store.status();
+  ServerOptions options;
+  options.grpc_address = "127.0.0.1:0";
+  options.http_address = "127.0.0.1:0";
+  options.console_dir = console.string();
+  options.shutdown_grace = std::chrono::milliseconds(200);
+  auto server = Server::Start(options, **store);
+  ASSERT_TRUE(server.ok()) << server.status();
+  httplib::Client http("127.0.0.1", (*server)->http_port());
+  auto index = http.Get("/");
+  ASSERT_TRUE(index);
+  EXPECT_EQ(index->status, 200);
+  EXPECT_EQ(index->body, "<!doctype html><title>console</title>");
+  EXPECT_NE(index->get_header_value("Content-Type").find("text/html"), std::string::npos);
+  EXPECT_NE(index->get_header_value("Content-Security-Policy").find("default-src 'self'"),
+            std::string::npos);
+  auto js = http.Get("/app.js");
+  ASSERT_TRUE(js);
+  EXPECT_EQ(js->status, 200);
+  EXPECT_NE(js->get_header_value("Content-Type").find("javascript"), std::string::npos);
+  auto missing = http.Get("/nothing.js");
+  ASSERT_TRUE(missing);
+  EXPECT_EQ(missing->status, 404);
+  // The API and health are unchanged beside the files.
+  auto health = http.Get("/healthz");
+  ASSERT_TRUE(health);
+  EXPECT_EQ(health->status, 200);
+  (*server)->Shutdown();
+  EXPECT_TRUE((*store)->Close().ok());
+}
+
+TEST(ConsoleApiE2eTest, WithoutAConsoleTheRootSaysSo) {
+  InProcessServer s;
+  auto res = s.http().Get("/");
+  ASSERT_TRUE(res);
+  EXPECT_EQ(res->status, 404);
+  EXPECT_NE(res->body.find("operator console not installed"), std::string::npos) << res->body;
+}
+
+TEST(ConsoleApiE2eTest, ObstaclesAsGeoJsonAtTheStoredOrAnotherDepth) {
+  const std::string geojson = seaplan::testing::ReadFile(seaplan::testing::SourceDir() /
+                                                         "engine/chart/testdata/harbour.geojson");
+  ASSERT_FALSE(geojson.empty());
+  InProcessServer s;
+  auto charts = v1::ChartService::NewStub(s.channel());
+  v1::UploadChartRequest upload;
+  upload.set_name("harbour");
+  upload.set_format(v1::CHART_FORMAT_GEOJSON);
+  upload.set_minimum_depth_m(10);
+  auto* file = upload.add_files();
+  file->set_name("harbour.geojson");
+  file->set_content(geojson);
+  v1::UploadChartResponse uploaded;
+  {
+    grpc::ClientContext ctx;
+    grpc::Status st = charts->UploadChart(&ctx, upload, &uploaded);
+    if (st.error_code() == StatusCode::UNIMPLEMENTED) GTEST_SKIP() << st.error_message();
+    ASSERT_TRUE(st.ok()) << st.error_message();
+  }
+  const std::string id = uploaded.chart().chart_id();
+  auto get = [&](double depth, v1::GetObstaclesResponse* out) {
+    grpc::ClientContext ctx;
+    v1::GetObstaclesRequest req;
+    req.set_chart_id(id);
+    req.set_minimum_depth_m(depth);
+    return charts->GetObstacles(&ctx, req, out);
+  };
+  v1::GetObstaclesResponse stored, shallower, again;
+  ASSERT_TRUE(get(0, &stored).ok());
+  EXPECT_DOUBLE_EQ(stored.minimum_depth_m(), 10);
+  EXPECT_GT(stored.obstacle_count(), 0);
+  EXPECT_NE(stored.geojson().find("FeatureCollection"), std::string::npos);
+  {  // The stored depth is the chart's own obstacles, as GetChart gives them.
+    grpc::ClientContext ctx;
+    v1::GetChartRequest req;
+    req.set_chart_id(id);
+    req.set_include_obstacles_geojson(true);
+    v1::GetChartResponse chart;
+    ASSERT_TRUE(charts->GetChart(&ctx, req, &chart).ok());
+    EXPECT_EQ(stored.geojson(), chart.obstacles_geojson());
+  }
+  // At 1 m the 2 m shallows are water: the chart is loaded again and the
+  // obstacles differ; asking for 10 m explicitly gives the stored ones.
+  ASSERT_TRUE(get(1, &shallower).ok());
+  EXPECT_DOUBLE_EQ(shallower.minimum_depth_m(), 1);
+  EXPECT_NE(shallower.geojson(), stored.geojson());
+  ASSERT_TRUE(get(10, &again).ok());
+  EXPECT_EQ(again.geojson(), stored.geojson());
+
+  v1::GetObstaclesResponse none;
+  EXPECT_EQ(get(-1, &none).error_code(), StatusCode::INVALID_ARGUMENT);
+  grpc::ClientContext ctx;
+  v1::GetObstaclesRequest unknown;
+  unknown.set_chart_id("c-nope");
+  EXPECT_EQ(charts->GetObstacles(&ctx, unknown, &none).error_code(), StatusCode::NOT_FOUND);
+  // Over HTTP too.
+  auto res = s.http().Post("/v1/ChartService/GetObstacles",
+                           "{\"chartId\":\"" + id + "\",\"minimumDepthM\":1}", "text/plain");
+  ASSERT_TRUE(res);
+  EXPECT_EQ(res->status, 200);
+  EXPECT_NE(res->body.find("\"obstacleCount\""), std::string::npos);
+}
+
+TEST(ConsoleApiE2eTest, VesselStateReachesWatchersWithTheTraffic) {
+  auto engine = std::make_shared<FakeMissionEngine>();
+  InProcessServer s(engine);
+  auto missions = v1::MissionService::NewStub(s.channel());
+  v1::Mission mission;
+  {
+    grpc::ClientContext ctx;
+    v1::CreateMissionRequest req;
+    *req.mutable_spec() = SampleSpec();
+    ASSERT_TRUE(missions->CreateMission(&ctx, req, &mission).ok());
+  }
+  auto report = [&](double lat, const std::string& vessel, v1::ReportVesselStateResponse* out) {
+    grpc::ClientContext ctx;
+    v1::ReportVesselStateRequest req;
+    req.set_mission_id(mission.mission_id());
+    req.set_vessel_id(vessel);
+    req.set_mission_time_s(12.5);
+    req.mutable_state()->mutable_position()->set_latitude_deg(lat);
+    req.mutable_state()->mutable_position()->set_longitude_deg(10.4);
+    req.mutable_state()->set_heading_deg(65);
+    auto* target = req.add_targets();
+    target->set_target_id("ferry");
+    target->set_kind("ferry");
+    target->mutable_position()->set_latitude_deg(63.441);
+    target->mutable_position()->set_longitude_deg(10.36);
+    target->set_course_deg(0);
+    target->set_speed_mps(4);
+    return missions->ReportVesselState(&ctx, req, out);
+  };
+  v1::ReportVesselStateResponse first;
+  ASSERT_TRUE(report(63.44, "ship0", &first).ok());
+  EXPECT_TRUE(first.published());
+  // Bad input and another vessel are refused.
+  v1::ReportVesselStateResponse refused;
+  EXPECT_EQ(report(95, "ship0", &refused).error_code(), StatusCode::INVALID_ARGUMENT);
+  EXPECT_EQ(report(63.44, "intruder", &refused).error_code(), StatusCode::PERMISSION_DENIED);
+  {
+    grpc::ClientContext ctx;
+    v1::ReportVesselStateRequest req;
+    req.set_mission_id("m-nope");
+    req.mutable_state()->mutable_position()->set_latitude_deg(63.44);
+    EXPECT_EQ(missions->ReportVesselState(&ctx, req, &refused).error_code(), StatusCode::NOT_FOUND);
+  }
+
+  // An NDJSON watcher gets the vessel update among the mission's events.
+  auto canceller = std::async(std::launch::async, [&] {
+    std::this_thread::sleep_for(std::chrono::milliseconds(600));
+    return s.http().Post("/v1/MissionService/CancelMission",
+                         "{\"missionId\":\"" + mission.mission_id() + "\"}", "application/json");
+  });
+  auto watch =
+      s.http().Post("/v1/MissionService/WatchMission",
+                    "{\"missionId\":\"" + mission.mission_id() + "\"}", "application/json");
+  ASSERT_TRUE(watch);
+  ASSERT_EQ(watch->status, 200);
+  ASSERT_TRUE(canceller.get());
+  int vessel_events = 0;
+  bool ended_cancelled = false;
+  for (const auto& ev : ParseNdjson(watch->body)) {
+    if (ev.has_vessel()) {
+      ++vessel_events;
+      EXPECT_EQ(ev.vessel().vessel_id(), "ship0");
+      EXPECT_DOUBLE_EQ(ev.vessel().mission_time_s(), 12.5);
+      EXPECT_DOUBLE_EQ(ev.vessel().state().position().latitude_deg(), 63.44);
+      ASSERT_EQ(ev.vessel().targets_size(), 1);
+      EXPECT_EQ(ev.vessel().targets(0).target_id(), "ferry");
+      EXPECT_DOUBLE_EQ(ev.vessel().targets(0).speed_mps(), 4);
+    }
+    if (ev.has_mission()) ended_cancelled = ev.mission().state() == v1::MISSION_STATE_CANCELLED;
+  }
+  EXPECT_EQ(vessel_events, 1) << watch->body;  // one report, one update
+  EXPECT_TRUE(ended_cancelled);
+}
+
+}  // namespace
+}  // namespace seaplan::server::testing
