@@ -257,9 +257,16 @@ Command CollisionAvoidance::StepScenarioMpc(const OwnShip& own, const DesiredMot
     }
     release[i] = true;
     if (!roles_.contains(o.id)) {
+      // Judged on the course of the path's leg, not on the heading of a
+      // manoeuvre under way for another vessel or of the return to the path
+      // (a temporary heading makes a head-on vessel look like one crossing).
+      const std::vector<Vec2>& pts = path.path();
+      const size_t leg = static_cast<size_t>(path.leg());
+      const Kinematics steering{
+          self.position, VelocityOf(CourseOf(pts[leg + 1] - pts[leg]), self.velocity.Norm())};
       roles_[o.id] = o.kinematics.velocity.Norm() < kStillMps
                          ? Role::kNone
-                         : ClassifyEncounter(self, o.kinematics, options_.colreg);
+                         : ClassifyEncounter(steering, o.kinematics, options_.colreg);
     }
     const Role role = roles_[o.id];
     if (IsStandOn(role) && in_conflict && nominal.vessels[i].time_s < options_.rule17_time_s) {

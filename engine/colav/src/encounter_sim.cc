@@ -120,7 +120,7 @@ StatusOr<EncounterOutcome> SimulateEncounter(const EncounterSetup& setup) {
       VesselOutcome& vo = out.vessels[i];
       const Role r = avoidance.RoleOf(setup.traffic[i].id);
       if (vo.role == Role::kNone && r != Role::kNone) vo.role = r;
-      if (cmd.manoeuvring && vo.first_manoeuvre_s < 0 && r != Role::kNone) {
+      if (cmd.manoeuvring && vo.first_manoeuvre_s < 0 && cmd.vessel_id == setup.traffic[i].id) {
         vo.first_manoeuvre_s = t;
         vo.tcpa_at_first_manoeuvre_s = ComputeCpa(own, traffic[i].kinematics).tcpa_s;
       }

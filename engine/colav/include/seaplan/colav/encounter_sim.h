@@ -45,8 +45,8 @@ struct VesselOutcome {
   // closest approach, starboard positive: < 0 = passed on our port side.
   double bearing_rad = 0.0;
   Role role = Role::kNone;  // the role the avoidance fixed for it (first one)
-  // First time a manoeuvre was commanded while this vessel was in an
-  // encounter, and the straight-line TCPA to it then (-1: none).
+  // First time a manoeuvre was commanded mainly for this vessel, and the
+  // straight-line TCPA to it then (-1: none).
   double first_manoeuvre_s = -1.0;
   double tcpa_at_first_manoeuvre_s = -1.0;
 };
