@@ -8,10 +8,10 @@ namespace seaplan::colav::suite {
 namespace {
 
 constexpr double kDeg = M_PI / 180.0;
-constexpr double kSpeed = 9.0;          // own ship, m/s
-constexpr double kLegM = 9000.0;        // open-water leg, north from the origin
+constexpr double kSpeed = 9.0;           // own ship, m/s
+constexpr double kLegM = 9000.0;         // open-water leg, north from the origin
 constexpr double kChannelHalfM = 400.0;  // channel: banks at x = -400 and x = +400
-constexpr double kLaneM = 80.0;         // own ship's track: 80 m east of the axis
+constexpr double kLaneM = 80.0;          // own ship's track: 80 m east of the axis
 
 // A vessel on `course_deg` at `speed` that would meet the own ship sailing
 // its track (north along x = track_x at kSpeed) at time t_meet, `miss_m`
@@ -45,8 +45,8 @@ Situation Open(std::string name, std::string description, std::vector<EncounterV
 
 Situation Channel(std::string name, std::string description, std::vector<EncounterVessel> traffic,
                   std::vector<Expectation> expected, const CollisionAvoidanceOptions& o) {
-  Situation s = Open(std::move(name), std::move(description), std::move(traffic),
-                     std::move(expected), o);
+  Situation s =
+      Open(std::move(name), std::move(description), std::move(traffic), std::move(expected), o);
   s.setup.path = {{kLaneM, 0}, {kLaneM, kLegM}};
   const double y0 = -2000, y1 = kLegM + 2000;
   s.setup.land = {{{-3000, y0}, {-kChannelHalfM, y0}, {-kChannelHalfM, y1}, {-3000, y1}},
@@ -194,8 +194,9 @@ StatusOr<Result> Run(const Situation& s) {
     fail(absl::StrFormat("turned %.0f deg to port", o.max_port_offset_rad / kDeg));
   }
   if (o.manoeuvres > 0 && o.min_nonzero_offset_rad < 25 * kDeg && o.min_speed_factor > 0.6) {
-    fail(absl::StrFormat("course offset of %.0f deg without a speed reduction: not readily apparent",
-                         o.min_nonzero_offset_rad / kDeg));
+    fail(
+        absl::StrFormat("course offset of %.0f deg without a speed reduction: not readily apparent",
+                        o.min_nonzero_offset_rad / kDeg));
   }
   if (s.max_time_lost >= 0 && r.time_lost > s.max_time_lost) {
     fail(absl::StrFormat("time lost %.1f %% > %.0f %%", r.time_lost * 100, s.max_time_lost * 100));

@@ -23,8 +23,9 @@ enum class Side { kEither, kPort, kStarboard };  // the side the vessel is passe
 struct Expectation {
   Role role = Role::kNone;  // the role the own ship should take (kNone: keep clear, either side)
   Side side = Side::kEither;
-  bool no_port_turn = false;  // rules 14, 15 (give-way) and 17 c (stand-on, vessel on the port side)
-  bool stand_on = false;      // keep course and speed until rule 17 applies
+  bool no_port_turn =
+      false;              // rules 14, 15 (give-way) and 17 c (stand-on, vessel on the port side)
+  bool stand_on = false;  // keep course and speed until rule 17 applies
 };
 
 struct Situation {
