@@ -19,6 +19,7 @@ build_packages=(
   libcli11-dev libcpp-httplib-dev libspdlog-dev libfmt-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   clang libclang-rt-14-dev clang-format curl
+  jq  # bench/colav/scenario_seeds.sh reads the sim reports
 )
 
 packages=("${build_packages[@]}")

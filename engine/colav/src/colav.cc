@@ -256,7 +256,10 @@ Command CollisionAvoidance::StepScenarioMpc(const OwnShip& own, const DesiredMot
       continue;
     }
     release[i] = true;
-    if (!roles_.contains(o.id)) {
+    // A vessel that lay still when its encounter started and has got under
+    // way since has a role now.
+    const bool moving = o.kinematics.velocity.Norm() >= kStillMps;
+    if (!roles_.contains(o.id) || (roles_[o.id] == Role::kNone && moving)) {
       // Judged on the course of the path's leg, not on the heading of a
       // manoeuvre under way for another vessel or of the return to the path
       // (a temporary heading makes a head-on vessel look like one crossing).
@@ -264,9 +267,8 @@ Command CollisionAvoidance::StepScenarioMpc(const OwnShip& own, const DesiredMot
       const size_t leg = static_cast<size_t>(path.leg());
       const Kinematics steering{
           self.position, VelocityOf(CourseOf(pts[leg + 1] - pts[leg]), self.velocity.Norm())};
-      roles_[o.id] = o.kinematics.velocity.Norm() < kStillMps
-                         ? Role::kNone
-                         : ClassifyEncounter(steering, o.kinematics, options_.colreg);
+      roles_[o.id] =
+          moving ? ClassifyEncounter(steering, o.kinematics, options_.colreg) : Role::kNone;
     }
     const Role role = roles_[o.id];
     if (IsStandOn(role) && in_conflict && nominal.vessels[i].time_s < options_.rule17_time_s) {
