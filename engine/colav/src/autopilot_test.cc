@@ -4,9 +4,8 @@
 
 #include <cmath>
 
+#include "seaplan/colav/encounter_sim.h"
 #include "seaplan/colav/geometry.h"
-#include "seaplan/ship/ship_model.h"
-#include "seaplan/ship/steady_state.h"
 
 namespace seaplan::colav {
 namespace {
@@ -20,19 +19,13 @@ struct StepResponse {
 // A course change of `change_rad` at 9 m/s on the SITS hull.
 StepResponse CourseStep(const AutopilotOptions& o, double change_rad) {
   const double dt = 0.5;
-  const double throttle = *ship::ThrottleForSpeed(ship::ShipParams{}, ship::MachineryParams{},
-                                                  ship::MsoMode::kPto, 9.0);
-  const ship::OperatingPoint op = ship::CalmWaterOperatingPoint(
-      ship::ShipParams{}, ship::MachineryParams{}, ship::MsoMode::kPto, throttle);
-  auto model = ship::ShipModel::Create(ship::ShipParams{}, ship::MachineryParams{}, {},
-                                       ship::ShipState::At(0, 0, 0, op.speed_mps),
-                                       ship::MsoMode::kPto, op.thrust_n);
-  EXPECT_TRUE(model.ok());
-  Autopilot ap(o);
-  ap.HoldThrottle(throttle);
+  auto ship = ShipUnderWay({0, 0}, 0.0, 9.0, {}, o);
+  EXPECT_TRUE(ship.ok()) << ship.status();
+  ship::ShipModel& model = ship->model;
+  Autopilot& ap = ship->autopilot;
   StepResponse r;
   for (double t = 0; t < 600; t += dt) {
-    const ship::ShipState& s = model->state();
+    const ship::ShipState& s = model.state();
     const double e = WrapAngle(s.heading_rad() - change_rad);
     r.overshoot_rad = std::max(r.overshoot_rad, e);
     if (r.time_to_half_s < 0 && s.heading_rad() >= change_rad / 2) r.time_to_half_s = t;
@@ -42,7 +35,7 @@ StepResponse CourseStep(const AutopilotOptions& o, double change_rad) {
       r.settle_s = t;
     const ActuatorCommand c =
         ap.Update(change_rad, 9.0, s.heading_rad(), s.yaw_rate_radps(), s.surge_mps(), dt);
-    model->Step(c.throttle, c.rudder_rad, dt);
+    model.Step(c.throttle, c.rudder_rad, dt);
   }
   return r;
 }

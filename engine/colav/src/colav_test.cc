@@ -5,7 +5,6 @@
 #include <cmath>
 
 #include "seaplan/colav/encounter_sim.h"
-#include "seaplan/ship/steady_state.h"
 
 namespace seaplan::colav {
 namespace {
@@ -18,16 +17,9 @@ struct Fixture {
   Autopilot autopilot;
   PathFollower path;
   static Fixture Make() {
-    const double throttle = *ship::ThrottleForSpeed(ship::ShipParams{}, ship::MachineryParams{},
-                                                    ship::MsoMode::kPto, 9.0);
-    const ship::OperatingPoint op = ship::CalmWaterOperatingPoint(
-        ship::ShipParams{}, ship::MachineryParams{}, ship::MsoMode::kPto, throttle);
-    auto model = ship::ShipModel::Create(ship::ShipParams{}, ship::MachineryParams{}, {},
-                                         ship::ShipState::At(0, 0, 0, op.speed_mps),
-                                         ship::MsoMode::kPto, op.thrust_n);
-    Autopilot ap;
-    ap.HoldThrottle(throttle);
-    return {*model, ap, *PathFollower::Create({{0, 0}, {0, 9000}})};
+    auto ship = ShipUnderWay({0, 0}, 0.0, 9.0);
+    EXPECT_TRUE(ship.ok()) << ship.status();
+    return {ship->model, ship->autopilot, *PathFollower::Create({{0, 0}, {0, 9000}})};
   }
   Command Step(CollisionAvoidance& ca, double t, const std::vector<Obstacle>& traffic) {
     const double course = path.Update({model.state().east_m(), model.state().north_m()});

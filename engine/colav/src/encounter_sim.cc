@@ -41,6 +41,24 @@ double ThrottleForSpeedOrTop(double speed_mps) {
 
 }  // namespace
 
+StatusOr<UnderWay> ShipUnderWay(Vec2 position, double heading_rad, double speed_mps,
+                                const ship::Environment& environment,
+                                const AutopilotOptions& autopilot_options) {
+  SEAPLAN_RETURN_IF_ERROR(autopilot_options.Validate());
+  const ship::OperatingPoint op =
+      ship::CalmWaterOperatingPoint(ship::ShipParams{}, ship::MachineryParams{},
+                                    ship::MsoMode::kPto, ThrottleForSpeedOrTop(speed_mps));
+  SEAPLAN_ASSIGN_OR_RETURN(
+      ship::ShipModel model,
+      ship::ShipModel::Create(
+          ship::ShipParams{}, ship::MachineryParams{}, environment,
+          ship::ShipState::At(position.y, position.x, heading_rad, op.speed_mps),
+          ship::MsoMode::kPto, op.thrust_n));
+  Autopilot autopilot(autopilot_options);
+  autopilot.HoldThrottle(op.throttle);
+  return UnderWay{std::move(model), autopilot};
+}
+
 StatusOr<EncounterOutcome> SimulateEncounter(const EncounterSetup& setup) {
   if (setup.path.size() < 2) return absl::InvalidArgumentError("encounter: path needs 2 points");
   if (!(setup.dt_s > 0) || !(setup.cruise_speed_mps > 0)) {
@@ -54,18 +72,10 @@ StatusOr<EncounterOutcome> SimulateEncounter(const EncounterSetup& setup) {
   if (!land.empty()) avoidance.set_land(&land);
   const Vec2 start = setup.path.front();
   const double heading = CourseOf(setup.path[1] - setup.path[0]);
-  // Under way at the cruise speed: the operating point's thrust, and the
-  // autopilot's integral holding its throttle.
-  const ship::OperatingPoint op = ship::CalmWaterOperatingPoint(
-      ship::ShipParams{}, ship::MachineryParams{}, ship::MsoMode::kPto,
-      ThrottleForSpeedOrTop(setup.cruise_speed_mps));
-  SEAPLAN_ASSIGN_OR_RETURN(
-      ship::ShipModel model,
-      ship::ShipModel::Create(ship::ShipParams{}, ship::MachineryParams{}, setup.environment,
-                              ship::ShipState::At(start.y, start.x, heading, op.speed_mps),
-                              ship::MsoMode::kPto, op.thrust_n));
-  Autopilot autopilot(setup.autopilot);
-  autopilot.HoldThrottle(op.throttle);
+  SEAPLAN_ASSIGN_OR_RETURN(UnderWay ship, ShipUnderWay(start, heading, setup.cruise_speed_mps,
+                                                       setup.environment, setup.autopilot));
+  ship::ShipModel& model = ship.model;
+  Autopilot& autopilot = ship.autopilot;
 
   EncounterOutcome out;
   for (const EncounterVessel& v : setup.traffic) out.vessels.push_back({.id = v.id});

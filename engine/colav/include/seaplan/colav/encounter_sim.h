@@ -69,6 +69,17 @@ struct EncounterOutcome {
   std::vector<std::string> log;   // "t: event" lines
 };
 
+// A ship under way at `speed_mps` (PTO, calm-water operating point: its
+// thrust, and the autopilot's integral holding its throttle) at `position`
+// on `heading_rad`.
+struct UnderWay {
+  ship::ShipModel model;
+  Autopilot autopilot;
+};
+StatusOr<UnderWay> ShipUnderWay(Vec2 position, double heading_rad, double speed_mps,
+                                const ship::Environment& environment = {},
+                                const AutopilotOptions& autopilot = {});
+
 // Runs the encounter until the ship reaches the path's end or max_time_s.
 StatusOr<EncounterOutcome> SimulateEncounter(const EncounterSetup& setup);
 
