@@ -20,6 +20,7 @@ build_packages=(
   libgtest-dev libgmock-dev libbenchmark-dev
   clang libclang-rt-14-dev clang-format curl libexpat1-dev
   chromium fonts-dejavu-core
+  jq  # bench/colav/scenario_seeds.sh reads the sim reports
 )
 
 packages=("${build_packages[@]}")

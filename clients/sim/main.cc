@@ -50,6 +50,8 @@ struct Flags {
   double replan_timeout_s = 120;
   double max_mission_time_s = 20000;
   std::string log_level = "warn";
+  std::string colav = "sbmpc";
+  uint64_t seed = 0;
 };
 
 std::string ReadAll(const std::string& path, bool* ok) {
@@ -293,6 +295,13 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--log-level", f.log_level, "debug, info, warn, error or off")
       ->capture_default_str();
+  app.add_option("--colav", f.colav,
+                 "collision avoidance: sbmpc (scenario-based MPC) or vo (velocity obstacles)")
+      ->check(CLI::IsMember({"sbmpc", "vo"}))
+      ->capture_default_str();
+  app.add_option("--seed", f.seed,
+                 "perturb the traffic's timing and the wind with this seed (0: as scripted)")
+      ->capture_default_str();
   app.footer(
       "Exit codes: 0 mission completed; 1 error (bad flags, scenario, I/O, RPC); 2 mission failed "
       "or\n"
@@ -366,6 +375,9 @@ int main(int argc, char** argv) {
       sim::MakeExecutorConfig(*scenario, frame, ShipLocation(problem, scenario->ship_object));
   if (!cfg.ok()) return fail(cfg.status());
   cfg->land = rings;  // the unbuffered land, for the collision avoidance
+  cfg->avoidance.policy =
+      f.colav == "vo" ? colav::Policy::kVelocityObstacle : colav::Policy::kScenarioMpc;
+  if (f.seed != 0) sim::PerturbConfig(f.seed, &*cfg);
   auto executor = sim::Executor::Create(*cfg);
   if (!executor.ok()) return fail(executor.status());
   mission::LocationTable locations = sim::LocalLocations(*scenario, frame);

@@ -185,6 +185,8 @@ TEST_F(MissionE2eTest, CaseCExecutorFuelReplansAndNumericFuelDoesBetter) {
   EXPECT_FALSE(Flag(c.report, "tank_ran_dry"));
   EXPECT_GT(Numbers(c.report, "min_fuel_fraction").at(0), 0.0);
   EXPECT_EQ(Numbers(c.report, "aground_s").at(0), 0.0) << "the simulated ship ran aground";
+  const double safety = Numbers(c.report, "safety_distance_m").at(0);
+  for (double d : Numbers(c.report, "min_distance_m")) EXPECT_GE(d, safety) << "case C CPA";
 
   SimRun n = RunSim("case-c-numeric");
   ASSERT_EQ(n.exit_code, 0) << SimOutput("case-c-numeric");
@@ -193,6 +195,7 @@ TEST_F(MissionE2eTest, CaseCExecutorFuelReplansAndNumericFuelDoesBetter) {
   EXPECT_FALSE(Flag(n.report, "tank_ran_dry"));
   EXPECT_LT(Numbers(n.report, "end_time_s").at(0), Numbers(c.report, "end_time_s").at(0));
   EXPECT_EQ(Numbers(n.report, "aground_s").at(0), 0.0) << "the simulated ship ran aground";
+  for (double d : Numbers(n.report, "min_distance_m")) EXPECT_GE(d, safety) << "numeric CPA";
 }
 
 std::vector<v1::MissionEvent> Watch(v1::MissionService::Stub* stub, const std::string& id,

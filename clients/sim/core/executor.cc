@@ -6,7 +6,6 @@
 
 #include "absl/strings/str_format.h"
 #include "seaplan/mission/tasks.h"
-#include "seaplan/ship/steady_state.h"
 
 namespace seaplan::sim {
 namespace {
@@ -33,34 +32,30 @@ StatusOr<Executor> Executor::Create(const ExecutorConfig& config) {
     return absl::InvalidArgumentError("executor: service_speed_mps must be > 0");
   }
   SEAPLAN_RETURN_IF_ERROR(config.los.Validate());
+  SEAPLAN_RETURN_IF_ERROR(config.autopilot.Validate());
+  // The avoidance predicts the moves as the executor sails them.
+  colav::CollisionAvoidanceOptions avoidance = config.avoidance;
+  avoidance.slow_down_distance_m = config.slow_down_distance_m;
+  avoidance.min_approach_speed_mps = config.min_approach_speed_mps;
+  avoidance.arrival_radius_m = config.arrival_radius_m;
+  SEAPLAN_ASSIGN_OR_RETURN(auto collision_avoidance, colav::CollisionAvoidance::Create(avoidance));
   ship::ShipState s = ship::ShipState::At(config.start.y, config.start.x, config.start_heading_rad);
   SEAPLAN_ASSIGN_OR_RETURN(auto model,
                            ship::ShipModel::Create(ship::ShipParams{}, ship::MachineryParams{},
                                                    config.environment, s, ship::MsoMode::kPto));
-  return Executor(config, std::move(model));
+  return Executor(config, std::move(model), std::move(collision_avoidance));
 }
 
-Executor::Executor(const ExecutorConfig& config, ship::ShipModel model)
+Executor::Executor(const ExecutorConfig& config, ship::ShipModel model,
+                   colav::CollisionAvoidance avoidance)
     : config_(config),
       model_(std::move(model)),
       land_(config.land),
-      planning_(config.avoidance),
-      heading_(config.heading, config.dt_s),
-      speed_(ship::SpeedControllerOptions{}, config.dt_s),
+      avoidance_(std::move(avoidance)),
+      autopilot_(config.autopilot),
       tank_(config.fuel, config.initial_fuel_fraction) {
   report_.safety_distance_m = config.avoidance.safety_distance_m;
   report_.land_known = !land_.empty();
-  for (ship::MsoMode m : ship::kAllMsoModes) {
-    top_speed_mps_[static_cast<size_t>(m)] =
-        ship::TopSpeed(ship::ShipParams{}, model_.machinery(), m);
-  }
-  // The VO assumes velocities change at once; this hull needs minutes to
-  // turn, so the manoeuvre is planned with a margin on the safety distance.
-  planning_.safety_distance_m *= config.avoidance_margin_factor;
-  if (planning_.turn_rate_rad_s <= 0) {
-    planning_.turn_rate_rad_s = config.turn_rate_rad_s;
-    planning_.manoeuvre_lag_s = config.manoeuvre_lag_s;
-  }
   for (const TrafficVessel& v : config.traffic) report_.cpa[v.id].vessel = v.name;
   report_.min_fuel_fraction = config.initial_fuel_fraction;
 }
@@ -154,7 +149,7 @@ void Executor::StartMove(const mission::Task& task) {
   // the route's start would point anywhere (often back along the route or
   // towards the shore): a hull at 9 m/s that turns ~1 deg/s cannot follow a
   // leg of 100 m, and looping around it ran the ship 400 m into the land
-  // (issue #6, case A). So: drop the legs the ship is already abeam of or
+  // (case A). So: drop the legs the ship is already abeam of or
   // past, and let the LOS law converge on the leg it has reached.
   std::vector<Vec2> path;
   path_modes_.clear();
@@ -267,68 +262,16 @@ void Executor::StepMove(std::vector<FeedbackOut>* out) {
   }
 
   // Collision avoidance.
-  Vec2 vel = VelocityOf(s.heading_rad(), s.surge_mps());
-  Kinematics own{here, vel};
   others_.clear();
   for (const TrafficVessel& v : config_.traffic) others_.push_back({v.At(time_s_), v.id});
-  planning_.land = land_.empty() ? nullptr : &land_;  // not in the constructor: executors move
-  speed = PathAheadSpeed(here, speed, others_, planning_.safety_distance_m);
-  if (config_.avoidance.max_speed_mps <= 0) {
-    planning_.max_speed_mps = top_speed_mps_[static_cast<size_t>(model_.mode())];
-  }
-  // A vessel the ship clears along its route (the path ahead at the speed it
-  // is ramping to) and that is not closing in on its present motion is no
-  // encounter: the straight-line models would call a ship leaving its berth
-  // "in danger" of a vessel it will pass well ahead of, and its give-way turn
-  // then takes it off the route towards the shore (issue #6, case C).
-  encounters_.clear();
-  std::set<int> dangerous_now;
-  const size_t next_point = static_cast<size_t>(los_->leg()) + 1;
-  for (const Obstacle& o : others_) {
-    const Cpa now = ComputeCpa(own, o.kinematics);
-    const bool closing_now = now.dcpa_m < config_.avoidance.safety_distance_m &&
-                             now.tcpa_s < config_.avoidance.horizon_s;
-    if (closing_now) dangerous_now.insert(o.id);
-    const PathApproach along = PathAheadClosestApproach(los_->path(), next_point, here, speed,
-                                                        o.kinematics, config_.path_lookahead_s, 5.0,
-                                                        vel.Norm(), planning_.acceleration_mps2);
-    if (along.distance_m >= planning_.safety_distance_m && !closing_now) continue;
-    encounters_.push_back(o);
-  }
-  AvoidanceDecision d = ChooseVelocity(own, VelocityOf(psi_d, speed), encounters_, planning_);
-  if (d.role != Role::kNone) dangerous_now.insert(d.vessel_id);
-  for (int id : dangerous_now) {
-    if (!dangerous_.contains(id)) {
-      const std::string& name = report_.cpa[id].vessel;
-      Role role = ClassifyEncounter(own, others_[0].kinematics);
-      for (const Obstacle& o : others_) {
-        if (o.id == id) role = ClassifyEncounter(own, o.kinematics);
-      }
-      Log(absl::StrFormat("%s with %s (%s)", std::string(mission::messages::kPotentialCollision),
-                          name, std::string(RoleName(role))));
-    }
-  }
-  dangerous_ = dangerous_now;
-  if (d.manoeuvring && !manoeuvring_) {
-    manoeuvring_ = true;
-    manoeuvre_vessel_ = d.vessel_id;
-    std::string what =
-        absl::StrFormat("collision avoidance manoeuvre started (%s, %s)",
-                        report_.cpa[d.vessel_id].vessel, std::string(RoleName(d.role)));
-    Log(what);
-    out->push_back(MakeFeedback(FeedbackKind::kCollisionAvoidance, it->task.id, it->version, what));
-  } else if (!d.manoeuvring && manoeuvring_) {
-    manoeuvring_ = false;
-    std::string what = absl::StrFormat("collision avoidance manoeuvre ended (%s)",
-                                       report_.cpa[manoeuvre_vessel_].vessel);
-    Log(what);
-    out->push_back(MakeFeedback(FeedbackKind::kCollisionAvoidance, it->task.id, it->version, what));
-  }
-  double heading_sp = d.manoeuvring ? CourseOf(d.velocity) : psi_d;
-  double speed_sp = d.manoeuvring ? d.velocity.Norm() : speed;
-  double rudder = heading_.RudderAngle(heading_sp, s.heading_rad());
-  double throttle = speed_.Throttle(speed_sp, s.surge_mps());
-  ship::StepReport rep = model_.Step(throttle, rudder, config_.dt_s);
+  avoidance_.set_land(land_.empty() ? nullptr : &land_);  // not in the constructor: executors move
+  const colav::Command cmd = avoidance_.Step({time_s_, &model_, &autopilot_},
+                                             {psi_d, speed, move_speed_mps_}, *los_, others_);
+  LogAvoidance(cmd, *it, out);
+  const colav::ActuatorCommand act =
+      autopilot_.Update(cmd.course_rad, cmd.speed_mps, s.heading_rad(), s.yaw_rate_radps(),
+                        s.surge_mps(), config_.dt_s);
+  ship::StepReport rep = model_.Step(act.throttle, act.rudder_rad, config_.dt_s);
   tank_.Burn(rep.fuel_rate.total_kgps() * config_.dt_s);
 
   if (time_s_ - last_position_report_s_ >= config_.position_report_interval_s) {
@@ -337,39 +280,34 @@ void Executor::StepMove(std::vector<FeedbackOut>* out) {
   }
 }
 
-double Executor::PathAheadSpeed(Vec2 here, double speed, const std::vector<Obstacle>& others,
-                                double safety_m) {
-  if (config_.path_lookahead_s <= 0 || others.empty()) return speed;
-  const size_t next = static_cast<size_t>(los_->leg()) + 1;
-  // The highest of these speeds at which no vessel comes within safety_m;
-  // when none clears them all (a vessel from astern, or one already close),
-  // full speed, left to the velocity obstacles.
-  int blocking_at_full = -1;
-  double chosen = speed;
-  for (double f : {1.0, 0.75, 0.5, 0.3}) {
-    int blocking = -1;
-    for (const Obstacle& o : others) {
-      const PathApproach a = PathAheadClosestApproach(los_->path(), next, here, speed * f,
-                                                      o.kinematics, config_.path_lookahead_s);
-      if (a.distance_m < safety_m) {
-        blocking = o.id;
+void Executor::LogAvoidance(const colav::Command& c, const Running& move,
+                            std::vector<FeedbackOut>* out) {
+  for (const colav::Event& e : c.events) {
+    const std::string name = e.vessel_id >= 0 ? report_.cpa[e.vessel_id].vessel : "traffic";
+    const std::string role(colav::RoleName(e.role));
+    std::string what;
+    switch (e.kind) {
+      case colav::EventKind::kPotentialCollision:
+        Log(absl::StrFormat("%s with %s (%s)", std::string(mission::messages::kPotentialCollision),
+                            name, e.role == colav::Role::kNone ? "keep clear" : role));
         break;
-      }
+      case colav::EventKind::kSpeedReduced:
+        Log(absl::StrFormat("%s with %s ahead on the route: %s",
+                            std::string(mission::messages::kPotentialCollision), name, e.detail));
+        break;
+      case colav::EventKind::kManoeuvreStarted:
+        what = absl::StrFormat("collision avoidance manoeuvre started (%s, %s%s%s)", name, role,
+                               e.detail.empty() ? "" : ": ", e.detail);
+        break;
+      case colav::EventKind::kManoeuvreEnded:
+        what = absl::StrFormat("collision avoidance manoeuvre ended (%s)", name);
+        break;
     }
-    if (f == 1.0) blocking_at_full = blocking;
-    if (blocking < 0) {
-      chosen = speed * f;
-      break;
-    }
+    if (what.empty()) continue;
+    Log(what);
+    out->push_back(
+        MakeFeedback(FeedbackKind::kCollisionAvoidance, move.task.id, move.version, what));
   }
-  const bool slowed = chosen < speed - 1e-9;
-  if (slowed && !path_slowed_) {
-    Log(absl::StrFormat("%s with %s ahead on the route: speed reduced to %.1f m/s",
-                        std::string(mission::messages::kPotentialCollision),
-                        report_.cpa[blocking_at_full].vessel, chosen));
-  }
-  path_slowed_ = slowed;
-  return chosen;
 }
 
 void Executor::Complete(const Running& r, std::vector<FeedbackOut>* out) {

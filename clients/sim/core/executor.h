@@ -2,7 +2,7 @@
 // executes the tasks of the current plan version on the 3-DOF ship model
 // (seaplan::ship, SITS) with LOS path following along each move's refined
 // route in the route's MSO modes, runs port operations as timed tasks,
-// avoids the scripted traffic with COLREG-constrained velocity obstacles,
+// avoids the scripted traffic under COLREG (engine/colav),
 // tracks fuel, injects scripted events (GNSS jump) and produces the feedback
 // the client posts to the server. No networking here: the seaplan-sim binary
 // moves feedback and plan versions between this class and the server.
@@ -17,17 +17,17 @@
 // Thread-compatible; one per simulated ship.
 #pragma once
 
-#include <array>
 #include <map>
 #include <optional>
 #include <set>
 #include <string>
 #include <vector>
 
-#include "encounter.h"
 #include "fuel.h"
-#include "guidance.h"
 #include "report.h"
+#include "seaplan/colav/autopilot.h"
+#include "seaplan/colav/colav.h"
+#include "seaplan/colav/path_follower.h"
 #include "seaplan/common/status.h"
 #include "seaplan/mission/navigation_log.h"
 #include "seaplan/mission/replan_policy.h"
@@ -37,6 +37,11 @@
 #include "traffic.h"
 
 namespace seaplan::sim {
+
+using colav::PathFollower;
+using colav::PathFollowerOptions;
+using colav::PointSegmentDistance;
+using colav::VelocityOf;
 
 // A grid over the local frame for scripted events: cell (i, j) is at
 // origin + (i * cell_m east, j * cell_m north).
@@ -77,30 +82,22 @@ struct ExecutorConfig {
   // turn_radius 300 m: the wheel-over for this hull (about 300 m to turn
   // at the routes' 9 m/s), see SharpCornerOvershootIsBoundedByTheWheelOver.
   PathFollowerOptions path{400.0, 60.0, 0.0, 300.0};
-  // SITS gains (kp 4, kd 90, ki 0.01) make this hull circle under LOS when
-  // a leg starts far off its heading (the integral winds up while the rudder
-  // has no authority at low speed); these settle within ~100 m of the path.
-  ship::HeadingControllerOptions heading{2.0, 200.0, 0.0};
+  // Heading and speed control (engine/colav's autopilot: the same law the
+  // collision avoidance predicts with). SITS' gains (kp 4, kd 90, ki 0.01)
+  // make this hull circle under LOS when a leg starts far off its heading.
+  colav::AutopilotOptions autopilot;
   // A position change this large within one step is a jump (GNSS fault):
   // the move fails at once. A slower drift off the route fails the move
   // only beyond 3 x deviation_limit_m (collision avoidance may legitimately
   // take the ship off its route).
   double jump_threshold_m = 100.0;
   ship::Environment environment;
-  AvoidanceOptions avoidance;
+  // Collision avoidance (policy, safety distance, horizon, weights); its
+  // arrival parameters are taken from this config.
+  colav::CollisionAvoidanceOptions avoidance;
   // Land (outer rings, local frame) the avoidance keeps clear of; empty =
-  // none known. The executor points avoidance.land at it.
+  // none known.
   std::vector<std::vector<Vec2>> land;
-  double avoidance_margin_factor = 1.5;  // safety distance x this when choosing velocities
-  // Look this far along the route ahead (not just the straight line) for
-  // vessels that would come within the planning safety distance, and slow
-  // down (x0.75, 0.5, 0.3) to let them pass; 0 = off.
-  double path_lookahead_s = 180.0;
-  // This hull's manoeuvrability for the avoidance (AvoidanceOptions):
-  // about 1 deg/s at 30 deg rudder at service speed, ~20 s before the turn
-  // develops. Used when the scenario leaves avoidance.turn_rate_rad_s at 0.
-  double turn_rate_rad_s = 0.0175;
-  double manoeuvre_lag_s = 20.0;
   FuelOptions fuel;
   double initial_fuel_fraction = 1.0;
   double fuel_threshold_fraction = 0.3;  // logged when crossed (the server decides replans)
@@ -156,16 +153,15 @@ class Executor {
     int version = 0;
     double started_s = 0.0;
   };
-  Executor(const ExecutorConfig& config, ship::ShipModel model);
+  Executor(const ExecutorConfig& config, ship::ShipModel model,
+           colav::CollisionAvoidance avoidance);
   FeedbackOut MakeFeedback(mission::FeedbackKind kind, const std::string& task_id, int version,
                            std::string detail = "") const;
   void StartTasks(std::vector<FeedbackOut>* out);
   void StartMove(const mission::Task& task);
   void StepMove(std::vector<FeedbackOut>* out);
-  // The desired speed, lowered while a vessel would come within safety_m
-  // of the ship sailing its route ahead (see path_lookahead_s).
-  double PathAheadSpeed(Vec2 here, double speed, const std::vector<Obstacle>& others,
-                        double safety_m);
+  // Logs the avoidance's events (and reports manoeuvres as feedback).
+  void LogAvoidance(const colav::Command& c, const Running& move, std::vector<FeedbackOut>* out);
   void Complete(const Running& r, std::vector<FeedbackOut>* out);
   void NoteFuel();  // logs crossing the fuel threshold (the server decides replans)
   void InjectEvents(std::vector<FeedbackOut>* out);
@@ -173,16 +169,10 @@ class Executor {
 
   ExecutorConfig config_;
   ship::ShipModel model_;
-  LandIndex land_;  // config_.land, indexed for the avoidance
-  // config_.avoidance as the avoidance plans with it: safety distance x
-  // avoidance_margin_factor, this hull's turn rate and lag; land and top
-  // speed set each step.
-  AvoidanceOptions planning_;
-  std::vector<Obstacle> others_, encounters_;  // per-step scratch
-  std::array<double, 3> top_speed_mps_{};  // calm-water top speed per MSO mode, for the avoidance
-  bool path_slowed_ = false;               // the path-ahead check is holding the speed down
-  ship::HeadingController heading_;
-  ship::SpeedController speed_;
+  colav::LandIndex land_;  // config_.land, indexed for the avoidance
+  colav::CollisionAvoidance avoidance_;
+  std::vector<colav::Obstacle> others_;  // per-step scratch
+  colav::Autopilot autopilot_;
   std::optional<PathFollower> los_;
   std::vector<mission::RouteWaypoint> route_;  // of the move under way
   std::vector<mission::MsoMode> path_modes_;   // MSO mode of each leg of los_'s path
@@ -203,10 +193,6 @@ class Executor {
   bool jumped_ = false;
   bool fuel_low_logged_ = false;
   std::set<size_t> jumps_done_, jumps_cleared_;
-  // Collision avoidance state.
-  std::set<int> dangerous_;  // traffic ids currently in a potential collision situation
-  bool manoeuvring_ = false;
-  int manoeuvre_vessel_ = -1;
   MissionReport report_;
 };
 

@@ -9,13 +9,16 @@
 #include <string>
 #include <vector>
 
-#include "encounter.h"
+#include "seaplan/colav/geometry.h"
 #include "seaplan/common/json.h"  // JsonString, used with the report
 #include "seaplan/common/status.h"
 #include "seaplan/mission/navigation_log.h"
 #include "seaplan/mission/types.h"
 
 namespace seaplan::sim {
+
+using colav::Kinematics;
+using colav::Vec2;
 
 struct CpaRecord {
   std::string vessel;

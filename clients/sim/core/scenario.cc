@@ -4,6 +4,7 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <random>
 #include <sstream>
 
 #include "absl/strings/ascii.h"
@@ -262,6 +263,18 @@ StatusOr<ExecutorConfig> MakeExecutorConfig(const Scenario& s, const chart::Loca
     c.traffic.push_back(std::move(v));
   }
   return c;
+}
+
+void PerturbConfig(uint64_t seed, ExecutorConfig* c, double traffic_shift_s) {
+  std::mt19937_64 rng(seed);
+  std::uniform_real_distribution<double> shift(-traffic_shift_s, traffic_shift_s);
+  for (TrafficVessel& v : c->traffic) {
+    const double dt = shift(rng);
+    for (TrackPoint& p : v.track) p.time_s += dt;
+  }
+  std::uniform_real_distribution<double> speed(0.8, 1.2), turn(-20.0 * kDeg, 20.0 * kDeg);
+  c->environment.wind_speed_mps *= speed(rng);
+  c->environment.wind_direction_from_rad += turn(rng);
 }
 
 }  // namespace seaplan::sim

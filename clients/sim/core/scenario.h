@@ -32,6 +32,7 @@
 //   time_factor = 0                         # 0: as fast as possible
 #pragma once
 
+#include <cstdint>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -99,5 +100,11 @@ mission::LocationTable LocalLocations(const Scenario& s, const chart::LocalFrame
 // (`ship_location`, may be empty), else the first location.
 StatusOr<ExecutorConfig> MakeExecutorConfig(const Scenario& s, const chart::LocalFrame& frame,
                                             const std::string& ship_location);
+
+// Seeded variations of a scenario: each traffic vessel's timing shifted by
+// up to +-traffic_shift_s and the wind's speed (x0.8-1.2) and direction
+// (+-20 deg) varied, so repeated runs meet the traffic in other geometries.
+// Deterministic per seed.
+void PerturbConfig(uint64_t seed, ExecutorConfig* config, double traffic_shift_s = 60.0);
 
 }  // namespace seaplan::sim

@@ -10,9 +10,12 @@
 #include <string>
 #include <vector>
 
-#include "encounter.h"
+#include "seaplan/colav/geometry.h"
 
 namespace seaplan::sim {
+
+using colav::Kinematics;
+using colav::Vec2;
 
 struct TrackPoint {
   double time_s = 0.0;

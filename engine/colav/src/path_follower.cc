@@ -1,11 +1,11 @@
-#include "guidance.h"
+#include "seaplan/colav/path_follower.h"
 
 #include <algorithm>
 #include <cmath>
 
 #include "absl/strings/str_format.h"
 
-namespace seaplan::sim {
+namespace seaplan::colav {
 
 Status PathFollowerOptions::Validate() const {
   if (!(lookahead_m > 0) || !(switch_distance_m >= 0) || !(search_distance_m >= 0) ||
@@ -105,4 +105,4 @@ double PathFollower::Update(Vec2 here) {
   return c < 0 ? c + 2.0 * M_PI : c;
 }
 
-}  // namespace seaplan::sim
+}  // namespace seaplan::colav

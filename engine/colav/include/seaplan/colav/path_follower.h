@@ -21,10 +21,10 @@
 
 #include <vector>
 
-#include "encounter.h"
+#include "seaplan/colav/geometry.h"
 #include "seaplan/common/status.h"
 
-namespace seaplan::sim {
+namespace seaplan::colav {
 
 struct PathFollowerOptions {
   double lookahead_m = 400.0;       // Delta: psi_d = alpha - atan(e / Delta)
@@ -73,4 +73,4 @@ class PathFollower {
   double max_wheel_over_m_ = 0.0;
 };
 
-}  // namespace seaplan::sim
+}  // namespace seaplan::colav

@@ -1,18 +1,11 @@
-// Ship encounters for the simulation client: closest point of approach,
-// COLREG role classification (rules 13-17) and collision avoidance with
-// velocity obstacles under COLREG constraints (Kuwata et al., "Safe maritime
-// autonomous navigation with COLREGS, using velocity obstacles", IEEE JOE
-// 2014).
+// Encounter geometry: closest point of approach, COLREG role
+// classification (rules 13-17), the land's edges in a grid index and the
+// closest approach along a path ahead.
 //
 // Frame: local metric, x east, y north. Courses/headings are radians
 // clockwise from north (navigation convention), so a course c has the
 // velocity (sin c, cos c) * speed.
-//
-// Why velocity obstacles and not the paper's fuzzy logic: a VO gives a
-// guarantee the fuzzy rule base does not (a velocity outside every
-// safety-inflated obstacle keeps the CPA above the safety distance for as
-// long as the others hold their velocities), and COLREG roles map onto it as
-// simple half-plane constraints. All functions are pure.
+// All functions are pure; LandIndex is immutable after construction.
 #pragma once
 
 #include <cstdint>
@@ -22,7 +15,7 @@
 #include <utility>
 #include <vector>
 
-namespace seaplan::sim {
+namespace seaplan::colav {
 
 struct Vec2 {
   double x = 0.0;  // east
@@ -37,7 +30,8 @@ struct Vec2 {
 
 // Velocity of `speed_mps` along course `course_rad` (clockwise from north).
 Vec2 VelocityOf(double course_rad, double speed_mps);
-double CourseOf(Vec2 velocity);  // in [0, 2 pi)
+double CourseOf(Vec2 velocity);      // in [0, 2 pi)
+double WrapAngle(double angle_rad);  // to (-pi, pi]
 
 struct Kinematics {
   Vec2 position;
@@ -72,49 +66,12 @@ struct ColregOptions {
 Role ClassifyEncounter(const Kinematics& own, const Kinematics& other,
                        const ColregOptions& options = {});
 
-struct AvoidanceOptions {
-  double safety_distance_m = 150.0;  // keep every CPA above this
-  double horizon_s = 600.0;          // look this far ahead
-  // Stand-on vessels act only when the give-way vessel evidently does not
-  // (rule 17 a ii): CPA under safety and TCPA under this.
-  double stand_on_action_tcpa_s = 300.0;
-  double max_course_change_rad = 1.5708;  // candidate courses within +-90 deg of desired
-  double course_step_rad = 0.0436;        // 2.5 deg
-  std::vector<double> speed_factors = {1.0, 0.8, 0.6, 0.4, 0.2};
-  // The own ship's top speed, m/s; 0 = unknown. When above the desired
-  // speed, faster candidates (x1.25, x1.5, capped here) are tried too: a
-  // slow ship overtaken by a vessel that does not keep clear, or caught
-  // ahead of a crossing one, gets out of the way by speeding up, which
-  // slowing down and turning alone cannot do (issue #6, the fjord cases at
-  // 3.6 m/s).
-  double max_speed_mps = 0.0;
-  ColregOptions colreg;
-  // The own ship's manoeuvrability. A velocity obstacle assumes a new
-  // velocity is taken at once; a slow-turning hull keeps its present
-  // velocity for lag + |course change| / turn_rate (+ |speed change| /
-  // acceleration) first, which is what let a CPA fall below the safety
-  // distance. Candidates (and the desired velocity) are checked with that
-  // delay: the ship goes on at its present velocity, then at the candidate.
-  // turn_rate_rad_s <= 0: velocities change at once (the plain VO).
-  double turn_rate_rad_s = 0.0;
-  double manoeuvre_lag_s = 0.0;
-  double acceleration_mps2 = 0.05;
-  // Land (outer rings, local frame; not owned, may be null). A candidate
-  // whose straight track over land_lookahead_s comes closer than
-  // land_clearance_m to it is taken only when every candidate does: the
-  // velocity obstacles alone once sent the ship round the wrong side of an
-  // island and onto the shore (issue #6, case C).
-  const class LandIndex* land = nullptr;
-  double land_clearance_m = 60.0;
-  double land_lookahead_s = 45.0;  // ~400 m at the routes' 9 m/s
-};
-
 // The closest approach to `other` (straight-line motion) of a ship that
 // sails the polyline `path` from `position`, first towards path[next] and
 // then along the following points, at `speed_mps`, sampled every `step_s`
 // within `horizon_s`. A straight-line CPA cannot see a conflict that lies
 // past a turn of the route: at 9 m/s a crossing vessel found only once the
-// turn is under way is too close for a slow-turning hull (issue #6, case C).
+// turn is under way is too close for a slow-turning hull (the fjord's case C).
 struct PathApproach {
   double distance_m = 0.0;
   double time_s = 0.0;
@@ -170,22 +127,4 @@ struct Obstacle {
   int id = 0;
 };
 
-struct AvoidanceDecision {
-  Vec2 velocity;             // the velocity to steer for
-  bool manoeuvring = false;  // differs from the desired velocity because of another vessel
-  int vessel_id = -1;        // the most constraining vessel when manoeuvring
-  Role role = Role::kNone;
-  bool feasible = true;  // false: no candidate clears every vessel (best effort returned)
-};
-
-// Chooses the velocity closest to `desired` that is outside every dangerous
-// vessel's velocity obstacle (inflated by the safety distance, within the
-// horizon) and respects COLREG: against a head-on or crossing-from-starboard
-// vessel only passes that leave it on our port side (we go to starboard /
-// astern of it) are allowed; as stand-on the desired velocity is kept unless
-// rule 17 applies. Only vessels with a dangerous CPA are considered.
-AvoidanceDecision ChooseVelocity(const Kinematics& own, Vec2 desired,
-                                 const std::vector<Obstacle>& others,
-                                 const AvoidanceOptions& options = {});
-
-}  // namespace seaplan::sim
+}  // namespace seaplan::colav

@@ -1,11 +1,11 @@
-#include "guidance.h"
+#include "seaplan/colav/path_follower.h"
 
 #include <gtest/gtest.h>
 
 #include <cmath>
 #include <vector>
 
-namespace seaplan::sim {
+namespace seaplan::colav {
 namespace {
 
 TEST(PathFollowerTest, RejectsBadPaths) {
@@ -88,4 +88,4 @@ TEST(PathFollowerTest, WheelOverStartsTheTurnBeforeTheCorner) {
 }
 
 }  // namespace
-}  // namespace seaplan::sim
+}  // namespace seaplan::colav

@@ -1,0 +1,451 @@
+#include "seaplan/colav/colav.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+#include "absl/strings/str_format.h"
+#include "seaplan/ship/steady_state.h"
+
+namespace seaplan::colav {
+namespace {
+
+constexpr double kDegToRad = M_PI / 180.0;
+constexpr double kQuarterTurnRad = M_PI / 2.0;
+// Steps between the land checks of a predicted track (one segment each).
+constexpr int kLandCheckEvery = 5;
+// A give-way vessel passed closer than this many safety distances counts
+// for the side it is passed on (further off, the side does not matter).
+constexpr double kSideCheckFactor = 4.0;
+// Below this speed a vessel is taken as lying still: no COLREG role, keep clear of it.
+constexpr double kStillMps = 0.5;
+
+bool IsStandOn(Role r) {
+  return r == Role::kCrossingStandOn || r == Role::kOvertaken;
+}
+
+Kinematics OwnKinematics(const ship::ShipModel& m) {
+  const ship::ShipState& s = m.state();
+  return {{s.east_m(), s.north_m()}, VelocityOf(s.heading_rad(), s.surge_mps())};
+}
+
+// The other vessel is getting further away and is beyond `distance_m`.
+bool Passed(const Kinematics& own, const Kinematics& other, double distance_m) {
+  const Vec2 p = other.position - own.position;
+  return p.Norm() > distance_m && p.Dot(other.velocity - own.velocity) >= 0;
+}
+
+std::string BehaviourText(double offset_rad, double factor) {
+  const double deg = std::round(std::abs(offset_rad) / kDegToRad);
+  const std::string course =
+      deg < 0.5 ? std::string("course kept")
+                : absl::StrFormat("%s %.0f deg", offset_rad > 0 ? "starboard" : "port", deg);
+  return absl::StrFormat("%s, speed %.0f %%", course, factor * 100.0);
+}
+
+}  // namespace
+
+std::string_view PolicyName(Policy p) {
+  return p == Policy::kScenarioMpc ? "sbmpc" : "vo";
+}
+
+Status CollisionAvoidanceOptions::Validate() const {
+  if (!(safety_distance_m > 0) || !(margin_factor >= 1.0) || !(horizon_s > 0) ||
+      !(prediction_step_s > 0) || prediction_step_s > horizon_s || !(decision_interval_s >= 0) ||
+      !(rule17_time_s >= 0) || !(land_clearance_m >= 0)) {
+    return absl::InvalidArgumentError(absl::StrFormat(
+        "collision avoidance: safety_distance_m (%g), horizon_s (%g) and prediction_step_s (%g, "
+        "at most the horizon) must be > 0, margin_factor (%g) >= 1, decision_interval_s (%g), "
+        "rule17_time_s (%g) and land_clearance_m (%g) >= 0",
+        safety_distance_m, horizon_s, prediction_step_s, margin_factor, decision_interval_s,
+        rule17_time_s, land_clearance_m));
+  }
+  if (course_offsets_deg.empty() || speed_factors.empty()) {
+    return absl::InvalidArgumentError(
+        "collision avoidance: course_offsets_deg and speed_factors must not be empty");
+  }
+  for (double f : speed_factors) {
+    if (!(f >= 0) || f > 2.0) {
+      return absl::InvalidArgumentError(
+          absl::StrFormat("collision avoidance: speed factor %g is not in [0, 2]", f));
+    }
+  }
+  for (double o : course_offsets_deg) {
+    if (!(std::abs(o) <= 180.0)) {
+      return absl::InvalidArgumentError(
+          absl::StrFormat("collision avoidance: course offset %g deg is not in [-180, 180]", o));
+    }
+  }
+  return absl::OkStatus();
+}
+
+StatusOr<CollisionAvoidance> CollisionAvoidance::Create(const CollisionAvoidanceOptions& options) {
+  SEAPLAN_RETURN_IF_ERROR(options.Validate());
+  return CollisionAvoidance(options);
+}
+
+CollisionAvoidance::CollisionAvoidance(const CollisionAvoidanceOptions& options)
+    : options_(options) {
+  vo_.safety_distance_m = options.safety_distance_m * options.margin_factor;
+  vo_.colreg = options.colreg;
+  vo_.turn_rate_rad_s = options.turn_rate_rad_s;
+  vo_.manoeuvre_lag_s = options.manoeuvre_lag_s;
+  vo_.land_clearance_m = options.land_clearance_m;
+}
+
+Role CollisionAvoidance::RoleOf(int vessel_id) const {
+  auto it = roles_.find(vessel_id);
+  return it == roles_.end() ? Role::kNone : it->second;
+}
+
+Command CollisionAvoidance::Step(const OwnShip& own, const DesiredMotion& desired,
+                                 const PathFollower& path, const std::vector<Obstacle>& traffic) {
+  if (own.model == nullptr || own.autopilot == nullptr) return Hold(desired);
+  return options_.policy == Policy::kScenarioMpc
+             ? StepScenarioMpc(own, desired, path, traffic)
+             : StepVelocityObstacle(own, desired, path, traffic);
+}
+
+Command CollisionAvoidance::Hold(const DesiredMotion& desired) const {
+  Command c;
+  c.course_rad = desired.course_rad;
+  c.speed_mps = desired.speed_mps;
+  return c;
+}
+
+void CollisionAvoidance::NoteEncounters(const std::set<int>& now, Command* out) {
+  for (int id : now) {
+    if (dangerous_.contains(id)) continue;
+    Event e;
+    e.kind = EventKind::kPotentialCollision;
+    e.vessel_id = id;
+    e.role = RoleOf(id);
+    out->events.push_back(std::move(e));
+  }
+  dangerous_ = now;
+}
+
+double CollisionAvoidance::PenaltyAt(double d) const {
+  const double safe = options_.safety_distance_m;
+  const double plan = safe * options_.margin_factor;
+  if (d >= plan) return 0.0;
+  const ScenarioMpcWeights& w = options_.weights;
+  if (d >= safe) {
+    const double x = plan > safe ? (plan - d) / (plan - safe) : 1.0;
+    return w.collision * x * x;
+  }
+  return w.collision + w.inside_safety + w.inside_safety_per_m * (safe - d);
+}
+
+CollisionAvoidance::Prediction CollisionAvoidance::Predict(
+    const OwnShip& own, const DesiredMotion& desired, const PathFollower& path,
+    const std::vector<Obstacle>& traffic, Behaviour b, const std::vector<bool>& release) const {
+  ship::ShipModel model = *own.model;
+  Autopilot autopilot = *own.autopilot;
+  PathFollower follower = path;
+  const double dt = options_.prediction_step_s;
+  const double plan = options_.safety_distance_m * options_.margin_factor;
+  const size_t n = traffic.size();
+  Prediction p;
+  p.vessels.assign(n, {std::numeric_limits<double>::infinity(), 0.0, 0.0});
+  std::vector<double> worst(n, 0.0), last_distance(n, 0.0);
+  const bool releasable = std::find(release.begin(), release.end(), true) != release.end();
+  bool active = !(b == Behaviour{});
+  bool arrived = false;
+  const Vec2 goal = follower.path().back();
+  const double cruise = desired.cruise_speed_mps > 0 ? desired.cruise_speed_mps : desired.speed_mps;
+  Vec2 here{model.state().east_m(), model.state().north_m()};
+  Vec2 land_from = here;
+  for (size_t i = 0; i < n; ++i) last_distance[i] = (traffic[i].kinematics.position - here).Norm();
+  const int steps = static_cast<int>(std::floor(options_.horizon_s / dt + 1e-9));
+  for (int k = 1; k <= steps; ++k) {
+    const double t = k * dt;
+    const Vec2 before = here;
+    if (!arrived) {
+      const ship::ShipState& s = model.state();
+      double course = follower.Update(here);
+      const double to_goal = (goal - here).Norm();
+      if (to_goal < options_.arrival_radius_m ||
+          (follower.on_last_leg() && follower.leg_remaining_m() <= 0)) {
+        arrived = true;  // stops at the berth, as the executor does
+      } else {
+        double speed = cruise;
+        if (to_goal < options_.slow_down_distance_m) {
+          speed = std::max(options_.min_approach_speed_mps,
+                           cruise * to_goal / options_.slow_down_distance_m);
+        }
+        if (active) {
+          course += b.offset_rad;
+          speed *= b.speed_factor;
+        }
+        const ActuatorCommand c =
+            autopilot.Update(course, speed, s.heading_rad(), s.yaw_rate_radps(), s.surge_mps(), dt);
+        model.Step(c.throttle, c.rudder_rad, dt);
+        here = {model.state().east_m(), model.state().north_m()};
+      }
+    }
+    const Vec2 moved = here - before;
+    const double course_over_ground =
+        moved.Norm() > 1e-6 ? CourseOf(moved) : model.state().heading_rad();
+    // Near-term risk is certain, far-term risk may go away (the traffic
+    // changes its mind, a later decision acts): weigh it down linearly.
+    const double weight = 1.0 - 0.5 * t / options_.horizon_s;
+    bool all_passed = true;
+    for (size_t i = 0; i < n; ++i) {
+      const Vec2 other = traffic[i].kinematics.position + traffic[i].kinematics.velocity * t;
+      const Vec2 rel = other - here;
+      const double d = rel.Norm();
+      VesselPrediction& v = p.vessels[i];
+      if (d < v.min_distance_m) {
+        v.min_distance_m = d;
+        v.time_s = t;
+        v.bearing_rad = WrapAngle(std::atan2(rel.x, rel.y) - course_over_ground);
+      }
+      worst[i] = std::max(worst[i], weight * PenaltyAt(d));
+      if (release[i] && !(d > plan && d >= last_distance[i])) all_passed = false;
+      last_distance[i] = d;
+    }
+    if (active && releasable && all_passed) active = false;  // rejoin the path
+    if (options_.land != nullptr && (k % kLandCheckEvery == 0 || k == steps)) {
+      const double clear = options_.land->Clearance(land_from, here, options_.land_clearance_m);
+      land_from = here;
+      if (clear < options_.land_clearance_m) {
+        const double x = (options_.land_clearance_m - clear) / options_.land_clearance_m;
+        const double cost = clear <= 0 ? options_.weights.aground : options_.weights.land * x * x;
+        p.land_cost = std::max(p.land_cost, weight * cost);
+      }
+    }
+  }
+  for (double w : worst) p.collision_cost += w;
+  return p;
+}
+
+Command CollisionAvoidance::StepScenarioMpc(const OwnShip& own, const DesiredMotion& desired,
+                                            const PathFollower& path,
+                                            const std::vector<Obstacle>& traffic) {
+  Command out = Hold(desired);
+  if (own.time_s + 1e-9 < next_decision_s_) {
+    out.course_rad = desired.course_rad + behaviour_.offset_rad;
+    out.speed_mps = desired.speed_mps * behaviour_.speed_factor;
+    out.manoeuvring = manoeuvring_;
+    out.vessel_id = manoeuvre_vessel_;
+    out.role = manoeuvre_role_;
+    return out;
+  }
+  next_decision_s_ = own.time_s + options_.decision_interval_s;
+  const double plan = options_.safety_distance_m * options_.margin_factor;
+  const Kinematics self = OwnKinematics(*own.model);
+  const size_t n = traffic.size();
+  const std::vector<bool> none(n, false);
+  const Prediction nominal = Predict(own, desired, path, traffic, Behaviour{}, none);
+
+  // The encounters: vessels the nominal behaviour brings within the planning
+  // distance, and those a manoeuvre under way is for until they are passed.
+  std::vector<bool> release(n, false);
+  std::set<int> conflict;
+  for (size_t i = 0; i < n; ++i) {
+    const Obstacle& o = traffic[i];
+    const bool in_conflict = nominal.vessels[i].min_distance_m < plan;
+    const bool held = manoeuvring_ && roles_.contains(o.id) && !Passed(self, o.kinematics, plan);
+    if (in_conflict) conflict.insert(o.id);
+    if (!in_conflict && !held) {
+      if (Passed(self, o.kinematics, plan)) {
+        roles_.erase(o.id);
+        rule17_.erase(o.id);
+      }
+      continue;
+    }
+    release[i] = true;
+    // A vessel that lay still when its encounter started and has got under
+    // way since has a role now.
+    const bool moving = o.kinematics.velocity.Norm() >= kStillMps;
+    if (!roles_.contains(o.id) || (roles_[o.id] == Role::kNone && moving)) {
+      // Judged on the course of the path's leg, not on the heading of a
+      // manoeuvre under way for another vessel or of the return to the path
+      // (a temporary heading makes a head-on vessel look like one crossing).
+      const std::vector<Vec2>& pts = path.path();
+      const size_t leg = static_cast<size_t>(path.leg());
+      const Kinematics steering{
+          self.position, VelocityOf(CourseOf(pts[leg + 1] - pts[leg]), self.velocity.Norm())};
+      roles_[o.id] =
+          moving ? ClassifyEncounter(steering, o.kinematics, options_.colreg) : Role::kNone;
+    }
+    const Role role = roles_[o.id];
+    if (IsStandOn(role) && in_conflict && nominal.vessels[i].time_s < options_.rule17_time_s) {
+      rule17_.insert(o.id);
+    }
+  }
+  NoteEncounters(conflict, &out);
+
+  // Must the ship act? Not while every encounter leaves it stand-on (rule 17 a i).
+  bool act = false;
+  int main_vessel = -1;
+  double main_time = std::numeric_limits<double>::infinity();
+  for (size_t i = 0; i < n; ++i) {
+    if (!release[i]) continue;
+    const int id = traffic[i].id;
+    if (!IsStandOn(roles_[id]) || rule17_.contains(id)) {
+      act = true;
+      if (nominal.vessels[i].time_s < main_time) {
+        main_time = nominal.vessels[i].time_s;
+        main_vessel = id;
+      }
+    }
+  }
+
+  Behaviour chosen;
+  if (act) {
+    const ScenarioMpcWeights& w = options_.weights;
+    double best = std::numeric_limits<double>::infinity();
+    for (double factor : options_.speed_factors) {
+      for (double offset_deg : options_.course_offsets_deg) {
+        const Behaviour b{offset_deg * kDegToRad, factor};
+        const Prediction p =
+            b == Behaviour{} ? nominal : Predict(own, desired, path, traffic, b, release);
+        double cost = p.collision_cost + p.land_cost;
+        for (size_t i = 0; i < n; ++i) {
+          if (!release[i]) continue;
+          const Role role = roles_[traffic[i].id];
+          const bool starboard_rule = role == Role::kHeadOn || role == Role::kCrossingGiveWay;
+          // Rules 14, 15: the other passed on our port side (port to port,
+          // astern of a crossing vessel).
+          if (starboard_rule && p.vessels[i].bearing_rad > 0 &&
+              p.vessels[i].min_distance_m < kSideCheckFactor * options_.safety_distance_m) {
+            cost += w.colreg_side;
+          }
+          // Rules 14, 15 and 17 c: no turn to port.
+          const bool no_port =
+              starboard_rule || (role == Role::kCrossingStandOn && rule17_.contains(traffic[i].id));
+          if (no_port && b.offset_rad < 0) {
+            cost += w.colreg_port_turn * (0.5 + 0.5 * std::abs(b.offset_rad) / kQuarterTurnRad);
+          }
+        }
+        const double x = b.offset_rad / kQuarterTurnRad;
+        cost += w.course_offset * x * x * (b.offset_rad < 0 ? w.port_factor : 1.0) +
+                w.speed_reduction * (1.0 - std::min(factor, 1.0));
+        if (manoeuvring_) {
+          cost +=
+              w.change_course * std::abs(b.offset_rad - behaviour_.offset_rad) / kQuarterTurnRad +
+              w.change_speed * std::abs(b.speed_factor - behaviour_.speed_factor);
+        }
+        if (cost < best - 1e-9) {
+          best = cost;
+          chosen = b;
+        }
+      }
+    }
+  }
+  const bool manoeuvre = !(chosen == Behaviour{});
+  if (manoeuvre && (!manoeuvring_ || !(chosen == behaviour_))) {
+    Event e;
+    e.kind = EventKind::kManoeuvreStarted;
+    e.vessel_id = main_vessel;
+    e.role = RoleOf(main_vessel);
+    e.detail = BehaviourText(chosen.offset_rad, chosen.speed_factor);
+    if (manoeuvring_) e.detail = "changed: " + e.detail;
+    out.events.push_back(std::move(e));
+  } else if (!manoeuvre && manoeuvring_) {
+    Event e;
+    e.kind = EventKind::kManoeuvreEnded;
+    e.vessel_id = manoeuvre_vessel_;
+    e.role = manoeuvre_role_;
+    out.events.push_back(std::move(e));
+  }
+  behaviour_ = chosen;
+  manoeuvring_ = manoeuvre;
+  if (manoeuvre) {
+    manoeuvre_vessel_ = main_vessel;
+    manoeuvre_role_ = RoleOf(main_vessel);
+  }
+  out.course_rad = desired.course_rad + chosen.offset_rad;
+  out.speed_mps = desired.speed_mps * chosen.speed_factor;
+  out.manoeuvring = manoeuvre;
+  out.vessel_id = manoeuvre ? manoeuvre_vessel_ : -1;
+  out.role = manoeuvre ? manoeuvre_role_ : Role::kNone;
+  return out;
+}
+
+Command CollisionAvoidance::StepVelocityObstacle(const OwnShip& own, const DesiredMotion& desired,
+                                                 const PathFollower& path,
+                                                 const std::vector<Obstacle>& traffic) {
+  Command out = Hold(desired);
+  const Kinematics self = OwnKinematics(*own.model);
+  const Vec2 here = self.position;
+  const size_t next = static_cast<size_t>(path.leg()) + 1;
+  const double plan = vo_.safety_distance_m;
+  double speed = desired.speed_mps;
+  // Path-ahead check: the highest of these speeds at which no vessel comes
+  // within the planning distance of the route ahead; when none clears them
+  // all (a vessel from astern, or one already close), full speed, left to
+  // the velocity obstacles.
+  if (options_.path_lookahead_s > 0 && !traffic.empty()) {
+    int blocking_at_full = -1;
+    double chosen = speed;
+    for (double f : {1.0, 0.75, 0.5, 0.3}) {
+      int blocking = -1;
+      for (const Obstacle& o : traffic) {
+        const PathApproach a = PathAheadClosestApproach(path.path(), next, here, speed * f,
+                                                        o.kinematics, options_.path_lookahead_s);
+        if (a.distance_m < plan) {
+          blocking = o.id;
+          break;
+        }
+      }
+      if (f == 1.0) blocking_at_full = blocking;
+      if (blocking < 0) {
+        chosen = speed * f;
+        break;
+      }
+    }
+    const bool slowed = chosen < speed - 1e-9;
+    if (slowed && !path_slowed_) {
+      out.events.push_back({EventKind::kSpeedReduced, blocking_at_full, Role::kNone,
+                            absl::StrFormat("speed reduced to %.1f m/s", chosen)});
+    }
+    path_slowed_ = slowed;
+    speed = chosen;
+  }
+  vo_.land = options_.land;
+  const ship::MsoMode mode = own.model->mode();
+  vo_.max_speed_mps = ship::TopSpeed(ship::ShipParams{}, own.model->machinery(), mode);
+  // A vessel the ship clears along its route (the path ahead at the speed it
+  // is ramping to) and that is not closing in on its present motion is no
+  // encounter: the straight-line models would call a ship leaving its berth
+  // "in danger" of a vessel it will pass well ahead of.
+  scratch_.clear();
+  std::set<int> dangerous_now;
+  for (const Obstacle& o : traffic) {
+    const Cpa now = ComputeCpa(self, o.kinematics);
+    const bool closing_now = now.dcpa_m < options_.safety_distance_m && now.tcpa_s < vo_.horizon_s;
+    if (closing_now) dangerous_now.insert(o.id);
+    const PathApproach along = PathAheadClosestApproach(
+        path.path(), next, here, speed, o.kinematics, options_.path_lookahead_s, 5.0,
+        self.velocity.Norm(), vo_.acceleration_mps2);
+    if (along.distance_m >= plan && !closing_now) continue;
+    scratch_.push_back(o);
+  }
+  const AvoidanceDecision d =
+      ChooseVelocity(self, VelocityOf(desired.course_rad, speed), scratch_, vo_);
+  if (d.role != Role::kNone) dangerous_now.insert(d.vessel_id);
+  roles_.clear();
+  for (const Obstacle& o : traffic) {
+    if (dangerous_now.contains(o.id)) roles_[o.id] = ClassifyEncounter(self, o.kinematics);
+  }
+  NoteEncounters(dangerous_now, &out);
+  if (d.manoeuvring && !manoeuvring_) {
+    out.events.push_back({EventKind::kManoeuvreStarted, d.vessel_id, d.role, ""});
+    manoeuvre_vessel_ = d.vessel_id;
+    manoeuvre_role_ = d.role;
+  } else if (!d.manoeuvring && manoeuvring_) {
+    out.events.push_back({EventKind::kManoeuvreEnded, manoeuvre_vessel_, manoeuvre_role_, ""});
+  }
+  manoeuvring_ = d.manoeuvring;
+  out.manoeuvring = d.manoeuvring;
+  out.vessel_id = d.manoeuvring ? d.vessel_id : -1;
+  out.role = d.manoeuvring ? d.role : Role::kNone;
+  out.course_rad = d.manoeuvring ? CourseOf(d.velocity) : desired.course_rad;
+  out.speed_mps = d.manoeuvring ? d.velocity.Norm() : speed;
+  return out;
+}
+
+}  // namespace seaplan::colav

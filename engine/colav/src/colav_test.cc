@@ -1,0 +1,138 @@
+#include "seaplan/colav/colav.h"
+
+#include <gtest/gtest.h>
+
+#include <cmath>
+
+#include "seaplan/colav/encounter_sim.h"
+
+namespace seaplan::colav {
+namespace {
+
+constexpr double kDeg = M_PI / 180.0;
+
+// The own ship at the origin heading north at 9 m/s, on a path north.
+struct Fixture {
+  ship::ShipModel model;
+  Autopilot autopilot;
+  PathFollower path;
+  static Fixture Make() {
+    auto ship = ShipUnderWay({0, 0}, 0.0, 9.0);
+    EXPECT_TRUE(ship.ok()) << ship.status();
+    return {ship->model, ship->autopilot, *PathFollower::Create({{0, 0}, {0, 9000}})};
+  }
+  Command Step(CollisionAvoidance& ca, double t, const std::vector<Obstacle>& traffic) {
+    const double course = path.Update({model.state().east_m(), model.state().north_m()});
+    return ca.Step({t, &model, &autopilot}, {course, 9.0, 9.0}, path, traffic);
+  }
+};
+
+// A vessel on `course_deg` at `speed` reaching (0, 9 * t_meet) at t_meet.
+Obstacle Meeting(double course_deg, double speed, double t_meet) {
+  const Vec2 v = VelocityOf(course_deg * kDeg, speed);
+  return {{Vec2{0, 9.0 * t_meet} - v * t_meet, v}, 7};
+}
+
+TEST(CollisionAvoidanceTest, RejectsBadOptions) {
+  CollisionAvoidanceOptions o;
+  o.safety_distance_m = 0;
+  EXPECT_FALSE(CollisionAvoidance::Create(o).ok());
+  o = {};
+  o.margin_factor = 0.5;
+  EXPECT_FALSE(CollisionAvoidance::Create(o).ok());
+  o = {};
+  o.speed_factors.clear();
+  EXPECT_FALSE(CollisionAvoidance::Create(o).ok());
+  o = {};
+  o.course_offsets_deg = {270};
+  EXPECT_FALSE(CollisionAvoidance::Create(o).ok());
+  EXPECT_TRUE(CollisionAvoidance::Create({}).ok());
+}
+
+TEST(CollisionAvoidanceTest, WithoutTrafficTheDesiredMotionIsCommanded) {
+  Fixture f = Fixture::Make();
+  auto ca = CollisionAvoidance::Create({});
+  ASSERT_TRUE(ca.ok());
+  const Command c = f.Step(*ca, 0, {});
+  EXPECT_FALSE(c.manoeuvring);
+  EXPECT_TRUE(c.events.empty());
+  EXPECT_NEAR(c.course_rad, 0.0, 1e-9);
+  EXPECT_DOUBLE_EQ(c.speed_mps, 9.0);
+  // A vessel far off and diverging is no encounter either.
+  const Command far = f.Step(*ca, 10, {{{{5000, -5000}, VelocityOf(135 * kDeg, 9)}, 3}});
+  EXPECT_FALSE(far.manoeuvring);
+  EXPECT_TRUE(far.events.empty());
+}
+
+TEST(CollisionAvoidanceTest, HeadOnTurnsToStarboardAndHoldsTheBehaviourBetweenDecisions) {
+  Fixture f = Fixture::Make();
+  auto ca = CollisionAvoidance::Create({});
+  ASSERT_TRUE(ca.ok());
+  const std::vector<Obstacle> traffic = {Meeting(180, 9, 300)};
+  const Command c = f.Step(*ca, 0, traffic);
+  ASSERT_TRUE(c.manoeuvring);
+  EXPECT_EQ(ca->RoleOf(7), Role::kHeadOn);
+  EXPECT_GE(c.course_rad, 30 * kDeg - 1e-9);  // starboard, readily apparent
+  ASSERT_EQ(c.events.size(), 2u);
+  EXPECT_EQ(c.events[0].kind, EventKind::kPotentialCollision);
+  EXPECT_EQ(c.events[1].kind, EventKind::kManoeuvreStarted);
+  EXPECT_NE(c.events[1].detail.find("starboard"), std::string::npos) << c.events[1].detail;
+  // Before the next decision the same offset is applied to the path's course.
+  const Command held = f.Step(*ca, 2, traffic);
+  EXPECT_TRUE(held.manoeuvring);
+  EXPECT_TRUE(held.events.empty());
+  EXPECT_NEAR(held.course_rad, c.course_rad, 1e-6);
+}
+
+TEST(CollisionAvoidanceTest, StandOnKeepsCourseUntilRule17ThenNotToPort) {
+  CollisionAvoidanceOptions o;
+  auto ca = CollisionAvoidance::Create(o);
+  ASSERT_TRUE(ca.ok());
+  Fixture f = Fixture::Make();
+  // From port on a collision course, 400 s out: stand on.
+  const Command early = f.Step(*ca, 0, {Meeting(90, 9, 400)});
+  EXPECT_FALSE(early.manoeuvring);
+  EXPECT_EQ(ca->RoleOf(7), Role::kCrossingStandOn);
+  ASSERT_EQ(early.events.size(), 1u);
+  EXPECT_EQ(early.events[0].kind, EventKind::kPotentialCollision);
+  // The same geometry 200 s out (the other has not given way): rule 17.
+  Fixture g = Fixture::Make();
+  auto late_ca = CollisionAvoidance::Create(o);
+  ASSERT_TRUE(late_ca.ok());
+  const Command late = g.Step(*late_ca, 0, {Meeting(90, 9, 200)});
+  EXPECT_TRUE(late.manoeuvring);
+  EXPECT_GE(late.course_rad, -1e-9) << "rule 17 c: no turn to port for a vessel on the port side";
+}
+
+TEST(CollisionAvoidanceTest, StaysOffTheLandWhenTheStarboardSideIsBlocked) {
+  // Head-on in a channel whose east bank lies 250 m to starboard.
+  EncounterSetup s;
+  s.path = {{0, 0}, {0, 6000}};
+  s.traffic = {{1, "A", {-60, 3600}, VelocityOf(M_PI, 8)}};
+  s.land = {{{250, -1000}, {2000, -1000}, {2000, 8000}, {250, 8000}},
+            {{-700, -1000}, {-2000, -1000}, {-2000, 8000}, {-700, 8000}}};
+  s.max_time_s = 1200;
+  auto r = SimulateEncounter(s);
+  ASSERT_TRUE(r.ok()) << r.status();
+  EXPECT_TRUE(r->arrived);
+  EXPECT_GT(r->min_land_clearance_m, 0);
+  EXPECT_EQ(r->aground_s, 0);
+  EXPECT_GE(r->vessels[0].min_distance_m, s.avoidance.safety_distance_m);
+  EXPECT_LT(r->vessels[0].bearing_rad, 0) << "head-on: port to port";
+}
+
+TEST(CollisionAvoidanceTest, VelocityObstacleBaselineStillAvoids) {
+  EncounterSetup s;
+  s.path = {{0, 0}, {0, 7000}};
+  s.traffic = {{1, "A", Meeting(270, 9, 400).kinematics.position, VelocityOf(270 * kDeg, 9)}};
+  s.avoidance.policy = Policy::kVelocityObstacle;
+  s.max_time_s = 1500;
+  auto r = SimulateEncounter(s);
+  ASSERT_TRUE(r.ok()) << r.status();
+  EXPECT_TRUE(r->arrived);
+  EXPECT_GE(r->vessels[0].min_distance_m, s.avoidance.safety_distance_m);
+  EXPECT_GT(r->manoeuvres, 0);
+}
+
+}  // namespace
+}  // namespace seaplan::colav
