@@ -66,7 +66,9 @@ void StoreTest::SetUp() {
 }
 
 void StoreTest::TearDown() {
-  if (store_) EXPECT_TRUE(store_->Close().ok());
+  if (store_) {
+    EXPECT_TRUE(store_->Close().ok());
+  }
   store_.reset();
   database_.reset();
 }
