@@ -9,7 +9,8 @@
 #
 #   bench/colav/scenario_seeds.sh [--colav sbmpc|vo] [--runs N] [scenario ...]
 # Default: sbmpc, 20 runs, every examples/scenarios/*.scenario (trondheim
-# needs SEAPLAN_SHARED, default ../shared). Needs build/bin and jq.
+# needs SEAPLAN_SHARED, default ../shared). Needs build/bin and jq. SIM_ARGS
+# adds seaplan-sim flags (e.g. SIM_ARGS="--heading-gains 2 200").
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 COLAV=sbmpc
@@ -19,7 +20,7 @@ while [ $# -gt 0 ]; do
   case "$1" in
     --colav) COLAV=$2; shift 2 ;;
     --runs) RUNS=$2; shift 2 ;;
-    -h|--help) sed -n '2,13p' "$0"; exit 0 ;;
+    -h|--help) sed -n '2,14p' "$0"; exit 0 ;;
     *) SCENARIOS+=("$1"); shift ;;
   esac
 done
@@ -57,7 +58,7 @@ for scenario in "${SCENARIOS[@]}"; do
   for seed in $(seq 1 "$RUNS"); do
     out=$WORK/$name-$seed
     if ! build/bin/seaplan-sim --server "$SERVER" --scenario "$scenario" --report-dir "$out" \
-      --colav "$COLAV" --seed "$seed" --log-level error >"$out.log" 2>&1; then
+      --colav "$COLAV" --seed "$seed" --log-level error ${SIM_ARGS:-} >"$out.log" 2>&1; then
       echo "$name seed $seed: seaplan-sim failed ($(tail -1 "$out.log"))" >&2
     fi
     [ -f "$out/report.json" ] || continue

@@ -26,6 +26,7 @@
 #include <sstream>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "absl/strings/str_cat.h"
 #include "executor.h"
@@ -52,6 +53,7 @@ struct Flags {
   std::string log_level = "warn";
   std::string colav = "sbmpc";
   uint64_t seed = 0;
+  std::vector<double> heading_gains;  // kp, kd; empty: the autopilot's defaults
 };
 
 std::string ReadAll(const std::string& path, bool* ok) {
@@ -299,6 +301,10 @@ int main(int argc, char** argv) {
                  "collision avoidance: sbmpc (scenario-based MPC) or vo (velocity obstacles)")
       ->check(CLI::IsMember({"sbmpc", "vo"}))
       ->capture_default_str();
+  app.add_option("--heading-gains", f.heading_gains,
+                 "autopilot heading gains KP KD (rudder per rad of error, per rad/s of yaw rate); "
+                 "for comparisons, e.g. the former 2 200")
+      ->expected(2);
   app.add_option("--seed", f.seed,
                  "perturb the traffic's timing and the wind with this seed (0: as scripted)")
       ->capture_default_str();
@@ -378,6 +384,10 @@ int main(int argc, char** argv) {
   cfg->avoidance.policy =
       f.colav == "vo" ? colav::Policy::kVelocityObstacle : colav::Policy::kScenarioMpc;
   if (f.seed != 0) sim::PerturbConfig(f.seed, &*cfg);
+  if (f.heading_gains.size() == 2) {
+    cfg->autopilot.heading_kp = f.heading_gains[0];
+    cfg->autopilot.heading_kd_s = f.heading_gains[1];
+  }
   auto executor = sim::Executor::Create(*cfg);
   if (!executor.ok()) return fail(executor.status());
   mission::LocationTable locations = sim::LocalLocations(*scenario, frame);
