@@ -7,7 +7,8 @@
 //
 // Updates are a picture, not a history: a watcher gets the latest one (the
 // first with the track published so far), never a backlog, and nothing
-// survives a server restart.
+// survives a server restart. A mission's entry (its latest update and at
+// most max_track_points positions) is kept while the server runs.
 //
 // Thread-safety: all methods may be called from any thread.
 #pragma once

@@ -279,6 +279,24 @@ try {
   const code = await Promise.race([simExit, new Promise((r) => setTimeout(() => r("timeout"), 240000))]);
   check(code === 0, `seaplan-sim completed the mission (exit ${code})`);
   if (code !== 0) console.log(simOut.join("").slice(-3000));
+
+  // 9. The finished mission: its state shown, replan and cancel refused
+  // with the server's reason.
+  const errorsBefore = consoleErrors.length;
+  await page.goto(`${server.url}#/mission/${missionId}`);
+  await page.waitForFunction(() => document.querySelector("#mission-state")?.textContent === "completed", null, { timeout: 30000 });
+  await page.click("#replan");
+  await page.waitForFunction(() => /^Replan refused: /.test(document.querySelector(".mission .status")?.textContent ?? ""), null, { timeout: 30000 });
+  const refusedReplan = await page.textContent(".mission .status");
+  page.once("dialog", (d) => d.accept());
+  await page.click("#cancel");
+  await page.waitForFunction(() => /^Cancel refused: /.test(document.querySelector(".mission .status")?.textContent ?? ""), null, { timeout: 30000 });
+  const refusedCancel = await page.textContent(".mission .status");
+  check(true, `completed mission: ${refusedReplan.slice(0, 90)}; ${refusedCancel.slice(0, 90)}`);
+  // Those refusals are the browser's logged 4xx responses; nothing else.
+  const refusals = consoleErrors.splice(errorsBefore);
+  check(refusals.length === 2 && refusals.every((e) => /status of 412/.test(e)),
+        `only the two refusals logged (${refusals.join(" | ")})`);
   check(consoleErrors.length === 0, `no console errors${consoleErrors.length ? `: ${consoleErrors.join(" | ")}` : ""}`);
   check(external.length === 0, `nothing loaded from elsewhere${external.length ? `: ${external.join(", ")}` : ""}`);
 } catch (e) {

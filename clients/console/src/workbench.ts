@@ -10,6 +10,16 @@ interface TimedAction { startS: number; durationS: number; name: string; argumen
 interface PlanResponse { status: string; plan?: TimedAction[]; makespanS?: number; planText?: string; message?: string; }
 interface PlanStreamEvent { progress?: { elapsedS: number }; improvedPlan?: PlanResponse; finalResult?: PlanResponse; }
 
+// The Gantt colour of a plain PDDL action, from its name as the mission
+// engine reads it.
+function kindOf(action: string): string {
+  for (const [prefix, kind] of [["move", "KIND_MOVE"], ["unload", "KIND_UNLOAD"], ["load", "KIND_LOAD"],
+                                ["repair", "KIND_REPAIR"], ["refuel", "KIND_REFUEL"]]) {
+    if (action.startsWith(prefix)) return kind;
+  }
+  return "KIND_OTHER";
+}
+
 function editor(id: string, label: string, rows = 12) {
   const text = h("textarea", { id: `${id}-text`, rows, class: "code", spellcheck: "false" });
   const file = h("input", { id: `${id}-file`, type: "file" });
@@ -40,7 +50,7 @@ export function workbenchView(root: HTMLElement): () => void {
 
   const show = (r: PlanResponse) => {
     const tasks: Task[] = (r.plan ?? []).map((a, i) => ({
-      taskId: `a${i}`, kind: a.name.startsWith("move") ? "KIND_MOVE" : "KIND_OTHER", startS: a.startS,
+      taskId: `a${i}`, kind: kindOf(a.name), startS: a.startS,
       durationS: a.durationS, action: { name: a.name, arguments: a.arguments ?? [] } }));
     renderGantt(gantt, [{ missionId: "", version: 1, reason: `${r.status}, makespan ${(r.makespanS ?? 0).toFixed(1)} s`,
                           makespanS: r.makespanS ?? 0, tasks, missionTimeOriginS: 0 }]);
