@@ -13,7 +13,9 @@
 // --digest adds a column with a 64-bit hash of the whole ground task (facts,
 // numeric variables, actions with every condition and effect, initial state,
 // timed literals, goal and metric, in their order), so that two builds of
-// the grounder can be checked to produce identical tasks.
+// the grounder can be checked to produce identical tasks. --stages adds the
+// time of each grounding stage (symbols, schemas, reachability,
+// instantiation; ms, from the run with the best ground_ms).
 #include <malloc.h>
 #include <sys/resource.h>
 #include <time.h>
@@ -204,10 +206,11 @@ struct Row {
   double parse_ms = 0, ground_ms = 0;
   seaplan::task::TaskSize size;
   double peak_mb = 0;
-  double first_ms = 0;       // the first (cold) call, parse + ground
-  double median_ms = 0;      // median of all runs, parse + ground
-  double cpu_ms = 0;         // thread CPU time of the first call
-  std::uint64_t digest = 0;  // of the ground task (0 when none)
+  double first_ms = 0;                        // the first (cold) call, parse + ground
+  double median_ms = 0;                       // median of all runs, parse + ground
+  double cpu_ms = 0;                          // thread CPU time of the first call
+  std::uint64_t digest = 0;                   // of the ground task (0 when none)
+  seaplan::task::GroundingStageTimes stages;  // of the run with the best ground_ms
   std::string note;
 };
 
@@ -224,6 +227,7 @@ Row Run(const std::string& name, const std::string& domain, const std::string& p
   row.status = result.ok() ? "ok" : (result.unsupported() ? "UNSUPPORTED" : "ERROR");
   row.parse_ms = result.stats.parse_ms;
   row.ground_ms = result.stats.ground_ms;
+  row.stages = result.stats.stages;
   row.first_ms = row.parse_ms + row.ground_ms;
   if (result.task) {
     row.size = result.task->Size();
@@ -243,7 +247,10 @@ Row Run(const std::string& name, const std::string& domain, const std::string& p
   for (int i = 1; i < repeats; ++i) {
     auto again = seaplan::task::LoadTask(domain, problem);
     row.parse_ms = std::min(row.parse_ms, again.stats.parse_ms);
-    row.ground_ms = std::min(row.ground_ms, again.stats.ground_ms);
+    if (again.stats.ground_ms < row.ground_ms) {
+      row.ground_ms = again.stats.ground_ms;
+      row.stages = again.stats.stages;
+    }
     totals.push_back(again.stats.parse_ms + again.stats.ground_ms);
   }
   std::sort(totals.begin(), totals.end());
@@ -251,11 +258,15 @@ Row Run(const std::string& name, const std::string& domain, const std::string& p
   return row;
 }
 
-void Print(const Row& r, bool with_digest) {
+void Print(const Row& r, bool with_digest, bool with_stages) {
   std::printf("%-40s %-11s %9.3f %9.3f %9.3f %9.3f %8zu %6zu %9zu %8.2f", r.name.c_str(),
               r.status.c_str(), r.parse_ms, r.ground_ms, r.parse_ms + r.ground_ms, r.cpu_ms,
               r.size.facts, r.size.numeric_vars, r.size.actions, r.peak_mb);
   if (with_digest) std::printf(" %016llx", static_cast<unsigned long long>(r.digest));
+  if (with_stages) {
+    std::printf(" %8.3f %8.3f %8.3f %8.3f", r.stages.symbols_ms, r.stages.schemas_ms,
+                r.stages.reachability_ms, r.stages.instantiation_ms);
+  }
   std::printf("%s%s\n", r.note.empty() ? "" : "  ", r.note.c_str());
 }
 
@@ -277,14 +288,17 @@ int main(int argc, char** argv) {
   fs::path dir;
   std::string only;
   bool with_digest = false;
+  bool with_stages = false;
   for (int i = 1; i < argc; ++i) {
     std::string arg = argv[i];
     if (arg == "--only" && i + 1 < argc) {
       only = argv[++i];
     } else if (arg == "--digest") {
       with_digest = true;
+    } else if (arg == "--stages") {
+      with_stages = true;
     } else if (arg == "-h" || arg == "--help") {
-      std::printf("usage: %s [DIR] [--only DOMAIN] [--digest]\n", argv[0]);
+      std::printf("usage: %s [DIR] [--only DOMAIN] [--digest] [--stages]\n", argv[0]);
       return 0;
     } else {
       dir = arg;
@@ -294,11 +308,14 @@ int main(int argc, char** argv) {
 
   std::printf("%-40s %-11s %9s %9s %9s %9s %8s %6s %9s %8s\n", "problem", "status", "parse_ms",
               "ground_ms", "total_ms", "cpu1_ms", "facts", "nvars", "actions", "peak_mb");
-  if (with_digest) std::printf("(last column: digest of the ground task)\n");
+  if (with_digest) std::printf("(then: digest of the ground task)\n");
+  if (with_stages) {
+    std::printf("(then: symbols_ms schemas_ms reachability_ms instantiation_ms)\n");
+  }
   // The case-A-sized problem: best of 200 runs (it takes well under 1 ms).
   Row fjord = Run("fjord-case-a (built in)", seaplan::bench::kFjordDomain,
                   seaplan::bench::kFjordProblemCaseA, 200);
-  Print(fjord, with_digest);
+  Print(fjord, with_digest, with_stages);
 
   std::vector<fs::path> domains;
   if (fs::is_directory(dir)) {
@@ -311,6 +328,7 @@ int main(int argc, char** argv) {
   }
   std::sort(domains.begin(), domains.end());
   double total_parse = 0, total_ground = 0, worst = 0;
+  seaplan::task::GroundingStageTimes total_stages;
   std::string worst_name;
   int count = 0, ok = 0, unsupported = 0, errors = 0;
   for (const auto& d : domains) {
@@ -335,13 +353,17 @@ int main(int argc, char** argv) {
       if (probe.parse_ms + probe.ground_ms < 20) {
         probe = Run(d.filename().string() + "/" + stem, domain_text, problem_text, 5);
       }
-      Print(probe, with_digest);
+      Print(probe, with_digest, with_stages);
       ++count;
       ok += probe.status == "ok";
       unsupported += probe.status == "UNSUPPORTED";
       errors += probe.status == "ERROR";
       total_parse += probe.parse_ms;
       total_ground += probe.ground_ms;
+      total_stages.symbols_ms += probe.stages.symbols_ms;
+      total_stages.schemas_ms += probe.stages.schemas_ms;
+      total_stages.reachability_ms += probe.stages.reachability_ms;
+      total_stages.instantiation_ms += probe.stages.instantiation_ms;
       if (probe.parse_ms + probe.ground_ms > worst) {
         worst = probe.parse_ms + probe.ground_ms;
         worst_name = probe.name;
@@ -353,6 +375,12 @@ int main(int argc, char** argv) {
   std::printf(
       "\nTOTAL %d problems: %d ok, %d unsupported, %d errors; parse %.1f ms, ground %.1f ms\n",
       count, ok, unsupported, errors, total_parse, total_ground);
+  if (with_stages) {
+    std::printf(
+        "STAGES symbols %.1f ms, schemas %.1f ms, reachability %.1f ms, instantiation %.1f ms\n",
+        total_stages.symbols_ms, total_stages.schemas_ms, total_stages.reachability_ms,
+        total_stages.instantiation_ms);
+  }
   std::printf("LARGEST %s: %.1f ms (target < 2000 ms)\n", worst_name.c_str(), worst);
   std::printf(
       "CASE-A fjord-case-a: parse+ground %.3f ms best, %.3f ms median of 200 (target < 1 ms); "

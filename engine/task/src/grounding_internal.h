@@ -84,6 +84,24 @@ inline constexpr double kUndefinedValue = std::numeric_limits<double>::quiet_NaN
 // reported as unsupported rather than exploding.
 inline constexpr std::size_t kMaxDisjuncts = 256;
 
+// Replaces the DNF `product` by its conjunction with the DNF `part`: every
+// pair of disjuncts (product's outer, part's inner), joined by
+// append(into, from). False when that would exceed kMaxDisjuncts.
+template <typename Disjunct, typename Append>
+bool MultiplyOut(std::vector<Disjunct>& product, const std::vector<Disjunct>& part, Append append) {
+  std::vector<Disjunct> next;
+  for (const auto& a : product) {
+    for (const auto& b : part) {
+      Disjunct d = a;
+      append(d, b);
+      next.push_back(std::move(d));
+    }
+  }
+  if (next.size() > kMaxDisjuncts) return false;
+  product = std::move(next);
+  return true;
+}
+
 Comparator ToTask(pddl::Comparator comparator);
 AssignOp ToTask(pddl::AssignOp op);
 
@@ -106,8 +124,8 @@ class GroundingContext {
     diagnostics_.push_back({pddl::Severity::kWarning, pddl::DiagnosticKind::kSemantic, at,
                             std::move(symbol), std::move(message), ""});
   }
-  // One error per run for a spent budget (`what` names it), however many
-  // loops notice it.
+  // Reports a spent budget (`message` says which): one error per run,
+  // however many loops notice it.
   void BudgetExceeded(const std::string& message, const std::string& expected) {
     if (!budget_exceeded_) {
       Error(pddl::DiagnosticKind::kSemantic, problem_.location, "", message, expected);

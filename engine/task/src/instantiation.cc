@@ -38,16 +38,11 @@ bool ToGroundDnf(const GroundFormula& g, std::vector<GroundConjunction>& out) {
             a.leaves.insert(a.leaves.end(), part[0].leaves.begin(), part[0].leaves.end());
           continue;
         }
-        std::vector<GroundConjunction> next;
-        for (const auto& a : product) {
-          for (const auto& p : part) {
-            GroundConjunction d = a;
-            d.leaves.insert(d.leaves.end(), p.leaves.begin(), p.leaves.end());
-            next.push_back(std::move(d));
-          }
-        }
-        if (next.size() > kMaxDisjuncts) return false;
-        product = std::move(next);
+        const bool fits =
+            MultiplyOut(product, part, [](GroundConjunction& into, const GroundConjunction& from) {
+              into.leaves.insert(into.leaves.end(), from.leaves.begin(), from.leaves.end());
+            });
+        if (!fits) return false;
       }
       out.insert(out.end(), product.begin(), product.end());
       return true;

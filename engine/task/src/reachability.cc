@@ -9,10 +9,26 @@ namespace seaplan::task::internal {
 
 // ---- tables -------------------------------------------------------------------
 
+namespace {
+
+// (head, objects...) as TupleSet keys hold them.
+void Pack(std::int32_t head, std::span<const ObjectId> args, std::vector<std::int32_t>& key) {
+  key.clear();
+  key.push_back(head);
+  for (ObjectId o : args) key.push_back(o.value());
+}
+
+std::vector<ObjectId> Unpack(std::span<const std::int32_t> key) {
+  std::vector<ObjectId> args;
+  args.reserve(key.size() - 1);
+  for (std::size_t i = 1; i < key.size(); ++i) args.push_back(ObjectId(key[i]));
+  return args;
+}
+
+}  // namespace
+
 void AtomTable::PackKey(PredicateId predicate, std::span<const ObjectId> args) {
-  key_.clear();
-  key_.push_back(predicate.value());
-  for (ObjectId o : args) key_.push_back(o.value());
+  Pack(predicate.value(), args, key_);
 }
 
 AtomId AtomTable::Intern(PredicateId predicate, std::span<const ObjectId> args, bool* inserted) {
@@ -29,17 +45,11 @@ AtomId AtomTable::Find(PredicateId predicate, std::span<const ObjectId> args) {
 }
 
 std::vector<ObjectId> AtomTable::arguments(AtomId atom) const {
-  auto key = atoms_.Get(atom.value());
-  std::vector<ObjectId> args;
-  args.reserve(key.size() - 1);
-  for (std::size_t i = 1; i < key.size(); ++i) args.push_back(ObjectId(key[i]));
-  return args;
+  return Unpack(atoms_.Get(atom.value()));
 }
 
 void FunctionTermTable::PackKey(FunctionId function, std::span<const ObjectId> args) {
-  key_.clear();
-  key_.push_back(function.value());
-  for (ObjectId o : args) key_.push_back(o.value());
+  Pack(function.value(), args, key_);
 }
 
 FunctionTermId FunctionTermTable::Intern(FunctionId function, std::span<const ObjectId> args,
@@ -63,26 +73,16 @@ void FunctionTermTable::SetInitialValue(FunctionId function, std::span<const Obj
 }
 
 std::vector<ObjectId> FunctionTermTable::arguments(FunctionTermId term) const {
-  auto key = terms_.Get(term.value());
-  std::vector<ObjectId> args;
-  args.reserve(key.size() - 1);
-  for (std::size_t i = 1; i < key.size(); ++i) args.push_back(ObjectId(key[i]));
-  return args;
+  return Unpack(terms_.Get(term.value()));
 }
 
 bool InstanceTable::Insert(DisjunctId disjunct, const Binding& binding) {
-  key_.clear();
-  key_.push_back(disjunct.value());
-  for (ObjectId o : binding) key_.push_back(o.value());
+  Pack(disjunct.value(), binding, key_);
   return instances_.Insert(key_).second;
 }
 
 Binding InstanceTable::binding(std::size_t instance) const {
-  auto key = instances_.Get(static_cast<std::int32_t>(instance));
-  Binding out;
-  out.reserve(key.size() - 1);
-  for (std::size_t i = 1; i < key.size(); ++i) out.push_back(ObjectId(key[i]));
-  return out;
+  return Unpack(instances_.Get(static_cast<std::int32_t>(instance)));
 }
 
 double EvaluateStatic(const SchemaExpression& e, const Binding& binding,

@@ -295,18 +295,12 @@ bool ToDnf(const SchemaCondition& c, std::vector<Disjunct>& out) {
       for (const auto& child : c.children) {
         std::vector<Disjunct> part;
         if (!ToDnf(child, part)) return false;
-        std::vector<Disjunct> next;
-        for (const auto& a : product) {
-          for (const auto& b : part) {
-            Disjunct d = a;
-            d.items.insert(d.items.end(), b.items.begin(), b.items.end());
-            d.exists_variables.insert(d.exists_variables.end(), b.exists_variables.begin(),
-                                      b.exists_variables.end());
-            next.push_back(std::move(d));
-          }
-        }
-        if (next.size() > kMaxDisjuncts) return false;
-        product = std::move(next);
+        const bool fits = MultiplyOut(product, part, [](Disjunct& into, const Disjunct& from) {
+          into.items.insert(into.items.end(), from.items.begin(), from.items.end());
+          into.exists_variables.insert(into.exists_variables.end(), from.exists_variables.begin(),
+                                       from.exists_variables.end());
+        });
+        if (!fits) return false;
       }
       out.insert(out.end(), product.begin(), product.end());
       return true;
