@@ -171,6 +171,7 @@ PlanRun RunPlanner(const v1::PlanRequest& request, const search::PlannerOptions&
   for (const auto& d : loaded.diagnostics) *run.response.add_diagnostics() = ToProto(d);
   if (loaded.stopped()) {  // a result: the limit (or the caller) ended grounding
     const bool cancelled = loaded.stop_reason == StopReason::kCancelled;
+    StatsToProto(search::SearchStatistics{}, stats);  // no search: no plan times
     run.response.set_status(cancelled ? v1::CANCELLED : v1::TIMEOUT);
     run.response.set_message(cancelled ? "cancelled while grounding"
                                        : "time limit reached while grounding");

@@ -134,6 +134,7 @@ TEST(PlanningE2eTest, TheTimeLimitBoundsGroundingToo) {
   EXPECT_EQ(resp.status(), v1::TIMEOUT);
   EXPECT_EQ(resp.message(), "time limit reached while grounding");
   EXPECT_EQ(resp.statistics().ground_actions(), 0u);
+  EXPECT_EQ(resp.statistics().first_plan_time_s(), -1.0);  // none
   EXPECT_GT(resp.statistics().grounding().parse_s(), 0.0);
 }
 
