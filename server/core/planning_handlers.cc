@@ -139,6 +139,21 @@ void FillPlan(const search::PlanResult& r, v1::PlanResponse* out) {
   out->set_message(r.message);
 }
 
+void GroundingStatsToProto(const task::GroundingStats& in, v1::SearchStatistics* out) {
+  out->set_grounding_time_s((in.parse_ms + in.ground_ms) / 1000.0);
+  out->set_ground_facts(in.size.facts);
+  out->set_ground_numeric_variables(in.size.numeric_vars);
+  out->set_ground_actions(in.size.actions);
+  v1::GroundingStatistics* stages = out->mutable_grounding();
+  stages->set_parse_s(in.parse_ms / 1000.0);
+  stages->set_symbols_s(in.stages.symbols_ms / 1000.0);
+  stages->set_schemas_s(in.stages.schemas_ms / 1000.0);
+  stages->set_reachability_s(in.stages.reachability_ms / 1000.0);
+  stages->set_instantiation_s(in.stages.instantiation_ms / 1000.0);
+  stages->set_reachable_atoms(in.reachable_atoms);
+  stages->set_static_atoms(in.static_atoms);
+}
+
 // One planning run on a worker thread. `observer` may be null.
 struct PlanRun {
   absl::Status status;
@@ -148,13 +163,20 @@ struct PlanRun {
 PlanRun RunPlanner(const v1::PlanRequest& request, const search::PlannerOptions& options,
                    const StopToken& stop, const search::PlanObserver* observer) {
   PlanRun run;
-  task::LoadResult loaded = task::LoadTask(request.domain(), request.problem());
+  task::LoadResult loaded =
+      task::LoadTask(request.domain(), request.problem(), task::GroundingOptions{},
+                     search::WithinTimeLimit(options, stop));
   v1::SearchStatistics* stats = run.response.mutable_statistics();
-  stats->set_grounding_time_s((loaded.stats.parse_ms + loaded.stats.ground_ms) / 1000.0);
-  stats->set_ground_facts(loaded.stats.size.facts);
-  stats->set_ground_numeric_variables(loaded.stats.size.numeric_vars);
-  stats->set_ground_actions(loaded.stats.size.actions);
+  GroundingStatsToProto(loaded.stats, stats);
   for (const auto& d : loaded.diagnostics) *run.response.add_diagnostics() = ToProto(d);
+  if (loaded.stopped()) {  // a result: the limit (or the caller) ended grounding
+    const bool cancelled = loaded.stop_reason == StopReason::kCancelled;
+    StatsToProto(search::SearchStatistics{}, stats);  // no search: no plan times
+    run.response.set_status(cancelled ? v1::CANCELLED : v1::TIMEOUT);
+    run.response.set_message(cancelled ? "cancelled while grounding"
+                                       : "time limit reached while grounding");
+    return run;
+  }
   if (HasInputErrors(loaded.diagnostics)) {
     run.status = MalformedPddl(loaded);
     return run;
@@ -164,13 +186,9 @@ PlanRun RunPlanner(const v1::PlanRequest& request, const search::PlannerOptions&
     run.response.set_message(loaded.ErrorText());
     return run;
   }
-  const v1::SearchStatistics grounding = *stats;
   search::PlanResult result = search::SolveTask(*loaded.task, options, stop, observer);
   FillPlan(result, &run.response);
-  stats->set_grounding_time_s(grounding.grounding_time_s());
-  stats->set_ground_facts(grounding.ground_facts());
-  stats->set_ground_numeric_variables(grounding.ground_numeric_variables());
-  stats->set_ground_actions(grounding.ground_actions());
+  GroundingStatsToProto(loaded.stats, stats);
   if (result.status == search::PlanStatus::kError) {
     run.status = absl::InvalidArgumentError(absl::StrCat("planner: ", result.message));
   }
@@ -273,7 +291,9 @@ absl::StatusOr<v1::ValidateResponse> PlanningHandlers::Validate(const v1::Valida
   v1::ValidateResponse response;
   SEAPLAN_RETURN_IF_ERROR(pool_.Run(
       [&] {
-        task::LoadResult loaded = task::LoadTask(request.domain(), request.problem());
+        task::LoadResult loaded =
+            task::LoadTask(request.domain(), request.problem(), task::GroundingOptions{}, ctx.stop);
+        if (loaded.stopped()) return;  // reported below, as for planning
         for (const auto& d : loaded.diagnostics) *response.add_diagnostics() = ToProto(d);
         if (HasInputErrors(loaded.diagnostics)) {
           status = MalformedPddl(loaded);
@@ -305,6 +325,7 @@ absl::StatusOr<v1::ValidateResponse> PlanningHandlers::Validate(const v1::Valida
         }
       },
       [&] { ctx.ForwardCancellation(); }));
+  if (ctx.stop.StopRequested()) return StopStatus(ctx.stop, root_.StopRequested(), "validation");
   if (!status.ok()) return status;
   return response;
 #else

@@ -110,6 +110,34 @@ TEST(PlanningE2eTest, PlanStreamOverHttpIsNdjsonEndingWithTheFinalResult) {
   EXPECT_NE(bad->body.find("DiagnosticList"), std::string::npos) << bad->body;
 }
 
+TEST(PlanningE2eTest, TheTimeLimitBoundsGroundingToo) {
+  // 100^3 action instances: grounding alone would take seconds and hundreds
+  // of MB; under a 200 ms limit the response says the limit ended grounding.
+  std::string objects;
+  for (int i = 0; i < 100; ++i) objects += " o" + std::to_string(i);
+  InProcessServer s;
+  auto planning = v1::PlanningService::NewStub(s.channel());
+  if (!PlannerBuilt(planning.get())) GTEST_SKIP() << "planner not built into the server";
+  ClientContext ctx;
+  SetDeadline(&ctx, 60000);
+  v1::PlanRequest req;
+  req.set_domain(R"(
+(define (domain big) (:requirements :typing) (:types obj)
+ (:predicates (p ?a ?b ?c - obj))
+ (:action a :parameters (?x ?y ?z - obj) :precondition () :effect (p ?x ?y ?z))))");
+  req.set_problem("(define (problem q) (:domain big) (:objects" + objects +
+                  " - obj) (:init) (:goal (p o1 o2 o3)))");
+  req.mutable_options()->mutable_time_limit()->set_nanos(200'000'000);
+  v1::PlanResponse resp;
+  grpc::Status st = planning->Plan(&ctx, req, &resp);
+  ASSERT_TRUE(st.ok()) << st.error_message();
+  EXPECT_EQ(resp.status(), v1::TIMEOUT);
+  EXPECT_EQ(resp.message(), "time limit reached while grounding");
+  EXPECT_EQ(resp.statistics().ground_actions(), 0u);
+  EXPECT_EQ(resp.statistics().first_plan_time_s(), -1.0);  // none
+  EXPECT_GT(resp.statistics().grounding().parse_s(), 0.0);
+}
+
 TEST(PlanningE2eTest, ClientDeadlineStopsALongSearch) {
   SEAPLAN_REQUIRE_SHARED(problem_path, "bench/depots-time/p05.pddl");
   const std::string domain = seaplan::testing::ReadFile(problem_path.parent_path() / "domain.pddl");

@@ -1,5 +1,6 @@
 #include "seaplan/search/planner.h"
 
+#include <algorithm>
 #include <chrono>
 #include <cmath>
 #include <memory>
@@ -310,21 +311,43 @@ PlanResult SolveTask(const task::GroundTask& task, const PlannerOptions& options
   return run->Run();
 }
 
+StopToken WithinTimeLimit(const PlannerOptions& options, const StopToken& stop) {
+  // Clamped as Solve clamps the search's share (and to a year, so that the
+  // deadline cannot overflow the clock); SolveTask reports invalid options.
+  double limit_s = options.time_limit_s;
+  if (!(limit_s > 1e-3)) limit_s = 1e-3;
+  if (limit_s > 3.2e7) limit_s = 3.2e7;
+  return stop.Child(Clock::now() + std::chrono::duration_cast<Clock::duration>(
+                                       std::chrono::duration<double>(limit_s)));
+}
+
 PlanResult Solve(std::string_view domain_text, std::string_view problem_text,
                  const PlannerOptions& options, const StopToken& stop,
                  const PlanObserver* observer) {
   const auto start = Clock::now();
-  task::LoadResult loaded = task::LoadTask(domain_text, problem_text);
+  task::LoadResult loaded = task::LoadTask(domain_text, problem_text, task::GroundingOptions{},
+                                           WithinTimeLimit(options, stop));
+  if (loaded.stopped()) {
+    PlanResult r;
+    const bool cancelled = loaded.stop_reason == StopReason::kCancelled;
+    r.status = cancelled ? PlanStatus::kCancelled : PlanStatus::kTimeout;
+    r.message = cancelled ? "cancelled while grounding" : "time limit reached while grounding";
+    r.grounding = loaded.stats;
+    r.stats.search_time_s = Seconds(start);
+    return r;
+  }
   if (!loaded.ok()) {
     PlanResult r;
     r.status = loaded.unsupported() ? PlanStatus::kUnsupported : PlanStatus::kError;
     r.message = loaded.ErrorText();
     if (r.message.empty()) r.message = "the task could not be loaded";
+    r.grounding = loaded.stats;
     return r;
   }
   PlannerOptions rest = options;
   rest.time_limit_s = std::max(1e-3, options.time_limit_s - Seconds(start));
   PlanResult r = SolveTask(*loaded.task, rest, stop, observer);
+  r.grounding = loaded.stats;
   r.stats.search_time_s = Seconds(start);
   return r;
 }

@@ -236,5 +236,37 @@ TEST(PlannerTest, SolveReportsParseErrors) {
   EXPECT_FALSE(r.message.empty());
 }
 
+TEST(PlannerTest, TheTimeLimitBoundsGroundingToo) {
+  // 100^3 action instances: grounding alone takes seconds (and hundreds of
+  // MB); under a 50 ms limit it must stop and report the limit, not finish.
+  std::string objects;
+  for (int i = 0; i < 100; ++i) objects += " o" + std::to_string(i);
+  const std::string domain = R"(
+(define (domain big) (:requirements :typing) (:types obj)
+ (:predicates (p ?a ?b ?c - obj))
+ (:action a :parameters (?x ?y ?z - obj) :precondition () :effect (p ?x ?y ?z))))";
+  const std::string problem = "(define (problem q) (:domain big) (:objects" + objects +
+                              " - obj) (:init) (:goal (p o1 o2 o3)))";
+  const PlanResult r = Solve(domain, problem, Quick(0.05), StopToken());
+  EXPECT_EQ(r.status, PlanStatus::kTimeout);
+  EXPECT_EQ(r.message, "time limit reached while grounding");
+  EXPECT_EQ(r.grounding.size.actions, 0u);  // no task was built
+  StopToken cancelled;
+  cancelled.Cancel();
+  EXPECT_EQ(Solve(domain, problem, Quick(60), cancelled).status, PlanStatus::kCancelled);
+}
+
+TEST(PlannerTest, SolveReportsGroundingStatistics) {
+  const PlanResult r =
+      Solve(testing::ReadFile(TestData("match-domain.pddl")),
+            testing::ReadFile(TestData("match-problem.pddl")), Quick(1), StopToken());
+  EXPECT_TRUE(r.status == PlanStatus::kSolvedSatisficing ||
+              r.status == PlanStatus::kSolvedOptimally)
+      << ToString(r.status);
+  EXPECT_GT(r.grounding.size.actions, 0u);
+  EXPECT_GT(r.grounding.stages.reachability_ms, 0.0);
+  EXPECT_GT(r.grounding.stages.instantiation_ms, 0.0);
+}
+
 }  // namespace
 }  // namespace seaplan::search

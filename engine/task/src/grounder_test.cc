@@ -3,10 +3,12 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <set>
 #include <sstream>
+#include <utility>
 
 #include "seaplan/testing/shared_data.h"
 
@@ -331,6 +333,55 @@ TEST(GrounderTest, BudgetsEndInAnErrorNotUnboundedMemory) {
       << wide.ErrorText();
   options.max_actions = 0;
   EXPECT_FALSE(options.Validate().ok());
+}
+
+// A problem whose grounding takes far longer than a stop token allows: the
+// 60^3 actions of the budget test, with no budget in the way.
+std::pair<std::string, std::string> LargeProblem() {
+  std::string objects;
+  for (int i = 0; i < 60; ++i) objects += " o" + std::to_string(i);
+  return {R"(
+(define (domain big) (:requirements :typing) (:types obj)
+ (:predicates (p ?a ?b ?c - obj) (q ?a - obj))
+ (:action a :parameters (?x ?y ?z - obj) :precondition (q ?x) :effect (p ?x ?y ?z))))",
+          "(define (problem q) (:domain big) (:objects" + objects +
+              " - obj) (:init (q o1)) (:goal (p o1 o2 o3)))"};
+}
+
+TEST(GrounderTest, AStopTokenEndsGroundingAsAResultNotAnError) {
+  const auto [domain, problem] = LargeProblem();
+  const StopToken expired(StopToken::Clock::now() - std::chrono::seconds(1));
+  auto r = LoadTask(domain, problem, GroundingOptions{}, expired);
+  EXPECT_TRUE(r.stopped());
+  EXPECT_EQ(r.stop_reason, StopReason::kDeadline);
+  EXPECT_EQ(r.task, nullptr);
+  EXPECT_FALSE(pddl::HasErrors(r.diagnostics)) << r.ErrorText();
+  // Stopped at the first check, after the symbols: no later stage ran.
+  EXPECT_EQ(r.stats.stages.reachability_ms, 0.0);
+  EXPECT_EQ(r.stats.stages.instantiation_ms, 0.0);
+  // Cancelled by another component (an RPC whose client left): the same.
+  StopToken cancelled;
+  cancelled.Cancel();
+  auto c = LoadTask(domain, problem, GroundingOptions{}, cancelled);
+  EXPECT_EQ(c.stop_reason, StopReason::kCancelled);
+  EXPECT_EQ(c.task, nullptr);
+}
+
+TEST(GrounderTest, StatisticsTimeEveryStage) {
+  const auto [domain, problem] = LargeProblem();
+  auto r = LoadTask(domain, problem);
+  ASSERT_TRUE(r.ok()) << r.ErrorText();
+  EXPECT_FALSE(r.stopped());
+  EXPECT_EQ(r.task->actions.size(), 60u * 60u);  // ?x is o1 only
+  const GroundingStageTimes& t = r.stats.stages;
+  EXPECT_GT(t.symbols_ms, 0.0);
+  EXPECT_GT(t.schemas_ms, 0.0);
+  EXPECT_GT(t.reachability_ms, 0.0);
+  EXPECT_GT(t.instantiation_ms, 0.0);
+  EXPECT_GE(r.stats.ground_ms,
+            t.symbols_ms + t.schemas_ms + t.reachability_ms + t.instantiation_ms);
+  EXPECT_EQ(r.stats.static_atoms, 1u);  // (q o1): no effect changes q
+  EXPECT_EQ(r.stats.reachable_atoms, 1u + 60u * 60u);
 }
 
 TEST(GrounderTest, ActionIndexAndExplainMissingAction) {

@@ -38,6 +38,7 @@
 #include "seaplan/common/status.h"
 #include "seaplan/common/stop_token.h"
 #include "seaplan/task/ground_task.h"
+#include "seaplan/task/grounder.h"
 #include "seaplan/validate/plan.h"
 
 namespace seaplan::search {
@@ -88,6 +89,8 @@ struct PlanResult {
   double makespan_s = 0;
   std::optional<double> metric_value;  // the task's metric on the plan, when defined
   SearchStatistics stats;
+  // Solve only: parse and per-stage grounding times and the task's size.
+  task::GroundingStats grounding;
   std::string message;  // one line: what happened (error text for kError/kUnsupported)
 };
 
@@ -104,9 +107,15 @@ struct PlanObserver {
 PlanResult SolveTask(const task::GroundTask& task, const PlannerOptions& options,
                      const StopToken& stop, const PlanObserver* observer = nullptr);
 
+// A child of `stop` that also stops once options.time_limit_s has passed
+// from now: what Solve grounds under, for callers that ground themselves
+// before SolveTask (a huge task must not ground for minutes under a 1 s limit).
+StopToken WithinTimeLimit(const PlannerOptions& options, const StopToken& stop);
+
 // Parses and grounds (task::LoadTask), then SolveTask. Parse or grounding
 // errors give kError, unsupported PDDL gives kUnsupported, with the
-// diagnostics in `message`.
+// diagnostics in `message`. options.time_limit_s and `stop` bound grounding
+// too: stopped while grounding gives kTimeout (or kCancelled).
 PlanResult Solve(std::string_view domain_text, std::string_view problem_text,
                  const PlannerOptions& options, const StopToken& stop,
                  const PlanObserver* observer = nullptr);

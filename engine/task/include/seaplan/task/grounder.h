@@ -4,19 +4,24 @@
 //   if (!loaded.ok()) { /* loaded.diagnostics says what and where */ }
 //   const GroundTask& task = *loaded.task;
 //
-// Grounding is driven by relaxed reachability (a Datalog-style fixpoint, as
-// Fast Downward's translator): an action instance is generated only when all
-// its positive fact preconditions are reachable, found by joining the
-// precondition atoms most-selective-first, never by enumerating all parameter
-// combinations. Static predicates (changed by no effect and no timed literal)
-// are folded away, static fluents are folded into constants, quantifiers and
-// conditional effects are expanded, disjunctions are compiled into DNF copies
-// (Action::variant), equality is evaluated. Numeric conditions are treated
-// optimistically during reachability unless they are fully static. Facts
-// added by timed initial literals count as reachable. A goal that is
-// statically false is kept (as a fact nothing achieves) so that the planner
-// proves unsolvability instead of the grounder silently dropping it; a
-// warning says so.
+// Grounding runs in stages, each handing a value to the next (as Fast
+// Downward's translator): symbols (names to ids, static predicates and
+// functions), schema compilation (conditions in negation normal form,
+// preconditions in DNF), reachability (a Datalog-style relaxed fixpoint: an
+// action instance is generated only when all its positive fact
+// preconditions are reachable, found by joining the precondition atoms
+// most-selective-first, never by enumerating all parameter combinations),
+// and instantiation (the ground task). Static predicates (changed by no
+// effect and no timed literal) are folded away, static fluents are folded
+// into constants, quantifiers and conditional effects are expanded,
+// disjunctions are compiled into DNF copies (Action::variant), equality is
+// evaluated. Numeric conditions are treated optimistically during
+// reachability unless they are fully static. Facts added by timed initial
+// literals count as reachable. A goal that is statically false is kept (as
+// a fact nothing achieves) so that the planner proves unsolvability instead
+// of the grounder silently dropping it; a warning says so. The StopToken is
+// polled between stages and inside their long loops: a stopped run returns
+// no task and no error, with LoadResult::stop_reason set.
 //
 // Generated names (e.g. the never-true fact standing for a statically false
 // goal) contain '@', which no PDDL name can, so they never clash.
@@ -47,6 +52,7 @@
 #include <vector>
 
 #include "seaplan/common/status.h"
+#include "seaplan/common/stop_token.h"
 #include "seaplan/pddl/diagnostic.h"
 #include "seaplan/pddl/parser.h"
 #include "seaplan/task/ground_task.h"
@@ -67,10 +73,19 @@ struct GroundingOptions {
   absl::Status Validate() const;
 };
 
+// Wall-clock time of each grounding stage, ms (0 for a stage not run).
+struct GroundingStageTimes {
+  double symbols_ms = 0.0;        // interning, problem/domain check, statics
+  double schemas_ms = 0.0;        // NNF conditions, DNF disjuncts, goal and metric
+  double reachability_ms = 0.0;   // :init and the relaxed fixpoint
+  double instantiation_ms = 0.0;  // ground actions, initial state, goal, metric
+};
+
 struct GroundingStats {
-  double parse_ms = 0.0;            // both files (LoadTask only)
-  double ground_ms = 0.0;           // reachability + instantiation + task building
-  std::size_t reachable_atoms = 0;  // incl. static ones
+  double parse_ms = 0.0;   // both files (LoadTask only)
+  double ground_ms = 0.0;  // every grounding stage (the sum of `stages`, and overhead)
+  GroundingStageTimes stages;
+  std::size_t reachable_atoms = 0;  // atoms interned, incl. static and unreachable ones
   std::size_t static_atoms = 0;     // true static atoms (folded away)
   TaskSize size;                    // same as task->Size()
 };
@@ -83,21 +98,31 @@ struct LoadResult {
   // that need to explain things in PDDL terms (ExplainMissingAction).
   std::shared_ptr<const pddl::Domain> domain;
   std::shared_ptr<const pddl::Problem> problem;
+  // kDeadline or kCancelled when the StopToken ended grounding (task null,
+  // no error diagnostic: a result, not an input error).
+  StopReason stop_reason = StopReason::kNone;
 
+  bool stopped() const { return stop_reason != StopReason::kNone; }
   bool ok() const { return task != nullptr && !pddl::HasErrors(diagnostics); }
   bool unsupported() const { return pddl::HasUnsupported(diagnostics); }
   // Every diagnostic, one per line (empty when none).
   std::string ErrorText() const { return pddl::FormatDiagnostics(diagnostics); }
 };
 
-// Grounds a parsed, checked domain and problem.
+// Grounds a parsed, checked domain and problem; stops early (stop_reason
+// set) when `stop` fires.
 LoadResult Ground(const pddl::Domain& domain, const pddl::Problem& problem,
-                  const GroundingOptions& options = {});
+                  const GroundingOptions& options = {}, const StopToken& stop = StopToken());
 
 // Parses both texts and grounds. Diagnostics name the texts `domain_file`
 // and `problem_file` ("domain" and "problem" unless given).
 LoadResult LoadTask(std::string_view domain_text, std::string_view problem_text,
                     const GroundingOptions& options = {}, std::string_view domain_file = "domain",
+                    std::string_view problem_file = "problem");
+// The same, polling `stop` while grounding (parsing is linear and not polled).
+LoadResult LoadTask(std::string_view domain_text, std::string_view problem_text,
+                    const GroundingOptions& options, const StopToken& stop,
+                    std::string_view domain_file = "domain",
                     std::string_view problem_file = "problem");
 
 // Reads both files and calls LoadTask (diagnostics name the paths). An
