@@ -7,6 +7,7 @@
 
 #include <future>
 
+#include "seaplan/testing/large_pddl.h"
 #include "seaplan/testing/shared_data.h"
 #include "test_support.h"
 
@@ -113,20 +114,15 @@ TEST(PlanningE2eTest, PlanStreamOverHttpIsNdjsonEndingWithTheFinalResult) {
 TEST(PlanningE2eTest, TheTimeLimitBoundsGroundingToo) {
   // 100^3 action instances: grounding alone would take seconds and hundreds
   // of MB; under a 200 ms limit the response says the limit ended grounding.
-  std::string objects;
-  for (int i = 0; i < 100; ++i) objects += " o" + std::to_string(i);
+  const auto task = seaplan::testing::CubicGroundingTask(100);
   InProcessServer s;
   auto planning = v1::PlanningService::NewStub(s.channel());
   if (!PlannerBuilt(planning.get())) GTEST_SKIP() << "planner not built into the server";
   ClientContext ctx;
   SetDeadline(&ctx, 60000);
   v1::PlanRequest req;
-  req.set_domain(R"(
-(define (domain big) (:requirements :typing) (:types obj)
- (:predicates (p ?a ?b ?c - obj))
- (:action a :parameters (?x ?y ?z - obj) :precondition () :effect (p ?x ?y ?z))))");
-  req.set_problem("(define (problem q) (:domain big) (:objects" + objects +
-                  " - obj) (:init) (:goal (p o1 o2 o3)))");
+  req.set_domain(task.domain);
+  req.set_problem(task.problem);
   req.mutable_options()->mutable_time_limit()->set_nanos(200'000'000);
   v1::PlanResponse resp;
   grpc::Status st = planning->Plan(&ctx, req, &resp);

@@ -7,6 +7,7 @@
 #include <thread>
 
 #include "seaplan/task/grounder.h"
+#include "seaplan/testing/large_pddl.h"
 #include "seaplan/testing/shared_data.h"
 #include "seaplan/validate/validator.h"
 
@@ -239,14 +240,7 @@ TEST(PlannerTest, SolveReportsParseErrors) {
 TEST(PlannerTest, TheTimeLimitBoundsGroundingToo) {
   // 100^3 action instances: grounding alone takes seconds (and hundreds of
   // MB); under a 50 ms limit it must stop and report the limit, not finish.
-  std::string objects;
-  for (int i = 0; i < 100; ++i) objects += " o" + std::to_string(i);
-  const std::string domain = R"(
-(define (domain big) (:requirements :typing) (:types obj)
- (:predicates (p ?a ?b ?c - obj))
- (:action a :parameters (?x ?y ?z - obj) :precondition () :effect (p ?x ?y ?z))))";
-  const std::string problem = "(define (problem q) (:domain big) (:objects" + objects +
-                              " - obj) (:init) (:goal (p o1 o2 o3)))";
+  const auto [domain, problem] = testing::CubicGroundingTask(100);
   const PlanResult r = Solve(domain, problem, Quick(0.05), StopToken());
   EXPECT_EQ(r.status, PlanStatus::kTimeout);
   EXPECT_EQ(r.message, "time limit reached while grounding");

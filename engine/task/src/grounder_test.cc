@@ -10,6 +10,7 @@
 #include <sstream>
 #include <utility>
 
+#include "seaplan/testing/large_pddl.h"
 #include "seaplan/testing/shared_data.h"
 
 namespace seaplan::task {
@@ -292,12 +293,7 @@ TEST(GrounderTest, StaticallyFalseGoalsAreKeptNotDropped) {
 TEST(GrounderTest, BudgetsEndInAnErrorNotUnboundedMemory) {
   std::string objects;
   for (int i = 0; i < 60; ++i) objects += " o" + std::to_string(i);
-  const std::string domain = R"(
-(define (domain big) (:requirements :typing) (:types obj)
- (:predicates (p ?a ?b ?c - obj))
- (:action a :parameters (?x ?y ?z - obj) :precondition () :effect (p ?x ?y ?z))))";
-  const std::string problem = "(define (problem q) (:domain big) (:objects" + objects +
-                              " - obj) (:init) (:goal (p o1 o2 o3)))";
+  const auto [domain, problem] = testing::CubicGroundingTask(60);
   GroundingOptions options;
   options.max_actions = 10'000;  // 60^3 = 216000 would be needed
   auto r = LoadTask(domain, problem, options);
