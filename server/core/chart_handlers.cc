@@ -3,12 +3,9 @@
 #include <algorithm>
 
 #include "absl/strings/str_cat.h"
-#include "server/core/convert.h"
-
-#if SEAPLAN_SERVER_HAS_CHART
 #include "seaplan/chart/geojson.h"
 #include "seaplan/chart/obstacle_map.h"
-#endif
+#include "server/core/convert.h"
 
 namespace seaplan::server {
 namespace {
@@ -17,7 +14,6 @@ namespace {
 constexpr double kDefaultMinimumDepthM = 10.0;
 constexpr double kDefaultSafetyBufferM = 10.0;
 
-#if SEAPLAN_SERVER_HAS_CHART
 v1::ObstacleSummary ToProto(const chart::ObstacleSummary& s) {
   v1::ObstacleSummary out;
   out.set_obstacle_count(s.polygon_count);
@@ -31,7 +27,6 @@ v1::ObstacleSummary ToProto(const chart::ObstacleSummary& s) {
   out.set_frame(absl::StrCat("EPSG:", s.frame_epsg));
   return out;
 }
-#endif
 
 }  // namespace
 
@@ -61,7 +56,6 @@ absl::StatusOr<v1::UploadChartResponse> ChartHandlers::UploadChart(
   if (request.minimum_depth_m() < 0 || request.safety_buffer_m() < 0) {
     return absl::InvalidArgumentError("minimum_depth_m and safety_buffer_m must not be negative");
   }
-#if SEAPLAN_SERVER_HAS_CHART
   chart::ChartOptions options;
   options.min_depth_m =
       request.minimum_depth_m() > 0 ? request.minimum_depth_m() : kDefaultMinimumDepthM;
@@ -109,12 +103,6 @@ absl::StatusOr<v1::UploadChartResponse> ChartHandlers::UploadChart(
   *response.mutable_chart() = ChartFromRecord(stored);
   for (const auto& w : map->summary().warnings) response.add_warnings(w);
   return response;
-#else
-  (void)ctx;
-  return absl::UnimplementedError(
-      "ChartService.UploadChart: the chart loader (engine/chart, seaplan_chart) is not built into "
-      "this server yet");
-#endif
 }
 
 absl::StatusOr<v1::GetChartResponse> ChartHandlers::GetChart(const v1::GetChartRequest& request,
@@ -126,16 +114,9 @@ absl::StatusOr<v1::GetChartResponse> ChartHandlers::GetChart(const v1::GetChartR
   v1::GetChartResponse response;
   *response.mutable_chart() = ChartFromRecord(record);
   if (request.include_obstacles_geojson()) {
-#if SEAPLAN_SERVER_HAS_CHART
     SEAPLAN_ASSIGN_OR_RETURN(chart::ObstacleMap map,
                              chart::DeserializeObstacleMap(record.obstacles));
     response.set_obstacles_geojson(chart::ToGeoJson(map));
-#else
-    return absl::UnimplementedError(
-        "ChartService.GetChart: include_obstacles_geojson needs engine/chart (seaplan_chart), not "
-        "built into this "
-        "server yet");
-#endif
   }
   return response;
 }
