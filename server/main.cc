@@ -9,7 +9,6 @@
 #include "seaplan/common/log.h"
 #include "seaplan/storage/open_store.h"
 #include "server/config/config.h"
-#include "server/core/mission_engine_adapter.h"
 #include "server/server.h"
 
 int main(int argc, char** argv) {
@@ -39,11 +38,7 @@ int main(int argc, char** argv) {
   auto store = std::move(opened->store);
   log::Info("database {} (schema version {})", opened->description, storage::LatestSchemaVersion());
 
-  // Null when the mission engine is not built in: MissionService then
-  // answers UNIMPLEMENTED for planning RPCs.
-  std::shared_ptr<server::MissionEngine> mission_engine =
-      server::MakeMissionEngine(store->charts());
-  auto server = server::Server::Start(config.server, *store, mission_engine);
+  auto server = server::Server::Start(config.server, *store);
   if (!server.ok()) {
     log::Error("cannot start: {}", server.status().ToString());
     return 1;

@@ -16,7 +16,7 @@ namespace seaplan::server {
 
 absl::StatusOr<std::unique_ptr<Server>> Server::Start(
     const ServerOptions& options, storage::Store& store,
-    std::shared_ptr<MissionEngine> mission_engine) {
+    std::shared_ptr<mission::MissionEngine> mission_engine) {
   if (options.max_request_bytes == 0 || options.max_request_bytes > (1u << 31) - 1) {
     return absl::InvalidArgumentError("max request bytes must be in 1..2^31-1");
   }
@@ -63,11 +63,9 @@ absl::StatusOr<std::unique_ptr<Server>> Server::Start(
     server->http_port_ = *port;
     server->http_->Start();
   }
-  log::Info(
-      "seaplan-server listening: grpc={} (port {}), http={} (port {}); engines: {}; planning "
-      "workers: {}",
-      options.grpc_address, server->grpc_port_, options.http_address, server->http_port_,
-      BuiltEngines(), options.core.planning_threads);
+  log::Info("seaplan-server listening: grpc={} (port {}), http={} (port {}); planning workers: {}",
+            options.grpc_address, server->grpc_port_, options.http_address, server->http_port_,
+            options.core.planning_threads);
   return server;
 }
 

@@ -45,7 +45,7 @@ class Server {
   // Binds both ports and starts serving. `store` must outlive the server.
   static absl::StatusOr<std::unique_ptr<Server>> Start(
       const ServerOptions& options, storage::Store& store,
-      std::shared_ptr<MissionEngine> mission_engine = nullptr);
+      std::shared_ptr<mission::MissionEngine> mission_engine = nullptr);
   ~Server();  // Shutdown()
   Server(const Server&) = delete;
   Server& operator=(const Server&) = delete;

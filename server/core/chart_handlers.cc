@@ -4,12 +4,9 @@
 #include <cmath>
 
 #include "absl/strings/str_cat.h"
-#include "server/core/convert.h"
-
-#if SEAPLAN_SERVER_HAS_CHART
 #include "seaplan/chart/geojson.h"
 #include "seaplan/chart/obstacle_map.h"
-#endif
+#include "server/core/convert.h"
 
 namespace seaplan::server {
 namespace {
@@ -18,7 +15,6 @@ namespace {
 constexpr double kDefaultMinimumDepthM = 10.0;
 constexpr double kDefaultSafetyBufferM = 10.0;
 
-#if SEAPLAN_SERVER_HAS_CHART
 absl::StatusOr<chart::ChartOptions> MakeChartOptions(double min_depth_m, double safety_buffer_m) {
   chart::ChartOptions options;
   options.min_depth_m = min_depth_m;
@@ -66,7 +62,6 @@ v1::ObstacleSummary ToProto(const chart::ObstacleSummary& s) {
   out.set_frame(absl::StrCat("EPSG:", s.frame_epsg));
   return out;
 }
-#endif
 
 }  // namespace
 
@@ -96,7 +91,6 @@ absl::StatusOr<v1::UploadChartResponse> ChartHandlers::UploadChart(
   if (request.minimum_depth_m() < 0 || request.safety_buffer_m() < 0) {
     return absl::InvalidArgumentError("minimum_depth_m and safety_buffer_m must not be negative");
   }
-#if SEAPLAN_SERVER_HAS_CHART
   SEAPLAN_ASSIGN_OR_RETURN(
       chart::ChartOptions options,
       MakeChartOptions(
@@ -128,12 +122,6 @@ absl::StatusOr<v1::UploadChartResponse> ChartHandlers::UploadChart(
   *response.mutable_chart() = ChartFromRecord(stored);
   for (const auto& w : map.summary().warnings) response.add_warnings(w);
   return response;
-#else
-  (void)ctx;
-  return absl::UnimplementedError(
-      "ChartService.UploadChart: the chart loader (engine/chart, seaplan_chart) is not built into "
-      "this server yet");
-#endif
 }
 
 absl::StatusOr<v1::GetChartResponse> ChartHandlers::GetChart(const v1::GetChartRequest& request,
@@ -145,16 +133,9 @@ absl::StatusOr<v1::GetChartResponse> ChartHandlers::GetChart(const v1::GetChartR
   v1::GetChartResponse response;
   *response.mutable_chart() = ChartFromRecord(record);
   if (request.include_obstacles_geojson()) {
-#if SEAPLAN_SERVER_HAS_CHART
     SEAPLAN_ASSIGN_OR_RETURN(chart::ObstacleMap map,
                              chart::DeserializeObstacleMap(record.obstacles));
     response.set_obstacles_geojson(chart::ToGeoJson(map));
-#else
-    return absl::UnimplementedError(
-        "ChartService.GetChart: include_obstacles_geojson needs engine/chart (seaplan_chart), not "
-        "built into this "
-        "server yet");
-#endif
   }
   return response;
 }
@@ -169,7 +150,6 @@ absl::StatusOr<v1::GetObstaclesResponse> ChartHandlers::GetObstacles(
   v1::GetObstaclesResponse response;
   response.set_chart_id(stored.chart_id());
   response.set_safety_buffer_m(stored.safety_buffer_m());
-#if SEAPLAN_SERVER_HAS_CHART
   const bool same_depth = request.minimum_depth_m() == 0 ||
                           std::abs(request.minimum_depth_m() - stored.minimum_depth_m()) < 1e-9;
   absl::StatusOr<chart::ObstacleMap> map = absl::UnknownError("no obstacles");
@@ -191,11 +171,6 @@ absl::StatusOr<v1::GetObstaclesResponse> ChartHandlers::GetObstacles(
   response.set_obstacle_count(map->summary().polygon_count);
   response.set_geojson(chart::ToGeoJson(*map));
   return response;
-#else
-  (void)ctx;
-  return absl::UnimplementedError(
-      "ChartService.GetObstacles needs engine/chart (seaplan_chart), not built into this server");
-#endif
 }
 
 absl::StatusOr<v1::ListChartsResponse> ChartHandlers::ListCharts(

@@ -5,6 +5,7 @@
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
 #include "seaplan/common/log.h"
+#include "seaplan/mission/mission_state.h"
 #include "server/core/convert.h"
 
 namespace seaplan::server {
@@ -37,8 +38,7 @@ std::string DescribeFeedback(const v1::Feedback& f) {
 }  // namespace
 
 bool IsFinalState(int state) {
-  return state == v1::MISSION_STATE_COMPLETED || state == v1::MISSION_STATE_FAILED ||
-         state == v1::MISSION_STATE_CANCELLED;
+  return mission::IsFinal(MissionStateFromProto(state));
 }
 
 v1::Mission MissionFromRecord(const storage::MissionRecord& r) {
@@ -93,12 +93,13 @@ bool MissionNotifier::closed() {
 // ---- MissionCoordinator ----
 
 MissionCoordinator::MissionCoordinator(storage::MissionRepository& repo, WorkPool& pool,
-                                       StopToken root, std::shared_ptr<MissionEngine> engine,
+                                       StopToken root,
+                                       std::shared_ptr<mission::MissionEngine> engine,
                                        Options options)
     : repo_(repo),
       pool_(pool),
       root_(std::move(root)),
-      engine_(std::move(engine)),
+      adapter_(std::move(engine)),
       options_(options) {
   background_ = std::thread([this] { BackgroundLoop(); });
 }
@@ -144,11 +145,11 @@ absl::StatusOr<MissionRuntimeState> MissionCoordinator::LoadRuntime(const std::s
   return state;
 }
 
-absl::Status MissionCoordinator::SetState(const std::string& mission_id, v1::MissionState state,
-                                          const std::string& message,
+absl::Status MissionCoordinator::SetState(const std::string& mission_id,
+                                          mission::MissionState state, const std::string& message,
                                           const std::string& failure_reason) {
   storage::MissionUpdate update;
-  update.state = state;
+  update.state = MissionStateToProto(state);
   if (!failure_reason.empty()) update.failure_reason = failure_reason;
   absl::Status st = repo_.Update(mission_id, update, {ServerEvent(message)});
   notifier_.Notify(mission_id);
@@ -160,8 +161,8 @@ void MissionCoordinator::EndReplanning(const std::string& mission_id, const std:
   std::lock_guard lock(*lock_ptr);
   auto record = repo_.Get(mission_id);
   if (!record.ok()) return;
-  if (record->state == v1::MISSION_STATE_REPLANNING) {
-    (void)SetState(mission_id, v1::MISSION_STATE_ACTIVE, message);
+  if (MissionStateFromProto(record->state) == mission::MissionState::kReplanning) {
+    (void)SetState(mission_id, mission::MissionState::kActive, message);
     return;
   }
   // Cancelled (or finished) meanwhile: keep that state, log the outcome.
@@ -180,15 +181,9 @@ absl::StatusOr<v1::Mission> MissionCoordinator::CreateMission(
     return absl::InvalidArgumentError("spec.domain: the PDDL domain text is empty");
   if (spec.problem().empty())
     return absl::InvalidArgumentError("spec.problem: the PDDL problem text is empty");
-  if (!engine_) {
-    return absl::UnimplementedError(
-        "MissionService.CreateMission: the mission engine (engine/mission: plan, refine, parse) is "
-        "not built into "
-        "this server yet; nothing was stored");
-  }
-  SEAPLAN_RETURN_IF_ERROR(engine_->CheckSpec(spec));
+  SEAPLAN_RETURN_IF_ERROR(adapter_.CheckSpec(spec));
   absl::StatusOr<PlannedVersion> planned = absl::UnknownError("mission planning did not run");
-  SEAPLAN_RETURN_IF_ERROR(pool_.Run([&] { planned = engine_->PlanInitial(spec, ctx.stop); },
+  SEAPLAN_RETURN_IF_ERROR(pool_.Run([&] { planned = adapter_.PlanInitial(spec, ctx.stop); },
                                     [&] { ctx.ForwardCancellation(); }));
   if (ctx.stop.StopRequested())
     return StopStatus(ctx.stop, root_.StopRequested(), "mission planning");
@@ -201,7 +196,7 @@ absl::StatusOr<v1::Mission> MissionCoordinator::CreateMission(
   record.vessel_id = spec.vessel_id();
   record.request_id = request.request_id();
   record.spec = spec.SerializeAsString();
-  record.state = v1::MISSION_STATE_ACTIVE;
+  record.state = MissionStateToProto(mission::MissionState::kActive);
   record.current_version = 1;
   record.created_at_ms = now;
   record.updated_at_ms = now;
@@ -257,7 +252,7 @@ absl::StatusOr<v1::Mission> MissionCoordinator::CancelMission(
     auto lock_ptr = MissionLock(id);
     std::lock_guard lock(*lock_ptr);
     SEAPLAN_ASSIGN_OR_RETURN(storage::MissionRecord record, repo_.Get(id));
-    if (record.state == v1::MISSION_STATE_CANCELLED)
+    if (MissionStateFromProto(record.state) == mission::MissionState::kCancelled)
       return MissionFromRecord(record);  // idempotent
     if (IsFinalState(record.state)) {
       return absl::FailedPreconditionError(absl::StrCat(
@@ -265,8 +260,8 @@ absl::StatusOr<v1::Mission> MissionCoordinator::CancelMission(
     }
     const std::string reason =
         request.reason().empty() ? "cancelled by operator" : request.reason();
-    SEAPLAN_RETURN_IF_ERROR(
-        SetState(id, v1::MISSION_STATE_CANCELLED, absl::StrCat("mission cancelled: ", reason)));
+    SEAPLAN_RETURN_IF_ERROR(SetState(id, mission::MissionState::kCancelled,
+                                     absl::StrCat("mission cancelled: ", reason)));
   }
   {
     std::lock_guard lock(jobs_mu_);
@@ -380,16 +375,21 @@ absl::StatusOr<v1::ReportFeedbackResponse> MissionCoordinator::ReportFeedback(
         "mission '", id, "' is ", StateName(mission.state()), "; feedback is no longer accepted"));
   }
   const v1::Feedback& feedback = request.feedback();
-  FeedbackDecision decision;
-  if (engine_) decision = engine_->OnFeedback(mission.spec(), runtime, feedback);
+  const mission::FeedbackOutcome decision = adapter_.OnFeedback(mission.spec(), runtime, feedback);
 
   storage::MissionUpdate update;
   if (feedback.has_state()) update.last_state = feedback.state().SerializeAsString();
-  if (decision.completed_tasks) update.completed_tasks = *decision.completed_tasks;
-  if (decision.new_state) update.state = *decision.new_state;
-  if (!decision.failure_reason.empty()) update.failure_reason = decision.failure_reason;
-  const bool replan = decision.replan && !(decision.new_state && IsFinalState(*decision.new_state));
-  if (replan) update.state = v1::MISSION_STATE_REPLANNING;
+  if (decision.completed_changed) update.completed_tasks = decision.completed_task_ids;
+  const bool replan = decision.replan_reason && !decision.mission_completed;
+  const std::string replan_reason = replan ? *decision.replan_reason : "";
+  if (decision.mission_completed || replan) {
+    SEAPLAN_ASSIGN_OR_RETURN(
+        mission::MissionState next,
+        mission::NextState(MissionStateFromProto(mission.state()),
+                           decision.mission_completed ? mission::MissionEvent::kCompleted
+                                                      : mission::MissionEvent::kReplanStarted));
+    update.state = MissionStateToProto(next);
+  }
 
   std::vector<storage::NewLogEvent> events;
   events.push_back(
@@ -397,8 +397,8 @@ absl::StatusOr<v1::ReportFeedbackResponse> MissionCoordinator::ReportFeedback(
   for (const auto& line : decision.log_messages)
     events.push_back(ServerEvent(line, feedback.mission_time_s()));
   if (replan)
-    events.push_back(ServerEvent(absl::StrCat("replanning: ", decision.replan_reason),
-                                 feedback.mission_time_s()));
+    events.push_back(
+        ServerEvent(absl::StrCat("replanning: ", replan_reason), feedback.mission_time_s()));
 
   storage::FeedbackRecord record{id,
                                  request.vessel_id(),
@@ -428,15 +428,15 @@ absl::StatusOr<v1::ReportFeedbackResponse> MissionCoordinator::ReportFeedback(
       // started from the same version); the mission stays REPLANNING until
       // it ends, and a new version still follows on the watch stream.
       response.set_replan_triggered(true);
-      response.set_replan_reason(decision.replan_reason);
+      response.set_replan_reason(replan_reason);
     } else if (static_cast<int>(jobs_.size()) >= options_.max_pending_replans || stopping_) {
-      log::Error("mission {}: replan queue full, replan '{}' dropped", id, decision.replan_reason);
-      EndReplanning(id, absl::StrCat("replan not started (server busy): ", decision.replan_reason));
+      log::Error("mission {}: replan queue full, replan '{}' dropped", id, replan_reason);
+      EndReplanning(id, absl::StrCat("replan not started (server busy): ", replan_reason));
     } else {
-      jobs_.push_back({id, decision.replan_reason, base});
+      jobs_.push_back({id, replan_reason, base});
       jobs_cv_.notify_one();
       response.set_replan_triggered(true);
-      response.set_replan_reason(decision.replan_reason);
+      response.set_replan_reason(replan_reason);
     }
   }
   return response;
@@ -457,7 +457,7 @@ absl::StatusOr<v1::PlanVersion> MissionCoordinator::Replan(
   absl::StatusOr<std::optional<PlannedVersion>> planned =
       absl::UnknownError("replanning did not run");
   SEAPLAN_RETURN_IF_ERROR(
-      run([&] { planned = engine_->Replan(runtime.mission.spec(), runtime, reason, stop); }));
+      run([&] { planned = adapter_.Replan(runtime.mission.spec(), runtime, reason, stop); }));
   if (stop.StopRequested()) {
     *stopped = true;
     EndReplanning(id, absl::StrCat("replan stopped before it finished: ", reason));
@@ -476,7 +476,7 @@ absl::StatusOr<v1::PlanVersion> MissionCoordinator::Replan(
   }
   if (!planned->has_value()) {
     SEAPLAN_RETURN_IF_ERROR(
-        SetState(id, v1::MISSION_STATE_COMPLETED, "the goal holds: mission completed"));
+        SetState(id, mission::MissionState::kCompleted, "the goal holds: mission completed"));
     return absl::FailedPreconditionError(
         "nothing left to plan: the goal already holds; the mission is completed");
   }
@@ -488,7 +488,10 @@ absl::StatusOr<v1::PlanVersion> MissionCoordinator::Replan(
   if (version.reason().empty()) version.set_reason(reason);
   *version.mutable_created_at() = ToTimestamp(now);
   storage::MissionUpdate update;
-  update.state = v1::MISSION_STATE_ACTIVE;
+  SEAPLAN_ASSIGN_OR_RETURN(
+      mission::MissionState next_state,
+      mission::NextState(MissionStateFromProto(record.state), mission::MissionEvent::kNewVersion));
+  update.state = MissionStateToProto(next_state);
   std::vector<storage::NewLogEvent> events;
   for (const auto& line : next.log_messages) events.push_back(ServerEvent(line, now_s));
   events.push_back(ServerEvent(DescribeVersion(version), version.mission_time_origin_s()));
@@ -504,11 +507,6 @@ absl::StatusOr<v1::RequestReplanResponse> MissionCoordinator::RequestReplan(
   const std::string& id = request.mission_id();
   if (id.empty()) return absl::InvalidArgumentError("mission_id is empty");
   SEAPLAN_ASSIGN_OR_RETURN(storage::MissionRecord record, repo_.Get(id));
-  if (!engine_) {
-    return absl::UnimplementedError(
-        "MissionService.RequestReplan: the mission engine (engine/mission) is not built into this "
-        "server yet");
-  }
   if (IsFinalState(record.state)) {
     return absl::FailedPreconditionError(
         absl::StrCat("mission '", id, "' is ", StateName(record.state), "; nothing to replan"));
@@ -516,7 +514,7 @@ absl::StatusOr<v1::RequestReplanResponse> MissionCoordinator::RequestReplan(
   const std::string reason =
       request.reason().empty() ? "replan requested by operator" : request.reason();
   SEAPLAN_RETURN_IF_ERROR(
-      SetState(id, v1::MISSION_STATE_REPLANNING, absl::StrCat("replanning: ", reason)));
+      SetState(id, mission::MissionState::kReplanning, absl::StrCat("replanning: ", reason)));
   bool stopped = false;
   auto version = Replan(
       id, reason, ctx.stop,
@@ -561,14 +559,18 @@ void MissionCoordinator::BackgroundLoop() {
       running_bases_.erase(job.mission_id);
       continue;
     }
+    // On the work pool like every planning job (--planning-threads bounds
+    // them), waiting for a free worker: nobody would retry a refused one.
     bool stopped = false;
     auto version = Replan(
         job.mission_id, job.reason, stop,
-        [](std::function<void()> work) {
-          work();
-          return absl::OkStatus();
-        },
+        [&](std::function<void()> work) { return pool_.RunWhenFree(std::move(work), stop); },
         &stopped);
+    if (!version.ok() &&
+        (absl::IsUnavailable(version.status()) || (!stopped && stop.StopRequested()))) {
+      EndReplanning(job.mission_id,
+                    absl::StrCat("replan not started: ", version.status().message()));
+    }
     if (!version.ok()) {
       log::Warn("mission {}: replan '{}' ended without a new version: {}", job.mission_id,
                 job.reason, version.status().ToString());

@@ -6,8 +6,9 @@
 //   ReportFeedback idempotent by (vessel_id, sequence_number): engine
 //                  decides (OnFeedback), then the report, its log events and
 //                  the mission update are committed together before the RPC
-//                  returns; a replan it triggers runs on the coordinator's
-//                  background thread and its version reaches the watchers.
+//                  returns; a replan it triggers is queued, run on the
+//                  WorkPool (waiting for a free worker) by the coordinator's
+//                  background thread, and its version reaches the watchers.
 //   RequestReplan  synchronous replan on the WorkPool.
 //   WatchMission   plan versions, log events and mission state changes,
 //                  resumable from (after_version, after_event_id).
@@ -22,6 +23,11 @@
 // Versions of one mission are appended under a per-mission lock and
 // storage checks that each is current + 1 (MissionRepository::AppendVersion).
 //
+// The mission itself (what a report means, the states and which change is
+// allowed, planning and replanning) is the mission engine's
+// (engine/mission); this class keeps transactions, locking, notification
+// and the queue of triggered replans, and MissionAdapter translates.
+//
 // Thread-safety: all methods may be called from any thread.
 #pragma once
 
@@ -35,10 +41,11 @@
 #include <unordered_map>
 
 #include "seaplan/common/stop_token.h"
+#include "seaplan/mission/mission_engine.h"
 #include "seaplan/storage/repositories.h"
 #include "seaplan/v1/mission.pb.h"
 #include "server/core/call_context.h"
-#include "server/core/mission_engine.h"
+#include "server/core/mission_engine_adapter.h"
 #include "server/core/work_pool.h"
 
 namespace seaplan::server {
@@ -75,12 +82,11 @@ class MissionCoordinator {
     int feedback_history = 200;
   };
 
-  // `engine` may be null (no mission engine built): CreateMission and
-  // RequestReplan then answer UNIMPLEMENTED.
+  // `engine` must not be null.
   MissionCoordinator(storage::MissionRepository& repo, WorkPool& pool, StopToken root,
-                     std::shared_ptr<MissionEngine> engine, Options options);
+                     std::shared_ptr<mission::MissionEngine> engine, Options options);
   MissionCoordinator(storage::MissionRepository& repo, WorkPool& pool, StopToken root,
-                     std::shared_ptr<MissionEngine> engine)
+                     std::shared_ptr<mission::MissionEngine> engine)
       : MissionCoordinator(repo, pool, std::move(root), std::move(engine), Options{}) {}
   ~MissionCoordinator();  // Shutdown()
   MissionCoordinator(const MissionCoordinator&) = delete;
@@ -121,7 +127,7 @@ class MissionCoordinator {
   absl::StatusOr<v1::PlanVersion> Replan(
       const std::string& mission_id, const std::string& reason, const StopToken& stop,
       const std::function<absl::Status(std::function<void()>)>& run, bool* stopped);
-  absl::Status SetState(const std::string& mission_id, v1::MissionState state,
+  absl::Status SetState(const std::string& mission_id, mission::MissionState state,
                         const std::string& message, const std::string& failure_reason = "");
   // REPLANNING -> ACTIVE with `message` logged; a mission cancelled
   // meanwhile keeps its state (only the message is logged).
@@ -131,7 +137,7 @@ class MissionCoordinator {
   storage::MissionRepository& repo_;
   WorkPool& pool_;
   StopToken root_;
-  std::shared_ptr<MissionEngine> engine_;
+  MissionAdapter adapter_;
   Options options_;
   MissionNotifier notifier_;
 

@@ -1,43 +1,79 @@
-// The MissionEngine backed by engine/mission (plan -> refine -> parse,
-// update problem -> replan) with engine/search as the temporal planner and,
-// for missions with a chart, engine/route as the router.
+// Translation between seaplan.v1 mission messages and the mission engine
+// (engine/mission/include/seaplan/mission/mission_engine.h), which decides
+// everything about a mission. This file only converts: field by field, WGS84
+// positions through the local frame the engine chose (MissionEngine::Frame),
+// Protobuf defaults (0 = "not given") to the engine's defaults, and the
+// engine's PDDL diagnostics into the status details.
 //
-// Frames: positions of the spec's named locations are WGS84; the engine
-// works in a local metric frame: the chart's frame when the mission names a
-// chart, else the UTM zone of the first location. Without a chart a move's
-// route is the straight line sailed at ship.service_speed_mps (default
-// kDefaultServiceSpeedMps).
-//
-// Routing over a chart: a route::RoutePlanner per (chart, ship, route
-// options, environment), built once and cached, plans every move between
-// the locations' positions; the chosen route's sailing time becomes the
-// move's duration and the task carries the route and its mode schedule.
-// Routes are cached per (from, to) position (a replan asks again for most
-// legs). A leg with no safe route (or an end inside an obstacle or off the
-// chart) fails with FailedPrecondition naming the leg; an unknown chart_id
-// is FailedPrecondition.
-//
-// Feedback: a ShipState in a report is a full state, so fuel_fraction 0 is
-// an empty tank; a report without a state carries no fuel reading.
-//
-// Replans use the spec's planner options but, with anytime search, stop at
-// the first plan plus a short improvement run (10-40 ms): the ship waits.
-//
-// Engine state stored with each version: the location table (a replan may
-// add a location such as "port-s"), mission::EncodeEngineState.
+// Feedback: a ShipState in a report is a full state (fuel_fraction 0 is an
+// empty tank); a report without a state carries neither position nor fuel.
 #pragma once
 
 #include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
 
-#include "seaplan/storage/repositories.h"
-#include "server/core/mission_engine.h"
+#include "seaplan/chart/geodesy.h"
+#include "seaplan/common/status.h"
+#include "seaplan/common/stop_token.h"
+#include "seaplan/mission/mission_engine.h"
+#include "seaplan/mission/mission_state.h"
+#include "seaplan/v1/mission.pb.h"
 
 namespace seaplan::server {
 
-inline constexpr double kDefaultServiceSpeedMps = 5.0;
+// What the service has stored about a running mission.
+struct MissionRuntimeState {
+  v1::Mission mission;  // as stored: state, current_version, last_state, completed_tasks
+  v1::PlanVersion current_version;            // the version the vessel executes (empty when none)
+  std::string engine_state;                   // stored with that version
+  std::vector<v1::Feedback> recent_feedback;  // the latest reports, oldest first (bounded)
+};
 
-// Null when this server is built without engine/mission, engine/search or
-// engine/chart.
-std::shared_ptr<MissionEngine> MakeMissionEngine(storage::ChartRepository& charts);
+// A computed plan version. The coordinator sets mission_id, version and
+// created_at; everything else comes from the engine.
+struct PlannedVersion {
+  v1::PlanVersion version;
+  std::string engine_state;  // opaque, stored with the version
+  std::vector<std::string>
+      log_messages;  // navigation-log lines ("computing the temporal plan", ...)
+};
+
+class MissionAdapter {
+ public:
+  explicit MissionAdapter(std::shared_ptr<mission::MissionEngine> engine)
+      : engine_(std::move(engine)) {}
+
+  // InvalidArgument with what and where (PDDL diagnostics in the details).
+  absl::Status CheckSpec(const v1::MissionSpec& spec);
+  absl::StatusOr<PlannedVersion> PlanInitial(const v1::MissionSpec& spec, const StopToken& stop);
+  // nullopt when the goal already holds.
+  absl::StatusOr<std::optional<PlannedVersion>> Replan(const v1::MissionSpec& spec,
+                                                       const MissionRuntimeState& state,
+                                                       std::string_view reason,
+                                                       const StopToken& stop);
+  // `state` does not include `feedback` yet.
+  mission::FeedbackOutcome OnFeedback(const v1::MissionSpec& spec, const MissionRuntimeState& state,
+                                      const v1::Feedback& feedback);
+
+ private:
+  std::shared_ptr<mission::MissionEngine> engine_;
+};
+
+// ---- translations (exposed for their tests) ----
+
+absl::StatusOr<mission::MissionSpec> SpecFromProto(const v1::MissionSpec& spec);
+// Plan versions with their routes; waypoints through `frame`.
+v1::PlanVersion PlanVersionToProto(const mission::PlanVersion& version,
+                                   const chart::LocalFrame& frame);
+mission::PlanVersion PlanVersionFromProto(const v1::PlanVersion& version,
+                                          const chart::LocalFrame& frame);
+// Position through `frame` (none without a frame or a state).
+mission::Feedback FeedbackFromProto(const v1::Feedback& feedback, const chart::LocalFrame* frame);
+// Stored mission states are v1::MissionState numbers.
+v1::MissionState MissionStateToProto(mission::MissionState state);
+mission::MissionState MissionStateFromProto(int state);
 
 }  // namespace seaplan::server

@@ -5,17 +5,12 @@
 #include <mutex>
 
 #include "absl/strings/str_cat.h"
-#include "server/core/convert.h"
-#include "server/core/status_details.h"
-
-#if SEAPLAN_SERVER_HAS_VALIDATE
+#include "seaplan/search/planner.h"
 #include "seaplan/task/grounder.h"
 #include "seaplan/validate/plan.h"
 #include "seaplan/validate/validator.h"
-#endif
-#if SEAPLAN_SERVER_HAS_SEARCH
-#include "seaplan/search/planner.h"
-#endif
+#include "server/core/convert.h"
+#include "server/core/status_details.h"
 
 namespace seaplan::server {
 namespace {
@@ -26,7 +21,6 @@ absl::Status CheckPddlInputs(const std::string& domain, const std::string& probl
   return absl::OkStatus();
 }
 
-#if SEAPLAN_SERVER_HAS_VALIDATE
 bool HasInputErrors(const std::vector<pddl::Diagnostic>& diagnostics) {
   for (const auto& d : diagnostics) {
     if (d.severity == pddl::Severity::kError && d.kind != pddl::DiagnosticKind::kUnsupported)
@@ -64,9 +58,7 @@ v1::Diagnostic PlanDiagnostic(const absl::Status& status) {
   d.set_message(message);
   return d;
 }
-#endif
 
-#if SEAPLAN_SERVER_HAS_SEARCH
 absl::StatusOr<search::PlannerOptions> ToEngine(const v1::PlannerOptions& o) {
   search::PlannerOptions p;
   if (o.has_time_limit()) {
@@ -194,14 +186,12 @@ PlanRun RunPlanner(const v1::PlanRequest& request, const search::PlannerOptions&
   }
   return run;
 }
-#endif
 
 }  // namespace
 
 absl::StatusOr<v1::PlanResponse> PlanningHandlers::Plan(const v1::PlanRequest& request,
                                                         const CallContext& ctx) {
   SEAPLAN_RETURN_IF_ERROR(CheckPddlInputs(request.domain(), request.problem()));
-#if SEAPLAN_SERVER_HAS_SEARCH
   SEAPLAN_ASSIGN_OR_RETURN(search::PlannerOptions options, ToEngine(request.options()));
   PlanRun run;
   SEAPLAN_RETURN_IF_ERROR(pool_.Run([&] { run = RunPlanner(request, options, ctx.stop, nullptr); },
@@ -209,18 +199,11 @@ absl::StatusOr<v1::PlanResponse> PlanningHandlers::Plan(const v1::PlanRequest& r
   if (ctx.stop.StopRequested()) return StopStatus(ctx.stop, root_.StopRequested(), "planning");
   if (!run.status.ok()) return run.status;
   return run.response;
-#else
-  (void)ctx;
-  return absl::UnimplementedError(
-      "PlanningService.Plan: the temporal planner (engine/search, seaplan_search) is not built "
-      "into this server yet");
-#endif
 }
 
 absl::Status PlanningHandlers::PlanStream(const v1::PlanRequest& request, const CallContext& ctx,
                                           const StreamSink<v1::PlanStreamEvent>& sink) {
   SEAPLAN_RETURN_IF_ERROR(CheckPddlInputs(request.domain(), request.problem()));
-#if SEAPLAN_SERVER_HAS_SEARCH
   SEAPLAN_ASSIGN_OR_RETURN(search::PlannerOptions options, ToEngine(request.options()));
   // The planner's callbacks run on the worker; they queue events and the
   // RPC thread writes them (tick), so only one thread writes to the client.
@@ -266,21 +249,12 @@ absl::Status PlanningHandlers::PlanStream(const v1::PlanRequest& request, const 
   *final_event.mutable_final_result() = std::move(run.response);
   if (!sink(final_event)) return absl::CancelledError("planning stream: the client went away");
   return absl::OkStatus();
-#else
-  (void)ctx;
-  (void)sink;
-  return absl::UnimplementedError(
-      "PlanningService.PlanStream: the temporal planner (engine/search, seaplan_search) is not "
-      "built into this "
-      "server yet");
-#endif
 }
 
 absl::StatusOr<v1::ValidateResponse> PlanningHandlers::Validate(const v1::ValidateRequest& request,
                                                                 const CallContext& ctx) {
   SEAPLAN_RETURN_IF_ERROR(CheckPddlInputs(request.domain(), request.problem()));
   if (request.epsilon_s() < 0) return absl::InvalidArgumentError("epsilon_s must not be negative");
-#if SEAPLAN_SERVER_HAS_VALIDATE
   auto plan = validate::ParsePlan(request.plan());
   if (!plan.ok()) {
     v1::DiagnosticList list;
@@ -328,13 +302,6 @@ absl::StatusOr<v1::ValidateResponse> PlanningHandlers::Validate(const v1::Valida
   if (ctx.stop.StopRequested()) return StopStatus(ctx.stop, root_.StopRequested(), "validation");
   if (!status.ok()) return status;
   return response;
-#else
-  (void)ctx;
-  return absl::UnimplementedError(
-      "PlanningService.Validate: the plan validator (engine/validate, seaplan_validate) is not "
-      "built into this "
-      "server yet");
-#endif
 }
 
 }  // namespace seaplan::server

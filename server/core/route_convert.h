@@ -1,18 +1,18 @@
 // seaplan.v1 <-> engine/route conversions shared by the RouteService
 // handlers and the mission engine adapter (routing moves over a chart).
-// Only declared when the server is built with engine/route and engine/chart.
 #pragma once
-
-#if SEAPLAN_SERVER_HAS_ROUTE && SEAPLAN_SERVER_HAS_CHART
 
 #include <memory>
 #include <string>
 
+#include "google/protobuf/repeated_ptr_field.h"
 #include "seaplan/chart/obstacle_map.h"
 #include "seaplan/common/status.h"
+#include "seaplan/mission/types.h"
 #include "seaplan/route/route_planner.h"
 #include "seaplan/storage/repositories.h"
 #include "seaplan/v1/common.pb.h"
+#include "seaplan/v1/mission.pb.h"
 #include "seaplan/v1/route.pb.h"
 
 namespace seaplan::server {
@@ -25,6 +25,10 @@ route::RouteOptions OptionsToEngine(const v1::OptimizerOptions& o);
 absl::StatusOr<std::shared_ptr<const chart::ObstacleMap>> LoadMap(storage::ChartRepository& charts,
                                                                   const std::string& id);
 
-}  // namespace seaplan::server
+v1::MsoMode MsoModeToProto(mission::MsoMode mode);
+// Appends the route's mode schedule (mission::ModeSchedule: runs of equal
+// modes over its segments).
+void AddModeSchedule(const mission::Route& route,
+                     google::protobuf::RepeatedPtrField<v1::ModeScheduleEntry>* out);
 
-#endif
+}  // namespace seaplan::server

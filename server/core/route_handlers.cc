@@ -6,20 +6,16 @@
 #include <optional>
 
 #include "absl/strings/str_cat.h"
-#include "server/core/convert.h"
-
-#if SEAPLAN_SERVER_HAS_ROUTE && SEAPLAN_SERVER_HAS_CHART
-#define SEAPLAN_SERVER_ROUTES 1
 #include "seaplan/chart/geojson.h"
 #include "seaplan/chart/obstacle_map.h"
+#include "seaplan/mission/chart_routing.h"
 #include "seaplan/route/route_planner.h"
+#include "server/core/convert.h"
 #include "server/core/route_convert.h"
-#endif
 
 namespace seaplan::server {
 namespace {
 
-#if SEAPLAN_SERVER_ROUTES
 v1::MsoMode ModeToProto(route::MsoMode m) {
   switch (m) {
     case route::MsoMode::kPto:
@@ -128,24 +124,33 @@ v1::RouteAlternative AlternativeToProto(const route::RouteAlternative& a, int in
   return out;
 }
 
-// Runs of equal modes over the segments of a route.
-void ModeSchedule(const v1::RouteAlternative& route, v1::PlanRouteResponse* out) {
-  const int segments = route.waypoints_size() - 1;
-  int begin = 0;
-  for (int i = 1; i <= segments; ++i) {
-    if (i == segments || route.waypoints(i).mode() != route.waypoints(begin).mode()) {
-      v1::ModeScheduleEntry* e = out->add_mode_schedule();
-      e->set_from_waypoint(begin);
-      e->set_to_waypoint(i);
-      e->set_mode(route.waypoints(begin).mode());
-      e->set_start_s(route.waypoints(begin).eta_s());
-      e->set_duration_s(route.waypoints(i).eta_s() - route.waypoints(begin).eta_s());
-      begin = i;
-    }
+}  // namespace
+
+v1::MsoMode MsoModeToProto(mission::MsoMode mode) {
+  switch (mode) {
+    case mission::MsoMode::kPto:
+      return v1::MSO_MODE_PTO;
+    case mission::MsoMode::kMec:
+      return v1::MSO_MODE_MEC;
+    case mission::MsoMode::kPti:
+      return v1::MSO_MODE_PTI;
+    case mission::MsoMode::kUnspecified:
+      break;
   }
+  return v1::MSO_MODE_UNSPECIFIED;
 }
 
-}  // namespace
+void AddModeSchedule(const mission::Route& route,
+                     google::protobuf::RepeatedPtrField<v1::ModeScheduleEntry>* out) {
+  for (const mission::ModeScheduleEntry& e : mission::ModeSchedule(route)) {
+    v1::ModeScheduleEntry* m = out->Add();
+    m->set_from_waypoint(e.from_waypoint);
+    m->set_to_waypoint(e.to_waypoint);
+    m->set_mode(MsoModeToProto(e.mode));
+    m->set_start_s(e.start_s);
+    m->set_duration_s(e.duration_s);
+  }
+}
 
 absl::StatusOr<std::shared_ptr<const chart::ObstacleMap>> LoadMap(storage::ChartRepository& charts,
                                                                   const std::string& id) {
@@ -159,7 +164,6 @@ absl::StatusOr<std::shared_ptr<const chart::ObstacleMap>> LoadMap(storage::Chart
 }
 
 namespace {
-#endif
 
 absl::Status CheckLatLon(const v1::LatLon& p, const char* field) {
   if (!std::isfinite(p.latitude_deg()) || !std::isfinite(p.longitude_deg()) ||
@@ -177,7 +181,6 @@ absl::StatusOr<v1::PlanRouteResponse> RouteHandlers::PlanRoute(const v1::PlanRou
   if (request.chart_id().empty()) return absl::InvalidArgumentError("chart_id is empty");
   SEAPLAN_RETURN_IF_ERROR(CheckLatLon(request.start(), "start"));
   SEAPLAN_RETURN_IF_ERROR(CheckLatLon(request.goal(), "goal"));
-#if SEAPLAN_SERVER_ROUTES
   SEAPLAN_ASSIGN_OR_RETURN(auto map, LoadMap(charts_, request.chart_id()));
   route::RouteOptions options = OptionsToEngine(request.options());
   route::ShipParticulars ship = ShipToEngine(request.ship());
@@ -218,7 +221,10 @@ absl::StatusOr<v1::PlanRouteResponse> RouteHandlers::PlanRoute(const v1::PlanRou
   response.set_chosen_alternative(result->chosen);
   if (result->chosen >= 0 && result->chosen < response.alternatives_size()) {
     *response.mutable_chosen_route() = response.alternatives(result->chosen);
-    ModeSchedule(response.chosen_route(), &response);
+    AddModeSchedule(
+        mission::RouteFromAlternative(
+            result->alternatives[static_cast<std::size_t>(result->chosen)], result->chosen),
+        response.mutable_mode_schedule());
   }
   if (request.options().include_obstacles_geojson()) {
     // The map for the operator: obstacles plus every alternative, the chosen one named so.
@@ -236,13 +242,6 @@ absl::StatusOr<v1::PlanRouteResponse> RouteHandlers::PlanRoute(const v1::PlanRou
   response.set_computation_time_s(
       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count());
   return response;
-#else
-  SEAPLAN_RETURN_IF_ERROR(charts_.Get(request.chart_id(), /*with_blobs=*/false).status());
-  (void)ctx;
-  return absl::UnimplementedError(
-      "RouteService.PlanRoute: the route planner (engine/route + engine/chart) is not built into "
-      "this server yet");
-#endif
 }
 
 absl::StatusOr<v1::EstimateRiskResponse> RouteHandlers::EstimateRisk(
@@ -252,7 +251,6 @@ absl::StatusOr<v1::EstimateRiskResponse> RouteHandlers::EstimateRisk(
   for (int i = 0; i < request.track_size(); ++i) {
     SEAPLAN_RETURN_IF_ERROR(CheckLatLon(request.track(i).position(), "track[].position"));
   }
-#if SEAPLAN_SERVER_ROUTES
   if (request.ttg_horizon_s() < 0)
     return absl::InvalidArgumentError("ttg_horizon_s must not be negative");
   SEAPLAN_ASSIGN_OR_RETURN(auto map, LoadMap(charts_, request.chart_id()));
@@ -297,14 +295,6 @@ absl::StatusOr<v1::EstimateRiskResponse> RouteHandlers::EstimateRisk(
   response.set_total_expected_cost(total);
   response.set_max_grounding_probability(max_p);
   return response;
-#else
-  SEAPLAN_RETURN_IF_ERROR(charts_.Get(request.chart_id(), /*with_blobs=*/false).status());
-  (void)ctx;
-  return absl::UnimplementedError(
-      "RouteService.EstimateRisk: the grounding-risk estimator (engine/route + engine/chart) is "
-      "not built into this "
-      "server yet");
-#endif
 }
 
 }  // namespace seaplan::server

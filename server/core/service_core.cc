@@ -2,39 +2,23 @@
 
 #include "absl/strings/str_cat.h"
 #include "seaplan/common/log.h"
+#include "server/core/route_convert.h"
 
 namespace seaplan::server {
 
-std::string BuiltEngines() {
-  std::string out;
-  [[maybe_unused]] auto add = [&](const char* name) {
-    absl::StrAppend(&out, out.empty() ? "" : ",", name);
-  };
-#if SEAPLAN_SERVER_HAS_VALIDATE
-  add("validate");
-#endif
-#if SEAPLAN_SERVER_HAS_SEARCH
-  add("search");
-#endif
-#if SEAPLAN_SERVER_HAS_CHART
-  add("chart");
-#endif
-#if SEAPLAN_SERVER_HAS_ROUTE
-  add("route");
-#endif
-#if SEAPLAN_SERVER_HAS_MISSION
-  add("mission");
-#endif
-  return out.empty() ? "none" : out;
-}
-
 ServiceCore::ServiceCore(storage::Store& store, const CoreOptions& options,
-                         std::shared_ptr<MissionEngine> mission_engine)
+                         std::shared_ptr<mission::MissionEngine> mission_engine)
     : pool_(options.planning_threads),
       planning_(pool_, root_),
       charts_(store.charts(), pool_, root_),
       routes_(store.charts(), pool_, root_),
-      missions_(store.missions(), pool_, root_, std::move(mission_engine), options.missions),
+      missions_(store.missions(), pool_, root_,
+                mission_engine
+                    ? std::move(mission_engine)
+                    : mission::MakeMissionEngine([&charts = store.charts()](const std::string& id) {
+                        return LoadMap(charts, id);
+                      }),
+                options.missions),
       vessels_(store.missions()) {}
 
 ServiceCore::~ServiceCore() {

@@ -9,11 +9,11 @@
 #include <string>
 
 #include "seaplan/common/stop_token.h"
+#include "seaplan/mission/mission_engine.h"
 #include "seaplan/storage/repositories.h"
 #include "server/core/call_context.h"
 #include "server/core/chart_handlers.h"
 #include "server/core/mission_coordinator.h"
-#include "server/core/mission_engine.h"
 #include "server/core/planning_handlers.h"
 #include "server/core/route_handlers.h"
 #include "server/core/vessel_tracker.h"
@@ -28,14 +28,12 @@ struct CoreOptions {
   MissionCoordinator::Options missions;
 };
 
-// Which engine libraries this binary was built with ("validate", "search", ...).
-std::string BuiltEngines();
-
 class ServiceCore {
  public:
-  // `store` must outlive the core. `mission_engine` may be null.
+  // `store` must outlive the core. Without `mission_engine`, the one over
+  // engine/search and engine/route with the store's charts.
   ServiceCore(storage::Store& store, const CoreOptions& options,
-              std::shared_ptr<MissionEngine> mission_engine);
+              std::shared_ptr<mission::MissionEngine> mission_engine = nullptr);
   ~ServiceCore();
   ServiceCore(const ServiceCore&) = delete;
   ServiceCore& operator=(const ServiceCore&) = delete;

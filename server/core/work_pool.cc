@@ -26,6 +26,7 @@ void WorkPool::Shutdown() {
     shutdown_ = true;
   }
   cv_.notify_all();
+  free_cv_.notify_all();
   for (auto& t : threads_) {
     if (t.joinable()) t.join();
   }
@@ -47,6 +48,7 @@ void WorkPool::WorkerLoop() {
       std::lock_guard lock(mu_);
       --busy_;
     }
+    free_cv_.notify_one();
     {
       std::lock_guard lock(job->mu);
       job->done = true;
@@ -67,6 +69,35 @@ absl::Status WorkPool::Run(std::function<void()> work, const std::function<void(
           absl::StrCat("all ", threads_.size(), " planning workers are busy; retry later"));
     }
     ++busy_;
+  }
+  Execute(job, tick, tick_interval);
+  return absl::OkStatus();
+}
+
+absl::Status WorkPool::RunWhenFree(std::function<void()> work, const StopToken& stop) {
+  auto job = std::make_shared<Job>();
+  job->work = std::move(work);
+  {
+    std::unique_lock lock(mu_);
+    // Waits in short steps: a StopToken has no condition variable to wake us.
+    while (!shutdown_ && busy_ >= static_cast<int>(threads_.size()) && !stop.StopRequested())
+      free_cv_.wait_for(lock, std::chrono::milliseconds(20));
+    if (shutdown_) return absl::UnavailableError("server is shutting down");
+    if (stop.StopRequested()) {
+      return stop.Reason() == StopReason::kDeadline
+                 ? absl::DeadlineExceededError("stopped while waiting for a planning worker")
+                 : absl::CancelledError("stopped while waiting for a planning worker");
+    }
+    ++busy_;
+  }
+  Execute(job, {}, std::chrono::milliseconds(10));
+  return absl::OkStatus();
+}
+
+void WorkPool::Execute(const std::shared_ptr<Job>& job, const std::function<void()>& tick,
+                       std::chrono::milliseconds tick_interval) {
+  {
+    std::lock_guard lock(mu_);
     queue_.push_back(job);
   }
   cv_.notify_one();
@@ -81,7 +112,6 @@ absl::Status WorkPool::Run(std::function<void()> work, const std::function<void(
   }
   lock.unlock();
   if (tick) tick();
-  return absl::OkStatus();
 }
 
 }  // namespace seaplan::server

@@ -23,6 +23,7 @@
 #include <vector>
 
 #include "seaplan/common/status.h"
+#include "seaplan/common/stop_token.h"
 
 namespace seaplan::server {
 
@@ -41,6 +42,13 @@ class WorkPool {
   absl::Status Run(std::function<void()> work, const std::function<void()>& tick = {},
                    std::chrono::milliseconds tick_interval = std::chrono::milliseconds(10));
 
+  // Like Run, but when every worker is busy waits for one to be free instead
+  // of refusing: for work the server starts itself (a replan a feedback
+  // report triggered), which has no client to retry it but must still count
+  // against the pool's bound. Cancelled / DeadlineExceeded (without running
+  // anything) when `stop` stops while waiting; Unavailable after Shutdown().
+  absl::Status RunWhenFree(std::function<void()> work, const StopToken& stop);
+
   // Refuses new work, lets running work finish, joins the workers.
   void Shutdown();
 
@@ -55,9 +63,13 @@ class WorkPool {
     bool done = false;
   };
   void WorkerLoop();
+  // Hands `job` to a worker (busy_ already counts it) and waits for it.
+  void Execute(const std::shared_ptr<Job>& job, const std::function<void()>& tick,
+               std::chrono::milliseconds tick_interval);
 
   mutable std::mutex mu_;
   std::condition_variable cv_;
+  std::condition_variable free_cv_;         // a worker became free
   std::deque<std::shared_ptr<Job>> queue_;  // never longer than the idle workers
   int busy_ = 0;                            // submitted and not finished
   bool shutdown_ = false;

@@ -100,22 +100,6 @@ class ServerProcess {
   std::string address_;
 };
 
-// Whether the server plans missions: a CreateMission with an empty spec
-// answers UNIMPLEMENTED (returned with its message) while no mission engine
-// is wired; any other answer means it is.
-inline std::optional<std::string> MissionEngineMissing(const std::string& address) {
-  auto stub =
-      v1::MissionService::NewStub(grpc::CreateChannel(address, grpc::InsecureChannelCredentials()));
-  v1::CreateMissionRequest req;
-  req.mutable_spec()->set_name("probe");
-  v1::Mission m;
-  grpc::ClientContext ctx;
-  ctx.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(30));
-  const grpc::Status s = stub->CreateMission(&ctx, req, &m);
-  if (s.error_code() != grpc::StatusCode::UNIMPLEMENTED) return std::nullopt;
-  return s.error_message();
-}
-
 struct ProcessResult {
   int exit_code = -1;      // -1: killed by a signal or did not start
   bool timed_out = false;  // killed after the wall-clock limit

@@ -105,11 +105,6 @@ TEST(TrondheimE2eTest, CaseAOnRealLandAreasOneVersionNoGroundingSafeCpa) {
   e2e::ServerProcess server;
   ASSERT_TRUE(server.Start(BinDir() / "seaplan-server", dir / "server"))
       << "seaplan-server did not start: " << e2e::ReadWholeFile(dir / "server" / "server.log");
-  if (const auto missing = e2e::MissionEngineMissing(server.address())) {
-    GTEST_SKIP()
-        << "the server answers UNIMPLEMENTED for CreateMission (mission engine not wired yet): "
-        << *missing;
-  }
 
   // The sim resolves "shared:" paths with SEAPLAN_SHARED: give it the
   // folder this test found. As fast as possible; the wall-clock limit only

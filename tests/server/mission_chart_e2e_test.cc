@@ -8,7 +8,6 @@
 #include <chrono>
 #include <thread>
 
-#include "server/core/mission_engine_adapter.h"
 #include "test_support.h"
 
 namespace seaplan::server::testing {
@@ -93,8 +92,7 @@ v1::MissionSpec ChartSpec(const std::string& chart_id, const std::string& goal) 
 }
 
 TEST(MissionChartE2eTest, MovesAreRoutedAroundTheIslandWithModes) {
-  InProcessServer s(InProcessServer::EngineFactory(
-      [](storage::Store& store) { return MakeMissionEngine(store.charts()); }));
+  InProcessServer s;  // with the server's own mission engine
   const std::string chart_id = UploadIslandChart(s);
   ASSERT_FALSE(chart_id.empty());
   auto missions = v1::MissionService::NewStub(s.channel());
@@ -105,7 +103,6 @@ TEST(MissionChartE2eTest, MovesAreRoutedAroundTheIslandWithModes) {
   v1::Mission mission;
   const auto t0 = std::chrono::steady_clock::now();
   grpc::Status st = missions->CreateMission(&ctx, req, &mission);
-  if (st.error_code() == StatusCode::UNIMPLEMENTED) GTEST_SKIP() << st.error_message();
   ASSERT_TRUE(st.ok()) << st.error_message();
   RecordProperty("create_ms",
                  static_cast<int>(std::chrono::duration_cast<std::chrono::milliseconds>(
@@ -181,8 +178,7 @@ TEST(MissionChartE2eTest, MovesAreRoutedAroundTheIslandWithModes) {
 }
 
 TEST(MissionChartE2eTest, LegWithoutSafeRouteIsFailedPreconditionNamingTheLeg) {
-  InProcessServer s(InProcessServer::EngineFactory(
-      [](storage::Store& store) { return MakeMissionEngine(store.charts()); }));
+  InProcessServer s;  // with the server's own mission engine
   const std::string chart_id = UploadIslandChart(s);
   ASSERT_FALSE(chart_id.empty());
   auto missions = v1::MissionService::NewStub(s.channel());
@@ -192,7 +188,6 @@ TEST(MissionChartE2eTest, LegWithoutSafeRouteIsFailedPreconditionNamingTheLeg) {
   SetDeadline(&ctx, 60000);
   v1::Mission mission;
   grpc::Status st = missions->CreateMission(&ctx, req, &mission);
-  if (st.error_code() == StatusCode::UNIMPLEMENTED) GTEST_SKIP() << st.error_message();
   EXPECT_EQ(st.error_code(), StatusCode::FAILED_PRECONDITION) << st.error_message();
   EXPECT_NE(st.error_message().find("port-w -> port-lagoon"), std::string::npos)
       << st.error_message();

@@ -4,7 +4,6 @@
 #include <gtest/gtest.h>
 
 #include "seaplan/testing/shared_data.h"
-#include "server/core/mission_engine_adapter.h"
 #include "test_support.h"
 
 namespace seaplan::server::testing {
@@ -18,8 +17,7 @@ std::string Example(const std::string& name) {
 }
 
 TEST(MissionE2eTest, CaseAPlannedRefinedAndReplannedWithTheRealEngine) {
-  InProcessServer s(InProcessServer::EngineFactory(
-      [](storage::Store& store) { return MakeMissionEngine(store.charts()); }));
+  InProcessServer s;  // with the server's own mission engine
   auto missions = v1::MissionService::NewStub(s.channel());
   v1::CreateMissionRequest req;
   v1::MissionSpec* spec = req.mutable_spec();
@@ -44,7 +42,6 @@ TEST(MissionE2eTest, CaseAPlannedRefinedAndReplannedWithTheRealEngine) {
   SetDeadline(&ctx, 60000);
   v1::Mission mission;
   grpc::Status st = missions->CreateMission(&ctx, req, &mission);
-  if (st.error_code() == StatusCode::UNIMPLEMENTED) GTEST_SKIP() << st.error_message();
   ASSERT_TRUE(st.ok()) << st.error_message();
   EXPECT_EQ(mission.state(), v1::MISSION_STATE_ACTIVE);
   EXPECT_EQ(mission.current_version(), 1);
@@ -105,6 +102,104 @@ TEST(MissionE2eTest, CaseAPlannedRefinedAndReplannedWithTheRealEngine) {
     EXPECT_EQ(cancelled.state(), v1::MISSION_STATE_CANCELLED);
     EXPECT_EQ(cancelled.current_version(), 2);
   }
+}
+
+// A ship reported farther than position_deviation_m from the route of the
+// move it sails gets a new plan with that reason, over gRPC, through the
+// stored version (its routes included) and the background replan.
+TEST(MissionE2eTest, AShipOffItsRouteIsReplannedWithThatReason) {
+  InProcessServer s;  // with the server's own mission engine
+  auto missions = v1::MissionService::NewStub(s.channel());
+  v1::CreateMissionRequest req;
+  v1::MissionSpec* spec = req.mutable_spec();
+  spec->set_name("deviation");
+  spec->set_domain(Example("domain.pddl"));
+  spec->set_problem(Example("case-a.pddl"));
+  spec->set_vessel_id("ship0");
+  spec->mutable_ship()->set_service_speed_mps(5.0);
+  const char* ports[] = {"port-a", "port-b", "port-c", "port-d", "port-e"};
+  for (int i = 0; i < 5; ++i) {
+    v1::NamedLocation* l = spec->add_locations();
+    l->set_name(ports[i]);
+    l->mutable_position()->set_latitude_deg(63.45);
+    l->mutable_position()->set_longitude_deg(10.30 + 0.02 * i);
+  }
+  *spec->mutable_initial_state()->mutable_position() = spec->locations(0).position();
+  spec->mutable_initial_state()->set_fuel_fraction(0.9);
+  spec->mutable_planner_options()->mutable_time_limit()->set_seconds(20);
+  spec->mutable_replan_policy()->set_position_deviation_m(300);
+  ClientContext ctx;
+  SetDeadline(&ctx, 60000);
+  v1::Mission mission;
+  ASSERT_TRUE(missions->CreateMission(&ctx, req, &mission).ok());
+  auto stored = s.store().missions().GetVersion(mission.mission_id(), 1);
+  ASSERT_TRUE(stored.ok());
+  v1::PlanVersion version;
+  ASSERT_TRUE(version.ParseFromString(stored->content));
+  const v1::Task* move = nullptr;
+  for (const auto& t : version.tasks()) {
+    if (t.kind() == v1::Task::KIND_MOVE) {
+      move = &t;
+      break;
+    }
+  }
+  ASSERT_NE(move, nullptr);
+  ASSERT_GE(move->route().waypoints_size(), 2);
+
+  // Watch from the start: version 2 must arrive on the stream.
+  ClientContext wctx;
+  SetDeadline(&wctx, 60000);
+  v1::WatchMissionRequest wreq;
+  wreq.set_mission_id(mission.mission_id());
+  wreq.set_after_version(1);
+  auto watch = missions->WatchMission(&wctx, wreq);
+
+  auto report = [&](int seq, double lat_offset_deg, v1::ReportFeedbackResponse* resp) {
+    ClientContext fctx;
+    v1::ReportFeedbackRequest f;
+    f.set_mission_id(mission.mission_id());
+    f.set_vessel_id("ship0");
+    f.set_sequence_number(seq);
+    v1::Feedback* fb = f.mutable_feedback();
+    fb->set_kind(v1::Feedback::KIND_POSITION);
+    fb->set_task_id(move->task_id());
+    fb->set_plan_version(1);
+    fb->set_mission_time_s(move->start_s() + 60);
+    // Half way along the leg (the legs run east along 63.45 N), shifted north.
+    const auto& a = move->route().waypoints(0).position();
+    const auto& b = move->route().waypoints(move->route().waypoints_size() - 1).position();
+    fb->mutable_state()->mutable_position()->set_latitude_deg(
+        (a.latitude_deg() + b.latitude_deg()) / 2 + lat_offset_deg);
+    fb->mutable_state()->mutable_position()->set_longitude_deg(
+        (a.longitude_deg() + b.longitude_deg()) / 2);
+    fb->mutable_state()->set_fuel_fraction(0.9);
+    return missions->ReportFeedback(&fctx, f, resp);
+  };
+  // 0.001 deg of latitude is about 111 m: within the 300 m limit.
+  v1::ReportFeedbackResponse near;
+  ASSERT_TRUE(report(1, 0.001, &near).ok());
+  EXPECT_FALSE(near.replan_triggered());
+  // 0.005 deg is about 556 m off the route.
+  v1::ReportFeedbackResponse off;
+  ASSERT_TRUE(report(2, 0.005, &off).ok());
+  ASSERT_TRUE(off.replan_triggered());
+  EXPECT_NE(off.replan_reason().find("off the route of " + move->task_id()), std::string::npos)
+      << off.replan_reason();
+  EXPECT_NE(off.replan_reason().find("limit 300 m"), std::string::npos) << off.replan_reason();
+
+  v1::MissionEvent event;
+  bool got_version = false;
+  while (watch->Read(&event)) {
+    if (!event.has_plan_version()) continue;
+    EXPECT_EQ(event.plan_version().version(), 2);
+    EXPECT_EQ(event.plan_version().reason(), off.replan_reason());
+    // The new plan starts where the ship was reported.
+    ASSERT_GT(event.plan_version().tasks_size(), 0);
+    got_version = true;
+    break;
+  }
+  EXPECT_TRUE(got_version);
+  wctx.TryCancel();
 }
 
 }  // namespace

@@ -96,25 +96,30 @@ TEST(ServerE2eTest, UnknownIdsAreNotFoundOverBothTransports) {
   EXPECT_NE(res->body.find("NOT_FOUND"), std::string::npos);
 }
 
-TEST(ServerE2eTest, MissingMissionEngineIsUnimplementedAndStoresNothing) {
-  InProcessServer s;  // no mission engine
+TEST(ServerE2eTest, MalformedMissionSpecIsInvalidArgumentAndStoresNothing) {
+  InProcessServer s;  // the server's own mission engine
   auto missions = v1::MissionService::NewStub(s.channel());
   ClientContext ctx;
   v1::CreateMissionRequest req;
   *req.mutable_spec() = SampleSpec();
+  req.mutable_spec()->set_domain("(define (domain d)\n (:predicates (p)\n");
   v1::Mission resp;
   grpc::Status st = missions->CreateMission(&ctx, req, &resp);
-  EXPECT_EQ(st.error_code(), StatusCode::UNIMPLEMENTED);
-  EXPECT_NE(st.error_message().find("mission engine"), std::string::npos) << st.error_message();
+  EXPECT_EQ(st.error_code(), StatusCode::INVALID_ARGUMENT);
+  EXPECT_NE(st.error_message().find("malformed PDDL"), std::string::npos) << st.error_message();
+  v1::DiagnosticList diagnostics;
+  ASSERT_TRUE(diagnostics.ParseFromString(st.error_details()));
+  ASSERT_GE(diagnostics.diagnostics_size(), 1);
+  EXPECT_EQ(diagnostics.diagnostics(0).file(), "domain");
   auto listed = s.store().missions().List(0, 10, 0);
   ASSERT_TRUE(listed.ok());
   EXPECT_TRUE(listed->items.empty());
   auto res = s.http().Post("/v1/MissionService/CreateMission",
-                           "{\"spec\":{\"name\":\"x\",\"domain\":\"d\",\"problem\":\"p\"}}",
+                           "{\"spec\":{\"name\":\"x\",\"domain\":\"(define\",\"problem\":\"p\"}}",
                            "application/json");
   ASSERT_TRUE(res);
-  EXPECT_EQ(res->status, 501);
-  EXPECT_NE(res->body.find("UNIMPLEMENTED"), std::string::npos);
+  EXPECT_EQ(res->status, 400);
+  EXPECT_NE(res->body.find("INVALID_ARGUMENT"), std::string::npos);
 }
 
 TEST(ServerE2eTest, RouteRpcsCheckTheChartFirst) {
@@ -145,8 +150,6 @@ TEST(ServerE2eTest, MalformedPddlIsInvalidArgumentWithLocation) {
   ClientContext ctx;
   v1::ValidateResponse resp;
   grpc::Status st = planning->Validate(&ctx, req, &resp);
-  if (st.error_code() == StatusCode::UNIMPLEMENTED)
-    GTEST_SKIP() << "validator not built: " << st.error_message();
   ASSERT_EQ(st.error_code(), StatusCode::INVALID_ARGUMENT) << st.error_message();
   v1::DiagnosticList diagnostics;
   ASSERT_TRUE(diagnostics.ParseFromString(st.error_details()));
@@ -185,8 +188,6 @@ TEST(ServerE2eTest, ValidateJsonRoundTripOnTheFjordExample) {
   ClientContext ctx;
   v1::ValidateResponse resp;
   grpc::Status st = planning->Validate(&ctx, req, &resp);
-  if (st.error_code() == StatusCode::UNIMPLEMENTED)
-    GTEST_SKIP() << "validator not built: " << st.error_message();
   ASSERT_TRUE(st.ok()) << st.error_message();
   EXPECT_TRUE(resp.valid()) << resp.first_failure().reason();
   EXPECT_EQ(resp.action_count(), 13);

@@ -20,10 +20,12 @@ TempDir::~TempDir() {
   std::filesystem::remove_all(path_, ec);
 }
 
-absl::Status FakeMissionEngine::CheckSpec(const v1::MissionSpec& spec) {
-  if (spec.name() == "bad")
-    return absl::InvalidArgumentError("spec.name: 'bad' is refused by the fake engine");
+Status FakeMissionEngine::CheckSpec(const mission::MissionSpec&, std::vector<pddl::Diagnostic>*) {
   return absl::OkStatus();
+}
+
+StatusOr<chart::LocalFrame> FakeMissionEngine::Frame(const mission::MissionSpec&) {
+  return chart::LocalFrame();
 }
 
 absl::Status FakeMissionEngine::MaybeBlock(const StopToken& stop) {
@@ -37,94 +39,94 @@ absl::Status FakeMissionEngine::MaybeBlock(const StopToken& stop) {
   return absl::CancelledError("stopped");
 }
 
-PlannedVersion FakeMissionEngine::MakeVersion(int version, double origin_s) {
-  PlannedVersion planned;
-  v1::PlanVersion& v = planned.version;
-  v.set_mission_time_origin_s(origin_s);
-  v.set_planner_status(v1::SOLVED_SATISFICING);
+mission::PlannedVersion FakeMissionEngine::MakeVersion(int version, double origin_s) {
+  mission::PlannedVersion planned;
+  mission::PlanVersion& v = planned.version;
+  v.version = version;
+  v.mission_time_origin_s = origin_s;
   for (int i = 0; i < 2; ++i) {
-    v1::Task* t = v.add_tasks();
-    t->set_task_id(absl::StrCat("v", version, "-t", i));
-    t->set_kind(i == 0 ? v1::Task::KIND_MOVE : v1::Task::KIND_LOAD);
-    t->set_start_s(origin_s + 100.0 * i);
-    t->set_duration_s(100.0);
-    v1::TimedAction* a = v.add_plan();
-    a->set_start_s(origin_s + 100.0 * i);
-    a->set_duration_s(100.0);
-    a->set_name(i == 0 ? "move-ship" : "load-cont");
+    mission::Task t;
+    t.id = absl::StrCat("v", version, "-t", i);
+    t.kind = i == 0 ? mission::TaskKind::kMove : mission::TaskKind::kLoad;
+    t.start_s = origin_s + 100.0 * i;
+    t.duration_s = 100.0;
+    t.action.start_s = t.start_s;
+    t.action.name = i == 0 ? "move-ship" : "load-cont";
+    t.action.duration_s = t.duration_s;
+    v.plan.steps.push_back(t.action);
+    v.tasks.push_back(std::move(t));
   }
-  v.set_makespan_s(origin_s + 200.0);
+  v.makespan_s = origin_s + 200.0;
   planned.engine_state = absl::StrCat("state-of-v", version);
   planned.log_messages = {"computing the temporal plan", "replan and refined done"};
   return planned;
 }
 
-absl::StatusOr<PlannedVersion> FakeMissionEngine::PlanInitial(const v1::MissionSpec&,
-                                                              const StopToken& stop) {
+StatusOr<mission::PlannedVersion> FakeMissionEngine::PlanInitial(const mission::MissionSpec&,
+                                                                 const StopToken& stop) {
   ++plan_calls;
   SEAPLAN_RETURN_IF_ERROR(MaybeBlock(stop));
   return MakeVersion(1, 0.0);
 }
 
-absl::StatusOr<std::optional<PlannedVersion>> FakeMissionEngine::Replan(
-    const v1::MissionSpec&, const MissionRuntimeState& state, std::string_view reason,
+StatusOr<std::optional<mission::PlannedVersion>> FakeMissionEngine::Replan(
+    const mission::MissionSpec&, const mission::MissionRuntime& runtime, std::string_view reason,
     const StopToken& stop) {
   ++plan_calls;
   ++replan_calls;
+  const int running = ++replans_running;
+  int most = most_replans_at_once.load();
+  while (running > most && !most_replans_at_once.compare_exchange_weak(most, running)) {
+  }
+  struct Leave {
+    std::atomic<int>& n;
+    ~Leave() { --n; }
+  } leave{replans_running};
   SEAPLAN_RETURN_IF_ERROR(MaybeBlock(stop));
   const auto until =
       std::chrono::steady_clock::now() + std::chrono::milliseconds(replan_delay_ms.load());
   while (!stop.StopRequested() && std::chrono::steady_clock::now() < until) {
     std::this_thread::sleep_for(std::chrono::milliseconds(2));
   }
-  if (state.engine_state != absl::StrCat("state-of-v", state.mission.current_version())) {
+  if (runtime.engine_state != absl::StrCat("state-of-v", runtime.current.version)) {
     return absl::InternalError("engine state of the current version was not handed back");
   }
-  PlannedVersion planned = MakeVersion(
-      state.mission.current_version() + 1,
-      state.recent_feedback.empty() ? 0.0 : state.recent_feedback.back().mission_time_s());
-  planned.version.set_reason(std::string(reason));
-  return std::optional<PlannedVersion>(std::move(planned));
+  mission::PlannedVersion planned = MakeVersion(
+      runtime.current.version + 1,
+      runtime.recent_feedback.empty() ? 0.0 : runtime.recent_feedback.back().mission_time_s);
+  planned.version.reason = std::string(reason);
+  return std::optional<mission::PlannedVersion>(std::move(planned));
 }
 
-FeedbackDecision FakeMissionEngine::OnFeedback(const v1::MissionSpec&,
-                                               const MissionRuntimeState& state,
-                                               const v1::Feedback& feedback) {
-  FeedbackDecision d;
-  if (feedback.kind() == v1::Feedback::KIND_TASK_COMPLETED) {
-    std::vector<std::string> done(state.mission.completed_tasks().begin(),
-                                  state.mission.completed_tasks().end());
-    done.push_back(feedback.task_id());
-    d.completed_tasks = done;
-    const auto& tasks = state.current_version.tasks();
-    if (!tasks.empty() && feedback.task_id() == tasks[tasks.size() - 1].task_id()) {
-      d.new_state = v1::MISSION_STATE_COMPLETED;
+mission::FeedbackOutcome FakeMissionEngine::OnFeedback(const mission::MissionSpec&,
+                                                       const mission::MissionRuntime& runtime,
+                                                       const mission::Feedback& feedback) {
+  mission::FeedbackOutcome d;
+  d.completed_task_ids = runtime.completed_task_ids;
+  if (feedback.kind == mission::FeedbackKind::kTaskCompleted) {
+    d.completed_task_ids.push_back(feedback.task_id);
+    d.completed_changed = true;
+    const auto& tasks = runtime.current.tasks;
+    if (!tasks.empty() && feedback.task_id == tasks.back().id) {
+      d.mission_completed = true;
       d.log_messages.push_back("mission completed");
     }
-  } else if (feedback.kind() == v1::Feedback::KIND_TASK_FAILED) {
-    d.replan = true;
-    d.replan_reason = absl::StrCat("task ", feedback.task_id(), " failed");
-    d.log_messages.push_back(
-        absl::StrCat("task ", feedback.task_id(), " failed, need re-planning"));
+  } else if (feedback.kind == mission::FeedbackKind::kTaskFailed) {
+    d.replan_reason = absl::StrCat("task ", feedback.task_id, " failed");
+    d.log_messages.push_back(absl::StrCat("task ", feedback.task_id, " failed, need re-planning"));
   }
   return d;
 }
 
-InProcessServer::InProcessServer(std::shared_ptr<MissionEngine> engine, int planning_threads) {
+InProcessServer::InProcessServer(std::shared_ptr<mission::MissionEngine> engine,
+                                 int planning_threads) {
   auto store = storage::SqliteStore::Open((dir_.path() / "seaplan.db").string());
   EXPECT_TRUE(store.ok()) << store.status();
   store_ = std::move(*store);
   Start(std::move(engine), planning_threads);
 }
 
-InProcessServer::InProcessServer(const EngineFactory& make_engine, int planning_threads) {
-  auto store = storage::SqliteStore::Open((dir_.path() / "seaplan.db").string());
-  EXPECT_TRUE(store.ok()) << store.status();
-  store_ = std::move(*store);
-  Start(make_engine(*store_), planning_threads);
-}
-
-void InProcessServer::Start(std::shared_ptr<MissionEngine> engine, int planning_threads) {
+void InProcessServer::Start(std::shared_ptr<mission::MissionEngine> engine, int planning_threads) {
   ServerOptions options;
   options.grpc_address = "127.0.0.1:0";
   options.http_address = "127.0.0.1:0";

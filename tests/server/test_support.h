@@ -3,6 +3,9 @@
 // and a fake mission engine whose timing the tests control.
 #pragma once
 
+// Before httplib: it includes <resolv.h>, whose `_res` macro breaks Eigen
+// (reached through the mission engine's route planner), which names
+// parameters `_res`.
 #include <grpcpp/grpcpp.h>
 #include <gtest/gtest.h>
 #include <httplib.h>
@@ -15,12 +18,12 @@
 #include <string>
 #include <thread>
 
+#include "seaplan/mission/mission_engine.h"  // NOLINT(build/include_order)
 #include "seaplan/storage/sqlite_store.h"
 #include "seaplan/v1/chart.grpc.pb.h"
 #include "seaplan/v1/mission.grpc.pb.h"
 #include "seaplan/v1/planning.grpc.pb.h"
 #include "seaplan/v1/route.grpc.pb.h"
-#include "server/core/mission_engine.h"
 #include "server/server.h"
 
 namespace seaplan::server::testing {
@@ -35,10 +38,10 @@ class TempDir {
   std::filesystem::path path_;
 };
 
-// A MissionEngine for tests. Version N has tasks "vN-t0" and "vN-t1".
-// TASK_COMPLETED of the last task of the current version completes the
-// mission; TASK_FAILED asks for a replan.
-class FakeMissionEngine final : public MissionEngine {
+// A mission engine for tests. Version N has tasks "vN-t0" (a move) and
+// "vN-t1" (a load). TASK_COMPLETED of the last task of the current version
+// completes the mission; TASK_FAILED asks for a replan.
+class FakeMissionEngine final : public mission::MissionEngine {
  public:
   // When set, PlanInitial and Replan wait until their StopToken stops (at
   // most 20 s) and report what stopped them.
@@ -49,31 +52,35 @@ class FakeMissionEngine final : public MissionEngine {
   // Replan takes at least this long (stops early with its StopToken).
   std::atomic<int> replan_delay_ms{0};
   std::atomic<int> replan_calls{0};
+  // Replans running now, and the most at once.
+  std::atomic<int> replans_running{0};
+  std::atomic<int> most_replans_at_once{0};
 
-  absl::Status CheckSpec(const v1::MissionSpec& spec) override;
-  absl::StatusOr<PlannedVersion> PlanInitial(const v1::MissionSpec& spec,
-                                             const StopToken& stop) override;
-  absl::StatusOr<std::optional<PlannedVersion>> Replan(const v1::MissionSpec& spec,
-                                                       const MissionRuntimeState& state,
-                                                       std::string_view reason,
-                                                       const StopToken& stop) override;
-  FeedbackDecision OnFeedback(const v1::MissionSpec& spec, const MissionRuntimeState& state,
-                              const v1::Feedback& feedback) override;
+  Status CheckSpec(const mission::MissionSpec& spec,
+                   std::vector<pddl::Diagnostic>* diagnostics) override;
+  StatusOr<chart::LocalFrame> Frame(const mission::MissionSpec& spec) override;
+  StatusOr<mission::PlannedVersion> PlanInitial(const mission::MissionSpec& spec,
+                                                const StopToken& stop) override;
+  StatusOr<std::optional<mission::PlannedVersion>> Replan(const mission::MissionSpec& spec,
+                                                          const mission::MissionRuntime& runtime,
+                                                          std::string_view reason,
+                                                          const StopToken& stop) override;
+  mission::FeedbackOutcome OnFeedback(const mission::MissionSpec& spec,
+                                      const mission::MissionRuntime& runtime,
+                                      const mission::Feedback& feedback) override;
 
  private:
   absl::Status MaybeBlock(const StopToken& stop);
-  static PlannedVersion MakeVersion(int version, double origin_s);
+  static mission::PlannedVersion MakeVersion(int version, double origin_s);
 };
 
 // The server in-process on 127.0.0.1:0 (both transports), over a fresh
 // database in a temporary folder.
 class InProcessServer {
  public:
-  explicit InProcessServer(std::shared_ptr<MissionEngine> engine = nullptr,
+  // Without `engine`, the server's own (engine/mission over its store's charts).
+  explicit InProcessServer(std::shared_ptr<mission::MissionEngine> engine = nullptr,
                            int planning_threads = 2);
-  // With an engine made over the server's own store (e.g. MakeMissionEngine).
-  using EngineFactory = std::function<std::shared_ptr<MissionEngine>(storage::Store&)>;
-  explicit InProcessServer(const EngineFactory& make_engine, int planning_threads = 2);
   ~InProcessServer();
 
   Server& server() { return *server_; }
@@ -84,7 +91,7 @@ class InProcessServer {
   httplib::Client http() const;
 
  private:
-  void Start(std::shared_ptr<MissionEngine> engine, int planning_threads);
+  void Start(std::shared_ptr<mission::MissionEngine> engine, int planning_threads);
 
   TempDir dir_;
   std::unique_ptr<storage::SqliteStore> store_;

@@ -38,6 +38,7 @@ StatusOr<PlanVersion> PlanRefineParse(const MissionDefinition& mission, std::str
   v.tasks = ParseTasks(refined, locations, mission.refine.moves, version);
   v.plan = std::move(refined.plan);
   v.problem = std::string(problem);
+  v.quality = outcome.quality;
   log::Info("mission: version {} ({}): {} tasks, makespan {:.1f} s", v.version, v.reason,
             v.tasks.size(), v.makespan_s);
   return v;

@@ -45,13 +45,46 @@ struct TimedEvent {
 
 }  // namespace
 
-bool DomainPlansFuel(std::string_view domain_text) {
-  pddl::DomainParseResult d = pddl::ParseDomain(domain_text);
-  if (!d.domain) return false;
-  for (const pddl::FunctionDecl& f : d.domain->functions) {
-    if (f.parameters.size() == 1 && f.name.find("fuel") != std::string::npos) return true;
+namespace {
+
+// Functions consumed by an effect (decrease) of `e`.
+void Consumed(const pddl::Effect& e, std::set<std::string>* out) {
+  if (e.kind == pddl::Effect::Kind::kNumeric && e.op == pddl::AssignOp::kDecrease &&
+      e.fluent.kind == pddl::NumExpr::Kind::kFluent && e.fluent.args.size() == 1) {
+    out->insert(e.fluent.function);
   }
-  return false;
+  for (const pddl::Effect& c : e.children) Consumed(c, out);
+}
+
+// Functions whose level a comparison in `c` bounds from below.
+void BoundedBelow(const pddl::Condition& c, std::set<std::string>* out) {
+  if (c.kind == pddl::Condition::Kind::kCompare) {
+    const bool lhs_floor = c.comparator == pddl::Comparator::kGreaterEqual ||
+                           c.comparator == pddl::Comparator::kGreater;
+    const bool rhs_floor =
+        c.comparator == pddl::Comparator::kLessEqual || c.comparator == pddl::Comparator::kLess;
+    const pddl::NumExpr* level = lhs_floor ? &c.lhs : rhs_floor ? &c.rhs : nullptr;
+    if (level && level->kind == pddl::NumExpr::Kind::kFluent && level->args.size() == 1)
+      out->insert(level->function);
+  }
+  for (const pddl::Condition& child : c.children) BoundedBelow(child, out);
+}
+
+}  // namespace
+
+std::string PlannedFuelFunction(std::string_view domain_text) {
+  pddl::DomainParseResult d = pddl::ParseDomain(domain_text);
+  if (!d.domain) return "";
+  std::set<std::string> consumed, bounded;
+  for (const pddl::Action& a : d.domain->actions) {
+    Consumed(a.effect, &consumed);
+    BoundedBelow(a.condition, &bounded);
+  }
+  for (const pddl::FunctionDecl& f : d.domain->functions) {
+    if (f.parameters.size() == 1 && consumed.contains(f.name) && bounded.contains(f.name))
+      return f.name;
+  }
+  return "";
 }
 
 Status RegenerationOptions::Validate() const {
@@ -299,14 +332,7 @@ StatusOr<RegeneratedProblem> RegenerateProblem(std::string_view domain_text,
   const bool fuel_gates_actions = !options.fuel_predicate.empty() &&
                                   model.PredicateInConditions(options.fuel_predicate) &&
                                   model.domain().FindPredicate(options.fuel_predicate);
-  std::string fuel_function = options.fuel_function;
-  if (fuel_function.empty()) {
-    // A one-argument numeric function named like fuel is the tank level.
-    for (const pddl::FunctionDecl& f : model.domain().functions) {
-      if (f.parameters.size() == 1 && f.name.find("fuel") != std::string::npos)
-        fuel_function = f.name;
-    }
-  }
+  const std::string& fuel_function = options.fuel_function;
   if (ship.fuel_fraction) {
     const bool low = FuelAtOrBelow(*ship.fuel_fraction, options.fuel_threshold_fraction);
     const pddl::Domain& d = model.domain();

@@ -124,13 +124,31 @@ TEST_F(ProblemUpdateTest, DistanceFunctionsOfTheTemplateAreScaledByGeometry) {
   EXPECT_NEAR(st.fluents["(distance port-b port-s)"], 52 * std::hypot(1000, 400) / 1000, 1e-9);
 }
 
-TEST_F(ProblemUpdateTest, DomainPlansFuelOnlyWithANumericFuelFunction) {
-  EXPECT_FALSE(DomainPlansFuel(domain_));
-  std::string numeric = domain_;
-  numeric.replace(numeric.find("(speed ?v - vehicle)"), 20,
-                  "(speed ?v - vehicle) (fuel-level ?v - vehicle)");
-  EXPECT_TRUE(DomainPlansFuel(numeric));
-  EXPECT_FALSE(DomainPlansFuel("(define"));
+TEST_F(ProblemUpdateTest, PlannedFuelFunctionIsTheConsumedAndBoundedFluent) {
+  EXPECT_EQ(PlannedFuelFunction(domain_), "");
+  // Declared only, whatever its name: not planned.
+  std::string declared = domain_;
+  declared.replace(declared.find("(speed ?v - vehicle)"), 20,
+                   "(speed ?v - vehicle) (fuel-level ?v - vehicle)");
+  EXPECT_EQ(PlannedFuelFunction(declared), "");
+  // Consumed by the move and bounded below by its condition: the tank,
+  // whatever its name.
+  std::string planned = domain_;
+  planned.replace(planned.find("(speed ?v - vehicle)"), 20,
+                  "(speed ?v - vehicle) (charge ?v - vehicle)");
+  planned.replace(planned.find("(at start (route_available ?r)))"), 32,
+                  "(at start (route_available ?r)) (at start (>= (charge ?v) 15)))");
+  planned.replace(planned.find("(at end (at ?v ?l))))"), 21,
+                  "(at end (at ?v ?l)) (at start (decrease (charge ?v) 15))))");
+  EXPECT_EQ(PlannedFuelFunction(planned), "charge");
+  // Consumed but never required: not a tank the plan has to respect.
+  std::string consumed = domain_;
+  consumed.replace(consumed.find("(speed ?v - vehicle)"), 20,
+                   "(speed ?v - vehicle) (charge ?v - vehicle)");
+  consumed.replace(consumed.find("(at end (at ?v ?l))))"), 21,
+                   "(at end (at ?v ?l)) (at start (decrease (charge ?v) 15))))");
+  EXPECT_EQ(PlannedFuelFunction(consumed), "");
+  EXPECT_EQ(PlannedFuelFunction("(define"), "");
 }
 
 TEST_F(ProblemUpdateTest, BadStepIsAnError) {

@@ -10,14 +10,16 @@
 
 namespace seaplan::mission {
 
-FeedbackOutcome OnFeedback(const MissionDefinition& mission, const PlanVersion& current,
+FeedbackOutcome OnFeedback(const ReplanPolicy& policy, const PlanVersion& current,
                            const std::vector<std::string>& completed_task_ids,
                            const Feedback& feedback) {
   FeedbackOutcome out;
   out.completed_task_ids = completed_task_ids;
   const Task* task = nullptr;
-  for (const Task& t : current.tasks) {
-    if (t.id == feedback.task_id) task = &t;
+  if (!feedback.task_id.empty()) {
+    for (const Task& t : current.tasks) {
+      if (t.id == feedback.task_id) task = &t;
+    }
   }
   std::set<std::string> done(completed_task_ids.begin(), completed_task_ids.end());
   if (feedback.kind == FeedbackKind::kTaskCompleted && !feedback.task_id.empty() &&
@@ -34,9 +36,14 @@ FeedbackOutcome OnFeedback(const MissionDefinition& mission, const PlanVersion& 
     if (feedback.kind == FeedbackKind::kTaskFailed)
       out.log_messages.push_back(TaskFailedMessage(task->kind));
   }
-  if (feedback.kind == FeedbackKind::kCollisionAvoidance) {
-    out.log_messages.push_back(feedback.detail.empty() ? std::string(messages::kPotentialCollision)
-                                                       : feedback.detail);
+  if (feedback.kind == FeedbackKind::kCollisionAvoidance)
+    out.log_messages.emplace_back(messages::kPotentialCollision);
+  if (feedback.kind == FeedbackKind::kTaskCompleted && !current.tasks.empty() &&
+      std::all_of(current.tasks.begin(), current.tasks.end(),
+                  [&](const Task& t) { return done.contains(t.id); })) {
+    out.mission_completed = true;
+    out.log_messages.emplace_back(messages::kMissionCompleted);
+    return out;
   }
   // The move under way when the feedback is not about a specific task.
   const Task* active = task;
@@ -48,11 +55,9 @@ FeedbackOutcome OnFeedback(const MissionDefinition& mission, const PlanVersion& 
       }
     }
   }
-  out.replan_reason = DecideReplan(feedback, current, active, mission.policy, &done);
-  out.mission_completed = !current.tasks.empty() && !out.replan_reason &&
-                          std::all_of(current.tasks.begin(), current.tasks.end(),
-                                      [&](const Task& t) { return done.contains(t.id); });
-  if (out.mission_completed) out.log_messages.push_back(std::string(messages::kMissionCompleted));
+  // `done` holds the task this report completes: a refuel still ahead is
+  // "left" whatever its planned time (a late ship is past it on paper).
+  out.replan_reason = DecideReplan(feedback, current, active, policy, &done);
   return out;
 }
 
@@ -84,30 +89,42 @@ ReplanInput MakeReplanInput(const PlanVersion& current,
   return in;
 }
 
-std::string EncodeEngineState(const LocationTable& locations) {
+namespace {
+constexpr char kFuelFunctionKey[] = "@fuel-function";
+}  // namespace
+
+std::string EncodeEngineState(const EngineState& state) {
   std::string out;
-  for (const auto& [name, p] : locations) {
+  for (const auto& [name, p] : state.locations) {
     absl::StrAppend(&out, name, " ", validate::FormatTime(p.x_m), " ", validate::FormatTime(p.y_m),
                     "\n");
+  }
+  if (state.fuel_function) {
+    absl::StrAppend(&out, kFuelFunctionKey, state.fuel_function->empty() ? "" : " ",
+                    *state.fuel_function, "\n");
   }
   return out;
 }
 
-StatusOr<LocationTable> DecodeEngineState(std::string_view text) {
-  LocationTable t;
+StatusOr<EngineState> DecodeEngineState(std::string_view text) {
+  EngineState state;
   int line = 0;
   for (absl::string_view l :
        absl::StrSplit(absl::string_view(text.data(), text.size()), '\n', absl::SkipEmpty())) {
     ++line;
     std::vector<std::string> w = absl::StrSplit(l, ' ', absl::SkipEmpty());
+    if (!w.empty() && w[0] == kFuelFunctionKey && w.size() <= 2) {
+      state.fuel_function = w.size() == 2 ? w[1] : "";
+      continue;
+    }
     double x, y;
     if (w.size() != 3 || !absl::SimpleAtod(w[1], &x) || !absl::SimpleAtod(w[2], &y)) {
-      return absl::InvalidArgumentError(
-          absl::StrCat("engine state line ", line, ": expected 'name x y'"));
+      return absl::InvalidArgumentError(absl::StrCat(
+          "engine state line ", line, ": expected 'name x y' or '", kFuelFunctionKey, " [name]'"));
     }
-    t[w[0]] = {x, y};
+    state.locations[w[0]] = {x, y};
   }
-  return t;
+  return state;
 }
 
 }  // namespace seaplan::mission

@@ -2,8 +2,8 @@
 // plan -> refine -> parse for the first version, and update problem ->
 // plan -> refine -> parse for every replan. The temporal planner and the
 // route planner are callbacks, so this library depends on neither the
-// search nor the route library, and the server wires the real ones
-// (seaplan::search::Solve, seaplan::route::PlanRoute) in its adapter.
+// search nor the route library; MissionEngine (mission_engine.h) wires the
+// real ones (search_planner.h, chart_routing.h).
 //
 //   MissionDefinition def{domain, problem, locations};
 //   NavigationLog log;
@@ -35,8 +35,9 @@ namespace seaplan::mission {
 // ("unsolvable", "timeout", ...) is a result, not an error.
 struct PlannerOutcome {
   bool solved = false;
-  validate::Plan plan;  // plan time (starts at 0)
-  std::string status;   // e.g. "SOLVED_SATISFICING", "UNSOLVABLE_PROVEN"
+  validate::Plan plan;                              // plan time (starts at 0)
+  std::string status;                               // e.g. "solved", "unsolvable", "timeout"
+  PlanQuality quality = PlanQuality::kSatisficing;  // when solved
 };
 using TemporalPlanner = std::function<StatusOr<PlannerOutcome>(
     std::string_view domain_text, std::string_view problem_text, const StopToken& stop)>;

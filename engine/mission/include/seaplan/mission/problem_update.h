@@ -25,9 +25,8 @@
 //    predicates (names configurable) are set from fraction <= threshold, but
 //    only in domains where (fuel ?v) is a condition of some action (executor
 //    fuel, case C); where it is only a goal (case A's "refuel at E") it is
-//    left alone. A numeric fuel function (fuel_function, or else the
-//    domain's one-argument function whose name contains "fuel") is set to
-//    fraction x fuel_function_full.
+//    left alone. A numeric tank fluent (fuel_function, decided once per
+//    mission by PlannedFuelFunction) is set to fraction x fuel_function_full.
 #pragma once
 
 #include <optional>
@@ -68,10 +67,14 @@ struct RegeneratedProblem {
   bool goal_satisfied = false;  // the mission's goal already holds now
 };
 
-// True when the domain declares a one-argument numeric function whose name
-// contains "fuel" (fuel planned up front, e.g. (fuel-level ?v)); false for
-// unparsable text. Use it to set ReplanPolicy::fuel_planned.
-bool DomainPlansFuel(std::string_view domain_text);
+// The numeric fluent the domain plans fuel with, decided from its structure:
+// a one-argument function (over the ship) that some action consumes (a
+// decrease effect) and that some action's condition bounds from below
+// ((>= (f ?v) x) or (> (f ?v) x)), e.g. (fuel-level ?v) in case C numeric;
+// the first in declaration order when several qualify. "" when there is
+// none (or the text does not parse). Decide it once per mission: it sets
+// ReplanPolicy::fuel_planned and RegenerationOptions::fuel_function.
+std::string PlannedFuelFunction(std::string_view domain_text);
 
 StatusOr<RegeneratedProblem> RegenerateProblem(std::string_view domain_text,
                                                std::string_view problem_text,

@@ -88,6 +88,12 @@ struct Task {
   double end_s() const { return start_s + duration_s; }
 };
 
+// What the temporal planner proved about a version's plan.
+enum class PlanQuality {
+  kSatisficing,  // valid; better plans may exist
+  kOptimal,      // of minimal makespan (proven)
+};
+
 // One plan version of a mission, everything in mission time.
 struct PlanVersion {
   int version = 0;
@@ -97,6 +103,7 @@ struct PlanVersion {
   double makespan_s = 0.0;  // end of the last task, mission time
   std::vector<Task> tasks;
   std::string problem;  // the PDDL problem this version was planned from
+  PlanQuality quality = PlanQuality::kSatisficing;  // of the temporal plan before refinement
 };
 
 }  // namespace seaplan::mission

@@ -1,0 +1,28 @@
+// engine/search as the mission's temporal planner (the TemporalPlanner
+// callback of mission_planner.h).
+//
+// A replan is on the mission loop's critical path: the ship waits for it.
+// Anytime search would use its whole time limit on problems it cannot prove
+// optimal, so a replan with anytime search asks for the first plan, then
+// runs a short improvement search (twice the first search's time, between
+// kReplanImproveMinS and kReplanImproveMaxS, within the time limit) and
+// keeps the better of the two. The first plan of a mission uses the options
+// as given.
+#pragma once
+
+#include "seaplan/mission/mission_planner.h"
+#include "seaplan/search/planner.h"
+
+namespace seaplan::mission {
+
+inline constexpr double kReplanImproveMinS = 0.01;
+inline constexpr double kReplanImproveMaxS = 0.04;
+
+enum class PlanningPhase { kInitial, kReplan };
+
+// The planner's kError (bad input) is InvalidArgument with its message; the
+// other statuses are results (PlannerOutcome::solved, status,
+// quality: kOptimal for search's SOLVED_OPTIMALLY).
+TemporalPlanner SearchPlanner(const search::PlannerOptions& options, PlanningPhase phase);
+
+}  // namespace seaplan::mission

@@ -1,0 +1,215 @@
+// The coordinator over a real SQLite store and work pool, with a small
+// engine whose answers the tests choose.
+#include "server/core/mission_coordinator.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <filesystem>
+
+#include "absl/strings/str_cat.h"
+#include "seaplan/storage/sqlite_store.h"
+
+namespace seaplan::server {
+namespace {
+
+namespace fs = std::filesystem;
+
+// Version N: tasks vN-t0 (move) and vN-t1 (load). A failed task replans; the
+// last task completed completes the mission.
+class TwoTaskEngine final : public mission::MissionEngine {
+ public:
+  explicit TwoTaskEngine(const WorkPool& pool) : pool_(pool) {}
+  std::atomic<int> busy_in_replan{-1};  // the pool's busy count seen by Replan
+  std::atomic<int> replans{0};
+
+  Status CheckSpec(const mission::MissionSpec&, std::vector<pddl::Diagnostic>*) override {
+    return absl::OkStatus();
+  }
+  StatusOr<chart::LocalFrame> Frame(const mission::MissionSpec&) override {
+    return chart::LocalFrame();
+  }
+  StatusOr<mission::PlannedVersion> PlanInitial(const mission::MissionSpec&,
+                                                const StopToken&) override {
+    return Version(1, mission::PlanQuality::kOptimal);
+  }
+  StatusOr<std::optional<mission::PlannedVersion>> Replan(const mission::MissionSpec&,
+                                                          const mission::MissionRuntime& runtime,
+                                                          std::string_view reason,
+                                                          const StopToken&) override {
+    busy_in_replan = pool_.busy();
+    ++replans;
+    mission::PlannedVersion v =
+        Version(runtime.current.version + 1, mission::PlanQuality::kSatisficing);
+    v.version.reason = std::string(reason);
+    return std::optional<mission::PlannedVersion>(std::move(v));
+  }
+  mission::FeedbackOutcome OnFeedback(const mission::MissionSpec&,
+                                      const mission::MissionRuntime& runtime,
+                                      const mission::Feedback& f) override {
+    mission::FeedbackOutcome out;
+    out.completed_task_ids = runtime.completed_task_ids;
+    if (f.kind == mission::FeedbackKind::kTaskFailed) out.replan_reason = "task failed";
+    if (f.kind == mission::FeedbackKind::kTaskCompleted) {
+      out.completed_task_ids.push_back(f.task_id);
+      out.completed_changed = true;
+      out.mission_completed = f.task_id == runtime.current.tasks.back().id;
+    }
+    return out;
+  }
+
+ private:
+  static mission::PlannedVersion Version(int n, mission::PlanQuality quality) {
+    mission::PlannedVersion v;
+    v.version.version = n;
+    v.version.quality = quality;
+    for (int i = 0; i < 2; ++i) {
+      mission::Task t;
+      t.id = absl::StrCat("v", n, "-t", i);
+      t.kind = i == 0 ? mission::TaskKind::kMove : mission::TaskKind::kLoad;
+      v.version.tasks.push_back(t);
+    }
+    v.engine_state = absl::StrCat("v", n);
+    return v;
+  }
+  const WorkPool& pool_;
+};
+
+class MissionCoordinatorTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::temp_directory_path() /
+           absl::StrCat("seaplan-coordinator-test-", ::getpid(), "-",
+                        ::testing::UnitTest::GetInstance()->current_test_info()->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+    auto store = storage::SqliteStore::Open((dir_ / "seaplan.db").string());
+    ASSERT_TRUE(store.ok()) << store.status();
+    store_ = std::move(*store);
+    engine_ = std::make_shared<TwoTaskEngine>(pool_);
+    MissionCoordinator::Options options;
+    options.watch_poll = std::chrono::milliseconds(10);
+    coordinator_ =
+        std::make_unique<MissionCoordinator>(store_->missions(), pool_, root_, engine_, options);
+  }
+  void TearDown() override {
+    coordinator_->Shutdown();
+    pool_.Shutdown();
+    coordinator_.reset();
+    (void)store_->Close();
+    std::error_code ec;
+    fs::remove_all(dir_, ec);
+  }
+
+  CallContext Call() const {
+    return CallContext{"test", root_.Child(StopToken::Clock::time_point::max()), {}};
+  }
+
+  v1::Mission Create() {
+    v1::CreateMissionRequest req;
+    req.mutable_spec()->set_name("m");
+    req.mutable_spec()->set_domain("(define (domain d))");
+    req.mutable_spec()->set_problem("(define (problem p) (:domain d))");
+    auto m = coordinator_->CreateMission(req, Call());
+    EXPECT_TRUE(m.ok()) << m.status();
+    return m.ok() ? *m : v1::Mission();
+  }
+
+  absl::StatusOr<v1::ReportFeedbackResponse> Report(const std::string& id, int seq,
+                                                    v1::Feedback::Kind kind,
+                                                    const std::string& task) {
+    v1::ReportFeedbackRequest req;
+    req.set_mission_id(id);
+    req.set_vessel_id("ship0");
+    req.set_sequence_number(seq);
+    req.mutable_feedback()->set_kind(kind);
+    req.mutable_feedback()->set_task_id(task);
+    return coordinator_->ReportFeedback(req, Call());
+  }
+
+  v1::Mission Get(const std::string& id) {
+    v1::GetMissionRequest req;
+    req.set_mission_id(id);
+    auto m = coordinator_->GetMission(req, Call());
+    EXPECT_TRUE(m.ok()) << m.status();
+    return m.ok() ? *m : v1::Mission();
+  }
+
+  fs::path dir_;
+  StopToken root_;
+  WorkPool pool_{1};
+  std::unique_ptr<storage::SqliteStore> store_;
+  std::shared_ptr<TwoTaskEngine> engine_;
+  std::unique_ptr<MissionCoordinator> coordinator_;
+};
+
+TEST_F(MissionCoordinatorTest, StoresVersionOneWithThePlannersStatus) {
+  const v1::Mission m = Create();
+  EXPECT_EQ(m.state(), v1::MISSION_STATE_ACTIVE);
+  EXPECT_EQ(m.current_version(), 1);
+  auto v = store_->missions().GetVersion(m.mission_id(), 1);
+  ASSERT_TRUE(v.ok()) << v.status();
+  v1::PlanVersion version;
+  ASSERT_TRUE(version.ParseFromString(v->content));
+  EXPECT_EQ(version.planner_status(), v1::SOLVED_OPTIMALLY);
+  EXPECT_EQ(version.reason(), "initial plan");
+  EXPECT_EQ(v->engine_state, "v1");
+}
+
+TEST_F(MissionCoordinatorTest, TriggeredReplansRunOnTheWorkPool) {
+  const v1::Mission m = Create();
+  auto r = Report(m.mission_id(), 1, v1::Feedback::KIND_TASK_FAILED, "v1-t0");
+  ASSERT_TRUE(r.ok()) << r.status();
+  EXPECT_TRUE(r->replan_triggered());
+  EXPECT_EQ(r->replan_reason(), "task failed");
+  // Wait (bounded) for version 2 from the background replan.
+  for (int i = 0; i < 2000 && Get(m.mission_id()).current_version() < 2; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  const v1::Mission after = Get(m.mission_id());
+  ASSERT_EQ(after.current_version(), 2);
+  EXPECT_EQ(after.state(), v1::MISSION_STATE_ACTIVE);
+  // The replan held the pool's only worker while it ran.
+  EXPECT_EQ(engine_->busy_in_replan.load(), 1);
+  auto v = store_->missions().GetVersion(m.mission_id(), 2);
+  ASSERT_TRUE(v.ok());
+  v1::PlanVersion version;
+  ASSERT_TRUE(version.ParseFromString(v->content));
+  EXPECT_EQ(version.planner_status(), v1::SOLVED_SATISFICING);
+  EXPECT_EQ(version.reason(), "task failed");
+}
+
+TEST_F(MissionCoordinatorTest, LastTaskCompletesTheMissionAndLaterFeedbackIsRefused) {
+  const v1::Mission m = Create();
+  ASSERT_TRUE(Report(m.mission_id(), 1, v1::Feedback::KIND_TASK_COMPLETED, "v1-t0").ok());
+  EXPECT_EQ(Get(m.mission_id()).state(), v1::MISSION_STATE_ACTIVE);
+  ASSERT_TRUE(Report(m.mission_id(), 2, v1::Feedback::KIND_TASK_COMPLETED, "v1-t1").ok());
+  const v1::Mission done = Get(m.mission_id());
+  EXPECT_EQ(done.state(), v1::MISSION_STATE_COMPLETED);
+  EXPECT_EQ(done.completed_tasks_size(), 2);
+  auto late = Report(m.mission_id(), 3, v1::Feedback::KIND_TASK_FAILED, "v1-t1");
+  EXPECT_TRUE(absl::IsFailedPrecondition(late.status())) << late.status();
+  EXPECT_EQ(engine_->replans.load(), 0);
+  // A retry of a stored report is a duplicate, whatever the state.
+  auto retry = Report(m.mission_id(), 2, v1::Feedback::KIND_TASK_COMPLETED, "v1-t1");
+  ASSERT_TRUE(retry.ok());
+  EXPECT_TRUE(retry->duplicate());
+}
+
+TEST_F(MissionCoordinatorTest, CancelledIsFinal) {
+  const v1::Mission m = Create();
+  v1::CancelMissionRequest cancel;
+  cancel.set_mission_id(m.mission_id());
+  auto c = coordinator_->CancelMission(cancel, Call());
+  ASSERT_TRUE(c.ok()) << c.status();
+  EXPECT_EQ(c->state(), v1::MISSION_STATE_CANCELLED);
+  EXPECT_TRUE(coordinator_->CancelMission(cancel, Call()).ok());  // idempotent
+  v1::RequestReplanRequest replan;
+  replan.set_mission_id(m.mission_id());
+  EXPECT_TRUE(absl::IsFailedPrecondition(coordinator_->RequestReplan(replan, Call()).status()));
+  EXPECT_TRUE(absl::IsFailedPrecondition(
+      Report(m.mission_id(), 1, v1::Feedback::KIND_TASK_COMPLETED, "v1-t0").status()));
+}
+
+}  // namespace
+}  // namespace seaplan::server
