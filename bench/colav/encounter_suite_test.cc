@@ -10,6 +10,13 @@
 #include <set>
 
 namespace seaplan::colav::suite {
+
+// gtest prints parameters in test names and failures: the situation's name,
+// not its bytes.
+void PrintTo(const Situation& s, std::ostream* os) {
+  *os << s.name;
+}
+
 namespace {
 
 class EncounterSuiteTest : public ::testing::TestWithParam<Situation> {};

@@ -10,7 +10,7 @@
 #   bench/colav/scenario_seeds.sh [--colav sbmpc|vo] [--runs N] [scenario ...]
 # Default: sbmpc, 20 runs, every examples/scenarios/*.scenario (trondheim
 # needs SEAPLAN_SHARED, default ../shared). Needs build/bin and jq. SIM_ARGS
-# adds seaplan-sim flags (e.g. SIM_ARGS="--heading-gains 2 200").
+# adds seaplan-sim flags (e.g. SIM_ARGS=--former-autopilot).
 set -euo pipefail
 cd "$(dirname "$0")/../.."
 COLAV=sbmpc

@@ -53,7 +53,7 @@ struct Flags {
   std::string log_level = "warn";
   std::string colav = "sbmpc";
   uint64_t seed = 0;
-  std::vector<double> heading_gains;  // kp, kd; empty: the autopilot's defaults
+  bool former_autopilot = false;
 };
 
 std::string ReadAll(const std::string& path, bool* ok) {
@@ -301,10 +301,9 @@ int main(int argc, char** argv) {
                  "collision avoidance: sbmpc (scenario-based MPC) or vo (velocity obstacles)")
       ->check(CLI::IsMember({"sbmpc", "vo"}))
       ->capture_default_str();
-  app.add_option("--heading-gains", f.heading_gains,
-                 "autopilot heading gains KP KD (rudder per rad of error, per rad/s of yaw rate); "
-                 "for comparisons, e.g. the former 2 200")
-      ->expected(2);
+  app.add_flag("--former-autopilot", f.former_autopilot,
+               "steer with the heading control from before engine/colav (PID on the error, kp 2, "
+               "kd 200), for comparisons");
   app.add_option("--seed", f.seed,
                  "perturb the traffic's timing and the wind with this seed (0: as scripted)")
       ->capture_default_str();
@@ -384,9 +383,10 @@ int main(int argc, char** argv) {
   cfg->avoidance.policy =
       f.colav == "vo" ? colav::Policy::kVelocityObstacle : colav::Policy::kScenarioMpc;
   if (f.seed != 0) sim::PerturbConfig(f.seed, &*cfg);
-  if (f.heading_gains.size() == 2) {
-    cfg->autopilot.heading_kp = f.heading_gains[0];
-    cfg->autopilot.heading_kd_s = f.heading_gains[1];
+  if (f.former_autopilot) {
+    cfg->autopilot.heading_kp = 2.0;
+    cfg->autopilot.heading_kd_s = 200.0;
+    cfg->autopilot.derivative_on_error = true;
   }
   auto executor = sim::Executor::Create(*cfg);
   if (!executor.ok()) return fail(executor.status());

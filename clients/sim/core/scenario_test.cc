@@ -2,6 +2,8 @@
 
 #include <gtest/gtest.h>
 
+#include <cmath>
+
 namespace seaplan::sim {
 namespace {
 
@@ -53,6 +55,32 @@ TEST(ScenarioTest, BadLinesNameTheLine) {
   auto g =
       ParseScenario("domain = d\nproblem = p\nlocation = a 1 2\ngnss_jump = 1 2 3 4 5 6\n", "f");
   EXPECT_NE(g.status().message().find("grid"), std::string::npos);
+}
+
+TEST(ScenarioTest, SeedsShiftTheTrafficAndTheWindWithinTheirBoundsReproducibly) {
+  ExecutorConfig base;
+  base.environment.wind_speed_mps = 10.0;
+  base.environment.wind_direction_from_rad = 1.0;
+  for (int i = 0; i < 3; ++i) {
+    base.traffic.push_back({i + 1, "v", "ferry", {{0.0, {0, 0}}, {100.0, {100, 0}}}});
+  }
+  ExecutorConfig a = base, b = base, c = base;
+  PerturbConfig(7, &a);
+  PerturbConfig(7, &b);
+  PerturbConfig(8, &c);
+  bool differs = false;
+  for (size_t v = 0; v < base.traffic.size(); ++v) {
+    const double shift = a.traffic[v].track[0].time_s;
+    EXPECT_LE(std::abs(shift), 60.0);
+    // The whole track moves together.
+    EXPECT_NEAR(a.traffic[v].track[1].time_s - shift, 100.0, 1e-9);
+    EXPECT_EQ(shift, b.traffic[v].track[0].time_s);
+    differs = differs || shift != c.traffic[v].track[0].time_s;
+  }
+  EXPECT_TRUE(differs) << "seeds 7 and 8 shift the traffic alike";
+  EXPECT_GE(a.environment.wind_speed_mps, 8.0);
+  EXPECT_LE(a.environment.wind_speed_mps, 12.0);
+  EXPECT_LE(std::abs(a.environment.wind_direction_from_rad - 1.0), 20.0 * M_PI / 180 + 1e-12);
 }
 
 }  // namespace

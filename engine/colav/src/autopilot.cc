@@ -23,7 +23,10 @@ ActuatorCommand Autopilot::Update(double course_setpoint_rad, double speed_setpo
                                   double dt_s) {
   ActuatorCommand c;
   const double e = WrapAngle(course_setpoint_rad - heading_rad);
-  c.rudder_rad = std::clamp(-(options_.heading_kp * e - options_.heading_kd_s * yaw_rate_radps),
+  const double rate =
+      options_.derivative_on_error ? -(e - previous_error_rad_) / dt_s : yaw_rate_radps;
+  previous_error_rad_ = e;
+  c.rudder_rad = std::clamp(-(options_.heading_kp * e - options_.heading_kd_s * rate),
                             -options_.max_rudder_rad, options_.max_rudder_rad);
   const double ev = speed_setpoint_mps - surge_mps;
   const double unsaturated = options_.speed_kp * ev + options_.speed_ki * speed_integral_m_;

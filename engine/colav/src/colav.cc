@@ -323,6 +323,11 @@ Command CollisionAvoidance::StepScenarioMpc(const OwnShip& own, const DesiredMot
         const double x = b.offset_rad / kQuarterTurnRad;
         cost += w.course_offset * x * x * (b.offset_rad < 0 ? w.port_factor : 1.0) +
                 w.speed_reduction * (1.0 - std::min(factor, 1.0));
+        // Hysteresis on ending a manoeuvre: back to the nominal behaviour
+        // only once it is predicted clear (else the ship alternates between
+        // a manoeuvre and the nominal behaviour every decision, each undoing
+        // the other's prediction).
+        if (manoeuvring_ && b == Behaviour{} && nominal.collision_cost > 0) cost += w.collision;
         if (manoeuvring_) {
           cost +=
               w.change_course * std::abs(b.offset_rad - behaviour_.offset_rad) / kQuarterTurnRad +

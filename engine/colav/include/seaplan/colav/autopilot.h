@@ -26,8 +26,13 @@ struct AutopilotOptions {
   double heading_kp = 4.0;         // rudder rad per rad of course error
   double heading_kd_s = 100.0;     // rudder rad per rad/s of yaw rate
   double max_rudder_rad = 0.5236;  // 30 deg
-  double speed_kp = 0.2;           // throttle per m/s
-  double speed_ki = 0.004;         // throttle per m of integrated speed error
+  // The simulation client's former form (SITS' PID): the derivative on the
+  // error's change per step instead of the yaw rate, so every setpoint
+  // change kicks the rudder. Kept to compare against (seaplan-sim
+  // --former-autopilot: kp 2, kd 200 in this form).
+  bool derivative_on_error = false;
+  double speed_kp = 0.2;    // throttle per m/s
+  double speed_ki = 0.004;  // throttle per m of integrated speed error
   double max_throttle = 1.1;
   Status Validate() const;
 };
@@ -50,6 +55,7 @@ class Autopilot {
  private:
   AutopilotOptions options_;
   double speed_integral_m_ = 0.0;
+  double previous_error_rad_ = 0.0;  // derivative_on_error only
 };
 
 }  // namespace seaplan::colav
