@@ -136,9 +136,9 @@ mission::Feedback FeedbackFromProto(const v1::Feedback& feedback, int current_ve
   f.detail = feedback.detail();
   if (feedback.has_state()) {
     if (frame != nullptr && feedback.state().has_position()) {
-      const chart::LocalPoint p = frame->ToLocal({feedback.state().position().latitude_deg(),
-                                                  feedback.state().position().longitude_deg()});
-      f.position = mission::Point{p.x_m, p.y_m};
+      const EastNorth p = frame->ToLocal({feedback.state().position().latitude_deg(),
+                                          feedback.state().position().longitude_deg()});
+      f.position = EastNorth{p.east_m, p.north_m};
     }
     f.fuel_fraction = feedback.state().fuel_fraction();
   }
@@ -174,7 +174,7 @@ mission::Route RouteFromEngine(const route::RouteResult& result) {
   double eta = 0, distance = 0;
   for (const auto& w : a.waypoints) {
     mission::RouteWaypoint m;
-    m.position = {w.local.x_m, w.local.y_m};
+    m.position = {w.local.east_m, w.local.north_m};
     m.mode = ModeFromRoute(w.mode);
     m.eta_s = eta;
     m.distance_from_start_m = distance;
@@ -198,17 +198,17 @@ mission::Route RouteFromEngine(const route::RouteResult& result) {
 // 10 m further out when that is free too (clear of the buffer's edge), or
 // nullopt when there is none.
 inline constexpr double kMaxWayOutM = 500.0;
-std::optional<chart::LocalPoint> ShortestWayOut(const route::ObstacleField& field,
-                                                chart::LocalPoint p) {
+std::optional<EastNorth> ShortestWayOut(const route::ObstacleField& field, EastNorth p) {
   constexpr int kBearings = 64;
   for (double r = 5.0; r <= kMaxWayOutM; r += 5.0) {
     for (int k = 0; k < kBearings; ++k) {
       const double a = 2.0 * M_PI * k / kBearings;
-      const route::Vec2 q{p.x_m + r * std::sin(a), p.y_m + r * std::cos(a)};
+      const EastNorth q{p.east_m + r * std::sin(a), p.north_m + r * std::cos(a)};
       if (field.Inside(q)) continue;
-      const route::Vec2 clear{p.x_m + (r + 10.0) * std::sin(a), p.y_m + (r + 10.0) * std::cos(a)};
-      return field.Inside(clear) ? chart::LocalPoint{q.x, q.y}
-                                 : chart::LocalPoint{clear.x, clear.y};
+      const EastNorth clear{p.east_m + (r + 10.0) * std::sin(a),
+                            p.north_m + (r + 10.0) * std::cos(a)};
+      return field.Inside(clear) ? EastNorth{q.east_m, q.north_m}
+                                 : EastNorth{clear.east_m, clear.north_m};
     }
   }
   return std::nullopt;
@@ -217,10 +217,10 @@ std::optional<chart::LocalPoint> ShortestWayOut(const route::ObstacleField& fiel
 // Puts `from` in front of a route that starts at its way out of the
 // obstacles: one more leg, sailed at the route's mean speed in the mode of
 // its first leg.
-void PrependWayOut(chart::LocalPoint from, mission::Route* r) {
+void PrependWayOut(EastNorth from, mission::Route* r) {
   if (r->waypoints.empty()) return;
-  const mission::Point first = r->waypoints.front().position;
-  const double leg_m = std::hypot(first.x_m - from.x_m, first.y_m - from.y_m);
+  const EastNorth first = r->waypoints.front().position;
+  const double leg_m = std::hypot(first.east_m - from.east_m, first.north_m - from.north_m);
   const double speed =
       r->sailing_time_s > 0 && r->length_m > 0 ? r->length_m / r->sailing_time_s : 1.0;
   const double leg_s = leg_m / speed;
@@ -229,7 +229,7 @@ void PrependWayOut(chart::LocalPoint from, mission::Route* r) {
     w.distance_from_start_m += leg_m;
   }
   mission::RouteWaypoint out = r->waypoints.front();
-  out.position = {from.x_m, from.y_m};
+  out.position = {from.east_m, from.north_m};
   out.eta_s = 0.0;
   out.distance_from_start_m = 0.0;
   out.fuel_kg = r->waypoints.front().fuel_kg * (r->length_m > 0 ? leg_m / r->length_m : 0.0);
@@ -310,9 +310,9 @@ class Adapter final : public MissionEngine {
     mission::ShipObservation ship;
     const v1::ShipState& last =
         state.mission.has_last_state() ? state.mission.last_state() : spec.initial_state();
-    const chart::LocalPoint p =
+    const EastNorth p =
         c.frame.ToLocal({last.position().latitude_deg(), last.position().longitude_deg()});
-    ship.position = {p.x_m, p.y_m};
+    ship.position = {p.east_m, p.north_m};
     // A reported state is a full state: fuel 0 is an empty tank. The spec's
     // initial state counts only when it names a fuel level.
     if (state.mission.has_last_state() || last.fuel_fraction() > 0)
@@ -469,8 +469,8 @@ class Adapter final : public MissionEngine {
   static mission::RoutePlanner ChartRouter(std::shared_ptr<ChartRouting> shared, StopToken stop) {
     return [routing = std::move(shared),
             stop](const mission::RouteRequest& req) -> StatusOr<mission::Route> {
-      const std::array<double, 4> key = {req.from_position.x_m, req.from_position.y_m,
-                                         req.to_position.x_m, req.to_position.y_m};
+      const std::array<double, 4> key = {req.from_position.east_m, req.from_position.north_m,
+                                         req.to_position.east_m, req.to_position.north_m};
       {
         std::lock_guard lock(routing->mu);
         if (auto it = routing->routes.find(key); it != routing->routes.end()) return it->second;
@@ -480,14 +480,14 @@ class Adapter final : public MissionEngine {
                    ? absl::DeadlineExceededError("routing stopped: deadline")
                    : absl::CancelledError("routing stopped");
       }
-      const chart::LocalPoint from{req.from_position.x_m, req.from_position.y_m};
-      chart::LocalPoint start = from;
+      const EastNorth from{req.from_position.east_m, req.from_position.north_m};
+      EastNorth start = from;
       bool way_out = false;
-      if (routing->planner->field().Inside({from.x_m, from.y_m})) {
-        std::optional<chart::LocalPoint> out = ShortestWayOut(routing->planner->field(), from);
+      if (routing->planner->field().Inside({from.east_m, from.north_m})) {
+        std::optional<EastNorth> out = ShortestWayOut(routing->planner->field(), from);
         if (!out) {
           return absl::FailedPreconditionError(
-              absl::StrCat("start (", from.x_m, ", ", from.y_m,
+              absl::StrCat("start (", from.east_m, ", ", from.north_m,
                            ") lies inside a grounding obstacle with no free water "
                            "within ",
                            kMaxWayOutM, " m"));
@@ -496,7 +496,7 @@ class Adapter final : public MissionEngine {
         way_out = true;
       }
       auto result = routing->planner->Plan(
-          start, chart::LocalPoint{req.to_position.x_m, req.to_position.y_m}, routing->env, stop);
+          start, EastNorth{req.to_position.east_m, req.to_position.north_m}, routing->env, stop);
       if (!result.ok()) {
         if (absl::IsInvalidArgument(result.status())) {
           // A location outside the chart or inside an obstacle: the mission
@@ -520,7 +520,7 @@ class Adapter final : public MissionEngine {
         log::Info(
             "route from ({:.0f}, {:.0f}) inside the buffered obstacles leaves them at ({:.0f}, "
             "{:.0f})",
-            from.x_m, from.y_m, start.x_m, start.y_m);
+            from.east_m, from.north_m, start.east_m, start.north_m);
       }
       std::lock_guard lock(routing->mu);
       if (routing->routes.size() >= kMaxCachedRoutes) routing->routes.clear();
@@ -540,9 +540,9 @@ class Adapter final : public MissionEngine {
     def.problem = spec.problem();
     if (locations_state.empty()) {
       for (const auto& l : spec.locations()) {
-        const chart::LocalPoint p =
+        const EastNorth p =
             c.frame.ToLocal({l.position().latitude_deg(), l.position().longitude_deg()});
-        def.locations[l.name()] = {p.x_m, p.y_m};
+        def.locations[l.name()] = {p.east_m, p.north_m};
       }
     } else {
       auto decoded = mission::DecodeEngineState(locations_state);
@@ -656,7 +656,7 @@ class Adapter final : public MissionEngine {
         r->set_max_grounding_probability(t.route->max_grounding_probability);
         for (const auto& w : t.route->waypoints) {
           v1::RouteWaypoint* rw = r->add_waypoints();
-          const chart::LatLon ll = c.frame.ToLatLon({w.position.x_m, w.position.y_m});
+          const chart::LatLon ll = c.frame.ToLatLon({w.position.east_m, w.position.north_m});
           rw->mutable_position()->set_latitude_deg(ll.lat_deg);
           rw->mutable_position()->set_longitude_deg(ll.lon_deg);
           rw->set_mode(ModeToProto(w.mode));

@@ -42,8 +42,8 @@ TEST(ColregTest, HeadOnCrossingOvertaking) {
 }
 
 // Kinematic ships (velocity changes at once) stepping 1 s.
-double RunEncounter(Kinematics own, Vec2 desired, Kinematics other, const AvoidanceOptions& o,
-                    Vec2* first_manoeuvre) {
+double RunEncounter(Kinematics own, EastNorth desired, Kinematics other, const AvoidanceOptions& o,
+                    EastNorth* first_manoeuvre) {
   double min_d = 1e9;
   bool first = true;
   for (int t = 0; t < 800; ++t) {
@@ -63,11 +63,11 @@ double RunEncounter(Kinematics own, Vec2 desired, Kinematics other, const Avoida
 TEST(AvoidanceTest, CrossingGiveWayKeepsCpaAboveSafetyAndTurnsToStarboard) {
   AvoidanceOptions o;
   o.safety_distance_m = 200;
-  Vec2 manoeuvre{0, 0};
+  EastNorth manoeuvre{0, 0};
   double min_d = RunEncounter({{0, 0}, VelocityOf(kNorth, 5)}, VelocityOf(kNorth, 5),
                               {{1000, 1000}, VelocityOf(kWest, 5)}, o, &manoeuvre);
   EXPECT_GE(min_d, o.safety_distance_m * 0.97);
-  EXPECT_GT(manoeuvre.x, 0.0) << "give way by turning to starboard (east)";
+  EXPECT_GT(manoeuvre.east_m, 0.0) << "give way by turning to starboard (east)";
   // Without avoidance they would collide.
   EXPECT_NEAR(
       ComputeCpa({{0, 0}, VelocityOf(kNorth, 5)}, {{1000, 1000}, VelocityOf(kWest, 5)}).dcpa_m, 0,
@@ -77,11 +77,11 @@ TEST(AvoidanceTest, CrossingGiveWayKeepsCpaAboveSafetyAndTurnsToStarboard) {
 TEST(AvoidanceTest, HeadOnBothStarboardAndStandOnKeepsCourse) {
   AvoidanceOptions o;
   o.safety_distance_m = 150;
-  Vec2 manoeuvre{0, 0};
+  EastNorth manoeuvre{0, 0};
   double min_d = RunEncounter({{0, 0}, VelocityOf(kNorth, 5)}, VelocityOf(kNorth, 5),
                               {{20, 3000}, VelocityOf(kSouth, 5)}, o, &manoeuvre);
   EXPECT_GE(min_d, o.safety_distance_m * 0.97);
-  EXPECT_GT(manoeuvre.x, 0.0);
+  EXPECT_GT(manoeuvre.east_m, 0.0);
   // Crossing from port, far enough: stand on (no manoeuvre yet).
   Kinematics own{{0, 0}, VelocityOf(kNorth, 5)};
   AvoidanceDecision d =
@@ -102,17 +102,17 @@ namespace {
 
 // A slow-turning ship: the course follows the commanded one at most
 // `turn_rate` rad/s, after a lag; speed changes at `accel`.
-double RunSlowTurningEncounter(Kinematics own, Vec2 desired, Kinematics other,
+double RunSlowTurningEncounter(Kinematics own, EastNorth desired, Kinematics other,
                                const AvoidanceOptions& o, double turn_rate, int lag_steps,
                                Role* role) {
   double min_d = 1e9;
-  std::vector<Vec2> commands;
+  std::vector<EastNorth> commands;
   double course = CourseOf(own.velocity), speed = own.velocity.Norm();
   for (int t = 0; t < 900; ++t) {
     AvoidanceDecision d = ChooseVelocity(own, desired, {{other, 7}}, o);
     if (d.manoeuvring && *role == Role::kNone) *role = d.role;
     commands.push_back(d.velocity);
-    Vec2 cmd = commands[std::max(0, static_cast<int>(commands.size()) - 1 - lag_steps)];
+    EastNorth cmd = commands[std::max(0, static_cast<int>(commands.size()) - 1 - lag_steps)];
     double dc = std::remainder(CourseOf(cmd) - course, 2 * M_PI);
     course += std::clamp(dc, -turn_rate, turn_rate);
     speed += std::clamp(cmd.Norm() - speed, -0.05, 0.05);
@@ -146,7 +146,7 @@ namespace seaplan::sim {
 namespace {
 
 TEST(LandClearanceTest, CrossingInsideAndDistance) {
-  const std::vector<std::vector<Vec2>> land = {{{0, 100}, {1000, 100}, {1000, 300}, {0, 300}}};
+  const std::vector<std::vector<EastNorth>> land = {{{0, 100}, {1000, 100}, {1000, 300}, {0, 300}}};
   EXPECT_EQ(LandClearance(land, {500, 0}, {500, 200}), 0.0);    // crosses the shore
   EXPECT_EQ(LandClearance(land, {500, 150}, {510, 160}), 0.0);  // starts on land
   EXPECT_NEAR(LandClearance(land, {0, 40}, {1000, 40}), 60.0, 1e-9);
@@ -164,7 +164,7 @@ TEST(LandClearanceTest, CrossingInsideAndDistance) {
 // Giving way to starboard would run the ship onto the shore just south of
 // it: the avoidance picks a velocity whose track stays clear of the land.
 TEST(AvoidanceTest, GiveWayManoeuvreKeepsClearOfLand) {
-  const std::vector<std::vector<Vec2>> south_shore = {
+  const std::vector<std::vector<EastNorth>> south_shore = {
       {{-5000, -100}, {5000, -100}, {5000, -2000}, {-5000, -2000}}};
   AvoidanceOptions o;
   o.safety_distance_m = 120;
@@ -191,7 +191,7 @@ TEST(AvoidanceTest, GiveWayManoeuvreKeepsClearOfLand) {
 // way out is to speed up, which the avoidance tries only when it knows the
 // hull's top speed.
 TEST(AvoidanceTest, OvertakenInAChannelSpeedsUpWhenTurningIsBlocked) {
-  const std::vector<std::vector<Vec2>> banks = {
+  const std::vector<std::vector<EastNorth>> banks = {
       {{-500, -3000}, {-70, -3000}, {-70, 3000}, {-500, 3000}},
       {{70, -3000}, {500, -3000}, {500, 3000}, {70, 3000}}};
   const LandIndex index(banks);
@@ -213,7 +213,7 @@ TEST(AvoidanceTest, OvertakenInAChannelSpeedsUpWhenTurningIsBlocked) {
   EXPECT_GE(LandClearance(banks, own.position, own.position + d.velocity * o.land_lookahead_s),
             o.land_clearance_m);
   const Cpa cpa = ComputeCpa({own.position, d.velocity}, overtaker);  // within the horizon
-  const Vec2 rel = overtaker.velocity - d.velocity;
+  const EastNorth rel = overtaker.velocity - d.velocity;
   const double t = cpa.tcpa_s > 0 ? std::min(cpa.tcpa_s, o.horizon_s) : 0.0;
   EXPECT_GE((overtaker.position + rel * t - own.position).Norm(), o.safety_distance_m - 1e-6);
 }
@@ -232,14 +232,14 @@ TEST(AvoidanceTest, LeastBadCandidateKeepsTheMostDistanceUnderTheDelay) {
   ASSERT_FALSE(d.feasible);
   EXPECT_TRUE(d.manoeuvring);
   // Every candidate: present velocity for the delay, then the candidate.
-  auto min_distance = [&](Vec2 v) {
+  auto min_distance = [&](EastNorth v) {
     double best = 1e9;
     for (double t = 0; t <= o.horizon_s; t += 0.25) {
       const double turn = std::abs(std::remainder(CourseOf(v) - CourseOf(own.velocity), 2 * M_PI));
       const double delay =
           turn / o.turn_rate_rad_s + std::abs(v.Norm() - 8.0) / o.acceleration_mps2;
       const double lagged = delay > 1e-3 ? delay + o.manoeuvre_lag_s : 0.0;
-      const Vec2 p = t < lagged ? own.velocity * t : own.velocity * lagged + v * (t - lagged);
+      const EastNorth p = t < lagged ? own.velocity * t : own.velocity * lagged + v * (t - lagged);
       best = std::min(best, (other.position + other.velocity * t - p).Norm());
     }
     return best;
@@ -258,7 +258,7 @@ TEST(AvoidanceTest, LeastBadCandidateKeepsTheMostDistanceUnderTheDelay) {
 // path-ahead prediction does, and at a lower speed it is gone.
 TEST(PathAheadTest, SeesAConflictPastTheTurnThatTheStraightLineMisses) {
   // East 900 m, then south; a vessel heading west along y = -600.
-  const std::vector<Vec2> path = {{0, 0}, {900, 0}, {900, -2000}};
+  const std::vector<EastNorth> path = {{0, 0}, {900, 0}, {900, -2000}};
   const Kinematics own{{0, 0}, VelocityOf(kEast, 9)};
   const Kinematics other{{1700, -600}, VelocityOf(kWest, 5)};
   EXPECT_GT(ComputeCpa(own, other).dcpa_m, 500.0);
@@ -277,7 +277,7 @@ TEST(PathAheadTest, SeesAConflictPastTheTurnThatTheStraightLineMisses) {
 // at speed: with the speed ramp the prediction sees the meeting that the
 // instant-speed one misses.
 TEST(PathAheadTest, SpeedRampFromRestDelaysTheArrival) {
-  const std::vector<Vec2> path = {{0, 0}, {3000, 0}};
+  const std::vector<EastNorth> path = {{0, 0}, {3000, 0}};
   const Kinematics crossing{{800, -450}, VelocityOf(kNorth, 2.5)};  // at (800, 0) at t = 180 s
   const PathApproach instant = PathAheadClosestApproach(path, 1, {0, 0}, 9.0, crossing, 300.0, 1.0);
   EXPECT_GT(instant.distance_m, 150.0);
@@ -290,8 +290,9 @@ TEST(PathAheadTest, SpeedRampFromRestDelaysTheArrival) {
 
 TEST(LandIndexTest, InsideAndSignedClearanceAgreeWithTheFullScan) {
   // A square island with a square lagoon (a hole drawn as a second ring).
-  const std::vector<std::vector<Vec2>> land = {{{0, 0}, {1000, 0}, {1000, 1000}, {0, 1000}},
-                                               {{400, 400}, {600, 400}, {600, 600}, {400, 600}}};
+  const std::vector<std::vector<EastNorth>> land = {
+      {{0, 0}, {1000, 0}, {1000, 1000}, {0, 1000}},
+      {{400, 400}, {600, 400}, {600, 600}, {400, 600}}};
   const LandIndex index(land, 150.0);
   EXPECT_TRUE(index.Inside({100, 500}));
   EXPECT_FALSE(index.Inside({500, 500})) << "the lagoon is water";
@@ -308,11 +309,13 @@ TEST(LandIndexTest, InsideAndSignedClearanceAgreeWithTheFullScan) {
       double dist = 1e18;
       for (const auto& ring : land) {
         for (size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++) {
-          const Vec2 c = ring[j], d = ring[i];
-          if ((c.y > y) != (d.y > y) && x < (d.x - c.x) * (y - c.y) / (d.y - c.y) + c.x) in = !in;
-          const Vec2 e = d - c;
-          const double t = std::clamp(((Vec2{x, y} - c).Dot(e)) / e.Dot(e), 0.0, 1.0);
-          dist = std::min(dist, (Vec2{x, y} - (c + e * t)).Norm());
+          const EastNorth c = ring[j], d = ring[i];
+          if ((c.north_m > y) != (d.north_m > y) &&
+              x < (d.east_m - c.east_m) * (y - c.north_m) / (d.north_m - c.north_m) + c.east_m)
+            in = !in;
+          const EastNorth e = d - c;
+          const double t = std::clamp(((EastNorth{x, y} - c).Dot(e)) / e.Dot(e), 0.0, 1.0);
+          dist = std::min(dist, (EastNorth{x, y} - (c + e * t)).Norm());
         }
       }
       EXPECT_EQ(index.Inside({x, y}), in) << x << ", " << y;

@@ -16,7 +16,7 @@ namespace seaplan::sim {
 
 struct TrackPoint {
   double time_s = 0.0;
-  Vec2 position;
+  EastNorth position;
 };
 
 struct TrafficVessel {

@@ -98,11 +98,11 @@ StatusOr<ObstacleMap> FinishObstacleMap(GeosContext& c, GeomPtr obstacles, Local
   impl->polygon_boxes.reserve(impl->polygons.size());
   for (const Polygon& p : impl->polygons) {
     LocalBox b{{inf, inf}, {-inf, -inf}};
-    for (const LocalPoint& q : p.outer) {
-      b.min.x_m = std::min(b.min.x_m, q.x_m);
-      b.min.y_m = std::min(b.min.y_m, q.y_m);
-      b.max.x_m = std::max(b.max.x_m, q.x_m);
-      b.max.y_m = std::max(b.max.y_m, q.y_m);
+    for (const EastNorth& q : p.outer) {
+      b.min.east_m = std::min(b.min.east_m, q.east_m);
+      b.min.north_m = std::min(b.min.north_m, q.north_m);
+      b.max.east_m = std::max(b.max.east_m, q.east_m);
+      b.max.north_m = std::max(b.max.north_m, q.north_m);
       const LatLon ll = frame.ToLatLon(q);
       lat_min = std::min(lat_min, ll.lat_deg);
       lat_max = std::max(lat_max, ll.lat_deg);
@@ -113,10 +113,10 @@ StatusOr<ObstacleMap> FinishObstacleMap(GeosContext& c, GeomPtr obstacles, Local
     for (const Ring& h : p.holes) vertices += static_cast<int>(h.size());
     area += PolygonArea(p);
     impl->polygon_boxes.push_back(b);
-    all.min.x_m = std::min(all.min.x_m, b.min.x_m);
-    all.min.y_m = std::min(all.min.y_m, b.min.y_m);
-    all.max.x_m = std::max(all.max.x_m, b.max.x_m);
-    all.max.y_m = std::max(all.max.y_m, b.max.y_m);
+    all.min.east_m = std::min(all.min.east_m, b.min.east_m);
+    all.min.north_m = std::min(all.min.north_m, b.min.north_m);
+    all.max.east_m = std::max(all.max.east_m, b.max.east_m);
+    all.max.north_m = std::max(all.max.north_m, b.max.north_m);
   }
   if (impl->polygons.empty()) {
     all = summary.coverage;
@@ -270,15 +270,15 @@ StatusOr<ObstacleMap> ObstacleMap::FromPolygons(std::vector<Polygon> obstacles, 
   LocalBox box{{inf, inf}, {-inf, -inf}};
   for (size_t i = 0; i < obstacles.size(); ++i) {
     const Polygon& p = obstacles[i];
-    for (const LocalPoint& q : p.outer) {
-      if (!std::isfinite(q.x_m) || !std::isfinite(q.y_m)) {
+    for (const EastNorth& q : p.outer) {
+      if (!std::isfinite(q.east_m) || !std::isfinite(q.north_m)) {
         return absl::InvalidArgumentError(
             absl::StrCat("obstacle polygon ", i, " has a non-finite coordinate"));
       }
-      box.min.x_m = std::min(box.min.x_m, q.x_m);
-      box.min.y_m = std::min(box.min.y_m, q.y_m);
-      box.max.x_m = std::max(box.max.x_m, q.x_m);
-      box.max.y_m = std::max(box.max.y_m, q.y_m);
+      box.min.east_m = std::min(box.min.east_m, q.east_m);
+      box.min.north_m = std::min(box.min.north_m, q.north_m);
+      box.max.east_m = std::max(box.max.east_m, q.east_m);
+      box.max.north_m = std::max(box.max.north_m, q.north_m);
     }
     GeomPtr g = internal::MakePolygon(c, p);
     if (!g)
@@ -296,8 +296,8 @@ StatusOr<ObstacleMap> ObstacleMap::FromPolygons(std::vector<Polygon> obstacles, 
     return absl::InvalidArgumentError("FromPolygons: no obstacles and no coverage box");
   } else {
     const double grow = 1000.0 + options.safety_buffer_m;
-    summary.coverage = {{box.min.x_m - grow, box.min.y_m - grow},
-                        {box.max.x_m + grow, box.max.y_m + grow}};
+    summary.coverage = {{box.min.east_m - grow, box.min.north_m - grow},
+                        {box.max.east_m + grow, box.max.north_m + grow}};
   }
   return internal::BuildObstacleMap(c, std::move(areas), {}, frame, options, std::move(summary));
 }
@@ -450,7 +450,7 @@ ObstacleQuery::ObstacleQuery(ObstacleQuery&&) noexcept = default;
 ObstacleQuery& ObstacleQuery::operator=(ObstacleQuery&&) noexcept = default;
 ObstacleQuery::~ObstacleQuery() = default;
 
-double ObstacleQuery::PolygonDistanceM(std::span<const LocalPoint> ring) {
+double ObstacleQuery::PolygonDistanceM(std::span<const EastNorth> ring) {
   State& s = *state_;
   if (s.parts.empty() || ring.empty()) return std::numeric_limits<double>::infinity();
   GeomPtr g = ring.size() >= 3 ? internal::MakeRingPolygon(s.ctx, ring.data(), ring.size())
@@ -466,7 +466,7 @@ double ObstacleQuery::PolygonDistanceM(std::span<const LocalPoint> ring) {
   return d;
 }
 
-NearestObstacle ObstacleQuery::Nearest(LocalPoint p) {
+NearestObstacle ObstacleQuery::Nearest(EastNorth p) {
   State& s = *state_;
   NearestObstacle out;
   if (s.parts.empty()) return out;
@@ -485,24 +485,24 @@ NearestObstacle ObstacleQuery::Nearest(LocalPoint p) {
   if (d > 0.0) {
     GEOSCoordSequence* seq = GEOSPreparedNearestPoints_r(s.ctx.get(), s.Prepared(i), pt.get());
     if (seq != nullptr) {
-      GEOSCoordSeq_getXY_r(s.ctx.get(), seq, 0, &out.nearest.x_m, &out.nearest.y_m);
+      GEOSCoordSeq_getXY_r(s.ctx.get(), seq, 0, &out.nearest.east_m, &out.nearest.north_m);
       GEOSCoordSeq_destroy_r(s.ctx.get(), seq);
     }
   }
   return out;
 }
 
-double ObstacleQuery::DistanceM(LocalPoint p) {
+double ObstacleQuery::DistanceM(EastNorth p) {
   return Nearest(p).distance_m;
 }
 
-bool ObstacleQuery::Inside(LocalPoint p) {
+bool ObstacleQuery::Inside(EastNorth p) {
   State& s = *state_;
   GeomPtr pt = internal::MakePoint(s.ctx, p);
   return s.Hits(pt.get());
 }
 
-double ObstacleQuery::SignedDistanceM(LocalPoint p) {
+double ObstacleQuery::SignedDistanceM(EastNorth p) {
   State& s = *state_;
   GeomPtr pt = internal::MakePoint(s.ctx, p);
   s.Candidates(pt.get());
@@ -516,14 +516,14 @@ double ObstacleQuery::SignedDistanceM(LocalPoint p) {
   return Nearest(p).distance_m;
 }
 
-bool ObstacleQuery::SegmentHits(LocalPoint a, LocalPoint b) {
+bool ObstacleQuery::SegmentHits(EastNorth a, EastNorth b) {
   State& s = *state_;
-  const LocalPoint pts[2] = {a, b};
+  const EastNorth pts[2] = {a, b};
   GeomPtr line = a == b ? internal::MakePoint(s.ctx, a) : internal::MakeLine(s.ctx, pts, 2);
   return s.Hits(line.get());
 }
 
-bool ObstacleQuery::PolylineHits(std::span<const LocalPoint> polyline) {
+bool ObstacleQuery::PolylineHits(std::span<const EastNorth> polyline) {
   State& s = *state_;
   if (polyline.empty()) return false;
   if (polyline.size() == 1) return Inside(polyline[0]);
@@ -531,7 +531,7 @@ bool ObstacleQuery::PolylineHits(std::span<const LocalPoint> polyline) {
   return s.Hits(line.get());
 }
 
-bool ObstacleQuery::PolygonHits(std::span<const LocalPoint> ring) {
+bool ObstacleQuery::PolygonHits(std::span<const EastNorth> ring) {
   State& s = *state_;
   if (ring.size() < 3) return PolylineHits(ring);
   GeomPtr poly = internal::MakeRingPolygon(s.ctx, ring.data(), ring.size());
@@ -613,7 +613,8 @@ std::string SerializeObstacleMap(const ObstacleMap& map) {
   }
   w.U32(static_cast<uint32_t>(s.warnings.size()));
   for (const std::string& warning : s.warnings) w.Str(warning);
-  for (double v : {s.coverage.min.x_m, s.coverage.min.y_m, s.coverage.max.x_m, s.coverage.max.y_m})
+  for (double v : {s.coverage.min.east_m, s.coverage.min.north_m, s.coverage.max.east_m,
+                   s.coverage.max.north_m})
     w.F64(v);
   const ChartOptions& o = s.options;
   for (double v :
@@ -659,10 +660,11 @@ StatusOr<ObstacleMap> DeserializeObstacleMap(std::string_view bytes) {
     s.warnings.push_back(std::move(warning));
   }
   int32_t frame_epsg = 0, unknown = 0;
-  if (!r.F64(&s.coverage.min.x_m) || !r.F64(&s.coverage.min.y_m) || !r.F64(&s.coverage.max.x_m) ||
-      !r.F64(&s.coverage.max.y_m) || !r.F64(&s.options.min_depth_m) ||
-      !r.F64(&s.options.safety_buffer_m) || !r.F64(&s.options.point_hazard_radius_m) ||
-      !r.F64(&s.options.simplify_tolerance_m) || !r.I32(&frame_epsg) || !r.I32(&unknown)) {
+  if (!r.F64(&s.coverage.min.east_m) || !r.F64(&s.coverage.min.north_m) ||
+      !r.F64(&s.coverage.max.east_m) || !r.F64(&s.coverage.max.north_m) ||
+      !r.F64(&s.options.min_depth_m) || !r.F64(&s.options.safety_buffer_m) ||
+      !r.F64(&s.options.point_hazard_radius_m) || !r.F64(&s.options.simplify_tolerance_m) ||
+      !r.I32(&frame_epsg) || !r.I32(&unknown)) {
     return corrupt("coverage/options");
   }
   s.options.frame_epsg = frame_epsg;

@@ -42,8 +42,8 @@ TEST(ObstacleMap, SquareIslandBufferedArea) {
   EXPECT_LT(map->summary().total_area_m2, exact);
   EXPECT_EQ(map->summary().features_per_layer.at("polygons"), 1);
   EXPECT_EQ(map->summary().frame_epsg, 32633);
-  EXPECT_NEAR(map->bounds().min.x_m, kCx - 60, 1e-6);
-  EXPECT_NEAR(map->bounds().max.y_m, kCy + 60, 1e-6);
+  EXPECT_NEAR(map->bounds().min.east_m, kCx - 60, 1e-6);
+  EXPECT_NEAR(map->bounds().max.north_m, kCy + 60, 1e-6);
   // Bounding box in lat/lon contains the island's centre.
   const LatLon c = map->frame().ToLatLon({kCx, kCy});
   EXPECT_LT(map->summary().bbox_min.lat_deg, c.lat_deg);
@@ -58,8 +58,8 @@ TEST(ObstacleMap, DistanceQueriesByHand) {
   EXPECT_NEAR(q.DistanceM({kCx + 150, kCy}), 90.0, 1e-6);
   const NearestObstacle n = q.Nearest({kCx + 150, kCy + 10});
   EXPECT_NEAR(n.distance_m, 90.0, 1e-6);
-  EXPECT_NEAR(n.nearest.x_m, kCx + 60, 1e-6);
-  EXPECT_NEAR(n.nearest.y_m, kCy + 10, 1e-6);
+  EXPECT_NEAR(n.nearest.east_m, kCx + 60, 1e-6);
+  EXPECT_NEAR(n.nearest.north_m, kCy + 10, 1e-6);
   EXPECT_EQ(n.polygon_index, 0);
   // Diagonal from the corner: |(100,100)| - 10 (45 degrees is a chord vertex).
   EXPECT_NEAR(q.DistanceM({kCx + 150, kCy + 150}), std::sqrt(2.0) * 100.0 - 10.0, 1e-6);
@@ -78,14 +78,14 @@ TEST(ObstacleMap, SegmentAndPolygonIntersection) {
   EXPECT_TRUE(q.SegmentHits({kCx - 200, kCy}, {kCx + 200, kCy}));
   EXPECT_FALSE(q.SegmentHits({kCx - 200, kCy + 61}, {kCx + 200, kCy + 61}));
   EXPECT_TRUE(q.SegmentHits({kCx - 200, kCy + 59}, {kCx + 200, kCy + 59}));
-  const std::vector<LocalPoint> route = {
+  const std::vector<EastNorth> route = {
       {kCx - 200, kCy}, {kCx - 200, kCy + 100}, {kCx + 200, kCy + 100}};
   EXPECT_FALSE(q.PolylineHits(route));
-  const std::vector<LocalPoint> touching = {
+  const std::vector<EastNorth> touching = {
       {kCx + 55, kCy - 5}, {kCx + 65, kCy - 5}, {kCx + 65, kCy + 5}, {kCx + 55, kCy + 5}};
   EXPECT_TRUE(q.PolygonHits(touching));
   EXPECT_DOUBLE_EQ(q.PolygonDistanceM(touching), 0.0);
-  const std::vector<LocalPoint> away = {
+  const std::vector<EastNorth> away = {
       {kCx + 100, kCy - 5}, {kCx + 110, kCy - 5}, {kCx + 110, kCy + 5}, {kCx + 100, kCy + 5}};
   EXPECT_FALSE(q.PolygonHits(away));
   EXPECT_NEAR(q.PolygonDistanceM(away), 40.0, 1e-6);
@@ -100,7 +100,7 @@ TEST(ObstacleMap, NearestPicksTheCloserIsland) {
   EXPECT_NEAR(q.DistanceM({kCx + 800, kCy}), 140.0, 1e-6);
   EXPECT_NEAR(q.DistanceM({kCx + 300, kCy}), 240.0, 1e-6);
   const NearestObstacle n = q.Nearest({kCx + 800, kCy});
-  EXPECT_NEAR(map->polygons()[n.polygon_index].outer[0].x_m, kCx + 1000, 70.0);
+  EXPECT_NEAR(map->polygons()[n.polygon_index].outer[0].east_m, kCx + 1000, 70.0);
 }
 
 TEST(ObstacleMap, OverlappingObstaclesAreUnioned) {
@@ -165,10 +165,10 @@ TEST(ObstacleMap, SerializationRoundTrip) {
   EXPECT_EQ(back->summary().features_per_layer, map->summary().features_per_layer);
   EXPECT_EQ(back->summary().source_format, "polygons");
   EXPECT_DOUBLE_EQ(back->summary().options.safety_buffer_m, 10.0);
-  EXPECT_DOUBLE_EQ(back->summary().coverage.max.x_m, map->summary().coverage.max.x_m);
+  EXPECT_DOUBLE_EQ(back->summary().coverage.max.east_m, map->summary().coverage.max.east_m);
   ObstacleQuery q1(*map), q2(*back);
-  for (const LocalPoint p : {LocalPoint{kCx + 150, kCy}, LocalPoint{kCx + 3000, kCy},
-                             LocalPoint{kCx + 3000, kCy + 400}}) {
+  for (const EastNorth p :
+       {EastNorth{kCx + 150, kCy}, EastNorth{kCx + 3000, kCy}, EastNorth{kCx + 3000, kCy + 400}}) {
     EXPECT_DOUBLE_EQ(q1.SignedDistanceM(p), q2.SignedDistanceM(p));
   }
   EXPECT_FALSE(q2.Inside({kCx + 3000, kCy}));  // in the hole
@@ -196,12 +196,12 @@ TEST(ObstacleMap, QueriesFromSeveralThreadsAgree) {
     islands.push_back(Square(kCx + 300.0 * i, kCy + 100.0 * (i % 3), 40));
   auto map = ObstacleMap::FromPolygons(islands, Utm33(), ChartOptions{});
   ASSERT_TRUE(map.ok());
-  std::vector<LocalPoint> points;
+  std::vector<EastNorth> points;
   for (int i = 0; i < 400; ++i) points.push_back({kCx - 500 + 17.3 * i, kCy - 300 + 1.7 * i});
   std::vector<double> expected;
   {
     ObstacleQuery q(*map);
-    for (const LocalPoint& p : points) expected.push_back(q.SignedDistanceM(p));
+    for (const EastNorth& p : points) expected.push_back(q.SignedDistanceM(p));
   }
   std::vector<std::vector<double>> got(4);
   std::vector<std::thread> threads;
@@ -210,7 +210,7 @@ TEST(ObstacleMap, QueriesFromSeveralThreadsAgree) {
       ObstacleQuery q(*map);  // one query object per thread
       for (int rep = 0; rep < 5; ++rep) {
         got[t].clear();
-        for (const LocalPoint& p : points) got[t].push_back(q.SignedDistanceM(p));
+        for (const EastNorth& p : points) got[t].push_back(q.SignedDistanceM(p));
       }
     });
   }

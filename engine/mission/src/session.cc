@@ -87,8 +87,8 @@ ReplanInput MakeReplanInput(const PlanVersion& current,
 std::string EncodeEngineState(const LocationTable& locations) {
   std::string out;
   for (const auto& [name, p] : locations) {
-    absl::StrAppend(&out, name, " ", validate::FormatTime(p.x_m), " ", validate::FormatTime(p.y_m),
-                    "\n");
+    absl::StrAppend(&out, name, " ", validate::FormatTime(p.east_m), " ",
+                    validate::FormatTime(p.north_m), "\n");
   }
   return out;
 }

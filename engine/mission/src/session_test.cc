@@ -43,7 +43,8 @@ TEST(SessionTest, CompletionFailureAndLog) {
   EXPECT_TRUE(o.mission_completed);
   EXPECT_EQ(o.log_messages.front(), "refuel task completed");
 
-  Feedback failed{FeedbackKind::kTaskFailed, v.tasks[1].id, 1, 100, Point{400, 600}, 0.9, "gnss"};
+  Feedback failed{FeedbackKind::kTaskFailed, v.tasks[1].id, 1,     100,
+                  EastNorth{400, 600},       0.9,           "gnss"};
   FeedbackOutcome f = OnFeedback(def, v, {v.tasks[0].id}, failed);
   ASSERT_TRUE(f.replan_reason);
   EXPECT_EQ(f.log_messages.front(), "task move failed, need re-planning");

@@ -2,8 +2,8 @@
 // the local metric frame every other library works in.
 //
 // The local frame is a UTM projection (WGS84 / ETRS89, which agree to well
-// under a millimetre for our purposes): x = easting (m, east), y = northing
-// (m, north), in the zone's own false-easting/northing, so coordinates match
+// under a millimetre for our purposes): seaplan::EastNorth, easting and northing
+// in metres, in the zone's own false-easting/northing, so coordinates match
 // what GIS tools show for that EPSG code (e.g. the Alesund route1.csv, UTM33).
 // Conversions use Karney's 6th-order Krueger series (accurate to < 1 mm
 // within a few zones' width of the central meridian): they are pure functions,
@@ -11,6 +11,7 @@
 // contexts are per thread), which is why we do not call PROJ per point.
 #pragma once
 
+#include "seaplan/common/east_north.h"
 #include "seaplan/common/status.h"
 
 namespace seaplan::chart {
@@ -19,13 +20,6 @@ namespace seaplan::chart {
 struct LatLon {
   double lat_deg = 0.0;
   double lon_deg = 0.0;
-};
-
-// A point in the local metric frame: x east, y north, metres.
-struct LocalPoint {
-  double x_m = 0.0;
-  double y_m = 0.0;
-  friend bool operator==(const LocalPoint&, const LocalPoint&) = default;
 };
 
 // Mean Earth radius used by the great-circle formulas (IUGG), metres.
@@ -48,8 +42,8 @@ class LocalFrame {
 
   LocalFrame() = default;  // WGS84 UTM zone 33N (EPSG:32633).
 
-  LocalPoint ToLocal(LatLon p) const;
-  LatLon ToLatLon(LocalPoint p) const;
+  EastNorth ToLocal(LatLon p) const;
+  LatLon ToLatLon(EastNorth p) const;
 
   int epsg() const { return epsg_; }
   int zone() const { return zone_; }
