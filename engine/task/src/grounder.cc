@@ -31,6 +31,7 @@
 #include <unordered_map>
 #include <utility>
 
+#include "seaplan/pddl/type_hierarchy.h"
 #include "tuple_set_internal.h"
 
 namespace seaplan::task {
@@ -225,18 +226,10 @@ class Grounder {
   }
 
   // ---- step 1: symbols ---------------------------------------------------------
-  int TypeId(const std::string& name) const {
-    auto it = type_index_.find(name);
-    return it == type_index_.end() ? -1 : it->second;
-  }
+  int TypeId(const std::string& name) const { return types_.Id(name); }
 
   void InternSymbols() {
-    type_index_["object"] = 0;
-    type_names_.push_back("object");
-    for (const auto& t : domain_.types) {
-      if (type_index_.emplace(t.name, static_cast<int>(type_names_.size())).second)
-        type_names_.push_back(t.name);
-    }
+    types_ = pddl::TypeHierarchy(domain_.types);
     auto add_object = [&](const pddl::TypedName& o) {
       auto [it, inserted] = object_index_.emplace(o.name, static_cast<Obj>(object_names_.size()));
       if (inserted) {
@@ -246,34 +239,9 @@ class Grounder {
     };
     for (const auto& c : domain_.constants) add_object(c);
     for (const auto& o : problem_.objects) add_object(o);
-    const std::size_t n_types = type_names_.size();
-    // Ancestors of every type once (types x types), then each object's
-    // membership from its declared types: linear in objects.
-    std::vector<std::vector<int>> parents(n_types);
-    for (const auto& t : domain_.types) {
-      const int child = TypeId(t.name);
-      for (const auto& p : t.parents) {
-        const int parent = TypeId(p);
-        if (child >= 0 && parent >= 0 && parent != child)
-          parents[static_cast<std::size_t>(child)].push_back(parent);
-      }
-    }
-    std::vector<std::vector<std::uint8_t>> ancestor(n_types, std::vector<std::uint8_t>(n_types, 0));
-    for (std::size_t t = 0; t < n_types; ++t) {
-      std::vector<int> todo{static_cast<int>(t)};
-      ancestor[t][t] = 1;
-      ancestor[t][0] = 1;  // everything is an object
-      while (!todo.empty()) {
-        const auto u = static_cast<std::size_t>(todo.back());
-        todo.pop_back();
-        for (int p : parents[u]) {
-          if (!ancestor[t][static_cast<std::size_t>(p)]) {
-            ancestor[t][static_cast<std::size_t>(p)] = 1;
-            todo.push_back(p);
-          }
-        }
-      }
-    }
+    // Each object's membership from its declared types and the hierarchy's
+    // ancestors: linear in objects.
+    const auto n_types = static_cast<std::size_t>(types_.size());
     objects_of_type_.assign(n_types, {});
     type_member_.assign(n_types, std::vector<std::uint8_t>(object_names_.size(), 0));
     for (std::size_t o = 0; o < object_names_.size(); ++o) {
@@ -281,7 +249,7 @@ class Grounder {
         const int d = TypeId(declared);
         if (d < 0) continue;
         for (std::size_t t = 0; t < n_types; ++t) {
-          if (ancestor[static_cast<std::size_t>(d)][t] && !type_member_[t][o]) {
+          if (types_.IsSubtype(d, static_cast<int>(t)) && !type_member_[t][o]) {
             type_member_[t][o] = 1;
             objects_of_type_[t].push_back(static_cast<Obj>(o));
           }
@@ -1840,8 +1808,7 @@ class Grounder {
   const GroundingOptions& options_;
   std::vector<pddl::Diagnostic>& diags_;
 
-  std::unordered_map<std::string, int> type_index_;
-  std::vector<std::string> type_names_;
+  pddl::TypeHierarchy types_;
   std::unordered_map<std::string, Obj> object_index_;
   std::vector<std::string> object_names_;
   std::vector<std::vector<std::string>> object_types_;
@@ -1970,7 +1937,7 @@ std::string Grounder::Explain(std::string_view name, std::span<const std::string
     bool fits = false;
     for (const auto& want : action->parameters[i].types) {
       for (const auto& have : object_types_[static_cast<std::size_t>(o)])
-        fits = fits || domain_.IsSubtype(have, want);
+        fits = fits || types_.IsSubtype(have, want);
     }
     if (!fits) {
       std::string have, want;
