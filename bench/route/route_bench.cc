@@ -71,7 +71,7 @@ static void PrintAlternatives(const route::Level2Result& r) {
 }
 
 int main(int argc, char** argv) {
-  std::string shared = "/work/shared";
+  std::string shared = "../shared";
   if (const char* env = std::getenv("SEAPLAN_SHARED")) shared = env;
   int threads = 2, repeat = 3;
   std::string field_only;

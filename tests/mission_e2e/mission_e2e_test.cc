@@ -285,7 +285,7 @@ TEST_F(MissionE2eTest, ReconnectingWatcherMissesNothingAndFeedbackIsIdempotent) 
 // shore, inside the chart's 10 m safety buffer; a replan from where a ship
 // was pushed is the same situation): the server routes it out of the buffer
 // the shortest way instead of refusing the start ("lies inside a grounding
-// obstacle"; issue #6, case C).
+// obstacle"; fjord case C).
 TEST_F(MissionE2eTest, MoveStartingInsideTheBufferLeavesItInsteadOfFailing) {
   auto charts = v1::ChartService::NewStub(channel_);
   v1::UploadChartRequest upload;

@@ -87,7 +87,7 @@ TEST(TrondheimE2eTest, CaseAOnRealLandAreasOneVersionNoGroundingSafeCpa) {
   if (!fs::exists(BinDir() / "seaplan-server") || !fs::exists(BinDir() / "seaplan-sim")) {
     GTEST_SKIP() << "seaplan-server or seaplan-sim not built in " << BinDir();
   }
-  // Once skipped (issue #6): the routes were timed at the ship model's
+  // Once skipped: the routes were timed at the ship model's
   // 9.15 m/s while this scenario orders 4 m/s, the path follower missed
   // port-d after the Munkholmen detour and crossing CPAs fell under 150 m.
   // Fixed by the wheel-over (24907e0), the land grid (bea5a41) and routes

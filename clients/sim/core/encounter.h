@@ -76,8 +76,8 @@ struct AvoidanceOptions {
   // speed, faster candidates (x1.25, x1.5, capped here) are tried too: a
   // slow ship overtaken by a vessel that does not keep clear, or caught
   // ahead of a crossing one, gets out of the way by speeding up, which
-  // slowing down and turning alone cannot do (issue #6, the fjord cases at
-  // 3.6 m/s).
+  // slowing down and turning alone cannot do (seen in the fjord cases
+  // at 3.6 m/s).
   double max_speed_mps = 0.0;
   ColregOptions colreg;
   // The own ship's manoeuvrability. A velocity obstacle assumes a new
@@ -94,7 +94,7 @@ struct AvoidanceOptions {
   // whose straight track over land_lookahead_s comes closer than
   // land_clearance_m to it is taken only when every candidate does: the
   // velocity obstacles alone once sent the ship round the wrong side of an
-  // island and onto the shore (issue #6, case C).
+  // island and onto the shore (fjord case C).
   const class LandIndex* land = nullptr;
   double land_clearance_m = 60.0;
   double land_lookahead_s = 45.0;  // ~400 m at the routes' 9 m/s
@@ -105,7 +105,7 @@ struct AvoidanceOptions {
 // then along the following points, at `speed_mps`, sampled every `step_s`
 // within `horizon_s`. A straight-line CPA cannot see a conflict that lies
 // past a turn of the route: at 9 m/s a crossing vessel found only once the
-// turn is under way is too close for a slow-turning hull (issue #6, case C).
+// turn is under way is too close for a slow-turning hull (fjord case C).
 struct PathApproach {
   double distance_m = 0.0;
   double time_s = 0.0;

@@ -155,7 +155,7 @@ void Executor::StartMove(const mission::Task& task) {
   // the route's start would point anywhere (often back along the route or
   // towards the shore): a hull at 9 m/s that turns ~1 deg/s cannot follow a
   // leg of 100 m, and looping around it ran the ship 400 m into the land
-  // (issue #6, case A). So: drop the legs the ship is already abeam of or
+  // (fjord case A). So: drop the legs the ship is already abeam of or
   // past, and let the LOS law converge on the leg it has reached.
   std::vector<EastNorth> path;
   path_modes_.clear();
@@ -281,7 +281,7 @@ void Executor::StepMove(std::vector<FeedbackOut>* out) {
   // is ramping to) and that is not closing in on its present motion is no
   // encounter: the straight-line models would call a ship leaving its berth
   // "in danger" of a vessel it will pass well ahead of, and its give-way turn
-  // then takes it off the route towards the shore (issue #6, case C).
+  // then takes it off the route towards the shore (fjord case C).
   encounters_.clear();
   std::set<int> dangerous_now;
   const size_t next_point = static_cast<size_t>(los_->leg()) + 1;

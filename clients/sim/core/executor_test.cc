@@ -172,7 +172,7 @@ TEST(ExecutorTest, RunsAMoveAndAPortOperation) {
   EXPECT_LT(ex->time_s(), v.tasks[1].end_s() + 400);
 }
 
-// Case A of issue #6: the ship stopped ~100 m abeam of the previous route's
+// Fjord case A: the ship stopped ~100 m abeam of the previous route's
 // end, the next route starts at the berth position behind it. Sailing to the
 // route's start first made the 9 m/s hull loop 400 m into the shore.
 TEST(ExecutorTest, JoinsARouteStartingBesideTheShipWithoutLooping) {

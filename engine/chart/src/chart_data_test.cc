@@ -1,6 +1,6 @@
 // Tests on the real charts in the shared folder (LABEL data; skipped with a
 // reason when the folder is absent). Licences: NOAA ENC User Agreement,
-// Kartverket CC BY 4.0 ("© Kartverket"); see /work/shared/enc/README.md.
+// Kartverket CC BY 4.0 ("© Kartverket"); see ../shared/enc/README.md.
 #include <gtest/gtest.h>
 
 #include <cmath>

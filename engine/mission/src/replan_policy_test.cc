@@ -83,7 +83,7 @@ TEST(ReplanPolicyTest, LateCompletionAndStaleVersion) {
 
 // A ship running late: the refuel (v2-t2, planned to end at 180 s) has not
 // happened at 400 s. With the completed list it still counts as ahead; the
-// planned-time guess alone would call it done and replan (issue #6, case C
+// planned-time guess alone would call it done and replan (fjord case C once
 // replanned away a plan that was about to refuel).
 TEST(ReplanPolicyTest, LateRefuelStillCountsAsAheadWithTheCompletedList) {
   PlanVersion v = TwoTaskVersion(TaskKind::kRefuel);

@@ -1,5 +1,5 @@
 // The Alesund case of paper 002 on the real chart (CC BY 4.0, (c) Kartverket):
-// /work/shared/enc/alesund, obstacles = chart box minus seabed5m (minimum
+// ../shared/enc/alesund, obstacles = chart box minus seabed5m (minimum
 // depth 5 m), route1.csv's in-chart leg (rows 2 and 3: E 41200 N 6959900 ->
 // E 38000 N 6961100; rows 1 and 4 lie outside the chart box, and the public
 // code also plans between rows 2 and 3), wind 10 m/s from -110 deg and a
