@@ -16,10 +16,10 @@
 #pragma once
 
 #include <cstdint>
+#include <map>
 #include <span>
 #include <string>
 #include <string_view>
-#include <map>
 #include <vector>
 
 #include "seaplan/pddl/parser.h"
@@ -50,7 +50,7 @@ class TypeHierarchy {
  private:
   std::vector<std::string> names_;
   std::map<std::string, int, std::less<>> index_;
-  std::vector<std::vector<int>> parents_;             // by id, without self-parents
+  std::vector<std::vector<int>> parents_;  // by id, without self-parents
   std::size_t words_per_row_ = 0;
   std::vector<std::uint64_t> ancestor_bits_;  // row t, bit a: a is an ancestor of t
 };
