@@ -44,3 +44,27 @@ function(seaplan_test name)
     DISCOVERY_TIMEOUT 60
     PROPERTIES LABELS ${ARG_LABEL} TIMEOUT 600)
 endfunction()
+
+# seaplan_bench_smoke(target [NEEDS_SHARED rel/path] ARGS ...): runs a
+# benchmark once on a tiny input as a ctest test labelled bench-smoke, so that
+# every benchmark keeps building and running (`ctest -L bench-smoke`). Its
+# figures mean nothing at this size; each README gives the real command.
+# NEEDS_SHARED: skipped with the reason when ${SEAPLAN_SHARED}/<path> is
+# absent, failed instead under CI (environment variable CI set).
+function(seaplan_bench_smoke target)
+  if(NOT SEAPLAN_BUILD_TESTS OR NOT TARGET ${target})
+    return()
+  endif()
+  cmake_parse_arguments(ARG "" "NEEDS_SHARED;PASS_REGEX" "ARGS" ${ARGN})
+  set(command $<TARGET_FILE:${target}> ${ARG_ARGS})
+  if(ARG_NEEDS_SHARED)
+    set(command ${CMAKE_SOURCE_DIR}/bench/run_if_shared.sh ${SEAPLAN_SHARED}/${ARG_NEEDS_SHARED}
+                ${command})
+  endif()
+  add_test(NAME bench_smoke.${target} COMMAND ${command} WORKING_DIRECTORY ${CMAKE_BINARY_DIR})
+  set_tests_properties(bench_smoke.${target} PROPERTIES LABELS bench-smoke TIMEOUT 600
+    SKIP_RETURN_CODE 77 ENVIRONMENT "SEAPLAN_SHARED=${SEAPLAN_SHARED}")
+  if(ARG_PASS_REGEX)
+    set_tests_properties(bench_smoke.${target} PROPERTIES PASS_REGULAR_EXPRESSION "${ARG_PASS_REGEX}")
+  endif()
+endfunction()

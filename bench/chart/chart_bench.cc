@@ -86,14 +86,17 @@ int main(int argc, char** argv) {
     if (!again.ok()) ++failures;
     const LocalBox b = map->bounds();
     std::mt19937 rng(1);
-    std::uniform_real_distribution<double> ux(b.min.x_m, b.max.x_m), uy(b.min.y_m, b.max.y_m);
+    std::uniform_real_distribution<double> ux(b.min.east_m, b.max.east_m),
+        uy(b.min.north_m, b.max.north_m);
     constexpr int kQueries = 20000;
     double sink = 0;
     const auto t5 = Clock::now();
     for (int i = 0; i < kQueries; ++i) sink += query.DistanceM({ux(rng), uy(rng)});
     const auto t6 = Clock::now();
-    const LocalPoint from = c.local ? LocalPoint{c.a0, c.a1} : map->frame().ToLocal({c.a0, c.a1});
-    const LocalPoint to = c.local ? LocalPoint{c.b0, c.b1} : map->frame().ToLocal({c.b0, c.b1});
+    const seaplan::EastNorth from =
+        c.local ? seaplan::EastNorth{c.a0, c.a1} : map->frame().ToLocal({c.a0, c.a1});
+    const seaplan::EastNorth to =
+        c.local ? seaplan::EastNorth{c.b0, c.b1} : map->frame().ToLocal({c.b0, c.b1});
     const auto t7 = Clock::now();
     auto alts = PlanAlternatives(*map, from, to);
     const double a1_ms = Ms(t7, Clock::now());

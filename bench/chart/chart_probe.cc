@@ -51,12 +51,13 @@ int main(int argc, char** argv) {
   }
   const LocalBox cov = map->summary().coverage;
   std::printf("EPSG:%d coverage (%.0f %.0f)-(%.0f %.0f), %d polygons\n", map->frame().epsg(),
-              cov.min.x_m, cov.min.y_m, cov.max.x_m, cov.max.y_m, map->summary().polygon_count);
-  std::vector<LocalPoint> ends;
+              cov.min.east_m, cov.min.north_m, cov.max.east_m, cov.max.north_m,
+              map->summary().polygon_count);
+  std::vector<seaplan::EastNorth> ends;
   if (pos.size() >= 7) {
     for (int k = 0; k < 2; ++k) {
       const double a = std::atof(pos[3 + 2 * k].c_str()), b = std::atof(pos[4 + 2 * k].c_str());
-      ends.push_back(latlon ? map->frame().ToLocal({a, b}) : LocalPoint{a, b});
+      ends.push_back(latlon ? map->frame().ToLocal({a, b}) : seaplan::EastNorth{a, b});
     }
   }
   std::vector<NamedRoute> routes;
@@ -70,7 +71,7 @@ int main(int argc, char** argv) {
       for (size_t i = 0; i < alts->alternatives.size(); ++i) {
         const auto& a = alts->alternatives[i];
         std::printf("  #%zu length %.0f m:", i, a.length_m);
-        for (const auto& p : a.waypoints) std::printf(" (%.0f %.0f)", p.x_m, p.y_m);
+        for (const auto& p : a.waypoints) std::printf(" (%.0f %.0f)", p.east_m, p.north_m);
         std::printf("\n");
         routes.push_back({"alt" + std::to_string(i), a.waypoints});
       }
@@ -78,26 +79,28 @@ int main(int argc, char** argv) {
   }
   // ASCII map: '#' obstacle, '.' free, digits = route i, S/G ends.
   ObstacleQuery q(*map);
-  const int rows =
-      static_cast<int>(cols * (cov.max.y_m - cov.min.y_m) / (cov.max.x_m - cov.min.x_m) / 2.0);
+  const int rows = static_cast<int>(cols * (cov.max.north_m - cov.min.north_m) /
+                                    (cov.max.east_m - cov.min.east_m) / 2.0);
   std::vector<std::string> grid(rows, std::string(cols, '.'));
-  const double dx = (cov.max.x_m - cov.min.x_m) / cols, dy = (cov.max.y_m - cov.min.y_m) / rows;
+  const double dx = (cov.max.east_m - cov.min.east_m) / cols,
+               dy = (cov.max.north_m - cov.min.north_m) / rows;
   for (int r = 0; r < rows; ++r) {
     for (int c = 0; c < cols; ++c) {
-      if (q.Inside({cov.min.x_m + (c + 0.5) * dx, cov.max.y_m - (r + 0.5) * dy})) grid[r][c] = '#';
+      if (q.Inside({cov.min.east_m + (c + 0.5) * dx, cov.max.north_m - (r + 0.5) * dy}))
+        grid[r][c] = '#';
     }
   }
-  auto plot = [&](LocalPoint p, char ch) {
-    const int c = static_cast<int>((p.x_m - cov.min.x_m) / dx),
-              r = static_cast<int>((cov.max.y_m - p.y_m) / dy);
+  auto plot = [&](seaplan::EastNorth p, char ch) {
+    const int c = static_cast<int>((p.east_m - cov.min.east_m) / dx),
+              r = static_cast<int>((cov.max.north_m - p.north_m) / dy);
     if (r >= 0 && r < rows && c >= 0 && c < cols) grid[r][c] = ch;
   };
   for (size_t i = 0; i < routes.size(); ++i) {
     const auto& w = routes[i].waypoints;
     for (size_t k = 1; k < w.size(); ++k) {
       for (int s = 0; s <= 200; ++s) {
-        plot({w[k - 1].x_m + (w[k].x_m - w[k - 1].x_m) * s / 200,
-              w[k - 1].y_m + (w[k].y_m - w[k - 1].y_m) * s / 200},
+        plot({w[k - 1].east_m + (w[k].east_m - w[k - 1].east_m) * s / 200,
+              w[k - 1].north_m + (w[k].north_m - w[k - 1].north_m) * s / 200},
              static_cast<char>('0' + i % 10));
       }
     }

@@ -18,8 +18,8 @@ constexpr double kLaneM = 80.0;          // own ship's track: 80 m east of the a
 // east of it (0 = collision course).
 EncounterVessel Meeting(int id, std::string name, double course_deg, double speed, double t_meet,
                         double miss_m = 0.0, double track_x = 0.0) {
-  const Vec2 meet{track_x + miss_m, kSpeed * t_meet};
-  const Vec2 v = VelocityOf(course_deg * kDeg, speed);
+  const EastNorth meet{track_x + miss_m, kSpeed * t_meet};
+  const EastNorth v = VelocityOf(course_deg * kDeg, speed);
   return {id, std::move(name), meet - v * t_meet, v};
 }
 

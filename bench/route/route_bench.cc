@@ -61,7 +61,7 @@ static void PrintAlternatives(const route::Level2Result& r) {
         std::printf(
             "      E %9.1f N %10.1f (ref %9.1f %10.1f) TTG %4.0f P %.3g/%.3g/%.3g prox %.3g cost "
             "%.4f/%.4f/%.4f %s\n",
-            w.position.x, w.position.y, w.reference.x, w.reference.y, w.ttg_s,
+            w.position.east_m, w.position.north_m, w.reference.east_m, w.reference.north_m, w.ttg_s,
             w.grounding_probability[0], w.grounding_probability[1], w.grounding_probability[2],
             w.proximity, w.mode_cost[0], w.mode_cost[1], w.mode_cost[2],
             std::string(route::MsoModeName(w.mode)).c_str());
@@ -71,7 +71,7 @@ static void PrintAlternatives(const route::Level2Result& r) {
 }
 
 int main(int argc, char** argv) {
-  std::string shared = "/work/shared";
+  std::string shared = "../shared";
   if (const char* env = std::getenv("SEAPLAN_SHARED")) shared = env;
   int threads = 2, repeat = 3;
   std::string field_only;
@@ -130,7 +130,7 @@ int main(int argc, char** argv) {
   const double field_s = Since(t);
 
   // route1.csv rows 2 and 3 (the in-chart leg the public code plans).
-  const chart::LocalPoint start{41200, 6959900}, goal{38000, 6961100};
+  const EastNorth start{41200, 6959900}, goal{38000, 6961100};
   t = Clock::now();
   auto level1 = chart::PlanAlternatives(*shared_map, start, goal, options.alternatives);
   if (!level1.ok()) {
@@ -148,8 +148,8 @@ int main(int argc, char** argv) {
   route::Environment env{10.0, -110.0, 1.0, -110.0};
   problem.environment = route::ToShipEnvironment(env);
   for (size_t a = 0; a < std::min<size_t>(2, level1->alternatives.size()); ++a) {
-    std::vector<route::Vec2> line;
-    for (const auto& p : level1->alternatives[a].waypoints) line.push_back({p.x_m, p.y_m});
+    std::vector<EastNorth> line;
+    for (const auto& p : level1->alternatives[a].waypoints) line.push_back({p.east_m, p.north_m});
     problem.alternatives.push_back(line);
   }
 

@@ -62,8 +62,8 @@ int RunCase(const std::string& shared, const ChartCase& c, const route::SweepOpt
     if (bad && (verbose || failures_shown < 3)) {
       ++failures_shown;
       std::printf("    %s (%.0f, %.0f) -> (%.0f, %.0f): %s clearance %.2f m\n",
-                  p.routed ? "CLOSE" : "FAILED", p.from.x_m, p.from.y_m, p.to.x_m, p.to.y_m,
-                  p.error.c_str(), p.clearance_m);
+                  p.routed ? "CLOSE" : "FAILED", p.from.east_m, p.from.north_m, p.to.east_m,
+                  p.to.north_m, p.error.c_str(), p.clearance_m);
     }
   }
   const double med = route::Percentile(route_s, 0.5), p95 = route::Percentile(route_s, 0.95);

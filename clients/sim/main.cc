@@ -160,9 +160,8 @@ mission::PlanVersion FromProto(const v1::PlanVersion& p, const chart::LocalFrame
       r.fuel_kg = t.route().fuel_kg();
       for (const v1::RouteWaypoint& w : t.route().waypoints()) {
         mission::RouteWaypoint rw;
-        chart::LocalPoint lp =
-            frame.ToLocal({w.position().latitude_deg(), w.position().longitude_deg()});
-        rw.position = {lp.x_m, lp.y_m};
+        EastNorth lp = frame.ToLocal({w.position().latitude_deg(), w.position().longitude_deg()});
+        rw.position = {lp.east_m, lp.north_m};
         rw.mode = FromProtoMode(w.mode());
         rw.eta_s = w.eta_s();
         rw.distance_from_start_m = w.distance_from_start_m();
@@ -191,7 +190,7 @@ v1::MissionSpec MakeSpec(const sim::Scenario& s, const std::string& domain,
   }
   spec.mutable_ship()->set_name(s.vessel_id);
   spec.mutable_ship()->set_service_speed_mps(s.service_speed_mps);
-  chart::LatLon start = frame.ToLatLon({cfg.start.x, cfg.start.y});
+  chart::LatLon start = frame.ToLatLon({cfg.start.east_m, cfg.start.north_m});
   auto* st = spec.mutable_initial_state();
   st->mutable_position()->set_latitude_deg(start.lat_deg);
   st->mutable_position()->set_longitude_deg(start.lon_deg);
@@ -234,7 +233,7 @@ double CompassDeg(double rad) {
 }
 
 void FillShipState(const sim::FeedbackOut& fb, const chart::LocalFrame& frame, v1::ShipState* st) {
-  chart::LatLon ll = frame.ToLatLon({fb.position.x, fb.position.y});
+  chart::LatLon ll = frame.ToLatLon({fb.position.east_m, fb.position.north_m});
   st->mutable_position()->set_latitude_deg(ll.lat_deg);
   st->mutable_position()->set_longitude_deg(ll.lon_deg);
   st->set_heading_deg(CompassDeg(fb.heading_rad));
@@ -259,12 +258,12 @@ v1::ReportVesselStateRequest VesselState(const sim::Executor& executor,
     v1::TrackedTarget* t = req.add_targets();
     t->set_target_id(vessel.name);
     t->set_kind(vessel.kind);
-    const chart::LatLon ll = frame.ToLatLon({k.position.x, k.position.y});
+    const chart::LatLon ll = frame.ToLatLon({k.position.east_m, k.position.north_m});
     t->mutable_position()->set_latitude_deg(ll.lat_deg);
     t->mutable_position()->set_longitude_deg(ll.lon_deg);
     // Course over ground: atan2(east, north).
-    t->set_course_deg(CompassDeg(std::atan2(k.velocity.x, k.velocity.y)));
-    t->set_speed_mps(std::hypot(k.velocity.x, k.velocity.y));
+    t->set_course_deg(CompassDeg(std::atan2(k.velocity.east_m, k.velocity.north_m)));
+    t->set_speed_mps(std::hypot(k.velocity.east_m, k.velocity.north_m));
   }
   return req;
 }
@@ -367,8 +366,8 @@ int main(int argc, char** argv) {
     if (map.ok()) {
       frame = map->frame();
       for (const chart::Polygon& poly : map->polygons()) {
-        std::vector<sim::Vec2> ring;
-        for (const chart::LocalPoint& q : poly.outer) ring.push_back({q.x_m, q.y_m});
+        std::vector<EastNorth> ring;
+        for (const EastNorth& q : poly.outer) ring.push_back({q.east_m, q.north_m});
         rings.push_back(std::move(ring));
       }
     } else {

@@ -76,9 +76,9 @@ validate::PlanStep StepFromProto(const v1::TimedAction& a) {
   return s;
 }
 
-mission::Point ToLocal(const chart::LocalFrame& frame, const v1::LatLon& p) {
-  const chart::LocalPoint local = frame.ToLocal({p.latitude_deg(), p.longitude_deg()});
-  return {local.x_m, local.y_m};
+EastNorth ToLocal(const chart::LocalFrame& frame, const v1::LatLon& p) {
+  const EastNorth local = frame.ToLocal({p.latitude_deg(), p.longitude_deg()});
+  return {local.east_m, local.north_m};
 }
 
 mission::FeedbackKind FeedbackKindFromProto(v1::Feedback::Kind kind) {
@@ -199,7 +199,7 @@ v1::PlanVersion PlanVersionToProto(const mission::PlanVersion& v, const chart::L
     r->set_max_grounding_probability(t.route->max_grounding_probability);
     for (const auto& w : t.route->waypoints) {
       v1::RouteWaypoint* rw = r->add_waypoints();
-      const chart::LatLon ll = frame.ToLatLon({w.position.x_m, w.position.y_m});
+      const chart::LatLon ll = frame.ToLatLon({w.position.east_m, w.position.north_m});
       rw->mutable_position()->set_latitude_deg(ll.lat_deg);
       rw->mutable_position()->set_longitude_deg(ll.lon_deg);
       rw->set_mode(MsoModeToProto(w.mode));

@@ -27,13 +27,13 @@ mission::PlanVersion VersionWithRoute() {
   move.action = {100, "move-ship", {"ship0", "port-a", "port-b"}, 300, 0};
   move.from_location = "port-a";
   move.to_location = "port-b";
-  const chart::LocalPoint a = kFrame.ToLocal({63.44, 10.40});
+  const EastNorth a = kFrame.ToLocal({63.44, 10.40});
   mission::Route route;
   route.length_m = 1500;
   route.sailing_time_s = 300;
-  route.waypoints = {{{a.x_m, a.y_m}, mission::MsoMode::kPti, 0, 0, 50, 0.01, 1, 2},
-                     {{a.x_m + 500, a.y_m}, mission::MsoMode::kPti, 100, 500, 0, 0, 0, 2},
-                     {{a.x_m + 1500, a.y_m}, mission::MsoMode::kMec, 300, 1500, 0, 0, 0, 0}};
+  route.waypoints = {{{a.east_m, a.north_m}, mission::MsoMode::kPti, 0, 0, 50, 0.01, 1, 2},
+                     {{a.east_m + 500, a.north_m}, mission::MsoMode::kPti, 100, 500, 0, 0, 0, 2},
+                     {{a.east_m + 1500, a.north_m}, mission::MsoMode::kMec, 300, 1500, 0, 0, 0, 0}};
   move.route = route;
   v.plan.steps.push_back(move.action);
   v.tasks.push_back(move);
@@ -65,8 +65,8 @@ TEST(MissionAdapterTest, PlanVersionsKeepTheirRoutesBothWays) {
   ASSERT_EQ(w.size(), 3u);
   for (size_t i = 0; i < w.size(); ++i) {
     const auto& want = v.tasks[0].route->waypoints[i];
-    EXPECT_NEAR(w[i].position.x_m, want.position.x_m, 1e-3);
-    EXPECT_NEAR(w[i].position.y_m, want.position.y_m, 1e-3);
+    EXPECT_NEAR(w[i].position.east_m, want.position.east_m, 1e-3);
+    EXPECT_NEAR(w[i].position.north_m, want.position.north_m, 1e-3);
     EXPECT_EQ(w[i].mode, want.mode);
     EXPECT_DOUBLE_EQ(w[i].eta_s, want.eta_s);
   }
@@ -112,8 +112,8 @@ TEST(MissionAdapterTest, FeedbackStateIsAFullState) {
   f.mutable_state()->mutable_position()->set_longitude_deg(10.40);
   e = FeedbackFromProto(f, &kFrame);
   ASSERT_TRUE(e.position.has_value());
-  const chart::LocalPoint want = kFrame.ToLocal({63.44, 10.40});
-  EXPECT_NEAR(e.position->x_m, want.x_m, 1e-6);
+  const EastNorth want = kFrame.ToLocal({63.44, 10.40});
+  EXPECT_NEAR(e.position->east_m, want.east_m, 1e-6);
   EXPECT_EQ(e.plan_version, 2);
   EXPECT_EQ(e.kind, mission::FeedbackKind::kPosition);
   EXPECT_FALSE(FeedbackFromProto(f, nullptr).position.has_value());
@@ -175,7 +175,7 @@ TEST(MissionAdapterTest, TheEngineSeesTheStoredRoutesAndTheReportedPosition) {
   EXPECT_TRUE(engine->runtime.current.tasks[0].route.has_value());
   EXPECT_EQ(engine->runtime.completed_task_ids, std::vector<std::string>{"v2-t9"});
   ASSERT_TRUE(engine->feedback.position.has_value());
-  EXPECT_GT(engine->feedback.position->y_m, kFrame.ToLocal({63.44, 10.40}).y_m + 1000);
+  EXPECT_GT(engine->feedback.position->north_m, kFrame.ToLocal({63.44, 10.40}).north_m + 1000);
   // Diagnostics ride in the status details.
   absl::Status st = adapter.CheckSpec(spec);
   EXPECT_TRUE(absl::IsInvalidArgument(st));

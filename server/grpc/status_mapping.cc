@@ -9,9 +9,9 @@ grpc::Status ToGrpcStatus(const absl::Status& status) {
   const auto code = static_cast<grpc::StatusCode>(static_cast<int>(status.code()));
   std::string message(status.message());
   if (auto diagnostics = GetDiagnostics(status)) {
-    return grpc::Status(code, std::move(message), diagnostics->SerializeAsString());
+    return grpc::Status(code, message, diagnostics->SerializeAsString());
   }
-  return grpc::Status(code, std::move(message));
+  return grpc::Status(code, message);
 }
 
 }  // namespace seaplan::server

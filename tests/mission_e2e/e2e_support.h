@@ -170,9 +170,9 @@ inline bool Flag(const std::string& text, const std::string& key) {
   return text.find("\"" + key + "\": true") != std::string::npos;
 }
 
-// One executed-track sample: mission time, local frame x/y (metres).
+// One executed-track sample: mission time, local frame east/north (metres).
 struct TrackPoint {
-  double time_s = 0.0, x_m = 0.0, y_m = 0.0;
+  double time_s = 0.0, east_m = 0.0, north_m = 0.0;
 };
 // The "trajectory" array ([t, x, y] triples, the report's last array).
 inline std::vector<TrackPoint> Trajectory(const std::string& report) {

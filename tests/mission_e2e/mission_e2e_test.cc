@@ -130,7 +130,7 @@ TEST_F(MissionE2eTest, CaseAOneVersionGoalsReachedNoGroundingSafeCpa) {
   int points = 0;
   for (const e2e::TrackPoint& p : e2e::Trajectory(r.report)) {
     ++points;
-    EXPECT_FALSE(q.Inside({p.x_m, p.y_m})) << "aground at t=" << p.time_s;
+    EXPECT_FALSE(q.Inside({p.east_m, p.north_m})) << "aground at t=" << p.time_s;
   }
   EXPECT_GT(points, 10);
   // The sim's own check, every 2 s of the track against the same land.
@@ -142,16 +142,18 @@ TEST_F(MissionE2eTest, CaseAOneVersionGoalsReachedNoGroundingSafeCpa) {
   for (const e2e::RoutedMove& move : e2e::RoutedMoves(r.report)) {
     ++routes;
     const std::string& id = move.id;
-    std::vector<chart::LocalPoint> line;
+    std::vector<EastNorth> line;
     for (const auto& [x, y] : move.waypoints) line.push_back({x, y});
     ASSERT_GE(line.size(), 2u) << id;
     for (size_t i = 0; i + 1 < line.size(); ++i) {
-      const double len = std::hypot(line[i + 1].x_m - line[i].x_m, line[i + 1].y_m - line[i].y_m);
+      const double len =
+          std::hypot(line[i + 1].east_m - line[i].east_m, line[i + 1].north_m - line[i].north_m);
       const int n = std::max(1, static_cast<int>(len / 5.0));
       for (int k = 0; k <= n; ++k) {
-        const chart::LocalPoint on{line[i].x_m + (line[i + 1].x_m - line[i].x_m) * k / n,
-                                   line[i].y_m + (line[i + 1].y_m - line[i].y_m) * k / n};
-        EXPECT_FALSE(q.Inside(on)) << id << " crosses land at (" << on.x_m << ", " << on.y_m << ")";
+        const EastNorth on{line[i].east_m + (line[i + 1].east_m - line[i].east_m) * k / n,
+                           line[i].north_m + (line[i + 1].north_m - line[i].north_m) * k / n};
+        EXPECT_FALSE(q.Inside(on))
+            << id << " crosses land at (" << on.east_m << ", " << on.north_m << ")";
       }
     }
   }
@@ -281,7 +283,7 @@ TEST_F(MissionE2eTest, ReconnectingWatcherMissesNothingAndFeedbackIsIdempotent) 
 // shore, inside the chart's 10 m safety buffer; a replan from where a ship
 // was pushed is the same situation): the server routes it out of the buffer
 // the shortest way instead of refusing the start ("lies inside a grounding
-// obstacle"; issue #6, case C).
+// obstacle"; fjord case C).
 TEST_F(MissionE2eTest, MoveStartingInsideTheBufferLeavesItInsteadOfFailing) {
   auto charts = v1::ChartService::NewStub(channel_);
   v1::UploadChartRequest upload;
@@ -337,10 +339,10 @@ TEST_F(MissionE2eTest, MoveStartingInsideTheBufferLeavesItInsteadOfFailing) {
     EXPECT_NEAR(w0.latitude_deg(), lat[0], 1e-6);  // the route starts where the ship is
     EXPECT_NEAR(w0.longitude_deg(), lon[0], 1e-6);
     // ... and its way out is short (the shore is 5 m away, the buffer 10 m).
-    const chart::LocalPoint a = map->frame().ToLocal({w0.latitude_deg(), w0.longitude_deg()});
+    const EastNorth a = map->frame().ToLocal({w0.latitude_deg(), w0.longitude_deg()});
     const auto& w1 = t.route().waypoints(1).position();
-    const chart::LocalPoint b = map->frame().ToLocal({w1.latitude_deg(), w1.longitude_deg()});
-    EXPECT_LT(std::hypot(b.x_m - a.x_m, b.y_m - a.y_m), 40.0);
+    const EastNorth b = map->frame().ToLocal({w1.latitude_deg(), w1.longitude_deg()});
+    EXPECT_LT(std::hypot(b.east_m - a.east_m, b.north_m - a.north_m), 40.0);
     for (const auto& w : t.route().waypoints()) {
       EXPECT_FALSE(q.Inside(
           map->frame().ToLocal({w.position().latitude_deg(), w.position().longitude_deg()})));

@@ -69,9 +69,9 @@ TEST(TrondheimE2eTest, ScenarioPortsInOpenWaterAndMunkholmenBetweenCAndD) {
   chart::ObstacleQuery query(*land);
   const auto locations = e2e::ScenarioLocations(scenario);
   ASSERT_EQ(locations.size(), 5u);
-  std::map<std::string, chart::LocalPoint> at;
+  std::map<std::string, EastNorth> at;
   for (const auto& l : locations) {
-    const chart::LocalPoint p = land->frame().ToLocal({l.lat_deg, l.lon_deg});
+    const EastNorth p = land->frame().ToLocal({l.lat_deg, l.lon_deg});
     at[l.name] = p;
     EXPECT_TRUE(land->Covers(p)) << l.name;
     EXPECT_GT(query.DistanceM(p), kPortClearanceM) << l.name << " is too close to land";
@@ -87,7 +87,7 @@ TEST(TrondheimE2eTest, CaseAOnRealLandAreasOneVersionNoGroundingSafeCpa) {
   if (!fs::exists(BinDir() / "seaplan-server") || !fs::exists(BinDir() / "seaplan-sim")) {
     GTEST_SKIP() << "seaplan-server or seaplan-sim not built in " << BinDir();
   }
-  // Once skipped (issue #6): the routes were timed at the ship model's
+  // Once skipped: the routes were timed at the ship model's
   // 9.15 m/s while this scenario orders 4 m/s, the path follower missed
   // port-d after the Munkholmen detour and crossing CPAs fell under 150 m.
   // Fixed by the wheel-over (24907e0), the land grid (bea5a41) and routes
@@ -134,7 +134,7 @@ TEST(TrondheimE2eTest, CaseAOnRealLandAreasOneVersionNoGroundingSafeCpa) {
   EXPECT_EQ(moves.size(), 4u) << "case A has four moves (a-b, b-c, c-d, d-e)";
   for (const auto& m : moves) {
     ASSERT_GE(m.waypoints.size(), 2u) << m.id;
-    std::vector<chart::LocalPoint> polyline;
+    std::vector<EastNorth> polyline;
     for (const auto& [x, y] : m.waypoints) polyline.push_back({x, y});
     EXPECT_FALSE(query.PolylineHits(polyline)) << m.id << " " << m.action << " crosses land";
   }
@@ -160,14 +160,14 @@ TEST(TrondheimE2eTest, CaseAOnRealLandAreasOneVersionNoGroundingSafeCpa) {
                                [&](const e2e::TrackPoint& p) { return p.time_s >= t_done; });
     if (sample == track.end()) sample = track.end() - 1;
     const auto& [ex, ey] = m.waypoints.back();
-    EXPECT_LT(std::hypot(sample->x_m - ex, sample->y_m - ey), deviation_m)
+    EXPECT_LT(std::hypot(sample->east_m - ex, sample->north_m - ey), deviation_m)
         << m.id << " " << m.action << " completed at t=" << t_done
         << " s away from its destination";
   }
   int aground = 0;
   double deepest_m = 0.0, deepest_t = 0.0;
   for (const auto& p : track) {
-    const chart::LocalPoint lp{p.x_m, p.y_m};
+    const EastNorth lp{p.east_m, p.north_m};
     if (query.Inside(lp)) {
       ++aground;
       const double depth = -query.SignedDistanceM(lp);

@@ -39,7 +39,8 @@ StatusOr<Executor> Executor::Create(const ExecutorConfig& config) {
   avoidance.min_approach_speed_mps = config.min_approach_speed_mps;
   avoidance.arrival_radius_m = config.arrival_radius_m;
   SEAPLAN_ASSIGN_OR_RETURN(auto collision_avoidance, colav::CollisionAvoidance::Create(avoidance));
-  ship::ShipState s = ship::ShipState::At(config.start.y, config.start.x, config.start_heading_rad);
+  ship::ShipState s =
+      ship::ShipState::At(config.start.north_m, config.start.east_m, config.start_heading_rad);
   SEAPLAN_ASSIGN_OR_RETURN(auto model,
                            ship::ShipModel::Create(ship::ShipParams{}, ship::MachineryParams{},
                                                    config.environment, s, ship::MsoMode::kPto));
@@ -60,7 +61,7 @@ Executor::Executor(const ExecutorConfig& config, ship::ShipModel model,
   report_.min_fuel_fraction = config.initial_fuel_fraction;
 }
 
-Vec2 Executor::position() const {
+EastNorth Executor::position() const {
   return {model_.state().east_m(), model_.state().north_m()};
 }
 
@@ -141,7 +142,7 @@ void Executor::StartTasks(std::vector<FeedbackOut>* out) {
 void Executor::StartMove(const mission::Task& task) {
   route_.clear();
   if (task.route) route_ = task.route->waypoints;
-  const Vec2 here = position();
+  const EastNorth here = position();
   // The path is the route itself, joined where the ship is. The ship usually
   // lies some way off the route's start: it stopped abeam of the previous
   // route's end, or the server snapped it to a named location up to
@@ -151,10 +152,10 @@ void Executor::StartMove(const mission::Task& task) {
   // leg of 100 m, and looping around it ran the ship 400 m into the land
   // (case A). So: drop the legs the ship is already abeam of or
   // past, and let the LOS law converge on the leg it has reached.
-  std::vector<Vec2> path;
+  std::vector<EastNorth> path;
   path_modes_.clear();
   for (size_t i = 0; i < route_.size(); ++i) {
-    const Vec2 p{route_[i].position.x_m, route_[i].position.y_m};
+    const EastNorth p{route_[i].position.east_m, route_[i].position.north_m};
     if (!path.empty() && (p - path.back()).Norm() < 1.0) continue;
     // The leg ending here is sailed in the mode of the waypoint it starts from.
     if (!path.empty()) path_modes_.push_back(route_[i - 1].mode);
@@ -180,9 +181,9 @@ void Executor::StartMove(const mission::Task& task) {
   }
   if (path.size() < 2) {
     // No route (or a single point): head for it, or hold the heading.
-    const Vec2 to = path.empty() || (path.back() - here).Norm() < 1.0
-                        ? here + VelocityOf(model_.state().heading_rad(), 1.0)
-                        : path.back();
+    const EastNorth to = path.empty() || (path.back() - here).Norm() < 1.0
+                             ? here + VelocityOf(model_.state().heading_rad(), 1.0)
+                             : path.back();
     path = {here, to};
     path_modes_.assign(1, route_.empty() ? mission::MsoMode::kPto : route_.front().mode);
   }
@@ -211,8 +212,8 @@ void Executor::StepMove(std::vector<FeedbackOut>* out) {
                          [](const Running& r) { return r.task.kind == TaskKind::kMove; });
   if (it == running_.end() || !los_) return;
   const ship::ShipState& s = model_.state();
-  Vec2 here = position();
-  const Vec2 goal = los_->path().back();
+  EastNorth here = position();
+  const EastNorth goal = los_->path().back();
   double to_goal = (goal - here).Norm();
   // Arrived: inside the arrival circle, or abeam of / past the end of the
   // route close to its line (a slow-turning hull that misses the circle
@@ -235,7 +236,7 @@ void Executor::StepMove(std::vector<FeedbackOut>* out) {
   if (!route_.empty()) {
     mission::Route r;
     r.waypoints = route_;
-    double off = mission::CrossTrackDistance(r, {here.x, here.y});
+    double off = mission::CrossTrackDistance(r, {here.east_m, here.north_m});
     if ((jumped_ && off > config_.deviation_limit_m) || off > 3 * config_.deviation_limit_m) {
       Log(mission::TaskFailedMessage(TaskKind::kMove));
       out->push_back(MakeFeedback(
@@ -334,17 +335,17 @@ void Executor::InjectEvents(std::vector<FeedbackOut>* out) {
     const GnssJump& j = config_.gnss_jumps[i];
     if (!jumps_done_.contains(i) && time_s_ >= j.start_s) {
       jumps_done_.insert(i);
-      Vec2 expected = config_.grid.Cell(j.from_cell.x, j.from_cell.y);
-      Vec2 to = config_.grid.Cell(j.to_cell.x, j.to_cell.y);
-      Vec2 here = position();
+      EastNorth expected = config_.grid.Cell(j.from_cell.east_m, j.from_cell.north_m);
+      EastNorth to = config_.grid.Cell(j.to_cell.east_m, j.to_cell.north_m);
+      EastNorth here = position();
       Log(
           absl::StrFormat("GNSS fault: position jumps from grid (%g, %g) to (%g, %g) (%.0f m; ship "
                           "was %.0f m from the first cell)",
-                          j.from_cell.x, j.from_cell.y, j.to_cell.x, j.to_cell.y,
-                          (to - here).Norm(), (expected - here).Norm()));
+                          j.from_cell.east_m, j.from_cell.north_m, j.to_cell.east_m,
+                          j.to_cell.north_m, (to - here).Norm(), (expected - here).Norm()));
       ship::ShipState s = model_.state();
-      s.eta[0] = to.y;
-      s.eta[1] = to.x;
+      s.eta[0] = to.north_m;
+      s.eta[1] = to.east_m;
       model_.set_state(s);
     }
     if (jumps_done_.contains(i) && !jumps_cleared_.contains(i) && time_s_ >= j.end_s) {
@@ -359,7 +360,7 @@ constexpr double kLandSampleS = 2.0;  // the report's land clearance, every this
 }  // namespace
 
 void Executor::TrackTraffic() {
-  Vec2 here = position();
+  EastNorth here = position();
   for (const TrafficVessel& v : config_.traffic) {
     Kinematics k = v.At(time_s_);
     double d = (k.position - here).Norm();

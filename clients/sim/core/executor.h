@@ -46,9 +46,11 @@ using colav::VelocityOf;
 // A grid over the local frame for scripted events: cell (i, j) is at
 // origin + (i * cell_m east, j * cell_m north).
 struct Grid {
-  Vec2 origin;
+  EastNorth origin;
   double cell_m = 25.0;
-  Vec2 Cell(double i, double j) const { return {origin.x + i * cell_m, origin.y + j * cell_m}; }
+  EastNorth Cell(double i, double j) const {
+    return {origin.east_m + i * cell_m, origin.north_m + j * cell_m};
+  }
 };
 
 // GNSS jump (paper case B): at start_s the ship's navigated position jumps
@@ -59,13 +61,13 @@ struct Grid {
 struct GnssJump {
   double start_s = 0.0;
   double end_s = 0.0;
-  Vec2 from_cell;  // (i, j)
-  Vec2 to_cell;
+  EastNorth from_cell;  // (i, j)
+  EastNorth to_cell;
 };
 
 struct ExecutorConfig {
   std::string vessel_id = "mass-1";
-  Vec2 start;                      // local frame
+  EastNorth start;                 // local frame
   double start_heading_rad = 0.0;  // clockwise from north
   double service_speed_mps = 4.0;  // when a route has no sailing time
   double dt_s = 0.5;
@@ -97,7 +99,7 @@ struct ExecutorConfig {
   colav::CollisionAvoidanceOptions avoidance;
   // Land (outer rings, local frame) the avoidance keeps clear of; empty =
   // none known.
-  std::vector<std::vector<Vec2>> land;
+  std::vector<std::vector<EastNorth>> land;
   FuelOptions fuel;
   double initial_fuel_fraction = 1.0;
   double fuel_threshold_fraction = 0.3;  // logged when crossed (the server decides replans)
@@ -111,7 +113,7 @@ struct FeedbackOut {
   std::string task_id;
   int plan_version = 0;
   double mission_time_s = 0.0;
-  Vec2 position;
+  EastNorth position;
   double heading_rad = 0.0;
   double speed_mps = 0.0;
   double fuel_fraction = 1.0;
@@ -133,7 +135,7 @@ class Executor {
   // A task failed: the executor holds until SetPlan.
   bool WaitingForPlan() const { return waiting_; }
   double time_s() const { return time_s_; }
-  Vec2 position() const;
+  EastNorth position() const;
   double fuel_fraction() const { return tank_.fraction(); }
   int plan_version() const { return version_.version; }
   const std::set<std::string>& completed_task_ids() const { return completed_; }
@@ -189,7 +191,7 @@ class Executor {
   double last_track_sample_s_ = -1e9;
   double last_land_sample_s_ = -1e9;
   double fuel_burn_start_kg_ = 0.0;
-  Vec2 last_position_;
+  EastNorth last_position_;
   bool jumped_ = false;
   bool fuel_low_logged_ = false;
   std::set<size_t> jumps_done_, jumps_cleared_;

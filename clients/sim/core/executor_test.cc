@@ -11,7 +11,7 @@
 namespace seaplan::sim {
 namespace {
 
-mission::Task MoveTask(const std::string& id, mission::Point from, mission::Point to, double start,
+mission::Task MoveTask(const std::string& id, EastNorth from, EastNorth to, double start,
                        double speed) {
   mission::Task t;
   t.id = id;
@@ -21,7 +21,7 @@ mission::Task MoveTask(const std::string& id, mission::Point from, mission::Poin
   mission::RouteWaypoint a, b;
   a.position = from;
   b.position = to;
-  r.length_m = mission::Distance(from, to);
+  r.length_m = Distance(from, to);
   r.sailing_time_s = r.length_m / speed;
   b.eta_s = r.sailing_time_s;
   r.waypoints = {a, b};
@@ -33,7 +33,7 @@ mission::Task MoveTask(const std::string& id, mission::Point from, mission::Poin
 
 // A move along `points` (waypoints every ~100 m, as the route planner
 // returns them) sailed at `speed`.
-mission::Task RouteTask(const std::string& id, const std::vector<mission::Point>& corners,
+mission::Task RouteTask(const std::string& id, const std::vector<EastNorth>& corners,
                         double speed) {
   mission::Task t;
   t.id = id;
@@ -41,12 +41,12 @@ mission::Task RouteTask(const std::string& id, const std::vector<mission::Point>
   t.action.name = "move-ship";
   mission::Route r;
   for (size_t i = 0; i + 1 < corners.size(); ++i) {
-    const double len = mission::Distance(corners[i], corners[i + 1]);
+    const double len = Distance(corners[i], corners[i + 1]);
     const int n = std::max(1, static_cast<int>(std::round(len / 100.0)));
     for (int k = 0; k < n; ++k) {
       mission::RouteWaypoint w;
-      w.position = {corners[i].x_m + (corners[i + 1].x_m - corners[i].x_m) * k / n,
-                    corners[i].y_m + (corners[i + 1].y_m - corners[i].y_m) * k / n};
+      w.position = {corners[i].east_m + (corners[i + 1].east_m - corners[i].east_m) * k / n,
+                    corners[i].north_m + (corners[i + 1].north_m - corners[i].north_m) * k / n};
       r.waypoints.push_back(w);
     }
     r.length_m += len;
@@ -64,10 +64,11 @@ mission::Task RouteTask(const std::string& id, const std::vector<mission::Point>
 // polyline (every step) and where the ship ended.
 struct MoveRun {
   double max_off_route_m = 0.0;
-  mission::Point end;
+  EastNorth end;
   bool finished = false;
 };
-MoveRun RunMove(Vec2 start, double heading_rad, const mission::Task& move, ExecutorConfig c = {}) {
+MoveRun RunMove(EastNorth start, double heading_rad, const mission::Task& move,
+                ExecutorConfig c = {}) {
   c.start = start;
   c.start_heading_rad = heading_rad;
   auto ex = Executor::Create(c);
@@ -80,12 +81,12 @@ MoveRun RunMove(Vec2 start, double heading_rad, const mission::Task& move, Execu
   MoveRun run;
   for (int i = 0; i < 20000 && !ex->Finished(); ++i) {
     ex->Step(&out);
-    const Vec2 p = ex->position();
-    run.max_off_route_m =
-        std::max(run.max_off_route_m, mission::CrossTrackDistance(*move.route, {p.x, p.y}));
+    const EastNorth p = ex->position();
+    run.max_off_route_m = std::max(run.max_off_route_m,
+                                   mission::CrossTrackDistance(*move.route, {p.east_m, p.north_m}));
   }
   run.finished = ex->Finished();
-  run.end = {ex->position().x, ex->position().y};
+  run.end = {ex->position().east_m, ex->position().north_m};
   return run;
 }
 
@@ -157,7 +158,7 @@ TEST(ExecutorTest, RunsAMoveAndAPortOperation) {
   for (int i = 0; i < 10000 && !ex->Finished(); ++i) ex->Step(&out);
   ASSERT_TRUE(ex->Finished());
   EXPECT_EQ(ex->completed_task_ids().size(), 2u);
-  EXPECT_NEAR(ex->position().x, 1500, 80);
+  EXPECT_NEAR(ex->position().east_m, 1500, 80);
   EXPECT_NEAR(ex->fuel_fraction(), 1.0 - 0.15 - 0.10, 1e-9);
   int started = 0, completed = 0;
   for (const FeedbackOut& f : out) {
@@ -171,7 +172,7 @@ TEST(ExecutorTest, RunsAMoveAndAPortOperation) {
   EXPECT_LT(ex->time_s(), v.tasks[1].end_s() + 400);
 }
 
-// Case A of issue #6: the ship stopped ~100 m abeam of the previous route's
+// Fjord case A: the ship stopped ~100 m abeam of the previous route's
 // end, the next route starts at the berth position behind it. Sailing to the
 // route's start first made the 9 m/s hull loop 400 m into the shore.
 TEST(ExecutorTest, JoinsARouteStartingBesideTheShipWithoutLooping) {
@@ -181,7 +182,7 @@ TEST(ExecutorTest, JoinsARouteStartingBesideTheShipWithoutLooping) {
   MoveRun run = RunMove({41, 88}, M_PI / 2, move);
   ASSERT_TRUE(run.finished);
   EXPECT_LT(run.max_off_route_m, 110);  // never further off than where it started
-  EXPECT_LT(mission::Distance(run.end, {2100, 450}), 60 * 3);
+  EXPECT_LT(Distance(run.end, {2100, 450}), 60 * 3);
 }
 
 // A route bending 60 degrees at one waypoint (waypoints every 100 m, as
@@ -192,7 +193,7 @@ TEST(ExecutorTest, JoinsARouteStartingBesideTheShipWithoutLooping) {
 // and 214 m at 3.6 m/s.
 TEST(ExecutorTest, SharpCornerOvershootIsBoundedByTheWheelOver) {
   const double c60 = std::cos(M_PI / 3), s60 = std::sin(M_PI / 3);
-  const std::vector<mission::Point> corners = {
+  const std::vector<EastNorth> corners = {
       {0, 0}, {1500, 0}, {1500 + 1000 * c60, 1000 * s60}, {3000 + 1000 * c60, 1000 * s60}};
   MoveRun fast = RunMove({0, 0}, M_PI / 2, RouteTask("v1-t1", corners, 9.15));
   ASSERT_TRUE(fast.finished);
@@ -200,7 +201,7 @@ TEST(ExecutorTest, SharpCornerOvershootIsBoundedByTheWheelOver) {
   MoveRun slow = RunMove({0, 0}, M_PI / 2, RouteTask("v1-t1", corners, 3.6));
   ASSERT_TRUE(slow.finished);
   EXPECT_LT(slow.max_off_route_m, 150);
-  EXPECT_LT(mission::Distance(slow.end, corners.back()), 60 * 3);
+  EXPECT_LT(Distance(slow.end, corners.back()), 60 * 3);
 }
 
 TEST(ExecutorTest, GnssJumpFailsTheMoveAtTheScriptedTime) {
@@ -225,8 +226,8 @@ TEST(ExecutorTest, GnssJumpFailsTheMoveAtTheScriptedTime) {
   const FeedbackOut& failed = out.back();
   EXPECT_EQ(failed.kind, mission::FeedbackKind::kTaskFailed);
   EXPECT_EQ(failed.task_id, "v1-t1");
-  EXPECT_NEAR(failed.position.x, 750, 1e-6);
-  EXPECT_NEAR(failed.position.y, 1250, 1e-6);
+  EXPECT_NEAR(failed.position.east_m, 750, 1e-6);
+  EXPECT_NEAR(failed.position.north_m, 1250, 1e-6);
   EXPECT_NEAR(failed.mission_time_s, 100, 0.6);
   // Nothing advances until a new plan arrives.
   double t = ex->time_s();

@@ -8,7 +8,7 @@
 //    numeric domain plans "unload while refuelling"); the planner takes its
 //    cost at its start, before the refill, so charging it at completion,
 //    after the refill, drained 10 % the plan never counted (case C numeric
-//    ended at -5 %, issue #6). A move never overlaps a refuel of the same
+//    ended at -5 %). A move never overlaps a refuel of the same
 //    ship (both need the ship), so its order against the refill is the same
 //    either way; at completion, a move a replan abandons (the new plan starts
 //    where the ship is) is not charged twice.

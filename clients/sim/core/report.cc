@@ -119,8 +119,8 @@ std::string ToJson(const MissionReport& r) {
           << ", \"route_sailing_time_s\": " << Num3(t.route->sailing_time_s) << ", \"route\": [";
         bool fw = true;
         for (const mission::RouteWaypoint& w : t.route->waypoints) {
-          o << (fw ? "" : ", ") << "[" << Num3(w.position.x_m) << ", " << Num3(w.position.y_m)
-            << ", " << JsonString(mission::MsoModeName(w.mode)) << "]";
+          o << (fw ? "" : ", ") << "[" << Num3(w.position.east_m) << ", "
+            << Num3(w.position.north_m) << ", " << JsonString(mission::MsoModeName(w.mode)) << "]";
           fw = false;
         }
         o << "]";
@@ -148,8 +148,8 @@ std::string ToJson(const MissionReport& r) {
   o << "],\n  \"trajectory\": [";
   first = true;
   for (const TimedPoint& p : r.trajectory) {
-    o << (first ? "" : ", ") << "[" << Num3(p.time_s) << ", " << Num3(p.position.x) << ", "
-      << Num3(p.position.y) << "]";
+    o << (first ? "" : ", ") << "[" << Num3(p.time_s) << ", " << Num3(p.position.east_m) << ", "
+      << Num3(p.position.north_m) << "]";
     first = false;
   }
   o << "]\n}\n";
@@ -165,8 +165,8 @@ std::string TrajectorySvg(const MissionReport& r, const Rings& obstacles,
     miny = std::min(miny, y);
     maxy = std::max(maxy, y);
   };
-  for (const TimedPoint& p : r.trajectory) grow(p.position.x, p.position.y);
-  for (const auto& [name, p] : locations) grow(p.x_m, p.y_m);
+  for (const TimedPoint& p : r.trajectory) grow(p.position.east_m, p.position.north_m);
+  for (const auto& [name, p] : locations) grow(p.east_m, p.north_m);
   if (!std::isfinite(minx)) grow(0, 0);
   double margin = std::max({200.0, (maxx - minx) * 0.1, (maxy - miny) * 0.1});
   minx -= margin;
@@ -186,12 +186,12 @@ std::string TrajectorySvg(const MissionReport& r, const Rings& obstacles,
   o << "<rect width=\"100%\" height=\"100%\" fill=\"#dceefc\"/>\n";
   for (const auto& ring : obstacles) {
     bool inside = false;
-    for (const Vec2& p : ring) {
-      if (p.x > minx && p.x < maxx && p.y > miny && p.y < maxy) inside = true;
+    for (const EastNorth& p : ring) {
+      if (p.east_m > minx && p.east_m < maxx && p.north_m > miny && p.north_m < maxy) inside = true;
     }
     if (!inside) continue;
     o << "<polygon fill=\"#c8b88a\" stroke=\"#8a7a50\" stroke-width=\"0.5\" points=\"";
-    for (const Vec2& p : ring) o << absl::StrFormat("%.1f,%.1f ", X(p.x), Y(p.y));
+    for (const EastNorth& p : ring) o << absl::StrFormat("%.1f,%.1f ", X(p.east_m), Y(p.north_m));
     o << "\"/>\n";
   }
   const char* colours[] = {"#e67e22", "#16a085", "#8e44ad", "#c0392b"};
@@ -200,22 +200,23 @@ std::string TrajectorySvg(const MissionReport& r, const Rings& obstacles,
     o << "<polyline fill=\"none\" stroke=\"" << colours[ci++ % 4]
       << "\" stroke-dasharray=\"6,4\" points=\"";
     for (const TimedPoint& p : track)
-      o << absl::StrFormat("%.1f,%.1f ", X(p.position.x), Y(p.position.y));
+      o << absl::StrFormat("%.1f,%.1f ", X(p.position.east_m), Y(p.position.north_m));
     o << "\"/>\n";
     if (!track.empty()) {
       o << absl::StrFormat("<text x=\"%.1f\" y=\"%.1f\" font-size=\"12\">%s</text>\n",
-                           X(track.front().position.x), Y(track.front().position.y), XmlText(name));
+                           X(track.front().position.east_m), Y(track.front().position.north_m),
+                           XmlText(name));
     }
   }
   o << "<polyline fill=\"none\" stroke=\"#1f3a93\" stroke-width=\"2\" points=\"";
   for (const TimedPoint& p : r.trajectory)
-    o << absl::StrFormat("%.1f,%.1f ", X(p.position.x), Y(p.position.y));
+    o << absl::StrFormat("%.1f,%.1f ", X(p.position.east_m), Y(p.position.north_m));
   o << "\"/>\n";
   for (const auto& [name, p] : locations) {
-    o << absl::StrFormat("<circle cx=\"%.1f\" cy=\"%.1f\" r=\"4\" fill=\"#000\"/>\n", X(p.x_m),
-                         Y(p.y_m));
-    o << absl::StrFormat("<text x=\"%.1f\" y=\"%.1f\" font-size=\"13\">%s</text>\n", X(p.x_m) + 6,
-                         Y(p.y_m) - 6, XmlText(name));
+    o << absl::StrFormat("<circle cx=\"%.1f\" cy=\"%.1f\" r=\"4\" fill=\"#000\"/>\n", X(p.east_m),
+                         Y(p.north_m));
+    o << absl::StrFormat("<text x=\"%.1f\" y=\"%.1f\" font-size=\"13\">%s</text>\n",
+                         X(p.east_m) + 6, Y(p.north_m) - 6, XmlText(name));
   }
   o << "</svg>\n";
   return o.str();

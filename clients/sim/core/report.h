@@ -17,8 +17,8 @@
 
 namespace seaplan::sim {
 
+using EastNorth;
 using colav::Kinematics;
-using colav::Vec2;
 
 struct CpaRecord {
   std::string vessel;
@@ -28,7 +28,7 @@ struct CpaRecord {
 
 struct TimedPoint {
   double time_s = 0.0;
-  Vec2 position;
+  EastNorth position;
 };
 
 struct MissionReport {
@@ -58,7 +58,7 @@ struct MissionReport {
 std::string ToJson(const MissionReport& report);
 
 // Obstacles as outer rings in the local frame (for the plot only).
-using Rings = std::vector<std::vector<Vec2>>;
+using Rings = std::vector<std::vector<EastNorth>>;
 std::string TrajectorySvg(const MissionReport& report, const Rings& obstacles,
                           const mission::LocationTable& locations);
 std::string GanttSvg(const MissionReport& report);

@@ -212,8 +212,8 @@ StatusOr<std::string> ResolvePath(const Scenario& s, const std::string& path,
 mission::LocationTable LocalLocations(const Scenario& s, const chart::LocalFrame& frame) {
   mission::LocationTable t;
   for (const auto& [name, ll] : s.locations) {
-    chart::LocalPoint p = frame.ToLocal(ll);
-    t[name] = {p.x_m, p.y_m};
+    EastNorth p = frame.ToLocal(ll);
+    t[name] = {p.east_m, p.north_m};
   }
   return t;
 }
@@ -224,13 +224,13 @@ StatusOr<ExecutorConfig> MakeExecutorConfig(const Scenario& s, const chart::Loca
   c.vessel_id = s.vessel_id;
   auto locs = LocalLocations(s, frame);
   if (s.start) {
-    chart::LocalPoint p = frame.ToLocal(*s.start);
-    c.start = {p.x_m, p.y_m};
+    EastNorth p = frame.ToLocal(*s.start);
+    c.start = {p.east_m, p.north_m};
   } else if (auto it = locs.find(ship_location); it != locs.end()) {
-    c.start = {it->second.x_m, it->second.y_m};
+    c.start = {it->second.east_m, it->second.north_m};
   } else {
-    chart::LocalPoint p = frame.ToLocal(s.locations.front().second);
-    c.start = {p.x_m, p.y_m};
+    EastNorth p = frame.ToLocal(s.locations.front().second);
+    c.start = {p.east_m, p.north_m};
   }
   c.start_heading_rad = s.start_heading_deg * kDeg;
   c.service_speed_mps = s.service_speed_mps;
@@ -246,8 +246,8 @@ StatusOr<ExecutorConfig> MakeExecutorConfig(const Scenario& s, const chart::Loca
   c.environment.current_north_mps = s.current_speed_mps * std::cos(toward);
   c.environment.current_east_mps = s.current_speed_mps * std::sin(toward);
   if (s.grid_origin) {
-    chart::LocalPoint g = frame.ToLocal(*s.grid_origin);
-    c.grid = {{g.x_m, g.y_m}, s.grid_cell_m};
+    EastNorth g = frame.ToLocal(*s.grid_origin);
+    c.grid = {{g.east_m, g.north_m}, s.grid_cell_m};
   }
   c.gnss_jumps = s.gnss_jumps;
   int id = 1;
@@ -257,8 +257,8 @@ StatusOr<ExecutorConfig> MakeExecutorConfig(const Scenario& s, const chart::Loca
     v.name = t.name;
     v.kind = t.kind;
     for (const ScenarioTrafficPoint& p : t.track) {
-      chart::LocalPoint l = frame.ToLocal(p.position);
-      v.track.push_back({p.time_s, {l.x_m, l.y_m}});
+      EastNorth l = frame.ToLocal(p.position);
+      v.track.push_back({p.time_s, {l.east_m, l.north_m}});
     }
     c.traffic.push_back(std::move(v));
   }

@@ -27,7 +27,7 @@ fuel_model = machinery
   EXPECT_EQ(s->locations.size(), 2u);
   EXPECT_EQ(s->locations[1].first, "port-b");
   ASSERT_EQ(s->gnss_jumps.size(), 1u);
-  EXPECT_DOUBLE_EQ(s->gnss_jumps[0].to_cell.y, 50);
+  EXPECT_DOUBLE_EQ(s->gnss_jumps[0].to_cell.north_m, 50);
   ASSERT_EQ(s->traffic.size(), 1u);
   EXPECT_EQ(s->traffic[0].track.size(), 2u);
   EXPECT_EQ(s->fuel_model, FuelModelKind::kMachinery);
@@ -39,11 +39,11 @@ fuel_model = machinery
   auto cfg = MakeExecutorConfig(*s, frame, "port-b");
   ASSERT_TRUE(cfg.ok());
   auto locs = LocalLocations(*s, frame);
-  EXPECT_NEAR(cfg->start.x, locs["port-b"].x_m, 1e-9);
+  EXPECT_NEAR(cfg->start.east_m, locs["port-b"].east_m, 1e-9);
   // (38,35) and (30,50) are 8 cells west and 15 north apart.
-  Vec2 d = cfg->grid.Cell(30, 50) - cfg->grid.Cell(38, 35);
-  EXPECT_NEAR(d.x, -200, 1e-9);
-  EXPECT_NEAR(d.y, 375, 1e-9);
+  EastNorth d = cfg->grid.Cell(30, 50) - cfg->grid.Cell(38, 35);
+  EXPECT_NEAR(d.east_m, -200, 1e-9);
+  EXPECT_NEAR(d.north_m, 375, 1e-9);
 }
 
 TEST(ScenarioTest, BadLinesNameTheLine) {

@@ -11,14 +11,14 @@ Kinematics TrafficVessel::At(double t) const {
     const TrackPoint& b = track[i + 1];
     if (t <= b.time_s) {
       double dt = b.time_s - a.time_s;
-      Vec2 v = dt > 0 ? (b.position - a.position) * (1.0 / dt) : Vec2{};
+      EastNorth v = dt > 0 ? (b.position - a.position) * (1.0 / dt) : EastNorth{};
       return {a.position + v * (t - a.time_s), v};
     }
   }
   const TrackPoint& a = track[track.size() - 2];
   const TrackPoint& b = track.back();
   double dt = b.time_s - a.time_s;
-  Vec2 v = dt > 0 ? (b.position - a.position) * (1.0 / dt) : Vec2{};
+  EastNorth v = dt > 0 ? (b.position - a.position) * (1.0 / dt) : EastNorth{};
   return {b.position + v * (t - b.time_s), v};
 }
 

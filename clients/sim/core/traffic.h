@@ -14,12 +14,12 @@
 
 namespace seaplan::sim {
 
+using EastNorth;
 using colav::Kinematics;
-using colav::Vec2;
 
 struct TrackPoint {
   double time_s = 0.0;
-  Vec2 position;
+  EastNorth position;
 };
 
 struct TrafficVessel {

@@ -23,19 +23,20 @@ using internal::GeomPtr;
 using internal::GeosContext;
 using internal::Own;
 
-double Dist(LocalPoint a, LocalPoint b) {
-  return std::hypot(b.x_m - a.x_m, b.y_m - a.y_m);
+double Dist(EastNorth a, EastNorth b) {
+  return std::hypot(b.east_m - a.east_m, b.north_m - a.north_m);
 }
-double Cross(LocalPoint o, LocalPoint a, LocalPoint b) {
-  return (a.x_m - o.x_m) * (b.y_m - o.y_m) - (a.y_m - o.y_m) * (b.x_m - o.x_m);
+double Cross(EastNorth o, EastNorth a, EastNorth b) {
+  return (a.east_m - o.east_m) * (b.north_m - o.north_m) -
+         (a.north_m - o.north_m) * (b.east_m - o.east_m);
 }
-double PolylineLength(const std::vector<LocalPoint>& pts) {
+double PolylineLength(const std::vector<EastNorth>& pts) {
   double len = 0.0;
   for (size_t i = 1; i < pts.size(); ++i) len += Dist(pts[i - 1], pts[i]);
   return len;
 }
-std::string Fmt(LocalPoint p) {
-  return absl::StrFormat("(%.1f, %.1f)", p.x_m, p.y_m);
+std::string Fmt(EastNorth p) {
+  return absl::StrFormat("(%.1f, %.1f)", p.east_m, p.north_m);
 }
 
 struct PreparedDeleter {
@@ -50,15 +51,15 @@ PreparedPtr Prepare(const GeosContext& c, const GEOSGeometry* g) {
   return PreparedPtr(g != nullptr ? GEOSPrepare_r(c.get(), g) : nullptr, PreparedDeleter{c.get()});
 }
 
-bool SegmentHitsPrepared(const GeosContext& c, const GEOSPreparedGeometry* p, LocalPoint a,
-                         LocalPoint b) {
+bool SegmentHitsPrepared(const GeosContext& c, const GEOSPreparedGeometry* p, EastNorth a,
+                         EastNorth b) {
   if (p == nullptr) return false;
-  const LocalPoint pts[2] = {a, b};
+  const EastNorth pts[2] = {a, b};
   GeomPtr line = a == b ? internal::MakePoint(c, a) : internal::MakeLine(c, pts, 2);
   return GEOSPreparedIntersects_r(c.get(), p, line.get()) == 1;
 }
 
-bool PointInPrepared(const GeosContext& c, const GEOSPreparedGeometry* p, LocalPoint a) {
+bool PointInPrepared(const GeosContext& c, const GEOSPreparedGeometry* p, EastNorth a) {
   if (p == nullptr) return false;
   GeomPtr pt = internal::MakePoint(c, a);
   return GEOSPreparedIntersects_r(c.get(), p, pt.get()) == 1;
@@ -69,7 +70,7 @@ struct Hull {
   GeomPtr shape;   // the dilated convex hull
   GeomPtr shrunk;  // shape shrunk by a hair: touching its boundary is not a crossing
   PreparedPtr prepared_shrunk;
-  std::vector<LocalPoint> vertices;
+  std::vector<EastNorth> vertices;
   double area = 0.0;
 };
 
@@ -123,20 +124,20 @@ StatusOr<std::vector<Hull>> BuildHulls(const GeosContext& c, const std::vector<G
 }
 
 struct Partial {
-  std::vector<LocalPoint> pts;
+  std::vector<EastNorth> pts;
   std::vector<std::pair<int, int>> sides;  // (hull, +1 left / -1 right) already chosen
   int depth = 0;
 };
 
 struct A1Outcome {
-  std::vector<std::vector<LocalPoint>> routes;
+  std::vector<std::vector<EastNorth>> routes;
   std::string failure;  // non-empty when A1 is not applicable
   bool limit_hit = false;
   bool stopped = false;
 };
 
-A1Outcome RunA1(const GeosContext& c, const std::vector<Hull>& hulls, LocalPoint start,
-                LocalPoint goal, const AlternativesOptions& options) {
+A1Outcome RunA1(const GeosContext& c, const std::vector<Hull>& hulls, EastNorth start,
+                EastNorth goal, const AlternativesOptions& options) {
   A1Outcome out;
   for (size_t i = 0; i < hulls.size(); ++i) {
     if (PointInPrepared(c, hulls[i].prepared_shrunk.get(), start)) {
@@ -183,12 +184,12 @@ A1Outcome RunA1(const GeosContext& c, const std::vector<Hull>& hulls, LocalPoint
       out.limit_hit = true;
       continue;
     }
-    const LocalPoint from = p.pts[seg];
-    const LocalPoint to = p.pts[seg + 1];
+    const EastNorth from = p.pts[seg];
+    const EastNorth to = p.pts[seg + 1];
     const double len = std::max(Dist(from, to), 1e-9);
-    LocalPoint best[2];
+    EastNorth best[2];
     double best_d[2] = {-1.0, -1.0};
-    for (const LocalPoint& v : hulls[hull].vertices) {
+    for (const EastNorth& v : hulls[hull].vertices) {
       if (Dist(v, from) < 1.0) continue;
       if (SegmentHitsPrepared(c, hulls[hull].prepared_shrunk.get(), from, v))
         continue;  // not visible
@@ -234,13 +235,13 @@ std::vector<GeomPtr> MapGeometries(const GeosContext& c, const ObstacleMap& map,
       GEOSGeom_getYMin_r(c.get(), g.get(), &miny);
       GEOSGeom_getXMax_r(c.get(), g.get(), &maxx);
       GEOSGeom_getYMax_r(c.get(), g.get(), &maxy);
-      if (maxx < clip->min.x_m || minx > clip->max.x_m || maxy < clip->min.y_m ||
-          miny > clip->max.y_m)
+      if (maxx < clip->min.east_m || minx > clip->max.east_m || maxy < clip->min.north_m ||
+          miny > clip->max.north_m)
         continue;
-      if (minx < clip->min.x_m || miny < clip->min.y_m || maxx > clip->max.x_m ||
-          maxy > clip->max.y_m) {
-        g = Own(c, GEOSClipByRect_r(c.get(), g.get(), clip->min.x_m, clip->min.y_m, clip->max.x_m,
-                                    clip->max.y_m));
+      if (minx < clip->min.east_m || miny < clip->min.north_m || maxx > clip->max.east_m ||
+          maxy > clip->max.north_m) {
+        g = Own(c, GEOSClipByRect_r(c.get(), g.get(), clip->min.east_m, clip->min.north_m,
+                                    clip->max.east_m, clip->max.north_m));
         if (!g || GEOSisEmpty_r(c.get(), g.get()) == 1) continue;
       }
     }
@@ -249,9 +250,9 @@ std::vector<GeomPtr> MapGeometries(const GeosContext& c, const ObstacleMap& map,
   return out;
 }
 
-LocalBox Corridor(LocalPoint a, LocalPoint b, double grow) {
-  return {{std::min(a.x_m, b.x_m) - grow, std::min(a.y_m, b.y_m) - grow},
-          {std::max(a.x_m, b.x_m) + grow, std::max(a.y_m, b.y_m) + grow}};
+LocalBox Corridor(EastNorth a, EastNorth b, double grow) {
+  return {{std::min(a.east_m, b.east_m) - grow, std::min(a.north_m, b.north_m) - grow},
+          {std::max(a.east_m, b.east_m) + grow, std::max(a.north_m, b.north_m) + grow}};
 }
 
 // Shortest path in the visibility graph of the obstacles dilated by the
@@ -263,16 +264,16 @@ absl::Status StopStatus(const StopToken& stop, const char* where) {
                    absl::StrCat("route alternatives: deadline reached during ", where));
 }
 
-StatusOr<std::vector<LocalPoint>> VisibilityPath(const GeosContext& c, const ObstacleMap& map,
-                                                 LocalPoint start, LocalPoint goal, double margin_m,
-                                                 const LocalBox& box, int max_nodes,
-                                                 const StopToken& stop,
-                                                 const GEOSGeometry* extra_obstacle = nullptr) {
+StatusOr<std::vector<EastNorth>> VisibilityPath(const GeosContext& c, const ObstacleMap& map,
+                                                EastNorth start, EastNorth goal, double margin_m,
+                                                const LocalBox& box, int max_nodes,
+                                                const StopToken& stop,
+                                                const GEOSGeometry* extra_obstacle = nullptr) {
   const auto t_build = std::chrono::steady_clock::now();
   const double tol = 0.2 * margin_m;
   // Obstacles near the box (a margin wider, so dilation near the edge is right).
-  const LocalBox wide{{box.min.x_m - 2 * margin_m, box.min.y_m - 2 * margin_m},
-                      {box.max.x_m + 2 * margin_m, box.max.y_m + 2 * margin_m}};
+  const LocalBox wide{{box.min.east_m - 2 * margin_m, box.min.north_m - 2 * margin_m},
+                      {box.max.east_m + 2 * margin_m, box.max.north_m + 2 * margin_m}};
   std::vector<GeomPtr> raw = MapGeometries(c, map, &wide);
   if (extra_obstacle != nullptr) raw.push_back(Own(c, GEOSGeom_clone_r(c.get(), extra_obstacle)));
   GeomPtr raw_all = internal::MakeCollection(c, GEOS_GEOMETRYCOLLECTION, std::move(raw));
@@ -290,9 +291,9 @@ StatusOr<std::vector<LocalPoint>> VisibilityPath(const GeosContext& c, const Obs
   PreparedPtr raw_prepared = Prepare(c, raw_all.get());
 
   const auto t_nodes = std::chrono::steady_clock::now();
-  std::vector<LocalPoint> nodes = {start, goal};
+  std::vector<EastNorth> nodes = {start, goal};
   // Ring neighbours of each obstacle vertex node (start/goal: none).
-  std::vector<std::pair<LocalPoint, LocalPoint>> around = {{start, start}, {goal, goal}};
+  std::vector<std::pair<EastNorth, EastNorth>> around = {{start, start}, {goal, goal}};
   std::vector<Polygon> plain;
   internal::ExportPolygons(c, dilated.get(), &plain);
   for (const Polygon& p : plain) {
@@ -302,7 +303,7 @@ StatusOr<std::vector<LocalPoint>> VisibilityPath(const GeosContext& c, const Obs
       const bool reversed = outer ? area < 0 : area > 0;
       const size_t n = ring.size();
       for (size_t i = 0; i < n; ++i) {
-        LocalPoint prev = ring[(i + n - 1) % n], cur = ring[i], next = ring[(i + 1) % n];
+        EastNorth prev = ring[(i + n - 1) % n], cur = ring[i], next = ring[(i + 1) % n];
         if (reversed) std::swap(prev, next);
         if (Cross(prev, cur, next) <= 0) continue;  // reflex: never on a shortest path
         if (!box.Contains(cur)) continue;
@@ -376,7 +377,7 @@ StatusOr<std::vector<LocalPoint>> VisibilityPath(const GeosContext& c, const Obs
              n, tests, std::chrono::duration<double, std::milli>(t_nodes - t_build).count(),
              std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t_nodes)
                  .count());
-  std::vector<LocalPoint> path;
+  std::vector<EastNorth> path;
   if (!std::isfinite(g[1])) return path;
   for (int v = 1; v >= 0; v = parent[v]) path.push_back(nodes[v]);
   std::reverse(path.begin(), path.end());
@@ -405,11 +406,11 @@ absl::Status AlternativesOptions::Validate() const {
   return absl::OkStatus();
 }
 
-StatusOr<AlternativesResult> PlanAlternatives(const ObstacleMap& map, LocalPoint start,
-                                              LocalPoint goal, const AlternativesOptions& options) {
+StatusOr<AlternativesResult> PlanAlternatives(const ObstacleMap& map, EastNorth start,
+                                              EastNorth goal, const AlternativesOptions& options) {
   SEAPLAN_RETURN_IF_ERROR(options.Validate());
   for (const auto& [name, p] : {std::pair{"start", start}, std::pair{"goal", goal}}) {
-    if (!std::isfinite(p.x_m) || !std::isfinite(p.y_m)) {
+    if (!std::isfinite(p.east_m) || !std::isfinite(p.north_m)) {
       return absl::InvalidArgumentError(absl::StrCat(name, " has a non-finite coordinate"));
     }
     if (!map.Covers(p)) {
@@ -431,13 +432,13 @@ StatusOr<AlternativesResult> PlanAlternatives(const ObstacleMap& map, LocalPoint
   }
   AlternativesResult result;
   GeosContext c;
-  auto finish = [&](std::vector<std::vector<LocalPoint>> routes) {
+  auto finish = [&](std::vector<std::vector<EastNorth>> routes) {
     std::sort(routes.begin(), routes.end(),
               [](const auto& a, const auto& b) { return PolylineLength(a) < PolylineLength(b); });
     for (auto& r : routes) {
       if (query.PolylineHits(r)) continue;  // never hand out a route through an obstacle
       // Nor one that leaves the chart: beyond its coverage nothing is known.
-      if (!std::all_of(r.begin(), r.end(), [&](LocalPoint p) { return map.Covers(p); })) continue;
+      if (!std::all_of(r.begin(), r.end(), [&](EastNorth p) { return map.Covers(p); })) continue;
       bool dup = false;
       for (const Alternative& a : result.alternatives) dup = dup || a.waypoints == r;
       if (dup) continue;
@@ -491,10 +492,11 @@ StatusOr<AlternativesResult> PlanAlternatives(const ObstacleMap& map, LocalPoint
     result.used_fallback = true;
     const double margin = std::max(options.margin_m, 1.0);
     const LocalBox& cov = map.summary().coverage;
-    const double cov_size = std::max(cov.max.x_m - cov.min.x_m, cov.max.y_m - cov.min.y_m);
-    auto shortest = [&](const GEOSGeometry* wall) -> StatusOr<std::vector<LocalPoint>> {
+    const double cov_size =
+        std::max(cov.max.east_m - cov.min.east_m, cov.max.north_m - cov.min.north_m);
+    auto shortest = [&](const GEOSGeometry* wall) -> StatusOr<std::vector<EastNorth>> {
       double grow = std::max(1000.0, 0.25 * Dist(start, goal));
-      std::vector<LocalPoint> path;
+      std::vector<EastNorth> path;
       while (true) {
         const LocalBox box = Corridor(start, goal, grow);
         SEAPLAN_ASSIGN_OR_RETURN(path, VisibilityPath(c, map, start, goal, margin, box,
@@ -504,22 +506,22 @@ StatusOr<AlternativesResult> PlanAlternatives(const ObstacleMap& map, LocalPoint
       }
       return path;
     };
-    SEAPLAN_ASSIGN_OR_RETURN(std::vector<LocalPoint> path, shortest(nullptr));
+    SEAPLAN_ASSIGN_OR_RETURN(std::vector<EastNorth> path, shortest(nullptr));
     if (path.empty()) {
       return absl::NotFoundError(absl::StrCat("no obstacle-free route from ", Fmt(start), " to ",
                                               Fmt(goal), " (", absl::StrJoin(notes, "; "), ")"));
     }
-    std::vector<std::vector<LocalPoint>> routes = {path};
+    std::vector<std::vector<EastNorth>> routes = {path};
     // A second alternative in A1's spirit: around the other side of the
     // obstacle that blocks the straight line most. A thin wall from inside
     // that obstacle, across the first route's side, to beyond the chart
     // closes that side; the shortest path that remains goes the other way.
     int second = 0;
     if (options.max_alternatives > 1) {
-      const LocalPoint line[2] = {start, goal};
+      const EastNorth line[2] = {start, goal};
       GeomPtr straight = internal::MakeLine(c, line, 2);
       double best_len = 0.0;
-      LocalPoint mid{};
+      EastNorth mid{};
       for (const GeomPtr& o : MapGeometries(c, map, nullptr)) {
         GeomPtr cut = Own(c, GEOSIntersection_r(c.get(), o.get(), straight.get()));
         if (!cut) continue;
@@ -533,24 +535,24 @@ StatusOr<AlternativesResult> PlanAlternatives(const ObstacleMap& map, LocalPoint
           GeomPtr centre = Own(c, GEOSInterpolateNormalized_r(c.get(), piece, 0.5));
           if (!centre) continue;
           best_len = len;
-          GEOSGeomGetX_r(c.get(), centre.get(), &mid.x_m);
-          GEOSGeomGetY_r(c.get(), centre.get(), &mid.y_m);
+          GEOSGeomGetX_r(c.get(), centre.get(), &mid.east_m);
+          GEOSGeomGetY_r(c.get(), centre.get(), &mid.north_m);
         }
       }
       double side = 0.0;
-      for (const LocalPoint& p : path) side += Cross(start, goal, p);
+      for (const EastNorth& p : path) side += Cross(start, goal, p);
       if (best_len > 0.0 && side != 0.0) {
         const double len = std::max(Dist(start, goal), 1e-9);
-        const double nx = -(goal.y_m - start.y_m) / len * (side > 0 ? 1 : -1);
-        const double ny = (goal.x_m - start.x_m) / len * (side > 0 ? 1 : -1);
+        const double nx = -(goal.north_m - start.north_m) / len * (side > 0 ? 1 : -1);
+        const double ny = (goal.east_m - start.east_m) / len * (side > 0 ? 1 : -1);
         const double reach = 2.0 * cov_size + Dist(start, goal);
         const double w = 1.0;            // half width, m
         const double ux = ny, uy = -nx;  // along the line
-        const LocalPoint far{mid.x_m + nx * reach, mid.y_m + ny * reach};
-        const LocalPoint wall_ring[4] = {{mid.x_m - ux * w, mid.y_m - uy * w},
-                                         {mid.x_m + ux * w, mid.y_m + uy * w},
-                                         {far.x_m + ux * w, far.y_m + uy * w},
-                                         {far.x_m - ux * w, far.y_m - uy * w}};
+        const EastNorth far{mid.east_m + nx * reach, mid.north_m + ny * reach};
+        const EastNorth wall_ring[4] = {{mid.east_m - ux * w, mid.north_m - uy * w},
+                                        {mid.east_m + ux * w, mid.north_m + uy * w},
+                                        {far.east_m + ux * w, far.north_m + uy * w},
+                                        {far.east_m - ux * w, far.north_m - uy * w}};
         GeomPtr wall = internal::MakeRingPolygon(c, wall_ring, 4);
         auto other = shortest(wall.get());
         if (!other.ok() &&

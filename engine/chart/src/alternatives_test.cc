@@ -14,7 +14,7 @@ Polygon Rect(double x0, double y0, double x1, double y1) {
   return {{{kCx + x0, kCy + y0}, {kCx + x1, kCy + y0}, {kCx + x1, kCy + y1}, {kCx + x0, kCy + y1}},
           {}};
 }
-LocalPoint P(double x, double y) {
+EastNorth P(double x, double y) {
   return {kCx + x, kCy + y};
 }
 
@@ -31,7 +31,7 @@ ObstacleMap MakeMap(std::vector<Polygon> polygons, double buffer_m = 10.0) {
 
 double MaxAbsY(const Alternative& a) {
   double m = 0;
-  for (const LocalPoint& p : a.waypoints) m = std::max(m, std::abs(p.y_m - kCy));
+  for (const EastNorth& p : a.waypoints) m = std::max(m, std::abs(p.north_m - kCy));
   return m;
 }
 
@@ -50,7 +50,7 @@ TEST(Alternatives, SquareIslandGivesTwoSymmetricAlternatives) {
   // One passes north (y > 0), the other south.
   auto side = [](const Alternative& alt) {
     double s = 0;
-    for (const LocalPoint& p : alt.waypoints) s += p.y_m - kCy;
+    for (const EastNorth& p : alt.waypoints) s += p.north_m - kCy;
     return s;
   };
   EXPECT_GT(side(a) * side(b) * -1.0, 0.0);
@@ -124,7 +124,7 @@ TEST(Alternatives, StartInsideConcaveBayUsesFallbackAndAvoidsObstacles) {
     EXPECT_FALSE(q.PolylineHits(alt.waypoints));
     // It must leave the bay to the north (y > 500 + buffer) to get around.
     double max_y = -1e9;
-    for (const LocalPoint& p : alt.waypoints) max_y = std::max(max_y, p.y_m - kCy);
+    for (const EastNorth& p : alt.waypoints) max_y = std::max(max_y, p.north_m - kCy);
     EXPECT_GT(max_y, 510.0);
     // And is not absurdly long: out (~560) + around a side (~1000) + down.
     EXPECT_LT(alt.length_m, 4500.0);
@@ -136,7 +136,7 @@ TEST(Alternatives, StartInsideConcaveBayUsesFallbackAndAvoidsObstacles) {
   EXPECT_NEAR(result->alternatives[0].length_m, result->alternatives[1].length_m, 1.0);
   auto east = [](const Alternative& alt) {
     double s = 0;
-    for (const LocalPoint& p : alt.waypoints) s += p.x_m - kCx;
+    for (const EastNorth& p : alt.waypoints) s += p.east_m - kCx;
     return s;
   };
   EXPECT_LT(east(result->alternatives[0]) * east(result->alternatives[1]), 0.0);

@@ -1,6 +1,6 @@
 // Tests on the real charts in the shared folder (LABEL data; skipped with a
 // reason when the folder is absent). Licences: NOAA ENC User Agreement,
-// Kartverket CC BY 4.0 ("© Kartverket"); see /work/shared/enc/README.md.
+// Kartverket CC BY 4.0 ("© Kartverket"); see ../shared/enc/README.md.
 #include <gtest/gtest.h>
 
 #include <cmath>
@@ -52,13 +52,15 @@ void ExpectRouteAvoidsEverything(const ObstacleMap& map, const AlternativesResul
   ASSERT_FALSE(result.alternatives.empty());
   for (const Alternative& alt : result.alternatives) {
     EXPECT_FALSE(q.PolylineHits(alt.waypoints));
-    for (const LocalPoint& p : alt.waypoints) EXPECT_TRUE(map.Covers(p));
+    for (const EastNorth& p : alt.waypoints) EXPECT_TRUE(map.Covers(p));
     // Sample the route densely too (independent of GEOS' segment test).
     for (size_t i = 1; i < alt.waypoints.size(); ++i) {
-      const LocalPoint a = alt.waypoints[i - 1], b = alt.waypoints[i];
+      const EastNorth a = alt.waypoints[i - 1], b = alt.waypoints[i];
       for (int s = 0; s <= 200; ++s) {
-        const LocalPoint p{a.x_m + (b.x_m - a.x_m) * s / 200, a.y_m + (b.y_m - a.y_m) * s / 200};
-        ASSERT_GT(q.DistanceM(p), 0.0) << "route touches an obstacle at " << p.x_m << ", " << p.y_m;
+        const EastNorth p{a.east_m + (b.east_m - a.east_m) * s / 200,
+                          a.north_m + (b.north_m - a.north_m) * s / 200};
+        ASSERT_GT(q.DistanceM(p), 0.0)
+            << "route touches an obstacle at " << p.east_m << ", " << p.north_m;
       }
     }
   }
@@ -123,13 +125,13 @@ TEST(NoaaUS4MD81M, RouteDownTheBayAvoidsEveryObstacle) {
   auto map = LoadChartFile(cell.string(), ChartOptions{});
   ASSERT_TRUE(map.ok()) << map.status();
   // Chesapeake Bay south of the Bay Bridge, off Annapolis -> east of Cove Point.
-  const LocalPoint annapolis = map->frame().ToLocal({38.950, -76.405});
-  const LocalPoint cove_point = map->frame().ToLocal({38.400, -76.330});
+  const EastNorth annapolis = map->frame().ToLocal({38.950, -76.405});
+  const EastNorth cove_point = map->frame().ToLocal({38.400, -76.330});
   auto result = PlanAlternatives(*map, annapolis, cove_point);
   ASSERT_TRUE(result.ok()) << result.status();
   ExpectRouteAvoidsEverything(*map, *result);
   const double straight =
-      std::hypot(cove_point.x_m - annapolis.x_m, cove_point.y_m - annapolis.y_m);
+      std::hypot(cove_point.east_m - annapolis.east_m, cove_point.north_m - annapolis.north_m);
   EXPECT_LT(result->alternatives[0].length_m, 1.5 * straight);
   // A point on land (Kent Island) is refused with a clear message.
   auto on_land = PlanAlternatives(*map, map->frame().ToLocal({38.93, -76.25}), cove_point);
@@ -152,9 +154,9 @@ TEST(TrondheimGdb, ObstacleCountsAndRoute) {
   EXPECT_EQ(layers.at("grunne"), CountBelow(gdb.string(), "grunne", "dybde", 5.0, true, false));
   EXPECT_EQ(map->frame().epsg(), 32632);
   // Off Trondheim harbour (Ila) -> the fjord off Stjordal: around Lade.
-  const LocalPoint harbour = map->frame().ToLocal({63.4417, 10.3794});
-  const LocalPoint stjordal = map->frame().ToLocal({63.4837, 10.6114});
-  const LocalPoint fjord_west = map->frame().ToLocal({63.5011, 10.1243});
+  const EastNorth harbour = map->frame().ToLocal({63.4417, 10.3794});
+  const EastNorth stjordal = map->frame().ToLocal({63.4837, 10.6114});
+  const EastNorth fjord_west = map->frame().ToLocal({63.5011, 10.1243});
   for (const auto& [from, to] : {std::pair{harbour, stjordal}, std::pair{fjord_west, harbour}}) {
     auto result = PlanAlternatives(*map, from, to);
     ASSERT_TRUE(result.ok()) << result.status();
@@ -220,11 +222,11 @@ TEST(AlesundShapefiles, TwoAlternativesAroundTheIsland) {
   EXPECT_EQ(layers.at("shore"), 1);
   EXPECT_EQ(layers.count("chart_box-minus-seabed5m"), 1u);
   // Chart box: centre (39600, 6960500), 5040 x 2835 m.
-  EXPECT_NEAR(map->summary().coverage.min.x_m, 39600 - 2520, 1.0);
-  EXPECT_NEAR(map->summary().coverage.max.y_m, 6960500 + 1417.5, 1.0);
+  EXPECT_NEAR(map->summary().coverage.min.east_m, 39600 - 2520, 1.0);
+  EXPECT_NEAR(map->summary().coverage.max.north_m, 6960500 + 1417.5, 1.0);
 
   std::ifstream in(route_csv);
-  std::vector<LocalPoint> route;
+  std::vector<EastNorth> route;
   double e = 0, n = 0;
   char comma = 0;
   while (in >> e >> comma >> n) route.push_back({e, n});
@@ -241,9 +243,10 @@ TEST(AlesundShapefiles, TwoAlternativesAroundTheIsland) {
   // The two shortest pass on opposite sides of the straight line.
   auto side = [&](const Alternative& alt) {
     double s = 0;
-    const LocalPoint a = route[1], b = route[2];
-    for (const LocalPoint& p : alt.waypoints) {
-      s += (b.x_m - a.x_m) * (p.y_m - a.y_m) - (b.y_m - a.y_m) * (p.x_m - a.x_m);
+    const EastNorth a = route[1], b = route[2];
+    for (const EastNorth& p : alt.waypoints) {
+      s += (b.east_m - a.east_m) * (p.north_m - a.north_m) -
+           (b.north_m - a.north_m) * (p.east_m - a.east_m);
     }
     return s;
   };

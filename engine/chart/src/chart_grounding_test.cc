@@ -20,7 +20,7 @@ struct QueryCache {
 
 }  // namespace
 
-ChartGroundingTest::ChartGroundingTest(std::shared_ptr<const ObstacleMap> map, LocalPoint origin)
+ChartGroundingTest::ChartGroundingTest(std::shared_ptr<const ObstacleMap> map, EastNorth origin)
     : map_(std::move(map)), origin_(origin), id_(next_id.fetch_add(1)) {}
 
 ObstacleQuery& ChartGroundingTest::Query() const {
@@ -34,10 +34,10 @@ ObstacleQuery& ChartGroundingTest::Query() const {
 }
 
 namespace {
-std::array<LocalPoint, 4> ToChart(const risk::HullPolygon& hull, LocalPoint origin) {
-  std::array<LocalPoint, 4> out;
+std::array<EastNorth, 4> ToChart(const risk::HullPolygon& hull, EastNorth origin) {
+  std::array<EastNorth, 4> out;
   for (size_t i = 0; i < 4; ++i) {
-    out[i] = {origin.x_m + hull.corners_ne[i][1], origin.y_m + hull.corners_ne[i][0]};
+    out[i] = {origin.east_m + hull.corners_ne[i][1], origin.north_m + hull.corners_ne[i][0]};
   }
   return out;
 }

@@ -44,7 +44,7 @@ TEST(ChartGroundingTest, AgreesWithPlainPolygonObstacles) {
 
 TEST(ChartGroundingTest, OriginShiftAndThreads) {
   const auto map = Island();
-  ChartGroundingTest shifted(map, LocalPoint{kE, kN});  // NED (0,0) = island centre
+  ChartGroundingTest shifted(map, EastNorth{kE, kN});  // NED (0,0) = island centre
   EXPECT_TRUE(shifted.HullIntersects(risk::HullPolygon::Rectangle(0, 0, 0.0, 80, 16)));
   EXPECT_NEAR(shifted.Clearance(risk::HullPolygon::Rectangle(0, 150, 0.0, 80, 16)), 92.0, 1e-6);
   std::vector<std::thread> threads;

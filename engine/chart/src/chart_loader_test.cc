@@ -23,15 +23,16 @@ std::string HarbourPath() {
 // Shoelace area of a lon/lat rectangle projected into `frame`.
 double RectArea(const LocalFrame& f, double lon0, double lat0, double lon1, double lat1,
                 double* perimeter) {
-  const LocalPoint a = f.ToLocal({lat0, lon0}), b = f.ToLocal({lat0, lon1}),
-                   c = f.ToLocal({lat1, lon1}), d = f.ToLocal({lat1, lon0});
-  const LocalPoint pts[4] = {a, b, c, d};
+  const EastNorth a = f.ToLocal({lat0, lon0}), b = f.ToLocal({lat0, lon1}),
+                  c = f.ToLocal({lat1, lon1}), d = f.ToLocal({lat1, lon0});
+  const EastNorth pts[4] = {a, b, c, d};
   double area = 0, per = 0;
   for (int i = 0; i < 4; ++i) {
-    const LocalPoint& p = pts[i];
-    const LocalPoint& q = pts[(i + 1) % 4];
-    area += (p.x_m - a.x_m) * (q.y_m - a.y_m) - (q.x_m - a.x_m) * (p.y_m - a.y_m);
-    per += std::hypot(q.x_m - p.x_m, q.y_m - p.y_m);
+    const EastNorth& p = pts[i];
+    const EastNorth& q = pts[(i + 1) % 4];
+    area += (p.east_m - a.east_m) * (q.north_m - a.north_m) -
+            (q.east_m - a.east_m) * (p.north_m - a.north_m);
+    per += std::hypot(q.east_m - p.east_m, q.north_m - p.north_m);
   }
   *perimeter = per;
   return std::abs(area) / 2;

@@ -103,7 +103,7 @@ double LocalFrame::central_meridian_deg() const {
   return -183.0 + 6.0 * zone_;
 }
 
-LocalPoint LocalFrame::ToLocal(LatLon p) const {
+EastNorth LocalFrame::ToLocal(LatLon p) const {
   const KruegerSeries& s = Series();
   const double phi = p.lat_deg * kDegToRad;
   double dlon = p.lon_deg - central_meridian_deg();
@@ -123,10 +123,10 @@ LocalPoint LocalFrame::ToLocal(LatLon p) const {
           (north_ ? 0.0 : kFalseNorthingSouth) + kK0 * s.a_rect * xi};
 }
 
-LatLon LocalFrame::ToLatLon(LocalPoint p) const {
+LatLon LocalFrame::ToLatLon(EastNorth p) const {
   const KruegerSeries& s = Series();
-  const double xi = (p.y_m - (north_ ? 0.0 : kFalseNorthingSouth)) / (kK0 * s.a_rect);
-  const double eta = (p.x_m - kFalseEasting) / (kK0 * s.a_rect);
+  const double xi = (p.north_m - (north_ ? 0.0 : kFalseNorthingSouth)) / (kK0 * s.a_rect);
+  const double eta = (p.east_m - kFalseEasting) / (kK0 * s.a_rect);
   double xi_p = xi, eta_p = eta;
   for (int j = 1; j <= 6; ++j) {
     const double b = s.beta[j - 1];

@@ -36,9 +36,9 @@ TEST(LocalFrame, ZoneByCentreAndEpsg) {
 
 TEST(LocalFrame, CentralMeridianPointIsFalseEasting) {
   const LocalFrame f = *LocalFrame::FromEpsg(32633);
-  const LocalPoint p = f.ToLocal({0.0, 15.0});
-  EXPECT_NEAR(p.x_m, 500000.0, 1e-6);
-  EXPECT_NEAR(p.y_m, 0.0, 1e-6);
+  const EastNorth p = f.ToLocal({0.0, 15.0});
+  EXPECT_NEAR(p.east_m, 500000.0, 1e-6);
+  EXPECT_NEAR(p.north_m, 0.0, 1e-6);
 }
 
 TEST(LocalFrame, RoundTripBelowOneMillimetre) {
@@ -78,9 +78,9 @@ TEST(LocalFrame, AgreesWithProjBelowOneMillimetre) {
           // transform; compare only the projection maths.
         }
         ASSERT_TRUE(ct->Transform(1, &x, &y));
-        const LocalPoint p = f.ToLocal({lat0 + dlat, cm + dlon});
-        EXPECT_NEAR(p.x_m, x, 1e-3) << epsg << " " << dlat << " " << dlon;
-        EXPECT_NEAR(p.y_m, y, 1e-3) << epsg << " " << dlat << " " << dlon;
+        const EastNorth p = f.ToLocal({lat0 + dlat, cm + dlon});
+        EXPECT_NEAR(p.east_m, x, 1e-3) << epsg << " " << dlat << " " << dlon;
+        EXPECT_NEAR(p.north_m, y, 1e-3) << epsg << " " << dlat << " " << dlon;
       }
     }
   }

@@ -9,7 +9,7 @@
 namespace seaplan::chart {
 namespace {
 
-void AppendCoord(const LocalFrame& frame, LocalPoint p, std::string* out) {
+void AppendCoord(const LocalFrame& frame, EastNorth p, std::string* out) {
   const LatLon ll = frame.ToLatLon(p);
   char buf[64];
   std::snprintf(buf, sizeof(buf), "[%.7f,%.7f]", ll.lon_deg, ll.lat_deg);
@@ -20,10 +20,10 @@ void AppendCoord(const LocalFrame& frame, LocalPoint p, std::string* out) {
 void AppendRing(const LocalFrame& frame, const Ring& ring, bool ccw, std::string* out) {
   double area2 = 0.0;
   for (size_t i = 0; i < ring.size(); ++i) {
-    const LocalPoint& a = ring[i];
-    const LocalPoint& b = ring[(i + 1) % ring.size()];
-    area2 += (a.x_m - ring[0].x_m) * (b.y_m - ring[0].y_m) -
-             (b.x_m - ring[0].x_m) * (a.y_m - ring[0].y_m);
+    const EastNorth& a = ring[i];
+    const EastNorth& b = ring[(i + 1) % ring.size()];
+    area2 += (a.east_m - ring[0].east_m) * (b.north_m - ring[0].north_m) -
+             (b.east_m - ring[0].east_m) * (a.north_m - ring[0].north_m);
   }
   const bool reverse = (area2 > 0) != ccw;
   out->push_back('[');

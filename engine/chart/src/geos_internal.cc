@@ -30,27 +30,27 @@ std::string GeosContext::TakeError() const {
   return e;
 }
 
-GeomPtr MakePoint(const GeosContext& c, LocalPoint p) {
-  return Own(c, GEOSGeom_createPointFromXY_r(c.get(), p.x_m, p.y_m));
+GeomPtr MakePoint(const GeosContext& c, EastNorth p) {
+  return Own(c, GEOSGeom_createPointFromXY_r(c.get(), p.east_m, p.north_m));
 }
 
-GeomPtr MakeLine(const GeosContext& c, const LocalPoint* pts, size_t n) {
+GeomPtr MakeLine(const GeosContext& c, const EastNorth* pts, size_t n) {
   if (n < 2) return Own(c, nullptr);
   GEOSCoordSequence* seq = GEOSCoordSeq_create_r(c.get(), static_cast<unsigned>(n), 2);
   for (size_t i = 0; i < n; ++i)
-    GEOSCoordSeq_setXY_r(c.get(), seq, static_cast<unsigned>(i), pts[i].x_m, pts[i].y_m);
+    GEOSCoordSeq_setXY_r(c.get(), seq, static_cast<unsigned>(i), pts[i].east_m, pts[i].north_m);
   return Own(c, GEOSGeom_createLineString_r(c.get(), seq));
 }
 
 namespace {
-GEOSGeometry* RawRing(const GeosContext& c, const LocalPoint* pts, size_t n) {
+GEOSGeometry* RawRing(const GeosContext& c, const EastNorth* pts, size_t n) {
   // Drop a repeated closing point if the caller gave one.
   if (n >= 2 && pts[0] == pts[n - 1]) --n;
   if (n < 3) return nullptr;
   GEOSCoordSequence* seq = GEOSCoordSeq_create_r(c.get(), static_cast<unsigned>(n + 1), 2);
   for (size_t i = 0; i < n; ++i)
-    GEOSCoordSeq_setXY_r(c.get(), seq, static_cast<unsigned>(i), pts[i].x_m, pts[i].y_m);
-  GEOSCoordSeq_setXY_r(c.get(), seq, static_cast<unsigned>(n), pts[0].x_m, pts[0].y_m);
+    GEOSCoordSeq_setXY_r(c.get(), seq, static_cast<unsigned>(i), pts[i].east_m, pts[i].north_m);
+  GEOSCoordSeq_setXY_r(c.get(), seq, static_cast<unsigned>(n), pts[0].east_m, pts[0].north_m);
   return GEOSGeom_createLinearRing_r(c.get(), seq);
 }
 }  // namespace
@@ -59,7 +59,7 @@ GeomPtr MakeRing(const GeosContext& c, const Ring& ring) {
   return Own(c, RawRing(c, ring.data(), ring.size()));
 }
 
-GeomPtr MakeRingPolygon(const GeosContext& c, const LocalPoint* pts, size_t n) {
+GeomPtr MakeRingPolygon(const GeosContext& c, const EastNorth* pts, size_t n) {
   GEOSGeometry* shell = RawRing(c, pts, n);
   if (shell == nullptr) return Own(c, nullptr);
   return Own(c, GEOSGeom_createPolygon_r(c.get(), shell, nullptr, 0));
@@ -88,8 +88,8 @@ GeomPtr MakeCollection(const GeosContext& c, int type, std::vector<GeomPtr> part
 }
 
 GeomPtr MakeBox(const GeosContext& c, const LocalBox& box) {
-  return Own(
-      c, GEOSGeom_createRectangle_r(c.get(), box.min.x_m, box.min.y_m, box.max.x_m, box.max.y_m));
+  return Own(c, GEOSGeom_createRectangle_r(c.get(), box.min.east_m, box.min.north_m, box.max.east_m,
+                                           box.max.north_m));
 }
 
 Ring ExportRing(const GeosContext& c, const GEOSGeometry* ring) {
@@ -160,11 +160,11 @@ double RingSignedArea(const Ring& ring) {
   double a = 0.0;
   const size_t n = ring.size();
   for (size_t i = 0; i < n; ++i) {
-    const LocalPoint& p = ring[i];
-    const LocalPoint& q = ring[(i + 1) % n];
+    const EastNorth& p = ring[i];
+    const EastNorth& q = ring[(i + 1) % n];
     // Relative to the first point to keep precision with UTM magnitudes.
-    a += (p.x_m - ring[0].x_m) * (q.y_m - ring[0].y_m) -
-         (q.x_m - ring[0].x_m) * (p.y_m - ring[0].y_m);
+    a += (p.east_m - ring[0].east_m) * (q.north_m - ring[0].north_m) -
+         (q.east_m - ring[0].east_m) * (p.north_m - ring[0].north_m);
   }
   return 0.5 * a;
 }

@@ -46,11 +46,11 @@ inline GeomPtr Own(const GeosContext& c, GEOSGeometry* g) {
 }
 
 // Builders from plain data (nullptr on degenerate input).
-GeomPtr MakePoint(const GeosContext& c, LocalPoint p);
-GeomPtr MakeLine(const GeosContext& c, const LocalPoint* pts, size_t n);
+GeomPtr MakePoint(const GeosContext& c, EastNorth p);
+GeomPtr MakeLine(const GeosContext& c, const EastNorth* pts, size_t n);
 GeomPtr MakeRing(const GeosContext& c, const Ring& ring);
 GeomPtr MakePolygon(const GeosContext& c, const Polygon& polygon);
-GeomPtr MakeRingPolygon(const GeosContext& c, const LocalPoint* pts, size_t n);
+GeomPtr MakeRingPolygon(const GeosContext& c, const EastNorth* pts, size_t n);
 // A GeometryCollection / MultiPolygon taking ownership of `parts`.
 GeomPtr MakeCollection(const GeosContext& c, int type, std::vector<GeomPtr> parts);
 GeomPtr MakeBox(const GeosContext& c, const LocalBox& box);

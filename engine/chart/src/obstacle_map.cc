@@ -117,11 +117,11 @@ StatusOr<ObstacleMap> FinishObstacleMap(GeosContext& c, GeomPtr obstacles, Local
   impl->polygon_boxes.reserve(impl->polygons.size());
   for (const Polygon& p : impl->polygons) {
     LocalBox b{{inf, inf}, {-inf, -inf}};
-    for (const LocalPoint& q : p.outer) {
-      b.min.x_m = std::min(b.min.x_m, q.x_m);
-      b.min.y_m = std::min(b.min.y_m, q.y_m);
-      b.max.x_m = std::max(b.max.x_m, q.x_m);
-      b.max.y_m = std::max(b.max.y_m, q.y_m);
+    for (const EastNorth& q : p.outer) {
+      b.min.east_m = std::min(b.min.east_m, q.east_m);
+      b.min.north_m = std::min(b.min.north_m, q.north_m);
+      b.max.east_m = std::max(b.max.east_m, q.east_m);
+      b.max.north_m = std::max(b.max.north_m, q.north_m);
       const LatLon ll = frame.ToLatLon(q);
       lat_min = std::min(lat_min, ll.lat_deg);
       lat_max = std::max(lat_max, ll.lat_deg);
@@ -132,10 +132,10 @@ StatusOr<ObstacleMap> FinishObstacleMap(GeosContext& c, GeomPtr obstacles, Local
     for (const Ring& h : p.holes) vertices += static_cast<int>(h.size());
     area += PolygonArea(p);
     impl->polygon_boxes.push_back(b);
-    all.min.x_m = std::min(all.min.x_m, b.min.x_m);
-    all.min.y_m = std::min(all.min.y_m, b.min.y_m);
-    all.max.x_m = std::max(all.max.x_m, b.max.x_m);
-    all.max.y_m = std::max(all.max.y_m, b.max.y_m);
+    all.min.east_m = std::min(all.min.east_m, b.min.east_m);
+    all.min.north_m = std::min(all.min.north_m, b.min.north_m);
+    all.max.east_m = std::max(all.max.east_m, b.max.east_m);
+    all.max.north_m = std::max(all.max.north_m, b.max.north_m);
   }
   if (impl->polygons.empty()) {
     all = summary.coverage;
@@ -298,15 +298,15 @@ StatusOr<ObstacleMap> ObstacleMap::FromPolygons(std::vector<Polygon> obstacles, 
   LocalBox box{{inf, inf}, {-inf, -inf}};
   for (size_t i = 0; i < obstacles.size(); ++i) {
     const Polygon& p = obstacles[i];
-    for (const LocalPoint& q : p.outer) {
-      if (!std::isfinite(q.x_m) || !std::isfinite(q.y_m)) {
+    for (const EastNorth& q : p.outer) {
+      if (!std::isfinite(q.east_m) || !std::isfinite(q.north_m)) {
         return absl::InvalidArgumentError(
             absl::StrCat("obstacle polygon ", i, " has a non-finite coordinate"));
       }
-      box.min.x_m = std::min(box.min.x_m, q.x_m);
-      box.min.y_m = std::min(box.min.y_m, q.y_m);
-      box.max.x_m = std::max(box.max.x_m, q.x_m);
-      box.max.y_m = std::max(box.max.y_m, q.y_m);
+      box.min.east_m = std::min(box.min.east_m, q.east_m);
+      box.min.north_m = std::min(box.min.north_m, q.north_m);
+      box.max.east_m = std::max(box.max.east_m, q.east_m);
+      box.max.north_m = std::max(box.max.north_m, q.north_m);
     }
     GeomPtr g = internal::MakePolygon(c, p);
     if (!g)
@@ -324,8 +324,8 @@ StatusOr<ObstacleMap> ObstacleMap::FromPolygons(std::vector<Polygon> obstacles, 
     return absl::InvalidArgumentError("FromPolygons: no obstacles and no coverage box");
   } else {
     const double grow = 1000.0 + options.safety_buffer_m;
-    summary.coverage = {{box.min.x_m - grow, box.min.y_m - grow},
-                        {box.max.x_m + grow, box.max.y_m + grow}};
+    summary.coverage = {{box.min.east_m - grow, box.min.north_m - grow},
+                        {box.max.east_m + grow, box.max.north_m + grow}};
   }
   return internal::BuildObstacleMap(c, std::move(areas), {}, frame, options, std::move(summary));
 }
@@ -484,7 +484,7 @@ ObstacleQuery::ObstacleQuery(ObstacleQuery&&) noexcept = default;
 ObstacleQuery& ObstacleQuery::operator=(ObstacleQuery&&) noexcept = default;
 ObstacleQuery::~ObstacleQuery() = default;
 
-double ObstacleQuery::PolygonDistanceM(std::span<const LocalPoint> ring) {
+double ObstacleQuery::PolygonDistanceM(std::span<const EastNorth> ring) {
   State& s = *state_;
   if (s.parts.empty() || ring.empty()) return std::numeric_limits<double>::infinity();
   GeomPtr g = ring.size() >= 3 ? internal::MakeRingPolygon(s.ctx, ring.data(), ring.size())
@@ -500,7 +500,7 @@ double ObstacleQuery::PolygonDistanceM(std::span<const LocalPoint> ring) {
   return d;
 }
 
-NearestObstacle ObstacleQuery::Nearest(LocalPoint p) {
+NearestObstacle ObstacleQuery::Nearest(EastNorth p) {
   State& s = *state_;
   NearestObstacle out;
   if (s.parts.empty()) return out;
@@ -519,24 +519,24 @@ NearestObstacle ObstacleQuery::Nearest(LocalPoint p) {
   if (d > 0.0) {
     GEOSCoordSequence* seq = GEOSPreparedNearestPoints_r(s.ctx.get(), s.Prepared(i), pt.get());
     if (seq != nullptr) {
-      GEOSCoordSeq_getXY_r(s.ctx.get(), seq, 0, &out.nearest.x_m, &out.nearest.y_m);
+      GEOSCoordSeq_getXY_r(s.ctx.get(), seq, 0, &out.nearest.east_m, &out.nearest.north_m);
       GEOSCoordSeq_destroy_r(s.ctx.get(), seq);
     }
   }
   return out;
 }
 
-double ObstacleQuery::DistanceM(LocalPoint p) {
+double ObstacleQuery::DistanceM(EastNorth p) {
   return Nearest(p).distance_m;
 }
 
-bool ObstacleQuery::Inside(LocalPoint p) {
+bool ObstacleQuery::Inside(EastNorth p) {
   State& s = *state_;
   GeomPtr pt = internal::MakePoint(s.ctx, p);
   return s.Hits(pt.get());
 }
 
-double ObstacleQuery::SignedDistanceM(LocalPoint p) {
+double ObstacleQuery::SignedDistanceM(EastNorth p) {
   State& s = *state_;
   GeomPtr pt = internal::MakePoint(s.ctx, p);
   s.Candidates(pt.get());
@@ -550,14 +550,14 @@ double ObstacleQuery::SignedDistanceM(LocalPoint p) {
   return Nearest(p).distance_m;
 }
 
-bool ObstacleQuery::SegmentHits(LocalPoint a, LocalPoint b) {
+bool ObstacleQuery::SegmentHits(EastNorth a, EastNorth b) {
   State& s = *state_;
-  const LocalPoint pts[2] = {a, b};
+  const EastNorth pts[2] = {a, b};
   GeomPtr line = a == b ? internal::MakePoint(s.ctx, a) : internal::MakeLine(s.ctx, pts, 2);
   return s.Hits(line.get());
 }
 
-bool ObstacleQuery::PolylineHits(std::span<const LocalPoint> polyline) {
+bool ObstacleQuery::PolylineHits(std::span<const EastNorth> polyline) {
   State& s = *state_;
   if (polyline.empty()) return false;
   if (polyline.size() == 1) return Inside(polyline[0]);
@@ -565,7 +565,7 @@ bool ObstacleQuery::PolylineHits(std::span<const LocalPoint> polyline) {
   return s.Hits(line.get());
 }
 
-bool ObstacleQuery::PolygonHits(std::span<const LocalPoint> ring) {
+bool ObstacleQuery::PolygonHits(std::span<const EastNorth> ring) {
   State& s = *state_;
   if (ring.size() < 3) return PolylineHits(ring);
   GeomPtr poly = internal::MakeRingPolygon(s.ctx, ring.data(), ring.size());
@@ -573,7 +573,7 @@ bool ObstacleQuery::PolygonHits(std::span<const LocalPoint> ring) {
   return s.Hits(poly.get());
 }
 
-std::optional<Clearance> ObstacleQuery::UnbufferedClearance(std::span<const LocalPoint> polyline) {
+std::optional<Clearance> ObstacleQuery::UnbufferedClearance(std::span<const EastNorth> polyline) {
   State& s = *state_;
   const std::string& wkb = s.map->impl().unbuffered_wkb;
   if (wkb.empty()) return std::nullopt;
@@ -603,26 +603,27 @@ std::optional<Clearance> ObstacleQuery::UnbufferedClearance(std::span<const Loca
   // Nearest points: [0] on the prepared geometry, [1] on the route.
   if (GEOSCoordSequence* seq =
           GEOSPreparedNearestPoints_r(s.ctx.get(), s.prepared_unbuffered, g.get())) {
-    GEOSCoordSeq_getXY_r(s.ctx.get(), seq, 0, &out.obstacle_point.x_m, &out.obstacle_point.y_m);
-    GEOSCoordSeq_getXY_r(s.ctx.get(), seq, 1, &out.route_point.x_m, &out.route_point.y_m);
+    GEOSCoordSeq_getXY_r(s.ctx.get(), seq, 0, &out.obstacle_point.east_m,
+                         &out.obstacle_point.north_m);
+    GEOSCoordSeq_getXY_r(s.ctx.get(), seq, 1, &out.route_point.east_m, &out.route_point.north_m);
     GEOSCoordSeq_destroy_r(s.ctx.get(), seq);
   }
   return out;
 }
 
-std::optional<LocalPoint> ObstacleQuery::NearestNavigable(LocalPoint p, double step_out_m) {
+std::optional<EastNorth> ObstacleQuery::NearestNavigable(EastNorth p, double step_out_m) {
   State& s = *state_;
-  if (!std::isfinite(p.x_m) || !std::isfinite(p.y_m)) return std::nullopt;
+  if (!std::isfinite(p.east_m) || !std::isfinite(p.north_m)) return std::nullopt;
   const LocalBox box = s.map->summary().coverage;
-  auto navigable = [&](LocalPoint q) { return box.Contains(q) && !Inside(q); };
+  auto navigable = [&](EastNorth q) { return box.Contains(q) && !Inside(q); };
   if (navigable(p)) return p;
   // The navigable water: the coverage box (inset by the step, so a point
   // stepped towards it stays inside) minus the obstacles. Built per call:
   // this answers error messages, not a hot loop.
-  const double inset = std::max(0.0, std::min({step_out_m, 0.25 * (box.max.x_m - box.min.x_m),
-                                               0.25 * (box.max.y_m - box.min.y_m)}));
-  GeomPtr water = internal::MakeBox(s.ctx, {{box.min.x_m + inset, box.min.y_m + inset},
-                                            {box.max.x_m - inset, box.max.y_m - inset}});
+  const double inset = std::max(0.0, std::min({step_out_m, 0.25 * (box.max.east_m - box.min.east_m),
+                                               0.25 * (box.max.north_m - box.min.north_m)}));
+  GeomPtr water = internal::MakeBox(s.ctx, {{box.min.east_m + inset, box.min.north_m + inset},
+                                            {box.max.east_m - inset, box.max.north_m - inset}});
   for (const GeomPtr& obstacle : s.originals) {
     if (!water || !obstacle) continue;
     water = Own(s.ctx, GEOSDifference_r(s.ctx.get(), water.get(), obstacle.get()));
@@ -631,20 +632,20 @@ std::optional<LocalPoint> ObstacleQuery::NearestNavigable(LocalPoint p, double s
   GeomPtr pt = internal::MakePoint(s.ctx, p);
   GEOSCoordSequence* seq = GEOSNearestPoints_r(s.ctx.get(), water.get(), pt.get());
   if (seq == nullptr) return std::nullopt;
-  LocalPoint q = p;
-  GEOSCoordSeq_getXY_r(s.ctx.get(), seq, 0, &q.x_m, &q.y_m);
+  EastNorth q = p;
+  GEOSCoordSeq_getXY_r(s.ctx.get(), seq, 0, &q.east_m, &q.north_m);
   GEOSCoordSeq_destroy_r(s.ctx.get(), seq);
   // q is on the water's edge (which counts as obstacle): step on into the
   // water, as far as step_out_m when it is that wide.
-  const double dx = q.x_m - p.x_m, dy = q.y_m - p.y_m;
+  const double dx = q.east_m - p.east_m, dy = q.north_m - p.north_m;
   const double len = std::hypot(dx, dy);
   if (len > 0.0) {
     for (double step = step_out_m; step > 1e-3; step *= 0.25) {
-      const LocalPoint r{q.x_m + dx / len * step, q.y_m + dy / len * step};
+      const EastNorth r{q.east_m + dx / len * step, q.north_m + dy / len * step};
       if (navigable(r)) return r;
     }
   }
-  return navigable(q) ? std::optional<LocalPoint>(q) : std::nullopt;
+  return navigable(q) ? std::optional<EastNorth>(q) : std::nullopt;
 }
 
 // ---------------------------------------------------------------------------
@@ -722,7 +723,8 @@ std::string SerializeObstacleMap(const ObstacleMap& map) {
   }
   w.U32(static_cast<uint32_t>(s.warnings.size()));
   for (const std::string& warning : s.warnings) w.Str(warning);
-  for (double v : {s.coverage.min.x_m, s.coverage.min.y_m, s.coverage.max.x_m, s.coverage.max.y_m})
+  for (double v : {s.coverage.min.east_m, s.coverage.min.north_m, s.coverage.max.east_m,
+                   s.coverage.max.north_m})
     w.F64(v);
   const ChartOptions& o = s.options;
   for (double v :
@@ -770,10 +772,11 @@ StatusOr<ObstacleMap> DeserializeObstacleMap(std::string_view bytes) {
     s.warnings.push_back(std::move(warning));
   }
   int32_t frame_epsg = 0, unknown = 0;
-  if (!r.F64(&s.coverage.min.x_m) || !r.F64(&s.coverage.min.y_m) || !r.F64(&s.coverage.max.x_m) ||
-      !r.F64(&s.coverage.max.y_m) || !r.F64(&s.options.min_depth_m) ||
-      !r.F64(&s.options.safety_buffer_m) || !r.F64(&s.options.point_hazard_radius_m) ||
-      !r.F64(&s.options.simplify_tolerance_m) || !r.I32(&frame_epsg) || !r.I32(&unknown)) {
+  if (!r.F64(&s.coverage.min.east_m) || !r.F64(&s.coverage.min.north_m) ||
+      !r.F64(&s.coverage.max.east_m) || !r.F64(&s.coverage.max.north_m) ||
+      !r.F64(&s.options.min_depth_m) || !r.F64(&s.options.safety_buffer_m) ||
+      !r.F64(&s.options.point_hazard_radius_m) || !r.F64(&s.options.simplify_tolerance_m) ||
+      !r.I32(&frame_epsg) || !r.I32(&unknown)) {
     return corrupt("coverage/options");
   }
   s.options.frame_epsg = frame_epsg;

@@ -45,8 +45,8 @@ TEST(ObstacleMap, SquareIslandBufferedArea) {
   EXPECT_LT(map->summary().total_area_m2, exact);
   EXPECT_EQ(map->summary().features_per_layer.at("polygons"), 1);
   EXPECT_EQ(map->summary().frame_epsg, 32633);
-  EXPECT_NEAR(map->bounds().min.x_m, kCx - 50 - g, 1e-6);
-  EXPECT_NEAR(map->bounds().max.y_m, kCy + 50 + g, 1e-6);
+  EXPECT_NEAR(map->bounds().min.east_m, kCx - 50 - g, 1e-6);
+  EXPECT_NEAR(map->bounds().max.north_m, kCy + 50 + g, 1e-6);
   // Bounding box in lat/lon contains the island's centre.
   const LatLon c = map->frame().ToLatLon({kCx, kCy});
   EXPECT_LT(map->summary().bbox_min.lat_deg, c.lat_deg);
@@ -62,8 +62,8 @@ TEST(ObstacleMap, DistanceQueriesByHand) {
   EXPECT_NEAR(q.DistanceM({kCx + 150, kCy}), 100.0 - g, 1e-6);
   const NearestObstacle n = q.Nearest({kCx + 150, kCy + 10});
   EXPECT_NEAR(n.distance_m, 100.0 - g, 1e-6);
-  EXPECT_NEAR(n.nearest.x_m, kCx + 50 + g, 1e-6);
-  EXPECT_NEAR(n.nearest.y_m, kCy + 10, 1e-6);
+  EXPECT_NEAR(n.nearest.east_m, kCx + 50 + g, 1e-6);
+  EXPECT_NEAR(n.nearest.north_m, kCy + 10, 1e-6);
   EXPECT_EQ(n.polygon_index, 0);
   // Diagonal from the corner: |(100,100)| - 10 (45 degrees is a chord vertex).
   EXPECT_NEAR(q.DistanceM({kCx + 150, kCy + 150}), std::sqrt(2.0) * 100.0 - g, 1e-6);
@@ -82,14 +82,14 @@ TEST(ObstacleMap, SegmentAndPolygonIntersection) {
   EXPECT_TRUE(q.SegmentHits({kCx - 200, kCy}, {kCx + 200, kCy}));
   EXPECT_FALSE(q.SegmentHits({kCx - 200, kCy + 61}, {kCx + 200, kCy + 61}));
   EXPECT_TRUE(q.SegmentHits({kCx - 200, kCy + 59}, {kCx + 200, kCy + 59}));
-  const std::vector<LocalPoint> route = {
+  const std::vector<EastNorth> route = {
       {kCx - 200, kCy}, {kCx - 200, kCy + 100}, {kCx + 200, kCy + 100}};
   EXPECT_FALSE(q.PolylineHits(route));
-  const std::vector<LocalPoint> touching = {
+  const std::vector<EastNorth> touching = {
       {kCx + 55, kCy - 5}, {kCx + 65, kCy - 5}, {kCx + 65, kCy + 5}, {kCx + 55, kCy + 5}};
   EXPECT_TRUE(q.PolygonHits(touching));
   EXPECT_DOUBLE_EQ(q.PolygonDistanceM(touching), 0.0);
-  const std::vector<LocalPoint> away = {
+  const std::vector<EastNorth> away = {
       {kCx + 100, kCy - 5}, {kCx + 110, kCy - 5}, {kCx + 110, kCy + 5}, {kCx + 100, kCy + 5}};
   EXPECT_FALSE(q.PolygonHits(away));
   EXPECT_NEAR(q.PolygonDistanceM(away), 50.0 - ObstacleGrowthM(Buffer10NoSimplify()), 1e-6);
@@ -105,7 +105,7 @@ TEST(ObstacleMap, NearestPicksTheCloserIsland) {
   EXPECT_NEAR(q.DistanceM({kCx + 800, kCy}), 150.0 - g, 1e-6);
   EXPECT_NEAR(q.DistanceM({kCx + 300, kCy}), 250.0 - g, 1e-6);
   const NearestObstacle n = q.Nearest({kCx + 800, kCy});
-  EXPECT_NEAR(map->polygons()[n.polygon_index].outer[0].x_m, kCx + 1000, 70.0);
+  EXPECT_NEAR(map->polygons()[n.polygon_index].outer[0].east_m, kCx + 1000, 70.0);
 }
 
 TEST(ObstacleMap, UnbufferedClearanceIsTheDistanceToTheChartedObstacle) {
@@ -116,28 +116,28 @@ TEST(ObstacleMap, UnbufferedClearanceIsTheDistanceToTheChartedObstacle) {
   ASSERT_TRUE(map->has_unbuffered_obstacles());
   ObstacleQuery q(*map);
   // A route along y = cy + 80 passes 30 m north of the charted square.
-  const std::vector<LocalPoint> north = {{kCx - 200, kCy + 80}, {kCx + 200, kCy + 80}};
+  const std::vector<EastNorth> north = {{kCx - 200, kCy + 80}, {kCx + 200, kCy + 80}};
   auto c = q.UnbufferedClearance(north);
   ASSERT_TRUE(c.has_value());
   EXPECT_NEAR(c->distance_m, 30.0, 1e-9);
-  EXPECT_NEAR(c->route_point.y_m, kCy + 80, 1e-9);
-  EXPECT_NEAR(c->obstacle_point.y_m, kCy + 50, 1e-9);
-  EXPECT_GE(c->obstacle_point.x_m, kCx - 50 - 1e-9);
-  EXPECT_LE(c->obstacle_point.x_m, kCx + 50 + 1e-9);
+  EXPECT_NEAR(c->route_point.north_m, kCy + 80, 1e-9);
+  EXPECT_NEAR(c->obstacle_point.north_m, kCy + 50, 1e-9);
+  EXPECT_GE(c->obstacle_point.east_m, kCx - 50 - 1e-9);
+  EXPECT_LE(c->obstacle_point.east_m, kCx + 50 + 1e-9);
   // Grazing the buffered outline keeps at least the 10 m buffer from the
   // square, at the straight edges and at the corners (chords) alike.
   const double edge = 50.0 + ObstacleGrowthM(o);
-  for (const std::vector<LocalPoint>& graze :
-       {std::vector<LocalPoint>{{kCx - 200, kCy + edge + 1e-6}, {kCx + 200, kCy + edge + 1e-6}},
-        std::vector<LocalPoint>{{kCx + 50 + edge, kCy + 50 - edge},
-                                {kCx + 50 - edge, kCy + 50 + edge}}}) {
+  for (const std::vector<EastNorth>& graze :
+       {std::vector<EastNorth>{{kCx - 200, kCy + edge + 1e-6}, {kCx + 200, kCy + edge + 1e-6}},
+        std::vector<EastNorth>{{kCx + 50 + edge, kCy + 50 - edge},
+                               {kCx + 50 - edge, kCy + 50 + edge}}}) {
     if (q.PolylineHits(graze)) continue;  // inside the polygonised corner: no claim
     auto g = q.UnbufferedClearance(graze);
     ASSERT_TRUE(g.has_value());
     EXPECT_GE(g->distance_m, o.safety_buffer_m);
   }
   // Through the island: 0.
-  const std::vector<LocalPoint> through = {{kCx - 200, kCy}, {kCx + 200, kCy}};
+  const std::vector<EastNorth> through = {{kCx - 200, kCy}, {kCx + 200, kCy}};
   EXPECT_DOUBLE_EQ(q.UnbufferedClearance(through)->distance_m, 0.0);
   // Kept through serialization.
   auto back = DeserializeObstacleMap(SerializeObstacleMap(*map));
@@ -152,19 +152,19 @@ TEST(ObstacleMap, NearestNavigableLeavesTheObstacleTheShortestWay) {
   ObstacleQuery q(*map);
   const double g = ObstacleGrowthM(Buffer10NoSimplify());
   // 20 m west of the east edge of the buffered island: out eastwards.
-  const LocalPoint inside{kCx + 50 + g - 20, kCy + 3};
+  const EastNorth inside{kCx + 50 + g - 20, kCy + 3};
   ASSERT_TRUE(q.Inside(inside));
   auto out = q.NearestNavigable(inside, 5.0);
   ASSERT_TRUE(out.has_value());
   EXPECT_FALSE(q.Inside(*out));
-  EXPECT_NEAR(out->x_m, kCx + 50 + g + 5, 1e-6);
-  EXPECT_NEAR(out->y_m, kCy + 3, 1e-6);
+  EXPECT_NEAR(out->east_m, kCx + 50 + g + 5, 1e-6);
+  EXPECT_NEAR(out->north_m, kCy + 3, 1e-6);
   // Navigable points are their own answer.
-  const LocalPoint free{kCx + 300, kCy};
+  const EastNorth free{kCx + 300, kCy};
   EXPECT_EQ(q.NearestNavigable(free), free);
   // Outside the coverage box: brought inside it.
   const LocalBox box = map->summary().coverage;
-  auto in_box = q.NearestNavigable({box.max.x_m + 500, kCy + 300});
+  auto in_box = q.NearestNavigable({box.max.east_m + 500, kCy + 300});
   ASSERT_TRUE(in_box.has_value());
   EXPECT_TRUE(map->Covers(*in_box));
   EXPECT_FALSE(q.Inside(*in_box));
@@ -232,10 +232,10 @@ TEST(ObstacleMap, SerializationRoundTrip) {
   EXPECT_EQ(back->summary().features_per_layer, map->summary().features_per_layer);
   EXPECT_EQ(back->summary().source_format, "polygons");
   EXPECT_DOUBLE_EQ(back->summary().options.safety_buffer_m, 10.0);
-  EXPECT_DOUBLE_EQ(back->summary().coverage.max.x_m, map->summary().coverage.max.x_m);
+  EXPECT_DOUBLE_EQ(back->summary().coverage.max.east_m, map->summary().coverage.max.east_m);
   ObstacleQuery q1(*map), q2(*back);
-  for (const LocalPoint p : {LocalPoint{kCx + 150, kCy}, LocalPoint{kCx + 3000, kCy},
-                             LocalPoint{kCx + 3000, kCy + 400}}) {
+  for (const EastNorth p :
+       {EastNorth{kCx + 150, kCy}, EastNorth{kCx + 3000, kCy}, EastNorth{kCx + 3000, kCy + 400}}) {
     EXPECT_DOUBLE_EQ(q1.SignedDistanceM(p), q2.SignedDistanceM(p));
   }
   EXPECT_FALSE(q2.Inside({kCx + 3000, kCy}));  // in the hole
@@ -263,12 +263,12 @@ TEST(ObstacleMap, QueriesFromSeveralThreadsAgree) {
     islands.push_back(Square(kCx + 300.0 * i, kCy + 100.0 * (i % 3), 40));
   auto map = ObstacleMap::FromPolygons(islands, Utm33(), ChartOptions{});
   ASSERT_TRUE(map.ok());
-  std::vector<LocalPoint> points;
+  std::vector<EastNorth> points;
   for (int i = 0; i < 400; ++i) points.push_back({kCx - 500 + 17.3 * i, kCy - 300 + 1.7 * i});
   std::vector<double> expected;
   {
     ObstacleQuery q(*map);
-    for (const LocalPoint& p : points) expected.push_back(q.SignedDistanceM(p));
+    for (const EastNorth& p : points) expected.push_back(q.SignedDistanceM(p));
   }
   std::vector<std::vector<double>> got(4);
   std::vector<std::thread> threads;
@@ -277,7 +277,7 @@ TEST(ObstacleMap, QueriesFromSeveralThreadsAgree) {
       ObstacleQuery q(*map);  // one query object per thread
       for (int rep = 0; rep < 5; ++rep) {
         got[t].clear();
-        for (const LocalPoint& p : points) got[t].push_back(q.SignedDistanceM(p));
+        for (const EastNorth& p : points) got[t].push_back(q.SignedDistanceM(p));
       }
     });
   }

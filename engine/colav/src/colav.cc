@@ -31,7 +31,7 @@ Kinematics OwnKinematics(const ship::ShipModel& m) {
 
 // The other vessel is getting further away and is beyond `distance_m`.
 bool Passed(const Kinematics& own, const Kinematics& other, double distance_m) {
-  const Vec2 p = other.position - own.position;
+  const EastNorth p = other.position - own.position;
   return p.Norm() > distance_m && p.Dot(other.velocity - own.velocity) >= 0;
 }
 
@@ -152,15 +152,15 @@ CollisionAvoidance::Prediction CollisionAvoidance::Predict(
   const bool releasable = std::find(release.begin(), release.end(), true) != release.end();
   bool active = !(b == Behaviour{});
   bool arrived = false;
-  const Vec2 goal = follower.path().back();
+  const EastNorth goal = follower.path().back();
   const double cruise = desired.cruise_speed_mps > 0 ? desired.cruise_speed_mps : desired.speed_mps;
-  Vec2 here{model.state().east_m(), model.state().north_m()};
-  Vec2 land_from = here;
+  EastNorth here{model.state().east_m(), model.state().north_m()};
+  EastNorth land_from = here;
   for (size_t i = 0; i < n; ++i) last_distance[i] = (traffic[i].kinematics.position - here).Norm();
   const int steps = static_cast<int>(std::floor(options_.horizon_s / dt + 1e-9));
   for (int k = 1; k <= steps; ++k) {
     const double t = k * dt;
-    const Vec2 before = here;
+    const EastNorth before = here;
     if (!arrived) {
       const ship::ShipState& s = model.state();
       double course = follower.Update(here);
@@ -184,7 +184,7 @@ CollisionAvoidance::Prediction CollisionAvoidance::Predict(
         here = {model.state().east_m(), model.state().north_m()};
       }
     }
-    const Vec2 moved = here - before;
+    const EastNorth moved = here - before;
     const double course_over_ground =
         moved.Norm() > 1e-6 ? CourseOf(moved) : model.state().heading_rad();
     // Near-term risk is certain, far-term risk may go away (the traffic
@@ -192,14 +192,14 @@ CollisionAvoidance::Prediction CollisionAvoidance::Predict(
     const double weight = 1.0 - 0.5 * t / options_.horizon_s;
     bool all_passed = true;
     for (size_t i = 0; i < n; ++i) {
-      const Vec2 other = traffic[i].kinematics.position + traffic[i].kinematics.velocity * t;
-      const Vec2 rel = other - here;
+      const EastNorth other = traffic[i].kinematics.position + traffic[i].kinematics.velocity * t;
+      const EastNorth rel = other - here;
       const double d = rel.Norm();
       VesselPrediction& v = p.vessels[i];
       if (d < v.min_distance_m) {
         v.min_distance_m = d;
         v.time_s = t;
-        v.bearing_rad = WrapAngle(std::atan2(rel.x, rel.y) - course_over_ground);
+        v.bearing_rad = WrapAngle(std::atan2(rel.east_m, rel.north_m) - course_over_ground);
       }
       worst[i] = std::max(worst[i], weight * PenaltyAt(d));
       if (release[i] && !(d > plan && d >= last_distance[i])) all_passed = false;
@@ -263,7 +263,7 @@ Command CollisionAvoidance::StepScenarioMpc(const OwnShip& own, const DesiredMot
       // Judged on the course of the path's leg, not on the heading of a
       // manoeuvre under way for another vessel or of the return to the path
       // (a temporary heading makes a head-on vessel look like one crossing).
-      const std::vector<Vec2>& pts = path.path();
+      const std::vector<EastNorth>& pts = path.path();
       const size_t leg = static_cast<size_t>(path.leg());
       const Kinematics steering{
           self.position, VelocityOf(CourseOf(pts[leg + 1] - pts[leg]), self.velocity.Norm())};
@@ -375,7 +375,7 @@ Command CollisionAvoidance::StepVelocityObstacle(const OwnShip& own, const Desir
                                                  const std::vector<Obstacle>& traffic) {
   Command out = Hold(desired);
   const Kinematics self = OwnKinematics(*own.model);
-  const Vec2 here = self.position;
+  const EastNorth here = self.position;
   const size_t next = static_cast<size_t>(path.leg()) + 1;
   const double plan = vo_.safety_distance_m;
   double speed = desired.speed_mps;

@@ -29,8 +29,8 @@ struct Fixture {
 
 // A vessel on `course_deg` at `speed` reaching (0, 9 * t_meet) at t_meet.
 Obstacle Meeting(double course_deg, double speed, double t_meet) {
-  const Vec2 v = VelocityOf(course_deg * kDeg, speed);
-  return {{Vec2{0, 9.0 * t_meet} - v * t_meet, v}, 7};
+  const EastNorth v = VelocityOf(course_deg * kDeg, speed);
+  return {{EastNorth{0, 9.0 * t_meet} - v * t_meet, v}, 7};
 }
 
 TEST(CollisionAvoidanceTest, RejectsBadOptions) {

@@ -11,7 +11,7 @@ namespace {
 
 constexpr double kLandSampleS = 2.0;
 
-double PathDistance(const std::vector<Vec2>& path, Vec2 p) {
+double PathDistance(const std::vector<EastNorth>& path, EastNorth p) {
   double best = 1e18;
   for (size_t i = 0; i + 1 < path.size(); ++i) {
     best = std::min(best, PointSegmentDistance(p, path[i], path[i + 1]));
@@ -41,7 +41,7 @@ double ThrottleForSpeedOrTop(double speed_mps) {
 
 }  // namespace
 
-StatusOr<UnderWay> ShipUnderWay(Vec2 position, double heading_rad, double speed_mps,
+StatusOr<UnderWay> ShipUnderWay(EastNorth position, double heading_rad, double speed_mps,
                                 const ship::Environment& environment,
                                 const AutopilotOptions& autopilot_options) {
   SEAPLAN_RETURN_IF_ERROR(autopilot_options.Validate());
@@ -52,7 +52,7 @@ StatusOr<UnderWay> ShipUnderWay(Vec2 position, double heading_rad, double speed_
       ship::ShipModel model,
       ship::ShipModel::Create(
           ship::ShipParams{}, ship::MachineryParams{}, environment,
-          ship::ShipState::At(position.y, position.x, heading_rad, op.speed_mps),
+          ship::ShipState::At(position.north_m, position.east_m, heading_rad, op.speed_mps),
           ship::MsoMode::kPto, op.thrust_n));
   Autopilot autopilot(autopilot_options);
   autopilot.HoldThrottle(op.throttle);
@@ -70,7 +70,7 @@ StatusOr<EncounterOutcome> SimulateEncounter(const EncounterSetup& setup) {
                            CollisionAvoidance::Create(setup.avoidance));
   const LandIndex land(setup.land);
   if (!land.empty()) avoidance.set_land(&land);
-  const Vec2 start = setup.path.front();
+  const EastNorth start = setup.path.front();
   const double heading = CourseOf(setup.path[1] - setup.path[0]);
   SEAPLAN_ASSIGN_OR_RETURN(UnderWay ship, ShipUnderWay(start, heading, setup.cruise_speed_mps,
                                                        setup.environment, setup.autopilot));
@@ -80,23 +80,23 @@ StatusOr<EncounterOutcome> SimulateEncounter(const EncounterSetup& setup) {
   EncounterOutcome out;
   for (const EncounterVessel& v : setup.traffic) out.vessels.push_back({.id = v.id});
   std::vector<Obstacle> traffic(setup.traffic.size());
-  const Vec2 goal = setup.path.back();
+  const EastNorth goal = setup.path.back();
   const CollisionAvoidanceOptions& o = setup.avoidance;
   double last_land_sample = -1e9;
   double t = 0.0;
   for (; t <= setup.max_time_s; t += setup.dt_s) {
     const ship::ShipState& s = model.state();
-    const Vec2 here{s.east_m(), s.north_m()};
+    const EastNorth here{s.east_m(), s.north_m()};
     const Kinematics own{here, VelocityOf(s.heading_rad(), s.surge_mps())};
     for (size_t i = 0; i < setup.traffic.size(); ++i) {
       const EncounterVessel& v = setup.traffic[i];
       traffic[i] = {{v.position + v.velocity * t, v.velocity}, v.id};
-      const Vec2 rel = traffic[i].kinematics.position - here;
+      const EastNorth rel = traffic[i].kinematics.position - here;
       VesselOutcome& vo = out.vessels[i];
       if (rel.Norm() < vo.min_distance_m) {
         vo.min_distance_m = rel.Norm();
         vo.time_s = t;
-        vo.bearing_rad = WrapAngle(std::atan2(rel.x, rel.y) - s.heading_rad());
+        vo.bearing_rad = WrapAngle(std::atan2(rel.east_m, rel.north_m) - s.heading_rad());
       }
     }
     out.max_path_deviation_m = std::max(out.max_path_deviation_m, PathDistance(setup.path, here));

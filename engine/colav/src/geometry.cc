@@ -9,9 +9,9 @@ namespace {
 
 constexpr double kTwoPi = 2.0 * M_PI;
 // Relative bearing of `to` seen from `from` with heading `course`, (-pi, pi], starboard positive.
-double RelativeBearing(Vec2 from, double course, Vec2 to) {
-  Vec2 d = to - from;
-  return WrapAngle(std::atan2(d.x, d.y) - course);
+double RelativeBearing(EastNorth from, double course, EastNorth to) {
+  EastNorth d = to - from;
+  return WrapAngle(std::atan2(d.east_m, d.north_m) - course);
 }
 
 }  // namespace
@@ -22,22 +22,18 @@ double WrapAngle(double a) {
   return a - M_PI;
 }
 
-double Vec2::Norm() const {
-  return std::hypot(x, y);
-}
-
-Vec2 VelocityOf(double course_rad, double speed_mps) {
+EastNorth VelocityOf(double course_rad, double speed_mps) {
   return {std::sin(course_rad) * speed_mps, std::cos(course_rad) * speed_mps};
 }
 
-double CourseOf(Vec2 v) {
-  double c = std::atan2(v.x, v.y);
+double CourseOf(EastNorth v) {
+  double c = std::atan2(v.east_m, v.north_m);
   return c < 0 ? c + kTwoPi : c;
 }
 
 Cpa ComputeCpa(const Kinematics& own, const Kinematics& other) {
-  Vec2 p = other.position - own.position;
-  Vec2 v = other.velocity - own.velocity;
+  EastNorth p = other.position - own.position;
+  EastNorth v = other.velocity - own.velocity;
   double vv = v.Dot(v);
   if (vv < 1e-12) return {0.0, p.Norm()};
   double t = -p.Dot(v) / vv;
@@ -92,17 +88,19 @@ Role ClassifyEncounter(const Kinematics& own, const Kinematics& other, const Col
 
 namespace {
 
-bool SegmentsCross(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
+bool SegmentsCross(EastNorth a, EastNorth b, EastNorth c, EastNorth d) {
   const double d1 = (b - a).Cross(c - a), d2 = (b - a).Cross(d - a);
   const double d3 = (d - c).Cross(a - c), d4 = (d - c).Cross(b - c);
   return ((d1 > 0) != (d2 > 0)) && ((d3 > 0) != (d4 > 0));
 }
 
-bool InsideRing(const std::vector<Vec2>& ring, Vec2 p) {
+bool InsideRing(const std::vector<EastNorth>& ring, EastNorth p) {
   bool in = false;
   for (size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++) {
-    if ((ring[i].y > p.y) != (ring[j].y > p.y) &&
-        p.x < (ring[j].x - ring[i].x) * (p.y - ring[i].y) / (ring[j].y - ring[i].y) + ring[i].x) {
+    if ((ring[i].north_m > p.north_m) != (ring[j].north_m > p.north_m) &&
+        p.east_m < (ring[j].east_m - ring[i].east_m) * (p.north_m - ring[i].north_m) /
+                           (ring[j].north_m - ring[i].north_m) +
+                       ring[i].east_m) {
       in = !in;
     }
   }
@@ -111,20 +109,20 @@ bool InsideRing(const std::vector<Vec2>& ring, Vec2 p) {
 
 }  // namespace
 
-double PointSegmentDistance(Vec2 p, Vec2 a, Vec2 b) {
-  const Vec2 d = b - a;
+double PointSegmentDistance(EastNorth p, EastNorth a, EastNorth b) {
+  const EastNorth d = b - a;
   const double len2 = d.Dot(d);
   const double t = len2 > 0 ? std::clamp((p - a).Dot(d) / len2, 0.0, 1.0) : 0.0;
   return (p - (a + d * t)).Norm();
 }
 
-double LandClearance(const std::vector<std::vector<Vec2>>& rings, Vec2 a, Vec2 b) {
+double LandClearance(const std::vector<std::vector<EastNorth>>& rings, EastNorth a, EastNorth b) {
   double best = std::numeric_limits<double>::infinity();
-  for (const std::vector<Vec2>& ring : rings) {
+  for (const std::vector<EastNorth>& ring : rings) {
     if (ring.size() < 3) continue;
     if (InsideRing(ring, a)) return 0.0;
     for (size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++) {
-      const Vec2 c = ring[j], d = ring[i];
+      const EastNorth c = ring[j], d = ring[i];
       if (SegmentsCross(a, b, c, d)) return 0.0;
       best = std::min({best, PointSegmentDistance(a, c, d), PointSegmentDistance(b, c, d),
                        PointSegmentDistance(c, a, b), PointSegmentDistance(d, a, b)});
@@ -133,17 +131,18 @@ double LandClearance(const std::vector<std::vector<Vec2>>& rings, Vec2 a, Vec2 b
   return best;
 }
 
-LandIndex::LandIndex(const std::vector<std::vector<Vec2>>& rings, double cell_m) : cell_m_(cell_m) {
-  for (const std::vector<Vec2>& ring : rings) {
+LandIndex::LandIndex(const std::vector<std::vector<EastNorth>>& rings, double cell_m)
+    : cell_m_(cell_m) {
+  for (const std::vector<EastNorth>& ring : rings) {
     if (ring.size() < 2) continue;
     for (size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++) {
-      const Vec2 c = ring[j], d = ring[i];
+      const EastNorth c = ring[j], d = ring[i];
       const int32_t id = static_cast<int32_t>(edges_.size());
       edges_.push_back({c, d});
-      const int64_t i0 = static_cast<int64_t>(std::floor(std::min(c.x, d.x) / cell_m_));
-      const int64_t i1 = static_cast<int64_t>(std::floor(std::max(c.x, d.x) / cell_m_));
-      const int64_t j0 = static_cast<int64_t>(std::floor(std::min(c.y, d.y) / cell_m_));
-      const int64_t j1 = static_cast<int64_t>(std::floor(std::max(c.y, d.y) / cell_m_));
+      const int64_t i0 = static_cast<int64_t>(std::floor(std::min(c.east_m, d.east_m) / cell_m_));
+      const int64_t i1 = static_cast<int64_t>(std::floor(std::max(c.east_m, d.east_m) / cell_m_));
+      const int64_t j0 = static_cast<int64_t>(std::floor(std::min(c.north_m, d.north_m) / cell_m_));
+      const int64_t j1 = static_cast<int64_t>(std::floor(std::max(c.north_m, d.north_m) / cell_m_));
       for (int64_t x = i0; x <= i1; ++x) {
         for (int64_t y = j0; y <= j1; ++y) cells_[Key(x, y)].push_back(id);
       }
@@ -153,14 +152,18 @@ LandIndex::LandIndex(const std::vector<std::vector<Vec2>>& rings, double cell_m)
   seen_.assign(edges_.size(), -1);
 }
 
-double LandIndex::Clearance(Vec2 a, Vec2 b, double limit_m) const {
+double LandIndex::Clearance(EastNorth a, EastNorth b, double limit_m) const {
   double best = limit_m;
   if (edges_.empty()) return best;
   ++query_;
-  const int64_t i0 = static_cast<int64_t>(std::floor((std::min(a.x, b.x) - limit_m) / cell_m_));
-  const int64_t i1 = static_cast<int64_t>(std::floor((std::max(a.x, b.x) + limit_m) / cell_m_));
-  const int64_t j0 = static_cast<int64_t>(std::floor((std::min(a.y, b.y) - limit_m) / cell_m_));
-  const int64_t j1 = static_cast<int64_t>(std::floor((std::max(a.y, b.y) + limit_m) / cell_m_));
+  const int64_t i0 =
+      static_cast<int64_t>(std::floor((std::min(a.east_m, b.east_m) - limit_m) / cell_m_));
+  const int64_t i1 =
+      static_cast<int64_t>(std::floor((std::max(a.east_m, b.east_m) + limit_m) / cell_m_));
+  const int64_t j0 =
+      static_cast<int64_t>(std::floor((std::min(a.north_m, b.north_m) - limit_m) / cell_m_));
+  const int64_t j1 =
+      static_cast<int64_t>(std::floor((std::max(a.north_m, b.north_m) + limit_m) / cell_m_));
   for (int64_t x = i0; x <= i1; ++x) {
     for (int64_t y = j0; y <= j1; ++y) {
       auto it = cells_.find(Key(x, y));
@@ -178,13 +181,13 @@ double LandIndex::Clearance(Vec2 a, Vec2 b, double limit_m) const {
   return best;
 }
 
-PathApproach PathAheadClosestApproach(const std::vector<Vec2>& path, size_t next, Vec2 position,
-                                      double speed_mps, const Kinematics& other, double horizon_s,
-                                      double step_s, double start_speed_mps,
+PathApproach PathAheadClosestApproach(const std::vector<EastNorth>& path, size_t next,
+                                      EastNorth position, double speed_mps, const Kinematics& other,
+                                      double horizon_s, double step_s, double start_speed_mps,
                                       double acceleration_mps2) {
   PathApproach best{(other.position - position).Norm(), 0.0};
   if (!(speed_mps > 0) || !(step_s > 0)) return best;
-  Vec2 at = position;
+  EastNorth at = position;
   size_t target = next;
   const bool ramp = start_speed_mps >= 0 && acceleration_mps2 > 0;
   double speed = ramp ? start_speed_mps : speed_mps;
@@ -198,7 +201,7 @@ PathApproach PathAheadClosestApproach(const std::vector<Vec2>& path, size_t next
     double left = 0.5 * (speed + next_speed) * step_s;  // walk along the path, past its points
     speed = next_speed;
     while (left > 0 && target < path.size()) {
-      const Vec2 d = path[target] - at;
+      const EastNorth d = path[target] - at;
       const double len = d.Norm();
       if (len <= left) {
         at = path[target];
@@ -215,26 +218,28 @@ PathApproach PathAheadClosestApproach(const std::vector<Vec2>& path, size_t next
   return best;
 }
 
-bool LandIndex::Inside(Vec2 p) const {
+bool LandIndex::Inside(EastNorth p) const {
   if (edges_.empty()) return false;
   ++query_;
   bool in = false;
-  const int64_t j = static_cast<int64_t>(std::floor(p.y / cell_m_));
-  for (int64_t i = static_cast<int64_t>(std::floor(p.x / cell_m_)); i <= max_i_; ++i) {
+  const int64_t j = static_cast<int64_t>(std::floor(p.north_m / cell_m_));
+  for (int64_t i = static_cast<int64_t>(std::floor(p.east_m / cell_m_)); i <= max_i_; ++i) {
     auto it = cells_.find(Key(i, j));
     if (it == cells_.end()) continue;
     for (int32_t id : it->second) {
       if (seen_[static_cast<size_t>(id)] == query_) continue;
       seen_[static_cast<size_t>(id)] = query_;
       const auto& [c, d] = edges_[static_cast<size_t>(id)];
-      if ((c.y > p.y) != (d.y > p.y) && p.x < (d.x - c.x) * (p.y - c.y) / (d.y - c.y) + c.x)
+      if ((c.north_m > p.north_m) != (d.north_m > p.north_m) &&
+          p.east_m <
+              (d.east_m - c.east_m) * (p.north_m - c.north_m) / (d.north_m - c.north_m) + c.east_m)
         in = !in;
     }
   }
   return in;
 }
 
-double LandIndex::SignedClearance(Vec2 p, double limit_m) const {
+double LandIndex::SignedClearance(EastNorth p, double limit_m) const {
   const double d = Clearance(p, p, limit_m);
   return Inside(p) ? -d : d;
 }

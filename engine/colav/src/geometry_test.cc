@@ -42,7 +42,7 @@ TEST(ColregTest, HeadOnCrossingOvertaking) {
 }
 
 TEST(LandClearanceTest, CrossingInsideAndDistance) {
-  const std::vector<std::vector<Vec2>> land = {{{0, 100}, {1000, 100}, {1000, 300}, {0, 300}}};
+  const std::vector<std::vector<EastNorth>> land = {{{0, 100}, {1000, 100}, {1000, 300}, {0, 300}}};
   EXPECT_EQ(LandClearance(land, {500, 0}, {500, 200}), 0.0);    // crosses the shore
   EXPECT_EQ(LandClearance(land, {500, 150}, {510, 160}), 0.0);  // starts on land
   EXPECT_NEAR(LandClearance(land, {0, 40}, {1000, 40}), 60.0, 1e-9);
@@ -61,7 +61,7 @@ TEST(LandClearanceTest, CrossingInsideAndDistance) {
 // it: the avoidance picks a velocity whose track stays clear of the land.
 TEST(PathAheadTest, SeesAConflictPastTheTurnThatTheStraightLineMisses) {
   // East 900 m, then south; a vessel heading west along y = -600.
-  const std::vector<Vec2> path = {{0, 0}, {900, 0}, {900, -2000}};
+  const std::vector<EastNorth> path = {{0, 0}, {900, 0}, {900, -2000}};
   const Kinematics own{{0, 0}, VelocityOf(kEast, 9)};
   const Kinematics other{{1700, -600}, VelocityOf(kWest, 5)};
   EXPECT_GT(ComputeCpa(own, other).dcpa_m, 500.0);
@@ -80,7 +80,7 @@ TEST(PathAheadTest, SeesAConflictPastTheTurnThatTheStraightLineMisses) {
 // at speed: with the speed ramp the prediction sees the meeting that the
 // instant-speed one misses.
 TEST(PathAheadTest, SpeedRampFromRestDelaysTheArrival) {
-  const std::vector<Vec2> path = {{0, 0}, {3000, 0}};
+  const std::vector<EastNorth> path = {{0, 0}, {3000, 0}};
   const Kinematics crossing{{800, -450}, VelocityOf(kNorth, 2.5)};  // at (800, 0) at t = 180 s
   const PathApproach instant = PathAheadClosestApproach(path, 1, {0, 0}, 9.0, crossing, 300.0, 1.0);
   EXPECT_GT(instant.distance_m, 150.0);
@@ -93,8 +93,9 @@ TEST(PathAheadTest, SpeedRampFromRestDelaysTheArrival) {
 
 TEST(LandIndexTest, InsideAndSignedClearanceAgreeWithTheFullScan) {
   // A square island with a square lagoon (a hole drawn as a second ring).
-  const std::vector<std::vector<Vec2>> land = {{{0, 0}, {1000, 0}, {1000, 1000}, {0, 1000}},
-                                               {{400, 400}, {600, 400}, {600, 600}, {400, 600}}};
+  const std::vector<std::vector<EastNorth>> land = {
+      {{0, 0}, {1000, 0}, {1000, 1000}, {0, 1000}},
+      {{400, 400}, {600, 400}, {600, 600}, {400, 600}}};
   const LandIndex index(land, 150.0);
   EXPECT_TRUE(index.Inside({100, 500}));
   EXPECT_FALSE(index.Inside({500, 500})) << "the lagoon is water";
@@ -111,11 +112,13 @@ TEST(LandIndexTest, InsideAndSignedClearanceAgreeWithTheFullScan) {
       double dist = 1e18;
       for (const auto& ring : land) {
         for (size_t i = 0, j = ring.size() - 1; i < ring.size(); j = i++) {
-          const Vec2 c = ring[j], d = ring[i];
-          if ((c.y > y) != (d.y > y) && x < (d.x - c.x) * (y - c.y) / (d.y - c.y) + c.x) in = !in;
-          const Vec2 e = d - c;
-          const double t = std::clamp(((Vec2{x, y} - c).Dot(e)) / e.Dot(e), 0.0, 1.0);
-          dist = std::min(dist, (Vec2{x, y} - (c + e * t)).Norm());
+          const EastNorth c = ring[j], d = ring[i];
+          if ((c.north_m > y) != (d.north_m > y) &&
+              x < (d.east_m - c.east_m) * (y - c.north_m) / (d.north_m - c.north_m) + c.east_m)
+            in = !in;
+          const EastNorth e = d - c;
+          const double t = std::clamp(((EastNorth{x, y} - c).Dot(e)) / e.Dot(e), 0.0, 1.0);
+          dist = std::min(dist, (EastNorth{x, y} - (c + e * t)).Norm());
         }
       }
       EXPECT_EQ(index.Inside({x, y}), in) << x << ", " << y;

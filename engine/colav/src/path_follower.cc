@@ -18,7 +18,7 @@ Status PathFollowerOptions::Validate() const {
   return absl::OkStatus();
 }
 
-StatusOr<PathFollower> PathFollower::Create(std::vector<Vec2> path,
+StatusOr<PathFollower> PathFollower::Create(std::vector<EastNorth> path,
                                             const PathFollowerOptions& options) {
   SEAPLAN_RETURN_IF_ERROR(options.Validate());
   if (path.size() < 2) {
@@ -26,7 +26,7 @@ StatusOr<PathFollower> PathFollower::Create(std::vector<Vec2> path,
         absl::StrFormat("path follower: %d points, need >= 2", static_cast<int>(path.size())));
   }
   for (size_t i = 0; i < path.size(); ++i) {
-    if (!std::isfinite(path[i].x) || !std::isfinite(path[i].y)) {
+    if (!std::isfinite(path[i].east_m) || !std::isfinite(path[i].north_m)) {
       return absl::InvalidArgumentError(
           absl::StrFormat("path follower: point %d is not finite", static_cast<int>(i)));
     }
@@ -39,7 +39,7 @@ StatusOr<PathFollower> PathFollower::Create(std::vector<Vec2> path,
   return PathFollower(std::move(path), options);
 }
 
-PathFollower::PathFollower(std::vector<Vec2> path, const PathFollowerOptions& o)
+PathFollower::PathFollower(std::vector<EastNorth> path, const PathFollowerOptions& o)
     : path_(std::move(path)), options_(o) {
   start_distance_.resize(path_.size(), 0.0);
   for (size_t i = 1; i < path_.size(); ++i) {
@@ -57,19 +57,19 @@ PathFollower::PathFollower(std::vector<Vec2> path, const PathFollowerOptions& o)
   for (double w : wheel_over_m_) max_wheel_over_m_ = std::max(max_wheel_over_m_, w);
 }
 
-double PathFollower::Along(int leg, Vec2 p) const {
-  Vec2 d = path_[leg + 1] - path_[leg];
+double PathFollower::Along(int leg, EastNorth p) const {
+  EastNorth d = path_[leg + 1] - path_[leg];
   return (p - path_[leg]).Dot(d) / d.Norm();
 }
 
-double PathFollower::DistanceTo(int leg, Vec2 p) const {
-  Vec2 d = path_[leg + 1] - path_[leg];
+double PathFollower::DistanceTo(int leg, EastNorth p) const {
+  EastNorth d = path_[leg + 1] - path_[leg];
   double len = d.Norm();
   double s = std::clamp(Along(leg, p), 0.0, len);
   return (p - (path_[leg] + d * (s / len))).Norm();
 }
 
-double PathFollower::Update(Vec2 here) {
+double PathFollower::Update(EastNorth here) {
   const int last = static_cast<int>(path_.size()) - 2;
   // Re-choose the leg: the nearest of the legs ahead within the search
   // distance (ties go to the later leg: it is further along).
@@ -93,12 +93,12 @@ double PathFollower::Update(Vec2 here) {
     if (s_here > start_distance_[j + 1] - wheel_over_m_[j]) next = j + 1;
   }
   leg_ = next;
-  const Vec2 a = path_[leg_], b = path_[leg_ + 1];
-  const Vec2 d = b - a;
+  const EastNorth a = path_[leg_], b = path_[leg_ + 1];
+  const EastNorth d = b - a;
   const double len = d.Norm();
   const double alpha = CourseOf(d);
   // Starboard normal of the leg direction (x east, y north): (dy, -dx).
-  cross_track_m_ = (here - a).Dot({d.y / len, -d.x / len});
+  cross_track_m_ = (here - a).Dot({d.north_m / len, -d.east_m / len});
   leg_remaining_m_ = len - Along(leg_, here);
   double c = alpha - std::atan(cross_track_m_ / options_.lookahead_m);
   c = std::fmod(c, 2.0 * M_PI);

@@ -49,24 +49,24 @@ TEST(PathFollowerTest, ChoosesTheLegByProgressAfterLeavingThePath) {
 TEST(PathFollowerTest, KinematicShipConvergesAndReachesTheEnd) {
   auto f = PathFollower::Create({{0, 0}, {1500, 0}, {1500, 1500}, {3000, 1500}});
   ASSERT_TRUE(f.ok());
-  Vec2 p{600, -700};  // far off, as after a long avoidance manoeuvre
+  EastNorth p{600, -700};  // far off, as after a long avoidance manoeuvre
   double course = 0;
   const double max_turn = 0.02;  // rad per 1 s step: a slow-turning hull
   double worst_late = 0;
-  for (int t = 0; t < 3000 && (p - Vec2{3000, 1500}).Norm() > 60; ++t) {
+  for (int t = 0; t < 3000 && (p - EastNorth{3000, 1500}).Norm() > 60; ++t) {
     double want = f->Update(p);
     double dc = std::remainder(want - course, 2 * M_PI);
     course += std::clamp(dc, -max_turn, max_turn);
     p = p + VelocityOf(course, 4.0);
     if (t > 600) worst_late = std::max(worst_late, std::abs(f->cross_track_m()));
   }
-  EXPECT_LT((p - Vec2{3000, 1500}).Norm(), 60);
+  EXPECT_LT((p - EastNorth{3000, 1500}).Norm(), 60);
   EXPECT_LT(worst_late, 150);
 }
 
 TEST(PathFollowerTest, WheelOverStartsTheTurnBeforeTheCorner) {
   // A right-angle corner at (2000, 0), waypoints every 100 m before it.
-  std::vector<Vec2> path;
+  std::vector<EastNorth> path;
   for (int x = 0; x <= 2000; x += 100) path.push_back({static_cast<double>(x), 0});
   path.push_back({2000, 2000});
   PathFollowerOptions late;

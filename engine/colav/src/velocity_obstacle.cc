@@ -15,7 +15,7 @@ constexpr double kViolationPerCost = 0.01;
 
 // Does relative motion (p_rel of the other from us, v_rel = ours - theirs)
 // bring us within `r` of it within the horizon?
-bool Collides(Vec2 p_rel, Vec2 v_rel, double r, double horizon) {
+bool Collides(EastNorth p_rel, EastNorth v_rel, double r, double horizon) {
   double c = p_rel.Dot(p_rel) - r * r;
   if (c <= 0) return v_rel.Dot(p_rel) > 0;  // inside already: only closing velocities collide
   double a = v_rel.Dot(v_rel);
@@ -23,12 +23,12 @@ bool Collides(Vec2 p_rel, Vec2 v_rel, double r, double horizon) {
   double t = p_rel.Dot(v_rel) / a;  // time of closest approach
   if (t <= 0) return false;
   double tc = std::min(t, horizon);
-  Vec2 closest = p_rel - v_rel * tc;
+  EastNorth closest = p_rel - v_rel * tc;
   return closest.Dot(closest) < r * r;
 }
 
 // Time before `v` is actually sailed when the ship now has `current`.
-double ManoeuvreDelay(Vec2 current, Vec2 v, const AvoidanceOptions& o) {
+double ManoeuvreDelay(EastNorth current, EastNorth v, const AvoidanceOptions& o) {
   if (o.turn_rate_rad_s <= 0) return 0.0;
   double cs = current.Norm(), vs = v.Norm();
   double turn =
@@ -39,7 +39,7 @@ double ManoeuvreDelay(Vec2 current, Vec2 v, const AvoidanceOptions& o) {
 }
 
 // Smallest distance of relative motion p_rel - v_rel * t over t in [0, horizon].
-double MinDistance(Vec2 p_rel, Vec2 v_rel, double horizon) {
+double MinDistance(EastNorth p_rel, EastNorth v_rel, double horizon) {
   const double a = v_rel.Dot(v_rel);
   const double t = a < 1e-12 ? 0.0 : std::clamp(p_rel.Dot(v_rel) / a, 0.0, std::max(horizon, 0.0));
   return (p_rel - v_rel * t).Norm();
@@ -49,12 +49,12 @@ double MinDistance(Vec2 p_rel, Vec2 v_rel, double horizon) {
 // at most `horizon`), then sails `v`. Smallest distance to `other` within
 // the horizon: how deep a candidate cuts into the safety circle (the
 // measure of "least bad" when every candidate does).
-double MinDistanceDelayed(const Kinematics& own, Vec2 v, double delay, const Kinematics& other,
+double MinDistanceDelayed(const Kinematics& own, EastNorth v, double delay, const Kinematics& other,
                           double horizon) {
-  Vec2 p_rel = other.position - own.position;
+  EastNorth p_rel = other.position - own.position;
   double best = std::numeric_limits<double>::infinity();
   if (delay > 0) {
-    const Vec2 v_now = own.velocity - other.velocity;
+    const EastNorth v_now = own.velocity - other.velocity;
     best = MinDistance(p_rel, v_now, delay);
     p_rel = p_rel - v_now * delay;
   }
@@ -64,11 +64,11 @@ double MinDistanceDelayed(const Kinematics& own, Vec2 v, double delay, const Kin
 // Same motion: does it bring the own ship within `r` of `other` within the
 // horizon? (Not MinDistanceDelayed < r: inside the circle already, only a
 // closing velocity collides.)
-bool CollidesDelayed(const Kinematics& own, Vec2 v, double delay, const Kinematics& other, double r,
-                     double horizon) {
-  Vec2 p_rel = other.position - own.position;
+bool CollidesDelayed(const Kinematics& own, EastNorth v, double delay, const Kinematics& other,
+                     double r, double horizon) {
+  EastNorth p_rel = other.position - own.position;
   if (delay > 0) {
-    Vec2 v_now = own.velocity - other.velocity;
+    EastNorth v_now = own.velocity - other.velocity;
     if (Collides(p_rel, v_now, r, delay)) return true;
     p_rel = p_rel - v_now * delay;
   }
@@ -77,7 +77,7 @@ bool CollidesDelayed(const Kinematics& own, Vec2 v, double delay, const Kinemati
 
 }  // namespace
 
-AvoidanceDecision ChooseVelocity(const Kinematics& own, Vec2 desired,
+AvoidanceDecision ChooseVelocity(const Kinematics& own, EastNorth desired,
                                  const std::vector<Obstacle>& others,
                                  const AvoidanceOptions& options) {
   AvoidanceDecision decision;
@@ -118,10 +118,10 @@ AvoidanceDecision ChooseVelocity(const Kinematics& own, Vec2 desired,
   const double desired_speed = desired.Norm();
   const double desired_course = desired_speed > 1e-6 ? CourseOf(desired) : CourseOf(own.velocity);
   double best_cost = std::numeric_limits<double>::infinity();
-  Vec2 best = desired;
+  EastNorth best = desired;
   bool found = false;
   double least_violation = std::numeric_limits<double>::infinity();
-  Vec2 least_bad = desired;
+  EastNorth least_bad = desired;
   const int steps =
       static_cast<int>(std::round(options.max_course_change_rad / options.course_step_rad));
   absl::InlinedVector<double, 8> speeds;
@@ -134,13 +134,13 @@ AvoidanceDecision ChooseVelocity(const Kinematics& own, Vec2 desired,
     const double f = desired_speed > 1e-9 ? speed / desired_speed : 1.0;
     for (int k = -steps; k <= steps; ++k) {
       double course = desired_course + k * options.course_step_rad;
-      Vec2 v = VelocityOf(course, speed);
+      EastNorth v = VelocityOf(course, speed);
       const double delay = std::min(ManoeuvreDelay(own.velocity, v, options), options.horizon_s);
       bool ok = true;
       double violation = 0;
       for (const Active& a : active) {
-        Vec2 p_rel = a.o->kinematics.position - own.position;
-        Vec2 v_rel = v - a.o->kinematics.velocity;
+        EastNorth p_rel = a.o->kinematics.position - own.position;
+        EastNorth v_rel = v - a.o->kinematics.velocity;
         if (CollidesDelayed(own, v, delay, a.o->kinematics, r, options.horizon_s)) {
           ok = false;
           // Depth of the cut under the modelled delay, less a tenth of the
@@ -164,7 +164,7 @@ AvoidanceDecision ChooseVelocity(const Kinematics& own, Vec2 desired,
       // Prefer small deviations, starboard turns over port, course changes
       // over speed changes (speeding up costs more: fuel, and a slower
       // ship's intentions are easier for others to read).
-      double dev = v.x - desired.x, dev_y = v.y - desired.y;
+      double dev = v.east_m - desired.east_m, dev_y = v.north_m - desired.north_m;
       double cost = dev * dev + dev_y * dev_y +
                     (k < 0 ? 0.5 : 0.0) * desired_speed * desired_speed * 0.01 +
                     (f <= 1.0 ? (1.0 - f) * 0.5 : (f - 1.0)) * desired_speed * desired_speed;

@@ -10,8 +10,8 @@ namespace {
 constexpr double kNorth = 0.0, kEast = M_PI / 2, kSouth = M_PI, kWest = 3 * M_PI / 2;
 
 // Kinematic ships (velocity changes at once) stepping 1 s.
-double RunEncounter(Kinematics own, Vec2 desired, Kinematics other, const AvoidanceOptions& o,
-                    Vec2* first_manoeuvre) {
+double RunEncounter(Kinematics own, EastNorth desired, Kinematics other, const AvoidanceOptions& o,
+                    EastNorth* first_manoeuvre) {
   double min_d = 1e9;
   bool first = true;
   for (int t = 0; t < 800; ++t) {
@@ -31,11 +31,11 @@ double RunEncounter(Kinematics own, Vec2 desired, Kinematics other, const Avoida
 TEST(AvoidanceTest, CrossingGiveWayKeepsCpaAboveSafetyAndTurnsToStarboard) {
   AvoidanceOptions o;
   o.safety_distance_m = 200;
-  Vec2 manoeuvre{0, 0};
+  EastNorth manoeuvre{0, 0};
   double min_d = RunEncounter({{0, 0}, VelocityOf(kNorth, 5)}, VelocityOf(kNorth, 5),
                               {{1000, 1000}, VelocityOf(kWest, 5)}, o, &manoeuvre);
   EXPECT_GE(min_d, o.safety_distance_m * 0.97);
-  EXPECT_GT(manoeuvre.x, 0.0) << "give way by turning to starboard (east)";
+  EXPECT_GT(manoeuvre.east_m, 0.0) << "give way by turning to starboard (east)";
   // Without avoidance they would collide.
   EXPECT_NEAR(
       ComputeCpa({{0, 0}, VelocityOf(kNorth, 5)}, {{1000, 1000}, VelocityOf(kWest, 5)}).dcpa_m, 0,
@@ -45,11 +45,11 @@ TEST(AvoidanceTest, CrossingGiveWayKeepsCpaAboveSafetyAndTurnsToStarboard) {
 TEST(AvoidanceTest, HeadOnBothStarboardAndStandOnKeepsCourse) {
   AvoidanceOptions o;
   o.safety_distance_m = 150;
-  Vec2 manoeuvre{0, 0};
+  EastNorth manoeuvre{0, 0};
   double min_d = RunEncounter({{0, 0}, VelocityOf(kNorth, 5)}, VelocityOf(kNorth, 5),
                               {{20, 3000}, VelocityOf(kSouth, 5)}, o, &manoeuvre);
   EXPECT_GE(min_d, o.safety_distance_m * 0.97);
-  EXPECT_GT(manoeuvre.x, 0.0);
+  EXPECT_GT(manoeuvre.east_m, 0.0);
   // Crossing from port, far enough: stand on (no manoeuvre yet).
   Kinematics own{{0, 0}, VelocityOf(kNorth, 5)};
   AvoidanceDecision d =
@@ -70,17 +70,17 @@ namespace {
 
 // A slow-turning ship: the course follows the commanded one at most
 // `turn_rate` rad/s, after a lag; speed changes at `accel`.
-double RunSlowTurningEncounter(Kinematics own, Vec2 desired, Kinematics other,
+double RunSlowTurningEncounter(Kinematics own, EastNorth desired, Kinematics other,
                                const AvoidanceOptions& o, double turn_rate, int lag_steps,
                                Role* role) {
   double min_d = 1e9;
-  std::vector<Vec2> commands;
+  std::vector<EastNorth> commands;
   double course = CourseOf(own.velocity), speed = own.velocity.Norm();
   for (int t = 0; t < 900; ++t) {
     AvoidanceDecision d = ChooseVelocity(own, desired, {{other, 7}}, o);
     if (d.manoeuvring && *role == Role::kNone) *role = d.role;
     commands.push_back(d.velocity);
-    Vec2 cmd = commands[std::max(0, static_cast<int>(commands.size()) - 1 - lag_steps)];
+    EastNorth cmd = commands[std::max(0, static_cast<int>(commands.size()) - 1 - lag_steps)];
     double dc = std::remainder(CourseOf(cmd) - course, 2 * M_PI);
     course += std::clamp(dc, -turn_rate, turn_rate);
     speed += std::clamp(cmd.Norm() - speed, -0.05, 0.05);
@@ -114,7 +114,7 @@ namespace seaplan::colav {
 namespace {
 
 TEST(AvoidanceTest, GiveWayManoeuvreKeepsClearOfLand) {
-  const std::vector<std::vector<Vec2>> south_shore = {
+  const std::vector<std::vector<EastNorth>> south_shore = {
       {{-5000, -100}, {5000, -100}, {5000, -2000}, {-5000, -2000}}};
   AvoidanceOptions o;
   o.safety_distance_m = 120;
@@ -141,7 +141,7 @@ TEST(AvoidanceTest, GiveWayManoeuvreKeepsClearOfLand) {
 // way out is to speed up, which the avoidance tries only when it knows the
 // hull's top speed.
 TEST(AvoidanceTest, OvertakenInAChannelSpeedsUpWhenTurningIsBlocked) {
-  const std::vector<std::vector<Vec2>> banks = {
+  const std::vector<std::vector<EastNorth>> banks = {
       {{-500, -3000}, {-70, -3000}, {-70, 3000}, {-500, 3000}},
       {{70, -3000}, {500, -3000}, {500, 3000}, {70, 3000}}};
   const LandIndex index(banks);
@@ -163,7 +163,7 @@ TEST(AvoidanceTest, OvertakenInAChannelSpeedsUpWhenTurningIsBlocked) {
   EXPECT_GE(LandClearance(banks, own.position, own.position + d.velocity * o.land_lookahead_s),
             o.land_clearance_m);
   const Cpa cpa = ComputeCpa({own.position, d.velocity}, overtaker);  // within the horizon
-  const Vec2 rel = overtaker.velocity - d.velocity;
+  const EastNorth rel = overtaker.velocity - d.velocity;
   const double t = cpa.tcpa_s > 0 ? std::min(cpa.tcpa_s, o.horizon_s) : 0.0;
   EXPECT_GE((overtaker.position + rel * t - own.position).Norm(), o.safety_distance_m - 1e-6);
 }
@@ -182,14 +182,14 @@ TEST(AvoidanceTest, LeastBadCandidateKeepsTheMostDistanceUnderTheDelay) {
   ASSERT_FALSE(d.feasible);
   EXPECT_TRUE(d.manoeuvring);
   // Every candidate: present velocity for the delay, then the candidate.
-  auto min_distance = [&](Vec2 v) {
+  auto min_distance = [&](EastNorth v) {
     double best = 1e9;
     for (double t = 0; t <= o.horizon_s; t += 0.25) {
       const double turn = std::abs(std::remainder(CourseOf(v) - CourseOf(own.velocity), 2 * M_PI));
       const double delay =
           turn / o.turn_rate_rad_s + std::abs(v.Norm() - 8.0) / o.acceleration_mps2;
       const double lagged = delay > 1e-3 ? delay + o.manoeuvre_lag_s : 0.0;
-      const Vec2 p = t < lagged ? own.velocity * t : own.velocity * lagged + v * (t - lagged);
+      const EastNorth p = t < lagged ? own.velocity * t : own.velocity * lagged + v * (t - lagged);
       best = std::min(best, (other.position + other.velocity * t - p).Norm());
     }
     return best;

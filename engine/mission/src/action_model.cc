@@ -71,6 +71,7 @@ StatusOr<ActionModel> ActionModel::Create(std::string_view domain_text,
   ActionModel m;
   m.domain_ = std::move(*d.domain);
   m.problem_ = std::move(*p.problem);
+  m.types_ = pddl::TypeHierarchy(m.domain_.types);
   for (const pddl::Action& a : m.domain_.actions) {
     CollectEffectHeads(a.effect, &m.changed_predicates_, &m.changed_functions_);
   }
@@ -94,7 +95,7 @@ std::vector<std::string> ActionModel::ObjectsOfType(std::string_view type) const
   std::vector<std::string> out;
   auto consider = [&](const pddl::TypedName& o) {
     for (const std::string& t : o.types) {
-      if (domain_.IsSubtype(t, type)) {
+      if (types_.IsSubtype(t, type)) {
         out.push_back(o.name);
         return;
       }

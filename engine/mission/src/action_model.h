@@ -17,6 +17,7 @@
 
 #include "seaplan/common/status.h"
 #include "seaplan/pddl/parser.h"
+#include "seaplan/pddl/type_hierarchy.h"
 
 namespace seaplan::mission::internal {
 
@@ -98,6 +99,7 @@ class ActionModel {
 
   pddl::Domain domain_;
   pddl::Problem problem_;
+  pddl::TypeHierarchy types_;  // of domain_
   std::set<std::string, std::less<>> changed_predicates_;
   std::set<std::string, std::less<>> changed_functions_;
 };

@@ -33,26 +33,25 @@ Status StoppedStatus(const StopToken& stop) {
 
 }  // namespace
 
-std::optional<chart::LocalPoint> ShortestWayOut(const route::ObstacleField& field,
-                                                chart::LocalPoint p) {
+std::optional<EastNorth> ShortestWayOut(const route::ObstacleField& field, EastNorth p) {
   constexpr int kBearings = 64;
   for (double r = 5.0; r <= kMaxWayOutM; r += 5.0) {
     for (int k = 0; k < kBearings; ++k) {
       const double a = 2.0 * M_PI * k / kBearings;
-      const route::Vec2 q{p.x_m + r * std::sin(a), p.y_m + r * std::cos(a)};
+      const EastNorth q{p.east_m + r * std::sin(a), p.north_m + r * std::cos(a)};
       if (field.Inside(q)) continue;
-      const route::Vec2 clear{p.x_m + (r + 10.0) * std::sin(a), p.y_m + (r + 10.0) * std::cos(a)};
-      return field.Inside(clear) ? chart::LocalPoint{q.x, q.y}
-                                 : chart::LocalPoint{clear.x, clear.y};
+      const EastNorth clear{p.east_m + (r + 10.0) * std::sin(a),
+                            p.north_m + (r + 10.0) * std::cos(a)};
+      return field.Inside(clear) ? EastNorth{q.x, q.y} : EastNorth{clear.x, clear.y};
     }
   }
   return std::nullopt;
 }
 
-void PrependWayOut(chart::LocalPoint from, Route* r) {
+void PrependWayOut(EastNorth from, Route* r) {
   if (r->waypoints.empty()) return;
-  const Point first = r->waypoints.front().position;
-  const double leg_m = std::hypot(first.x_m - from.x_m, first.y_m - from.y_m);
+  const EastNorth first = r->waypoints.front().position;
+  const double leg_m = std::hypot(first.east_m - from.east_m, first.north_m - from.north_m);
   const double speed =
       r->sailing_time_s > 0 && r->length_m > 0 ? r->length_m / r->sailing_time_s : 1.0;
   const double leg_s = leg_m / speed;
@@ -61,7 +60,7 @@ void PrependWayOut(chart::LocalPoint from, Route* r) {
     w.distance_from_start_m += leg_m;
   }
   RouteWaypoint out = r->waypoints.front();
-  out.position = {from.x_m, from.y_m};
+  out.position = {from.east_m, from.north_m};
   out.eta_s = 0.0;
   out.distance_from_start_m = 0.0;
   out.fuel_kg = r->waypoints.front().fuel_kg * (r->length_m > 0 ? leg_m / r->length_m : 0.0);
@@ -80,7 +79,7 @@ Route RouteFromAlternative(const route::RouteAlternative& a, int index) {
   double eta = 0, distance = 0;
   for (const auto& w : a.waypoints) {
     RouteWaypoint m;
-    m.position = {w.local.x_m, w.local.y_m};
+    m.position = {w.local.east_m, w.local.north_m};
     m.mode = ModeFromRoute(w.mode);
     m.eta_s = eta;
     m.distance_from_start_m = distance;
@@ -102,27 +101,27 @@ ChartRouting::ChartRouting(chart::LocalFrame frame,
     : frame_(std::move(frame)), planner_(std::move(planner)), environment_(environment) {}
 
 StatusOr<Route> ChartRouting::Plan(const RouteRequest& req, const StopToken& stop) {
-  const std::array<double, 4> key = {req.from_position.x_m, req.from_position.y_m,
-                                     req.to_position.x_m, req.to_position.y_m};
+  const std::array<double, 4> key = {req.from_position.east_m, req.from_position.north_m,
+                                     req.to_position.east_m, req.to_position.north_m};
   {
     std::lock_guard lock(mu_);
     if (auto it = routes_.find(key); it != routes_.end()) return it->second;
   }
   if (stop.StopRequested()) return StoppedStatus(stop);
-  const chart::LocalPoint from{req.from_position.x_m, req.from_position.y_m};
-  chart::LocalPoint start = from;
+  const EastNorth from{req.from_position.east_m, req.from_position.north_m};
+  EastNorth start = from;
   bool way_out = false;
-  if (planner_->field().Inside({from.x_m, from.y_m})) {
-    std::optional<chart::LocalPoint> out = ShortestWayOut(planner_->field(), from);
+  if (planner_->field().Inside({from.east_m, from.north_m})) {
+    std::optional<EastNorth> out = ShortestWayOut(planner_->field(), from);
     if (!out) {
       return absl::FailedPreconditionError(absl::StrCat(
-          "start (", from.x_m, ", ", from.y_m,
+          "start (", from.east_m, ", ", from.north_m,
           ") lies inside a grounding obstacle with no free water within ", kMaxWayOutM, " m"));
     }
     start = *out;
     way_out = true;
   }
-  auto result = planner_->Plan(start, chart::LocalPoint{req.to_position.x_m, req.to_position.y_m},
+  auto result = planner_->Plan(start, EastNorth{req.to_position.east_m, req.to_position.north_m},
                                environment_, stop);
   if (!result.ok()) {
     // A location outside the chart or inside an obstacle: the mission
@@ -143,7 +142,7 @@ StatusOr<Route> ChartRouting::Plan(const RouteRequest& req, const StopToken& sto
     log::Info(
         "route from ({:.0f}, {:.0f}) inside the buffered obstacles leaves them at ({:.0f}, "
         "{:.0f})",
-        from.x_m, from.y_m, start.x_m, start.y_m);
+        from.east_m, from.north_m, start.east_m, start.north_m);
   }
   std::lock_guard lock(mu_);
   if (routes_.size() >= kMaxCachedRoutes) routes_.clear();

@@ -14,10 +14,10 @@ chart::Polygon Rect(double x0, double y0, double x1, double y1) {
   return {{{kE0 + x0, kN0 + y0}, {kE0 + x1, kN0 + y0}, {kE0 + x1, kN0 + y1}, {kE0 + x0, kN0 + y1}},
           {}};
 }
-chart::LocalPoint P(double x, double y) {
+EastNorth P(double x, double y) {
   return {kE0 + x, kN0 + y};
 }
-Point M(double x, double y) {
+EastNorth M(double x, double y) {
   return {kE0 + x, kN0 + y};
 }
 
@@ -47,7 +47,7 @@ TEST(ChartRoutingTest, PrependWayOutAddsALegAtTheRoutesMeanSpeed) {
                  {{100, 0}, MsoMode::kMec, 50, 100, 0, 0, 0, 0}};
   PrependWayOut({-20, 0}, &r);
   ASSERT_EQ(r.waypoints.size(), 3u);
-  EXPECT_EQ(r.waypoints[0].position, (Point{-20, 0}));
+  EXPECT_EQ(r.waypoints[0].position, (EastNorth{-20, 0}));
   EXPECT_EQ(r.waypoints[0].mode, MsoMode::kPti);
   EXPECT_DOUBLE_EQ(r.waypoints[0].eta_s, 0);
   EXPECT_DOUBLE_EQ(r.waypoints[0].fuel_kg, 4.0 * 20 / 100);
@@ -110,8 +110,8 @@ TEST(ChartRoutingTest, CacheLoadsAChartOnceAndRoutesLeaveTheBufferFirst) {
   ASSERT_TRUE(r.ok()) << r.status();
   ASSERT_GE(r->waypoints.size(), 3u);
   EXPECT_EQ(r->waypoints.front().position, M(0, 305));
-  EXPECT_GT(r->waypoints[1].position.y_m, kN0 + 310);
-  EXPECT_NEAR(r->waypoints.back().position.y_m, kN0 + 1500, 1e-6);
+  EXPECT_GT(r->waypoints[1].position.north_m, kN0 + 310);
+  EXPECT_NEAR(r->waypoints.back().position.north_m, kN0 + 1500, 1e-6);
   // Asked again: the cached route.
   auto cached = (*routing)->Plan(req, StopToken());
   ASSERT_TRUE(cached.ok());
@@ -131,9 +131,9 @@ TEST(ChartRoutingTest, ShortestWayOutFindsTheNearestFreeWater) {
   const route::ObstacleField& field = planner->field();
   auto out = ShortestWayOut(field, P(0, 280));
   ASSERT_TRUE(out.has_value());
-  EXPECT_FALSE(field.Inside({out->x_m, out->y_m}));
-  EXPECT_GT(out->y_m, kN0 + 300);
-  EXPECT_LT(std::hypot(out->x_m - kE0, out->y_m - kN0 - 280), 60);
+  EXPECT_FALSE(field.Inside({out->east_m, out->north_m}));
+  EXPECT_GT(out->north_m, kN0 + 300);
+  EXPECT_LT(std::hypot(out->east_m - kE0, out->north_m - kN0 - 280), 60);
 }
 
 }  // namespace

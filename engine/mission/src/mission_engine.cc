@@ -79,9 +79,9 @@ class Engine final : public MissionEngine {
       }
     }
     SEAPLAN_ASSIGN_OR_RETURN(chart::LocalFrame frame, Frame(spec));
-    const chart::LocalPoint initial = frame.ToLocal(spec.initial_position);
+    const EastNorth initial = frame.ToLocal(spec.initial_position);
     ShipObservation ship;
-    ship.position = {initial.x_m, initial.y_m};
+    ship.position = {initial.east_m, initial.north_m};
     if (runtime.last_report) {
       // A reported state is a full state: fuel 0 is an empty tank.
       if (runtime.last_report->position) ship.position = *runtime.last_report->position;
@@ -136,8 +136,8 @@ class Engine final : public MissionEngine {
     def.problem = spec.problem;
     if (state.locations.empty()) {
       for (const NamedPosition& l : spec.locations) {
-        const chart::LocalPoint p = frame.ToLocal(l.position);
-        def.locations[l.name] = {p.x_m, p.y_m};
+        const EastNorth p = frame.ToLocal(l.position);
+        def.locations[l.name] = {p.east_m, p.north_m};
       }
     } else {
       def.locations = state.locations;

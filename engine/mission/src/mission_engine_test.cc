@@ -27,10 +27,10 @@ MissionSpec Spec() {
   spec.domain = ReadTestData("domain.pddl");
   spec.problem = kTwoLegs;
   const chart::LocalFrame frame = chart::LocalFrame::ForCentre({63.44, 10.40});
-  const chart::LocalPoint a = frame.ToLocal({63.44, 10.40});
+  const EastNorth a = frame.ToLocal({63.44, 10.40});
   spec.locations = {{"port-a", frame.ToLatLon(a)},
-                    {"port-b", frame.ToLatLon({a.x_m + 1000, a.y_m})},
-                    {"port-c", frame.ToLatLon({a.x_m + 1000, a.y_m + 1000})}};
+                    {"port-b", frame.ToLatLon({a.east_m + 1000, a.north_m})},
+                    {"port-c", frame.ToLatLon({a.east_m + 1000, a.north_m + 1000})}};
   spec.initial_position = spec.locations[0].position;
   spec.service_speed_mps = 5.0;
   spec.planner.time_limit_s = 20;
@@ -95,17 +95,17 @@ TEST(MissionEngineTest, PositionOffTheRouteOfTheMoveUnderWayTriggersAReplan) {
   ASSERT_TRUE(planned.ok()) << planned.status();
   MissionRuntime runtime = Runtime(*planned);
   const Task& move = FirstMove(runtime.current);
-  const Point start = move.route->waypoints.front().position;
+  const EastNorth start = move.route->waypoints.front().position;
   Feedback near{FeedbackKind::kPosition,
                 "",
                 1,
                 move.start_s + 50,
-                Point{start.x_m + 250, start.y_m + 150},
+                EastNorth{start.east_m + 250, start.north_m + 150},
                 0.9,
                 ""};
   EXPECT_FALSE(engine->OnFeedback(spec, runtime, near).replan_reason);
   Feedback off = near;
-  off.position = Point{start.x_m + 250, start.y_m + 450};
+  off.position = EastNorth{start.east_m + 250, start.north_m + 450};
   FeedbackOutcome o = engine->OnFeedback(spec, runtime, off);
   ASSERT_TRUE(o.replan_reason);
   EXPECT_NE(o.replan_reason->find("off the route of " + move.id), std::string::npos)
@@ -137,11 +137,11 @@ TEST(MissionEngineTest, ReplanAfterAFailedMoveStartsWhereTheShipIs) {
   ASSERT_TRUE(planned.ok()) << planned.status();
   MissionRuntime runtime = Runtime(*planned);
   const Task& move = FirstMove(runtime.current);
-  const Point start = move.route->waypoints.front().position;
+  const EastNorth start = move.route->waypoints.front().position;
   runtime.recent_feedback = {
       {FeedbackKind::kTaskStarted, move.id, 1, move.start_s, std::nullopt, 0.9, ""},
       {FeedbackKind::kTaskFailed, move.id, 1, move.start_s + 60, std::nullopt, 0.9, ""}};
-  runtime.last_report = ShipReport{Point{start.x_m + 500, start.y_m + 400}, 0.9};
+  runtime.last_report = ShipReport{EastNorth{start.east_m + 500, start.north_m + 400}, 0.9};
   auto next = engine->Replan(spec, runtime, "task failed", StopToken());
   ASSERT_TRUE(next.ok()) << next.status();
   ASSERT_TRUE(next->has_value());
@@ -151,8 +151,8 @@ TEST(MissionEngineTest, ReplanAfterAFailedMoveStartsWhereTheShipIs) {
   EXPECT_DOUBLE_EQ(v.mission_time_origin_s, move.start_s + 60);
   const Task& first = FirstMove(v);
   ASSERT_TRUE(first.route.has_value());
-  EXPECT_NEAR(first.route->waypoints.front().position.x_m, start.x_m + 500, 1e-6);
-  EXPECT_NEAR(first.route->waypoints.front().position.y_m, start.y_m + 400, 1e-6);
+  EXPECT_NEAR(first.route->waypoints.front().position.east_m, start.east_m + 500, 1e-6);
+  EXPECT_NEAR(first.route->waypoints.front().position.north_m, start.north_m + 400, 1e-6);
   // The new location the replan added is carried in the engine state.
   auto state = DecodeEngineState((*next)->engine_state);
   ASSERT_TRUE(state.ok());

@@ -37,7 +37,7 @@ PlanVersion TwoTaskVersion(TaskKind second_kind) {
 
 TEST(ReplanPolicyTest, FailedTaskTriggers) {
   PlanVersion v = TwoTaskVersion(TaskKind::kLoad);
-  Feedback f{FeedbackKind::kTaskFailed, "v2-t1", 2, 50, Point{500, 0}, 0.8, "gnss jump"};
+  Feedback f{FeedbackKind::kTaskFailed, "v2-t1", 2, 50, EastNorth{500, 0}, 0.8, "gnss jump"};
   auto reason = DecideReplan(f, v, &v.tasks[0], ReplanPolicy{});
   ASSERT_TRUE(reason);
   EXPECT_NE(reason->find("v2-t1 move-ship failed"), std::string::npos) << *reason;
@@ -45,16 +45,16 @@ TEST(ReplanPolicyTest, FailedTaskTriggers) {
 
 TEST(ReplanPolicyTest, DeviationBeyondThresholdTriggers) {
   PlanVersion v = TwoTaskVersion(TaskKind::kLoad);
-  Feedback near{FeedbackKind::kPosition, "v2-t1", 2, 50, Point{500, 150}, std::nullopt, ""};
+  Feedback near{FeedbackKind::kPosition, "v2-t1", 2, 50, EastNorth{500, 150}, std::nullopt, ""};
   EXPECT_FALSE(DecideReplan(near, v, &v.tasks[0], ReplanPolicy{}));
-  Feedback far{FeedbackKind::kPosition, "v2-t1", 2, 50, Point{500, 250}, std::nullopt, ""};
+  Feedback far{FeedbackKind::kPosition, "v2-t1", 2, 50, EastNorth{500, 250}, std::nullopt, ""};
   auto reason = DecideReplan(far, v, &v.tasks[0], ReplanPolicy{});
   ASSERT_TRUE(reason);
   EXPECT_NE(reason->find("250 m off the route"), std::string::npos) << *reason;
 }
 
 TEST(ReplanPolicyTest, LowFuelTriggersOnlyWithoutRefuelAhead) {
-  Feedback f{FeedbackKind::kTaskCompleted, "v2-t1", 2, 100, Point{1000, 0}, 0.28, ""};
+  Feedback f{FeedbackKind::kTaskCompleted, "v2-t1", 2, 100, EastNorth{1000, 0}, 0.28, ""};
   PlanVersion with_refuel = TwoTaskVersion(TaskKind::kRefuel);
   EXPECT_FALSE(DecideReplan(f, with_refuel, &with_refuel.tasks[0], ReplanPolicy{}));
   PlanVersion without = TwoTaskVersion(TaskKind::kLoad);
@@ -74,7 +74,7 @@ TEST(ReplanPolicyTest, LowFuelTriggersOnlyWithoutRefuelAhead) {
 
 TEST(ReplanPolicyTest, LateCompletionAndStaleVersion) {
   PlanVersion v = TwoTaskVersion(TaskKind::kLoad);
-  Feedback late{FeedbackKind::kTaskCompleted, "v2-t1", 2, 300, Point{1000, 0}, 0.9, ""};
+  Feedback late{FeedbackKind::kTaskCompleted, "v2-t1", 2, 300, EastNorth{1000, 0}, 0.9, ""};
   EXPECT_TRUE(DecideReplan(late, v, &v.tasks[0], ReplanPolicy{}));
   late.plan_version = 1;  // about an older version: ignored
   EXPECT_FALSE(DecideReplan(late, v, &v.tasks[0], ReplanPolicy{}));
@@ -83,15 +83,15 @@ TEST(ReplanPolicyTest, LateCompletionAndStaleVersion) {
 
 // A ship running late: the refuel (v2-t2, planned to end at 180 s) has not
 // happened at 400 s. With the completed list it still counts as ahead; the
-// planned-time guess alone would call it done and replan (issue #6, case C
+// planned-time guess alone would call it done and replan (fjord case C once
 // replanned away a plan that was about to refuel).
 TEST(ReplanPolicyTest, LateRefuelStillCountsAsAheadWithTheCompletedList) {
   PlanVersion v = TwoTaskVersion(TaskKind::kRefuel);
-  Feedback f{FeedbackKind::kPosition, "v2-t1", 2, 400, Point{900, 0}, 0.15, ""};
+  Feedback f{FeedbackKind::kPosition, "v2-t1", 2, 400, EastNorth{900, 0}, 0.15, ""};
   const std::set<std::string> done;  // nothing completed yet
   EXPECT_FALSE(DecideReplan(f, v, &v.tasks[0], ReplanPolicy{}, &done));
   const std::set<std::string> refuelled = {"v2-t1", "v2-t2"};
-  Feedback later{FeedbackKind::kTaskCompleted, "v2-t2", 2, 500, Point{1000, 0}, 0.15, ""};
+  Feedback later{FeedbackKind::kTaskCompleted, "v2-t2", 2, 500, EastNorth{1000, 0}, 0.15, ""};
   EXPECT_TRUE(DecideReplan(later, v, &v.tasks[1], ReplanPolicy{}, &refuelled));
 }
 
@@ -104,7 +104,7 @@ TEST(ReplanPolicyTest, FuelAtTheThresholdCountsDespiteRoundingError) {
   EXPECT_TRUE(FuelAtOrBelow(fuel, 0.3));
   EXPECT_FALSE(FuelAtOrBelow(0.305, 0.3));
   PlanVersion v = TwoTaskVersion(TaskKind::kLoad);
-  Feedback f{FeedbackKind::kTaskCompleted, "v2-t1", 2, 100, Point{1000, 0}, fuel, ""};
+  Feedback f{FeedbackKind::kTaskCompleted, "v2-t1", 2, 100, EastNorth{1000, 0}, fuel, ""};
   auto reason = DecideReplan(f, v, &v.tasks[0], ReplanPolicy{});
   ASSERT_TRUE(reason);
   EXPECT_EQ(*reason, "fuel 30% <= 30%");

@@ -96,8 +96,8 @@ constexpr char kFuelFunctionKey[] = "@fuel-function";
 std::string EncodeEngineState(const EngineState& state) {
   std::string out;
   for (const auto& [name, p] : state.locations) {
-    absl::StrAppend(&out, name, " ", validate::FormatTime(p.x_m), " ", validate::FormatTime(p.y_m),
-                    "\n");
+    absl::StrAppend(&out, name, " ", validate::FormatTime(p.east_m), " ",
+                    validate::FormatTime(p.north_m), "\n");
   }
   if (state.fuel_function) {
     absl::StrAppend(&out, kFuelFunctionKey, state.fuel_function->empty() ? "" : " ",

@@ -43,7 +43,8 @@ TEST(SessionTest, CompletionFailureAndLog) {
   EXPECT_TRUE(o.mission_completed);
   EXPECT_EQ(o.log_messages.front(), "refuel task completed");
 
-  Feedback failed{FeedbackKind::kTaskFailed, v.tasks[1].id, 1, 100, Point{400, 600}, 0.9, "gnss"};
+  Feedback failed{FeedbackKind::kTaskFailed, v.tasks[1].id, 1,     100,
+                  EastNorth{400, 600},       0.9,           "gnss"};
   FeedbackOutcome f = OnFeedback(def, v, {v.tasks[0].id}, failed);
   ASSERT_TRUE(f.replan_reason);
   EXPECT_EQ(f.log_messages.front(), "task move failed, need re-planning");
@@ -119,10 +120,15 @@ TEST(SessionTest, PositionReportsAreCheckedAgainstTheMoveUnderWay) {
   ASSERT_NE(move, nullptr);
   ReplanPolicy policy;
   policy.position_deviation_m = 200;
-  const Point start = move->route->waypoints.front().position;
+  const EastNorth start = move->route->waypoints.front().position;
   // No task id: the move that started by then and is not completed.
-  Feedback off{FeedbackKind::kPosition,           "",  1, move->start_s + 1,
-               Point{start.x_m, start.y_m - 500}, 0.9, ""};
+  Feedback off{FeedbackKind::kPosition,
+               "",
+               1,
+               move->start_s + 1,
+               EastNorth{start.east_m, start.north_m - 500},
+               0.9,
+               ""};
   std::vector<std::string> before;
   for (const Task& t : v.tasks) {
     if (t.end_s() <= move->start_s + 1e-6 && t.id != move->id) before.push_back(t.id);

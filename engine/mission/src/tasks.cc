@@ -41,18 +41,18 @@ std::vector<Task> ParseTasks(const RefinedPlan& refined, const LocationTable& lo
   return tasks;
 }
 
-double CrossTrackDistance(const Route& route, Point p) {
+double CrossTrackDistance(const Route& route, EastNorth p) {
   const auto& w = route.waypoints;
   if (w.empty()) return std::numeric_limits<double>::infinity();
   if (w.size() == 1) return Distance(w[0].position, p);
   double best = std::numeric_limits<double>::infinity();
   for (size_t i = 0; i + 1 < w.size(); ++i) {
-    Point a = w[i].position, b = w[i + 1].position;
-    double dx = b.x_m - a.x_m, dy = b.y_m - a.y_m;
+    EastNorth a = w[i].position, b = w[i + 1].position;
+    double dx = b.east_m - a.east_m, dy = b.north_m - a.north_m;
     double len2 = dx * dx + dy * dy;
-    double t = len2 > 0 ? ((p.x_m - a.x_m) * dx + (p.y_m - a.y_m) * dy) / len2 : 0.0;
+    double t = len2 > 0 ? ((p.east_m - a.east_m) * dx + (p.north_m - a.north_m) * dy) / len2 : 0.0;
     t = std::clamp(t, 0.0, 1.0);
-    best = std::min(best, Distance(p, {a.x_m + t * dx, a.y_m + t * dy}));
+    best = std::min(best, Distance(p, {a.east_m + t * dx, a.north_m + t * dy}));
   }
   return best;
 }

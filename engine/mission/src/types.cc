@@ -4,10 +4,6 @@
 
 namespace seaplan::mission {
 
-double Distance(Point a, Point b) {
-  return std::hypot(a.x_m - b.x_m, a.y_m - b.y_m);
-}
-
 std::string_view MsoModeName(MsoMode mode) {
   switch (mode) {
     case MsoMode::kPto:

@@ -11,6 +11,7 @@
 #include <unordered_map>
 #include <unordered_set>
 
+#include "seaplan/pddl/type_hierarchy.h"
 #include "sexpr_internal.h"
 
 namespace seaplan::pddl {
@@ -46,50 +47,10 @@ bool IsValidVariable(std::string_view s) {
   return s.size() >= 2 && s[0] == '?' && IsValidName(s.substr(1));
 }
 
-// Declared types and their parents, for subtype checks during parsing.
-class TypeGraph {
- public:
-  void Add(const std::string& type, const std::vector<std::string>& parents) {
-    auto& p = parents_[type];
-    for (const auto& parent : parents) {
-      if (parent != type) p.push_back(parent);
-    }
-  }
-  bool Known(const std::string& type) const { return type == "object" || parents_.count(type) > 0; }
-  bool IsSubtype(const std::string& type, const std::string& ancestor) const {
-    if (type == ancestor || ancestor == "object") return true;
-    std::vector<const std::string*> todo{&type};
-    std::unordered_set<std::string> seen{type};
-    while (!todo.empty()) {
-      const std::string* t = todo.back();
-      todo.pop_back();
-      auto it = parents_.find(*t);
-      if (it == parents_.end()) continue;
-      for (const auto& p : it->second) {
-        if (p == ancestor) return true;
-        if (seen.insert(p).second) todo.push_back(&p);
-      }
-    }
-    return false;
-  }
-  // A type that is its own ancestor, or "".
-  std::string FindCycle() const {
-    for (const auto& [type, parents] : parents_) {
-      for (const auto& p : parents) {
-        if (IsSubtype(p, type)) return type;
-      }
-    }
-    return "";
-  }
-
- private:
-  std::unordered_map<std::string, std::vector<std::string>> parents_;
-};
-
 // Whether a term with types `have` may stand where `want` is declared.
 enum class TypeFit { kOk, kMaybe, kNever };
 
-TypeFit Fit(const TypeGraph& graph, const std::vector<std::string>& have,
+TypeFit Fit(const TypeHierarchy& graph, const std::vector<std::string>& have,
             const std::vector<std::string>& want) {
   bool all = true;
   bool any = false;
@@ -831,7 +792,7 @@ class Builder {
 
   std::string file_;
   std::vector<Diagnostic>& diags_;
-  TypeGraph types_;
+  TypeHierarchy types_;  // rebuilt after each :types section
   std::unordered_map<std::string, Signature> predicates_;
   std::unordered_map<std::string, Signature> functions_;
   struct ObjectInfo {
@@ -1002,7 +963,6 @@ class DomainBuilder : public Builder {
       } else {
         domain.types.push_back({t.name, t.types, t.location});
       }
-      types_.Add(t.name, t.types);
     }
     // Parents used without their own declaration are implicitly declared (as
     // subtypes of object), as most planners accept.
@@ -1010,10 +970,10 @@ class DomainBuilder : public Builder {
       for (const auto& p : t.types) {
         if (!types_.Known(p) && seen.insert(p).second) {
           domain.types.push_back({p, {"object"}, t.location});
-          types_.Add(p, {"object"});
         }
       }
     }
+    types_ = TypeHierarchy(domain.types);
   }
 
   void ParsePredicates(const SExpr& section, Domain& domain) {
@@ -1214,7 +1174,7 @@ class ProblemBuilder : public Builder {
  public:
   ProblemBuilder(std::string file, std::vector<Diagnostic>& diagnostics, const Domain& domain)
       : Builder(std::move(file), diagnostics), domain_(domain) {
-    for (const auto& t : domain.types) types_.Add(t.name, t.parents);
+    types_ = TypeHierarchy(domain.types);
     for (const auto& p : domain.predicates)
       predicates_[p.name] = MakeSignature(p.parameters, p.location);
     for (const auto& f : domain.functions)
@@ -1484,23 +1444,7 @@ const Action* Domain::FindAction(std::string_view wanted) const {
 }
 
 bool Domain::IsSubtype(std::string_view type, std::string_view ancestor) const {
-  if (type == ancestor || ancestor == "object") return true;
-  // Small hierarchies: a walk over the declaration list is fast enough and
-  // keeps Domain a plain value.
-  std::vector<std::string_view> todo{type};
-  std::size_t guard = 0;
-  while (!todo.empty() && guard++ < 10000) {
-    std::string_view t = todo.back();
-    todo.pop_back();
-    for (const auto& decl : types) {
-      if (decl.name != t) continue;
-      for (const auto& p : decl.parents) {
-        if (p == ancestor) return true;
-        todo.push_back(p);
-      }
-    }
-  }
-  return false;
+  return TypeHierarchy(types).IsSubtype(type, ancestor);
 }
 
 DomainParseResult ParseDomain(std::string_view text, std::string_view file_name) {

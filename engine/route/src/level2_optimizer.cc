@@ -18,24 +18,24 @@
 namespace seaplan::route {
 namespace {
 
-double Dist(Vec2 a, Vec2 b) {
-  return std::hypot(a.x - b.x, a.y - b.y);
+double Dist(EastNorth a, EastNorth b) {
+  return std::hypot(a.east_m - b.east_m, a.north_m - b.north_m);
 }
 
 // Points at fractions k/n (k = 0..n) of the polyline's length.
-std::vector<Vec2> Resample(const std::vector<Vec2>& line, int n) {
+std::vector<EastNorth> Resample(const std::vector<EastNorth>& line, int n) {
   std::vector<double> cum(line.size(), 0.0);
   for (size_t i = 1; i < line.size(); ++i) cum[i] = cum[i - 1] + Dist(line[i - 1], line[i]);
   const double total = cum.back();
-  std::vector<Vec2> out(n + 1);
+  std::vector<EastNorth> out(n + 1);
   size_t seg = 1;
   for (int k = 0; k <= n; ++k) {
     const double s = total * k / n;
     while (seg + 1 < line.size() && cum[seg] < s) ++seg;
     const double len = cum[seg] - cum[seg - 1];
     const double t = len > 0 ? std::clamp((s - cum[seg - 1]) / len, 0.0, 1.0) : 0.0;
-    out[k] = {line[seg - 1].x + t * (line[seg].x - line[seg - 1].x),
-              line[seg - 1].y + t * (line[seg].y - line[seg - 1].y)};
+    out[k] = {line[seg - 1].east_m + t * (line[seg].east_m - line[seg - 1].east_m),
+              line[seg - 1].north_m + t * (line[seg].north_m - line[seg - 1].north_m)};
   }
   out[0] = line.front();
   out[n] = line.back();
@@ -43,7 +43,7 @@ std::vector<Vec2> Resample(const std::vector<Vec2>& line, int n) {
 }
 
 struct Refs {
-  Vec2 prev, ref, next;
+  EastNorth prev, ref, next;
   double heading_rad = 0.0;  // drift heading, from north clockwise
   double scale_m = 1.0;      // search scale: half of |next - prev|
   bool movable = true;
@@ -58,14 +58,14 @@ struct RiskSample {
 class RiskEvaluator {
  public:
   virtual ~RiskEvaluator() = default;
-  virtual void Evaluate(Vec2 w, RiskSample* out) = 0;
+  virtual void Evaluate(EastNorth w, RiskSample* out) = 0;
 };
 
 // The drift of an unpowered ship relative to its start point.
 struct DriftTrack {
-  std::vector<Vec2> offset;     // after each Euler step
-  std::vector<double> heading;  // rad
-  std::vector<double> time_s;   // model time after each step
+  std::vector<EastNorth> offset;  // after each Euler step
+  std::vector<double> heading;    // rad
+  std::vector<double> time_s;     // model time after each step
 };
 
 DriftTrack SimulateDrift(const ship::HullDynamics& dyn, const ship::Environment& env,
@@ -87,12 +87,14 @@ class FastEvaluator final : public RiskEvaluator {
   FastEvaluator(const ObstacleField& field, DriftTrack track, const std::vector<ModeArray>& table,
                 double zeta)
       : field_(field), track_(std::move(track)), table_(table), zeta_(zeta) {}
-  void Evaluate(Vec2 w, RiskSample* out) override {
+  void Evaluate(EastNorth w, RiskSample* out) override {
     out->proximity = field_.SumExpDistance(w, zeta_);
     const size_t n = track_.offset.size();
     size_t k = 0;
     for (; k < n; ++k) {
-      if (field_.HullHits({w.x + track_.offset[k].x, w.y + track_.offset[k].y}, track_.heading[k]))
+      if (field_.HullHits(
+              {w.east_m + track_.offset[k].east_m, w.north_m + track_.offset[k].north_m},
+              track_.heading[k]))
         break;
     }
     if (k == n) k = n - 1;
@@ -122,10 +124,10 @@ class ExactEvaluator final : public RiskEvaluator {
         horizon_(o.ttg_horizon_s),
         dt_(o.ttg_step_s),
         zeta_(o.weights.zeta1_per_m) {}
-  void Evaluate(Vec2 w, RiskSample* out) override {
+  void Evaluate(EastNorth w, RiskSample* out) override {
     out->proximity = field_.SumExpDistanceBruteForce(w, zeta_);
-    ship::ShipModelWithoutPropulsion model(dyn_, env_,
-                                           ship::ShipState::At(w.y, w.x, heading_, speed_));
+    ship::ShipModelWithoutPropulsion model(
+        dyn_, env_, ship::ShipState::At(w.north_m, w.east_m, heading_, speed_));
     while (model.time_s() <= horizon_) {
       model.Step(dt_);
       const auto& s = model.state();
@@ -150,7 +152,8 @@ struct CostTerms {
   double total = 0.0;
 };
 
-void ComputeCost(const CostWeights& w, const Refs& r, Vec2 p, const RiskSample& s, CostTerms* out) {
+void ComputeCost(const CostWeights& w, const Refs& r, EastNorth p, const RiskSample& s,
+                 CostTerms* out) {
   out->path = 0.0;
   if (r.movable) {
     const double dr = Dist(p, r.ref);
@@ -206,7 +209,7 @@ struct WaypointTask {
   int alt = 0;
   int k = 0;
   Refs refs;
-  Vec2 position;
+  EastNorth position;
   int64_t evaluations = 0;
 };
 
@@ -220,17 +223,18 @@ struct WaypointTask {
 // has no place in its fitness vector. Per-swarm seeds would be possible with
 // pagmo too (one algorithm per waypoint); we keep them: RNG from (seed,
 // alternative, waypoint), so thread count never changes results.
-Vec2 RunPso(const PsoOptions& o, const CostWeights& w, const Refs& r, RiskEvaluator& eval, Vec2 lo,
-            Vec2 hi, uint64_t seed, const StopToken& stop, int64_t* evaluations) {
+EastNorth RunPso(const PsoOptions& o, const CostWeights& w, const Refs& r, RiskEvaluator& eval,
+                 EastNorth lo, EastNorth hi, uint64_t seed, const StopToken& stop,
+                 int64_t* evaluations) {
   const int n = o.particles;
   struct Particle {
-    Vec2 x, v, best;
+    EastNorth position, v, best;
     double best_cost;
   };
   std::vector<Particle> ps(n);
   Rng rng(seed);
   const double vmax = o.velocity_limit * r.scale_m;
-  double tx = r.next.x - r.prev.x, ty = r.next.y - r.prev.y;
+  double tx = r.next.east_m - r.prev.east_m, ty = r.next.north_m - r.prev.north_m;
   const double tl = std::hypot(tx, ty);
   if (tl > 0) {
     tx /= tl;
@@ -239,10 +243,11 @@ Vec2 RunPso(const PsoOptions& o, const CostWeights& w, const Refs& r, RiskEvalua
     tx = 1;
     ty = 0;
   }
-  const Vec2 left{-ty, tx};
+  const EastNorth left{-ty, tx};
   const int pairs = std::max(1, n / 2);
-  auto clamp_pos = [&](Vec2 p) {
-    return Vec2{std::clamp(p.x, lo.x, hi.x), std::clamp(p.y, lo.y, hi.y)};
+  auto clamp_pos = [&](EastNorth p) {
+    return EastNorth{std::clamp(p.east_m, lo.east_m, hi.east_m),
+                     std::clamp(p.north_m, lo.north_m, hi.north_m)};
   };
   // Particle 0 on the reference, then alternately left and right of the
   // reference line, out to one search scale.
@@ -250,22 +255,23 @@ Vec2 RunPso(const PsoOptions& o, const CostWeights& w, const Refs& r, RiskEvalua
     const int i = (j + 1) / 2;
     const double side = (j % 2 == 1) ? 1.0 : -1.0;
     const double off = r.scale_m * static_cast<double>(i) / pairs * side;
-    ps[j].x = clamp_pos({r.ref.x + left.x * off, r.ref.y + left.y * off});
+    ps[j].position =
+        clamp_pos({r.ref.east_m + left.east_m * off, r.ref.north_m + left.north_m * off});
     ps[j].v = {(2 * rng.Uniform() - 1) * 0.1 * vmax, (2 * rng.Uniform() - 1) * 0.1 * vmax};
     ps[j].best_cost = std::numeric_limits<double>::infinity();
   }
-  Vec2 gbest = r.ref;
+  EastNorth gbest = r.ref;
   double gbest_cost = std::numeric_limits<double>::infinity();
   RiskSample sample;
   CostTerms terms;
   auto evaluate_all = [&] {
     for (auto& p : ps) {
-      eval.Evaluate(p.x, &sample);
-      ComputeCost(w, r, p.x, sample, &terms);
+      eval.Evaluate(p.position, &sample);
+      ComputeCost(w, r, p.position, sample, &terms);
       ++*evaluations;
       if (terms.total < p.best_cost) {
         p.best_cost = terms.total;
-        p.best = p.x;  // a copy, not an alias of the moving position
+        p.best = p.position;  // a copy, not an alias of the moving position
       }
     }
     for (const auto& p : ps) {
@@ -281,13 +287,15 @@ Vec2 RunPso(const PsoOptions& o, const CostWeights& w, const Refs& r, RiskEvalua
     for (auto& p : ps) {
       const double r1x = rng.Uniform(), r1y = rng.Uniform(), r2x = rng.Uniform(),
                    r2y = rng.Uniform();
-      p.v.x = o.inertia * p.v.x + o.cognitive * r1x * (p.best.x - p.x.x) +
-              o.social * r2x * (gbest.x - p.x.x);
-      p.v.y = o.inertia * p.v.y + o.cognitive * r1y * (p.best.y - p.x.y) +
-              o.social * r2y * (gbest.y - p.x.y);
-      p.v.x = std::clamp(p.v.x, -vmax, vmax);
-      p.v.y = std::clamp(p.v.y, -vmax, vmax);
-      p.x = clamp_pos({p.x.x + p.v.x, p.x.y + p.v.y});
+      p.v.east_m = o.inertia * p.v.east_m +
+                   o.cognitive * r1x * (p.best.east_m - p.position.east_m) +
+                   o.social * r2x * (gbest.east_m - p.position.east_m);
+      p.v.north_m = o.inertia * p.v.north_m +
+                    o.cognitive * r1y * (p.best.north_m - p.position.north_m) +
+                    o.social * r2y * (gbest.north_m - p.position.north_m);
+      p.v.east_m = std::clamp(p.v.east_m, -vmax, vmax);
+      p.v.north_m = std::clamp(p.v.north_m, -vmax, vmax);
+      p.position = clamp_pos({p.position.east_m + p.v.east_m, p.position.north_m + p.v.north_m});
     }
     evaluate_all();
   }
@@ -306,30 +314,32 @@ double PolishObjective(unsigned /*n*/, const double* x, double* /*grad*/, void* 
   auto* d = static_cast<PolishData*>(data);
   RiskSample s;
   CostTerms t;
-  const Vec2 p{x[0], x[1]};
+  const EastNorth p{x[0], x[1]};
   d->eval->Evaluate(p, &s);
   ComputeCost(*d->w, *d->r, p, s, &t);
   ++*d->evaluations;
   return t.path + t.mode_cost[d->mode];
 }
 
-Vec2 Polish(const PolishOptions& o, const CostWeights& w, const Refs& r, RiskEvaluator& eval,
-            Vec2 start, int mode, Vec2 lo, Vec2 hi, int64_t* evaluations) {
+EastNorth Polish(const PolishOptions& o, const CostWeights& w, const Refs& r, RiskEvaluator& eval,
+                 EastNorth start, int mode, EastNorth lo, EastNorth hi, int64_t* evaluations) {
   PolishData data{&w, &r, &eval, mode, evaluations};
-  double x0[2] = {start.x, start.y};
+  double x0[2] = {start.east_m, start.north_m};
   const double f0 = PolishObjective(2, x0, nullptr, &data);
   try {
     nlopt::opt opt(nlopt::LN_BOBYQA, 2);
     const double reach = r.scale_m;
-    std::vector<double> lb = {std::max(lo.x, start.x - reach), std::max(lo.y, start.y - reach)};
-    std::vector<double> ub = {std::min(hi.x, start.x + reach), std::min(hi.y, start.y + reach)};
+    std::vector<double> lb = {std::max(lo.east_m, start.east_m - reach),
+                              std::max(lo.north_m, start.north_m - reach)};
+    std::vector<double> ub = {std::min(hi.east_m, start.east_m + reach),
+                              std::min(hi.north_m, start.north_m + reach)};
     opt.set_lower_bounds(lb);
     opt.set_upper_bounds(ub);
     opt.set_min_objective(PolishObjective, &data);
     opt.set_maxeval(o.max_evaluations);
     opt.set_xtol_abs(o.xtol_m);
     opt.set_initial_step(o.initial_step_m);
-    std::vector<double> x = {start.x, start.y};
+    std::vector<double> x = {start.east_m, start.north_m};
     double f = f0;
     opt.optimize(x, f);
     if (f < f0) return {x[0], x[1]};
@@ -408,9 +418,9 @@ struct Repair {
   int followed_count = 0;
 };
 
-Repair RepairRoute(const ObstacleField& field, const std::vector<Vec2>& refs,
-                   std::vector<Vec2>* positions) {
-  std::vector<Vec2>& w = *positions;
+Repair RepairRoute(const ObstacleField& field, const std::vector<EastNorth>& refs,
+                   std::vector<EastNorth>* positions) {
+  std::vector<EastNorth>& w = *positions;
   const size_t n = w.size() - 1;
   Repair r;
   r.snapped.assign(n + 1, false);
@@ -444,8 +454,8 @@ Repair RepairRoute(const ObstacleField& field, const std::vector<Vec2>& refs,
 }
 
 // The Level-1 vertices strictly between arc lengths s0 < s1 of `line`.
-std::vector<Vec2> VerticesBetween(const std::vector<Vec2>& line, double s0, double s1) {
-  std::vector<Vec2> out;
+std::vector<EastNorth> VerticesBetween(const std::vector<EastNorth>& line, double s0, double s1) {
+  std::vector<EastNorth> out;
   double cum = 0.0;
   for (size_t i = 1; i + 1 < line.size(); ++i) {
     cum += Dist(line[i - 1], line[i]);
@@ -457,7 +467,7 @@ std::vector<Vec2> VerticesBetween(const std::vector<Vec2>& line, double s0, doub
 }  // namespace
 
 StatusOr<double> SimulateTimeToGrounding(const ObstacleField& field, const ship::ShipParams& ship,
-                                         const ship::Environment& env, Vec2 start,
+                                         const ship::Environment& env, EastNorth start,
                                          double heading_rad, double speed_mps, double horizon_s,
                                          double step_s) {
   if (!(step_s > 0.0) || !(horizon_s > 0.0) || horizon_s / step_s > 1e5) {
@@ -465,7 +475,7 @@ StatusOr<double> SimulateTimeToGrounding(const ObstacleField& field, const ship:
   }
   SEAPLAN_ASSIGN_OR_RETURN(ship::HullDynamics dyn, ship::HullDynamics::Create(ship));
   ship::ShipModelWithoutPropulsion model(
-      dyn, env, ship::ShipState::At(start.y, start.x, heading_rad, speed_mps));
+      dyn, env, ship::ShipState::At(start.north_m, start.east_m, heading_rad, speed_mps));
   while (model.time_s() <= horizon_s) {
     model.Step(step_s);
     const auto& s = model.state();
@@ -540,8 +550,8 @@ StatusOr<Level2Result> OptimizeLevel2(const Level2Problem& problem, const Level2
       return absl::InvalidArgumentError(
           absl::StrCat("alternative ", a, " has ", alt.size(), " points (need >= 2)"));
     }
-    for (const Vec2& p : alt) {
-      if (!std::isfinite(p.x) || !std::isfinite(p.y)) {
+    for (const EastNorth& p : alt) {
+      if (!std::isfinite(p.east_m) || !std::isfinite(p.north_m)) {
         return absl::InvalidArgumentError(
             absl::StrCat("alternative ", a, " has a non-finite point"));
       }
@@ -551,7 +561,7 @@ StatusOr<Level2Result> OptimizeLevel2(const Level2Problem& problem, const Level2
   const ObstacleField& field = *problem.field;
   const CostWeights& w = options.weights;
   const int n = options.segments;
-  const Vec2 lo = field.area_min(), hi = field.area_max();
+  const EastNorth lo = field.area_min(), hi = field.area_max();
 
   // P(G) per Euler step of the TTG loop (the only TTG values it produces).
   std::vector<ModeArray> table;
@@ -564,7 +574,7 @@ StatusOr<Level2Result> OptimizeLevel2(const Level2Problem& problem, const Level2
   // Tasks: every waypoint 0..n of every alternative (0 and n fixed).
   std::vector<WaypointTask> tasks;
   for (size_t a = 0; a < problem.alternatives.size(); ++a) {
-    const std::vector<Vec2> refs = Resample(problem.alternatives[a], n);
+    const std::vector<EastNorth> refs = Resample(problem.alternatives[a], n);
     for (int k = 0; k <= n; ++k) {
       WaypointTask t;
       t.alt = static_cast<int>(a);
@@ -572,8 +582,9 @@ StatusOr<Level2Result> OptimizeLevel2(const Level2Problem& problem, const Level2
       t.refs.prev = refs[std::max(k - 1, 0)];
       t.refs.ref = refs[k];
       t.refs.next = refs[std::min(k + 1, n)];
-      const Vec2 d{t.refs.next.x - t.refs.prev.x, t.refs.next.y - t.refs.prev.y};
-      t.refs.heading_rad = std::atan2(d.x, d.y);
+      const EastNorth d{t.refs.next.east_m - t.refs.prev.east_m,
+                        t.refs.next.north_m - t.refs.prev.north_m};
+      t.refs.heading_rad = std::atan2(d.east_m, d.north_m);
       t.refs.scale_m =
           std::max(1.0, Dist(t.refs.prev, t.refs.next) / (k == 0 || k == n ? 1.0 : 2.0));
       t.refs.movable = k > 0 && k < n;
@@ -661,7 +672,7 @@ StatusOr<Level2Result> OptimizeLevel2(const Level2Problem& problem, const Level2
     std::vector<int> route_modes(modes.begin() + base, modes.begin() + base + n + 1);
     for (const WaypointTask& t : route) out.evaluations += t.evaluations;
 
-    std::vector<Vec2> refs(n + 1), positions(n + 1);
+    std::vector<EastNorth> refs(n + 1), positions(n + 1);
     for (int k = 0; k <= n; ++k) {
       refs[k] = route[k].refs.ref;
       positions[k] = route[k].position;
@@ -669,7 +680,7 @@ StatusOr<Level2Result> OptimizeLevel2(const Level2Problem& problem, const Level2
     const Repair repair = RepairRoute(field, refs, &positions);
     out.snapped_waypoints = repair.snapped_count;
     if (repair.snapped_count > 0 || repair.followed_count > 0) {
-      const std::vector<Vec2>& line = problem.alternatives[a];
+      const std::vector<EastNorth>& line = problem.alternatives[a];
       double total = 0.0;
       for (size_t i = 1; i < line.size(); ++i) total += Dist(line[i - 1], line[i]);
       std::vector<WaypointTask> repaired;
@@ -679,7 +690,7 @@ StatusOr<Level2Result> OptimizeLevel2(const Level2Problem& problem, const Level2
         t.evaluations = 0;
         repaired.push_back(t);
         if (k == n || !repair.follow[k]) continue;
-        for (Vec2 v : VerticesBetween(line, total * k / n, total * (k + 1) / n)) {
+        for (EastNorth v : VerticesBetween(line, total * k / n, total * (k + 1) / n)) {
           WaypointTask inserted;
           inserted.alt = static_cast<int>(a);
           inserted.k = k;
@@ -699,8 +710,8 @@ StatusOr<Level2Result> OptimizeLevel2(const Level2Problem& problem, const Level2
         if (!r.movable && k > 0 && k + 1 < m) {
           r.prev = repaired[k - 1].position;
           r.next = repaired[k + 1].position;
-          const Vec2 d{r.next.x - r.prev.x, r.next.y - r.prev.y};
-          r.heading_rad = std::atan2(d.x, d.y);
+          const EastNorth d{r.next.east_m - r.prev.east_m, r.next.north_m - r.prev.north_m};
+          r.heading_rad = std::atan2(d.east_m, d.north_m);
         }
       }
       route_samples.assign(m, {});

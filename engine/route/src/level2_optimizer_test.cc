@@ -130,7 +130,7 @@ TEST(Level2OptimizerTest, RobustModeOnDownwindShoreSegmentAndSaferAlternativeCho
     const auto& w = south.waypoints[k];
     if (w.mode == MsoMode::kMec) {
       ++mec_south;
-      EXPECT_LT(std::abs(w.position.x), 1200) << "MEC far from the island at waypoint " << k;
+      EXPECT_LT(std::abs(w.position.east_m), 1200) << "MEC far from the island at waypoint " << k;
       EXPECT_LT(w.ttg_s, 630) << k;
     }
   }
@@ -159,8 +159,8 @@ TEST(Level2OptimizerTest, DeterministicForASeedAndIndependentOfThreads) {
       const auto& wa = a->alternatives[i].waypoints[k];
       for (const auto* other :
            {&b->alternatives[i].waypoints[k], &c->alternatives[i].waypoints[k]}) {
-        EXPECT_EQ(wa.position.x, other->position.x);
-        EXPECT_EQ(wa.position.y, other->position.y);
+        EXPECT_EQ(wa.position.east_m, other->position.east_m);
+        EXPECT_EQ(wa.position.north_m, other->position.north_m);
         EXPECT_EQ(wa.mode, other->mode);
       }
     }
@@ -172,8 +172,8 @@ TEST(Level2OptimizerTest, DeterministicForASeedAndIndependentOfThreads) {
   ASSERT_TRUE(d.ok());
   bool differs = false;
   for (size_t k = 1; k < 20; ++k) {
-    differs |=
-        d->alternatives[1].waypoints[k].position.x != a->alternatives[1].waypoints[k].position.x;
+    differs |= d->alternatives[1].waypoints[k].position.east_m !=
+               a->alternatives[1].waypoints[k].position.east_m;
   }
   EXPECT_TRUE(differs);
 }

@@ -12,23 +12,23 @@ namespace {
 
 constexpr double kMaxExponent = 50.0;
 
-double Cross(Vec2 a, Vec2 b) {
-  return a.x * b.y - a.y * b.x;
+double Cross(EastNorth a, EastNorth b) {
+  return a.east_m * b.north_m - a.north_m * b.east_m;
 }
-Vec2 Sub(Vec2 a, Vec2 b) {
-  return {a.x - b.x, a.y - b.y};
+EastNorth Sub(EastNorth a, EastNorth b) {
+  return {a.east_m - b.east_m, a.north_m - b.north_m};
 }
 
-int Orientation(Vec2 a, Vec2 b, Vec2 c) {
+int Orientation(EastNorth a, EastNorth b, EastNorth c) {
   const double v = Cross(Sub(b, a), Sub(c, a));
   return (v > 0) - (v < 0);
 }
-bool OnSegment(Vec2 a, Vec2 b, Vec2 p) {
-  return std::min(a.x, b.x) <= p.x && p.x <= std::max(a.x, b.x) && std::min(a.y, b.y) <= p.y &&
-         p.y <= std::max(a.y, b.y);
+bool OnSegment(EastNorth a, EastNorth b, EastNorth p) {
+  return std::min(a.east_m, b.east_m) <= p.east_m && p.east_m <= std::max(a.east_m, b.east_m) &&
+         std::min(a.north_m, b.north_m) <= p.north_m && p.north_m <= std::max(a.north_m, b.north_m);
 }
 // Closed segments a-b and c-d share a point.
-bool SegmentsIntersect(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
+bool SegmentsIntersect(EastNorth a, EastNorth b, EastNorth c, EastNorth d) {
   const int o1 = Orientation(a, b, c), o2 = Orientation(a, b, d);
   const int o3 = Orientation(c, d, a), o4 = Orientation(c, d, b);
   if (o1 != o2 && o3 != o4) return true;
@@ -39,7 +39,7 @@ bool SegmentsIntersect(Vec2 a, Vec2 b, Vec2 c, Vec2 d) {
   return false;
 }
 // p inside or on the convex polygon v[0..n).
-bool InConvex(const Vec2* v, int n, Vec2 p) {
+bool InConvex(const EastNorth* v, int n, EastNorth p) {
   bool pos = false, neg = false;
   for (int i = 0; i < n; ++i) {
     const double c = Cross(Sub(v[(i + 1) % n], v[i]), Sub(p, v[i]));
@@ -48,9 +48,9 @@ bool InConvex(const Vec2* v, int n, Vec2 p) {
   }
   return !(pos && neg);
 }
-double BoxDistance(Vec2 p, Vec2 lo, Vec2 hi) {
-  const double dx = std::max({lo.x - p.x, 0.0, p.x - hi.x});
-  const double dy = std::max({lo.y - p.y, 0.0, p.y - hi.y});
+double BoxDistance(EastNorth p, EastNorth lo, EastNorth hi) {
+  const double dx = std::max({lo.east_m - p.east_m, 0.0, p.east_m - hi.east_m});
+  const double dy = std::max({lo.north_m - p.north_m, 0.0, p.north_m - hi.north_m});
   return std::sqrt(dx * dx + dy * dy);
 }
 
@@ -75,15 +75,16 @@ absl::Status ObstacleFieldOptions::Validate() const {
   return absl::OkStatus();
 }
 
-StatusOr<ObstacleField> ObstacleField::Build(std::vector<ObstaclePolygon> obstacles, Vec2 area_min,
-                                             Vec2 area_max, const ObstacleFieldOptions& options) {
+StatusOr<ObstacleField> ObstacleField::Build(std::vector<ObstaclePolygon> obstacles,
+                                             EastNorth area_min, EastNorth area_max,
+                                             const ObstacleFieldOptions& options) {
   SEAPLAN_RETURN_IF_ERROR(options.Validate());
-  if (!(area_max.x > area_min.x && area_max.y > area_min.y) ||
-      !std::isfinite(area_min.x + area_min.y + area_max.x + area_max.y)) {
+  if (!(area_max.east_m > area_min.east_m && area_max.north_m > area_min.north_m) ||
+      !std::isfinite(area_min.east_m + area_min.north_m + area_max.east_m + area_max.north_m)) {
     return absl::InvalidArgumentError("obstacle field area must be a non-empty finite box");
   }
-  const double width = area_max.x - area_min.x + 2 * options.margin_m;
-  const double height = area_max.y - area_min.y + 2 * options.margin_m;
+  const double width = area_max.east_m - area_min.east_m + 2 * options.margin_m;
+  const double height = area_max.north_m - area_min.north_m + 2 * options.margin_m;
   const double cells = (width / options.cell_m + 1) * (height / options.cell_m + 1);
   if (cells > 4e6) {
     return absl::ResourceExhaustedError(absl::StrCat(
@@ -100,8 +101,8 @@ StatusOr<ObstacleField> ObstacleField::Build(std::vector<ObstaclePolygon> obstac
   f.hull_inner_radius_ = std::min(half_b, half_l / std::sqrt(2.0));
   f.obstacle_edge_begin_.push_back(0);
   for (size_t i = 0; i < obstacles.size(); ++i) {
-    Vec2 lo{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
-    Vec2 hi{-lo.x, -lo.y};
+    EastNorth lo{std::numeric_limits<double>::infinity(), std::numeric_limits<double>::infinity()};
+    EastNorth hi{-lo.east_m, -lo.north_m};
     for (const auto& ring : obstacles[i].rings) {
       const size_t n = ring.size();
       if (n < 3) {
@@ -109,16 +110,16 @@ StatusOr<ObstacleField> ObstacleField::Build(std::vector<ObstaclePolygon> obstac
             absl::StrCat("obstacle ", i, " has a ring with ", n, " points (need >= 3)"));
       }
       for (size_t k = 0; k < n; ++k) {
-        const Vec2 a = ring[k], b = ring[(k + 1) % n];
-        if (!std::isfinite(a.x) || !std::isfinite(a.y)) {
+        const EastNorth a = ring[k], b = ring[(k + 1) % n];
+        if (!std::isfinite(a.east_m) || !std::isfinite(a.north_m)) {
           return absl::InvalidArgumentError(
               absl::StrCat("obstacle ", i, " has a non-finite vertex"));
         }
-        const Vec2 d = Sub(b, a);
-        const double len2 = d.x * d.x + d.y * d.y;
+        const EastNorth d = Sub(b, a);
+        const double len2 = d.east_m * d.east_m + d.north_m * d.north_m;
         f.edges_.push_back({a, d, len2 > 0 ? 1.0 / len2 : 0.0});
-        lo = {std::min(lo.x, a.x), std::min(lo.y, a.y)};
-        hi = {std::max(hi.x, a.x), std::max(hi.y, a.y)};
+        lo = {std::min(lo.east_m, a.east_m), std::min(lo.north_m, a.north_m)};
+        hi = {std::max(hi.east_m, a.east_m), std::max(hi.north_m, a.north_m)};
       }
     }
     if (f.edges_.size() == static_cast<size_t>(f.obstacle_edge_begin_.back())) {
@@ -145,7 +146,7 @@ StatusOr<ObstacleField> ObstacleField::Build(std::vector<ObstaclePolygon> obstac
   // edges), not O(cells x edges).
   f.cell_ = options.cell_m;
   f.inv_cell_ = 1.0 / options.cell_m;
-  f.grid_origin_ = {area_min.x - options.margin_m, area_min.y - options.margin_m};
+  f.grid_origin_ = {area_min.east_m - options.margin_m, area_min.north_m - options.margin_m};
   f.nx_ = static_cast<int>(std::ceil(width / options.cell_m));
   f.ny_ = static_cast<int>(std::ceil(height / options.cell_m));
   const double hd = options.cell_m * std::sqrt(0.5);
@@ -165,28 +166,30 @@ StatusOr<ObstacleField> ObstacleField::Build(std::vector<ObstaclePolygon> obstac
   std::vector<double> crossings, d2, dc2;
   std::vector<int32_t> block_edges;
   auto centre = [&](int ix, int iy) {
-    return Vec2{f.grid_origin_.x + (ix + 0.5) * f.cell_, f.grid_origin_.y + (iy + 0.5) * f.cell_};
+    return EastNorth{f.grid_origin_.east_m + (ix + 0.5) * f.cell_,
+                     f.grid_origin_.north_m + (iy + 0.5) * f.cell_};
   };
   for (int i = 0; i < f.obstacle_count(); ++i) {
     const int eb = f.obstacle_edge_begin_[i], ee = f.obstacle_edge_begin_[i + 1];
-    const Vec2 lo = f.obstacle_box_min_[i], hi = f.obstacle_box_max_[i];
+    const EastNorth lo = f.obstacle_box_min_[i], hi = f.obstacle_box_max_[i];
     // Even-odd inside flags of the cell centres, one scanline per row.
     std::fill(inside_flag.begin(), inside_flag.end(), 0);
     for (int iy = 0; iy < f.ny_; ++iy) {
-      const double y = centre(0, iy).y;
-      if (y < lo.y || y > hi.y) continue;
+      const double y = centre(0, iy).north_m;
+      if (y < lo.north_m || y > hi.north_m) continue;
       crossings.clear();
       for (int k = eb; k < ee; ++k) {
         const Edge& e = f.edges_[k];
-        const double by = e.a.y + e.d.y;
-        if ((e.a.y > y) != (by > y)) crossings.push_back(e.a.x + (y - e.a.y) * e.d.x / e.d.y);
+        const double by = e.a.north_m + e.d.north_m;
+        if ((e.a.north_m > y) != (by > y))
+          crossings.push_back(e.a.east_m + (y - e.a.north_m) * e.d.east_m / e.d.north_m);
       }
       std::sort(crossings.begin(), crossings.end());
       // Centre x is inside when an odd number of crossings lie to its right
-      // (PointInObstacle's rule: p.x < crossing).
+      // (PointInObstacle's rule: p.east_m < crossing).
       size_t next = 0;
       for (int ix = 0; ix < f.nx_; ++ix) {
-        const double x = centre(ix, 0).x;
+        const double x = centre(ix, 0).east_m;
         while (next < crossings.size() && crossings[next] <= x) ++next;
         inside_flag[static_cast<size_t>(iy) * f.nx_ + ix] = ((crossings.size() - next) % 2) == 1;
       }
@@ -194,8 +197,8 @@ StatusOr<ObstacleField> ObstacleField::Build(std::vector<ObstaclePolygon> obstac
     for (int by0 = 0; by0 < f.ny_; by0 += kBlock) {
       for (int bx0 = 0; bx0 < f.nx_; bx0 += kBlock) {
         const int bx1 = std::min(bx0 + kBlock, f.nx_), by1 = std::min(by0 + kBlock, f.ny_);
-        const Vec2 bc{f.grid_origin_.x + (bx0 + kBlock * 0.5) * f.cell_,
-                      f.grid_origin_.y + (by0 + kBlock * 0.5) * f.cell_};
+        const EastNorth bc{f.grid_origin_.east_m + (bx0 + kBlock * 0.5) * f.cell_,
+                           f.grid_origin_.north_m + (by0 + kBlock * 0.5) * f.cell_};
         const double bd = BoxDistance(bc, lo, hi);
         if (bd - big_h - hd >= cutoff) {  // centres outside the box: outside
           for (int iy = by0; iy < by1; ++iy) {
@@ -237,7 +240,7 @@ StatusOr<ObstacleField> ObstacleField::Build(std::vector<ObstaclePolygon> obstac
               }
               continue;
             }
-            const Vec2 c = centre(ix, iy);
+            const EastNorth c = centre(ix, iy);
             d2.resize(block_edges.size());
             double cmin2 = std::numeric_limits<double>::infinity();
             for (size_t j = 0; j < block_edges.size(); ++j) {
@@ -291,28 +294,28 @@ StatusOr<ObstacleField> ObstacleField::Build(std::vector<ObstaclePolygon> obstac
   return f;
 }
 
-double ObstacleField::EdgeDistance2(const Edge& e, Vec2 p) const {
-  const double px = p.x - e.a.x, py = p.y - e.a.y;
-  double t = (px * e.d.x + py * e.d.y) * e.inv_len2;
+double ObstacleField::EdgeDistance2(const Edge& e, EastNorth p) const {
+  const double px = p.east_m - e.a.east_m, py = p.north_m - e.a.north_m;
+  double t = (px * e.d.east_m + py * e.d.north_m) * e.inv_len2;
   t = std::clamp(t, 0.0, 1.0);
-  const double dx = px - t * e.d.x, dy = py - t * e.d.y;
+  const double dx = px - t * e.d.east_m, dy = py - t * e.d.north_m;
   return dx * dx + dy * dy;
 }
 
-bool ObstacleField::PointInObstacle(int obstacle, Vec2 p) const {
+bool ObstacleField::PointInObstacle(int obstacle, EastNorth p) const {
   bool inside = false;
   for (int k = obstacle_edge_begin_[obstacle]; k < obstacle_edge_begin_[obstacle + 1]; ++k) {
     const Edge& e = edges_[k];
-    const double by = e.a.y + e.d.y;
-    if ((e.a.y > p.y) != (by > p.y)) {
-      const double x = e.a.x + (p.y - e.a.y) * e.d.x / e.d.y;
-      if (p.x < x) inside = !inside;
+    const double by = e.a.north_m + e.d.north_m;
+    if ((e.a.north_m > p.north_m) != (by > p.north_m)) {
+      const double x = e.a.east_m + (p.north_m - e.a.north_m) * e.d.east_m / e.d.north_m;
+      if (p.east_m < x) inside = !inside;
     }
   }
   return inside;
 }
 
-double ObstacleField::ObstacleDistanceBruteForce(int obstacle, Vec2 p) const {
+double ObstacleField::ObstacleDistanceBruteForce(int obstacle, EastNorth p) const {
   double min2 = std::numeric_limits<double>::infinity();
   for (int k = obstacle_edge_begin_[obstacle]; k < obstacle_edge_begin_[obstacle + 1]; ++k) {
     min2 = std::min(min2, EdgeDistance2(edges_[k], p));
@@ -320,14 +323,15 @@ double ObstacleField::ObstacleDistanceBruteForce(int obstacle, Vec2 p) const {
   return std::sqrt(min2);
 }
 
-const ObstacleField::Cell* ObstacleField::CellAt(Vec2 p) const {
-  const double fx = (p.x - grid_origin_.x) * inv_cell_, fy = (p.y - grid_origin_.y) * inv_cell_;
+const ObstacleField::Cell* ObstacleField::CellAt(EastNorth p) const {
+  const double fx = (p.east_m - grid_origin_.east_m) * inv_cell_,
+               fy = (p.north_m - grid_origin_.north_m) * inv_cell_;
   if (!(fx >= 0 && fy >= 0 && fx < nx_ && fy < ny_)) return nullptr;
   return &cells_[static_cast<size_t>(static_cast<int>(fy)) * nx_ + static_cast<int>(fx)];
 }
 
 // Defined here, before its two hot callers, so it is inlined into both.
-double ObstacleField::EntrySignedDistance(const CellObstacle& entry, Vec2 p) const {
+double ObstacleField::EntrySignedDistance(const CellObstacle& entry, EastNorth p) const {
   if (entry.inside == 2) return -deep_inside_m_;
   double min2 = std::numeric_limits<double>::infinity();
   for (int32_t k = entry.cand_begin; k < entry.cand_end; ++k) {
@@ -338,7 +342,7 @@ double ObstacleField::EntrySignedDistance(const CellObstacle& entry, Vec2 p) con
   return inside ? -d : d;
 }
 
-double ObstacleField::SumExpDistance(Vec2 p, double zeta) const {
+double ObstacleField::SumExpDistance(EastNorth p, double zeta) const {
   const Cell* cell = CellAt(p);
   if (cell == nullptr) return SumExpDistanceBruteForce(p, zeta);
   double sum = 0.0;
@@ -348,7 +352,7 @@ double ObstacleField::SumExpDistance(Vec2 p, double zeta) const {
   return sum;
 }
 
-double ObstacleField::SumExpDistanceBruteForce(Vec2 p, double zeta) const {
+double ObstacleField::SumExpDistanceBruteForce(EastNorth p, double zeta) const {
   double sum = 0.0;
   for (int i = 0; i < obstacle_count(); ++i) {
     double d = ObstacleDistanceBruteForce(i, p);
@@ -358,7 +362,7 @@ double ObstacleField::SumExpDistanceBruteForce(Vec2 p, double zeta) const {
   return sum;
 }
 
-double ObstacleField::SignedDistance(Vec2 p) const {
+double ObstacleField::SignedDistance(EastNorth p) const {
   const Cell* cell = CellAt(p);
   if (cell == nullptr) return SignedDistanceBruteForce(p);
   double best = std::numeric_limits<double>::infinity();
@@ -369,7 +373,7 @@ double ObstacleField::SignedDistance(Vec2 p) const {
   return best;
 }
 
-double ObstacleField::SignedDistanceBruteForce(Vec2 p) const {
+double ObstacleField::SignedDistanceBruteForce(EastNorth p) const {
   double best = std::numeric_limits<double>::infinity();
   for (int i = 0; i < obstacle_count(); ++i) {
     double d = ObstacleDistanceBruteForce(i, p);
@@ -379,11 +383,11 @@ double ObstacleField::SignedDistanceBruteForce(Vec2 p) const {
   return best;
 }
 
-bool ObstacleField::Inside(Vec2 p) const {
+bool ObstacleField::Inside(EastNorth p) const {
   return SignedDistance(p) <= 0.0;
 }
 
-void ObstacleField::HullVertices(Vec2 c, double heading_rad, Vec2 out[5]) const {
+void ObstacleField::HullVertices(EastNorth c, double heading_rad, EastNorth out[5]) const {
   const double half_l = options_.hull.length_m / 2, half_b = options_.hull.beam_m / 2;
   const double fx = std::sin(heading_rad), fy = std::cos(heading_rad);  // forward
   const double sx = fy, sy = -fx;                                       // starboard
@@ -393,14 +397,15 @@ void ObstacleField::HullVertices(Vec2 c, double heading_rad, Vec2 out[5]) const 
                             {half_l - half_b, half_b},
                             {-half_l, half_b}};
   for (int i = 0; i < 5; ++i) {
-    out[i] = {c.x + pts[i][0] * fx + pts[i][1] * sx, c.y + pts[i][0] * fy + pts[i][1] * sy};
+    out[i] = {c.east_m + pts[i][0] * fx + pts[i][1] * sx,
+              c.north_m + pts[i][0] * fy + pts[i][1] * sy};
   }
 }
 
-bool ObstacleField::HullHitsEdges(const Vec2 hull[5], const int32_t* edges, int n) const {
+bool ObstacleField::HullHitsEdges(const EastNorth hull[5], const int32_t* edges, int n) const {
   for (int j = 0; j < n; ++j) {
     const Edge& e = edges_[edges[j]];
-    const Vec2 b{e.a.x + e.d.x, e.a.y + e.d.y};
+    const EastNorth b{e.a.east_m + e.d.east_m, e.a.north_m + e.d.north_m};
     // An obstacle ring lying wholly inside the hull has its vertices inside.
     if (InConvex(hull, 5, e.a)) return true;
     for (int i = 0; i < 5; ++i) {
@@ -410,34 +415,35 @@ bool ObstacleField::HullHitsEdges(const Vec2 hull[5], const int32_t* edges, int 
   return false;
 }
 
-bool ObstacleField::HullHits(Vec2 centre, double heading_rad) const {
+bool ObstacleField::HullHits(EastNorth centre, double heading_rad) const {
   const Cell* cell = CellAt(centre);
   if (cell == nullptr) return HullHitsBruteForce(centre, heading_rad);
   if (cell->clear_lb_m > hull_outer_radius_) return false;
   const double sd = SignedDistance(centre);
   if (sd <= hull_inner_radius_) return true;  // centre inside, or the inscribed disc touches
   if (sd > hull_outer_radius_) return false;
-  Vec2 hull[5];
+  EastNorth hull[5];
   HullVertices(centre, heading_rad, hull);
   return HullHitsEdges(hull, hull_candidates_.data() + cell->hull_begin,
                        cell->hull_end - cell->hull_begin);
 }
 
-bool ObstacleField::HullHitsBruteForce(Vec2 centre, double heading_rad) const {
+bool ObstacleField::HullHitsBruteForce(EastNorth centre, double heading_rad) const {
   for (int i = 0; i < obstacle_count(); ++i) {
     if (PointInObstacle(i, centre)) return true;
   }
-  Vec2 hull[5];
+  EastNorth hull[5];
   HullVertices(centre, heading_rad, hull);
   return HullHitsEdges(hull, all_edges_.data(), static_cast<int>(all_edges_.size()));
 }
 
-bool ObstacleField::SegmentHits(Vec2 a, Vec2 b) const {
+bool ObstacleField::SegmentHits(EastNorth a, EastNorth b) const {
   for (int i = 0; i < obstacle_count(); ++i) {
     if (PointInObstacle(i, a)) return true;
   }
   for (const Edge& e : edges_) {
-    if (SegmentsIntersect(a, b, e.a, {e.a.x + e.d.x, e.a.y + e.d.y})) return true;
+    if (SegmentsIntersect(a, b, e.a, {e.a.east_m + e.d.east_m, e.a.north_m + e.d.north_m}))
+      return true;
   }
   return false;
 }

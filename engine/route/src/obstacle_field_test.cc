@@ -8,18 +8,21 @@
 namespace seaplan::route {
 namespace {
 
-ObstaclePolygon Circle(Vec2 c, double r, int n = 48) {
+ObstaclePolygon Circle(EastNorth c, double r, int n = 48) {
   ObstaclePolygon p;
   p.rings.emplace_back();
   for (int i = 0; i < n; ++i) {
     const double a = 2 * M_PI * i / n;
-    p.rings[0].push_back({c.x + r * std::cos(a), c.y + r * std::sin(a)});
+    p.rings[0].push_back({c.east_m + r * std::cos(a), c.north_m + r * std::sin(a)});
   }
   return p;
 }
 
-ObstaclePolygon Square(Vec2 lo, Vec2 hi) {
-  return ObstaclePolygon{{{{lo.x, lo.y}, {hi.x, lo.y}, {hi.x, hi.y}, {lo.x, hi.y}}}};
+ObstaclePolygon Square(EastNorth lo, EastNorth hi) {
+  return ObstaclePolygon{{{{lo.east_m, lo.north_m},
+                           {hi.east_m, lo.north_m},
+                           {hi.east_m, hi.north_m},
+                           {lo.east_m, hi.north_m}}}};
 }
 
 ObstacleField MakeField() {
@@ -52,16 +55,16 @@ TEST(ObstacleFieldTest, GridQueriesEqualBruteForceEverywhere) {
   std::uniform_real_distribution<double> u(-1700, 1700), h(-M_PI, M_PI);
   int hits = 0;
   for (int i = 0; i < 20000; ++i) {
-    const Vec2 p{u(rng), u(rng)};
+    const EastNorth p{u(rng), u(rng)};
     const double psi = h(rng);
     const double sd = f.SignedDistanceBruteForce(p);
     if (std::abs(sd) < 700) {
-      EXPECT_NEAR(f.SignedDistance(p), sd, 1e-9) << p.x << "," << p.y;
+      EXPECT_NEAR(f.SignedDistance(p), sd, 1e-9) << p.east_m << "," << p.north_m;
     }
     EXPECT_NEAR(f.SumExpDistance(p, 0.04), f.SumExpDistanceBruteForce(p, 0.04),
                 1e-9 * (1 + f.SumExpDistanceBruteForce(p, 0.04)));
     const bool hit = f.HullHitsBruteForce(p, psi);
-    EXPECT_EQ(f.HullHits(p, psi), hit) << p.x << "," << p.y << " psi " << psi;
+    EXPECT_EQ(f.HullHits(p, psi), hit) << p.east_m << "," << p.north_m << " psi " << psi;
     hits += hit;
   }
   EXPECT_GT(hits, 1000);  // the test exercises both answers
@@ -83,12 +86,12 @@ TEST(ObstacleFieldTest, LargeJaggedCoastEqualsBruteForceAndDeepInsideIsInside) {
   std::mt19937 rng(11);
   std::uniform_real_distribution<double> u(-4500, 4500), h(-M_PI, M_PI);
   for (int i = 0; i < 20000; ++i) {
-    const Vec2 p{u(rng), u(rng)};
+    const EastNorth p{u(rng), u(rng)};
     const double sd = f.SignedDistanceBruteForce(p), psi = h(rng);
-    EXPECT_EQ(f.HullHits(p, psi), f.HullHitsBruteForce(p, psi)) << p.x << "," << p.y;
-    EXPECT_EQ(f.Inside(p), sd <= 0.0) << p.x << "," << p.y;
+    EXPECT_EQ(f.HullHits(p, psi), f.HullHitsBruteForce(p, psi)) << p.east_m << "," << p.north_m;
+    EXPECT_EQ(f.Inside(p), sd <= 0.0) << p.east_m << "," << p.north_m;
     if (std::abs(sd) < 700) {
-      EXPECT_NEAR(f.SignedDistance(p), sd, 1e-9) << p.x << "," << p.y;
+      EXPECT_NEAR(f.SignedDistance(p), sd, 1e-9) << p.east_m << "," << p.north_m;
       EXPECT_NEAR(f.SumExpDistance(p, 0.04), f.SumExpDistanceBruteForce(p, 0.04), 1e-9);
     }
   }

@@ -16,11 +16,11 @@ namespace {
 
 constexpr double kDegToRad = M_PI / 180.0;
 
-Vec2 ToVec(chart::LocalPoint p) {
-  return {p.x_m, p.y_m};
+EastNorth ToVec(EastNorth p) {
+  return {p.east_m, p.north_m};
 }
-chart::LocalPoint ToLocal(Vec2 p) {
-  return {p.x, p.y};
+EastNorth ToLocal(EastNorth p) {
+  return {p.east_m, p.north_m};
 }
 
 std::vector<ObstaclePolygon> ToObstacles(const std::vector<chart::Polygon>& polygons) {
@@ -30,7 +30,7 @@ std::vector<ObstaclePolygon> ToObstacles(const std::vector<chart::Polygon>& poly
     ObstaclePolygon o;
     auto add = [&](const chart::Ring& ring) {
       if (ring.size() < 3) return;
-      std::vector<Vec2> r;
+      std::vector<EastNorth> r;
       r.reserve(ring.size());
       for (const auto& p : ring) r.push_back(ToVec(p));
       o.rings.push_back(std::move(r));
@@ -45,20 +45,20 @@ std::vector<ObstaclePolygon> ToObstacles(const std::vector<chart::Polygon>& poly
 // Where the nearest navigable point is, for an endpoint the route cannot
 // start or end at: "; the nearest navigable point is 38.98012,-76.37955,
 // 212 m away" (or why there is none).
-std::string NearestNavigableHint(const chart::ObstacleMap& map, chart::LocalPoint p) {
+std::string NearestNavigableHint(const chart::ObstacleMap& map, EastNorth p) {
   chart::ObstacleQuery query(map);
-  const std::optional<chart::LocalPoint> q = query.NearestNavigable(p);
+  const std::optional<EastNorth> q = query.NearestNavigable(p);
   if (!q) return "; the chart has no navigable water near it";
-  const double distance_m = std::hypot(q->x_m - p.x_m, q->y_m - p.y_m);
+  const double distance_m = std::hypot(q->east_m - p.east_m, q->north_m - p.north_m);
   return absl::StrCat("; the nearest navigable point is ",
                       chart::FormatLatLon(map.frame().ToLatLon(*q)), ", ",
                       static_cast<int64_t>(std::lround(distance_m)), " m away");
 }
 
 // Positions in the user's latitude/longitude (the local frame is internal).
-absl::Status CheckEndpoint(const chart::ObstacleMap& map, const ObstacleField& field,
-                           chart::LocalPoint p, const char* name) {
-  if (!std::isfinite(p.x_m) || !std::isfinite(p.y_m)) {
+absl::Status CheckEndpoint(const chart::ObstacleMap& map, const ObstacleField& field, EastNorth p,
+                           const char* name) {
+  if (!std::isfinite(p.east_m) || !std::isfinite(p.north_m)) {
     return absl::InvalidArgumentError(absl::StrCat(name, " is not a finite position"));
   }
   const std::string where = chart::FormatLatLon(map.frame().ToLatLon(p));
@@ -199,8 +199,8 @@ StatusOr<RoutePlanner> RoutePlanner::Create(std::shared_ptr<const chart::Obstacl
   ObstacleFieldOptions fo;
   // Large charts (a 1:80 000 ENC cell is ~50 x 80 km): coarser cells keep
   // the grid near 250k cells; queries stay exact, candidate lists get longer.
-  const double area_m2 =
-      (cov.max.x_m - cov.min.x_m + 2 * fo.margin_m) * (cov.max.y_m - cov.min.y_m + 2 * fo.margin_m);
+  const double area_m2 = (cov.max.east_m - cov.min.east_m + 2 * fo.margin_m) *
+                         (cov.max.north_m - cov.min.north_m + 2 * fo.margin_m);
   fo.cell_m = std::max(options.field_cell_m, std::sqrt(std::max(area_m2, 0.0) / 250e3));
   fo.far_cutoff_m = std::min(3000.0, 30.0 / options.level2.weights.zeta1_per_m);
   fo.hull = {ship.hull.length_m, ship.hull.beam_m};
@@ -219,8 +219,8 @@ StatusOr<RouteResult> RoutePlanner::Plan(chart::LatLon start, chart::LatLon goal
   return Plan(map_->frame().ToLocal(start), map_->frame().ToLocal(goal), env, stop);
 }
 
-StatusOr<RouteResult> RoutePlanner::Plan(chart::LocalPoint start, chart::LocalPoint goal,
-                                         const Environment& env, const StopToken& stop) const {
+StatusOr<RouteResult> RoutePlanner::Plan(EastNorth start, EastNorth goal, const Environment& env,
+                                         const StopToken& stop) const {
   SEAPLAN_RETURN_IF_ERROR(env.Validate());
   SEAPLAN_RETURN_IF_ERROR(CheckEndpoint(*map_, *field_, start, "start"));
   SEAPLAN_RETURN_IF_ERROR(CheckEndpoint(*map_, *field_, goal, "goal"));
@@ -243,7 +243,7 @@ StatusOr<RouteResult> RoutePlanner::Plan(chart::LocalPoint start, chart::LocalPo
   problem.environment = ToShipEnvironment(env);
   const size_t count = std::min<size_t>(options_.max_alternatives, level1->alternatives.size());
   for (size_t a = 0; a < count; ++a) {
-    std::vector<Vec2> line;
+    std::vector<EastNorth> line;
     for (const auto& p : level1->alternatives[a].waypoints) line.push_back(ToVec(p));
     problem.alternatives.push_back(std::move(line));
   }
@@ -276,8 +276,8 @@ StatusOr<RouteResult> RoutePlanner::Plan(chart::LocalPoint start, chart::LocalPo
       rw.grounding_probability = wr.grounding_probability[m];
       rw.expected_grounding_cost = w.grounding_cost * rw.grounding_probability;
       if (k + 1 < src.waypoints.size()) {
-        const Vec2 a0 = wr.position, a1 = src.waypoints[k + 1].position;
-        rw.segment_length_m = std::hypot(a1.x - a0.x, a1.y - a0.y);
+        const EastNorth a0 = wr.position, a1 = src.waypoints[k + 1].position;
+        rw.segment_length_m = std::hypot(a1.east_m - a0.east_m, a1.north_m - a0.north_m);
         rw.segment_time_s = rw.segment_length_m / speed_mps_[m];
         rw.segment_fuel_kg = rw.segment_time_s * fuel_kgps_[m];
         alt.expected_grounding_cost += rw.expected_grounding_cost;
@@ -296,7 +296,7 @@ StatusOr<RouteResult> RoutePlanner::Plan(chart::LocalPoint start, chart::LocalPo
   {
     std::unique_ptr<chart::ObstacleQuery> query = queries_->Take();
     for (RouteAlternative& alt : out.alternatives) {
-      std::vector<chart::LocalPoint> line;
+      std::vector<EastNorth> line;
       line.reserve(alt.waypoints.size());
       for (const RouteWaypoint& wp : alt.waypoints) line.push_back(wp.local);
       const std::optional<chart::Clearance> c = query->UnbufferedClearance(line);
@@ -346,10 +346,10 @@ StatusOr<std::vector<PointRisk>> RoutePlanner::EstimateRisk(const std::vector<Tr
   SEAPLAN_RETURN_IF_ERROR(env.Validate());
   const ship::Environment senv = ToShipEnvironment(env);
   DriftingGroundingAdapter grounding(*risk_model_);
-  std::vector<Vec2> local;
+  std::vector<EastNorth> local;
   for (size_t i = 0; i < track.size(); ++i) {
-    const chart::LocalPoint p = map_->frame().ToLocal(track[i].latlon);
-    if (!std::isfinite(p.x_m) || !std::isfinite(p.y_m)) {
+    const EastNorth p = map_->frame().ToLocal(track[i].latlon);
+    if (!std::isfinite(p.east_m) || !std::isfinite(p.north_m)) {
       return absl::InvalidArgumentError(
           absl::StrCat("track point ", i, " is not a valid position"));
     }
@@ -362,9 +362,9 @@ StatusOr<std::vector<PointRisk>> RoutePlanner::EstimateRisk(const std::vector<Tr
     if (t.heading_deg) {
       heading = *t.heading_deg * kDegToRad;
     } else if (track.size() > 1) {
-      const Vec2 a = local[i + 1 < local.size() ? i : i - 1],
-                 b = local[i + 1 < local.size() ? i + 1 : i];
-      heading = std::atan2(b.x - a.x, b.y - a.y);
+      const EastNorth a = local[i + 1 < local.size() ? i : i - 1],
+                      b = local[i + 1 < local.size() ? i + 1 : i];
+      heading = std::atan2(b.east_m - a.east_m, b.north_m - a.north_m);
     }
     const double speed = t.speed_mps.value_or(options_.level2.drift_initial_speed_mps);
     if (!(speed >= 0 && speed < 50)) {

@@ -1,5 +1,5 @@
 // The Alesund case of paper 002 on the real chart (CC BY 4.0, (c) Kartverket):
-// /work/shared/enc/alesund, obstacles = chart box minus seabed5m (minimum
+// ../shared/enc/alesund, obstacles = chart box minus seabed5m (minimum
 // depth 5 m), route1.csv's in-chart leg (rows 2 and 3: E 41200 N 6959900 ->
 // E 38000 N 6961100; rows 1 and 4 lie outside the chart box, and the public
 // code also plans between rows 2 and 3), wind 10 m/s from -110 deg and a
@@ -17,9 +17,9 @@
 namespace seaplan::route {
 namespace {
 
-std::vector<chart::LocalPoint> ReadRoute(const std::filesystem::path& path) {
+std::vector<EastNorth> ReadRoute(const std::filesystem::path& path) {
   std::ifstream in(path);
-  std::vector<chart::LocalPoint> pts;
+  std::vector<EastNorth> pts;
   std::string line;
   while (std::getline(in, line)) {
     std::istringstream s(line);
@@ -116,14 +116,15 @@ TEST(RoutePlannerDataTest, StartInsideAnObstacleIsInvalidArgument) {
   ASSERT_TRUE(map.ok()) << map.status();
   // A point on the island's land (shapefile land layer covers it).
   const auto& poly = map->polygons().front().outer;
-  chart::LocalPoint inside{0, 0};
+  EastNorth inside{0, 0};
   for (const auto& p : poly)
-    inside = {inside.x_m + p.x_m / poly.size(), inside.y_m + p.y_m / poly.size()};
+    inside = {inside.east_m + p.east_m / poly.size(), inside.north_m + p.north_m / poly.size()};
   auto planner =
       RoutePlanner::Create(std::shared_ptr<const chart::ObstacleMap>(&*map, [](auto*) {}),
                            ShipParticulars{}, RouteOptions{});
   ASSERT_TRUE(planner.ok());
-  if (!planner->field().Inside({inside.x_m, inside.y_m})) GTEST_SKIP() << "centroid not inside";
+  if (!planner->field().Inside({inside.east_m, inside.north_m}))
+    GTEST_SKIP() << "centroid not inside";
   auto r = planner->Plan(inside, {38000, 6961100}, AlesundWeather());
   EXPECT_EQ(r.status().code(), absl::StatusCode::kInvalidArgument);
   EXPECT_NE(r.status().message().find("inside"), std::string_view::npos);

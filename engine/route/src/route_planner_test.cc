@@ -15,7 +15,7 @@ chart::Polygon Rect(double x0, double y0, double x1, double y1) {
   return chart::Polygon{
       {{kE0 + x0, kN0 + y0}, {kE0 + x1, kN0 + y0}, {kE0 + x1, kN0 + y1}, {kE0 + x0, kN0 + y1}}, {}};
 }
-chart::LocalPoint P(double x, double y) {
+EastNorth P(double x, double y) {
   return {kE0 + x, kN0 + y};
 }
 
@@ -68,7 +68,7 @@ TEST(RoutePlannerTest, PlansTwoAlternativesAndChoosesTheSaferOne) {
   EXPECT_LE(chosen.expected_cost, other.expected_cost);
   // The chosen route passes north of the island: drifting away from it.
   double mid_y = 0;
-  for (const auto& w : chosen.waypoints) mid_y += (w.local.y_m - kN0) / chosen.waypoints.size();
+  for (const auto& w : chosen.waypoints) mid_y += (w.local.north_m - kN0) / chosen.waypoints.size();
   EXPECT_GT(mid_y, 0.0);
   // The south route's drift hits the island: higher P(G) somewhere.
   double max_other = 0, max_chosen = 0;
@@ -79,9 +79,9 @@ TEST(RoutePlannerTest, PlansTwoAlternativesAndChoosesTheSaferOne) {
   double length = 0, time = 0, fuel = 0;
   for (size_t k = 0; k < chosen.waypoints.size(); ++k) {
     const auto& w = chosen.waypoints[k];
-    const chart::LocalPoint back = map->frame().ToLocal(w.latlon);
-    EXPECT_NEAR(back.x_m, w.local.x_m, 1e-3);
-    EXPECT_NEAR(back.y_m, w.local.y_m, 1e-3);
+    const EastNorth back = map->frame().ToLocal(w.latlon);
+    EXPECT_NEAR(back.east_m, w.local.east_m, 1e-3);
+    EXPECT_NEAR(back.north_m, w.local.north_m, 1e-3);
     length += w.segment_length_m;
     time += w.segment_time_s;
     fuel += w.segment_fuel_kg;
@@ -161,8 +161,8 @@ TEST(RoutePlannerTest, RoutesKeepTheSafetyBufferFromTheChartedObstacles) {
     // The clearance is the distance to the island itself (x in [-800, 800],
     // |y| <= 200): no waypoint is closer than it.
     for (const RouteWaypoint& w : alt.waypoints) {
-      const double dx = std::max(0.0, std::abs(w.local.x_m - kE0) - 800.0);
-      const double dy = std::max(0.0, std::abs(w.local.y_m - kN0) - 200.0);
+      const double dx = std::max(0.0, std::abs(w.local.east_m - kE0) - 800.0);
+      const double dy = std::max(0.0, std::abs(w.local.north_m - kN0) - 200.0);
       EXPECT_GE(std::hypot(dx, dy), alt.clearance_m - 1e-6);
     }
   }

@@ -57,14 +57,14 @@ StatusOr<SweepResult> RunRouteSweep(const RoutePlanner& planner, const chart::Ob
                                     const Environment& env, const SweepOptions& options) {
   SEAPLAN_RETURN_IF_ERROR(options.Validate());
   const chart::LocalBox box = map.summary().coverage;
-  const double width = box.max.x_m - box.min.x_m, height = box.max.y_m - box.min.y_m;
+  const double width = box.max.east_m - box.min.east_m, height = box.max.north_m - box.min.north_m;
   const double min_distance = options.min_pair_distance_fraction * std::hypot(width, height);
   PairRng rng(options.seed);
-  auto draw = [&]() -> chart::LocalPoint {
-    return {box.min.x_m + rng.Uniform() * width, box.min.y_m + rng.Uniform() * height};
+  auto draw = [&]() -> EastNorth {
+    return {box.min.east_m + rng.Uniform() * width, box.min.north_m + rng.Uniform() * height};
   };
-  auto navigable = [&](chart::LocalPoint p) {
-    return map.Covers(p) && !planner.field().Inside({p.x_m, p.y_m});
+  auto navigable = [&](EastNorth p) {
+    return map.Covers(p) && !planner.field().Inside({p.east_m, p.north_m});
   };
 
   SweepResult out;
@@ -80,7 +80,8 @@ StatusOr<SweepResult> RunRouteSweep(const RoutePlanner& planner, const chart::Ob
       pair.from = draw();
       pair.to = draw();
       found = navigable(pair.from) && navigable(pair.to) &&
-              std::hypot(pair.to.x_m - pair.from.x_m, pair.to.y_m - pair.from.y_m) >= min_distance;
+              std::hypot(pair.to.east_m - pair.from.east_m, pair.to.north_m - pair.from.north_m) >=
+                  min_distance;
     }
     if (!found) {
       return absl::FailedPreconditionError(
@@ -106,7 +107,7 @@ StatusOr<SweepResult> RunRouteSweep(const RoutePlanner& planner, const chart::Ob
     }
     pair.routed = true;
     ++out.routed;
-    std::vector<chart::LocalPoint> line;
+    std::vector<EastNorth> line;
     for (const RouteWaypoint& w : routed->alternatives[routed->chosen].waypoints) {
       line.push_back(w.local);
     }

@@ -42,8 +42,8 @@ void ExpectEveryConnectedPairRoutedClear(const std::filesystem::path& chart, dou
   EXPECT_EQ(result->within_margin, 0);
   for (const PairOutcome& p : result->pairs) {
     if (!p.level1_connected) continue;
-    EXPECT_TRUE(p.routed) << "(" << p.from.x_m << ", " << p.from.y_m << ") -> (" << p.to.x_m << ", "
-                          << p.to.y_m << "): " << p.error;
+    EXPECT_TRUE(p.routed) << "(" << p.from.east_m << ", " << p.from.north_m << ") -> ("
+                          << p.to.east_m << ", " << p.to.north_m << "): " << p.error;
     if (p.routed) {
       EXPECT_GE(p.clearance_m, result->margin_m - 1e-3);
     }

@@ -55,7 +55,7 @@ void LazySearch::ExtractPath(std::int32_t state, std::vector<Event>* out) const 
 bool LazySearch::SlackAtLeast(const NodeInfo& n, const std::vector<double>& slack) const {
   // Same logical state, so the same window actions in the same order.
   for (int i = 0; i < n.slack_count; ++i) {
-    if (slack_pool_[static_cast<std::size_t>(n.slack_begin + i)] <
+    if (slack_pool_[static_cast<std::size_t>(n.slack_begin) + static_cast<std::size_t>(i)] <
         slack[static_cast<std::size_t>(i)] - 1e-9)
       return false;
   }
@@ -64,7 +64,7 @@ bool LazySearch::SlackAtLeast(const NodeInfo& n, const std::vector<double>& slac
 
 bool LazySearch::SlackAtMost(const NodeInfo& n, const std::vector<double>& slack) const {
   for (int i = 0; i < n.slack_count; ++i) {
-    if (slack_pool_[static_cast<std::size_t>(n.slack_begin + i)] >
+    if (slack_pool_[static_cast<std::size_t>(n.slack_begin) + static_cast<std::size_t>(i)] >
         slack[static_cast<std::size_t>(i)] + 1e-9)
       return false;
   }

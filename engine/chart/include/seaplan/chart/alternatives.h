@@ -59,7 +59,7 @@ struct AlternativesOptions {
 };
 
 struct Alternative {
-  std::vector<LocalPoint> waypoints;  // start .. goal
+  std::vector<EastNorth> waypoints;  // start .. goal
   double length_m = 0.0;
 };
 
@@ -75,8 +75,8 @@ struct AlternativesResult {
 // message names which, and the obstacle index) or outside chart coverage;
 // NotFound when no obstacle-free route exists; ResourceExhausted on limits;
 // DeadlineExceeded / Cancelled when options.stop fires.
-StatusOr<AlternativesResult> PlanAlternatives(const ObstacleMap& map, LocalPoint start,
-                                              LocalPoint goal,
+StatusOr<AlternativesResult> PlanAlternatives(const ObstacleMap& map, EastNorth start,
+                                              EastNorth goal,
                                               const AlternativesOptions& options = {});
 
 }  // namespace seaplan::chart

@@ -4,8 +4,8 @@
 // exists), so seaplan_chart itself does not depend on seaplan_risk.
 //
 // Frames: the risk model works in NED (x north, y east); the chart in
-// (x east, y north). A NED point (n, e) is the chart point
-// (origin.x_m + e, origin.y_m + n). With the default origin {0, 0} NED
+// EastNorth (east, north). A NED point (n, e) is the chart point
+// (origin.east_m + e, origin.north_m + n). With the default origin {0, 0} NED
 // coordinates are simply the chart frame's northing/easting.
 //
 // Thread-safety: both methods are const and safe to call concurrently: each
@@ -24,7 +24,7 @@ namespace seaplan::chart {
 
 class ChartGroundingTest final : public risk::GroundingTest {
  public:
-  explicit ChartGroundingTest(std::shared_ptr<const ObstacleMap> map, LocalPoint origin = {});
+  explicit ChartGroundingTest(std::shared_ptr<const ObstacleMap> map, EastNorth origin = {});
 
   bool HullIntersects(const risk::HullPolygon& hull) const override;
   // Exact distance from the hull to the nearest obstacle; +inf without obstacles.
@@ -33,7 +33,7 @@ class ChartGroundingTest final : public risk::GroundingTest {
  private:
   ObstacleQuery& Query() const;
   std::shared_ptr<const ObstacleMap> map_;
-  LocalPoint origin_;
+  EastNorth origin_;
   uint64_t id_;
 };
 

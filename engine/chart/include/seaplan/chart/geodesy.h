@@ -13,6 +13,7 @@
 
 #include <string>
 
+#include "seaplan/common/east_north.h"
 #include "seaplan/common/status.h"
 
 namespace seaplan::chart {
@@ -21,13 +22,6 @@ namespace seaplan::chart {
 struct LatLon {
   double lat_deg = 0.0;
   double lon_deg = 0.0;
-};
-
-// A point in the local metric frame: x east, y north, metres.
-struct LocalPoint {
-  double x_m = 0.0;
-  double y_m = 0.0;
-  friend bool operator==(const LocalPoint&, const LocalPoint&) = default;
 };
 
 // "38.98000,-76.38000": latitude, longitude in degrees (5 decimals, ~1 m),
@@ -54,8 +48,8 @@ class LocalFrame {
 
   LocalFrame() = default;  // WGS84 UTM zone 33N (EPSG:32633).
 
-  LocalPoint ToLocal(LatLon p) const;
-  LatLon ToLatLon(LocalPoint p) const;
+  EastNorth ToLocal(LatLon p) const;
+  LatLon ToLatLon(EastNorth p) const;
 
   int epsg() const { return epsg_; }
   int zone() const { return zone_; }

@@ -12,7 +12,7 @@ namespace seaplan::chart {
 
 struct NamedRoute {
   std::string name;
-  std::vector<LocalPoint> waypoints;  // local frame of the map
+  std::vector<EastNorth> waypoints;  // local frame of the map
 };
 
 // A FeatureCollection: one Polygon feature per obstacle polygon

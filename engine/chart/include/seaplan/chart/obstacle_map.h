@@ -100,7 +100,7 @@ struct ChartOptions {
 double ObstacleGrowthM(const ChartOptions& options);
 
 // A ring of local points, not repeated closing point, any orientation.
-using Ring = std::vector<LocalPoint>;
+using Ring = std::vector<EastNorth>;
 
 // A polygon in the local frame: one outer ring and its holes.
 struct Polygon {
@@ -110,10 +110,11 @@ struct Polygon {
 
 // Axis-aligned box in the local frame.
 struct LocalBox {
-  LocalPoint min;
-  LocalPoint max;
-  bool Contains(LocalPoint p) const {
-    return p.x_m >= min.x_m && p.x_m <= max.x_m && p.y_m >= min.y_m && p.y_m <= max.y_m;
+  EastNorth min;
+  EastNorth max;
+  bool Contains(EastNorth p) const {
+    return p.east_m >= min.east_m && p.east_m <= max.east_m && p.north_m >= min.north_m &&
+           p.north_m <= max.north_m;
   }
 };
 
@@ -167,7 +168,7 @@ class ObstacleMap {
   // Bounding box of all obstacles in the local frame (empty map: coverage).
   LocalBox bounds() const;
   // True when p lies inside the chart's coverage box.
-  bool Covers(LocalPoint p) const { return summary().coverage.Contains(p); }
+  bool Covers(EastNorth p) const { return summary().coverage.Contains(p); }
   // The unioned obstacle geometry as ISO WKB (MultiPolygon, local frame).
   const std::string& wkb() const;
   // True when the map keeps the obstacles as charted, before the safety
@@ -189,7 +190,7 @@ struct NearestObstacle {
   // Distance from the query point to the obstacle, metres; 0 inside;
   // +infinity when the map has no obstacle.
   double distance_m = std::numeric_limits<double>::infinity();
-  LocalPoint nearest;      // closest point on that obstacle (the query point if inside)
+  EastNorth nearest;       // closest point on that obstacle (the query point if inside)
   int polygon_index = -1;  // index into ObstacleMap::polygons()
 };
 
@@ -198,8 +199,8 @@ struct Clearance {
   // Exact (GEOS) distance, metres; 0 when the route touches an obstacle;
   // +infinity when the chart has none.
   double distance_m = std::numeric_limits<double>::infinity();
-  LocalPoint route_point;     // where the route comes closest
-  LocalPoint obstacle_point;  // the obstacle point nearest to it
+  EastNorth route_point;     // where the route comes closest
+  EastNorth obstacle_point;  // the obstacle point nearest to it
 };
 
 // Per-thread query object over an ObstacleMap (which must outlive it).
@@ -215,36 +216,36 @@ class ObstacleQuery {
   ~ObstacleQuery();
 
   // Distance to the nearest obstacle, metres; 0 inside one; +inf if none.
-  double DistanceM(LocalPoint p);
+  double DistanceM(EastNorth p);
   // Like DistanceM outside; inside an obstacle, minus the distance to its
   // boundary (so a barrier cost can push a point out).
-  double SignedDistanceM(LocalPoint p);
-  NearestObstacle Nearest(LocalPoint p);
+  double SignedDistanceM(EastNorth p);
+  NearestObstacle Nearest(EastNorth p);
   // True when p lies in (or on the boundary of) an obstacle.
-  bool Inside(LocalPoint p);
+  bool Inside(EastNorth p);
   // True when segment a-b touches an obstacle.
-  bool SegmentHits(LocalPoint a, LocalPoint b);
+  bool SegmentHits(EastNorth a, EastNorth b);
   // True when the polyline touches an obstacle.
-  bool PolylineHits(std::span<const LocalPoint> polyline);
+  bool PolylineHits(std::span<const EastNorth> polyline);
   // True when the closed polygon `ring` (e.g. a drifting hull footprint)
   // overlaps or touches an obstacle.
-  bool PolygonHits(std::span<const LocalPoint> ring);
+  bool PolygonHits(std::span<const EastNorth> ring);
   // Distance from the closed polygon `ring` to the nearest obstacle, metres;
   // 0 when they touch or overlap; +inf if the map has no obstacle.
-  double PolygonDistanceM(std::span<const LocalPoint> ring);
+  double PolygonDistanceM(std::span<const EastNorth> ring);
   // Clearance of the polyline from the UNBUFFERED obstacles (the map's
   // obstacles are grown by safety_buffer_m plus the simplification
   // tolerance, so a polyline outside them keeps >= safety_buffer_m here).
   // nullopt when the map has no unbuffered obstacles
   // (has_unbuffered_obstacles()). The geometry is read on the first call.
-  std::optional<Clearance> UnbufferedClearance(std::span<const LocalPoint> polyline);
+  std::optional<Clearance> UnbufferedClearance(std::span<const EastNorth> polyline);
   // The navigable point (outside every obstacle, inside the coverage box)
   // nearest to p: p itself when it is navigable; otherwise the nearest point
   // of the navigable water (the coverage box inset by step_out_m, minus the
   // obstacles), stepped up to step_out_m further in. nullopt when there is
   // no navigable water. Builds that water per call (GEOS difference): meant
   // for error messages, not loops.
-  std::optional<LocalPoint> NearestNavigable(LocalPoint p, double step_out_m = 5.0);
+  std::optional<EastNorth> NearestNavigable(EastNorth p, double step_out_m = 5.0);
 
  private:
   struct State;

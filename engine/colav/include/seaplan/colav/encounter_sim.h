@@ -19,15 +19,16 @@ namespace seaplan::colav {
 struct EncounterVessel {
   int id = 0;
   std::string name;
-  Vec2 position;  // at t = 0
-  Vec2 velocity;  // constant
+  EastNorth position;  // at t = 0
+  EastNorth velocity;  // constant
 };
 
 struct EncounterSetup {
-  std::vector<Vec2> path;  // >= 2 points; the ship starts at the first on the first leg's course
+  std::vector<EastNorth>
+      path;  // >= 2 points; the ship starts at the first on the first leg's course
   double cruise_speed_mps = 9.0;
   std::vector<EncounterVessel> traffic;
-  std::vector<std::vector<Vec2>> land;  // outer rings
+  std::vector<std::vector<EastNorth>> land;  // outer rings
   ship::Environment environment;
   double dt_s = 0.5;
   double max_time_s = 3000.0;
@@ -76,7 +77,7 @@ struct UnderWay {
   ship::ShipModel model;
   Autopilot autopilot;
 };
-StatusOr<UnderWay> ShipUnderWay(Vec2 position, double heading_rad, double speed_mps,
+StatusOr<UnderWay> ShipUnderWay(EastNorth position, double heading_rad, double speed_mps,
                                 const ship::Environment& environment = {},
                                 const AutopilotOptions& autopilot = {});
 

@@ -15,27 +15,18 @@
 #include <utility>
 #include <vector>
 
+#include "seaplan/common/east_north.h"
+
 namespace seaplan::colav {
 
-struct Vec2 {
-  double x = 0.0;  // east
-  double y = 0.0;  // north
-  Vec2 operator+(Vec2 o) const { return {x + o.x, y + o.y}; }
-  Vec2 operator-(Vec2 o) const { return {x - o.x, y - o.y}; }
-  Vec2 operator*(double s) const { return {x * s, y * s}; }
-  double Dot(Vec2 o) const { return x * o.x + y * o.y; }
-  double Cross(Vec2 o) const { return x * o.y - y * o.x; }
-  double Norm() const;
-};
-
 // Velocity of `speed_mps` along course `course_rad` (clockwise from north).
-Vec2 VelocityOf(double course_rad, double speed_mps);
-double CourseOf(Vec2 velocity);      // in [0, 2 pi)
-double WrapAngle(double angle_rad);  // to (-pi, pi]
+EastNorth VelocityOf(double course_rad, double speed_mps);
+double CourseOf(EastNorth velocity);  // in [0, 2 pi)
+double WrapAngle(double angle_rad);   // to (-pi, pi]
 
 struct Kinematics {
-  Vec2 position;
-  Vec2 velocity;
+  EastNorth position;
+  EastNorth velocity;
 };
 
 struct Cpa {
@@ -78,17 +69,18 @@ struct PathApproach {
 };
 // With start_speed_mps >= 0 and acceleration_mps2 > 0 the speed ramps from
 // start_speed_mps to speed_mps at that rate (a ship leaving its berth).
-PathApproach PathAheadClosestApproach(const std::vector<Vec2>& path, size_t next, Vec2 position,
-                                      double speed_mps, const Kinematics& other, double horizon_s,
-                                      double step_s = 5.0, double start_speed_mps = -1.0,
+PathApproach PathAheadClosestApproach(const std::vector<EastNorth>& path, size_t next,
+                                      EastNorth position, double speed_mps, const Kinematics& other,
+                                      double horizon_s, double step_s = 5.0,
+                                      double start_speed_mps = -1.0,
                                       double acceleration_mps2 = 0.0);
 
 // Distance from p to the segment a-b.
-double PointSegmentDistance(Vec2 p, Vec2 a, Vec2 b);
+double PointSegmentDistance(EastNorth p, EastNorth a, EastNorth b);
 
 // Smallest distance from the segment a-b to the rings' edges, 0 when it
 // crosses one or starts inside a ring. Scans every edge (tests, small maps).
-double LandClearance(const std::vector<std::vector<Vec2>>& rings, Vec2 a, Vec2 b);
+double LandClearance(const std::vector<std::vector<EastNorth>>& rings, EastNorth a, EastNorth b);
 
 // The land's edges in a uniform grid, for the avoidance's per-candidate
 // checks: a real chart has ~55k land vertices (Trondheim), and scanning them
@@ -97,24 +89,24 @@ double LandClearance(const std::vector<std::vector<Vec2>>& rings, Vec2 a, Vec2 b
 class LandIndex {
  public:
   LandIndex() = default;
-  explicit LandIndex(const std::vector<std::vector<Vec2>>& rings, double cell_m = 250.0);
+  explicit LandIndex(const std::vector<std::vector<EastNorth>>& rings, double cell_m = 250.0);
   bool empty() const { return edges_.empty(); }
   // min(limit_m, distance from the segment a-b to the land's edges); 0 when
   // it crosses an edge. Only edges within limit_m of the segment's bounding
   // box are looked at. (A segment wholly inside land and far from its
   // edges reads as clear: the ship is aground already, not the avoidance's
   // concern.)
-  double Clearance(Vec2 a, Vec2 b, double limit_m) const;
+  double Clearance(EastNorth a, EastNorth b, double limit_m) const;
   // Inside the land (even-odd over every ring): a ray east from p through
   // the grid row of p.
-  bool Inside(Vec2 p) const;
+  bool Inside(EastNorth p) const;
   // Distance from p to the land's edges, at most limit_m; negative inside
   // (how far aground). For the report's closest approach to land.
-  double SignedClearance(Vec2 p, double limit_m) const;
+  double SignedClearance(EastNorth p, double limit_m) const;
 
  private:
   int64_t Key(int64_t i, int64_t j) const { return i * 1'000'003 + j; }
-  std::vector<std::pair<Vec2, Vec2>> edges_;
+  std::vector<std::pair<EastNorth, EastNorth>> edges_;
   std::unordered_map<int64_t, std::vector<int32_t>> cells_;
   double cell_m_ = 250.0;
   int64_t max_i_ = 0;                  // easternmost cell column with an edge

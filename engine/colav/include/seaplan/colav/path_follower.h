@@ -44,26 +44,26 @@ struct PathFollowerOptions {
 class PathFollower {
  public:
   // `path` has >= 2 points, consecutive points distinct.
-  static StatusOr<PathFollower> Create(std::vector<Vec2> path,
+  static StatusOr<PathFollower> Create(std::vector<EastNorth> path,
                                        const PathFollowerOptions& options = {});
 
   // Chooses the leg for `here` (forward only) and returns the desired
   // course [rad, clockwise from north].
-  double Update(Vec2 here);
+  double Update(EastNorth here);
 
   int leg() const { return leg_; }  // index of the leg's first point
   bool on_last_leg() const { return leg_ + 2 == static_cast<int>(path_.size()); }
   // Along-track distance still to go to the current leg's end (< 0: past it).
   double leg_remaining_m() const { return leg_remaining_m_; }
   double cross_track_m() const { return cross_track_m_; }  // > 0: ship to starboard of the leg
-  const std::vector<Vec2>& path() const { return path_; }
+  const std::vector<EastNorth>& path() const { return path_; }
 
  private:
-  PathFollower(std::vector<Vec2> path, const PathFollowerOptions& o);
-  double Along(int leg, Vec2 p) const;       // projection on the leg's line, from its start
-  double DistanceTo(int leg, Vec2 p) const;  // to the segment
+  PathFollower(std::vector<EastNorth> path, const PathFollowerOptions& o);
+  double Along(int leg, EastNorth p) const;       // projection on the leg's line, from its start
+  double DistanceTo(int leg, EastNorth p) const;  // to the segment
 
-  std::vector<Vec2> path_;
+  std::vector<EastNorth> path_;
   std::vector<double> start_distance_;  // path distance at each point
   PathFollowerOptions options_;
   int leg_ = 0;

@@ -51,7 +51,7 @@ struct AvoidanceOptions {
 };
 
 struct AvoidanceDecision {
-  Vec2 velocity;             // the velocity to steer for
+  EastNorth velocity;        // the velocity to steer for
   bool manoeuvring = false;  // differs from the desired velocity because of another vessel
   int vessel_id = -1;        // the most constraining vessel when manoeuvring
   Role role = Role::kNone;
@@ -64,7 +64,7 @@ struct AvoidanceDecision {
 // vessel only passes that leave it on our port side (we go to starboard /
 // astern of it) are allowed; as stand-on the desired velocity is kept unless
 // rule 17 applies. Only vessels with a dangerous CPA are considered.
-AvoidanceDecision ChooseVelocity(const Kinematics& own, Vec2 desired,
+AvoidanceDecision ChooseVelocity(const Kinematics& own, EastNorth desired,
                                  const std::vector<Obstacle>& others,
                                  const AvoidanceOptions& options = {});
 

@@ -49,13 +49,12 @@ inline constexpr double kMaxWayOutM = 500.0;
 // The nearest free point within kMaxWayOutM of `p` (rings every 5 m, 64
 // bearings), 10 m further out when that is free too (clear of the buffer's
 // edge); nullopt when there is none.
-std::optional<chart::LocalPoint> ShortestWayOut(const route::ObstacleField& field,
-                                                chart::LocalPoint p);
+std::optional<EastNorth> ShortestWayOut(const route::ObstacleField& field, EastNorth p);
 
 // Puts `from` in front of `route` (which starts at the way out): one more
 // leg, sailed at the route's mean speed in the mode of its first leg, with
 // the fuel of the first leg scaled by length. No-op on an empty route.
-void PrependWayOut(chart::LocalPoint from, Route* route);
+void PrependWayOut(EastNorth from, Route* route);
 
 // The mission's view of a route alternative: waypoints with their ETA and
 // distance from the start, modes, risk and fuel per segment.

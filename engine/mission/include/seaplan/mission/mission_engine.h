@@ -56,7 +56,7 @@ struct NamedPosition {
 
 // A ship state as reported: a full state, so fuel_fraction 0 is an empty tank.
 struct ShipReport {
-  std::optional<Point> position;  // local frame
+  std::optional<EastNorth> position;  // local frame
   double fuel_fraction = 0.0;
 };
 

@@ -41,7 +41,7 @@
 namespace seaplan::mission {
 
 struct ShipObservation {
-  Point position;
+  EastNorth position;
   std::optional<double> fuel_fraction;  // 0..1
 };
 

@@ -35,8 +35,8 @@ struct RouteRequest {
   std::string action;  // PDDL action name of the move
   std::string from;    // location objects
   std::string to;
-  Point from_position;
-  Point to_position;
+  EastNorth from_position;
+  EastNorth to_position;
   double depart_s = 0.0;  // mission time of departure (scheduled)
 };
 

@@ -41,7 +41,7 @@ struct Feedback {
   std::string task_id;
   int plan_version = 0;
   double mission_time_s = 0.0;
-  std::optional<Point> position;
+  std::optional<EastNorth> position;
   std::optional<double> fuel_fraction;
   std::string detail;
 };

@@ -19,6 +19,6 @@ std::vector<Task> ParseTasks(const RefinedPlan& refined, const LocationTable& lo
                              const MoveRecognition& recognition, int version);
 
 // Distance from `p` to the polyline of `route`, metres (infinity when empty).
-double CrossTrackDistance(const Route& route, Point p);
+double CrossTrackDistance(const Route& route, EastNorth p);
 
 }  // namespace seaplan::mission

@@ -4,7 +4,7 @@
 // ground task, a chart or the wire format; the server translates these to
 // and from seaplan.v1 messages at its edge.
 //
-// Frame: positions are in a local metric frame (x east, y north, metres),
+// Frame: positions are seaplan::EastNorth in a local metric frame (metres),
 // the frame of the mission's chart (seaplan::chart::LocalFrame) or any flat
 // frame the caller chooses; the engine never converts to lat/lon itself.
 #pragma once
@@ -15,28 +15,20 @@
 #include <string_view>
 #include <vector>
 
+#include "seaplan/common/east_north.h"
 #include "seaplan/validate/plan.h"
 
 namespace seaplan::mission {
 
-// A point in the mission's local metric frame.
-struct Point {
-  double x_m = 0.0;  // east
-  double y_m = 0.0;  // north
-  friend bool operator==(const Point&, const Point&) = default;
-};
-
-double Distance(Point a, Point b);
-
 // Positions of the PDDL location objects (names lower case).
-using LocationTable = std::map<std::string, Point, std::less<>>;
+using LocationTable = std::map<std::string, EastNorth, std::less<>>;
 
 // Machinery-system operating mode of a route segment (paper 002).
 enum class MsoMode { kUnspecified, kPto, kMec, kPti };
 std::string_view MsoModeName(MsoMode mode);  // "PTO", "MEC", "PTI", "-"
 
 struct RouteWaypoint {
-  Point position;
+  EastNorth position;
   MsoMode mode = MsoMode::kUnspecified;  // of the segment that starts here
   double eta_s = 0.0;                    // sailing time from the route start
   double distance_from_start_m = 0.0;

@@ -180,6 +180,8 @@ struct Domain {
   const FunctionDecl* FindFunction(std::string_view name) const;
   const Action* FindAction(std::string_view name) const;
   // True when `type` is `ancestor` or a (transitive) subtype of it; every type is an "object".
+  // Builds a TypeHierarchy (type_hierarchy.h) per call: callers asking many
+  // questions build one themselves.
   bool IsSubtype(std::string_view type, std::string_view ancestor) const;
 };
 

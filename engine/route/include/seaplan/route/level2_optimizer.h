@@ -153,12 +153,12 @@ struct Level2Problem {
   ship::ShipParams drift_ship;    // hull dynamics of the drifting ship
   ship::Environment environment;  // wind and current
   // Level-1 alternatives, each a polyline start..goal (>= 2 points).
-  std::vector<std::vector<Vec2>> alternatives;
+  std::vector<std::vector<EastNorth>> alternatives;
 };
 
 struct WaypointResult {
-  Vec2 position;
-  Vec2 reference;
+  EastNorth position;
+  EastNorth reference;
   double heading_rad = 0.0;  // drift heading (r_{k-1} -> r_{k+1})
   // Segment k -> k+1 (unset for the goal, the last waypoint).
   MsoMode mode = MsoMode::kPto;
@@ -201,7 +201,7 @@ struct Level2Result {
 // hull touches an obstacle, or the loop's end time (horizon + step) if none.
 // Exact (per-call simulation). Errors: InvalidArgument for bad ship params.
 StatusOr<double> SimulateTimeToGrounding(const ObstacleField& field, const ship::ShipParams& ship,
-                                         const ship::Environment& env, Vec2 start,
+                                         const ship::Environment& env, EastNorth start,
                                          double heading_rad, double speed_mps, double horizon_s,
                                          double step_s);
 

@@ -12,26 +12,22 @@
 // is also offered as the reference (`*BruteForce`) for tests and the exact
 // baseline of bench/route.
 //
-// Frame: local metric frame, x east, y north (metres), as chart::LocalPoint.
+// Frame: local metric frame, seaplan::EastNorth (metres east, north).
 // Thread-safety: immutable after Build; every const method is thread-safe.
 #pragma once
 
 #include <cstdint>
 #include <vector>
 
+#include "seaplan/common/east_north.h"
 #include "seaplan/common/status.h"
 
 namespace seaplan::route {
 
-struct Vec2 {
-  double x = 0.0;  // east, m
-  double y = 0.0;  // north, m
-};
-
 // One obstacle: rings (outer boundary and holes, any orientation, no repeated
 // closing point). Inside = even-odd rule over all rings.
 struct ObstaclePolygon {
-  std::vector<std::vector<Vec2>> rings;
+  std::vector<std::vector<EastNorth>> rings;
 };
 
 // Ship footprint used for the grounding test: a convex pentagon, stern
@@ -61,8 +57,8 @@ struct ObstacleFieldOptions {
 class ObstacleField {
  public:
   // `area_min`/`area_max`: the box the queries concentrate in (chart coverage).
-  static StatusOr<ObstacleField> Build(std::vector<ObstaclePolygon> obstacles, Vec2 area_min,
-                                       Vec2 area_max, const ObstacleFieldOptions& options);
+  static StatusOr<ObstacleField> Build(std::vector<ObstaclePolygon> obstacles, EastNorth area_min,
+                                       EastNorth area_max, const ObstacleFieldOptions& options);
 
   ObstacleField(ObstacleField&&) noexcept = default;
   ObstacleField& operator=(ObstacleField&&) noexcept = default;
@@ -71,37 +67,37 @@ class ObstacleField {
 
   int obstacle_count() const { return static_cast<int>(obstacle_edge_begin_.size()) - 1; }
   const ObstacleFieldOptions& options() const { return options_; }
-  Vec2 area_min() const { return area_min_; }
-  Vec2 area_max() const { return area_max_; }
+  EastNorth area_min() const { return area_min_; }
+  EastNorth area_max() const { return area_max_; }
 
   // Sum over obstacles of exp(-zeta * d_i(p)), d_i the signed distance to
   // obstacle i (negative inside; the exponent is capped at +50). Obstacles
   // farther than far_cutoff_m are left out (their terms are < exp(-zeta*cutoff));
   // deeper inside an obstacle than the cutoff, d_i is clipped to -cutoff.
-  double SumExpDistance(Vec2 p, double zeta) const;
-  double SumExpDistanceBruteForce(Vec2 p, double zeta) const;
+  double SumExpDistance(EastNorth p, double zeta) const;
+  double SumExpDistanceBruteForce(EastNorth p, double zeta) const;
 
   // Signed distance to the nearest obstacle (negative inside). Beyond
   // far_cutoff_m outside the result is a lower bound; deeper inside than the
   // cutoff it is clipped to -cutoff (the sign is always exact).
-  double SignedDistance(Vec2 p) const;
-  double SignedDistanceBruteForce(Vec2 p) const;
-  bool Inside(Vec2 p) const;
+  double SignedDistance(EastNorth p) const;
+  double SignedDistanceBruteForce(EastNorth p) const;
+  bool Inside(EastNorth p) const;
 
   // True when the hull (options().hull) centred at `centre` with heading
   // `heading_rad` (from north, clockwise) touches or overlaps an obstacle.
-  bool HullHits(Vec2 centre, double heading_rad) const;
-  bool HullHitsBruteForce(Vec2 centre, double heading_rad) const;
+  bool HullHits(EastNorth centre, double heading_rad) const;
+  bool HullHitsBruteForce(EastNorth centre, double heading_rad) const;
 
   // True when segment a-b touches an obstacle (brute force; for final checks).
-  bool SegmentHits(Vec2 a, Vec2 b) const;
+  bool SegmentHits(EastNorth a, EastNorth b) const;
 
  private:
   ObstacleField() = default;
 
   struct Edge {
-    Vec2 a;
-    Vec2 d;           // b - a
+    EastNorth a;
+    EastNorth d;      // b - a
     double inv_len2;  // 1 / |d|^2 (0 for a degenerate edge)
   };
   struct CellObstacle {
@@ -120,24 +116,24 @@ class ObstacleField {
     float clear_lb_m;
   };
 
-  bool PointInObstacle(int obstacle, Vec2 p) const;
-  double EdgeDistance2(const Edge& e, Vec2 p) const;
-  double ObstacleDistanceBruteForce(int obstacle, Vec2 p) const;  // unsigned
+  bool PointInObstacle(int obstacle, EastNorth p) const;
+  double EdgeDistance2(const Edge& e, EastNorth p) const;
+  double ObstacleDistanceBruteForce(int obstacle, EastNorth p) const;  // unsigned
   // Signed distance from p (inside the entry's cell) to the entry's obstacle:
   // nearest candidate edge, negative inside, -deep_inside_m_ for a cell deeper
   // inside than the cutoff.
-  double EntrySignedDistance(const CellObstacle& entry, Vec2 p) const;
-  const Cell* CellAt(Vec2 p) const;
-  void HullVertices(Vec2 centre, double heading_rad, Vec2 out[5]) const;
-  bool HullHitsEdges(const Vec2 hull[5], const int32_t* edges, int n) const;
+  double EntrySignedDistance(const CellObstacle& entry, EastNorth p) const;
+  const Cell* CellAt(EastNorth p) const;
+  void HullVertices(EastNorth centre, double heading_rad, EastNorth out[5]) const;
+  bool HullHitsEdges(const EastNorth hull[5], const int32_t* edges, int n) const;
 
   ObstacleFieldOptions options_;
-  Vec2 area_min_, area_max_;
+  EastNorth area_min_, area_max_;
   std::vector<Edge> edges_;
   std::vector<int32_t> obstacle_edge_begin_;  // size obstacles + 1
-  std::vector<Vec2> obstacle_box_min_, obstacle_box_max_;
+  std::vector<EastNorth> obstacle_box_min_, obstacle_box_max_;
   // Grid.
-  Vec2 grid_origin_;
+  EastNorth grid_origin_;
   int nx_ = 0, ny_ = 0;
   double cell_ = 50.0, inv_cell_ = 0.02;
   std::vector<Cell> cells_;

@@ -80,7 +80,7 @@ struct RouteOptions {
 
 struct RouteWaypoint {
   chart::LatLon latlon;
-  chart::LocalPoint local;
+  EastNorth local;
   // For the segment from this waypoint to the next (the goal repeats the last).
   MsoMode mode = MsoMode::kPto;
   double ttg_s = 0.0;
@@ -92,8 +92,8 @@ struct RouteWaypoint {
 };
 
 struct RouteAlternative {
-  std::vector<chart::LocalPoint> level1;  // the A1 polyline it started from
-  std::vector<RouteWaypoint> waypoints;   // start .. goal (segments + 1)
+  std::vector<EastNorth> level1;         // the A1 polyline it started from
+  std::vector<RouteWaypoint> waypoints;  // start .. goal (segments + 1)
   double length_m = 0.0;
   double sailing_time_s = 0.0;
   double fuel_kg = 0.0;
@@ -147,8 +147,8 @@ class RoutePlanner {
   // or inside an obstacle (the message says which, in latitude/longitude,
   // with the nearest navigable point and its distance); FailedPrecondition
   // when no safe route exists.
-  StatusOr<RouteResult> Plan(chart::LocalPoint start, chart::LocalPoint goal,
-                             const Environment& env, const StopToken& stop = StopToken()) const;
+  StatusOr<RouteResult> Plan(EastNorth start, EastNorth goal, const Environment& env,
+                             const StopToken& stop = StopToken()) const;
   StatusOr<RouteResult> Plan(chart::LatLon start, chart::LatLon goal, const Environment& env,
                              const StopToken& stop = StopToken()) const;
   // Grounding risk along a track (e.g. a planned or sailed route).

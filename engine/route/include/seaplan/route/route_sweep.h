@@ -41,8 +41,8 @@ struct SweepOptions {
 };
 
 struct PairOutcome {
-  chart::LocalPoint from;
-  chart::LocalPoint to;
+  EastNorth from;
+  EastNorth to;
   bool level1_connected = false;
   bool routed = false;  // Plan succeeded and chose a route
   std::string error;    // Level-1 or Plan error message
@@ -51,7 +51,7 @@ struct PairOutcome {
   // Chosen route's clearance from the unbuffered obstacles, metres
   // (+infinity when not routed or the chart has no obstacle).
   double clearance_m = std::numeric_limits<double>::infinity();
-  chart::LocalPoint closest_route_point;
+  EastNorth closest_route_point;
   int waypoints = 0;
 };
 

@@ -2,7 +2,7 @@
 //
 // The model is the public Ship-in-Transit Simulator (SITS,
 // BorgeRokseth/ship_in_transit_simulator, MIT) re-implemented on fixed-size
-// Eigen types; see /work/shared/spec/SHIP_MODEL.md §1–§5. Every default below
+// Eigen types; see ../shared/spec/SHIP_MODEL.md §1–§5. Every default below
 // is the SITS example value (AMM thesis/models/setup.py uses the same), and
 // every value is configurable.
 //

@@ -1,0 +1,71 @@
+#!/usr/bin/env bash
+# Sanitizer runs; CI runs this after scripts/test.sh. Exits non-zero on any
+# finding (every sanitizer aborts on its first report) or failing test.
+#
+#   asan: AddressSanitizer + UndefinedBehaviorSanitizer (and LeakSanitizer)
+#         over every library, binary and test (benchmarks are left out: their
+#         smoke runs add nothing the tests do not cover) in build-asan/; the
+#         whole ctest suite.
+#   tsan: ThreadSanitizer in build-tsan/, only what runs threads and its
+#         tests: the server (work pool, mission coordinator, route caches,
+#         in-process and as a binary with the simulation client), the
+#         Level-2 optimiser's PSO threads, stop tokens, the chart's per-thread
+#         obstacle queries.
+#
+#   scripts/sanitize.sh [asan|tsan|all]     (default all)
+#   JOBS=<cores>  CMAKE_ARGS=...            as scripts/build.sh
+# Suppressions (third-party false positives only, one reason per entry):
+# scripts/sanitizers/*.supp.
+set -euo pipefail
+cd "$(dirname "$0")/.."
+what=${1:-all}
+case "$what" in asan | tsan | all) ;; *)
+  echo "usage: $0 [asan|tsan|all]" >&2
+  exit 2
+  ;;
+esac
+bash scripts/install-deps.sh
+JOBS=${JOBS:-$(nproc)}
+supp="$PWD/scripts/sanitizers"
+configure() {  # dir, sanitizers
+  cmake -S . -B "$1" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSEAPLAN_BUILD_BENCH=OFF \
+    -DSEAPLAN_SANITIZE="$2" ${CMAKE_ARGS:-}
+}
+elapsed() { echo "sanitize: $1 took $((SECONDS - $2)) s"; }
+
+if [[ "$what" != tsan ]]; then
+  start=$SECONDS
+  configure build-asan address,undefined
+  cmake --build build-asan -j "$JOBS"
+  elapsed "asan build" "$start"
+  start=$SECONDS
+  ASAN_OPTIONS="detect_leaks=1:check_initialization_order=1:detect_stack_use_after_return=1" \
+    UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:suppressions=$supp/ubsan.supp" \
+    LSAN_OPTIONS="suppressions=$supp/lsan.supp:print_suppressions=0" \
+    ctest --test-dir build-asan --output-on-failure -j "$JOBS"
+  elapsed "asan tests" "$start"
+fi
+
+if [[ "$what" != asan ]]; then
+  tsan_tests=(common_test chart_risk_test route_test route_planner_test server_core_test
+    server_e2e_test server_binary_test mission_e2e_test)
+  start=$SECONDS
+  configure build-tsan thread
+  cmake --build build-tsan -j "$JOBS" --target "${tsan_tests[@]}" seaplan-server seaplan-sim
+  elapsed "tsan build" "$start"
+  start=$SECONDS
+  failed=()
+  for t in "${tsan_tests[@]}"; do
+    echo "sanitize: tsan $t"
+    if ! TSAN_OPTIONS="halt_on_error=1:second_deadlock_stack=1:suppressions=$supp/tsan.supp" \
+      "build-tsan/tests/$t" --gtest_brief=1; then
+      failed+=("$t")
+    fi
+  done
+  elapsed "tsan tests" "$start"
+  if [[ ${#failed[@]} -gt 0 ]]; then
+    echo "sanitize: tsan failures in: ${failed[*]}" >&2
+    exit 1
+  fi
+fi
+echo "sanitize: clean"
