@@ -200,13 +200,13 @@ int main(int argc, char** argv) {
       return 2;
     }
   }
-  for (const std::string domain_name : absl::StrSplit(domains, ',')) {
+  for (const std::string& domain_name : std::vector<std::string>(absl::StrSplit(domains, ','))) {
     if (domain_name != "fjord" && domain_name != "fjord-fuel") {
       std::fprintf(stderr, "unknown domain %s (fjord or fjord-fuel)\n", domain_name.c_str());
       return 2;
     }
     const bool fuel = domain_name == "fjord-fuel";
-    for (const std::string size : absl::StrSplit(sizes, ',')) {
+    for (const std::string& size : std::vector<std::string>(absl::StrSplit(sizes, ','))) {
       const std::vector<std::string> parts = absl::StrSplit(size, 'x');
       seaplan::bench::FjordMissionSpec spec;
       spec.domain =
