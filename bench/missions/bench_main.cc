@@ -45,8 +45,25 @@ struct Problem {
 struct Checked {
   bool present = false, valid = false;
   double makespan_s = 0;
+  // Sum of the actions' durations over the makespan: how many actions run
+  // at once on average (1 for a sequential plan).
+  double concurrency = 0;
   std::string note;
 };
+
+// Sum of the "[duration]" of every line of a plan file.
+double SumOfDurations(const fs::path& plan) {
+  std::ifstream in(plan);
+  double sum_s = 0;
+  for (std::string line; std::getline(in, line);) {
+    const auto open = line.rfind('['), close = line.rfind(']');
+    double duration_s = 0;
+    if (open != std::string::npos && close != std::string::npos && close > open &&
+        absl::SimpleAtod(line.substr(open + 1, close - open - 1), &duration_s))
+      sum_s += duration_s;
+  }
+  return sum_s;
+}
 
 struct Outcome {
   Checked first, best;
@@ -85,6 +102,7 @@ Checked Validate(const fs::path& seaplan, const Problem& p, const fs::path& plan
     if (!absl::SimpleAtod(number, &c.makespan_s)) c.makespan_s = 0;
   }
   if (!c.valid) c.note = LastLine(child.out + child.err);
+  if (c.makespan_s > 0) c.concurrency = SumOfDurations(plan) / c.makespan_s;
   return c;
 }
 
@@ -238,8 +256,8 @@ int main(int argc, char** argv) {
       "seaplan-bench-missions: %s, whole processes, one at a time, time limit %g s per run\n",
       seaplan.c_str(), limit_s);
   std::printf("problems and plans in %s\n\n", work_dir.c_str());
-  std::printf("%-32s %12s %7s %12s %8s %5s %12s %7s  %s\n", "problem", "first", "first_s", "best",
-              "best_at", "plans", "at_1s", "ratio", "note");
+  std::printf("%-32s %12s %7s %5s %12s %8s %5s %5s %12s %7s  %s\n", "problem", "first", "first_s",
+              "conc", "best", "best_at", "plans", "conc", "at_1s", "ratio", "note");
   std::map<std::string, std::vector<double>> ratios_by_group;
   std::vector<std::string> group_order;
   std::vector<double> all_ratios;
@@ -271,8 +289,9 @@ int main(int argc, char** argv) {
       if (!o.first.present) note += "first: " + o.first.note + " ";
       if (!o.best.present) note += "anytime: " + o.best.note + " ";
     }
-    std::printf("%-32s %12s %7.2f %12s %8s %5d %12s %7s  %s\n", p.name.c_str(), first,
-                o.first_wall_s, best, best_at, o.improvements, at_1s, ratio, note.c_str());
+    std::printf("%-32s %12s %7.2f %5.2f %12s %8s %5d %5.2f %12s %7s  %s\n", p.name.c_str(), first,
+                o.first_wall_s, o.first.concurrency, best, best_at, o.improvements,
+                o.best.concurrency, at_1s, ratio, note.c_str());
     std::fflush(stdout);
   }
 
@@ -280,7 +299,8 @@ int main(int argc, char** argv) {
       "\nfirst: makespan of the --no-anytime run's plan (first_s: that process's wall time);\n"
       "best: makespan of the anytime run's final plan after at most %g s (best_at: wall time of\n"
       "its last improvement, plans: improvements reported); at_1s: the anytime run's plan 1 s\n"
-      "after spawn; ratio: first / best. All makespans are `seaplan validate`'s.\n\n",
+      "after spawn; ratio: first / best; conc: sum of the plan's action durations over its\n"
+      "makespan (1: nothing overlaps). All makespans are `seaplan validate`'s.\n\n",
       limit_s);
   std::printf("first / best distribution (target: at most %.2f)\n", target);
   for (const auto& group : group_order) PrintDistribution(group, ratios_by_group[group], target);
