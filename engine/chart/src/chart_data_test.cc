@@ -253,5 +253,25 @@ TEST(AlesundShapefiles, TwoAlternativesAroundTheIsland) {
   EXPECT_LT(side(result->alternatives[0]) * side(result->alternatives[1]), 0.0);
 }
 
+TEST(AlesundShapefiles, DraftBetweenLayersUsesTheDeeperLayer) {
+  SEAPLAN_REQUIRE_SHARED(dir, "enc/alesund/shapefiles");
+  ChartOptions o;
+  o.frame_epsg = 25833;
+  o.min_depth_m = 5.0;
+  auto at_5m = LoadChartFile(dir.string(), o);
+  o.min_depth_m = 8.0;  // between seabed5m and seabed10m
+  auto at_8m = LoadChartFile(dir.string(), o);
+  ASSERT_TRUE(at_5m.ok()) << at_5m.status();
+  ASSERT_TRUE(at_8m.ok()) << at_8m.status();
+  EXPECT_EQ(at_8m->summary().features_per_layer.count("chart_box-minus-seabed10m"), 1u);
+  // The 5-10 m water is an obstacle at 8 m.
+  EXPECT_GT(at_8m->summary().total_area_m2, at_5m->summary().total_area_m2);
+  o.min_depth_m = 150.0;  // deeper than seabed100m: no layer shows it
+  auto too_deep = LoadChartFile(dir.string(), o);
+  ASSERT_EQ(too_deep.status().code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_NE(too_deep.status().message().find("seabed100m"), absl::string_view::npos)
+      << too_deep.status();
+}
+
 }  // namespace
 }  // namespace seaplan::chart

@@ -177,8 +177,8 @@ LayerRule Classify(const std::string& driver, const std::string& layer, OGRFeatu
   if (l == "dybdeareal") return {Role::kDepthArea, "minimumsdybde"};
   if (l == "grunne") return {Role::kHazard, "dybde"};
   if (driver == "OpenFileGDB") return {Role::kSkip};
-  // seacharts' processed product (the Alesund set): seabed<N>m = sea deeper
-  // than N m.
+  // seacharts' processed product (the Alesund set): seabed<N>m = sea at
+  // least N m deep.
   if (absl::StartsWith(l, "seabed")) {
     double n = 0;
     const std::string digits =
@@ -510,14 +510,20 @@ StatusOr<ObstacleMap> LoadFromRoot(const std::string& root, const std::string& d
         absl::StrCat(skipped_features, " feature(s) with unsupported geometry type skipped"));
   }
   if (!seabeds.empty()) {
-    // Largest N <= min depth: that polygon is surely deep enough.
-    auto it = seabeds.upper_bound(options.min_depth_m);
-    if (it == seabeds.begin()) {
+    // seabed<N>m is the sea at least N m deep, so only a layer with N >= D is
+    // all deep enough (smaller N would count N..D m water as navigable).
+    // Take the smallest such N: it gives up the least navigable water. With
+    // no such layer the chart cannot tell where the water is D m deep;
+    // falling back to the deepest layer would let the ship into shallower
+    // water, and treating the whole chart as an obstacle would hide the cause,
+    // so the load fails and names the deepest layer the set has.
+    auto it = seabeds.lower_bound(options.min_depth_m);
+    if (it == seabeds.end()) {
       return absl::InvalidArgumentError(
-          absl::StrCat("'", display, "': no seabed<N>m layer with N <= min depth ",
-                       options.min_depth_m, " m (smallest N is ", seabeds.begin()->first, ")"));
+          absl::StrCat("'", display, "': no seabed<N>m layer with N >= min depth ",
+                       options.min_depth_m, " m: the deepest is seabed", seabeds.rbegin()->first,
+                       "m, which includes water shallower than the minimum depth"));
     }
-    --it;
     const double n = it->first;
     GeomPtr sea = internal::MakeCollection(c, GEOS_GEOMETRYCOLLECTION, std::move(it->second));
     sea = Own(c, GEOSUnaryUnion_r(c.get(), sea.get()));

@@ -111,8 +111,9 @@ TEST(ChartLoader, BytesAndZipGiveTheSameChart) {
   EXPECT_NE(from_zip->summary().warnings.back().find("metadata.json"), std::string::npos);
 }
 
-TEST(ChartLoader, SeabedLayersChooseTheDeepestAtMostMinDepth) {
-  // Chart box 6.10-6.12 E, 62.47-62.48 N; "sea deeper than N m" shrinks with N.
+TEST(ChartLoader, SeabedLayersChooseTheShallowestAtLeastMinDepth) {
+  // Chart box 6.10-6.12 E, 62.47-62.48 N; "sea at least N m deep" shrinks
+  // with N: 0-5 m water from 6.102 E, 5-10 m from 6.105 E, 10 m+ from 6.110 E.
   auto rect = [](double lon0, double lat0, double lon1, double lat1) {
     char buf[512];
     std::snprintf(
@@ -132,22 +133,32 @@ TEST(ChartLoader, SeabedLayersChooseTheDeepestAtMostMinDepth) {
   ChartOptions o;
   o.safety_buffer_m = 0;
   o.simplify_tolerance_m = 0;
+  // (min depth, layer used, first navigable longitude)
   for (const auto& [depth, layer, free_lon] :
-       {std::tuple{7.0, "chart_box-minus-seabed5m", 6.106},
-        std::tuple{10.0, "chart_box-minus-seabed10m", 6.111},
-        std::tuple{0.0, "chart_box-minus-seabed0m", 6.103}}) {
+       {std::tuple{7.0, "chart_box-minus-seabed10m", 6.110},
+        std::tuple{5.0, "chart_box-minus-seabed5m", 6.105},
+        std::tuple{10.0, "chart_box-minus-seabed10m", 6.110},
+        std::tuple{0.0, "chart_box-minus-seabed0m", 6.102},
+        std::tuple{0.5, "chart_box-minus-seabed5m", 6.105}}) {
     o.min_depth_m = depth;
     auto map = LoadChartBytes(files, o);
     ASSERT_TRUE(map.ok()) << map.status();
     EXPECT_EQ(map->summary().features_per_layer.count(layer), 1u) << depth;
     ObstacleQuery q(*map);
-    EXPECT_FALSE(q.Inside(map->frame().ToLocal({62.475, free_lon}))) << depth;
-    EXPECT_TRUE(q.Inside(map->frame().ToLocal({62.475, free_lon - 0.0015}))) << depth;
+    EXPECT_FALSE(q.Inside(map->frame().ToLocal({62.475, free_lon + 0.001}))) << depth;
+    // Water shallower than the minimum depth (just before free_lon) is an
+    // obstacle: at 7 m the 5-10 m band is, at 0.5 m the 0-5 m band.
+    EXPECT_TRUE(q.Inside(map->frame().ToLocal({62.475, free_lon - 0.001}))) << depth;
   }
-  o.min_depth_m = 3;
-  auto missing = LoadChartBytes({files[0], files[2]}, o);  // only seabed5m
-  ASSERT_EQ(missing.status().code(), absl::StatusCode::kInvalidArgument);
-  EXPECT_NE(missing.status().message().find("seabed"), absl::string_view::npos);
+  // Deeper than every layer: no layer can tell where the water is 12 m deep,
+  // so the load fails instead of using seabed10m.
+  o.min_depth_m = 12;
+  auto too_deep = LoadChartBytes(files, o);
+  ASSERT_EQ(too_deep.status().code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_NE(too_deep.status().message().find("N >= min depth 12 m"), absl::string_view::npos)
+      << too_deep.status();
+  EXPECT_NE(too_deep.status().message().find("seabed10m"), absl::string_view::npos)
+      << too_deep.status();
 }
 
 TEST(ChartLoader, SelfIntersectingPolygonIsRepaired) {

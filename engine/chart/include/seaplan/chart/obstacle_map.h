@@ -33,10 +33,11 @@
 //          like UNSARE), dybdeareal with minimumsdybde < D,
 //          grunne (shoal points) with dybde < D.
 //   seacharts' processed sets (shapefile folders such as the Alesund set):
-//          seabed<N>m ("sea deeper than N m"): obstacles = chart box (extent
-//          of all recognised layers) minus the seabed<N>m polygon with the
-//          largest N <= D: that water is surely deeper than N and N is as
-//          close to D as the set allows. No N <= D -> InvalidArgument.
+//          seabed<N>m ("sea at least N m deep"): obstacles = chart box
+//          (extent of all recognised layers) minus the seabed<N>m polygon
+//          with the smallest N >= D: only those layers are all deep enough,
+//          and the smallest gives up the least water. No N >= D ->
+//          InvalidArgument naming the deepest layer (never shallower water).
 //   Any other layer (shapefiles, GeoJSON), by its schema: one with a DRVAL1 /
 //          minimumsdybde / VALSOU / dybde field gives the features below D
 //          (or of unknown depth); one without a depth field gives every
