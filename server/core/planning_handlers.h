@@ -4,8 +4,7 @@
 // bounded WorkPool with the call's StopToken, and translates back. Parse
 // errors are INVALID_ARGUMENT with a DiagnosticList attached
 // (status_details.h); "no plan", "timeout" and "unsupported PDDL" are
-// result statuses. When an engine library is not built into this server the
-// RPC answers UNIMPLEMENTED saying which.
+// result statuses.
 #pragma once
 
 #include "seaplan/common/status.h"

@@ -16,12 +16,12 @@ std::string Example(const std::string& name) {
   return seaplan::testing::ReadFile(seaplan::testing::SourceDir() / "examples" / "fjord" / name);
 }
 
-TEST(MissionE2eTest, CaseAPlannedRefinedAndReplannedWithTheRealEngine) {
-  InProcessServer s;  // with the server's own mission engine
-  auto missions = v1::MissionService::NewStub(s.channel());
+// Case A on five ports about 1 km apart along a line of latitude, legs
+// sailed at 5 m/s.
+v1::CreateMissionRequest CaseARequest(const std::string& name) {
   v1::CreateMissionRequest req;
   v1::MissionSpec* spec = req.mutable_spec();
-  spec->set_name("case A");
+  spec->set_name(name);
   spec->set_domain(Example("domain.pddl"));
   spec->set_problem(Example("case-a.pddl"));
   spec->set_vessel_id("ship0");
@@ -37,6 +37,13 @@ TEST(MissionE2eTest, CaseAPlannedRefinedAndReplannedWithTheRealEngine) {
   *spec->mutable_initial_state()->mutable_position() = spec->locations(0).position();
   spec->mutable_initial_state()->set_fuel_fraction(0.9);
   spec->mutable_planner_options()->mutable_time_limit()->set_seconds(20);
+  return req;
+}
+
+TEST(MissionE2eTest, CaseAPlannedRefinedAndReplannedWithTheRealEngine) {
+  InProcessServer s;  // with the server's own mission engine
+  auto missions = v1::MissionService::NewStub(s.channel());
+  const v1::CreateMissionRequest req = CaseARequest("case A");
 
   ClientContext ctx;
   SetDeadline(&ctx, 60000);
@@ -110,23 +117,8 @@ TEST(MissionE2eTest, CaseAPlannedRefinedAndReplannedWithTheRealEngine) {
 TEST(MissionE2eTest, AShipOffItsRouteIsReplannedWithThatReason) {
   InProcessServer s;  // with the server's own mission engine
   auto missions = v1::MissionService::NewStub(s.channel());
-  v1::CreateMissionRequest req;
+  v1::CreateMissionRequest req = CaseARequest("deviation");
   v1::MissionSpec* spec = req.mutable_spec();
-  spec->set_name("deviation");
-  spec->set_domain(Example("domain.pddl"));
-  spec->set_problem(Example("case-a.pddl"));
-  spec->set_vessel_id("ship0");
-  spec->mutable_ship()->set_service_speed_mps(5.0);
-  const char* ports[] = {"port-a", "port-b", "port-c", "port-d", "port-e"};
-  for (int i = 0; i < 5; ++i) {
-    v1::NamedLocation* l = spec->add_locations();
-    l->set_name(ports[i]);
-    l->mutable_position()->set_latitude_deg(63.45);
-    l->mutable_position()->set_longitude_deg(10.30 + 0.02 * i);
-  }
-  *spec->mutable_initial_state()->mutable_position() = spec->locations(0).position();
-  spec->mutable_initial_state()->set_fuel_fraction(0.9);
-  spec->mutable_planner_options()->mutable_time_limit()->set_seconds(20);
   spec->mutable_replan_policy()->set_position_deviation_m(300);
   ClientContext ctx;
   SetDeadline(&ctx, 60000);

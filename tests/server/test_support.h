@@ -3,9 +3,13 @@
 // and a fake mission engine whose timing the tests control.
 #pragma once
 
-// Before httplib: it includes <resolv.h>, whose `_res` macro breaks Eigen
-// (reached through the mission engine's route planner), which names
+// The mission engine before httplib: httplib includes <resolv.h>, whose
+// `_res` macro breaks Eigen (reached through the route planner), which names
 // parameters `_res`.
+// clang-format off
+#include "seaplan/mission/mission_engine.h"
+// clang-format on
+
 #include <grpcpp/grpcpp.h>
 #include <gtest/gtest.h>
 #include <httplib.h>
@@ -18,7 +22,6 @@
 #include <string>
 #include <thread>
 
-#include "seaplan/mission/mission_engine.h"  // NOLINT(build/include_order)
 #include "seaplan/storage/sqlite_store.h"
 #include "seaplan/v1/chart.grpc.pb.h"
 #include "seaplan/v1/mission.grpc.pb.h"
