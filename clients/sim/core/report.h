@@ -17,7 +17,6 @@
 
 namespace seaplan::sim {
 
-using EastNorth;
 using colav::Kinematics;
 
 struct CpaRecord {

@@ -14,7 +14,6 @@
 
 namespace seaplan::sim {
 
-using EastNorth;
 using colav::Kinematics;
 
 struct TrackPoint {

@@ -42,7 +42,7 @@ std::optional<EastNorth> ShortestWayOut(const route::ObstacleField& field, EastN
       if (field.Inside(q)) continue;
       const EastNorth clear{p.east_m + (r + 10.0) * std::sin(a),
                             p.north_m + (r + 10.0) * std::cos(a)};
-      return field.Inside(clear) ? EastNorth{q.x, q.y} : EastNorth{clear.x, clear.y};
+      return field.Inside(clear) ? q : clear;
     }
   }
   return std::nullopt;

@@ -73,8 +73,8 @@ TEST(Level2OptimizerTest, SegmentsThatWouldCutTheIslandFollowTheLevel1Path) {
   ASSERT_EQ(north.waypoints.size(), 5u);
   const double expected[5][2] = {{-2000, 0}, {-1000, 300}, {0, 300}, {1000, 300}, {2000, 0}};
   for (size_t k = 0; k < 5; ++k) {
-    EXPECT_NEAR(north.waypoints[k].position.x, expected[k][0], 1e-6) << k;
-    EXPECT_NEAR(north.waypoints[k].position.y, expected[k][1], 1e-6) << k;
+    EXPECT_NEAR(north.waypoints[k].position.east_m, expected[k][0], 1e-6) << k;
+    EXPECT_NEAR(north.waypoints[k].position.north_m, expected[k][1], 1e-6) << k;
     if (k > 0) {
       EXPECT_FALSE(
           s->field.SegmentHits(north.waypoints[k - 1].position, north.waypoints[k].position))
