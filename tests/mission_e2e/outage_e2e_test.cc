@@ -168,13 +168,14 @@ class OutageE2eTest : public ::testing::Test {
   fs::path DbPath() const { return dir_ / "server" / "data" / "seaplan.db"; }
 
   // seaplan-sim on `scenario` in the background; its report and journal in `run_dir`.
-  pid_t StartSim(const std::string& scenario, const fs::path& run_dir) {
+  // `time_factor` 0: as fast as possible.
+  pid_t StartSim(const std::string& scenario, const fs::path& run_dir, int time_factor = 0) {
     fs::create_directories(run_dir);
     return e2e::StartProcess(
         {(BinDir() / "seaplan-sim").string(), "--server", server_.address(), "--scenario",
          (SourceDir() / "examples/scenarios" / (scenario + ".scenario")).string(), "--report-dir",
          (run_dir / "report").string(), "--replan-timeout-s", "120", "--shore-wait-s", "120",
-         "--log-level", "info"},
+         "--log-level", "info", "--time-factor", std::to_string(time_factor)},
         {}, run_dir / "sim.out");
   }
   // The mission id the sim prints first ("mission <id>"), waiting up to 120 s.
@@ -294,14 +295,16 @@ TEST_F(OutageE2eTest, ServerKilledAtRandomMomentsLosesNothing) {
   if (const char* s = std::getenv("SEAPLAN_KILL_SEED")) seed = std::strtoull(s, nullptr, 10);
   std::printf("kill -9 trials: %d, seed %llu\n", trials, static_cast<unsigned long long>(seed));
   std::mt19937_64 rng(seed);
-  // Kill within the first 8 s of wall time of the mission (case C runs
-  // several seconds at full speed, replans included), down 0-2 s.
-  std::uniform_int_distribution<int> kill_after_ms(0, 8000), down_ms(0, 2000);
+  // Case C at 400 times real time lasts about 7.5 s of wall time (about
+  // 3000 s of mission time, up to four plan versions): kill within its first
+  // 7 s, down for 0-2 s.
+  constexpr int kTimeFactor = 400;
+  std::uniform_int_distribution<int> kill_after_ms(0, 7000), down_ms(0, 2000);
   int completed = 0;
   for (int t = 0; t < trials; ++t) {
     SCOPED_TRACE("trial " + std::to_string(t));
     const fs::path run = dir_ / ("trial-" + std::to_string(t));
-    const pid_t sim = StartSim("case-c", run);
+    const pid_t sim = StartSim("case-c", run, kTimeFactor);
     const std::string id = MissionId(run);
     ASSERT_FALSE(id.empty()) << e2e::ReadWholeFile(run / "sim.out");
     const int after = kill_after_ms(rng), down = down_ms(rng);
