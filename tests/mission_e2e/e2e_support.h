@@ -88,27 +88,22 @@ class ServerProcess {
     }
     return false;
   }
-  void Stop() {
-    if (pid_ > 0) {
-      kill(pid_, SIGTERM);
-      int status = 0;
-      waitpid(pid_, &status, 0);
-      pid_ = -1;
-    }
-  }
+  void Stop() { SignalAndReap(SIGTERM); }
   // SIGKILL: no shutdown, no flush, as in a crash or an OOM kill.
-  void Kill() {
-    if (pid_ > 0) {
-      kill(pid_, SIGKILL);
-      int status = 0;
-      waitpid(pid_, &status, 0);
-      pid_ = -1;
-    }
-  }
+  void Kill() { SignalAndReap(SIGKILL); }
   const std::string& address() const { return address_; }
   int port() const { return port_; }
 
  private:
+  void SignalAndReap(int signal) {
+    if (pid_ > 0) {
+      kill(pid_, signal);
+      int status = 0;
+      waitpid(pid_, &status, 0);
+      pid_ = -1;
+    }
+  }
+
   pid_t pid_ = -1;
   int port_ = 0;
   std::string address_;
