@@ -515,11 +515,14 @@ int main(int argc, char** argv) {
       executor->Step(&out);
       // The live picture for watchers, a few times a second of wall time
       // (the server publishes at most once a second); failures only warn.
-      if (const auto now = std::chrono::steady_clock::now(); now >= next_vessel_state) {
+      // Not while the shore is unreachable: on a partitioned link each try
+      // would hold the ship for its deadline, and the next one replaces it.
+      if (const auto now = std::chrono::steady_clock::now();
+          now >= next_vessel_state && !client.shore_unreachable()) {
         next_vessel_state = now + std::chrono::milliseconds(250);
         absl::Status sent = client.ReportVesselState(
             VesselState(*executor, mission_id, scenario->vessel_id, frame));
-        if (!sent.ok() && !vessel_state_warned && !client.shore_unreachable()) {
+        if (!sent.ok() && !vessel_state_warned) {
           vessel_state_warned = true;
           std::fprintf(stderr, "seaplan-sim: warning: ReportVesselState: %s (live updates off)\n",
                        sent.ToString().c_str());
