@@ -4,6 +4,7 @@
 //   seaplan-sim --server 127.0.0.1:50051 --scenario examples/scenarios/case-b.scenario
 //               [--mission-id ID (attach)] [--time-factor N] [--report-dir DIR]
 //               [--replan-timeout-s S] [--max-mission-time-s S] [--log-level LEVEL]
+//               [--journal FILE] [--shore-wait-s S]
 //   (flags parsed with CLI11; --help lists them)
 //
 // Creates the mission of the scenario (uploading its chart first when it has
@@ -11,6 +12,12 @@
 // simulated ship, posts feedback, follows replans and writes the mission
 // report (report.json, trajectory.svg, gantt.svg). At the end it prints the
 // navigation log (mission time, source, message per line) and the report's path.
+//
+// A shore outage does not stop the ship: reports go to an fsync'd journal
+// first and are sent in order when the server answers (sim_client.h); the
+// current plan version is executed meanwhile, and once it has run out the
+// sim waits up to --shore-wait-s for the shore to hear everything (and for
+// a replan the backlog triggers) before giving up with exit code 3.
 //
 // Exit codes: 0 mission completed; 1 error (bad flags, scenario, I/O, RPC);
 // 2 mission failed or cancelled; 3 timed out waiting for the server;
@@ -54,7 +61,21 @@ struct Flags {
   std::string colav = "sbmpc";
   uint64_t seed = 0;
   bool former_autopilot = false;
+  std::string journal;  // empty: <report_dir>/feedback.journal
+  double shore_wait_s = 600;
 };
+
+// Waits until every journaled report is acknowledged; false when the shore
+// stayed unreachable until `deadline`.
+bool FlushBacklog(sim::SimClient& client, std::chrono::steady_clock::time_point deadline) {
+  while (client.backlog() > 0) {
+    if (std::chrono::steady_clock::now() > deadline) return false;
+    client.WaitSent(std::chrono::milliseconds(200));
+    // WaitSent returns at once while the shore is unreachable.
+    if (client.shore_unreachable()) std::this_thread::sleep_for(std::chrono::milliseconds(100));
+  }
+  return true;
+}
 
 std::string ReadAll(const std::string& path, bool* ok) {
   std::ifstream in(path, std::ios::binary);
@@ -306,6 +327,13 @@ int main(int argc, char** argv) {
   app.add_option("--seed", f.seed,
                  "perturb the traffic's timing and the wind with this seed (0: as scripted)")
       ->capture_default_str();
+  app.add_option("--journal", f.journal,
+                 "feedback journal (reports not yet acknowledged by the server survive a restart "
+                 "here; default: <report-dir>/feedback.journal)");
+  app.add_option("--shore-wait-s", f.shore_wait_s,
+                 "once the plan has run out, wait this long for an unreachable server (exit 3)")
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   app.footer(
       "Exit codes: 0 mission completed; 1 error (bad flags, scenario, I/O, RPC); 2 mission failed "
       "or\n"
@@ -392,13 +420,16 @@ int main(int argc, char** argv) {
   mission::LocationTable locations = sim::LocalLocations(*scenario, frame);
 
   sim::SimClient client(f.server);
+  {
+    std::error_code ec;
+    std::filesystem::create_directories(f.report_dir, ec);
+    if (ec) return fail(absl::UnavailableError(absl::StrCat("cannot create ", f.report_dir)));
+    const std::string journal =
+        f.journal.empty() ? (std::filesystem::path(f.report_dir) / "feedback.journal").string()
+                          : f.journal;
+    if (absl::Status st = client.StartUplink(journal); !st.ok()) return fail(st);
+  }
   std::string mission_id = f.mission_id;
-  // Sequence numbers are per vessel across every mission the server has
-  // seen (its idempotency key is (vessel_id, sequence_number)), so a run
-  // starts above any earlier run: microseconds since the epoch.
-  int64_t sequence = std::chrono::duration_cast<std::chrono::microseconds>(
-                         std::chrono::system_clock::now().time_since_epoch())
-                         .count();
   if (mission_id.empty()) {
     std::string chart_id;
     if (!chart_bytes.empty()) {
@@ -455,14 +486,9 @@ int main(int argc, char** argv) {
       executor->mutable_report().log.Add(e.mission_time_s(), e.message(), e.source());
     }
   };
+  const auto shore_wait = std::chrono::milliseconds(static_cast<int64_t>(f.shore_wait_s * 1000));
+  bool offline = false;  // as last noted in the navigation log
   while (true) {
-    if (executor->Finished()) break;
-    if (executor->time_s() > f.max_mission_time_s) {
-      std::fprintf(stderr, "seaplan-sim: mission time limit %.0f s reached\n",
-                   f.max_mission_time_s);
-      exit_code = 3;
-      break;
-    }
     if (auto v = client.PollVersion(executor->plan_version())) {
       // A version planned from the same state as the one under way (two
       // triggers of one situation) is a duplicate: keep executing.
@@ -475,46 +501,92 @@ int main(int argc, char** argv) {
                                    executor->plan_version(), ")"));
       }
     }
-    out.clear();
-    executor->Step(&out);
-    // The live picture for watchers, a few times a second of wall time
-    // (the server publishes at most once a second); failures only warn.
-    if (const auto now = std::chrono::steady_clock::now(); now >= next_vessel_state) {
-      next_vessel_state = now + std::chrono::milliseconds(250);
-      absl::Status sent =
-          client.ReportVesselState(VesselState(*executor, mission_id, scenario->vessel_id, frame));
-      if (!sent.ok() && !vessel_state_warned) {
-        vessel_state_warned = true;
-        std::fprintf(stderr, "seaplan-sim: warning: ReportVesselState: %s (live updates off)\n",
-                     sent.ToString().c_str());
-      }
-    }
-    bool need_plan = executor->WaitingForPlan();
-    for (const sim::FeedbackOut& fb : out) {
-      v1::ReportFeedbackRequest req;
-      req.set_mission_id(mission_id);
-      req.set_vessel_id(scenario->vessel_id);
-      req.set_sequence_number(sequence++);
-      v1::Feedback* p = req.mutable_feedback();
-      p->set_kind(ToProtoFeedback(fb.kind));
-      p->set_task_id(fb.task_id);
-      p->set_plan_version(fb.plan_version);
-      p->set_mission_time_s(fb.mission_time_s);
-      p->set_detail(fb.detail);
-      FillShipState(fb, frame, p->mutable_state());
-      auto resp = client.Report(req);
-      if (!resp.ok()) {
-        std::fprintf(stderr, "seaplan-sim: ReportFeedback: %s\n", resp.status().ToString().c_str());
-        exit_code = 1;
+    // Nothing left to execute (done, or a task failed): the shore must hear
+    // every report before it can judge the mission or replan.
+    const bool plan_ran_out = executor->Finished() || executor->WaitingForPlan();
+    if (plan_ran_out) {
+      if (!FlushBacklog(client, std::chrono::steady_clock::now() + shore_wait)) {
+        std::fprintf(stderr,
+                     "seaplan-sim: server unreachable for %.0f s after the plan ran out; %zu "
+                     "reports unsent (kept in the journal)\n",
+                     f.shore_wait_s, client.backlog());
+        exit_code = 3;
         break;
       }
-      if (resp->replan_triggered()) {
+    } else {
+      if (executor->time_s() > f.max_mission_time_s) {
+        std::fprintf(stderr, "seaplan-sim: mission time limit %.0f s reached\n",
+                     f.max_mission_time_s);
+        exit_code = 3;
+        break;
+      }
+      out.clear();
+      executor->Step(&out);
+      // The live picture for watchers, a few times a second of wall time
+      // (the server publishes at most once a second); failures only warn.
+      // Not while the shore is unreachable: on a partitioned link each try
+      // would hold the ship for its deadline, and the next one replaces it.
+      if (const auto now = std::chrono::steady_clock::now();
+          now >= next_vessel_state && !client.shore_unreachable()) {
+        next_vessel_state = now + std::chrono::milliseconds(250);
+        absl::Status sent = client.ReportVesselState(
+            VesselState(*executor, mission_id, scenario->vessel_id, frame));
+        if (!sent.ok() && !vessel_state_warned) {
+          vessel_state_warned = true;
+          std::fprintf(stderr, "seaplan-sim: warning: ReportVesselState: %s (live updates off)\n",
+                       sent.ToString().c_str());
+        }
+      }
+      std::vector<v1::ReportFeedbackRequest> reports;
+      for (const sim::FeedbackOut& fb : out) {
+        v1::ReportFeedbackRequest& req = reports.emplace_back();
+        req.set_mission_id(mission_id);
+        req.set_vessel_id(scenario->vessel_id);
+        v1::Feedback* p = req.mutable_feedback();
+        p->set_kind(ToProtoFeedback(fb.kind));
+        p->set_task_id(fb.task_id);
+        p->set_plan_version(fb.plan_version);
+        p->set_mission_time_s(fb.mission_time_s);
+        p->set_detail(fb.detail);
+        FillShipState(fb, frame, p->mutable_state());
+      }
+      if (absl::Status st = client.Send(std::move(reports)); !st.ok()) {
+        exit_code = fail(st);
+        break;
+      }
+      // With the shore up, reports are answered before the ship moves on
+      // (a replan it triggers is followed at once); with it down, the ship
+      // executes on and the uplink keeps the backlog.
+      client.WaitSent(std::chrono::seconds(30));
+    }
+    if (client.shore_unreachable() != offline) {
+      offline = !offline;
+      executor->Log(offline ? absl::StrCat("shore unreachable: executing plan version ",
+                                           executor->plan_version(), " on board, ",
+                                           client.backlog(), " reports kept for sending")
+                            : std::string("shore reachable again: reports kept meanwhile sent"));
+    }
+    bool need_plan = executor->WaitingForPlan();
+    for (const sim::FeedbackAck& ack : client.TakeAcks()) {
+      if (ack.response.replan_triggered()) {
         need_plan = true;
-        executor->Log(absl::StrCat("replan requested by the server: ", resp->replan_reason()));
-        break;  // the rest of this step's reports concern the version being replaced
+        executor->Log(
+            absl::StrCat("replan requested by the server: ", ack.response.replan_reason()));
       }
     }
-    if (exit_code != 0) break;
+    if (absl::Status st = client.uplink_error(); !st.ok()) {
+      std::fprintf(stderr, "seaplan-sim: %s\n", st.ToString().c_str());
+      exit_code = 1;
+      break;
+    }
+    if (plan_ran_out && !need_plan) {
+      // Everything acknowledged. A replan may still be under way that no
+      // answer announced (its report's answer was lost with a server that
+      // died, and the restarted server resumed the replan): follow it.
+      auto m = client.GetMission(mission_id);
+      if (!m.ok() || m->state() != v1::MISSION_STATE_REPLANNING) break;
+      need_plan = true;
+    }
     if (need_plan) {
       auto v = client.WaitForVersion(executor->plan_version(), replan_timeout);
       if (v) {
@@ -529,7 +601,7 @@ int main(int argc, char** argv) {
         break;
       }
     }
-    if (time_factor > 0) {
+    if (time_factor > 0 && !plan_ran_out) {
       auto due = wall_start + std::chrono::duration<double>(executor->time_s() / time_factor);
       std::this_thread::sleep_until(due);
     }
@@ -547,6 +619,7 @@ int main(int argc, char** argv) {
     std::this_thread::sleep_for(std::chrono::milliseconds(50));
   }
   client.StopWatch();
+  client.StopUplink();
   drain_log();
   auto& report = executor->mutable_report();
   report.completed = exit_code == 0 && executor->Finished() && state == v1::MISSION_STATE_COMPLETED;

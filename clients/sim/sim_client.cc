@@ -1,10 +1,39 @@
 #include "sim_client.h"
 
+#include <algorithm>
+#include <random>
+
 #include "absl/strings/str_cat.h"
 #include "seaplan/common/log.h"
 
 namespace seaplan::sim {
 namespace {
+
+// Retry pacing towards the shore: exponential, capped, with jitter so that
+// many ships coming back after one outage do not retry in step.
+constexpr auto kFirstBackoff = std::chrono::milliseconds(100);
+constexpr auto kMaxBackoff = std::chrono::milliseconds(5000);
+
+// A uniformly random duration in [backoff / 2, backoff].
+std::chrono::milliseconds Jittered(std::chrono::milliseconds backoff) {
+  thread_local std::mt19937 rng{std::random_device{}()};
+  std::uniform_int_distribution<std::int64_t> pick(backoff.count() / 2, backoff.count());
+  return std::chrono::milliseconds(pick(rng));
+}
+
+std::chrono::milliseconds Next(std::chrono::milliseconds backoff) {
+  return std::min(backoff * 2, std::chrono::duration_cast<std::chrono::milliseconds>(kMaxBackoff));
+}
+
+// gRPC's own reconnection backoff grows to 120 s by default: a ship would
+// then stay deaf long after the shore is back. Keep it short.
+std::shared_ptr<grpc::Channel> MakeChannel(const std::string& address) {
+  grpc::ChannelArguments args;
+  args.SetInt(GRPC_ARG_INITIAL_RECONNECT_BACKOFF_MS, 200);
+  args.SetInt(GRPC_ARG_MIN_RECONNECT_BACKOFF_MS, 200);
+  args.SetInt(GRPC_ARG_MAX_RECONNECT_BACKOFF_MS, 2000);
+  return grpc::CreateCustomChannel(address, grpc::InsecureChannelCredentials(), args);
+}
 
 bool Transient(grpc::StatusCode c) {
   return c == grpc::StatusCode::UNAVAILABLE || c == grpc::StatusCode::DEADLINE_EXCEEDED ||
@@ -24,11 +53,12 @@ absl::Status FromGrpc(const grpc::Status& s) {
 }
 
 SimClient::SimClient(const std::string& address)
-    : channel_(grpc::CreateChannel(address, grpc::InsecureChannelCredentials())),
+    : channel_(MakeChannel(address)),
       missions_(v1::MissionService::NewStub(channel_)),
       charts_(v1::ChartService::NewStub(channel_)) {}
 
 SimClient::~SimClient() {
+  StopUplink();
   StopWatch();
 }
 
@@ -73,23 +103,155 @@ absl::StatusOr<v1::Chart> SimClient::UploadChart(const std::string& name,
   return out.chart();
 }
 
-absl::StatusOr<v1::ReportFeedbackResponse> SimClient::Report(
-    const v1::ReportFeedbackRequest& request, int attempts) {
-  grpc::Status last;
-  auto backoff = std::chrono::milliseconds(20);
-  for (int i = 0; i < attempts; ++i) {
-    v1::ReportFeedbackResponse out;
-    grpc::ClientContext ctx;
-    ctx.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(10));
-    last = missions_->ReportFeedback(&ctx, request, &out);
-    if (last.ok()) return out;
-    if (!Transient(last.error_code())) break;
-    log::Warn("feedback {} failed ({}), retrying with the same sequence number",
-              request.sequence_number(), last.error_message());
-    std::this_thread::sleep_for(backoff);
-    backoff = std::min(backoff * 2, std::chrono::milliseconds(1000));
+grpc::Status SimClient::PostFeedback(const v1::ReportFeedbackRequest& request,
+                                     v1::ReportFeedbackResponse* response) {
+  grpc::ClientContext ctx;
+  ctx.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(5));
+  return missions_->ReportFeedback(&ctx, request, response);
+}
+
+absl::Status SimClient::StartUplink(const std::string& journal_path) {
+  auto journal = FeedbackJournal::Open(journal_path);
+  if (!journal.ok()) return journal.status();
+  std::lock_guard<std::mutex> lock(uplink_mu_);
+  for (const JournalEntry& e : journal->unacknowledged_at_open()) {
+    v1::ReportFeedbackRequest r;
+    if (!r.ParseFromString(e.payload)) {
+      return absl::DataLossError(
+          absl::StrCat(journal_path, ": report ", e.sequence, " is not a ReportFeedbackRequest"));
+    }
+    outbox_.push_back(std::move(r));
   }
-  return FromGrpc(last);
+  if (!outbox_.empty()) {
+    log::Warn("feedback journal {}: re-sending {} reports an earlier run left unacknowledged",
+              journal_path, outbox_.size());
+  }
+  // Sequence numbers are per vessel across every mission the server has
+  // seen, so a run starts above any earlier one: microseconds since the
+  // epoch, and above anything in the journal.
+  const std::int64_t now_us = std::chrono::duration_cast<std::chrono::microseconds>(
+                                  std::chrono::system_clock::now().time_since_epoch())
+                                  .count();
+  next_sequence_ = std::max(now_us, journal->max_sequence() + 1);
+  replayed_until_ = journal->max_sequence();
+  journal_.emplace(std::move(*journal));
+  uplink_stop_ = false;
+  uplink_ = std::thread([this] { UplinkLoop(); });
+  return absl::OkStatus();
+}
+
+absl::Status SimClient::Send(std::vector<v1::ReportFeedbackRequest> reports) {
+  std::lock_guard<std::mutex> lock(uplink_mu_);
+  if (!journal_) return absl::FailedPreconditionError("the feedback uplink is not started");
+  std::vector<JournalEntry> entries;
+  for (v1::ReportFeedbackRequest& r : reports) {
+    r.set_sequence_number(next_sequence_++);
+    entries.push_back({r.sequence_number(), r.SerializeAsString()});
+  }
+  // On disk before it may reach the shore: a report the server stored is
+  // always in the journal, so a restarted client can tell what it sent.
+  if (absl::Status st = journal_->Append(entries); !st.ok()) return st;
+  for (v1::ReportFeedbackRequest& r : reports) outbox_.push_back(std::move(r));
+  uplink_cv_.notify_all();
+  return absl::OkStatus();
+}
+
+bool SimClient::WaitSent(std::chrono::milliseconds timeout) {
+  std::unique_lock<std::mutex> lock(uplink_mu_);
+  uplink_cv_.wait_for(lock, timeout,
+                      [&] { return outbox_.empty() || shore_unreachable_ || uplink_stop_; });
+  return outbox_.empty();
+}
+
+std::vector<FeedbackAck> SimClient::TakeAcks() {
+  std::lock_guard<std::mutex> lock(uplink_mu_);
+  std::vector<FeedbackAck> out;
+  out.swap(acks_);
+  return out;
+}
+
+absl::Status SimClient::uplink_error() const {
+  std::lock_guard<std::mutex> lock(uplink_mu_);
+  return uplink_error_;
+}
+
+size_t SimClient::backlog() const {
+  std::lock_guard<std::mutex> lock(uplink_mu_);
+  return outbox_.size();
+}
+
+void SimClient::StopUplink() {
+  {
+    std::lock_guard<std::mutex> lock(uplink_mu_);
+    uplink_stop_ = true;
+  }
+  uplink_cv_.notify_all();
+  if (uplink_.joinable()) uplink_.join();
+}
+
+void SimClient::UplinkLoop() {
+  auto backoff = std::chrono::duration_cast<std::chrono::milliseconds>(kFirstBackoff);
+  auto lost_at = std::chrono::steady_clock::now();
+  int failures = 0;
+  while (true) {
+    v1::ReportFeedbackRequest request;
+    {
+      std::unique_lock<std::mutex> lock(uplink_mu_);
+      uplink_cv_.wait(lock, [&] { return uplink_stop_ || !outbox_.empty(); });
+      if (uplink_stop_) return;
+      request = outbox_.front();
+    }
+    v1::ReportFeedbackResponse response;
+    const grpc::Status s = PostFeedback(request, &response);
+    std::unique_lock<std::mutex> lock(uplink_mu_);
+    if (!s.ok() && Transient(s.error_code())) {
+      if (!shore_unreachable_) {
+        lost_at = std::chrono::steady_clock::now();
+        log::Warn(
+            "shore link lost: report {} failed ({}: {}); executing on, {} reports kept in {} and "
+            "retried with backoff",
+            request.sequence_number(), static_cast<int>(s.error_code()), s.error_message(),
+            outbox_.size(), journal_->path());
+      }
+      shore_unreachable_ = true;
+      ++failures;
+      uplink_cv_.notify_all();
+      uplink_cv_.wait_for(lock, Jittered(backoff), [&] { return uplink_stop_; });
+      backoff = Next(backoff);
+      continue;
+    }
+    if (shore_unreachable_) {
+      const double down_s =
+          std::chrono::duration<double>(std::chrono::steady_clock::now() - lost_at).count();
+      log::Warn("shore link back after {:.1f} s ({} failed attempts): sending the {} reports kept",
+                down_s, failures, outbox_.size());
+      shore_unreachable_ = false;
+    }
+    failures = 0;
+    backoff = std::chrono::duration_cast<std::chrono::milliseconds>(kFirstBackoff);
+    outbox_.pop_front();
+    // Refused reports are acknowledged too: re-sending them cannot succeed.
+    if (absl::Status st = journal_->Acknowledge(request.sequence_number()); !st.ok())
+      log::Warn("{} (the report may be re-sent after a restart)", st.ToString());
+    if (s.ok()) {
+      acks_.push_back({std::move(request), std::move(response)});
+    } else if (s.error_code() == grpc::StatusCode::FAILED_PRECONDITION ||
+               request.sequence_number() <= replayed_until_) {
+      // The mission finished meanwhile, or a report of an earlier run the
+      // server no longer takes: nothing to do with it.
+      log::Warn("report {} of mission {} refused and dropped: {}", request.sequence_number(),
+                request.mission_id(), s.error_message());
+    } else {
+      log::Error("report {} of mission {} refused: {}", request.sequence_number(),
+                 request.mission_id(), s.error_message());
+      if (uplink_error_.ok()) {
+        const absl::Status refused = FromGrpc(s);
+        uplink_error_ =
+            absl::Status(refused.code(), absl::StrCat("ReportFeedback: ", refused.message()));
+      }
+    }
+    uplink_cv_.notify_all();
+  }
 }
 
 absl::Status SimClient::ReportVesselState(const v1::ReportVesselStateRequest& request) {
@@ -114,7 +276,9 @@ void SimClient::StopWatch() {
 }
 
 void SimClient::WatchLoop(std::string mission_id) {
-  auto backoff = std::chrono::milliseconds(50);
+  auto backoff = std::chrono::duration_cast<std::chrono::milliseconds>(kFirstBackoff);
+  bool broken = false;  // the stream broke and has not delivered since
+  int attempts = 0;
   while (!stop_) {
     v1::WatchMissionRequest req;
     req.set_mission_id(mission_id);
@@ -132,6 +296,13 @@ void SimClient::WatchLoop(std::string mission_id) {
     auto reader = missions_->WatchMission(ctx, req);
     v1::MissionEvent ev;
     while (reader->Read(&ev)) {
+      if (broken) {
+        log::Warn("shore link: watch of mission {} resumed from version {}, event {} ({} attempts)",
+                  mission_id, req.after_version(), req.after_event_id(), attempts);
+        broken = false;
+        attempts = 0;
+        backoff = std::chrono::duration_cast<std::chrono::milliseconds>(kFirstBackoff);
+      }
       std::lock_guard<std::mutex> lock(mu_);
       switch (ev.event_case()) {
         case v1::MissionEvent::kPlanVersion:
@@ -166,9 +337,16 @@ void SimClient::WatchLoop(std::string mission_id) {
       log::Error("watch ended: {}", s.error_message());
       break;
     }
+    if (!broken) {
+      log::Warn(
+          "shore link: watch of mission {} broken ({}); reconnecting from version {}, event {}",
+          mission_id, s.error_message(), req.after_version(), req.after_event_id());
+    }
+    broken = true;
+    ++attempts;
     ++reconnects_;
-    std::this_thread::sleep_for(backoff);
-    backoff = std::min(backoff * 2, std::chrono::milliseconds(1000));
+    std::this_thread::sleep_for(Jittered(backoff));
+    backoff = Next(backoff);
   }
   cv_.notify_all();
 }

@@ -2,11 +2,18 @@
 // WatchMission, ReportFeedback, ReportVesselState) and ChartService (UploadChart). Nothing else
 // of the server is used: the simulation talks to it only over gRPC.
 //
-// Watching runs on its own thread and survives a broken stream: it
-// reconnects with (after_version, after_event_id) of the last event seen,
-// so nothing is missed and nothing is seen twice. Feedback retries transient
-// errors (UNAVAILABLE, DEADLINE_EXCEEDED, RESOURCE_EXHAUSTED, ABORTED) with
-// the SAME sequence number, which the server deduplicates.
+// Watching runs on its own thread and survives a broken stream or a shore
+// outage: it reconnects with (after_version, after_event_id) of the last
+// event seen, so nothing is missed and nothing is seen twice.
+//
+// Feedback goes through the uplink: each report gets the next sequence
+// number, is written to the on-disk journal (fsync'd) and queued; a sender
+// thread posts the queue in order, retrying transient errors (UNAVAILABLE,
+// DEADLINE_EXCEEDED, RESOURCE_EXHAUSTED, ABORTED) with the SAME sequence
+// number (the server deduplicates by vessel and sequence number) with
+// exponential backoff and jitter, for as long as it runs. The caller keeps
+// executing meanwhile: a shore outage delays reports, it does not stop the
+// ship. Reports an earlier run left unacknowledged in the journal go first.
 #pragma once
 
 #include <grpcpp/grpcpp.h>
@@ -24,12 +31,19 @@
 
 #include "absl/status/status.h"
 #include "absl/status/statusor.h"
+#include "feedback_journal.h"
 #include "seaplan/v1/chart.grpc.pb.h"
 #include "seaplan/v1/mission.grpc.pb.h"
 
 namespace seaplan::sim {
 
 absl::Status FromGrpc(const grpc::Status& s);
+
+// A report the shore acknowledged, with its answer.
+struct FeedbackAck {
+  v1::ReportFeedbackRequest request;
+  v1::ReportFeedbackResponse response;
+};
 
 class SimClient {
  public:
@@ -41,10 +55,25 @@ class SimClient {
   absl::StatusOr<v1::Mission> GetMission(const std::string& mission_id);
   absl::StatusOr<v1::Chart> UploadChart(const std::string& name, const std::string& file_name,
                                         const std::string& bytes);
-  // Posts one report; retries transient errors with the same sequence
-  // number up to `attempts` times.
-  absl::StatusOr<v1::ReportFeedbackResponse> Report(const v1::ReportFeedbackRequest& request,
-                                                    int attempts = 8);
+  // Opens the feedback journal at `journal_path` and starts the sender
+  // thread (which first re-sends what an earlier run left unacknowledged).
+  absl::Status StartUplink(const std::string& journal_path);
+  // Numbers the reports (their sequence_number is overwritten), journals
+  // them durably, then queues them for sending in order.
+  absl::Status Send(std::vector<v1::ReportFeedbackRequest> reports);
+  // Waits until every queued report is acknowledged (true), or returns
+  // false at `timeout` or as soon as the shore is found unreachable.
+  bool WaitSent(std::chrono::milliseconds timeout);
+  // Acknowledgements received since the last call, in sending order.
+  std::vector<FeedbackAck> TakeAcks();
+  // The first report of this mission the server refused for good (neither
+  // transient nor "mission already finished"); OK when none.
+  absl::Status uplink_error() const;
+  // The last send failed with a transient error and none succeeded since.
+  bool shore_unreachable() const { return shore_unreachable_.load(); }
+  // Reports journaled but not yet acknowledged.
+  size_t backlog() const;
+  void StopUplink();
 
   // Posts the live picture once (no retry: the next one replaces it).
   absl::Status ReportVesselState(const v1::ReportVesselStateRequest& request);
@@ -67,6 +96,10 @@ class SimClient {
 
  private:
   void WatchLoop(std::string mission_id);
+  void UplinkLoop();
+  // Posts one report once (deadline 5 s).
+  grpc::Status PostFeedback(const v1::ReportFeedbackRequest& request,
+                            v1::ReportFeedbackResponse* response);
 
   std::shared_ptr<grpc::Channel> channel_;
   std::unique_ptr<v1::MissionService::Stub> missions_;
@@ -83,6 +116,19 @@ class SimClient {
   std::atomic<int> reconnects_{0};
   std::unique_ptr<grpc::ClientContext> watch_context_;  // guarded by mu_
   std::thread watcher_;
+
+  // The uplink: journal, queue and sender thread.
+  mutable std::mutex uplink_mu_;
+  std::condition_variable uplink_cv_;
+  std::optional<FeedbackJournal> journal_;  // guarded by uplink_mu_
+  std::deque<v1::ReportFeedbackRequest> outbox_;
+  std::vector<FeedbackAck> acks_;
+  absl::Status uplink_error_;
+  std::int64_t next_sequence_ = 0;
+  std::int64_t replayed_until_ = 0;  // reports up to this number came from an earlier run
+  bool uplink_stop_ = false;
+  std::atomic<bool> shore_unreachable_{false};
+  std::thread uplink_;
 };
 
 }  // namespace seaplan::sim

@@ -38,8 +38,9 @@ inline std::string ReadWholeFile(const fs::path& path) {
   return ss.str();
 }
 
-// seaplan-server on 127.0.0.1:0 (HTTP off), database and port file in the
-// folder given to Start. SIGTERM and reaped on destruction.
+// seaplan-server on 127.0.0.1 (HTTP off), database and port file in the
+// folder given to Start, on an ephemeral port or the given one (a restart
+// on the port of a killed server). SIGTERM and reaped on destruction.
 class ServerProcess {
  public:
   ServerProcess() = default;
@@ -48,21 +49,22 @@ class ServerProcess {
   ~ServerProcess() { Stop(); }
 
   // False when the binary does not start or never reports its port (15 s).
-  bool Start(const fs::path& server_bin, const fs::path& dir) {
+  bool Start(const fs::path& server_bin, const fs::path& dir, int port = 0) {
     fs::create_directories(dir);
     const fs::path port_file = dir / "ports";
     fs::remove(port_file);
     const std::string bin = server_bin.string(), data = (dir / "data").string(),
-                      ports = port_file.string(), log = (dir / "server.log").string();
+                      ports = port_file.string(), log = (dir / "server.log").string(),
+                      grpc_addr = "127.0.0.1:" + std::to_string(port);
     pid_ = fork();
     if (pid_ == 0) {
-      int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_TRUNC, 0644);
+      int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);  // restarts append
       if (fd >= 0) {
         dup2(fd, STDOUT_FILENO);
         dup2(fd, STDERR_FILENO);
       }
-      execl(bin.c_str(), bin.c_str(), "--grpc-addr", "127.0.0.1:0", "--http-addr", "", "--data-dir",
-            data.c_str(), "--port-file", ports.c_str(), "--log-level", "warn",
+      execl(bin.c_str(), bin.c_str(), "--grpc-addr", grpc_addr.c_str(), "--http-addr", "",
+            "--data-dir", data.c_str(), "--port-file", ports.c_str(), "--log-level", "warn",
             static_cast<char*>(nullptr));
       _exit(127);
     }
@@ -72,6 +74,7 @@ class ServerProcess {
       std::string line;
       while (std::getline(in, line)) {
         if (line.rfind("grpc=", 0) == 0) {
+          port_ = std::stoi(line.substr(5));
           address_ = "127.0.0.1:" + line.substr(5);
           return true;
         }
@@ -85,18 +88,24 @@ class ServerProcess {
     }
     return false;
   }
-  void Stop() {
+  void Stop() { SignalAndReap(SIGTERM); }
+  // SIGKILL: no shutdown, no flush, as in a crash or an OOM kill.
+  void Kill() { SignalAndReap(SIGKILL); }
+  const std::string& address() const { return address_; }
+  int port() const { return port_; }
+
+ private:
+  void SignalAndReap(int signal) {
     if (pid_ > 0) {
-      kill(pid_, SIGTERM);
+      kill(pid_, signal);
       int status = 0;
       waitpid(pid_, &status, 0);
       pid_ = -1;
     }
   }
-  const std::string& address() const { return address_; }
 
- private:
   pid_t pid_ = -1;
+  int port_ = 0;
   std::string address_;
 };
 
@@ -106,12 +115,12 @@ struct ProcessResult {
   std::string output;      // stdout + stderr
 };
 
-// Runs `argv` (argv[0] is the binary path) with extra environment variables,
-// stdout + stderr into `output_file`; SIGKILL after `limit`.
-inline ProcessResult RunProcess(const std::vector<std::string>& argv,
-                                const std::vector<std::pair<std::string, std::string>>& env,
-                                const fs::path& output_file, std::chrono::seconds limit) {
-  ProcessResult r;
+// Starts `argv` (argv[0] is the binary path) with extra environment
+// variables, stdout + stderr into `output_file`; the child's pid (-1 when
+// fork fails).
+inline pid_t StartProcess(const std::vector<std::string>& argv,
+                          const std::vector<std::pair<std::string, std::string>>& env,
+                          const fs::path& output_file) {
   std::vector<char*> args;
   for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
   args.push_back(nullptr);
@@ -127,6 +136,13 @@ inline ProcessResult RunProcess(const std::vector<std::string>& argv,
     execv(args[0], args.data());
     _exit(127);
   }
+  return pid;
+}
+
+// Waits for a child of StartProcess; SIGKILL after `limit`.
+inline ProcessResult WaitProcess(pid_t pid, const fs::path& output_file,
+                                 std::chrono::seconds limit) {
+  ProcessResult r;
   if (pid < 0) return r;
   const auto deadline = std::chrono::steady_clock::now() + limit;
   int status = 0;
@@ -144,6 +160,13 @@ inline ProcessResult RunProcess(const std::vector<std::string>& argv,
   if (!r.timed_out && WIFEXITED(status)) r.exit_code = WEXITSTATUS(status);
   r.output = ReadWholeFile(output_file);
   return r;
+}
+
+// StartProcess + WaitProcess.
+inline ProcessResult RunProcess(const std::vector<std::string>& argv,
+                                const std::vector<std::pair<std::string, std::string>>& env,
+                                const fs::path& output_file, std::chrono::seconds limit) {
+  return WaitProcess(StartProcess(argv, env, output_file), output_file, limit);
 }
 
 // report.json readers. The sim writes the report itself with a fixed layout
