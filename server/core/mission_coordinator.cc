@@ -105,22 +105,20 @@ MissionCoordinator::MissionCoordinator(storage::MissionRepository& repo, WorkPoo
   // has no replan running anywhere: queue one, or its ship waits forever.
   // A replan of the same base by another replica cannot append twice
   // (AppendVersion checks current + 1).
-  if (engine_) {
-    std::int64_t after = 0;
-    while (true) {
-      auto page = repo_.List(v1::MISSION_STATE_REPLANNING, 1000, after);
-      if (!page.ok()) {
-        log::Error("missions left replanning not resumed: {}", page.status().ToString());
-        break;
-      }
-      for (const storage::MissionRecord& m : page->items) {
-        log::Warn("mission {}: resuming the replan of version {} interrupted by a restart", m.id,
-                  m.current_version);
-        jobs_.push_back({m.id, "replan resumed after a server restart", m.current_version});
-      }
-      if (page->next_after == 0) break;  // the last page
-      after = page->next_after;
+  std::int64_t after = 0;
+  while (true) {
+    auto page = repo_.List(v1::MISSION_STATE_REPLANNING, 1000, after);
+    if (!page.ok()) {
+      log::Error("missions left replanning not resumed: {}", page.status().ToString());
+      break;
     }
+    for (const storage::MissionRecord& m : page->items) {
+      log::Warn("mission {}: resuming the replan of version {} interrupted by a restart", m.id,
+                m.current_version);
+      jobs_.push_back({m.id, "replan resumed after a server restart", m.current_version});
+    }
+    if (page->next_after == 0) break;  // the last page
+    after = page->next_after;
   }
   background_ = std::thread([this] { BackgroundLoop(); });
 }
