@@ -39,7 +39,7 @@ void LazySearch::Initialize(const StateData& initial) {
   n.status = kOpen;
   initial_ = id.value();
   // The initial state is a pending record without a parent.
-  pending_.push_back(Pending{-1, Event{}, 0.0, 0.0});
+  pending_.push_back(Pending{-1, 0, 0.0});
   open_all_.Insert(0, 0, 0);
 }
 
@@ -81,7 +81,7 @@ bool LazySearch::IsAncestor(std::int32_t maybe_ancestor, std::int32_t state) con
 void LazySearch::Push(std::int32_t parent, const Event& event, double g_s, double lb_s,
                       bool preferred, double parent_h) {
   const auto index = static_cast<std::int32_t>(pending_.size());
-  pending_.push_back(Pending{parent, event, g_s, lb_s});
+  pending_.push_back(Pending{parent, event.snap, lb_s});
   double primary, secondary;
   if (params_.weight < 0) {
     primary = parent_h;
@@ -131,7 +131,7 @@ std::int32_t LazySearch::Materialize(std::int32_t pending_index) {
     return initial_;
   }
   registry_.Unpack(StateId(rec.parent), &parent_state_);
-  Event ev = rec.event;
+  Event ev{rec.snap, 0.0, 0.0};
   if (!transitions_.Apply(parent_state_, &ev, &next_)) return -1;  // cannot happen: deterministic
   EnsureTimeline(rec.parent);
   Timeline::Outcome out;

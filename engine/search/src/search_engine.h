@@ -118,11 +118,15 @@ class LazySearch {
   bool SlackAtLeast(const NodeInfo& n, const std::vector<double>& slack) const;
   bool SlackAtMost(const NodeInfo& n, const std::vector<double>& slack) const;
   bool IsAncestor(std::int32_t maybe_ancestor, std::int32_t state) const;
+  // One per generated successor, so kept small (16 bytes): the event's
+  // duration bounds are not stored, Transitions::Apply fixes them again
+  // from the parent's state when the record is popped.
   struct Pending {
     std::int32_t parent;  // -1: the initial state
-    Event event;
-    double g_s, lb_s;
+    SnapId snap;          // Event::snap
+    double lb_s;          // lower bound on the makespan of any completion
   };
+  static_assert(sizeof(Pending) == 16);
   void Push(std::int32_t parent, const Event& event, double g_s, double lb_s, bool preferred,
             double parent_h);
   // Generates and registers the state of a pending record (deferred, as in

@@ -1,10 +1,6 @@
 #include "state_registry.h"
 
 #include <bit>
-#include <cstring>
-
-#include "absl/hash/hash.h"
-#include "absl/types/span.h"
 
 namespace seaplan::search {
 
@@ -12,8 +8,9 @@ StateRegistry::StateRegistry(int num_facts, int num_vars)
     : num_facts_(num_facts),
       num_vars_(num_vars),
       fact_words_((num_facts + 63) / 64),
-      offsets_{0},
-      index_(16, Hash{this}, Eq{this}) {}
+      states_(fact_words_ + 2),
+      values_(num_vars),
+      running_(-1) {}
 
 StateData StateRegistry::MakeEmpty() const {
   StateData s;
@@ -22,65 +19,62 @@ StateData StateRegistry::MakeEmpty() const {
   return s;
 }
 
+namespace {
+std::uint64_t Pair(std::int32_t low, std::int32_t high) {
+  return static_cast<std::uint64_t>(static_cast<std::uint32_t>(low)) |
+         (static_cast<std::uint64_t>(static_cast<std::uint32_t>(high)) << 32);
+}
+std::int32_t Low(std::uint64_t w) {
+  return static_cast<std::int32_t>(w & 0xffffffffu);
+}
+std::int32_t High(std::uint64_t w) {
+  return static_cast<std::int32_t>(w >> 32);
+}
+}  // namespace
+
 StateId StateRegistry::Insert(const StateData& state, bool* is_new) {
-  // Pack at the end of the pool, then look up; pop it again when known.
-  const std::size_t begin = pool_.size();
-  pool_.insert(pool_.end(), state.facts.begin(), state.facts.end());
+  words_.clear();
   for (double v : state.values) {
     if (v == 0.0) v = 0.0;  // one bit pattern for +0 and -0
-    pool_.push_back(std::bit_cast<std::uint64_t>(v));
+    words_.push_back(std::bit_cast<std::uint64_t>(v));
   }
-  pool_.push_back(static_cast<std::uint64_t>(static_cast<std::uint32_t>(state.next_til)) |
-                  (static_cast<std::uint64_t>(static_cast<std::uint32_t>(state.variant)) << 32));
+  const std::int32_t values_id = values_.Intern(words_, nullptr);
+  words_.clear();
   for (const auto& r : state.running) {
-    pool_.push_back(static_cast<std::uint64_t>(r.action));
-    pool_.push_back(std::bit_cast<std::uint64_t>(r.min_duration_s));
-    pool_.push_back(std::bit_cast<std::uint64_t>(r.max_duration_s));
+    words_.push_back(static_cast<std::uint64_t>(r.action));
+    words_.push_back(std::bit_cast<std::uint64_t>(r.min_duration_s));
+    words_.push_back(std::bit_cast<std::uint64_t>(r.max_duration_s));
   }
-  const auto id = static_cast<std::int32_t>(offsets_.size() - 1);
-  offsets_.push_back(pool_.size());
-  auto [it, inserted] = index_.insert(id);
-  if (!inserted) {
-    pool_.resize(begin);
-    offsets_.pop_back();
-  }
-  if (is_new) *is_new = inserted;
-  return StateId(*it);
+  const std::int32_t running_id = running_.Intern(words_, nullptr);
+  packed_.assign(state.facts.begin(), state.facts.end());
+  packed_.push_back(Pair(values_id, running_id));
+  packed_.push_back(Pair(state.next_til, state.variant));
+  return StateId(states_.Intern(packed_, is_new));
 }
 
 void StateRegistry::Unpack(StateId id, StateData* out) const {
-  const std::uint64_t* p = Data(id.value());
-  const std::size_t len = Length(id.value());
+  const auto packed = states_.Get(id.value());
+  const std::uint64_t* p = packed.data();
   out->facts.assign(p, p + fact_words_);
   p += fact_words_;
+  const auto values = values_.Get(Low(*p));
   out->values.resize(static_cast<std::size_t>(num_vars_));
-  for (int i = 0; i < num_vars_; ++i) out->values[i] = std::bit_cast<double>(*p++);
-  out->next_til = static_cast<std::int32_t>(*p & 0xffffffffu);
-  out->variant = static_cast<std::int32_t>(*p++ >> 32);
-  const std::size_t rest = len - static_cast<std::size_t>(fact_words_ + num_vars_ + 1);
-  out->running.resize(rest / 3);
-  for (auto& r : out->running) {
-    r.action = static_cast<task::ActionId>(*p++);
-    r.min_duration_s = std::bit_cast<double>(*p++);
-    r.max_duration_s = std::bit_cast<double>(*p++);
+  for (int i = 0; i < num_vars_; ++i) out->values[i] = std::bit_cast<double>(values[i]);
+  const auto running = running_.Get(High(*p++));
+  out->running.resize(running.size() / 3);
+  for (std::size_t i = 0; i < out->running.size(); ++i) {
+    auto& r = out->running[i];
+    r.action = static_cast<task::ActionId>(running[3 * i]);
+    r.min_duration_s = std::bit_cast<double>(running[3 * i + 1]);
+    r.max_duration_s = std::bit_cast<double>(running[3 * i + 2]);
   }
+  out->next_til = Low(*p);
+  out->variant = High(*p);
 }
 
 std::size_t StateRegistry::MemoryBytes() const {
-  return pool_.capacity() * sizeof(std::uint64_t) + offsets_.capacity() * sizeof(std::size_t) +
-         index_.capacity() * (sizeof(std::int32_t) + 1);
-}
-
-std::size_t StateRegistry::Hash::operator()(std::int32_t id) const {
-  const std::uint64_t* p = registry->Data(id);
-  const std::size_t len = registry->Length(id);
-  return absl::Hash<absl::Span<const std::uint64_t>>{}(absl::MakeConstSpan(p, len));
-}
-
-bool StateRegistry::Eq::operator()(std::int32_t a, std::int32_t b) const {
-  const std::size_t la = registry->Length(a);
-  if (la != registry->Length(b)) return false;
-  return std::memcmp(registry->Data(a), registry->Data(b), la * sizeof(std::uint64_t)) == 0;
+  return states_.MemoryBytes() + values_.MemoryBytes() + running_.MemoryBytes() +
+         (packed_.capacity() + words_.capacity()) * sizeof(std::uint64_t);
 }
 
 }  // namespace seaplan::search

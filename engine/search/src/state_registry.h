@@ -4,14 +4,20 @@
 // start) and the index of the next timed initial literal. The schedule is
 // not part of the state: it is rebuilt from the path (see timeline.h).
 //
+// Packed layout, the same length for every state (so no offsets): one bit
+// per fact, then one word holding the ids of the state's numeric values and
+// of its running actions, both interned in side tables (many states share
+// them: values change with few actions, and most states run the same few
+// actions), then one word with the next timed literal and the variant.
+//
 // Thread-safety: none; one registry per search.
 #pragma once
 
 #include <cstdint>
 #include <vector>
 
-#include "absl/container/flat_hash_set.h"
 #include "seaplan/task/ground_task.h"
+#include "word_tuple_table.h"
 
 namespace seaplan::search {
 
@@ -57,30 +63,27 @@ class StateRegistry {
   // Returns the id of `state`, registering it if new; `*is_new` tells which.
   StateId Insert(const StateData& state, bool* is_new);
   void Unpack(StateId id, StateData* out) const;
-  std::size_t size() const { return offsets_.size() - 1; }
+  std::size_t size() const { return states_.size(); }
+  // Everything the registry holds, allocated capacity included.
   std::size_t MemoryBytes() const;
+  // Words of one packed state (side tables not included).
+  int packed_words() const { return fact_words_ + 2; }
+  // Distinct numeric value vectors and running-action sets stored.
+  std::size_t distinct_values() const { return values_.size(); }
+  std::size_t distinct_running() const { return running_.size(); }
   int num_facts() const { return num_facts_; }
   int num_vars() const { return num_vars_; }
   StateData MakeEmpty() const;
 
  private:
-  struct Hash {
-    const StateRegistry* registry;
-    std::size_t operator()(std::int32_t id) const;
-  };
-  struct Eq {
-    const StateRegistry* registry;
-    bool operator()(std::int32_t a, std::int32_t b) const;
-  };
-  const std::uint64_t* Data(std::int32_t id) const { return pool_.data() + offsets_[id]; }
-  std::size_t Length(std::int32_t id) const { return offsets_[id + 1] - offsets_[id]; }
-
   int num_facts_;
   int num_vars_;
   int fact_words_;
-  std::vector<std::uint64_t> pool_;
-  std::vector<std::size_t> offsets_;
-  absl::flat_hash_set<std::int32_t, Hash, Eq> index_;
+  WordTupleTable states_;   // packed states, fixed length
+  WordTupleTable values_;   // numeric values (bit patterns), num_vars_ words
+  WordTupleTable running_;  // running actions, 3 words each
+  // Scratch for Insert.
+  std::vector<std::uint64_t> packed_, words_;
 };
 
 }  // namespace seaplan::search
