@@ -15,7 +15,15 @@ LazySearch::LazySearch(const SnapTask& task, StateRegistry& registry,
       transitions_(transitions),
       timeline_(timeline),
       params_(params),
-      rng_(params.seed) {}
+      rng_(params.seed),
+      open_all_(KeyOrder(params)),
+      open_preferred_(KeyOrder(params)) {}
+
+TieBreakingOpenList::KeyOrder LazySearch::KeyOrder(const SearchParams& params) {
+  // Greedy: (h, makespan so far); weighted A*: (f, h). See Push.
+  return params.weight < 0 ? TieBreakingOpenList::KeyOrder::kIntegerFirst
+                           : TieBreakingOpenList::KeyOrder::kRealFirst;
+}
 
 LazySearch::NodeInfo& LazySearch::Info(StateId id) {
   const auto i = static_cast<std::size_t>(id.value());
@@ -79,19 +87,15 @@ bool LazySearch::IsAncestor(std::int32_t maybe_ancestor, std::int32_t state) con
 }
 
 void LazySearch::Push(std::int32_t parent, const Event& event, double g_s, double lb_s,
-                      bool preferred, double parent_h) {
+                      bool preferred, std::int32_t parent_h) {
   const auto index = static_cast<std::int32_t>(pending_.size());
   pending_.push_back(Pending{parent, event.snap, lb_s});
-  double primary, secondary;
-  if (params_.weight < 0) {
-    primary = parent_h;
-    secondary = g_s;
-  } else {
-    primary = lb_s + params_.weight * params_.scale_s * parent_h;
-    secondary = parent_h;
-  }
-  open_all_.Insert(primary, secondary, index);
-  if (preferred) open_preferred_.Insert(primary, secondary, index);
+  // Greedy: parent's h, then the makespan so far; weighted A*: makespan
+  // lower bound + weight * scale * h, then h.
+  const double real_key =
+      params_.weight < 0 ? g_s : lb_s + params_.weight * params_.scale_s * parent_h;
+  open_all_.Insert(parent_h, real_key, index);
+  if (preferred) open_preferred_.Insert(parent_h, real_key, index);
 }
 
 bool LazySearch::Pop(std::int32_t* state) {
@@ -296,7 +300,7 @@ LazySearch::Status LazySearch::Step() {
     // A goal reached is taken at once (best first among goals is the
     // anytime phase's job): put it first in both lists.
     if (transitions_.IsGoal(next_)) {
-      Push(s, ev, out.makespan_s, out.lower_bound_s, true, -1e9);
+      Push(s, ev, out.makespan_s, out.lower_bound_s, true, kGoalFirst);
       continue;
     }
     Push(s, ev, out.makespan_s, out.lower_bound_s, preferred, h);

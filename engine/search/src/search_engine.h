@@ -127,8 +127,11 @@ class LazySearch {
     double lb_s;          // lower bound on the makespan of any completion
   };
   static_assert(sizeof(Pending) == 16);
+  // `parent_h` kGoalFirst puts a goal state before everything else.
   void Push(std::int32_t parent, const Event& event, double g_s, double lb_s, bool preferred,
-            double parent_h);
+            std::int32_t parent_h);
+  static constexpr std::int32_t kGoalFirst = -1'000'000'000;
+  static TieBreakingOpenList::KeyOrder KeyOrder(const SearchParams& params);
   // Generates and registers the state of a pending record (deferred, as in
   // Fast Downward's lazy search); -1 when it is a dominated duplicate.
   std::int32_t Materialize(std::int32_t pending_index);
