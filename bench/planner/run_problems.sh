@@ -10,23 +10,12 @@ set -euo pipefail
 exe=$1
 shift
 time_s=60 memory_mb=2048 bench=${SEAPLAN_SHARED:-../shared}/bench
-problems=()
-while [[ $# -gt 0 ]]; do
-  case $1 in
-    --time-limit) time_s=$2; shift 2 ;;
-    --memory-limit) memory_mb=$2; shift 2 ;;
-    --bench) bench=$2; shift 2 ;;
-    *) problems+=("$1"); shift ;;
-  esac
-done
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
+source "$(dirname "$0")/problem_args.sh"
 printf '%-24s %-22s %8s %8s %10s %10s %s\n' problem status wall_s rss_MB expanded generated valid
 solved=0
 for p in "${problems[@]}"; do
   dir=$bench/${p%/*} name=${p#*/}
-  domain=$dir/domain.pddl
-  [[ -f $dir/domain-$name.pddl ]] && domain=$dir/domain-$name.pddl
+  domain=$(domain_of "$dir" "$name")
   rm -f "$work/plan"
   nice /usr/bin/time -f '%e %M' -o "$work/time" "$exe" plan "$domain" "$dir/$name.pddl" --no-anytime \
     --time-limit "$time_s" --memory-limit "$memory_mb" -o "$work/plan" >"$work/out" 2>/dev/null || true

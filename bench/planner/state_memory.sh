@@ -17,22 +17,7 @@ set -euo pipefail
 before=$1 after=$2
 shift 2
 memory_mb=400 time_s=120 bench=${SEAPLAN_SHARED:-../shared}/bench
-problems=()
-while [[ $# -gt 0 ]]; do
-  case $1 in
-    --memory-limit) memory_mb=$2; shift 2 ;;
-    --time-limit) time_s=$2; shift 2 ;;
-    --bench) bench=$2; shift 2 ;;
-    *) problems+=("$1"); shift ;;
-  esac
-done
-work=$(mktemp -d)
-trap 'rm -rf "$work"' EXIT
-
-domain_of() {  # per-instance domain-pNN.pddl when present, else domain.pddl
-  local dir=$1 p=$2
-  if [[ -f $dir/domain-$p.pddl ]]; then echo "$dir/domain-$p.pddl"; else echo "$dir/domain.pddl"; fi
-}
+source "$(dirname "$0")/problem_args.sh"
 
 # Prints: status generated peak_rss_kb
 run_one() {

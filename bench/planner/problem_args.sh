@@ -1,0 +1,22 @@
+# Sourced by state_memory.sh and run_problems.sh: reads the options both
+# take (--time-limit S, --memory-limit MB, --bench DIR; defaults set by the
+# caller in time_s, memory_mb, bench) and the problems (domain/pNN) into
+# `problems`, and makes the scratch folder `work` (removed on exit).
+problems=()
+while [[ $# -gt 0 ]]; do
+  case $1 in
+    --time-limit) time_s=$2; shift 2 ;;
+    --memory-limit) memory_mb=$2; shift 2 ;;
+    --bench) bench=$2; shift 2 ;;
+    *) problems+=("$1"); shift ;;
+  esac
+done
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+
+# The domain of problem `name` in folder `dir`: the per-instance
+# domain-pNN.pddl when present, else domain.pddl.
+domain_of() {
+  local dir=$1 name=$2
+  if [[ -f $dir/domain-$name.pddl ]]; then echo "$dir/domain-$name.pddl"; else echo "$dir/domain.pddl"; fi
+}
