@@ -7,6 +7,23 @@
 namespace seaplan::search {
 namespace {
 
+struct Item {
+  std::int32_t int_key;
+  double real_key;
+  std::int32_t id;
+};
+
+// Inserts `items` in order, then pops everything.
+std::vector<std::int32_t> PopAllOf(TieBreakingOpenList::KeyOrder order,
+                                   const std::vector<Item>& items) {
+  TieBreakingOpenList list(order);
+  for (const Item& i : items) list.Insert(i.int_key, i.real_key, i.id);
+  EXPECT_EQ(list.size(), items.size());
+  std::vector<std::int32_t> ids;
+  while (!list.empty()) ids.push_back(list.Pop().state);
+  return ids;
+}
+
 std::vector<std::int32_t> PopAll(TieBreakingOpenList& list) {
   std::vector<std::int32_t> ids;
   while (!list.empty()) ids.push_back(list.Pop().state);
@@ -14,24 +31,16 @@ std::vector<std::int32_t> PopAll(TieBreakingOpenList& list) {
 }
 
 TEST(TieBreakingOpenListTest, IntegerKeyFirstThenRealThenId) {
-  TieBreakingOpenList list(TieBreakingOpenList::KeyOrder::kIntegerFirst);
-  list.Insert(2, 0.5, 0);
-  list.Insert(1, 9.0, 1);
-  list.Insert(1, 3.0, 2);
-  list.Insert(1, 3.0, 3);
-  list.Insert(-1'000'000'000, 100.0, 4);
-  EXPECT_EQ(list.size(), 5u);
-  EXPECT_EQ(PopAll(list), (std::vector<std::int32_t>{4, 2, 3, 1, 0}));
+  EXPECT_EQ(
+      PopAllOf(TieBreakingOpenList::KeyOrder::kIntegerFirst,
+               {{2, 0.5, 0}, {1, 9.0, 1}, {1, 3.0, 2}, {1, 3.0, 3}, {-1'000'000'000, 100.0, 4}}),
+      (std::vector<std::int32_t>{4, 2, 3, 1, 0}));
 }
 
 TEST(TieBreakingOpenListTest, RealKeyFirstThenIntegerThenId) {
-  TieBreakingOpenList list(TieBreakingOpenList::KeyOrder::kRealFirst);
-  list.Insert(2, 0.5, 0);
-  list.Insert(1, 9.0, 1);
-  list.Insert(7, 3.0, 2);
-  list.Insert(5, 3.0, 3);
-  list.Insert(5, 3.0, 4);
-  EXPECT_EQ(PopAll(list), (std::vector<std::int32_t>{0, 3, 4, 2, 1}));
+  EXPECT_EQ(PopAllOf(TieBreakingOpenList::KeyOrder::kRealFirst,
+                     {{2, 0.5, 0}, {1, 9.0, 1}, {7, 3.0, 2}, {5, 3.0, 3}, {5, 3.0, 4}}),
+            (std::vector<std::int32_t>{0, 3, 4, 2, 1}));
 }
 
 TEST(TieBreakingOpenListTest, TiesComeOutInIdOrderWhateverTheInsertionOrder) {
