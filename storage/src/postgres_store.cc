@@ -1251,15 +1251,9 @@ class PostgresStore::Access final : public TokenRepository, public AuditReposito
                               absl::StrCat("SELECT ", internal::kAuditColumns,
                                            " FROM audit_log WHERE seq > $1 ORDER BY seq LIMIT $2"),
                               Params().I8(after).I8(page_size + 1)));
-      Page<AuditRecord> page;
-      for (int row = 0; row < r.rows(); ++row) {
-        if (static_cast<int>(page.items.size()) == page_size) {
-          page.next_after = page.items.back().seq;
-          break;
-        }
-        page.items.push_back(internal::ReadAudit(ResultRow{r, row}));
-      }
-      return page;
+      return Impl::ToPage<AuditRecord>(r, page_size, [](const Result& res, int row) {
+        return internal::ReadAudit(ResultRow{res, row});
+      });
     });
   }
 

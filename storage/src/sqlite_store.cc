@@ -226,6 +226,23 @@ struct StmtRow {
   std::string Bytes(int c) const { return s.ColBlob(c); }
 };
 
+// Steps `s` (a query with LIMIT page_size + 1) into a page; `read` turns
+// the current row into a record with a seq.
+template <typename T, typename Read>
+absl::StatusOr<Page<T>> StepPage(Stmt& s, int page_size, Read&& read) {
+  Page<T> page;
+  while (true) {
+    SEAPLAN_ASSIGN_OR_RETURN(bool row, s.Step());
+    if (!row) break;
+    if (static_cast<int>(page.items.size()) == page_size) {
+      page.next_after = page.items.back().seq;
+      break;
+    }
+    page.items.push_back(read(StmtRow{s}));
+  }
+  return page;
+}
+
 absl::Status Exec(sqlite3* db, const char* sql) {
   char* err = nullptr;
   const int rc = sqlite3_exec(db, sql, nullptr, nullptr, &err);
@@ -458,17 +475,8 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
            "SELECT seq, id, name, format, options, summary, created_at_ms FROM charts "
            "WHERE seq > ?1 ORDER BY seq LIMIT ?2");
     s.Int(1, after).Int(2, page_size + 1);
-    Page<ChartRecord> page;
-    while (true) {
-      SEAPLAN_ASSIGN_OR_RETURN(bool row, s.Step());
-      if (!row) break;
-      if (static_cast<int>(page.items.size()) == page_size) {
-        page.next_after = page.items.back().seq;
-        break;
-      }
-      page.items.push_back(internal::ReadChart(StmtRow{s}, false));
-    }
-    return page;
+    return StepPage<ChartRecord>(
+        s, page_size, [](const StmtRow& row) { return internal::ReadChart(row, false); });
   }
 
   // ---- MissionRepository ----
@@ -553,17 +561,8 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
                "SELECT ", kMissionColumns,
                " FROM missions WHERE seq > ?1 AND (?2 = 0 OR state = ?2) ORDER BY seq LIMIT ?3"));
     s.Int(1, after).Int(2, state).Int(3, page_size + 1);
-    Page<MissionRecord> page;
-    while (true) {
-      SEAPLAN_ASSIGN_OR_RETURN(bool row, s.Step());
-      if (!row) break;
-      if (static_cast<int>(page.items.size()) == page_size) {
-        page.next_after = page.items.back().seq;
-        break;
-      }
-      page.items.push_back(internal::ReadMission(StmtRow{s}));
-    }
-    return page;
+    return StepPage<MissionRecord>(s, page_size,
+                                   [](const StmtRow& row) { return internal::ReadMission(row); });
   }
 
   absl::Status Update(const std::string& id, const MissionUpdate& update,
@@ -903,17 +902,8 @@ class SqliteStore::Access final : public TokenRepository, public AuditRepository
     Stmt s(impl_.db, absl::StrCat("SELECT ", internal::kAuditColumns,
                                   " FROM audit_log WHERE seq > ?1 ORDER BY seq LIMIT ?2"));
     s.Int(1, after).Int(2, page_size + 1);
-    Page<AuditRecord> page;
-    while (true) {
-      SEAPLAN_ASSIGN_OR_RETURN(bool row, s.Step());
-      if (!row) break;
-      if (static_cast<int>(page.items.size()) == page_size) {
-        page.next_after = page.items.back().seq;
-        break;
-      }
-      page.items.push_back(internal::ReadAudit(StmtRow{s}));
-    }
-    return page;
+    return StepPage<AuditRecord>(s, page_size,
+                                 [](const StmtRow& row) { return internal::ReadAudit(row); });
   }
 
  private:
