@@ -36,6 +36,7 @@
 #include <vector>
 
 #include "absl/strings/str_cat.h"
+#include "client_token.h"
 #include "executor.h"
 #include "report.h"
 #include "scenario.h"
@@ -51,6 +52,8 @@ constexpr double kDeg = M_PI / 180.0;
 
 struct Flags {
   std::string server = "127.0.0.1:50051";
+  std::string token;
+  std::string token_file;
   std::string scenario;
   std::string mission_id;
   std::string report_dir = "sim-report";
@@ -297,6 +300,10 @@ int main(int argc, char** argv) {
       "seaplan-sim: simulate the onboard side of a mission against a seaplan server (gRPC)"};
   app.add_option("--server", f.server, "seaplan-server gRPC address HOST:PORT")
       ->capture_default_str();
+  app.add_option("--token", f.token,
+                 "API token to present (else --token-file, env SEAPLAN_TOKEN or "
+                 "SEAPLAN_TOKEN_FILE); a vessel token may only sail its own vessel's missions");
+  app.add_option("--token-file", f.token_file, "file whose first line is the API token");
   app.add_option("--scenario", f.scenario, "scenario file (examples/scenarios/*.scenario)")
       ->required();
   app.add_option("--mission-id", f.mission_id,
@@ -419,7 +426,9 @@ int main(int argc, char** argv) {
   if (!executor.ok()) return fail(executor.status());
   mission::LocationTable locations = sim::LocalLocations(*scenario, frame);
 
-  sim::SimClient client(f.server);
+  absl::StatusOr<std::string> token = client::ResolveToken(f.token, f.token_file);
+  if (!token.ok()) return fail(token.status());
+  sim::SimClient client(f.server, *token);
   {
     std::error_code ec;
     std::filesystem::create_directories(f.report_dir, ec);
