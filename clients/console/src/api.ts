@@ -95,7 +95,9 @@ export function currentSession(): Session | null { return session; }
 // Fired when the server no longer knows the caller (401): sign in again.
 export const SIGNED_OUT_EVENT = "seaplan-signed-out";
 
-function headers(): Record<string, string> {
+// The headers of an API call: JSON, and the session's CSRF token (also for
+// requests not made through call(), such as the chart upload's XHR).
+export function headers(): Record<string, string> {
   const h: Record<string, string> = { "Content-Type": "application/json" };
   if (session) h["X-CSRF-Token"] = session.csrfToken;
   return h;
