@@ -473,6 +473,12 @@ int main(int argc, char** argv) {
   executor->mutable_report().mission_id = mission_id;
   executor->mutable_report().scenario = scenario->name;
 
+  // A token that may not sail this mission (another vessel's, revoked) is
+  // an error at once, not an outage to ride out.
+  if (auto m = client.GetMission(mission_id);
+      !m.ok() && (absl::IsPermissionDenied(m.status()) || absl::IsUnauthenticated(m.status()))) {
+    return fail(m.status());
+  }
   client.StartWatch(mission_id);
   const auto replan_timeout =
       std::chrono::milliseconds(static_cast<int64_t>(f.replan_timeout_s * 1000));

@@ -334,7 +334,9 @@ void SimClient::WatchLoop(std::string mission_id) {
     }
     if (s.error_code() == grpc::StatusCode::NOT_FOUND ||
         s.error_code() == grpc::StatusCode::UNIMPLEMENTED ||
-        s.error_code() == grpc::StatusCode::INVALID_ARGUMENT) {
+        s.error_code() == grpc::StatusCode::INVALID_ARGUMENT ||
+        s.error_code() == grpc::StatusCode::UNAUTHENTICATED ||
+        s.error_code() == grpc::StatusCode::PERMISSION_DENIED) {
       log::Error("watch ended: {}", s.error_message());
       break;
     }
