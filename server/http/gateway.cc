@@ -31,6 +31,8 @@ constexpr int kSessionMaxAgeS = 12 * 3600;
 
 void Reply(httplib::Response& res, const absl::Status& status) {
   res.status = ToHttpStatus(status.code());
+  // RFC 6750: a 401 names the scheme it wants.
+  if (absl::IsUnauthenticated(status)) res.set_header("WWW-Authenticate", "Bearer");
   res.set_content(ErrorJson(status), kJson);
 }
 

@@ -242,6 +242,9 @@ class AccessMatrixTest : public ::testing::Test {
     auto res = http.Post(path, headers, json, "application/json");
     if (!res) return -1;
     *body = res->body.substr(0, 300);
+    if (res->status == 401) {
+      EXPECT_EQ(res->get_header_value("WWW-Authenticate"), "Bearer") << path;
+    }
     return res->status;
   }
 
