@@ -6,7 +6,8 @@
 #      client: the server plans, refines and replans, seaplan-sim executes and
 #      reports; prints the navigation log and where the mission report is.
 # It prints the operator console's URL (the server serves it on its HTTP port).
-# Environment: DATA_DIR (default ./data), OUT_DIR (default ./out), SCENARIO
+# Environment: DATA_DIR (default ./data; the server's first start writes its
+# admin token to DATA_DIR/admin.token, which the demo uses), OUT_DIR (default ./out), SCENARIO
 # (default examples/scenarios/case-c.scenario), HTTP_ADDR (default
 # 127.0.0.1:0, any free port), KEEP_SERVING=1 (keep the server and its
 # console up after the mission until Ctrl-C).
@@ -36,11 +37,21 @@ for _ in $(seq 1 100); do
   kill -0 "$SERVER_PID" 2>/dev/null || { echo "demo: seaplan-server exited early" >&2; exit 1; }
   sleep 0.1
 done
+# The server wrote its admin token to $DATA_DIR/admin.token at its first
+# start (mode 0600); the CLI and the simulation client read it through
+# SEAPLAN_TOKEN_FILE (give another admin token's file there to override).
+export SEAPLAN_TOKEN_FILE=${SEAPLAN_TOKEN_FILE:-$DATA_DIR/admin.token}
+[[ -r "$SEAPLAN_TOKEN_FILE" ]] || {
+  echo "demo: no admin token in $SEAPLAN_TOKEN_FILE (the database in $DATA_DIR has tokens from" \
+    "elsewhere): set SEAPLAN_TOKEN_FILE to an admin token's file or use another DATA_DIR" >&2
+  exit 1
+}
 GRPC_PORT=$(sed -n 's/^grpc=//p' "$PORT_FILE")
 HTTP_PORT=$(sed -n 's/^http=//p' "$PORT_FILE")
 SERVER=127.0.0.1:$GRPC_PORT
 echo "== seaplan-server on $SERVER (gRPC) and 127.0.0.1:$HTTP_PORT (HTTP), database in $DATA_DIR"
-echo "== operator console: http://127.0.0.1:$HTTP_PORT/ (open it in a browser while the demo runs)"
+echo "== operator console: http://127.0.0.1:$HTTP_PORT/ (open it in a browser while the demo runs;"
+echo "   sign in with the admin token in $SEAPLAN_TOKEN_FILE)"
 
 echo
 echo "== Case A: temporal plan from the server"

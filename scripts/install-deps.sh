@@ -9,14 +9,14 @@ set -euo pipefail
 
 runtime_packages=(
   libgrpc++1.51 libprotobuf32 libsqlite3-0 libgeos-c1v5 libgdal32 libnlopt-cxx0
-  libpagmo8 libspdlog1.10 libabsl20220623 libfmt9 ca-certificates libpq5
+  libpagmo8 libspdlog1.10 libabsl20220623 libfmt9 ca-certificates libpq5 libssl3
 )
 build_packages=(
   build-essential cmake ninja-build pkg-config git
   libgrpc++-dev protobuf-compiler-grpc libprotobuf-dev protobuf-compiler grpc-proto
   libabsl-dev libsqlite3-dev sqlite3 libpq-dev postgresql
   libeigen3-dev libnlopt-cxx-dev libgeos-dev libgdal-dev gdal-bin libpagmo-dev
-  libcli11-dev libcpp-httplib-dev libspdlog-dev libfmt-dev
+  libcli11-dev libcpp-httplib-dev libspdlog-dev libfmt-dev libssl-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   clang libclang-rt-14-dev clang-format curl libexpat1-dev
   chromium fonts-dejavu-core

@@ -8,6 +8,7 @@
 
 #include "seaplan/common/log.h"
 #include "seaplan/storage/open_store.h"
+#include "server/auth/bootstrap.h"
 #include "server/config/config.h"
 #include "server/server.h"
 
@@ -37,6 +38,23 @@ int main(int argc, char** argv) {
   }
   auto store = std::move(opened->store);
   log::Info("database {} (schema version {})", opened->description, storage::LatestSchemaVersion());
+
+  {
+    const server::auth::Authenticator auth(store->tokens());
+    auto admin = server::auth::EnsureAdminToken(auth, store->tokens(), config.admin_token_file,
+                                                config.data_dir);
+    if (!admin.ok()) {
+      log::Error("admin token: {}", admin.status().ToString());
+      return 1;
+    }
+    if (!admin->created_bearer.empty()) {
+      // Shown once; the file keeps it for scripts on this machine.
+      std::printf(
+          "seaplan-server: first start: created the admin token (also in %s, mode 0600):\n%s\n",
+          admin->created_file.c_str(), admin->created_bearer.c_str());
+      std::fflush(stdout);
+    }
+  }
 
   auto server = server::Server::Start(config.server, *store);
   if (!server.ok()) {

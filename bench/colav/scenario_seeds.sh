@@ -57,7 +57,7 @@ for scenario in "${SCENARIOS[@]}"; do
   : > "$WORK/rows"
   for seed in $(seq 1 "$RUNS"); do
     out=$WORK/$name-$seed
-    if ! build/bin/seaplan-sim --server "$SERVER" --scenario "$scenario" --report-dir "$out" \
+    if ! build/bin/seaplan-sim --server "$SERVER" --token-file "$WORK/data/admin.token" --scenario "$scenario" --report-dir "$out" \
       --colav "$COLAV" --seed "$seed" --log-level error ${SIM_ARGS:-} >"$out.log" 2>&1; then
       echo "$name seed $seed: seaplan-sim failed ($(tail -1 "$out.log"))" >&2
     fi

@@ -36,7 +36,7 @@ for (const [path, what] of [[serverBin, "seaplan-server"], [join(consoleDir, "in
     process.exit(process.env.CI ? 1 : 0);
   }
 }
-const { launchBrowser, startServer } = await import("../../clients/console/e2e/support.mjs");
+const { launchBrowser, signIn, startServer } = await import("../../clients/console/e2e/support.mjs");
 
 const stats = (xs) => {
   const s = [...xs].sort((a, b) => a - b);
@@ -51,7 +51,7 @@ try {
   // The chart through the API, as the console's upload form sends it.
   const upload = await fetch(`${server.url}v1/ChartService/UploadChart`, {
     method: "POST",
-    headers: { "Content-Type": "application/json" },
+    headers: { "Content-Type": "application/json", Authorization: `Bearer ${server.adminToken}` },
     body: JSON.stringify({ name: "trondheim", format: "CHART_FORMAT_GEOJSON", files: [
       { name: "trondheim_landareal_wgs84.geojson", content: readFileSync(chartFile).toString("base64") }] }),
   });
@@ -59,6 +59,7 @@ try {
   const chart = (await upload.json()).chart;
 
   const page = await browser.context.newPage();
+  await signIn(page, server);
   // First load: cold navigations (cache disabled) to the first view drawn.
   const cdp = await browser.context.newCDPSession(page);
   await cdp.send("Network.setCacheDisabled", { cacheDisabled: true });

@@ -29,6 +29,8 @@
 #include <thread>
 #include <vector>
 
+#include "client_token.h"
+#include "token_channel.h"
 #include "seaplan/mission/mission_planner.h"
 #include "seaplan/search/planner.h"
 #include "seaplan/v1/mission.grpc.pb.h"
@@ -149,7 +151,16 @@ void ServerBench(const fs::path& src, const fs::path& bin, int n) {
     std::printf("server: skipped (seaplan-server did not start from %s)\n", bin.c_str());
     return;
   }
-  auto channel = grpc::CreateChannel(server.address, grpc::InsecureChannelCredentials());
+  // The admin token the server wrote at its first start, for this process
+  // and for seaplan-sim.
+  const fs::path token_file = dir / "data" / "admin.token";
+  auto token = client::ResolveToken("", token_file.string());
+  if (!token.ok()) {
+    std::printf("server: skipped (%s)\n", std::string(token.status().message()).c_str());
+    return;
+  }
+  auto channel = client::CreateChannelWithToken(server.address, grpc::InsecureChannelCredentials(),
+                                                grpc::ChannelArguments(), *token);
   auto stub = v1::MissionService::NewStub(channel);
   v1::CreateMissionRequest req;
   auto* spec = req.mutable_spec();
@@ -240,6 +251,7 @@ void ServerBench(const fs::path& src, const fs::path& bin, int n) {
   }
   // Whole case C simulation.
   std::string cmd = (bin / "seaplan-sim").string() + " --server " + server.address +
+                    " --token-file " + token_file.string() +
                     " --scenario " + (src / "examples/scenarios/case-c.scenario").string() +
                     " --report-dir " + (dir / "case-c").string() + " > " +
                     (dir / "case-c.out").string() + " 2>&1";

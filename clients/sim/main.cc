@@ -36,6 +36,7 @@
 #include <vector>
 
 #include "absl/strings/str_cat.h"
+#include "client_token.h"
 #include "executor.h"
 #include "report.h"
 #include "scenario.h"
@@ -51,6 +52,8 @@ constexpr double kDeg = M_PI / 180.0;
 
 struct Flags {
   std::string server = "127.0.0.1:50051";
+  std::string token;
+  std::string token_file;
   std::string scenario;
   std::string mission_id;
   std::string report_dir = "sim-report";
@@ -297,6 +300,10 @@ int main(int argc, char** argv) {
       "seaplan-sim: simulate the onboard side of a mission against a seaplan server (gRPC)"};
   app.add_option("--server", f.server, "seaplan-server gRPC address HOST:PORT")
       ->capture_default_str();
+  app.add_option("--token", f.token,
+                 "API token to present (else --token-file, env SEAPLAN_TOKEN or "
+                 "SEAPLAN_TOKEN_FILE); a vessel token may only sail its own vessel's missions");
+  app.add_option("--token-file", f.token_file, "file whose first line is the API token");
   app.add_option("--scenario", f.scenario, "scenario file (examples/scenarios/*.scenario)")
       ->required();
   app.add_option("--mission-id", f.mission_id,
@@ -419,7 +426,9 @@ int main(int argc, char** argv) {
   if (!executor.ok()) return fail(executor.status());
   mission::LocationTable locations = sim::LocalLocations(*scenario, frame);
 
-  sim::SimClient client(f.server);
+  absl::StatusOr<std::string> token = client::ResolveToken(f.token, f.token_file);
+  if (!token.ok()) return fail(token.status());
+  sim::SimClient client(f.server, *token);
   {
     std::error_code ec;
     std::filesystem::create_directories(f.report_dir, ec);
@@ -464,6 +473,12 @@ int main(int argc, char** argv) {
   executor->mutable_report().mission_id = mission_id;
   executor->mutable_report().scenario = scenario->name;
 
+  // A token that may not sail this mission (another vessel's, revoked) is
+  // an error at once, not an outage to ride out.
+  if (auto m = client.GetMission(mission_id);
+      !m.ok() && (absl::IsPermissionDenied(m.status()) || absl::IsUnauthenticated(m.status()))) {
+    return fail(m.status());
+  }
   client.StartWatch(mission_id);
   const auto replan_timeout =
       std::chrono::milliseconds(static_cast<int64_t>(f.replan_timeout_s * 1000));

@@ -5,6 +5,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "seaplan/common/log.h"
+#include "token_channel.h"
 
 namespace seaplan::sim {
 namespace {
@@ -27,12 +28,12 @@ std::chrono::milliseconds Next(std::chrono::milliseconds backoff) {
 
 // gRPC's own reconnection backoff grows to 120 s by default: a ship would
 // then stay deaf long after the shore is back. Keep it short.
-std::shared_ptr<grpc::Channel> MakeChannel(const std::string& address) {
+std::shared_ptr<grpc::Channel> MakeChannel(const std::string& address, const std::string& token) {
   grpc::ChannelArguments args;
   args.SetInt(GRPC_ARG_INITIAL_RECONNECT_BACKOFF_MS, 200);
   args.SetInt(GRPC_ARG_MIN_RECONNECT_BACKOFF_MS, 200);
   args.SetInt(GRPC_ARG_MAX_RECONNECT_BACKOFF_MS, 2000);
-  return grpc::CreateCustomChannel(address, grpc::InsecureChannelCredentials(), args);
+  return client::CreateChannelWithToken(address, grpc::InsecureChannelCredentials(), args, token);
 }
 
 bool Transient(grpc::StatusCode c) {
@@ -52,8 +53,8 @@ absl::Status FromGrpc(const grpc::Status& s) {
   return absl::Status(static_cast<absl::StatusCode>(s.error_code()), s.error_message());
 }
 
-SimClient::SimClient(const std::string& address)
-    : channel_(MakeChannel(address)),
+SimClient::SimClient(const std::string& address, const std::string& token)
+    : channel_(MakeChannel(address, token)),
       missions_(v1::MissionService::NewStub(channel_)),
       charts_(v1::ChartService::NewStub(channel_)) {}
 
@@ -333,7 +334,9 @@ void SimClient::WatchLoop(std::string mission_id) {
     }
     if (s.error_code() == grpc::StatusCode::NOT_FOUND ||
         s.error_code() == grpc::StatusCode::UNIMPLEMENTED ||
-        s.error_code() == grpc::StatusCode::INVALID_ARGUMENT) {
+        s.error_code() == grpc::StatusCode::INVALID_ARGUMENT ||
+        s.error_code() == grpc::StatusCode::UNAUTHENTICATED ||
+        s.error_code() == grpc::StatusCode::PERMISSION_DENIED) {
       log::Error("watch ended: {}", s.error_message());
       break;
     }

@@ -47,7 +47,8 @@ struct FeedbackAck {
 
 class SimClient {
  public:
-  explicit SimClient(const std::string& address);
+  // `token`: presented on every call (empty: none).
+  explicit SimClient(const std::string& address, const std::string& token = "");
   ~SimClient();
 
   absl::StatusOr<v1::Mission> CreateMission(const v1::MissionSpec& spec,

@@ -65,6 +65,11 @@ ParsedConfig ParseConfig(int argc, const char* const* argv) {
                  "operator console files served at / (default: console/ beside the binary)")
       ->envname("SEAPLAN_CONSOLE_DIR")
       ->capture_default_str();
+  app.add_option("--admin-token-file", c.admin_token_file,
+                 "file holding an admin token to accept (created elsewhere, e.g. by a "
+                 "deployment's secret store); without it the first start writes one to "
+                 "<data-dir>/admin.token")
+      ->envname("SEAPLAN_ADMIN_TOKEN_FILE");
   app.add_option("--shutdown-grace-ms", grace_ms,
                  "time running requests get on SIGTERM before cancellation")
       ->envname("SEAPLAN_SHUTDOWN_GRACE_MS")

@@ -18,6 +18,8 @@
 //   listening)
 //   --console-dir          SEAPLAN_CONSOLE_DIR         <binary's folder>/console
 //   --shutdown-grace-ms    SEAPLAN_SHUTDOWN_GRACE_MS   2000
+//   --admin-token-file     SEAPLAN_ADMIN_TOKEN_FILE    none     (an admin token to accept;
+//   without it the first start writes a new one to <data-dir>/admin.token, mode 0600)
 //
 // Port 0 in an address picks a free port; the bound ports are logged and
 // written to the port file.
@@ -39,6 +41,9 @@ struct ServerConfig {
   // (several servers may share it).
   std::string database;
   std::string port_file;
+  // An admin token to store (if new) and accept; empty: the first start
+  // creates one in data_dir/admin.token.
+  std::string admin_token_file;
   log::Level log_level = log::Level::kInfo;
 };
 

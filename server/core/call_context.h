@@ -7,8 +7,14 @@
 
 #include "seaplan/common/status.h"
 #include "seaplan/common/stop_token.h"
+#include "server/auth/policy.h"
 
 namespace seaplan::server {
+
+// Who is calling: token id, role, vessel (auth::Caller). The transports set
+// it from the call's credential; the default (empty token id) is the
+// server's own work, which every check lets through.
+using Caller = auth::Caller;
 
 struct CallContext {
   // "grpc" or "http" (for logs).
@@ -19,6 +25,9 @@ struct CallContext {
   // Polled by the core while it waits for work; true when the client is
   // gone (gRPC: ServerContext::IsCancelled()). May be empty.
   std::function<bool()> client_gone;
+  // Set by the transport once the credential is checked; handlers of
+  // vessel-scoped RPCs check the mission's vessel against it.
+  Caller caller;
 
   // Cancels `stop` when the client is gone. Cheap; call it often. A
   // transport also reports the client "gone" when its deadline passes (gRPC

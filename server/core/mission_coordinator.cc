@@ -245,10 +245,17 @@ absl::StatusOr<v1::Mission> MissionCoordinator::CreateMission(
   return MissionFromRecord(record);
 }
 
+absl::Status MissionCoordinator::CheckVesselAccess(const std::string& mission_id,
+                                                   const CallContext& ctx) {
+  SEAPLAN_ASSIGN_OR_RETURN(storage::MissionRecord record, repo_.Get(mission_id));
+  return auth::CheckVessel(ctx.caller, record.vessel_id, mission_id);
+}
+
 absl::StatusOr<v1::Mission> MissionCoordinator::GetMission(const v1::GetMissionRequest& request,
-                                                           const CallContext&) {
+                                                           const CallContext& ctx) {
   if (request.mission_id().empty()) return absl::InvalidArgumentError("mission_id is empty");
   SEAPLAN_ASSIGN_OR_RETURN(storage::MissionRecord record, repo_.Get(request.mission_id()));
+  SEAPLAN_RETURN_IF_ERROR(auth::CheckVessel(ctx.caller, record.vessel_id, record.id));
   return MissionFromRecord(record);
 }
 
@@ -299,7 +306,7 @@ absl::Status MissionCoordinator::WatchMission(const v1::WatchMissionRequest& req
   if (request.after_version() < 0 || request.after_event_id() < 0) {
     return absl::InvalidArgumentError("after_version and after_event_id must not be negative");
   }
-  SEAPLAN_RETURN_IF_ERROR(repo_.Get(id).status());  // NotFound before anything is sent
+  SEAPLAN_RETURN_IF_ERROR(CheckVesselAccess(id, ctx));  // NotFound before anything is sent
   int last_version = request.after_version();
   std::int64_t last_event = request.after_event_id();
   int last_state_sent = -1;
@@ -364,10 +371,17 @@ absl::Status MissionCoordinator::WatchMission(const v1::WatchMissionRequest& req
 }
 
 absl::StatusOr<v1::ReportFeedbackResponse> MissionCoordinator::ReportFeedback(
-    const v1::ReportFeedbackRequest& request, const CallContext&) {
+    const v1::ReportFeedbackRequest& request, const CallContext& ctx) {
   const std::string& id = request.mission_id();
   if (id.empty()) return absl::InvalidArgumentError("mission_id is empty");
   if (request.vessel_id().empty()) return absl::InvalidArgumentError("vessel_id is empty");
+  SEAPLAN_RETURN_IF_ERROR(CheckVesselAccess(id, ctx));
+  if (ctx.caller.role == auth::Role::kVessel && !ctx.caller.internal() &&
+      request.vessel_id() != ctx.caller.vessel_id) {
+    return absl::PermissionDeniedError(absl::StrCat("a token of vessel '", ctx.caller.vessel_id,
+                                                    "' may not report as vessel '",
+                                                    request.vessel_id(), "'"));
+  }
   if (request.sequence_number() < 0)
     return absl::InvalidArgumentError("sequence_number must not be negative");
   v1::ReportFeedbackResponse response;
@@ -526,6 +540,7 @@ absl::StatusOr<v1::RequestReplanResponse> MissionCoordinator::RequestReplan(
   const std::string& id = request.mission_id();
   if (id.empty()) return absl::InvalidArgumentError("mission_id is empty");
   SEAPLAN_ASSIGN_OR_RETURN(storage::MissionRecord record, repo_.Get(id));
+  SEAPLAN_RETURN_IF_ERROR(auth::CheckVessel(ctx.caller, record.vessel_id, id));
   if (IsFinalState(record.state)) {
     return absl::FailedPreconditionError(
         absl::StrCat("mission '", id, "' is ", StateName(record.state), "; nothing to replan"));

@@ -94,6 +94,9 @@ class MissionCoordinator {
 
   absl::StatusOr<v1::Mission> CreateMission(const v1::CreateMissionRequest& request,
                                             const CallContext& ctx);
+  // NotFound when the mission is absent; PermissionDenied when ctx's caller
+  // is a vessel token of another vessel than the mission's.
+  absl::Status CheckVesselAccess(const std::string& mission_id, const CallContext& ctx);
   absl::StatusOr<v1::Mission> GetMission(const v1::GetMissionRequest& request,
                                          const CallContext& ctx);
   absl::StatusOr<v1::ListMissionsResponse> ListMissions(const v1::ListMissionsRequest& request,

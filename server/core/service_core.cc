@@ -8,7 +8,9 @@ namespace seaplan::server {
 
 ServiceCore::ServiceCore(storage::Store& store, const CoreOptions& options,
                          std::shared_ptr<mission::MissionEngine> mission_engine)
-    : pool_(options.planning_threads),
+    : auth_(store.tokens()),
+      access_(auth_, store.tokens(), store.audit()),
+      pool_(options.planning_threads),
       planning_(pool_, root_),
       charts_(store.charts(), pool_, root_),
       routes_(store.charts(), pool_, root_),

@@ -11,6 +11,8 @@
 #include "seaplan/common/stop_token.h"
 #include "seaplan/mission/mission_engine.h"
 #include "seaplan/storage/repositories.h"
+#include "server/auth/authenticator.h"
+#include "server/core/access_handlers.h"
 #include "server/core/call_context.h"
 #include "server/core/chart_handlers.h"
 #include "server/core/mission_coordinator.h"
@@ -43,6 +45,15 @@ class ServiceCore {
   RouteHandlers& routes() { return routes_; }
   MissionCoordinator& missions() { return missions_; }
   VesselTracker& vessels() { return vessels_; }
+  AccessHandlers& access() { return access_; }
+  const auth::Authenticator& authenticator() const { return auth_; }
+
+  // The caller of `method` ("Service/Method") from the credential the
+  // transport found ("Bearer <token>"; empty when none): Unauthenticated or
+  // PermissionDenied when the call must not run.
+  absl::StatusOr<Caller> Authorize(std::string_view method, std::string_view authorization) const {
+    return auth_.Check(method, authorization);
+  }
   WorkPool& pool() { return pool_; }
 
   // A call's context: its token stops at `deadline` (steady clock; max() =
@@ -60,6 +71,8 @@ class ServiceCore {
 
  private:
   StopToken root_;
+  auth::Authenticator auth_;
+  AccessHandlers access_;
   WorkPool pool_;
   PlanningHandlers planning_;
   ChartHandlers charts_;

@@ -21,7 +21,6 @@ VesselTracker::VesselTracker(storage::MissionRepository& repo, Options options)
 
 absl::StatusOr<v1::ReportVesselStateResponse> VesselTracker::ReportVesselState(
     const v1::ReportVesselStateRequest& request, const CallContext& ctx) {
-  (void)ctx;
   if (request.mission_id().empty()) return absl::InvalidArgumentError("mission_id is empty");
   if (!request.has_state() || !request.state().has_position())
     return absl::InvalidArgumentError("state.position is missing");
@@ -42,8 +41,11 @@ absl::StatusOr<v1::ReportVesselStateResponse> VesselTracker::ReportVesselState(
     auto it = entries_.find(request.mission_id());
     if (it != entries_.end()) vessel_id = it->second.vessel_id;
   }
-  if (vessel_id.empty()) {  // first report: the mission must exist
+  if (vessel_id.empty() || ctx.caller.role == auth::Role::kVessel) {
+    // First report (the mission must exist), or a vessel token, whose
+    // binding is checked against the stored mission every time.
     SEAPLAN_ASSIGN_OR_RETURN(storage::MissionRecord record, repo_.Get(request.mission_id()));
+    SEAPLAN_RETURN_IF_ERROR(auth::CheckVessel(ctx.caller, record.vessel_id, record.id));
     vessel_id = record.vessel_id.empty() ? request.vessel_id() : record.vessel_id;
   }
   if (!request.vessel_id().empty() && request.vessel_id() != vessel_id) {
@@ -114,6 +116,10 @@ absl::Status VesselTracker::WatchMission(MissionCoordinator& missions,
                                          const v1::WatchMissionRequest& request,
                                          const CallContext& ctx,
                                          const StreamSink<v1::MissionEvent>& sink) {
+  // Before the live picture starts: it must not reach another vessel's token.
+  if (!request.mission_id().empty()) {
+    SEAPLAN_RETURN_IF_ERROR(missions.CheckVesselAccess(request.mission_id(), ctx));
+  }
   // Two writers (the coordinator's loop and the pusher below) share the sink.
   std::mutex sink_mu;
   bool sink_open = true;

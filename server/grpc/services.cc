@@ -15,18 +15,36 @@ StopToken::Clock::time_point Deadline(const grpc::ServerContext* ctx) {
          std::chrono::duration_cast<StopToken::Clock::duration>(deadline - now);
 }
 
-CallContext MakeCall(ServiceCore& core, grpc::ServerContext* ctx) {
-  return core.NewCall("grpc", Deadline(ctx), [ctx] { return ctx->IsCancelled(); });
+// The call's context with its caller, or the status that ends the call
+// before any handler runs (no, bad or insufficient credentials). The
+// credential is the `authorization` metadata, "Bearer <token>".
+absl::StatusOr<CallContext> MakeCall(ServiceCore& core, const char* method,
+                                     grpc::ServerContext* ctx) {
+  std::string authorization;
+  const auto& metadata = ctx->client_metadata();
+  if (auto it = metadata.find("authorization"); it != metadata.end()) {
+    authorization.assign(it->second.data(), it->second.size());
+  }
+  SEAPLAN_ASSIGN_OR_RETURN(Caller caller, core.Authorize(method, authorization));
+  CallContext call = core.NewCall("grpc", Deadline(ctx), [ctx] { return ctx->IsCancelled(); });
+  call.caller = std::move(caller);
+  return call;
 }
 
-template <typename Response, typename Fn>
-grpc::Status Unary(ServiceCore& core, const char* method, grpc::ServerContext* ctx, Response* out,
-                   Fn&& fn) {
+template <typename Request, typename Response, typename Fn>
+grpc::Status Unary(ServiceCore& core, const char* method, grpc::ServerContext* ctx,
+                   const Request& request, Response* out, Fn&& fn) {
   const auto started = StopToken::Clock::now();
-  CallContext call = MakeCall(core, ctx);
-  absl::StatusOr<Response> result = fn(call);
-  absl::Status status = result.status();
-  if (result.ok()) *out = std::move(*result);
+  absl::StatusOr<CallContext> call = MakeCall(core, method, ctx);
+  absl::Status status = call.status();
+  if (call.ok()) {
+    absl::StatusOr<Response> result = fn(*call);
+    status = result.status();
+    if (result.ok()) {
+      *out = std::move(*result);
+      core.access().RecordIfAudited(method, *call, request, *out);
+    }
+  }
   LogCall("grpc", method, status, started);
   return ToGrpcStatus(status);
 }
@@ -35,9 +53,12 @@ template <typename Event, typename Fn>
 grpc::Status Stream(ServiceCore& core, const char* method, grpc::ServerContext* ctx,
                     grpc::ServerWriter<Event>* writer, Fn&& fn) {
   const auto started = StopToken::Clock::now();
-  CallContext call = MakeCall(core, ctx);
-  StreamSink<Event> sink = [writer](const Event& event) { return writer->Write(event); };
-  absl::Status status = fn(call, sink);
+  absl::StatusOr<CallContext> call = MakeCall(core, method, ctx);
+  absl::Status status = call.status();
+  if (call.ok()) {
+    StreamSink<Event> sink = [writer](const Event& event) { return writer->Write(event); };
+    status = fn(*call, sink);
+  }
   LogCall("grpc", method, status, started);
   return ToGrpcStatus(status);
 }
@@ -49,7 +70,7 @@ class GrpcServices::Planning final : public v1::PlanningService::Service {
   explicit Planning(ServiceCore& core) : core_(core) {}
   grpc::Status Plan(grpc::ServerContext* ctx, const v1::PlanRequest* req,
                     v1::PlanResponse* resp) override {
-    return Unary(core_, "PlanningService/Plan", ctx, resp,
+    return Unary(core_, "PlanningService/Plan", ctx, *req, resp,
                  [&](const CallContext& c) { return core_.planning().Plan(*req, c); });
   }
   grpc::Status PlanStream(grpc::ServerContext* ctx, const v1::PlanRequest* req,
@@ -61,7 +82,7 @@ class GrpcServices::Planning final : public v1::PlanningService::Service {
   }
   grpc::Status Validate(grpc::ServerContext* ctx, const v1::ValidateRequest* req,
                         v1::ValidateResponse* resp) override {
-    return Unary(core_, "PlanningService/Validate", ctx, resp,
+    return Unary(core_, "PlanningService/Validate", ctx, *req, resp,
                  [&](const CallContext& c) { return core_.planning().Validate(*req, c); });
   }
 
@@ -74,22 +95,22 @@ class GrpcServices::Charts final : public v1::ChartService::Service {
   explicit Charts(ServiceCore& core) : core_(core) {}
   grpc::Status UploadChart(grpc::ServerContext* ctx, const v1::UploadChartRequest* req,
                            v1::UploadChartResponse* resp) override {
-    return Unary(core_, "ChartService/UploadChart", ctx, resp,
+    return Unary(core_, "ChartService/UploadChart", ctx, *req, resp,
                  [&](const CallContext& c) { return core_.charts().UploadChart(*req, c); });
   }
   grpc::Status GetChart(grpc::ServerContext* ctx, const v1::GetChartRequest* req,
                         v1::GetChartResponse* resp) override {
-    return Unary(core_, "ChartService/GetChart", ctx, resp,
+    return Unary(core_, "ChartService/GetChart", ctx, *req, resp,
                  [&](const CallContext& c) { return core_.charts().GetChart(*req, c); });
   }
   grpc::Status GetObstacles(grpc::ServerContext* ctx, const v1::GetObstaclesRequest* req,
                             v1::GetObstaclesResponse* resp) override {
-    return Unary(core_, "ChartService/GetObstacles", ctx, resp,
+    return Unary(core_, "ChartService/GetObstacles", ctx, *req, resp,
                  [&](const CallContext& c) { return core_.charts().GetObstacles(*req, c); });
   }
   grpc::Status ListCharts(grpc::ServerContext* ctx, const v1::ListChartsRequest* req,
                           v1::ListChartsResponse* resp) override {
-    return Unary(core_, "ChartService/ListCharts", ctx, resp,
+    return Unary(core_, "ChartService/ListCharts", ctx, *req, resp,
                  [&](const CallContext& c) { return core_.charts().ListCharts(*req, c); });
   }
 
@@ -102,12 +123,12 @@ class GrpcServices::Routes final : public v1::RouteService::Service {
   explicit Routes(ServiceCore& core) : core_(core) {}
   grpc::Status PlanRoute(grpc::ServerContext* ctx, const v1::PlanRouteRequest* req,
                          v1::PlanRouteResponse* resp) override {
-    return Unary(core_, "RouteService/PlanRoute", ctx, resp,
+    return Unary(core_, "RouteService/PlanRoute", ctx, *req, resp,
                  [&](const CallContext& c) { return core_.routes().PlanRoute(*req, c); });
   }
   grpc::Status EstimateRisk(grpc::ServerContext* ctx, const v1::EstimateRiskRequest* req,
                             v1::EstimateRiskResponse* resp) override {
-    return Unary(core_, "RouteService/EstimateRisk", ctx, resp,
+    return Unary(core_, "RouteService/EstimateRisk", ctx, *req, resp,
                  [&](const CallContext& c) { return core_.routes().EstimateRisk(*req, c); });
   }
 
@@ -120,17 +141,17 @@ class GrpcServices::Missions final : public v1::MissionService::Service {
   explicit Missions(ServiceCore& core) : core_(core) {}
   grpc::Status CreateMission(grpc::ServerContext* ctx, const v1::CreateMissionRequest* req,
                              v1::Mission* resp) override {
-    return Unary(core_, "MissionService/CreateMission", ctx, resp,
+    return Unary(core_, "MissionService/CreateMission", ctx, *req, resp,
                  [&](const CallContext& c) { return core_.missions().CreateMission(*req, c); });
   }
   grpc::Status GetMission(grpc::ServerContext* ctx, const v1::GetMissionRequest* req,
                           v1::Mission* resp) override {
-    return Unary(core_, "MissionService/GetMission", ctx, resp,
+    return Unary(core_, "MissionService/GetMission", ctx, *req, resp,
                  [&](const CallContext& c) { return core_.missions().GetMission(*req, c); });
   }
   grpc::Status ListMissions(grpc::ServerContext* ctx, const v1::ListMissionsRequest* req,
                             v1::ListMissionsResponse* resp) override {
-    return Unary(core_, "MissionService/ListMissions", ctx, resp,
+    return Unary(core_, "MissionService/ListMissions", ctx, *req, resp,
                  [&](const CallContext& c) { return core_.missions().ListMissions(*req, c); });
   }
   grpc::Status WatchMission(grpc::ServerContext* ctx, const v1::WatchMissionRequest* req,
@@ -142,23 +163,56 @@ class GrpcServices::Missions final : public v1::MissionService::Service {
   }
   grpc::Status ReportFeedback(grpc::ServerContext* ctx, const v1::ReportFeedbackRequest* req,
                               v1::ReportFeedbackResponse* resp) override {
-    return Unary(core_, "MissionService/ReportFeedback", ctx, resp,
+    return Unary(core_, "MissionService/ReportFeedback", ctx, *req, resp,
                  [&](const CallContext& c) { return core_.missions().ReportFeedback(*req, c); });
   }
   grpc::Status RequestReplan(grpc::ServerContext* ctx, const v1::RequestReplanRequest* req,
                              v1::RequestReplanResponse* resp) override {
-    return Unary(core_, "MissionService/RequestReplan", ctx, resp,
+    return Unary(core_, "MissionService/RequestReplan", ctx, *req, resp,
                  [&](const CallContext& c) { return core_.missions().RequestReplan(*req, c); });
   }
   grpc::Status CancelMission(grpc::ServerContext* ctx, const v1::CancelMissionRequest* req,
                              v1::Mission* resp) override {
-    return Unary(core_, "MissionService/CancelMission", ctx, resp,
+    return Unary(core_, "MissionService/CancelMission", ctx, *req, resp,
                  [&](const CallContext& c) { return core_.missions().CancelMission(*req, c); });
   }
   grpc::Status ReportVesselState(grpc::ServerContext* ctx, const v1::ReportVesselStateRequest* req,
                                  v1::ReportVesselStateResponse* resp) override {
-    return Unary(core_, "MissionService/ReportVesselState", ctx, resp,
+    return Unary(core_, "MissionService/ReportVesselState", ctx, *req, resp,
                  [&](const CallContext& c) { return core_.vessels().ReportVesselState(*req, c); });
+  }
+
+ private:
+  ServiceCore& core_;
+};
+
+class GrpcServices::Access final : public v1::AccessService::Service {
+ public:
+  explicit Access(ServiceCore& core) : core_(core) {}
+  grpc::Status WhoAmI(grpc::ServerContext* ctx, const v1::WhoAmIRequest* req,
+                      v1::WhoAmIResponse* resp) override {
+    return Unary(core_, "AccessService/WhoAmI", ctx, *req, resp,
+                 [&](const CallContext& c) { return core_.access().WhoAmI(*req, c); });
+  }
+  grpc::Status CreateToken(grpc::ServerContext* ctx, const v1::CreateTokenRequest* req,
+                           v1::CreateTokenResponse* resp) override {
+    return Unary(core_, "AccessService/CreateToken", ctx, *req, resp,
+                 [&](const CallContext& c) { return core_.access().CreateToken(*req, c); });
+  }
+  grpc::Status ListTokens(grpc::ServerContext* ctx, const v1::ListTokensRequest* req,
+                          v1::ListTokensResponse* resp) override {
+    return Unary(core_, "AccessService/ListTokens", ctx, *req, resp,
+                 [&](const CallContext& c) { return core_.access().ListTokens(*req, c); });
+  }
+  grpc::Status RevokeToken(grpc::ServerContext* ctx, const v1::RevokeTokenRequest* req,
+                           v1::RevokeTokenResponse* resp) override {
+    return Unary(core_, "AccessService/RevokeToken", ctx, *req, resp,
+                 [&](const CallContext& c) { return core_.access().RevokeToken(*req, c); });
+  }
+  grpc::Status ListAuditEvents(grpc::ServerContext* ctx, const v1::ListAuditEventsRequest* req,
+                               v1::ListAuditEventsResponse* resp) override {
+    return Unary(core_, "AccessService/ListAuditEvents", ctx, *req, resp,
+                 [&](const CallContext& c) { return core_.access().ListAuditEvents(*req, c); });
   }
 
  private:
@@ -169,17 +223,19 @@ GrpcServices::GrpcServices(ServiceCore& core)
     : planning_(std::make_unique<Planning>(core)),
       charts_(std::make_unique<Charts>(core)),
       routes_(std::make_unique<Routes>(core)),
-      missions_(std::make_unique<Missions>(core)) {}
+      missions_(std::make_unique<Missions>(core)),
+      access_(std::make_unique<Access>(core)) {}
 
 GrpcServices::~GrpcServices() = default;
 
 std::vector<std::string> GrpcServices::ServiceNames() {
   return {v1::PlanningService::service_full_name(), v1::ChartService::service_full_name(),
-          v1::RouteService::service_full_name(), v1::MissionService::service_full_name()};
+          v1::RouteService::service_full_name(), v1::MissionService::service_full_name(),
+          v1::AccessService::service_full_name()};
 }
 
 std::vector<grpc::Service*> GrpcServices::services() {
-  return {planning_.get(), charts_.get(), routes_.get(), missions_.get()};
+  return {planning_.get(), charts_.get(), routes_.get(), missions_.get(), access_.get()};
 }
 
 }  // namespace seaplan::server

@@ -1,6 +1,7 @@
 // The gRPC services of seaplan.v1: thin adapters from grpc::ServerContext
 // and messages to the transport-agnostic core (server/core). Each method
-// builds a CallContext (deadline, cancellation), calls the one core handler,
+// builds a CallContext (caller from the `authorization` metadata, deadline,
+// cancellation), calls the one core handler,
 // maps the status with ToGrpcStatus and logs one line.
 #pragma once
 
@@ -9,6 +10,7 @@
 #include <memory>
 #include <vector>
 
+#include "seaplan/v1/access.grpc.pb.h"
 #include "seaplan/v1/chart.grpc.pb.h"
 #include "seaplan/v1/mission.grpc.pb.h"
 #include "seaplan/v1/planning.grpc.pb.h"
@@ -17,7 +19,7 @@
 
 namespace seaplan::server {
 
-// The four services, to register on a grpc::ServerBuilder.
+// The five services, to register on a grpc::ServerBuilder.
 class GrpcServices {
  public:
   explicit GrpcServices(ServiceCore& core);
@@ -32,10 +34,12 @@ class GrpcServices {
   class Charts;
   class Routes;
   class Missions;
+  class Access;
   std::unique_ptr<Planning> planning_;
   std::unique_ptr<Charts> charts_;
   std::unique_ptr<Routes> routes_;
   std::unique_ptr<Missions> missions_;
+  std::unique_ptr<Access> access_;
 };
 
 }  // namespace seaplan::server

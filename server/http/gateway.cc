@@ -1,5 +1,6 @@
 #include "server/http/gateway.h"
 
+#include <google/protobuf/struct.pb.h>
 #include <google/protobuf/util/json_util.h>
 #include <httplib.h>
 
@@ -9,8 +10,11 @@
 #include <filesystem>
 #include <mutex>
 
+#include "absl/strings/ascii.h"
 #include "absl/strings/str_cat.h"
+#include "seaplan/common/json.h"
 #include "seaplan/common/log.h"
+#include "server/auth/csrf.h"
 #include "server/http/status_mapping.h"
 
 namespace seaplan::server {
@@ -19,9 +23,16 @@ namespace {
 constexpr char kJson[] = "application/json";
 constexpr char kNdjson[] = "application/x-ndjson";
 constexpr char kTimeoutHeader[] = "X-Seaplan-Timeout-Ms";
+constexpr char kCsrfHeader[] = "X-CSRF-Token";
+constexpr char kSessionCookie[] = "seaplan_session";
+// A console session lasts a working day; the token's own expiry and
+// revocation apply within it.
+constexpr int kSessionMaxAgeS = 12 * 3600;
 
 void Reply(httplib::Response& res, const absl::Status& status) {
   res.status = ToHttpStatus(status.code());
+  // RFC 6750: a 401 names the scheme it wants.
+  if (absl::IsUnauthenticated(status)) res.set_header("WWW-Authenticate", "Bearer");
   res.set_content(ErrorJson(status), kJson);
 }
 
@@ -85,6 +96,45 @@ bool ReadBody(const httplib::Request& req, const httplib::ContentReader& reader,
 absl::Status BodyError(const httplib::Response& res) {
   if (res.status == 413) return absl::ResourceExhaustedError("request body too large");
   return absl::InvalidArgumentError("request body not read");
+}
+
+// The value of cookie `name` in the request's Cookie header ("" if none).
+std::string CookieValue(const httplib::Request& req, std::string_view name) {
+  const std::string header = req.get_header_value("Cookie");
+  std::string_view rest = header;
+  while (!rest.empty()) {
+    const std::size_t end = std::min(rest.find(';'), rest.size());
+    std::string_view part = rest.substr(0, end);
+    rest.remove_prefix(std::min(end + 1, rest.size()));
+    while (!part.empty() && part.front() == ' ') part.remove_prefix(1);
+    if (part.size() > name.size() && part.starts_with(name) && part[name.size()] == '=') {
+      return std::string(part.substr(name.size() + 1));
+    }
+  }
+  return "";
+}
+
+// The credential of a request, as an Authorization header value: the
+// header itself, or the token in the console's session cookie, which also
+// needs the CSRF token derived from it in its header (a page of another site
+// can make the browser send the cookie, but cannot read it or the CSRF
+// token).
+absl::StatusOr<std::string> Credential(const httplib::Request& req) {
+  if (req.has_header("Authorization")) return req.get_header_value("Authorization");
+  const std::string token = CookieValue(req, kSessionCookie);
+  if (token.empty()) return std::string();
+  if (!auth::CsrfTokenMatches(token, req.get_header_value(kCsrfHeader))) {
+    return absl::PermissionDeniedError(
+        absl::StrCat("missing or wrong ", kCsrfHeader, " header for the session cookie"));
+  }
+  return absl::StrCat("Bearer ", token);
+}
+
+// The caller of `method`, from the request's credential.
+absl::StatusOr<Caller> Authorize(ServiceCore& core, const std::string& method,
+                                 const httplib::Request& req) {
+  SEAPLAN_ASSIGN_OR_RETURN(std::string credential, Credential(req));
+  return core.Authorize(method, credential);
 }
 
 // A stream in flight: the core handler runs on `worker` and queues lines;
@@ -171,7 +221,6 @@ void HttpGateway::RegisterRoutes() {
   auto unary = [this, &core]<typename Request, typename Response>(
                    const std::string& method,
                    std::function<absl::StatusOr<Response>(const Request&, const CallContext&)> fn) {
-    (void)this;
     server_->Post("/v1/" + method,
                   [&core, method, fn](const httplib::Request& hreq, httplib::Response& hres,
                                       const httplib::ContentReader& reader) {
@@ -182,11 +231,14 @@ void HttpGateway::RegisterRoutes() {
                       return;
                     }
                     absl::Status status = [&]() -> absl::Status {
+                      SEAPLAN_ASSIGN_OR_RETURN(Caller caller, Authorize(core, method, hreq));
                       Request request;
                       SEAPLAN_RETURN_IF_ERROR(FromJson(body, &request));
                       SEAPLAN_ASSIGN_OR_RETURN(auto deadline, Deadline(hreq));
                       CallContext call = core.NewCall("http", deadline, nullptr);
+                      call.caller = std::move(caller);
                       SEAPLAN_ASSIGN_OR_RETURN(Response response, fn(request, call));
+                      core.access().RecordIfAudited(method, call, request, response);
                       std::string json;
                       SEAPLAN_RETURN_IF_ERROR(ToJson(response, &json));
                       hres.status = 200;
@@ -203,7 +255,6 @@ void HttpGateway::RegisterRoutes() {
           const std::string& method,
           std::function<absl::Status(const Request&, const CallContext&, const StreamSink<Event>&)>
               fn) {
-        (void)this;
         server_->Post("/v1/" + method, [&core, method, fn](const httplib::Request& hreq,
                                                            httplib::Response& hres,
                                                            const httplib::ContentReader& reader) {
@@ -213,8 +264,9 @@ void HttpGateway::RegisterRoutes() {
             LogCall("http", method, BodyError(hres), started);
             return;
           }
+          absl::StatusOr<Caller> caller = Authorize(core, method, hreq);
           auto request = std::make_shared<Request>();
-          absl::Status parsed = FromJson(body, request.get());
+          absl::Status parsed = caller.ok() ? FromJson(body, request.get()) : caller.status();
           auto deadline = Deadline(hreq);
           if (!parsed.ok() || !deadline.ok()) {
             const absl::Status& st = parsed.ok() ? deadline.status() : parsed;
@@ -229,6 +281,7 @@ void HttpGateway::RegisterRoutes() {
             std::lock_guard lock(raw->mu);
             return raw->client_gone;
           });
+          state->call.caller = std::move(*caller);
           // The worker holds only a raw pointer: the state outlives it (the
           // state's destructor joins the worker).
           state->worker = std::thread([raw = state.get(), request, fn] {
@@ -383,6 +436,27 @@ void HttpGateway::RegisterRoutes() {
         return core.vessels().ReportVesselState(r, c);
       });
 
+  unary.operator()<v1::WhoAmIRequest, v1::WhoAmIResponse>(
+      "AccessService/WhoAmI",
+      [&core](const v1::WhoAmIRequest& r, const R& c) { return core.access().WhoAmI(r, c); });
+  unary.operator()<v1::CreateTokenRequest, v1::CreateTokenResponse>(
+      "AccessService/CreateToken", [&core](const v1::CreateTokenRequest& r, const R& c) {
+        return core.access().CreateToken(r, c);
+      });
+  unary.operator()<v1::ListTokensRequest, v1::ListTokensResponse>(
+      "AccessService/ListTokens", [&core](const v1::ListTokensRequest& r, const R& c) {
+        return core.access().ListTokens(r, c);
+      });
+  unary.operator()<v1::RevokeTokenRequest, v1::RevokeTokenResponse>(
+      "AccessService/RevokeToken", [&core](const v1::RevokeTokenRequest& r, const R& c) {
+        return core.access().RevokeToken(r, c);
+      });
+  unary.operator()<v1::ListAuditEventsRequest, v1::ListAuditEventsResponse>(
+      "AccessService/ListAuditEvents", [&core](const v1::ListAuditEventsRequest& r, const R& c) {
+        return core.access().ListAuditEvents(r, c);
+      });
+  RegisterSessionRoutes();
+
   // The operator console: static files (index.html, JS, CSS) from
   // console_dir at "/". The page loads nothing from elsewhere.
   std::error_code ec;
@@ -430,6 +504,59 @@ void HttpGateway::RegisterRoutes() {
         res.set_content(ErrorJson(st), kJson);
         return httplib::Server::HandlerResponse::Handled;
       }));
+}
+
+void HttpGateway::RegisterSessionRoutes() {
+  ServiceCore& core = core_;
+  // Who the token is, with the CSRF token the console must send.
+  auto describe = [&core](const std::string& token, httplib::Response& res) -> absl::Status {
+    SEAPLAN_ASSIGN_OR_RETURN(Caller caller, core.authenticator().AuthenticateToken(token));
+    const std::string body = absl::StrCat("{\"csrfToken\":", JsonString(auth::CsrfTokenFor(token)),
+                                          ",\"tokenId\":", JsonString(caller.token_id),
+                                          ",\"role\":", JsonString(auth::RoleName(caller.role)),
+                                          ",\"vesselId\":", JsonString(caller.vessel_id), "}");
+    res.status = 200;
+    res.set_header("Cache-Control", "no-store");
+    res.set_content(body, kJson);
+    return absl::OkStatus();
+  };
+  server_->Post("/auth/login", [describe](const httplib::Request& req, httplib::Response& res) {
+    const auto started = StopToken::Clock::now();
+    absl::Status status = [&]() -> absl::Status {
+      google::protobuf::Struct body;
+      const auto parsed = google::protobuf::util::JsonStringToMessage(req.body, &body);
+      const auto field = body.fields().find("token");
+      if (!parsed.ok() || field == body.fields().end() || !field->second.has_string_value()) {
+        return absl::InvalidArgumentError("expected a JSON body {\"token\": \"seaplan_...\"}");
+      }
+      const std::string token(absl::StripAsciiWhitespace(field->second.string_value()));
+      SEAPLAN_RETURN_IF_ERROR(describe(token, res));
+      res.set_header("Set-Cookie", absl::StrCat(kSessionCookie, "=", token,
+                                                "; Path=/; HttpOnly; SameSite=Strict; ",
+                                                "Max-Age=", kSessionMaxAgeS));
+      return absl::OkStatus();
+    }();
+    if (!status.ok()) Reply(res, status);
+    LogCall("http", "auth/login", status, started);
+  });
+  server_->Get("/auth/session", [describe](const httplib::Request& req, httplib::Response& res) {
+    const std::string token = CookieValue(req, kSessionCookie);
+    absl::Status status =
+        token.empty() ? absl::UnauthenticatedError("not signed in") : describe(token, res);
+    if (!status.ok()) Reply(res, status);
+  });
+  server_->Post("/auth/logout", [](const httplib::Request& req, httplib::Response& res) {
+    const std::string token = CookieValue(req, kSessionCookie);
+    if (!token.empty() && !auth::CsrfTokenMatches(token, req.get_header_value(kCsrfHeader))) {
+      Reply(res, absl::PermissionDeniedError(
+                     absl::StrCat("missing or wrong ", kCsrfHeader, " header for the session")));
+      return;
+    }
+    res.set_header("Set-Cookie",
+                   absl::StrCat(kSessionCookie, "=; Path=/; HttpOnly; SameSite=Strict; Max-Age=0"));
+    res.status = 200;
+    res.set_content("{}", kJson);
+  });
 }
 
 }  // namespace seaplan::server

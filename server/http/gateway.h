@@ -12,6 +12,15 @@
 // Bodies are limited to max_body_bytes (413 beyond) and read as JSON
 // whatever their Content-Type (curl -d sends a form type); multipart bodies
 // are refused (400).
+// Every RPC needs a credential: "Authorization: Bearer <token>", or the
+// console's session cookie together with its CSRF token in the header
+// X-CSRF-Token (403 without it; server/auth/csrf.h). 401 without a (valid)
+// credential, 403 when the role may not call the RPC.
+//   POST /auth/login   {"token": "..."}: sets the session cookie (HttpOnly,
+//                      SameSite=Strict) and answers {"csrfToken", "tokenId",
+//                      "role", "vesselId"}
+//   GET  /auth/session the same answer for the cookie's token (401 if none)
+//   POST /auth/logout  (cookie + CSRF header) clears the cookie
 //   GET /  and other paths: the operator console's static files
 //          (Options::console_dir), with a same-origin Content-Security-Policy.
 //
@@ -59,6 +68,7 @@ class HttpGateway {
 
  private:
   void RegisterRoutes();
+  void RegisterSessionRoutes();
 
   ServiceCore& core_;
   Options options_;

@@ -148,8 +148,38 @@ CREATE TRIGGER feedback_notify AFTER INSERT ON feedback
 CREATE TRIGGER log_events_notify AFTER INSERT ON log_events
   FOR EACH ROW EXECUTE FUNCTION seaplan_notify_mission_child();
 )sql"},
+    {4, R"sql(
+CREATE TABLE api_tokens (
+  id TEXT PRIMARY KEY CHECK (length(id) > 0),
+  secret_hash TEXT NOT NULL CHECK (length(secret_hash) = 64),
+  role TEXT NOT NULL CHECK (role IN ('admin', 'operator', 'viewer', 'vessel')),
+  vessel_id TEXT NOT NULL DEFAULT '',
+  description TEXT NOT NULL DEFAULT '',
+  created_by TEXT NOT NULL DEFAULT '',
+  created_at_ms BIGINT NOT NULL,
+  expires_at_ms BIGINT NOT NULL DEFAULT 0,
+  revoked_at_ms BIGINT NOT NULL DEFAULT 0,
+  CHECK ((role = 'vessel') = (length(vessel_id) > 0)));
+CREATE TABLE audit_log (
+  seq BIGINT GENERATED ALWAYS AS IDENTITY PRIMARY KEY,
+  time_ms BIGINT NOT NULL,
+  token_id TEXT NOT NULL,
+  role TEXT NOT NULL,
+  vessel_id TEXT NOT NULL,
+  action TEXT NOT NULL CHECK (length(action) > 0),
+  target TEXT NOT NULL,
+  detail TEXT NOT NULL);
+CREATE FUNCTION seaplan_audit_log_append_only() RETURNS trigger LANGUAGE plpgsql AS $$
+BEGIN
+  RAISE EXCEPTION 'the audit log is append-only';
+END $$;
+CREATE TRIGGER audit_log_no_change BEFORE UPDATE OR DELETE ON audit_log
+  FOR EACH ROW EXECUTE FUNCTION seaplan_audit_log_append_only();
+CREATE TRIGGER audit_log_no_truncate BEFORE TRUNCATE ON audit_log
+  FOR EACH STATEMENT EXECUTE FUNCTION seaplan_audit_log_append_only();
+)sql"},
 };
-static_assert(std::size(kMigrations) == 3, "one PostgreSQL migration per schema history entry");
+static_assert(std::size(kMigrations) == 4, "one PostgreSQL migration per schema history entry");
 
 // Type OIDs of the parameters and results used here (pg_type.h is in the
 // server headers, which libpq-dev does not ship).
@@ -1139,6 +1169,108 @@ class PostgresStore::Work final : public internal::WorkLeaseBase {
 };
 
 // ---------------------------------------------------------------------------
+class PostgresStore::Access final : public TokenRepository, public AuditRepository {
+ public:
+  explicit Access(Impl& impl) : impl_(impl) {}
+
+  absl::Status Insert(const TokenRecord& t) override {
+    return impl_.WithConn([&](PGconn* conn) -> absl::Status {
+      absl::Status st = Impl::Run(conn,
+                                  absl::StrCat("INSERT INTO api_tokens(", internal::kTokenColumns,
+                                               ") VALUES ($1, $2, $3, $4, $5, $6, $7, $8, $9)"),
+                                  Params()
+                                      .Text(t.id)
+                                      .Text(t.secret_hash)
+                                      .Text(t.role)
+                                      .Text(t.vessel_id)
+                                      .Text(t.description)
+                                      .Text(t.created_by)
+                                      .I8(t.created_at_ms)
+                                      .I8(t.expires_at_ms)
+                                      .I8(t.revoked_at_ms))
+                            .status();
+      if (absl::IsAlreadyExists(st)) {
+        return absl::AlreadyExistsError(absl::StrCat("token '", t.id, "' exists"));
+      }
+      return st;
+    });
+  }
+
+  absl::StatusOr<TokenRecord> Get(const std::string& id) override {
+    return impl_.WithConn([&](PGconn* conn) { return GetOn(conn, id); });
+  }
+
+  absl::StatusOr<std::vector<TokenRecord>> List() override {
+    return impl_.WithConn([&](PGconn* conn) -> absl::StatusOr<std::vector<TokenRecord>> {
+      SEAPLAN_ASSIGN_OR_RETURN(Result r,
+                               Impl::Run(conn, absl::StrCat("SELECT ", internal::kTokenColumns,
+                                                            " FROM api_tokens ORDER BY "
+                                                            "created_at_ms, id")));
+      std::vector<TokenRecord> out;
+      for (int row = 0; row < r.rows(); ++row)
+        out.push_back(internal::ReadToken(ResultRow{r, row}));
+      return out;
+    });
+  }
+
+  absl::StatusOr<TokenRecord> Revoke(const std::string& id, TimestampMs at_ms) override {
+    return impl_.WithConn([&](PGconn* conn) -> absl::StatusOr<TokenRecord> {
+      SEAPLAN_RETURN_IF_ERROR(
+          Impl::Run(conn,
+                    "UPDATE api_tokens SET revoked_at_ms = $2 WHERE id = $1 AND revoked_at_ms = 0",
+                    Params().Text(id).I8(at_ms))
+              .status());
+      return GetOn(conn, id);
+    });
+  }
+
+  absl::StatusOr<AuditRecord> Append(AuditRecord a) override {
+    return impl_.WithConn([&](PGconn* conn) -> absl::StatusOr<AuditRecord> {
+      SEAPLAN_ASSIGN_OR_RETURN(
+          Result r, Impl::Run(conn,
+                              "INSERT INTO audit_log(time_ms, token_id, role, vessel_id, action, "
+                              "target, detail) VALUES ($1, $2, $3, $4, $5, $6, $7) RETURNING seq",
+                              Params()
+                                  .I8(a.time_ms)
+                                  .Text(a.token_id)
+                                  .Text(a.role)
+                                  .Text(a.vessel_id)
+                                  .Text(a.action)
+                                  .Text(a.target)
+                                  .Text(a.detail)));
+      a.seq = r.Int(0, 0);
+      return a;
+    });
+  }
+
+  absl::StatusOr<Page<AuditRecord>> ListAudit(int page_size, std::int64_t after) override {
+    SEAPLAN_RETURN_IF_ERROR(CheckPageSize(page_size));
+    return impl_.WithConn([&](PGconn* conn) -> absl::StatusOr<Page<AuditRecord>> {
+      SEAPLAN_ASSIGN_OR_RETURN(
+          Result r, Impl::Run(conn,
+                              absl::StrCat("SELECT ", internal::kAuditColumns,
+                                           " FROM audit_log WHERE seq > $1 ORDER BY seq LIMIT $2"),
+                              Params().I8(after).I8(page_size + 1)));
+      return Impl::ToPage<AuditRecord>(r, page_size, [](const Result& res, int row) {
+        return internal::ReadAudit(ResultRow{res, row});
+      });
+    });
+  }
+
+ private:
+  static absl::StatusOr<TokenRecord> GetOn(PGconn* conn, const std::string& id) {
+    SEAPLAN_ASSIGN_OR_RETURN(Result r, Impl::Run(conn,
+                                                 absl::StrCat("SELECT ", internal::kTokenColumns,
+                                                              " FROM api_tokens WHERE id = $1"),
+                                                 Params().Text(id)));
+    if (r.rows() == 0) return absl::NotFoundError(NotFoundMessage("token", id));
+    return internal::ReadToken(ResultRow{r, 0});
+  }
+
+  Impl& impl_;
+};
+
+// ---------------------------------------------------------------------------
 absl::Status PostgresOptions::Validate() const {
   if (pool_size < 1 || pool_size > 1000) {
     return absl::InvalidArgumentError(
@@ -1171,7 +1303,9 @@ std::string RedactDatabaseUrl(const std::string& url) {
 }
 
 PostgresStore::PostgresStore(std::unique_ptr<Impl> impl)
-    : impl_(std::move(impl)), work_(std::make_unique<Work>(*impl_)) {}
+    : impl_(std::move(impl)),
+      work_(std::make_unique<Work>(*impl_)),
+      access_(std::make_unique<Access>(*impl_)) {}
 
 PostgresStore::~PostgresStore() {
   (void)Close();
@@ -1204,6 +1338,12 @@ WorkLeaseRepository& PostgresStore::work() {
 }
 ChangeFeed& PostgresStore::changes() {
   return impl_->feed;
+}
+TokenRepository& PostgresStore::tokens() {
+  return *access_;
+}
+AuditRepository& PostgresStore::audit() {
+  return *access_;
 }
 
 absl::Status PostgresStore::Close() {

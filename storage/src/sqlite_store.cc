@@ -108,8 +108,34 @@ CREATE TABLE mission_work (
   CHECK ((holder IS NULL) = (lease_expires_at_ms IS NULL))) WITHOUT ROWID;
 CREATE INDEX mission_work_pending ON mission_work(requested_at_ms) WHERE requests > done_requests;
 )sql"},
+    {4, R"sql(
+CREATE TABLE api_tokens (
+  id TEXT PRIMARY KEY CHECK (length(id) > 0),
+  secret_hash TEXT NOT NULL CHECK (length(secret_hash) = 64),
+  role TEXT NOT NULL CHECK (role IN ('admin', 'operator', 'viewer', 'vessel')),
+  vessel_id TEXT NOT NULL DEFAULT '',
+  description TEXT NOT NULL DEFAULT '',
+  created_by TEXT NOT NULL DEFAULT '',
+  created_at_ms INTEGER NOT NULL,
+  expires_at_ms INTEGER NOT NULL DEFAULT 0,
+  revoked_at_ms INTEGER NOT NULL DEFAULT 0,
+  CHECK ((role = 'vessel') = (length(vessel_id) > 0))) WITHOUT ROWID;
+CREATE TABLE audit_log (
+  seq INTEGER PRIMARY KEY AUTOINCREMENT,
+  time_ms INTEGER NOT NULL,
+  token_id TEXT NOT NULL,
+  role TEXT NOT NULL,
+  vessel_id TEXT NOT NULL,
+  action TEXT NOT NULL CHECK (length(action) > 0),
+  target TEXT NOT NULL,
+  detail TEXT NOT NULL);
+CREATE TRIGGER audit_log_no_update BEFORE UPDATE ON audit_log
+  BEGIN SELECT RAISE(ABORT, 'the audit log is append-only'); END;
+CREATE TRIGGER audit_log_no_delete BEFORE DELETE ON audit_log
+  BEGIN SELECT RAISE(ABORT, 'the audit log is append-only'); END;
+)sql"},
 };
-static_assert(std::size(kMigrations) == 3, "one SQLite migration per schema history entry");
+static_assert(std::size(kMigrations) == 4, "one SQLite migration per schema history entry");
 
 absl::Status SqliteError(sqlite3* db, int rc, const char* what) {
   const std::string msg = absl::StrCat(what, ": ", db ? sqlite3_errmsg(db) : sqlite3_errstr(rc));
@@ -199,6 +225,23 @@ struct StmtRow {
   double Real(int c) const { return s.ColReal(c); }
   std::string Bytes(int c) const { return s.ColBlob(c); }
 };
+
+// Steps `s` (a query with LIMIT page_size + 1) into a page; `read` turns
+// the current row into a record with a seq.
+template <typename T, typename Read>
+absl::StatusOr<Page<T>> StepPage(Stmt& s, int page_size, Read&& read) {
+  Page<T> page;
+  while (true) {
+    SEAPLAN_ASSIGN_OR_RETURN(bool row, s.Step());
+    if (!row) break;
+    if (static_cast<int>(page.items.size()) == page_size) {
+      page.next_after = page.items.back().seq;
+      break;
+    }
+    page.items.push_back(read(StmtRow{s}));
+  }
+  return page;
+}
 
 absl::Status Exec(sqlite3* db, const char* sql) {
   char* err = nullptr;
@@ -432,17 +475,8 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
            "SELECT seq, id, name, format, options, summary, created_at_ms FROM charts "
            "WHERE seq > ?1 ORDER BY seq LIMIT ?2");
     s.Int(1, after).Int(2, page_size + 1);
-    Page<ChartRecord> page;
-    while (true) {
-      SEAPLAN_ASSIGN_OR_RETURN(bool row, s.Step());
-      if (!row) break;
-      if (static_cast<int>(page.items.size()) == page_size) {
-        page.next_after = page.items.back().seq;
-        break;
-      }
-      page.items.push_back(internal::ReadChart(StmtRow{s}, false));
-    }
-    return page;
+    return StepPage<ChartRecord>(
+        s, page_size, [](const StmtRow& row) { return internal::ReadChart(row, false); });
   }
 
   // ---- MissionRepository ----
@@ -527,17 +561,8 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
                "SELECT ", kMissionColumns,
                " FROM missions WHERE seq > ?1 AND (?2 = 0 OR state = ?2) ORDER BY seq LIMIT ?3"));
     s.Int(1, after).Int(2, state).Int(3, page_size + 1);
-    Page<MissionRecord> page;
-    while (true) {
-      SEAPLAN_ASSIGN_OR_RETURN(bool row, s.Step());
-      if (!row) break;
-      if (static_cast<int>(page.items.size()) == page_size) {
-        page.next_after = page.items.back().seq;
-        break;
-      }
-      page.items.push_back(internal::ReadMission(StmtRow{s}));
-    }
-    return page;
+    return StepPage<MissionRecord>(s, page_size,
+                                   [](const StmtRow& row) { return internal::ReadMission(row); });
   }
 
   absl::Status Update(const std::string& id, const MissionUpdate& update,
@@ -796,8 +821,108 @@ class SqliteStore::Work final : public internal::WorkLeaseBase {
   Impl& impl_;
 };
 
+// ---------------------------------------------------------------------------
+class SqliteStore::Access final : public TokenRepository, public AuditRepository {
+ public:
+  explicit Access(Impl& impl) : impl_(impl) {}
+
+  absl::Status Insert(const TokenRecord& t) override {
+    std::lock_guard lock(impl_.mu);
+    SEAPLAN_RETURN_IF_ERROR(impl_.Usable());
+    Stmt s(impl_.db, absl::StrCat("INSERT INTO api_tokens(", internal::kTokenColumns,
+                                  ") VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9)"));
+    s.Text(1, t.id)
+        .Text(2, t.secret_hash)
+        .Text(3, t.role)
+        .Text(4, t.vessel_id)
+        .Text(5, t.description)
+        .Text(6, t.created_by)
+        .Int(7, t.created_at_ms)
+        .Int(8, t.expires_at_ms)
+        .Int(9, t.revoked_at_ms);
+    absl::Status st = s.Run();
+    if (absl::IsAlreadyExists(st)) {
+      return absl::AlreadyExistsError(absl::StrCat("token '", t.id, "' exists"));
+    }
+    return st;
+  }
+
+  absl::StatusOr<TokenRecord> Get(const std::string& id) override {
+    std::lock_guard lock(impl_.mu);
+    SEAPLAN_RETURN_IF_ERROR(impl_.Usable());
+    return GetLocked(id);
+  }
+
+  absl::StatusOr<std::vector<TokenRecord>> List() override {
+    std::lock_guard lock(impl_.mu);
+    SEAPLAN_RETURN_IF_ERROR(impl_.Usable());
+    Stmt s(impl_.db, absl::StrCat("SELECT ", internal::kTokenColumns,
+                                  " FROM api_tokens ORDER BY created_at_ms, id"));
+    std::vector<TokenRecord> out;
+    while (true) {
+      SEAPLAN_ASSIGN_OR_RETURN(bool row, s.Step());
+      if (!row) break;
+      out.push_back(internal::ReadToken(StmtRow{s}));
+    }
+    return out;
+  }
+
+  absl::StatusOr<TokenRecord> Revoke(const std::string& id, TimestampMs at_ms) override {
+    std::lock_guard lock(impl_.mu);
+    SEAPLAN_RETURN_IF_ERROR(impl_.Usable());
+    Stmt s(impl_.db,
+           "UPDATE api_tokens SET revoked_at_ms = ?2 WHERE id = ?1 AND revoked_at_ms = 0");
+    s.Text(1, id).Int(2, at_ms);
+    SEAPLAN_RETURN_IF_ERROR(s.Run());
+    return GetLocked(id);
+  }
+
+  absl::StatusOr<AuditRecord> Append(AuditRecord r) override {
+    std::lock_guard lock(impl_.mu);
+    SEAPLAN_RETURN_IF_ERROR(impl_.Usable());
+    Stmt s(impl_.db,
+           "INSERT INTO audit_log(time_ms, token_id, role, vessel_id, action, target, detail) "
+           "VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7)");
+    s.Int(1, r.time_ms)
+        .Text(2, r.token_id)
+        .Text(3, r.role)
+        .Text(4, r.vessel_id)
+        .Text(5, r.action)
+        .Text(6, r.target)
+        .Text(7, r.detail);
+    SEAPLAN_RETURN_IF_ERROR(s.Run());
+    r.seq = sqlite3_last_insert_rowid(impl_.db);
+    return r;
+  }
+
+  absl::StatusOr<Page<AuditRecord>> ListAudit(int page_size, std::int64_t after) override {
+    SEAPLAN_RETURN_IF_ERROR(CheckPageSize(page_size));
+    std::lock_guard lock(impl_.mu);
+    SEAPLAN_RETURN_IF_ERROR(impl_.Usable());
+    Stmt s(impl_.db, absl::StrCat("SELECT ", internal::kAuditColumns,
+                                  " FROM audit_log WHERE seq > ?1 ORDER BY seq LIMIT ?2"));
+    s.Int(1, after).Int(2, page_size + 1);
+    return StepPage<AuditRecord>(s, page_size,
+                                 [](const StmtRow& row) { return internal::ReadAudit(row); });
+  }
+
+ private:
+  absl::StatusOr<TokenRecord> GetLocked(const std::string& id) {
+    Stmt s(impl_.db,
+           absl::StrCat("SELECT ", internal::kTokenColumns, " FROM api_tokens WHERE id = ?1"));
+    s.Text(1, id);
+    SEAPLAN_ASSIGN_OR_RETURN(bool row, s.Step());
+    if (!row) return absl::NotFoundError(NotFoundMessage("token", id));
+    return internal::ReadToken(StmtRow{s});
+  }
+
+  Impl& impl_;
+};
+
 SqliteStore::SqliteStore(std::unique_ptr<Impl> impl)
-    : impl_(std::move(impl)), work_(std::make_unique<Work>(*impl_)) {}
+    : impl_(std::move(impl)),
+      work_(std::make_unique<Work>(*impl_)),
+      access_(std::make_unique<Access>(*impl_)) {}
 SqliteStore::~SqliteStore() = default;
 
 absl::StatusOr<std::unique_ptr<SqliteStore>> SqliteStore::Open(const std::string& path,
@@ -845,6 +970,12 @@ WorkLeaseRepository& SqliteStore::work() {
 }
 ChangeFeed& SqliteStore::changes() {
   return impl_->feed;
+}
+TokenRepository& SqliteStore::tokens() {
+  return *access_;
+}
+AuditRepository& SqliteStore::audit() {
+  return *access_;
 }
 
 absl::Status SqliteStore::Close() {

@@ -418,5 +418,83 @@ TEST_P(StoreTest, ChangeFeedWakesAWatcherAfterEachCommit) {
   closer.join();
 }
 
+TokenRecord TestToken(const std::string& id, const std::string& role,
+                      const std::string& vessel = "") {
+  TokenRecord t;
+  t.id = id;
+  t.secret_hash = std::string(64, 'a');
+  t.role = role;
+  t.vessel_id = vessel;
+  t.description = "for " + id;
+  t.created_by = "creator";
+  t.created_at_ms = 1000;
+  t.expires_at_ms = 5000;
+  return t;
+}
+
+TEST_P(StoreTest, TokensAreStoredListedAndRevokedOnce) {
+  TokenRepository& tokens = store().tokens();
+  ASSERT_TRUE(tokens.Insert(TestToken("t1", "admin")).ok());
+  ASSERT_TRUE(tokens.Insert(TestToken("t2", "vessel", "mass-1")).ok());
+  EXPECT_EQ(tokens.Insert(TestToken("t1", "viewer")).code(), absl::StatusCode::kAlreadyExists);
+  // The schema refuses a vessel token without a vessel and an unknown role.
+  EXPECT_EQ(tokens.Insert(TestToken("t3", "vessel")).code(), absl::StatusCode::kInvalidArgument);
+  EXPECT_EQ(tokens.Insert(TestToken("t4", "root")).code(), absl::StatusCode::kInvalidArgument);
+
+  auto t2 = tokens.Get("t2");
+  ASSERT_TRUE(t2.ok()) << t2.status();
+  EXPECT_EQ(t2->role, "vessel");
+  EXPECT_EQ(t2->vessel_id, "mass-1");
+  EXPECT_EQ(t2->secret_hash, std::string(64, 'a'));
+  EXPECT_EQ(t2->description, "for t2");
+  EXPECT_EQ(t2->created_by, "creator");
+  EXPECT_EQ(t2->created_at_ms, 1000);
+  EXPECT_EQ(t2->expires_at_ms, 5000);
+  EXPECT_EQ(t2->revoked_at_ms, 0);
+  EXPECT_EQ(tokens.Get("nope").status().code(), absl::StatusCode::kNotFound);
+
+  auto revoked = tokens.Revoke("t2", 7000);
+  ASSERT_TRUE(revoked.ok()) << revoked.status();
+  EXPECT_EQ(revoked->revoked_at_ms, 7000);
+  // A second revocation keeps the first time.
+  EXPECT_EQ(tokens.Revoke("t2", 9000)->revoked_at_ms, 7000);
+  EXPECT_EQ(tokens.Revoke("nope", 1).status().code(), absl::StatusCode::kNotFound);
+
+  // Another connection (another server process) sees the same.
+  std::unique_ptr<Store> again = OpenAnother();
+  ASSERT_NE(again, nullptr);
+  auto all = again->tokens().List();
+  ASSERT_TRUE(all.ok()) << all.status();
+  ASSERT_EQ(all->size(), 2u);
+  EXPECT_EQ((*all)[0].id, "t1");
+  EXPECT_EQ((*all)[0].revoked_at_ms, 0);
+  EXPECT_EQ((*all)[1].revoked_at_ms, 7000);
+}
+
+TEST_P(StoreTest, AuditLogAppendsInOrderAndPages) {
+  AuditRepository& audit = store().audit();
+  for (int i = 1; i <= 5; ++i) {
+    auto r = audit.Append(
+        {0, 100 + i, "tok", "operator", "", "CreateMission", "m" + std::to_string(i), "detail"});
+    ASSERT_TRUE(r.ok()) << r.status();
+    EXPECT_GT(r->seq, 0);
+  }
+  EXPECT_FALSE(audit.Append({0, 1, "tok", "operator", "", "", "x", ""}).ok());  // no action
+  auto first = audit.ListAudit(3, 0);
+  ASSERT_TRUE(first.ok()) << first.status();
+  ASSERT_EQ(first->items.size(), 3u);
+  EXPECT_EQ(first->items[0].target, "m1");
+  EXPECT_EQ(first->items[0].time_ms, 101);
+  EXPECT_EQ(first->items[0].role, "operator");
+  EXPECT_EQ(first->items[0].action, "CreateMission");
+  EXPECT_NE(first->next_after, 0);
+  auto rest = audit.ListAudit(3, first->next_after);
+  ASSERT_TRUE(rest.ok());
+  ASSERT_EQ(rest->items.size(), 2u);
+  EXPECT_EQ(rest->items[1].target, "m5");
+  EXPECT_EQ(rest->next_after, 0);
+  EXPECT_EQ(audit.ListAudit(0, 0).status().code(), absl::StatusCode::kInvalidArgument);
+}
+
 }  // namespace
 }  // namespace seaplan::storage

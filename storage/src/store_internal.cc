@@ -14,6 +14,7 @@ constexpr SchemaStep kSchemaHistory[] = {
     {1, "charts, missions, plan versions, feedback, log events"},
     {2, "mission idempotency keys and completed tasks; charts keep the uploaded files"},
     {3, "mission work leases; change notifications"},
+    {4, "API tokens (hashes only) and the audit log"},
 };
 }  // namespace
 

@@ -50,6 +50,24 @@ inline constexpr const char* kWorkColumns =
     "mission_id, reason, base_version, COALESCE(holder, ''), token, requests, claimed_requests, "
     "done_requests, COALESCE(lease_expires_at_ms, 0)";
 
+inline constexpr const char* kTokenColumns =
+    "id, secret_hash, role, vessel_id, description, created_by, created_at_ms, expires_at_ms, "
+    "revoked_at_ms";
+inline constexpr const char* kAuditColumns =
+    "seq, time_ms, token_id, role, vessel_id, action, target, detail";
+
+template <typename Row>
+TokenRecord ReadToken(const Row& r) {
+  return {r.Bytes(0), r.Bytes(1), r.Bytes(2), r.Bytes(3), r.Bytes(4),
+          r.Bytes(5), r.Int(6),   r.Int(7),   r.Int(8)};
+}
+
+template <typename Row>
+AuditRecord ReadAudit(const Row& r) {
+  return {r.Int(0),   r.Int(1),   r.Bytes(2), r.Bytes(3),
+          r.Bytes(4), r.Bytes(5), r.Bytes(6), r.Bytes(7)};
+}
+
 // seq, id, name, format, options, summary, created_at_ms[, obstacles, source_files]
 template <typename Row>
 ChartRecord ReadChart(const Row& r, bool with_blobs) {

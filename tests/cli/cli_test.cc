@@ -15,6 +15,7 @@
 #include <thread>
 
 #include "seaplan/testing/shared_data.h"
+#include "seaplan/testing/test_token.h"
 
 namespace seaplan::testing {
 namespace {
@@ -214,7 +215,9 @@ TEST(CliRemoteTest, UnreachableServerExitsThree) {
   EXPECT_EQ(result.exit_code, 3) << result.out << result.err;
 }
 
-// A real seaplan-server on ephemeral loopback ports, killed at the end.
+// A real seaplan-server on ephemeral loopback ports, killed at the end. It
+// accepts the fixtures' admin token, which the `seaplan` processes the
+// tests start present (SEAPLAN_TOKEN).
 class ServerProcess {
  public:
   ServerProcess() {
@@ -223,6 +226,9 @@ class ServerProcess {
         ("server-" + std::to_string(std::chrono::steady_clock::now().time_since_epoch().count()));
     fs::create_directories(dir_);
     const auto port_file = dir_ / "ports";
+    const std::string token_file =
+        seaplan::testing::WriteTestAdminTokenFile(dir_ / "admin-token").string();
+    seaplan::testing::PassTestAdminTokenToChildren();
     pid_ = fork();
     if (pid_ == 0) {
       const std::string bin = (BinDir() / "seaplan-server").string();
@@ -230,7 +236,7 @@ class ServerProcess {
       const std::string ports = port_file.string();
       execl(bin.c_str(), bin.c_str(), "--grpc-addr", "127.0.0.1:0", "--http-addr", "127.0.0.1:0",
             "--data-dir", data.c_str(), "--port-file", ports.c_str(), "--log-level", "warn",
-            static_cast<char*>(nullptr));
+            "--admin-token-file", token_file.c_str(), static_cast<char*>(nullptr));
       _exit(127);
     }
     for (int i = 0; i < 200 && port_.empty(); ++i) {
@@ -261,6 +267,62 @@ class ServerProcess {
   pid_t pid_ = -1;
   std::string port_;
 };
+
+// Tokens through the CLI: an admin creates a viewer token (printed once),
+// the viewer reads but may not cancel, the admin revokes it and it stops
+// working; no token at all is refused, saying how to give one.
+TEST(CliRemoteTest, TokenCommandsAndTheirEffect) {
+  ServerProcess server;
+  ASSERT_TRUE(server.started()) << "seaplan-server did not report its ports";
+  const std::string addr = server.address();
+
+  auto created = RunSeaplan(
+      {"--server", addr, "token", "create", "--role", "viewer", "--description", "cli test"});
+  ASSERT_EQ(created.exit_code, 0) << created.err;
+  const std::string viewer = created.out.substr(0, created.out.find('\n'));
+  ASSERT_EQ(viewer.rfind("seaplan_", 0), 0u) << created.out;
+  const std::string viewer_id = viewer.substr(8, 16);
+  EXPECT_NE(created.err.find("shown only now"), std::string::npos) << created.err;
+
+  auto listed = RunSeaplan({"--server", addr, "token", "list"});
+  ASSERT_EQ(listed.exit_code, 0) << listed.err;
+  EXPECT_NE(listed.out.find(viewer_id + "  viewer"), std::string::npos) << listed.out;
+  EXPECT_EQ(listed.out.find(viewer), std::string::npos) << "a secret was listed";
+
+  // --token wins over SEAPLAN_TOKEN (the admin's, set by the fixture).
+  auto read = RunSeaplan({"--server", addr, "--token", viewer, "mission", "list"});
+  EXPECT_EQ(read.exit_code, 0) << read.err;
+  auto cancel = RunSeaplan({"--server", addr, "--token", viewer, "mission", "cancel", "m-x"});
+  EXPECT_EQ(cancel.exit_code, 3) << cancel.err;
+  EXPECT_NE(cancel.err.find("may not call MissionService/CancelMission"), std::string::npos)
+      << cancel.err;
+  const std::string token_file = WriteScratch("viewer.token", viewer + "\n");
+  auto from_file = RunSeaplan({"--server", addr, "--token-file", token_file, "token", "list"});
+  EXPECT_EQ(from_file.exit_code, 3) << from_file.err;  // a viewer lists no tokens
+  EXPECT_NE(from_file.err.find("PERMISSION_DENIED"), std::string::npos) << from_file.err;
+
+  auto revoked = RunSeaplan({"--server", addr, "token", "revoke", viewer_id});
+  ASSERT_EQ(revoked.exit_code, 0) << revoked.err;
+  EXPECT_NE(revoked.out.find("REVOKED"), std::string::npos) << revoked.out;
+  auto after = RunSeaplan({"--server", addr, "--token", viewer, "mission", "list"});
+  EXPECT_EQ(after.exit_code, 3);
+  EXPECT_NE(after.err.find("revoked"), std::string::npos) << after.err;
+
+  auto audit = RunSeaplan({"--server", addr, "audit"});
+  ASSERT_EQ(audit.exit_code, 0) << audit.err;
+  EXPECT_NE(audit.out.find("AccessService/CreateToken  " + viewer_id), std::string::npos)
+      << audit.out;
+  EXPECT_NE(audit.out.find("AccessService/RevokeToken  " + viewer_id), std::string::npos)
+      << audit.out;
+
+  auto none = RunSeaplan({"-u", "SEAPLAN_TOKEN", (BinDir() / "seaplan").string(), "--server",
+                          addr, "mission", "list"},
+                         "/usr/bin/env");
+  EXPECT_EQ(none.exit_code, 3);
+  EXPECT_NE(none.err.find("--token"), std::string::npos) << none.err;
+  auto missing = RunSeaplan({"--server", addr, "--token-file", "/nonexistent", "mission", "list"});
+  EXPECT_EQ(missing.exit_code, 2) << missing.err;
+}
 
 TEST(CliRemoteTest, CommandsWorkAgainstARunningServer) {
   ServerProcess server;

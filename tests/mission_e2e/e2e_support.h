@@ -25,6 +25,7 @@
 #include <utility>
 #include <vector>
 
+#include "seaplan/testing/grpc_test_token.h"
 #include "seaplan/v1/mission.grpc.pb.h"
 
 namespace seaplan::e2e {
@@ -41,6 +42,9 @@ inline std::string ReadWholeFile(const fs::path& path) {
 // seaplan-server on 127.0.0.1 (HTTP off), database and port file in the
 // folder given to Start, on an ephemeral port or the given one (a restart
 // on the port of a killed server). SIGTERM and reaped on destruction.
+// It accepts the fixtures' admin token (seaplan/testing/test_token.h),
+// which this process's gRPC calls and the clients it starts present by
+// default (UseTestAdminTokenByDefault).
 class ServerProcess {
  public:
   ServerProcess() = default;
@@ -53,6 +57,9 @@ class ServerProcess {
     fs::create_directories(dir);
     const fs::path port_file = dir / "ports";
     fs::remove(port_file);
+    seaplan::testing::UseTestAdminTokenByDefault();
+    const std::string token_file =
+        seaplan::testing::WriteTestAdminTokenFile(dir / "admin-token").string();
     const std::string bin = server_bin.string(), data = (dir / "data").string(),
                       ports = port_file.string(), log = (dir / "server.log").string(),
                       grpc_addr = "127.0.0.1:" + std::to_string(port);
@@ -65,7 +72,7 @@ class ServerProcess {
       }
       execl(bin.c_str(), bin.c_str(), "--grpc-addr", grpc_addr.c_str(), "--http-addr", "",
             "--data-dir", data.c_str(), "--port-file", ports.c_str(), "--log-level", "warn",
-            static_cast<char*>(nullptr));
+            "--admin-token-file", token_file.c_str(), static_cast<char*>(nullptr));
       _exit(127);
     }
     if (pid_ < 0) return false;

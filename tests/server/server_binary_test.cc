@@ -14,6 +14,7 @@
 #include <signal.h>
 #include <spawn.h>
 #include <sys/socket.h>
+#include <sys/stat.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
@@ -132,21 +133,41 @@ TEST(ServerBinaryTest, ServesBothTransportsAndShutsDownCleanlyOnSigterm) {
   ASSERT_TRUE(health->Check(&ctx, req, &resp).ok());
   EXPECT_EQ(resp.status(), grpc::health::v1::HealthCheckResponse::SERVING);
 
+  // First start: an admin token in the data folder, readable by the owner only.
+  const auto token_file = data_dir / "admin.token";
+  struct stat token_stat {};
+  ASSERT_EQ(stat(token_file.c_str(), &token_stat), 0) << "no " << token_file;
+  EXPECT_EQ(token_stat.st_mode & 0777, 0600u);
+  std::string token;
+  std::getline(std::ifstream(token_file), token);
+  ASSERT_EQ(token.rfind("seaplan_", 0), 0u) << token;
+
   httplib::Client http("127.0.0.1", http_port);
-  auto res = http.Get("/healthz");
+  auto res = http.Get("/healthz");  // health needs no token
   ASSERT_TRUE(res);
   EXPECT_EQ(res->status, 200);
   res = http.Post("/v1/MissionService/GetMission", "{\"missionId\":\"m-x\"}", "application/json");
   ASSERT_TRUE(res);
+  EXPECT_EQ(res->status, 401);
+  res = http.Post("/v1/MissionService/GetMission", {{"Authorization", "Bearer " + token}},
+                  "{\"missionId\":\"m-x\"}", "application/json");
+  ASSERT_TRUE(res);
   EXPECT_EQ(res->status, 404);
   auto missions = v1::MissionService::NewStub(channel);
-  grpc::ClientContext ctx2;
-  SetDeadline(&ctx2, 5000);
   v1::ListMissionsRequest list_req;
   v1::ListMissionsResponse list_resp;
+  {
+    grpc::ClientContext anonymous;
+    SetDeadline(&anonymous, 5000);
+    EXPECT_EQ(missions->ListMissions(&anonymous, list_req, &list_resp).error_code(),
+              grpc::StatusCode::UNAUTHENTICATED);
+  }
+  grpc::ClientContext ctx2;
+  SetDeadline(&ctx2, 5000);
+  ctx2.AddMetadata("authorization", "Bearer " + token);
   ASSERT_TRUE(missions->ListMissions(&ctx2, list_req, &list_resp).ok());
 
-  // Reflection lists the four services (and health).
+  // Reflection (no token needed: the schema is public) lists the services.
   {
     auto reflection = grpc::reflection::v1alpha::ServerReflection::NewStub(channel);
     grpc::ClientContext rctx;
@@ -162,7 +183,7 @@ TEST(ServerBinaryTest, ServesBothTransportsAndShutsDownCleanlyOnSigterm) {
       names.insert(service.name());
     for (const char* expected :
          {"seaplan.v1.PlanningService", "seaplan.v1.ChartService", "seaplan.v1.RouteService",
-          "seaplan.v1.MissionService", "grpc.health.v1.Health"}) {
+          "seaplan.v1.MissionService", "seaplan.v1.AccessService", "grpc.health.v1.Health"}) {
       EXPECT_TRUE(names.count(expected)) << expected;
     }
     // The schema itself is served too (what grpcurl needs).

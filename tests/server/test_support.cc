@@ -3,6 +3,8 @@
 #include <unistd.h>
 
 #include "absl/strings/str_cat.h"
+#include "seaplan/testing/grpc_test_token.h"
+#include "server/auth/authenticator.h"
 #include "server/core/convert.h"
 
 namespace seaplan::server::testing {
@@ -119,10 +121,15 @@ mission::FeedbackOutcome FakeMissionEngine::OnFeedback(const mission::MissionSpe
 }
 
 InProcessServer::InProcessServer(std::shared_ptr<mission::MissionEngine> engine,
-                                 int planning_threads) {
+                                 int planning_threads, bool default_admin_token)
+    : default_admin_token_(default_admin_token) {
   auto store = storage::SqliteStore::Open((dir_.path() / "seaplan.db").string());
   EXPECT_TRUE(store.ok()) << store.status();
   store_ = std::move(*store);
+  const absl::Status imported = auth::Authenticator(store_->tokens())
+                                    .ImportAdmin(seaplan::testing::TestAdminToken(), "tests");
+  EXPECT_TRUE(imported.ok()) << imported;
+  if (default_admin_token_) seaplan::testing::UseTestAdminTokenByDefault();
   Start(std::move(engine), planning_threads);
 }
 
@@ -149,6 +156,9 @@ InProcessServer::~InProcessServer() {
 httplib::Client InProcessServer::http() const {
   httplib::Client client("127.0.0.1", server_->http_port());
   client.set_read_timeout(30, 0);
+  if (default_admin_token_) {
+    client.set_default_headers({{"Authorization", seaplan::testing::TestAdminAuthorization()}});
+  }
   return client;
 }
 

@@ -78,12 +78,15 @@ class FakeMissionEngine final : public mission::MissionEngine {
 };
 
 // The server in-process on 127.0.0.1:0 (both transports), over a fresh
-// database in a temporary folder.
+// database in a temporary folder. The database holds the fixtures' admin
+// token (seaplan/testing/test_token.h); with `default_admin_token`, every
+// gRPC call of this process without its own `authorization` metadata and
+// every request of http() present it, so tests need not handle tokens.
 class InProcessServer {
  public:
   // Without `engine`, the server's own (engine/mission over its store's charts).
   explicit InProcessServer(std::shared_ptr<mission::MissionEngine> engine = nullptr,
-                           int planning_threads = 2);
+                           int planning_threads = 2, bool default_admin_token = true);
   ~InProcessServer();
 
   Server& server() { return *server_; }
@@ -91,6 +94,7 @@ class InProcessServer {
   std::string grpc_target() const { return "127.0.0.1:" + std::to_string(server_->grpc_port()); }
   int http_port() const { return server_->http_port(); }
   std::shared_ptr<grpc::Channel> channel() { return channel_; }
+  // With the admin token's Authorization header when `default_admin_token`.
   httplib::Client http() const;
 
  private:
@@ -100,6 +104,7 @@ class InProcessServer {
   std::unique_ptr<storage::SqliteStore> store_;
   std::unique_ptr<Server> server_;
   std::shared_ptr<grpc::Channel> channel_;
+  bool default_admin_token_ = true;
 };
 
 // A minimal valid mission spec (the fake engine does not read the PDDL).

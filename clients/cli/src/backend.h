@@ -11,6 +11,7 @@
 #include <string>
 
 #include "absl/status/status.h"
+#include "seaplan/v1/access.pb.h"
 #include "seaplan/v1/chart.pb.h"
 #include "seaplan/v1/mission.pb.h"
 #include "seaplan/v1/planning.pb.h"
@@ -53,10 +54,34 @@ class Backend {
                                      v1::RequestReplanResponse* response) = 0;
   virtual absl::Status CancelMission(const v1::CancelMissionRequest& request,
                                      v1::Mission* response) = 0;
+
+  // Tokens and the audit log live on a server: in-process backends answer
+  // FailedPrecondition.
+  virtual absl::Status CreateToken(const v1::CreateTokenRequest&, v1::CreateTokenResponse*) {
+    return TokensNeedAServer();
+  }
+  virtual absl::Status ListTokens(const v1::ListTokensRequest&, v1::ListTokensResponse*) {
+    return TokensNeedAServer();
+  }
+  virtual absl::Status RevokeToken(const v1::RevokeTokenRequest&, v1::RevokeTokenResponse*) {
+    return TokensNeedAServer();
+  }
+  virtual absl::Status ListAuditEvents(const v1::ListAuditEventsRequest&,
+                                       v1::ListAuditEventsResponse*) {
+    return TokensNeedAServer();
+  }
+
+ private:
+  static absl::Status TokensNeedAServer() {
+    return absl::FailedPreconditionError(
+        "tokens and the audit log are a server's: give --server HOST:PORT");
+  }
 };
 
-// A server at `address` (host:port). `timeout_s` <= 0 means no deadline.
-std::unique_ptr<Backend> MakeRemoteBackend(const std::string& address, double timeout_s);
+// A server at `address` (host:port), presenting `token` (empty: none).
+// `timeout_s` <= 0 means no deadline.
+std::unique_ptr<Backend> MakeRemoteBackend(const std::string& address, double timeout_s,
+                                           const std::string& token);
 
 // The server core in-process, with charts kept in memory for the call.
 std::unique_ptr<Backend> MakeLocalBackend();

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cstdlib>
+#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -12,6 +13,7 @@
 #include <vector>
 
 #include "CLI/CLI.hpp"
+#include "client_token.h"
 #include "google/protobuf/util/json_util.h"
 #include "output.h"
 #include "seaplan/common/log.h"
@@ -22,6 +24,10 @@ namespace {
 
 struct GlobalOptions {
   std::string server;  // empty: in-process
+  // The API token (--token, else --token-file, SEAPLAN_TOKEN or
+  // SEAPLAN_TOKEN_FILE); read by the server backend only.
+  std::string token;
+  std::string token_file;
   bool json = false;
   double timeout_s = 0;
   const CliExecutable* executable = nullptr;
@@ -64,8 +70,31 @@ absl::Status ParseLatLon(const std::string& text, v1::LatLon* position) {
   return absl::OkStatus();
 }
 
+// The token as given (flag, file or environment); a file that cannot be
+// read is reported and exits with kExitBadInput.
+std::string ResolvedToken(const GlobalOptions& options) {
+  if (options.server.empty()) return "";
+  absl::StatusOr<std::string> token = client::ResolveToken(options.token, options.token_file);
+  if (!token.ok()) {
+    std::cerr << "error: " << token.status().message() << "\n";
+    std::exit(kExitBadInput);
+  }
+  return *token;
+}
+
+// "2026-11-25 16:20:00Z" for ms since the epoch.
+std::string FormatTimeMs(std::int64_t ms) {
+  const std::time_t seconds = static_cast<std::time_t>(ms / 1000);
+  std::tm utc{};
+  gmtime_r(&seconds, &utc);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%d %H:%M:%SZ", &utc);
+  return text;
+}
+
 std::unique_ptr<Backend> MakeBackend(const GlobalOptions& options) {
-  return options.executable->make_backend(options.server, options.timeout_s);
+  return options.executable->make_backend(options.server, options.timeout_s,
+                                          ResolvedToken(options));
 }
 
 void PrintJsonOr(const GlobalOptions& options, const google::protobuf::Message& message,
@@ -449,6 +478,109 @@ int RunMissionList(const GlobalOptions& options) {
   return kExitSuccess;
 }
 
+// ---- token, audit ----------------------------------------------------------
+struct TokenArgs {
+  std::string role;
+  std::string vessel;
+  std::string description;
+  std::int64_t expires_in_s = 0;
+  std::string id;
+};
+
+const char* RoleLabel(v1::Role role) {
+  switch (role) {
+    case v1::ROLE_ADMIN:
+      return "admin";
+    case v1::ROLE_OPERATOR:
+      return "operator";
+    case v1::ROLE_VIEWER:
+      return "viewer";
+    case v1::ROLE_VESSEL:
+      return "vessel";
+    default:
+      return "?";
+  }
+}
+
+void PrintToken(std::ostream& out, const v1::TokenInfo& t) {
+  out << t.token_id() << "  " << RoleLabel(t.role());
+  if (!t.vessel_id().empty()) out << " (" << t.vessel_id() << ")";
+  out << "  created " << FormatTimeMs(t.created_at_ms());
+  if (t.expires_at_ms() != 0) out << "  expires " << FormatTimeMs(t.expires_at_ms());
+  if (t.revoked_at_ms() != 0) out << "  REVOKED " << FormatTimeMs(t.revoked_at_ms());
+  if (!t.description().empty()) out << "  " << t.description();
+  out << "\n";
+}
+
+int RunTokenCreate(const GlobalOptions& options, const TokenArgs& args) {
+  v1::CreateTokenRequest request;
+  v1::Role role = v1::ROLE_UNSPECIFIED;
+  for (v1::Role r : {v1::ROLE_ADMIN, v1::ROLE_OPERATOR, v1::ROLE_VIEWER, v1::ROLE_VESSEL}) {
+    if (args.role == RoleLabel(r)) role = r;
+  }
+  if (role == v1::ROLE_UNSPECIFIED) {
+    std::cerr << "error: --role must be admin, operator, viewer or vessel\n";
+    return kExitBadInput;
+  }
+  request.set_role(role);
+  request.set_vessel_id(args.vessel);
+  request.set_description(args.description);
+  request.set_expires_in_s(args.expires_in_s);
+  v1::CreateTokenResponse response;
+  if (auto s = MakeBackend(options)->CreateToken(request, &response); !s.ok())
+    return ReportError(std::cerr, s);
+  PrintJsonOr(options, response, [&] {
+    PrintToken(std::cerr, response.token());
+    std::cerr << "the token (shown only now; keep it secret):\n";
+    std::cout << response.bearer() << "\n";
+  });
+  return kExitSuccess;
+}
+
+int RunTokenList(const GlobalOptions& options) {
+  v1::ListTokensResponse response;
+  if (auto s = MakeBackend(options)->ListTokens({}, &response); !s.ok())
+    return ReportError(std::cerr, s);
+  PrintJsonOr(options, response, [&] {
+    for (const auto& t : response.tokens()) PrintToken(std::cout, t);
+  });
+  return kExitSuccess;
+}
+
+int RunTokenRevoke(const GlobalOptions& options, const TokenArgs& args) {
+  v1::RevokeTokenRequest request;
+  request.set_token_id(args.id);
+  v1::RevokeTokenResponse response;
+  if (auto s = MakeBackend(options)->RevokeToken(request, &response); !s.ok())
+    return ReportError(std::cerr, s);
+  PrintJsonOr(options, response, [&] { PrintToken(std::cout, response.token()); });
+  return kExitSuccess;
+}
+
+int RunAudit(const GlobalOptions& options) {
+  v1::ListAuditEventsRequest request;
+  request.set_page_size(1000);
+  auto backend = MakeBackend(options);
+  v1::ListAuditEventsResponse all;
+  do {
+    v1::ListAuditEventsResponse page;
+    if (auto s = backend->ListAuditEvents(request, &page); !s.ok())
+      return ReportError(std::cerr, s);
+    for (const auto& e : page.events()) *all.add_events() = e;
+    request.set_page_token(page.next_page_token());
+  } while (!request.page_token().empty());
+  PrintJsonOr(options, all, [&] {
+    for (const auto& e : all.events()) {
+      std::cout << FormatTimeMs(e.time_ms()) << "  " << e.token_id() << " (" << RoleLabel(e.role());
+      if (!e.vessel_id().empty()) std::cout << " " << e.vessel_id();
+      std::cout << ")  " << e.action() << "  " << e.target();
+      if (!e.detail().empty()) std::cout << "  " << e.detail();
+      std::cout << "\n";
+    }
+  });
+  return kExitSuccess;
+}
+
 bool IsFinal(v1::MissionState state) {
   return state == v1::MISSION_STATE_COMPLETED || state == v1::MISSION_STATE_FAILED ||
          state == v1::MISSION_STATE_CANCELLED;
@@ -524,6 +656,10 @@ int RunCli(int argc, char** argv, const CliExecutable& executable) {
   if (const char* env = std::getenv("SEAPLAN_SERVER")) options.server = env;
   app.add_option("--server", options.server,
                  "Server address host:port (env SEAPLAN_SERVER); in-process when empty");
+  app.add_option("--token", options.token,
+                 "API token for --server (else --token-file, env SEAPLAN_TOKEN or "
+                 "SEAPLAN_TOKEN_FILE)");
+  app.add_option("--token-file", options.token_file, "file whose first line is the API token");
   app.add_flag("--json", options.json, "Machine-readable JSON output");
   app.add_option("--timeout", options.timeout_s, "RPC deadline in seconds (0: none)");
   std::string log_level = "warn";
@@ -656,6 +792,26 @@ int RunCli(int argc, char** argv, const CliExecutable& executable) {
   cancel_cmd->add_option("--reason", mission.reason, "Why");
   cancel_cmd->callback(
       runner("mission cancel", [&] { return RunMissionCancel(options, mission); }));
+
+  TokenArgs token_args;
+  auto* token_cmd = app.add_subcommand("token", "API tokens (admin; needs --server)");
+  token_cmd->require_subcommand(1);
+  auto* tcreate_cmd = token_cmd->add_subcommand("create", "Create a token (printed once)");
+  tcreate_cmd->add_option("--role", token_args.role, "admin, operator, viewer or vessel")
+      ->required();
+  tcreate_cmd->add_option("--vessel", token_args.vessel, "Vessel id a vessel token is bound to");
+  tcreate_cmd->add_option("--description", token_args.description, "What the token is for");
+  tcreate_cmd->add_option("--expires-in-s", token_args.expires_in_s, "Lifetime (s); 0: none");
+  tcreate_cmd->callback(
+      runner("token create", [&] { return RunTokenCreate(options, token_args); }));
+  token_cmd->add_subcommand("list", "List tokens (never their secrets)")
+      ->callback(runner("token list", [&] { return RunTokenList(options); }));
+  auto* trevoke_cmd = token_cmd->add_subcommand("revoke", "Revoke a token");
+  trevoke_cmd->add_option("id", token_args.id, "Token id")->required();
+  trevoke_cmd->callback(
+      runner("token revoke", [&] { return RunTokenRevoke(options, token_args); }));
+  app.add_subcommand("audit", "Show the audit log (admin; needs --server)")
+      ->callback(runner("audit", [&] { return RunAudit(options); }));
 
   try {
     app.parse(argc, argv);

@@ -4,10 +4,12 @@
 #include "backend.h"
 #include "grpcpp/grpcpp.h"
 #include "output.h"
+#include "seaplan/v1/access.grpc.pb.h"
 #include "seaplan/v1/chart.grpc.pb.h"
 #include "seaplan/v1/mission.grpc.pb.h"
 #include "seaplan/v1/planning.grpc.pb.h"
 #include "seaplan/v1/route.grpc.pb.h"
+#include "token_channel.h"
 
 namespace seaplan::cli {
 namespace {
@@ -25,12 +27,14 @@ absl::Status FromGrpc(const grpc::Status& status) {
 
 class RemoteBackend final : public Backend {
  public:
-  RemoteBackend(const std::string& address, double timeout_s)
-      : channel_(grpc::CreateChannel(address, grpc::InsecureChannelCredentials())),
+  RemoteBackend(const std::string& address, double timeout_s, const std::string& token)
+      : channel_(client::CreateChannelWithToken(address, grpc::InsecureChannelCredentials(),
+                                                grpc::ChannelArguments(), token)),
         planning_(v1::PlanningService::NewStub(channel_)),
         charts_(v1::ChartService::NewStub(channel_)),
         routes_(v1::RouteService::NewStub(channel_)),
         missions_(v1::MissionService::NewStub(channel_)),
+        access_(v1::AccessService::NewStub(channel_)),
         timeout_s_(timeout_s) {}
 
   absl::Status Plan(const v1::PlanRequest& request, v1::PlanResponse* response) override {
@@ -114,6 +118,26 @@ class RemoteBackend final : public Backend {
     auto context = MakeContext();
     return FromGrpc(missions_->CancelMission(context.get(), request, response));
   }
+  absl::Status CreateToken(const v1::CreateTokenRequest& request,
+                           v1::CreateTokenResponse* response) override {
+    auto context = MakeContext();
+    return FromGrpc(access_->CreateToken(context.get(), request, response));
+  }
+  absl::Status ListTokens(const v1::ListTokensRequest& request,
+                          v1::ListTokensResponse* response) override {
+    auto context = MakeContext();
+    return FromGrpc(access_->ListTokens(context.get(), request, response));
+  }
+  absl::Status RevokeToken(const v1::RevokeTokenRequest& request,
+                           v1::RevokeTokenResponse* response) override {
+    auto context = MakeContext();
+    return FromGrpc(access_->RevokeToken(context.get(), request, response));
+  }
+  absl::Status ListAuditEvents(const v1::ListAuditEventsRequest& request,
+                               v1::ListAuditEventsResponse* response) override {
+    auto context = MakeContext();
+    return FromGrpc(access_->ListAuditEvents(context.get(), request, response));
+  }
 
  private:
   std::unique_ptr<grpc::ClientContext> MakeContext() const {
@@ -130,13 +154,15 @@ class RemoteBackend final : public Backend {
   std::unique_ptr<v1::ChartService::Stub> charts_;
   std::unique_ptr<v1::RouteService::Stub> routes_;
   std::unique_ptr<v1::MissionService::Stub> missions_;
+  std::unique_ptr<v1::AccessService::Stub> access_;
   double timeout_s_;
 };
 
 }  // namespace
 
-std::unique_ptr<Backend> MakeRemoteBackend(const std::string& address, double timeout_s) {
-  return std::make_unique<RemoteBackend>(address, timeout_s);
+std::unique_ptr<Backend> MakeRemoteBackend(const std::string& address, double timeout_s,
+                                           const std::string& token) {
+  return std::make_unique<RemoteBackend>(address, timeout_s, token);
 }
 
 }  // namespace seaplan::cli

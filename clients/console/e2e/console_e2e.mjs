@@ -29,7 +29,7 @@ requireFile(join(consoleDir, "index.html"), "the built console");
 requireFile(process.env.CHROMIUM_PATH || "/usr/bin/chromium", "Chromium (apt-get install chromium)");
 requireFile(join(here, "../node_modules/playwright-core/package.json"),
             "clients/console/node_modules (npm ci in clients/console)");
-const { distinctColours, launchBrowser, readScenario, startServer } = await import("./support.mjs");
+const { distinctColours, launchBrowser, readScenario, signIn, startServer } = await import("./support.mjs");
 mkdirSync(artifacts, { recursive: true });
 
 const failures = [];
@@ -67,6 +67,28 @@ try {
   page.on("pageerror", (e) => consoleErrors.push(String(e)));
   const external = [];
   page.on("request", (r) => { if (!r.url().startsWith(server.url) && !r.url().startsWith("data:")) external.push(r.url()); });
+
+  // 0. Sign-in: the console asks for a token, a wrong one is refused, the
+  // admin token the server wrote at its first start opens the session; the
+  // cookie alone (without the CSRF header) is refused.
+  await page.goto(server.url);
+  await page.waitForSelector("#sign-in #token");
+  await page.fill("#token", "seaplan_0000000000000000_wrong");
+  await page.click("#sign-in button[type=submit]");
+  await page.waitForFunction(() => (document.querySelector("#sign-in-error")?.textContent ?? "") !== "");
+  check(true, `a wrong token is refused (${await page.$eval("#sign-in-error", (e) => e.textContent)})`);
+  await signIn(page, server);
+  check(/^admin /.test(await page.$eval("#signed-in-as", (e) => e.textContent ?? "")), "signed in as admin");
+  const cookieOnly = await page.evaluate(async () =>
+    (await fetch("/v1/MissionService/ListMissions", { method: "POST", body: "{}" })).status);
+  check(cookieOnly === 403, `the session cookie without the CSRF header gets 403 (${cookieOnly})`);
+  const cookies = await browser.context.cookies();
+  const sessionCookie = cookies.find((c) => c.name === "seaplan_session");
+  check(!!sessionCookie && sessionCookie.httpOnly && sessionCookie.sameSite === "Strict",
+        "session cookie is HttpOnly and SameSite=Strict");
+  // The browser logs those refusals (and the signed-out session probe) as
+  // failed loads; what follows must log nothing.
+  consoleErrors.length = 0;
 
   // 1. Charts: upload the scenario's chart through the form.
   const t0 = Date.now();
@@ -187,7 +209,9 @@ try {
   const inOrder = ids.every((id, i) => i === 0 || id > ids[i - 1]);
   const fresh = await page.evaluate(async (missionId) => {
     // The same events fetched afresh: the live log has every one of them.
+    const { csrfToken } = await (await fetch("/auth/session")).json();
     const res = await fetch("/v1/MissionService/WatchMission", { method: "POST", body: JSON.stringify({ missionId }),
+                                                                   headers: { "X-CSRF-Token": csrfToken },
                                                                    signal: AbortSignal.timeout(3000) }).catch(() => null);
     if (!res) return null;
     const reader = res.body.getReader();
@@ -299,6 +323,13 @@ try {
         `only the two refusals logged (${refusals.join(" | ")})`);
   check(consoleErrors.length === 0, `no console errors${consoleErrors.length ? `: ${consoleErrors.join(" | ")}` : ""}`);
   check(external.length === 0, `nothing loaded from elsewhere${external.length ? `: ${external.join(", ")}` : ""}`);
+
+  // 10. Sign-out ends the session: the form again, and the cookie is refused.
+  await page.click("#sign-out");
+  await page.waitForSelector("#sign-in #token");
+  const afterSignOut = await page.evaluate(async () =>
+    (await fetch("/v1/MissionService/ListMissions", { method: "POST", body: "{}" })).status);
+  check(afterSignOut === 401, `after sign-out the API answers 401 (${afterSignOut})`);
 } catch (e) {
   failures.push(String(e?.stack ?? e));
   console.log(`FAIL ${e?.stack ?? e}`);

@@ -1,6 +1,9 @@
 // Shared by the browser tests and the render benchmark: a seaplan-server on
 // free loopback ports with the console, and Debian's Chromium driven by
-// playwright-core (no browser download).
+// playwright-core (no browser download). The server writes its admin token
+// to its data folder at the first start: startServer returns it (and sets
+// SEAPLAN_TOKEN_FILE, so the clients a test starts present it), and
+// signIn() signs the console in with it.
 import { spawn } from "node:child_process";
 import { existsSync, mkdtempSync, readFileSync, rmSync } from "node:fs";
 import { tmpdir } from "node:os";
@@ -26,8 +29,11 @@ export async function startServer({ serverBin, consoleDir }) {
       const grpc = /grpc=(\d+)/.exec(text);
       const http = /http=(\d+)/.exec(text);
       if (grpc && http) {
+        const adminTokenFile = join(dir, "data", "admin.token");
+        process.env.SEAPLAN_TOKEN_FILE = adminTokenFile;
         return {
           dir, grpcAddress: `127.0.0.1:${grpc[1]}`, url: `http://127.0.0.1:${http[1]}/`,
+          adminTokenFile, adminToken: readFileSync(adminTokenFile, "utf8").trim(),
           async stop() {
             if (!exited) {
               child.kill("SIGTERM");
@@ -43,6 +49,16 @@ export async function startServer({ serverBin, consoleDir }) {
   }
   child.kill("SIGKILL");
   throw new Error("seaplan-server did not write its port file in 30 s");
+}
+
+// Signs the console in through its form with the server's admin token; the
+// session cookie then serves every page of the browser context.
+export async function signIn(page, server) {
+  await page.goto(server.url);
+  await page.waitForSelector("#sign-in #token");
+  await page.fill("#token", server.adminToken);
+  await page.click("#sign-in button[type=submit]");
+  await page.waitForSelector("#sign-out:not([hidden])");
 }
 
 export async function launchBrowser() {

@@ -84,14 +84,65 @@ async function errorOf(res: Response): Promise<ApiError> {
   }
 }
 
-export async function call<T>(method: string, request: unknown, signal?: AbortSignal): Promise<T> {
-  const res = await fetch(`/v1/${method}`, {
+// The console's session: the server keeps the token behind an HttpOnly,
+// SameSite=Strict cookie; every API call sends the session's CSRF token in a
+// header, without which the server refuses the cookie (403).
+export interface Session { csrfToken: string; tokenId: string; role: string; vesselId: string; }
+let session: Session | null = null;
+
+export function currentSession(): Session | null { return session; }
+
+// Fired when the server no longer knows the caller (401): sign in again.
+export const SIGNED_OUT_EVENT = "seaplan-signed-out";
+
+// The headers of an API call: JSON, and the session's CSRF token (also for
+// requests not made through call(), such as the chart upload's XHR).
+export function headers(): Record<string, string> {
+  const h: Record<string, string> = { "Content-Type": "application/json" };
+  if (session) h["X-CSRF-Token"] = session.csrfToken;
+  return h;
+}
+
+async function checked(res: Response): Promise<Response> {
+  if (res.status === 401 && session) {
+    session = null;
+    window.dispatchEvent(new Event(SIGNED_OUT_EVENT));
+  }
+  if (!res.ok) throw await errorOf(res);
+  return res;
+}
+
+// Resumes the session of the cookie (after a reload); null when signed out.
+export async function resumeSession(): Promise<Session | null> {
+  const res = await fetch("/auth/session", { cache: "no-store" });
+  session = res.ok ? (await res.json()) as Session : null;
+  return session;
+}
+
+export async function signIn(token: string): Promise<Session> {
+  const res = await fetch("/auth/login", {
     method: "POST",
     headers: { "Content-Type": "application/json" },
-    body: JSON.stringify(request ?? {}),
-    signal,
+    body: JSON.stringify({ token }),
   });
   if (!res.ok) throw await errorOf(res);
+  session = (await res.json()) as Session;
+  return session;
+}
+
+export async function signOut(): Promise<void> {
+  const res = await fetch("/auth/logout", { method: "POST", headers: headers() });
+  session = null;
+  if (!res.ok) throw await errorOf(res);
+}
+
+export async function call<T>(method: string, request: unknown, signal?: AbortSignal): Promise<T> {
+  const res = await checked(await fetch(`/v1/${method}`, {
+    method: "POST",
+    headers: headers(),
+    body: JSON.stringify(request ?? {}),
+    signal,
+  }));
   return (await res.json()) as T;
 }
 
@@ -99,13 +150,13 @@ export async function call<T>(method: string, request: unknown, signal?: AbortSi
 // server ends the stream. A last {"error": ...} line rejects.
 export async function stream<T>(method: string, request: unknown, onMessage: (m: T) => void,
                                 signal?: AbortSignal): Promise<void> {
-  const res = await fetch(`/v1/${method}`, {
+  const res = await checked(await fetch(`/v1/${method}`, {
     method: "POST",
-    headers: { "Content-Type": "application/json" },
+    headers: headers(),
     body: JSON.stringify(request ?? {}),
     signal,
-  });
-  if (!res.ok || !res.body) throw await errorOf(res);
+  }));
+  if (!res.body) throw await errorOf(res);
   const reader = res.body.getReader();
   const decoder = new TextDecoder();
   let buffered = "";

@@ -1,7 +1,7 @@
 // Charts: upload (S-57 cell with updates, zipped FileGDB / shapefiles,
 // GeoJSON) with progress and the server's errors, list, and a preview of
 // the obstacles at a chosen minimum depth.
-import { ApiError, call, type ApiErrorBody, type Chart } from "./api";
+import { ApiError, call, headers, type ApiErrorBody, type Chart } from "./api";
 import { field, fileToBase64, h } from "./dom";
 import { ChartMap } from "./map";
 import { utc } from "./units";
@@ -11,7 +11,7 @@ function post(method: string, body: string, onProgress: (fraction: number) => vo
   return new Promise((resolve, reject) => {
     const xhr = new XMLHttpRequest();
     xhr.open("POST", `/v1/${method}`);
-    xhr.setRequestHeader("Content-Type", "application/json");
+    for (const [name, value] of Object.entries(headers())) xhr.setRequestHeader(name, value);
     xhr.upload.onprogress = (e) => { if (e.lengthComputable) onProgress(e.loaded / e.total); };
     xhr.onerror = () => reject(new Error("network error"));
     xhr.onload = () => {

@@ -75,6 +75,8 @@ class PostgresStore final : public Store {
   MissionRepository& missions() override;
   WorkLeaseRepository& work() override;
   ChangeFeed& changes() override;
+  TokenRepository& tokens() override;
+  AuditRepository& audit() override;
   absl::Status Close() override;
 
   // The version in seaplan_schema.
@@ -84,9 +86,11 @@ class PostgresStore final : public Store {
 
  private:
   class Work;
+  class Access;
   explicit PostgresStore(std::unique_ptr<Impl> impl);
   std::unique_ptr<Impl> impl_;
   std::unique_ptr<Work> work_;
+  std::unique_ptr<Access> access_;
 };
 
 // `url` with its password replaced by "***", for logs.

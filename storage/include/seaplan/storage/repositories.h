@@ -289,6 +289,55 @@ class ChangeFeed {
                              std::chrono::milliseconds timeout) = 0;
 };
 
+// An API token. The token itself is never stored: only the SHA-256 of its
+// secret part, so a copy of the database does not let anyone in.
+struct TokenRecord {
+  std::string id;           // public part of the token, unique
+  std::string secret_hash;  // hex SHA-256 of the secret part
+  std::string role;         // "admin", "operator", "viewer" or "vessel"
+  std::string vessel_id;    // the vessel a "vessel" token is bound to; empty otherwise
+  std::string description;
+  std::string created_by;  // token id of the creator; empty for the first admin token
+  TimestampMs created_at_ms = 0;
+  TimestampMs expires_at_ms = 0;  // 0 = never expires
+  TimestampMs revoked_at_ms = 0;  // 0 = not revoked
+};
+
+class TokenRepository {
+ public:
+  virtual ~TokenRepository() = default;
+  // AlreadyExists when the id is taken.
+  virtual absl::Status Insert(const TokenRecord& token) = 0;
+  // NotFound when absent.
+  virtual absl::StatusOr<TokenRecord> Get(const std::string& id) = 0;
+  // Every token (revoked ones too), oldest first.
+  virtual absl::StatusOr<std::vector<TokenRecord>> List() = 0;
+  // Marks the token revoked at `at_ms` (a second revocation keeps the first
+  // time) and returns it. NotFound when absent.
+  virtual absl::StatusOr<TokenRecord> Revoke(const std::string& id, TimestampMs at_ms) = 0;
+};
+
+// Who did what, and when: one row per state-changing call.
+struct AuditRecord {
+  std::int64_t seq = 0;  // assigned by storage; listing cursor
+  TimestampMs time_ms = 0;
+  std::string token_id;  // the caller's token; empty for the server itself
+  std::string role;
+  std::string vessel_id;
+  std::string action;  // e.g. "CreateMission", "RevokeToken"
+  std::string target;  // what it acted on: a mission, chart or token id
+  std::string detail;
+};
+
+class AuditRepository {
+ public:
+  virtual ~AuditRepository() = default;
+  // Appends a record (seq is assigned) and returns it.
+  virtual absl::StatusOr<AuditRecord> Append(AuditRecord record) = 0;
+  // Records with seq > after, oldest first, at most page_size (1..1000).
+  virtual absl::StatusOr<Page<AuditRecord>> ListAudit(int page_size, std::int64_t after) = 0;
+};
+
 // The schema version this binary migrates to (the same numbering on every
 // backend).
 int LatestSchemaVersion();
@@ -301,6 +350,8 @@ class Store {
   virtual MissionRepository& missions() = 0;
   virtual WorkLeaseRepository& work() = 0;
   virtual ChangeFeed& changes() = 0;
+  virtual TokenRepository& tokens() = 0;
+  virtual AuditRepository& audit() = 0;
   // Flushes and closes; later calls fail with FailedPrecondition. Also done
   // by the destructor.
   virtual absl::Status Close() = 0;

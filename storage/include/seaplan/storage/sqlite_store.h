@@ -55,6 +55,8 @@ class SqliteStore final : public Store {
   // Bumped by this store after each of its commits: one process owns a
   // SQLite database, so no other process has watchers to wake.
   ChangeFeed& changes() override;
+  TokenRepository& tokens() override;
+  AuditRepository& audit() override;
   absl::Status Close() override;
 
   // PRAGMA user_version of the open database.
@@ -66,9 +68,11 @@ class SqliteStore final : public Store {
 
  private:
   class Work;
+  class Access;
   explicit SqliteStore(std::unique_ptr<Impl> impl);
   std::unique_ptr<Impl> impl_;
   std::unique_ptr<Work> work_;
+  std::unique_ptr<Access> access_;
 };
 
 }  // namespace seaplan::storage
