@@ -157,6 +157,12 @@ export class ChartMap {
   obstacleCount(): number { return this.obstacles.getFeatures().length; }
   routeSegmentCount(): number { return this.routes.getFeatures().length; }
   trackPointCount(): number { return (this.trackFeature.getGeometry() as LineString).getCoordinates().length; }
+  trackStart(): LatLon | undefined {
+    const c = (this.trackFeature.getGeometry() as LineString).getFirstCoordinate();
+    if (!c || c.length < 2) return undefined;
+    const [lon, lat] = toLonLat(c);
+    return { latitudeDeg: lat, longitudeDeg: lon };
+  }
 
   setLocations(locations: NamedLocation[]): void {
     this.places.clear();
