@@ -278,7 +278,9 @@ TEST(ConsoleApiE2eTest, FeedbackHistoryIsPagedInArrivalOrderOnBothTransports) {
     v1::ReportFeedbackResponse resp;
     return missions->ReportFeedback(&ctx, req, &resp);
   };
-  for (int step = 0; step < 5; ++step) ASSERT_TRUE(report(10 - step, step).ok());
+  for (int step = 0; step < 5; ++step) {
+    ASSERT_TRUE(report(10 - step, step).ok());
+  }
   ASSERT_TRUE(report(8, 2).ok());  // a retry: stored once
 
   // gRPC, two per page: every report once, in arrival order, with its state.
@@ -301,7 +303,9 @@ TEST(ConsoleApiE2eTest, FeedbackHistoryIsPagedInArrivalOrderOnBothTransports) {
   ASSERT_EQ(history.size(), 5u);
   for (int step = 0; step < 5; ++step) {
     const v1::StoredFeedback& h = history[step];
-    if (step > 0) EXPECT_GT(h.sequence(), history[step - 1].sequence());
+    if (step > 0) {
+      EXPECT_GT(h.sequence(), history[step - 1].sequence());
+    }
     EXPECT_EQ(h.vessel_id(), "ship0");
     EXPECT_EQ(h.sequence_number(), 10 - step);
     EXPECT_GT(h.received_at().seconds(), 0);

@@ -47,9 +47,9 @@ struct Parsed {
 };
 
 Parsed ParseSvg(const std::string& xml) {
-  Parsed p;
+  Parsed parsed;
   XML_Parser parser = XML_ParserCreate("UTF-8");
-  XML_SetUserData(parser, &p);
+  XML_SetUserData(parser, &parsed);
   XML_SetElementHandler(
       parser,
       [](void* data, const XML_Char* name, const XML_Char** attrs) {
@@ -73,7 +73,7 @@ Parsed ParseSvg(const std::string& xml) {
   });
   EXPECT_NE(XML_Parse(parser, xml.data(), static_cast<int>(xml.size()), 1), XML_STATUS_ERROR);
   XML_ParserFree(parser);
-  return p;
+  return parsed;
 }
 
 // Parses `xml` with expat; empty on success, else the error and its line.
