@@ -200,6 +200,23 @@ struct StmtRow {
   std::string Bytes(int c) const { return s.ColBlob(c); }
 };
 
+// A listing page from `s`, which selects up to page_size + 1 rows ordered
+// by seq: the extra row only says that another page follows.
+template <typename T, typename Read>
+absl::StatusOr<Page<T>> ReadPage(Stmt& s, int page_size, Read&& read) {
+  Page<T> page;
+  while (true) {
+    SEAPLAN_ASSIGN_OR_RETURN(bool row, s.Step());
+    if (!row) break;
+    if (static_cast<int>(page.items.size()) == page_size) {
+      page.next_after = page.items.back().seq;
+      break;
+    }
+    page.items.push_back(read(StmtRow{s}));
+  }
+  return page;
+}
+
 absl::Status Exec(sqlite3* db, const char* sql) {
   char* err = nullptr;
   const int rc = sqlite3_exec(db, sql, nullptr, nullptr, &err);
@@ -432,17 +449,8 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
            "SELECT seq, id, name, format, options, summary, created_at_ms FROM charts "
            "WHERE seq > ?1 ORDER BY seq LIMIT ?2");
     s.Int(1, after).Int(2, page_size + 1);
-    Page<ChartRecord> page;
-    while (true) {
-      SEAPLAN_ASSIGN_OR_RETURN(bool row, s.Step());
-      if (!row) break;
-      if (static_cast<int>(page.items.size()) == page_size) {
-        page.next_after = page.items.back().seq;
-        break;
-      }
-      page.items.push_back(internal::ReadChart(StmtRow{s}, false));
-    }
-    return page;
+    return ReadPage<ChartRecord>(s, page_size,
+                                 [](const StmtRow& r) { return internal::ReadChart(r, false); });
   }
 
   // ---- MissionRepository ----
@@ -527,17 +535,8 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
                "SELECT ", kMissionColumns,
                " FROM missions WHERE seq > ?1 AND (?2 = 0 OR state = ?2) ORDER BY seq LIMIT ?3"));
     s.Int(1, after).Int(2, state).Int(3, page_size + 1);
-    Page<MissionRecord> page;
-    while (true) {
-      SEAPLAN_ASSIGN_OR_RETURN(bool row, s.Step());
-      if (!row) break;
-      if (static_cast<int>(page.items.size()) == page_size) {
-        page.next_after = page.items.back().seq;
-        break;
-      }
-      page.items.push_back(internal::ReadMission(StmtRow{s}));
-    }
-    return page;
+    return ReadPage<MissionRecord>(s, page_size,
+                                   [](const StmtRow& r) { return internal::ReadMission(r); });
   }
 
   absl::Status Update(const std::string& id, const MissionUpdate& update,
@@ -684,17 +683,8 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
                             " FROM feedback WHERE mission_id = ?1 AND seq > ?2 ORDER BY seq "
                             "LIMIT ?3"));
     s.Text(1, mission_id).Int(2, after).Int(3, page_size + 1);
-    Page<FeedbackRecord> page;
-    while (true) {
-      SEAPLAN_ASSIGN_OR_RETURN(bool row, s.Step());
-      if (!row) break;
-      if (static_cast<int>(page.items.size()) == page_size) {
-        page.next_after = page.items.back().seq;
-        break;
-      }
-      page.items.push_back(internal::ReadFeedback(StmtRow{s}));
-    }
-    return page;
+    return ReadPage<FeedbackRecord>(s, page_size,
+                                    [](const StmtRow& r) { return internal::ReadFeedback(r); });
   }
 
   absl::StatusOr<std::vector<LogEventRecord>> AppendEvents(

@@ -35,6 +35,13 @@ std::vector<v1::MissionEvent> ParseNdjson(const std::string& body) {
   return events;
 }
 
+void CreateSampleMission(v1::MissionService::Stub& missions, v1::Mission* mission) {
+  grpc::ClientContext ctx;
+  v1::CreateMissionRequest req;
+  *req.mutable_spec() = SampleSpec();
+  ASSERT_TRUE(missions.CreateMission(&ctx, req, mission).ok());
+}
+
 TEST(ConsoleApiE2eTest, JsonBodyIsReadWhateverTheContentTypeAndBeyondEightKiB) {
   InProcessServer s;
   auto http = s.http();
@@ -179,12 +186,7 @@ TEST(ConsoleApiE2eTest, VesselStateReachesWatchersWithTheTraffic) {
   InProcessServer s(engine);
   auto missions = v1::MissionService::NewStub(s.channel());
   v1::Mission mission;
-  {
-    grpc::ClientContext ctx;
-    v1::CreateMissionRequest req;
-    *req.mutable_spec() = SampleSpec();
-    ASSERT_TRUE(missions->CreateMission(&ctx, req, &mission).ok());
-  }
+  ASSERT_NO_FATAL_FAILURE(CreateSampleMission(*missions, &mission));
   auto report = [&](double lat, const std::string& vessel, v1::ReportVesselStateResponse* out) {
     grpc::ClientContext ctx;
     v1::ReportVesselStateRequest req;
@@ -253,12 +255,7 @@ TEST(ConsoleApiE2eTest, FeedbackHistoryIsPagedInArrivalOrderOnBothTransports) {
   InProcessServer s(engine);
   auto missions = v1::MissionService::NewStub(s.channel());
   v1::Mission mission;
-  {
-    grpc::ClientContext ctx;
-    v1::CreateMissionRequest req;
-    *req.mutable_spec() = SampleSpec();
-    ASSERT_TRUE(missions->CreateMission(&ctx, req, &mission).ok());
-  }
+  ASSERT_NO_FATAL_FAILURE(CreateSampleMission(*missions, &mission));
   const std::string& id = mission.mission_id();
   // Position reports along a track, fuel falling; sequence numbers sent out
   // of order (a journal resent after an outage) and one retry.
