@@ -194,7 +194,7 @@ try {
     t: s.missionTimeS, lat: s.position?.latitudeDeg, fuel: s.fuelFraction })));
   const opened = await seriesOf();
   const firstLiveS = await late.evaluate(() => window.seaplanHistory.firstLiveS());
-  const stored = await late.evaluate(async (missionId) => {
+  const storedReports = (missionId) => late.evaluate(async (missionId) => {
     const out = [];
     let after = "0";
     for (;;) {
@@ -203,12 +203,13 @@ try {
       const page = await res.json();
       for (const r of page.feedback ?? []) {
         if (r.feedback?.state) out.push({ t: r.feedback.missionTimeS ?? 0, lat: r.feedback.state.position?.latitudeDeg,
-                                           lon: r.feedback.state.position?.longitudeDeg });
+                                           lon: r.feedback.state.position?.longitudeDeg, seq: Number(r.sequence) });
         after = r.sequence;
       }
       if (!page.nextAfterSequence || page.nextAfterSequence === "0") return out;
     }
   }, missionId);
+  const stored = await storedReports(missionId);
   const lateTrack = await late.evaluate(() => window.seaplanMap.trackPointCount());
   const firstDrawn = await late.evaluate(() => window.seaplanMap.trackStart());
   check(stored.length > 2 && opened[0].t === stored[0].t && firstLiveS > stored[0].t + 60 &&
@@ -217,13 +218,17 @@ try {
         `start at the first stored report (T+${Math.round(stored[0].t)} s, ${stored.length} stored)`);
   await waitFor("a live update after opening", async () =>
     (await seriesOf()).at(-1).t > opened.at(-1).t, 60000);
+  // Every report stored since is fetched as its log event arrives.
+  const storedSince = await storedReports(missionId);
+  await waitFor("the reports stored since opening", () => late.evaluate((seq) =>
+    Number(window.seaplanHistory.cursor()) >= seq, storedSince.at(-1).seq), 30000);
   const later = await seriesOf();
   const times = later.map((s) => s.t);
   const strictlyIncreasing = times.every((t, i) => i === 0 || t > times[i - 1]);
   const lastT = times.at(-1);
-  const missed = stored.filter((r) => r.t <= lastT && !times.includes(r.t));
+  const missed = storedSince.filter((r) => r.t <= lastT && !times.includes(r.t));
   check(strictlyIncreasing && missed.length === 0 && later.length > opened.length,
-        `history then live: ${later.length} samples, each mission time once, no stored report missing ` +
+        `history then live: ${later.length} samples, each mission time once, none of the ${storedSince.length} stored reports missing ` +
         `(missing ${missed.map((r) => r.t).join(",") || "none"})`);
   const caption = await late.textContent("#fuel-caption");
   check(/^T\+0:00:\d\d .*from stored reports\)$/.test(caption ?? ""), `fuel over time from the start (${caption})`);

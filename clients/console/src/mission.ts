@@ -60,17 +60,24 @@ export function missionView(root: HTMLElement, missionId: string): () => void {
 
   const redrawFuel = () => {
     const points = series.fuel();
-    fuelBox.replaceChildren(fuelChart(points));
+    fuelBox.replaceChildren(fuelChart(points, mission?.spec?.replanPolicy?.fuelThresholdFraction || 0.3));
     const [first, last] = [points[0], points[points.length - 1]];
     fuelCaption.textContent = first
       ? `${missionTime(first[0])} ${percent(first[1])} → ${missionTime(last[0])} ${percent(last[1])}` +
         ` (${points.length} samples, ${storedReports} from stored reports)`
       : "no report yet";
   };
-  // Reports stored after the cursor: before the page opened, or while a
-  // broken watch was reconnecting (its live picture resends only the latest).
+  // Reports stored after the cursor: before the page opened, while a broken
+  // watch was reconnecting (its live picture resends only the latest), and
+  // each one as it arrives (every report is logged in the same transaction,
+  // so its log event on the watch says there is one to fetch). Requests that
+  // come while one is queued join it.
+  let historyQueued = false;
   const fetchHistory = () => {
+    if (historyQueued) return;
+    historyQueued = true;
     history = history.then(async () => {
+      historyQueued = false;
       try {
         feedbackCursor = await loadFeedback(missionId, feedbackCursor, (reports: StoredFeedback[]) => {
           let positions = 0;
@@ -133,6 +140,7 @@ export function missionView(root: HTMLElement, missionId: string): () => void {
       redrawPlan();
     }
     if (e.log) {
+      if (e.log.source !== "server") fetchHistory();  // a vessel's report was stored
       log.prepend(h("li", { "data-event": e.log.eventId },
         h("time", { datetime: e.log.time ?? "", text: `${missionTime(e.log.missionTimeS)} · ${utc(e.log.time)}` }),
         h("span", { class: "source", text: e.log.source }), h("span", { text: e.log.message })));
@@ -216,20 +224,36 @@ export function missionView(root: HTMLElement, missionId: string): () => void {
   };
 }
 
-function fuelChart(points: [number, number][]): SVGElement {
-  const w = 260, hgt = 60;
-  const svg = document.createElementNS("http://www.w3.org/2000/svg", "svg");
+// Fuel over mission time. The fraction axis spans the data to the next
+// tenth (a 2 % burn over an hour would be a flat line on 0-100 %), labelled
+// at both ends, with the replan threshold dashed when it falls inside.
+function fuelChart(points: [number, number][], thresholdFraction: number): SVGElement {
+  const w = 260, hgt = 60, left = 30;
+  const ns = "http://www.w3.org/2000/svg";
+  const svg = document.createElementNS(ns, "svg");
   svg.setAttribute("viewBox", `0 0 ${w} ${hgt}`);
   svg.setAttribute("role", "img");
   const last = points[points.length - 1];
   svg.setAttribute("aria-label", last ? `Fuel ${percent(last[1])} at ${missionTime(last[0])}` : "No fuel data yet");
-  if (points.length > 1) {
-    const t0 = points[0][0], t1 = Math.max(t0 + 1, last[0]);
-    const line = document.createElementNS("http://www.w3.org/2000/svg", "polyline");
-    line.setAttribute("points", points.map(([t, f]) =>
-      `${((t - t0) / (t1 - t0)) * w},${hgt - f * hgt}`).join(" "));
-    line.setAttribute("class", "fuel-line");
-    svg.append(line);
+  if (points.length < 2) return svg;
+  const fractions = points.map(([, f]) => f);
+  const lo = Math.max(0, Math.floor(Math.min(...fractions) * 10 - 1e-9) / 10);
+  const hi = Math.min(1, Math.max(lo + 0.1, Math.ceil(Math.max(...fractions) * 10 - 1e-9) / 10));
+  const t0 = points[0][0], t1 = Math.max(t0 + 1, last[0]);
+  const x = (t: number) => left + ((t - t0) / (t1 - t0)) * (w - left - 2);
+  const y = (f: number) => 2 + (1 - (f - lo) / (hi - lo)) * (hgt - 4);
+  const el = (name: string, attrs: Record<string, string | number>, text?: string) => {
+    const e = document.createElementNS(ns, name);
+    for (const [k, v] of Object.entries(attrs)) e.setAttribute(k, String(v));
+    if (text) e.textContent = text;
+    svg.append(e);
+  };
+  el("text", { x: 2, y: 10, class: "fuel-axis" }, percent(hi));
+  el("text", { x: 2, y: hgt - 2, class: "fuel-axis" }, percent(lo));
+  if (thresholdFraction > lo && thresholdFraction < hi) {
+    el("line", { x1: left, x2: w, y1: y(thresholdFraction), y2: y(thresholdFraction), class: "fuel-threshold" });
   }
+  el("polyline", { points: points.map(([t, f]) => `${x(t).toFixed(1)},${y(f).toFixed(1)}`).join(" "),
+                   class: "fuel-line" });
   return svg;
 }
