@@ -36,6 +36,7 @@ constexpr MethodRule kRules[] = {
     {"MissionService/RequestReplan", kStaffAndVessel, true, true},
     {"MissionService/CancelMission", kStaff, false, true},
     {"MissionService/ReportVesselState", kStaffAndVessel, true, false},
+    {"MissionService/ListFeedback", kEveryone, true, false},
     {"AccessService/WhoAmI", kEveryone, false, false},
     {"AccessService/CreateToken", kAdmin, false, true},
     {"AccessService/ListTokens", kAdmin, false, false},

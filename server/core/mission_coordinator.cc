@@ -270,6 +270,33 @@ absl::StatusOr<v1::ListMissionsResponse> MissionCoordinator::ListMissions(
   return response;
 }
 
+absl::StatusOr<v1::ListFeedbackResponse> MissionCoordinator::ListFeedback(
+    const v1::ListFeedbackRequest& request, const CallContext& ctx) {
+  const std::string& id = request.mission_id();
+  if (id.empty()) return absl::InvalidArgumentError("mission_id is empty");
+  if (request.after_sequence() < 0) {
+    return absl::InvalidArgumentError("after_sequence must not be negative");
+  }
+  SEAPLAN_ASSIGN_OR_RETURN(int page_size, PageSize(request.page_size()));
+  SEAPLAN_RETURN_IF_ERROR(CheckVesselAccess(id, ctx));  // NotFound for an unknown mission
+  SEAPLAN_ASSIGN_OR_RETURN(auto page,
+                           repo_.ListFeedbackPage(id, request.after_sequence(), page_size));
+  v1::ListFeedbackResponse response;
+  for (const storage::FeedbackRecord& r : page.items) {
+    v1::StoredFeedback* out = response.add_feedback();
+    if (!out->mutable_feedback()->ParseFromString(r.payload)) {
+      return absl::DataLossError(
+          absl::StrCat("feedback report ", r.seq, " of mission '", id, "' is unreadable"));
+    }
+    out->set_sequence(r.seq);
+    out->set_vessel_id(r.vessel_id);
+    out->set_sequence_number(r.sequence_number);
+    *out->mutable_received_at() = ToTimestamp(r.received_at_ms);
+  }
+  response.set_next_after_sequence(page.next_after);
+  return response;
+}
+
 absl::StatusOr<v1::Mission> MissionCoordinator::CancelMission(
     const v1::CancelMissionRequest& request, const CallContext&) {
   if (request.mission_id().empty()) return absl::InvalidArgumentError("mission_id is empty");

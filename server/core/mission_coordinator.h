@@ -12,6 +12,7 @@
 //   RequestReplan  synchronous replan on the WorkPool.
 //   WatchMission   plan versions, log events and mission state changes,
 //                  resumable from (after_version, after_event_id).
+//   ListFeedback   the stored feedback reports, paged by arrival order.
 //
 // Watch without gap or duplicate: every commit bumps a per-mission
 // generation counter AFTER the commit. A watcher reads the generation first,
@@ -111,6 +112,9 @@ class MissionCoordinator {
       const v1::ReportFeedbackRequest& request, const CallContext& ctx);
   absl::StatusOr<v1::RequestReplanResponse> RequestReplan(const v1::RequestReplanRequest& request,
                                                           const CallContext& ctx);
+  // Stored feedback, a page at a time in arrival order (storage's cursor).
+  absl::StatusOr<v1::ListFeedbackResponse> ListFeedback(const v1::ListFeedbackRequest& request,
+                                                        const CallContext& ctx);
 
   // Ends watch streams, cancels background replans, joins the thread.
   void Shutdown();

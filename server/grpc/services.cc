@@ -181,6 +181,11 @@ class GrpcServices::Missions final : public v1::MissionService::Service {
     return Unary(core_, "MissionService/ReportVesselState", ctx, *req, resp,
                  [&](const CallContext& c) { return core_.vessels().ReportVesselState(*req, c); });
   }
+  grpc::Status ListFeedback(grpc::ServerContext* ctx, const v1::ListFeedbackRequest* req,
+                            v1::ListFeedbackResponse* resp) override {
+    return Unary(core_, "MissionService/ListFeedback", ctx, *req, resp,
+                 [&](const CallContext& c) { return core_.missions().ListFeedback(*req, c); });
+  }
 
  private:
   ServiceCore& core_;

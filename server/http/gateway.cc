@@ -435,6 +435,10 @@ void HttpGateway::RegisterRoutes() {
       [&core](const v1::ReportVesselStateRequest& r, const R& c) {
         return core.vessels().ReportVesselState(r, c);
       });
+  unary.operator()<v1::ListFeedbackRequest, v1::ListFeedbackResponse>(
+      "MissionService/ListFeedback", [&core](const v1::ListFeedbackRequest& r, const R& c) {
+        return core.missions().ListFeedback(r, c);
+      });
 
   unary.operator()<v1::WhoAmIRequest, v1::WhoAmIResponse>(
       "AccessService/WhoAmI",

@@ -1028,8 +1028,8 @@ struct PostgresStore::Impl final : ChartRepository, MissionRepository {
       SEAPLAN_ASSIGN_OR_RETURN(
           Result r,
           Run(conn,
-              "SELECT mission_id, vessel_id, sequence_number, kind, payload, "
-              "received_at_ms FROM feedback WHERE vessel_id = $1 AND sequence_number = $2",
+              absl::StrCat("SELECT ", internal::kFeedbackColumns,
+                           " FROM feedback WHERE vessel_id = $1 AND sequence_number = $2"),
               Params().Text(vessel_id).I8(sequence_number)));
       if (r.rows() == 0) return std::optional<FeedbackRecord>();
       return std::optional<FeedbackRecord>(internal::ReadFeedback(ResultRow{r, 0}));
@@ -1041,16 +1041,33 @@ struct PostgresStore::Impl final : ChartRepository, MissionRepository {
     return WithConn([&](PGconn* conn) -> absl::StatusOr<std::vector<FeedbackRecord>> {
       // The latest `limit` rows, returned oldest first.
       SEAPLAN_ASSIGN_OR_RETURN(
-          Result r, Run(conn,
-                        "SELECT mission_id, vessel_id, sequence_number, kind, payload, "
-                        "received_at_ms FROM (SELECT mission_id, vessel_id, sequence_number, kind, "
-                        "payload, received_at_ms, seq FROM feedback WHERE mission_id = $1 "
-                        "ORDER BY seq DESC LIMIT $2) latest ORDER BY seq",
-                        Params().Text(mission_id).I8(limit)));
+          Result r,
+          Run(conn,
+              absl::StrCat("SELECT * FROM (SELECT ", internal::kFeedbackColumns,
+                           " FROM feedback WHERE mission_id = $1 ORDER BY seq DESC LIMIT $2) "
+                           "latest ORDER BY seq"),
+              Params().Text(mission_id).I8(limit)));
       std::vector<FeedbackRecord> out;
       for (int row = 0; row < r.rows(); ++row)
         out.push_back(internal::ReadFeedback(ResultRow{r, row}));
       return out;
+    });
+  }
+
+  absl::StatusOr<Page<FeedbackRecord>> ListFeedbackPage(const std::string& mission_id,
+                                                        std::int64_t after,
+                                                        int page_size) override {
+    SEAPLAN_RETURN_IF_ERROR(CheckPageSize(page_size));
+    return WithConn([&](PGconn* conn) -> absl::StatusOr<Page<FeedbackRecord>> {
+      SEAPLAN_ASSIGN_OR_RETURN(Result r,
+                               Run(conn,
+                                   absl::StrCat("SELECT ", internal::kFeedbackColumns,
+                                                " FROM feedback WHERE mission_id = $1 AND seq > $2 "
+                                                "ORDER BY seq LIMIT $3"),
+                                   Params().Text(mission_id).I8(after).I8(page_size + 1)));
+      return ToPage<FeedbackRecord>(r, page_size, [](const Result& res, int row) {
+        return internal::ReadFeedback(ResultRow{res, row});
+      });
     });
   }
 

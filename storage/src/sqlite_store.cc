@@ -673,10 +673,8 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
       const std::string& vessel_id, std::int64_t sequence_number) override {
     std::lock_guard lock(mu);
     SEAPLAN_RETURN_IF_ERROR(Usable());
-    Stmt s(db,
-           "SELECT mission_id, vessel_id, sequence_number, kind, payload, received_at_ms FROM "
-           "feedback "
-           "WHERE vessel_id = ?1 AND sequence_number = ?2");
+    Stmt s(db, absl::StrCat("SELECT ", internal::kFeedbackColumns,
+                            " FROM feedback WHERE vessel_id = ?1 AND sequence_number = ?2"));
     s.Text(1, vessel_id).Int(2, sequence_number);
     SEAPLAN_ASSIGN_OR_RETURN(bool row, s.Step());
     if (!row) return std::optional<FeedbackRecord>();
@@ -688,10 +686,9 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
     std::lock_guard lock(mu);
     SEAPLAN_RETURN_IF_ERROR(Usable());
     // The latest `limit` rows, returned oldest first.
-    Stmt s(db,
-           "SELECT * FROM (SELECT mission_id, vessel_id, sequence_number, kind, payload, "
-           "received_at_ms, seq "
-           "FROM feedback WHERE mission_id = ?1 ORDER BY seq DESC LIMIT ?2) ORDER BY seq");
+    Stmt s(db, absl::StrCat("SELECT * FROM (SELECT ", internal::kFeedbackColumns,
+                            " FROM feedback WHERE mission_id = ?1 ORDER BY seq DESC LIMIT ?2) "
+                            "ORDER BY seq"));
     s.Text(1, mission_id).Int(2, limit);
     std::vector<FeedbackRecord> out;
     while (true) {
@@ -700,6 +697,20 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
       out.push_back(internal::ReadFeedback(StmtRow{s}));
     }
     return out;
+  }
+
+  absl::StatusOr<Page<FeedbackRecord>> ListFeedbackPage(const std::string& mission_id,
+                                                        std::int64_t after,
+                                                        int page_size) override {
+    SEAPLAN_RETURN_IF_ERROR(CheckPageSize(page_size));
+    std::lock_guard lock(mu);
+    SEAPLAN_RETURN_IF_ERROR(Usable());
+    Stmt s(db, absl::StrCat("SELECT ", internal::kFeedbackColumns,
+                            " FROM feedback WHERE mission_id = ?1 AND seq > ?2 ORDER BY seq "
+                            "LIMIT ?3"));
+    s.Text(1, mission_id).Int(2, after).Int(3, page_size + 1);
+    return StepPage<FeedbackRecord>(s, page_size,
+                                    [](const StmtRow& r) { return internal::ReadFeedback(r); });
   }
 
   absl::StatusOr<std::vector<LogEventRecord>> AppendEvents(

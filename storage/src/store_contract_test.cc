@@ -67,6 +67,50 @@ TEST_P(StoreTest, FeedbackIsIdempotentByVesselAndSequence) {
   EXPECT_EQ(r.status().code(), absl::StatusCode::kNotFound) << r.status();
 }
 
+TEST_P(StoreTest, FeedbackPagesInArrivalOrderPerMissionAndResumesAfterTheCursor) {
+  MissionRepository& repo = missions();
+  ASSERT_TRUE(repo.Create(TestMission("m1"), TestVersion("m1", 1), {}).ok());
+  ASSERT_TRUE(repo.Create(TestMission("m2"), TestVersion("m2", 1), {}).ok());
+  // Two missions' reports interleaved; the vessel's numbers deliberately not
+  // in arrival order (a journal resent after an outage).
+  for (int i = 0; i < 5; ++i) {
+    ASSERT_TRUE(
+        *repo.RecordFeedback({"m1", "vessel-1", 100 - i, 4, "m1-" + std::to_string(i), i}, {}, {}));
+    ASSERT_TRUE(
+        *repo.RecordFeedback({"m2", "vessel-2", i, 4, "m2-" + std::to_string(i), i}, {}, {}));
+  }
+  std::vector<std::string> payloads;
+  std::int64_t after = 0, last_seq = 0;
+  int pages = 0;
+  do {
+    auto page = repo.ListFeedbackPage("m1", after, 2);
+    ASSERT_TRUE(page.ok()) << page.status();
+    ++pages;
+    for (const FeedbackRecord& f : page->items) {
+      EXPECT_EQ(f.mission_id, "m1");
+      EXPECT_GT(f.seq, last_seq);  // strictly increasing across pages
+      last_seq = f.seq;
+      payloads.push_back(f.payload);
+    }
+    after = page->next_after;
+  } while (after != 0);
+  EXPECT_EQ(pages, 3);
+  EXPECT_EQ(payloads, (std::vector<std::string>{"m1-0", "m1-1", "m1-2", "m1-3", "m1-4"}));
+  // The last report's seq asks for what arrived since: nothing, then the new one.
+  EXPECT_TRUE(repo.ListFeedbackPage("m1", last_seq, 10)->items.empty());
+  ASSERT_TRUE(*repo.RecordFeedback({"m1", "vessel-1", 200, 1, "m1-late", 9}, {}, {}));
+  auto since = repo.ListFeedbackPage("m1", last_seq, 10);
+  ASSERT_TRUE(since.ok()) << since.status();
+  ASSERT_EQ(since->items.size(), 1u);
+  EXPECT_EQ(since->items[0].payload, "m1-late");
+  EXPECT_EQ(since->items[0].sequence_number, 200);
+  EXPECT_EQ(since->next_after, 0);
+  // FindFeedback reports the same cursor.
+  EXPECT_EQ((*repo.FindFeedback("vessel-1", 200))->seq, since->items[0].seq);
+  EXPECT_TRUE(repo.ListFeedbackPage("no-such-mission", 0, 10)->items.empty());
+  EXPECT_EQ(repo.ListFeedbackPage("m1", 0, 0).status().code(), absl::StatusCode::kInvalidArgument);
+}
+
 TEST_P(StoreTest, FailingStatementInTheMiddleLeavesNothingHalfDone) {
   MissionRepository& repo = missions();
   ASSERT_TRUE(repo.Create(TestMission("m1"), TestVersion("m1", 1), {TestEvent("created")}).ok());

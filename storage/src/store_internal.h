@@ -113,10 +113,13 @@ PlanVersionRecord ReadVersion(const Row& r) {
   return {r.Bytes(0), static_cast<int>(r.Int(1)), r.Bytes(2), r.Int(3), r.Bytes(4), r.Bytes(5)};
 }
 
-// mission_id, vessel_id, sequence_number, kind, payload, received_at_ms
+// mission_id, vessel_id, sequence_number, kind, payload, received_at_ms, seq
+inline constexpr char kFeedbackColumns[] =
+    "mission_id, vessel_id, sequence_number, kind, payload, received_at_ms, seq";
 template <typename Row>
 FeedbackRecord ReadFeedback(const Row& r) {
-  return {r.Bytes(0), r.Bytes(1), r.Int(2), static_cast<int>(r.Int(3)), r.Bytes(4), r.Int(5)};
+  return {r.Bytes(0), r.Bytes(1), r.Int(2), static_cast<int>(r.Int(3)),
+          r.Bytes(4), r.Int(5),   r.Int(6)};
 }
 
 // mission_id, event_id, time_ms, mission_time_s, source, message

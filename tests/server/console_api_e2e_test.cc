@@ -1,7 +1,9 @@
 // What the operator console needs from the server, in the API for every
 // client: JSON bodies whatever their Content-Type, the console's files at
-// "/", the chart's obstacles as GeoJSON at a chosen depth, and the vessel's
-// live picture on WatchMission.
+// "/", the chart's obstacles as GeoJSON at a chosen depth, the vessel's
+// live picture on WatchMission, the stored feedback history (ListFeedback),
+// and every RPC on the HTTP gateway.
+#include <google/protobuf/descriptor.h>
 #include <google/protobuf/util/json_util.h>
 #include <gtest/gtest.h>
 
@@ -31,6 +33,13 @@ std::vector<v1::MissionEvent> ParseNdjson(const std::string& body) {
     start = end + 1;
   }
   return events;
+}
+
+void CreateSampleMission(v1::MissionService::Stub& missions, v1::Mission* mission) {
+  grpc::ClientContext ctx;
+  v1::CreateMissionRequest req;
+  *req.mutable_spec() = SampleSpec();
+  ASSERT_TRUE(missions.CreateMission(&ctx, req, mission).ok());
 }
 
 TEST(ConsoleApiE2eTest, JsonBodyIsReadWhateverTheContentTypeAndBeyondEightKiB) {
@@ -177,12 +186,7 @@ TEST(ConsoleApiE2eTest, VesselStateReachesWatchersWithTheTraffic) {
   InProcessServer s(engine);
   auto missions = v1::MissionService::NewStub(s.channel());
   v1::Mission mission;
-  {
-    grpc::ClientContext ctx;
-    v1::CreateMissionRequest req;
-    *req.mutable_spec() = SampleSpec();
-    ASSERT_TRUE(missions->CreateMission(&ctx, req, &mission).ok());
-  }
+  ASSERT_NO_FATAL_FAILURE(CreateSampleMission(*missions, &mission));
   auto report = [&](double lat, const std::string& vessel, v1::ReportVesselStateResponse* out) {
     grpc::ClientContext ctx;
     v1::ReportVesselStateRequest req;
@@ -244,6 +248,132 @@ TEST(ConsoleApiE2eTest, VesselStateReachesWatchersWithTheTraffic) {
   }
   EXPECT_EQ(vessel_events, 1) << watch->body;  // one report, one update
   EXPECT_TRUE(ended_cancelled);
+}
+
+TEST(ConsoleApiE2eTest, FeedbackHistoryIsPagedInArrivalOrderOnBothTransports) {
+  auto engine = std::make_shared<FakeMissionEngine>();
+  InProcessServer s(engine);
+  auto missions = v1::MissionService::NewStub(s.channel());
+  v1::Mission mission;
+  ASSERT_NO_FATAL_FAILURE(CreateSampleMission(*missions, &mission));
+  const std::string& id = mission.mission_id();
+  // Position reports along a track, fuel falling; sequence numbers sent out
+  // of order (a journal resent after an outage) and one retry.
+  auto report = [&](std::int64_t sequence, int step) {
+    grpc::ClientContext ctx;
+    v1::ReportFeedbackRequest req;
+    req.set_mission_id(id);
+    req.set_vessel_id("ship0");
+    req.set_sequence_number(sequence);
+    v1::Feedback* f = req.mutable_feedback();
+    f->set_kind(v1::Feedback::KIND_POSITION);
+    f->set_plan_version(1);
+    f->set_mission_time_s(30.0 * step);
+    f->mutable_state()->mutable_position()->set_latitude_deg(63.44 + 0.001 * step);
+    f->mutable_state()->mutable_position()->set_longitude_deg(10.40);
+    f->mutable_state()->set_fuel_fraction(0.9 - 0.01 * step);
+    v1::ReportFeedbackResponse resp;
+    return missions->ReportFeedback(&ctx, req, &resp);
+  };
+  for (int step = 0; step < 5; ++step) {
+    ASSERT_TRUE(report(10 - step, step).ok());
+  }
+  ASSERT_TRUE(report(8, 2).ok());  // a retry: stored once
+
+  // gRPC, two per page: every report once, in arrival order, with its state.
+  std::vector<v1::StoredFeedback> history;
+  std::int64_t after = 0;
+  int pages = 0;
+  do {
+    grpc::ClientContext ctx;
+    v1::ListFeedbackRequest req;
+    req.set_mission_id(id);
+    req.set_after_sequence(after);
+    req.set_page_size(2);
+    v1::ListFeedbackResponse resp;
+    ASSERT_TRUE(missions->ListFeedback(&ctx, req, &resp).ok());
+    ++pages;
+    history.insert(history.end(), resp.feedback().begin(), resp.feedback().end());
+    after = resp.next_after_sequence();
+  } while (after != 0 && pages < 10);
+  EXPECT_EQ(pages, 3);
+  ASSERT_EQ(history.size(), 5u);
+  for (int step = 0; step < 5; ++step) {
+    const v1::StoredFeedback& h = history[step];
+    if (step > 0) {
+      EXPECT_GT(h.sequence(), history[step - 1].sequence());
+    }
+    EXPECT_EQ(h.vessel_id(), "ship0");
+    EXPECT_EQ(h.sequence_number(), 10 - step);
+    EXPECT_GT(h.received_at().seconds(), 0);
+    EXPECT_EQ(h.feedback().kind(), v1::Feedback::KIND_POSITION);
+    EXPECT_DOUBLE_EQ(h.feedback().mission_time_s(), 30.0 * step);
+    EXPECT_DOUBLE_EQ(h.feedback().state().position().latitude_deg(), 63.44 + 0.001 * step);
+    EXPECT_DOUBLE_EQ(h.feedback().state().fuel_fraction(), 0.9 - 0.01 * step);
+  }
+
+  // HTTP/JSON: the same reports; after the last sequence, only what came since.
+  auto http = s.http();
+  auto all = http.Post("/v1/MissionService/ListFeedback",
+                       "{\"missionId\":\"" + id + "\",\"pageSize\":100}", "application/json");
+  ASSERT_TRUE(all);
+  ASSERT_EQ(all->status, 200) << all->body;
+  v1::ListFeedbackResponse json;
+  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(all->body, &json).ok()) << all->body;
+  ASSERT_EQ(json.feedback_size(), 5);
+  EXPECT_EQ(json.next_after_sequence(), 0);
+  EXPECT_EQ(json.feedback(4).sequence(), history.back().sequence());
+  ASSERT_TRUE(report(42, 5).ok());
+  const std::string since_body = "{\"missionId\":\"" + id + "\",\"afterSequence\":\"" +
+                                 std::to_string(history.back().sequence()) + "\"}";
+  auto since = http.Post("/v1/MissionService/ListFeedback", since_body, "application/json");
+  ASSERT_TRUE(since);
+  ASSERT_EQ(since->status, 200) << since->body;
+  v1::ListFeedbackResponse newer;
+  ASSERT_TRUE(google::protobuf::util::JsonStringToMessage(since->body, &newer).ok());
+  ASSERT_EQ(newer.feedback_size(), 1);
+  EXPECT_EQ(newer.feedback(0).sequence_number(), 42);
+
+  // Bad requests: what is wrong, with the right status on each transport.
+  auto unknown = http.Post("/v1/MissionService/ListFeedback", "{\"missionId\":\"m-nope\"}",
+                           "application/json");
+  ASSERT_TRUE(unknown);
+  EXPECT_EQ(unknown->status, 404) << unknown->body;
+  EXPECT_NE(unknown->body.find("m-nope"), std::string::npos) << unknown->body;
+  auto negative =
+      http.Post("/v1/MissionService/ListFeedback",
+                "{\"missionId\":\"" + id + "\",\"afterSequence\":\"-1\"}", "application/json");
+  ASSERT_TRUE(negative);
+  EXPECT_EQ(negative->status, 400) << negative->body;
+  EXPECT_NE(negative->body.find("after_sequence"), std::string::npos) << negative->body;
+  grpc::ClientContext ctx;
+  v1::ListFeedbackRequest empty;
+  v1::ListFeedbackResponse resp;
+  EXPECT_EQ(missions->ListFeedback(&ctx, empty, &resp).error_code(), StatusCode::INVALID_ARGUMENT);
+}
+
+// Each RPC must be reachable over HTTP too: a method left out of the
+// gateway would answer "no route". Empty requests are refused or answered
+// cheaply, never routed nowhere.
+TEST(ConsoleApiE2eTest, EveryRpcOfEveryServiceIsMappedOnTheHttpGateway) {
+  InProcessServer s(std::make_shared<FakeMissionEngine>());
+  auto http = s.http();
+  http.set_read_timeout(std::chrono::seconds(20));
+  const auto* pool = google::protobuf::DescriptorPool::generated_pool();
+  int methods = 0;
+  for (const char* name : {"seaplan.v1.PlanningService", "seaplan.v1.ChartService",
+                           "seaplan.v1.RouteService", "seaplan.v1.MissionService"}) {
+    const google::protobuf::ServiceDescriptor* service = pool->FindServiceByName(name);
+    ASSERT_NE(service, nullptr) << name;
+    for (int i = 0; i < service->method_count(); ++i) {
+      const std::string path = "/v1/" + service->name() + "/" + service->method(i)->name();
+      auto res = http.Post(path, "{}", "application/json");
+      ASSERT_TRUE(res) << path;
+      EXPECT_EQ(res->body.find("no route"), std::string::npos) << path << ": " << res->body;
+      ++methods;
+    }
+  }
+  EXPECT_GE(methods, 17);
 }
 
 }  // namespace

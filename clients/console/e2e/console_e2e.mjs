@@ -199,6 +199,66 @@ try {
   await page.waitForFunction(() => /^stream: live \(resumed/.test(document.querySelector("#watch-status")?.textContent ?? ""), null, { timeout: 30000 });
   check(true, "watch stream resumed after a dropped connection");
 
+  // 4b. A second operator opens the mission part-way through: the track and
+  // fuel from the start (the stored feedback reports), then live, with no
+  // stored report missing and no mission time drawn twice.
+  await waitFor("mission time past 0:03:00", () => page.evaluate(() => {
+    const t = window.seaplanHistory?.series.all.at(-1)?.missionTimeS ?? 0;
+    return t >= 180 ? t : null;
+  }), 120000);
+  const late = await browser.context.newPage();
+  late.on("console", (m) => { if (m.type() === "error") consoleErrors.push(`late page: ${m.text()}`); });
+  late.on("pageerror", (e) => consoleErrors.push(`late page: ${e}`));
+  await late.goto(`${server.url}#/mission/${missionId}`);
+  await late.waitForFunction(() => window.seaplanHistory && window.seaplanHistory.storedReports() > 0 &&
+                             window.seaplanHistory.firstLiveS() !== undefined, null, { timeout: 60000 });
+  const seriesOf = () => late.evaluate(() => window.seaplanHistory.series.all.map((s) => ({
+    t: s.missionTimeS, lat: s.position?.latitudeDeg, fuel: s.fuelFraction })));
+  const opened = await seriesOf();
+  const firstLiveS = await late.evaluate(() => window.seaplanHistory.firstLiveS());
+  const storedReports = (missionId) => late.evaluate(async (missionId) => {
+    const out = [];
+    let after = "0";
+    const { csrfToken } = await (await fetch("/auth/session")).json();
+    for (;;) {
+      const res = await fetch("/v1/MissionService/ListFeedback", { method: "POST",
+        headers: { "X-CSRF-Token": csrfToken },
+        body: JSON.stringify({ missionId, afterSequence: after, pageSize: 100 }) });
+      const page = await res.json();
+      for (const r of page.feedback ?? []) {
+        if (r.feedback?.state) out.push({ t: r.feedback.missionTimeS ?? 0, lat: r.feedback.state.position?.latitudeDeg,
+                                           lon: r.feedback.state.position?.longitudeDeg, seq: Number(r.sequence) });
+        after = r.sequence;
+      }
+      if (!page.nextAfterSequence || page.nextAfterSequence === "0") return out;
+    }
+  }, missionId);
+  const stored = await storedReports(missionId);
+  const lateTrack = await late.evaluate(() => window.seaplanMap.trackPointCount());
+  const firstDrawn = await late.evaluate(() => window.seaplanMap.trackStart());
+  check(stored.length > 2 && opened[0].t === stored[0].t && firstLiveS > stored[0].t + 60 &&
+        Math.abs(firstDrawn.latitudeDeg - stored[0].lat) < 1e-7 && Math.abs(firstDrawn.longitudeDeg - stored[0].lon) < 1e-7,
+        `opened at T+${Math.round(firstLiveS)} s, the track (${lateTrack} points) and fuel (${opened.length} samples) ` +
+        `start at the first stored report (T+${Math.round(stored[0].t)} s, ${stored.length} stored)`);
+  await waitFor("a live update after opening", async () =>
+    (await seriesOf()).at(-1).t > opened.at(-1).t, 60000);
+  // Every report stored since is fetched as its log event arrives.
+  const storedSince = await storedReports(missionId);
+  await waitFor("the reports stored since opening", () => late.evaluate((seq) =>
+    Number(window.seaplanHistory.cursor()) >= seq, storedSince.at(-1).seq), 30000);
+  const later = await seriesOf();
+  const times = later.map((s) => s.t);
+  const strictlyIncreasing = times.every((t, i) => i === 0 || t > times[i - 1]);
+  const lastT = times.at(-1);
+  const missed = storedSince.filter((r) => r.t <= lastT && !times.includes(r.t));
+  check(strictlyIncreasing && missed.length === 0 && later.length > opened.length,
+        `history then live: ${later.length} samples, each mission time once, none of the ${storedSince.length} stored reports missing ` +
+        `(missing ${missed.map((r) => r.t).join(",") || "none"})`);
+  const caption = await late.textContent("#fuel-caption");
+  check(/^T\+0:00:\d\d .*from stored reports\)$/.test(caption ?? ""), `fuel over time from the start (${caption})`);
+  await late.screenshot({ path: join(artifacts, "mission-opened-late.png") });
+  await late.close();
+
   // 5. Version 2 after the GNSS jump, with its reason, and both in the Gantt.
   await page.waitForFunction(() => document.querySelectorAll("#gantt .gantt-version").length >= 2, null, { timeout: 180000 });
   const versionLabel = await page.$eval("#mission-version", (e) => e.textContent ?? "");

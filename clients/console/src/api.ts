@@ -177,7 +177,9 @@ export async function stream<T>(method: string, request: unknown, onMessage: (m:
 }
 
 // WatchMission that reconnects after a broken stream and resumes after the
-// last version and event id it delivered: no gap, no duplicate.
+// last version and event id it delivered: no gap, no duplicate. `onConnected`
+// runs at the first message of each stream (the server is then following
+// the mission), e.g. to fetch what the live picture does not resend.
 export class MissionWatch {
   private lastVersion = 0;
   private lastEventId = 0;
@@ -187,7 +189,8 @@ export class MissionWatch {
 
   constructor(private readonly missionId: string,
               private readonly onEvent: (e: MissionEvent) => void,
-              private readonly onStatus: (status: string) => void) {}
+              private readonly onStatus: (status: string) => void,
+              private readonly onConnected?: () => void) {}
 
   async run(): Promise<void> {
     let backoffMs = 250;
@@ -195,11 +198,18 @@ export class MissionWatch {
       this.abort = new AbortController();
       try {
         this.onStatus(this.reconnects ? `live (resumed after version ${this.lastVersion}, event ${this.lastEventId})` : "live");
+        let connected = false;
         await stream<MissionEvent>("MissionService/WatchMission", {
           missionId: this.missionId,
           afterVersion: this.lastVersion,
           afterEventId: String(this.lastEventId),
-        }, (e) => this.deliver(e), this.abort.signal);
+        }, (e) => {
+          if (!connected) {
+            connected = true;
+            this.onConnected?.();
+          }
+          this.deliver(e);
+        }, this.abort.signal);
         this.onStatus("ended");
         return;  // the mission reached a final state and everything was sent
       } catch (err) {

@@ -141,7 +141,10 @@ export class ChartMap {
     });
   }
 
-  private readonly onPalette = () => this.map.getAllLayers().forEach((l) => l.changed());
+  private readonly onPalette = () => {
+    this.landStyle = undefined;
+    this.map.getAllLayers().forEach((l) => l.changed());
+  };
 
   dispose(): void {
     window.removeEventListener("seaplan-palette", this.onPalette);
@@ -157,6 +160,12 @@ export class ChartMap {
   obstacleCount(): number { return this.obstacles.getFeatures().length; }
   routeSegmentCount(): number { return this.routes.getFeatures().length; }
   trackPointCount(): number { return (this.trackFeature.getGeometry() as LineString).getCoordinates().length; }
+  trackStart(): LatLon | undefined {
+    const c = (this.trackFeature.getGeometry() as LineString).getFirstCoordinate();
+    if (!c || c.length < 2) return undefined;
+    const [lon, lat] = toLonLat(c);
+    return { latitudeDeg: lat, longitudeDeg: lon };
+  }
 
   setLocations(locations: NamedLocation[]): void {
     this.places.clear();
@@ -233,9 +242,14 @@ export class ChartMap {
     this.fitted = true;
   }
 
+  // One style for every obstacle, made once per palette: the layer asks for
+  // it per feature whenever it rebuilds its drawing (thousands of polygons),
+  // and reading the CSS variables each time cost a computed-style lookup each.
+  private landStyle: Style | undefined;
   private obstacleStyle(): Style {
-    return new Style({ fill: new Fill({ color: css("--land", "#c8b88a") }),
-                       stroke: new Stroke({ color: css("--land-edge", "#8a7a50"), width: 0.5 }) });
+    this.landStyle ??= new Style({ fill: new Fill({ color: css("--land", "#c8b88a") }),
+                                   stroke: new Stroke({ color: css("--land-edge", "#8a7a50"), width: 0.5 }) });
+    return this.landStyle;
   }
 
   private routeStyle(f: Feature): Style {

@@ -1,10 +1,12 @@
 // One mission, live: the map (obstacles, routes by MSO mode, ship, track,
 // traffic), the plan versions as a Gantt chart, the navigation log, fuel
 // over time and the machinery mode, over the WatchMission NDJSON stream
-// (resumed after a broken connection).
+// (resumed after a broken connection). The track and fuel before the page
+// opened come from the stored feedback reports (ListFeedback).
 import { call, MissionWatch, type Mission, type PlanVersion, type VesselUpdate } from "./api";
 import { field, h } from "./dom";
 import { renderGantt } from "./gantt";
+import { loadFeedback, sampleOf, ShipSeries, type StoredFeedback } from "./history";
 import { ChartMap } from "./map";
 import { cpa, degrees, distance, missionTime, percent, shortMode, shortState, speed,
          utc } from "./units";
@@ -25,13 +27,14 @@ export function missionView(root: HTMLElement, missionId: string): () => void {
   const gantt = h("div", { class: "gantt", id: "gantt", tabindex: 0, role: "region", "aria-label": "Plan versions" });
   const log = h("ol", { class: "navlog", id: "navlog", "aria-live": "polite", tabindex: 0, "aria-label": "Navigation log" });
   const fuelBox = h("div", { class: "fuel", id: "fuel-chart" });
+  const fuelCaption = h("p", { class: "fuel-caption", id: "fuel-caption" });
   root.append(h("section", { class: "mission", "aria-labelledby": "mission-title" },
     h("div", { class: "toolbar" }, title, stateBadge, versionLabel, clock, link),
     h("div", { class: "toolbar" }, field("Replan reason", reason), replan, cancel, actionStatus),
     h("div", { class: "mission-grid" }, mapBox,
       h("aside", { "aria-label": "Ship and traffic" },
         h("h2", { text: "Own ship" }), shipPanel,
-        h("h2", { text: "Fuel" }), fuelBox,
+        h("h2", { text: "Fuel" }), fuelBox, fuelCaption,
         h("h2", { text: "Traffic" }),
         h("table", { class: "grid", "aria-label": "Traffic" }, h("thead", {}, h("tr", {},
           ...["Target", "Course", "Speed", "CPA", "TCPA"].map((t) => h("th", { scope: "col", text: t })))),
@@ -43,8 +46,58 @@ export function missionView(root: HTMLElement, missionId: string): () => void {
   const versions: PlanVersion[] = [];
   let mission: Mission | undefined;
   let vessel: VesselUpdate | undefined;
-  const fuel: [number, number][] = [];
+  // Track and fuel over mission time: stored reports and live updates merged.
+  const series = new ShipSeries();
+  let timedTrack = false;  // the map's track is drawn from `series`
+  let feedbackCursor = "0";
+  let storedReports = 0;
+  let history: Promise<void> = Promise.resolve();
+  let firstLiveS: number | undefined;  // mission time of the first live update
   (window as unknown as Record<string, unknown>).seaplanMap = map;  // for tests and the benchmark
+  (window as unknown as Record<string, unknown>).seaplanHistory = {  // for tests
+    series, storedReports: () => storedReports, cursor: () => feedbackCursor,
+    firstLiveS: () => firstLiveS };
+
+  const redrawFuel = () => {
+    const points = series.fuel();
+    fuelBox.replaceChildren(fuelChart(points, mission?.spec?.replanPolicy?.fuelThresholdFraction || 0.3));
+    const [first, last] = [points[0], points[points.length - 1]];
+    fuelCaption.textContent = first
+      ? `${missionTime(first[0])} ${percent(first[1])} → ${missionTime(last[0])} ${percent(last[1])}` +
+        ` (${points.length} samples, ${storedReports} from stored reports)`
+      : "no report yet";
+  };
+  // Reports stored after the cursor: before the page opened, while a broken
+  // watch was reconnecting (its live picture resends only the latest), and
+  // each one as it arrives (every report is logged in the same transaction,
+  // so its log event on the watch says there is one to fetch). Requests that
+  // come while one is queued join it.
+  let historyQueued = false;
+  const fetchHistory = () => {
+    if (historyQueued) return;
+    historyQueued = true;
+    history = history.then(async () => {
+      historyQueued = false;
+      try {
+        feedbackCursor = await loadFeedback(missionId, feedbackCursor, (reports: StoredFeedback[]) => {
+          let positions = 0;
+          for (const r of reports) {
+            if (!r.feedback?.state) continue;
+            const sample = sampleOf(r.feedback.missionTimeS, r.feedback.state);
+            if (series.add(sample) !== "duplicate") storedReports++;
+            if (sample.position) positions++;
+          }
+          if (positions || timedTrack) {
+            timedTrack = true;
+            map.setTrack(series.track());
+          }
+          redrawFuel();
+        });
+      } catch (e) {
+        actionStatus.textContent = `Cannot load the track and fuel history: ${(e as Error).message}`;
+      }
+    });
+  };
 
   const redrawPlan = () => {
     const current = versions[versions.length - 1];
@@ -79,7 +132,6 @@ export function missionView(root: HTMLElement, missionId: string): () => void {
                h("td", { text: degrees(t.courseDeg) }), h("td", { text: speed(t.speedMps) }),
                h("td", { text: distance(c.dcpaM) }), h("td", { text: `${Math.round(c.tcpaS)} s` }));
     }));
-    fuelBox.replaceChildren(fuelChart(fuel));
   };
 
   const watch = new MissionWatch(missionId, (e) => {
@@ -88,6 +140,7 @@ export function missionView(root: HTMLElement, missionId: string): () => void {
       redrawPlan();
     }
     if (e.log) {
+      if (e.log.source !== "server") fetchHistory();  // a vessel's report was stored
       log.prepend(h("li", { "data-event": e.log.eventId },
         h("time", { datetime: e.log.time ?? "", text: `${missionTime(e.log.missionTimeS)} · ${utc(e.log.time)}` }),
         h("span", { class: "source", text: e.log.source }), h("span", { text: e.log.message })));
@@ -98,16 +151,26 @@ export function missionView(root: HTMLElement, missionId: string): () => void {
       stateBadge.className = `badge ${shortState(e.mission.state)}`;
     }
     if (e.vessel) {
-      if (e.vessel.track?.length) map.setTrack([...e.vessel.track, e.vessel.state.position!]);
-      else if (e.vessel.state.position) map.appendTrack(e.vessel.state.position);
+      const sample = sampleOf(e.vessel.missionTimeS, e.vessel.state);
+      firstLiveS ??= sample.missionTimeS;
+      const added = series.add(sample);
+      if (timedTrack) {
+        if (added === "append" && sample.position) map.appendTrack(sample.position);
+        else if (added === "insert") map.setTrack(series.track());
+      } else if (e.vessel.track?.length) {
+        // No stored report yet: the positions this server has seen, untimed.
+        map.setTrack([...e.vessel.track, e.vessel.state.position!]);
+      } else if (sample.position) {
+        map.appendTrack(sample.position);
+      }
       vessel = e.vessel;
       map.setShip(e.vessel.state);
       map.setTraffic(e.vessel.targets ?? []);
-      fuel.push([e.vessel.missionTimeS, e.vessel.state.fuelFraction ?? 0]);
       redrawShip();
+      redrawFuel();
       redrawPlan();
     }
-  }, (s) => { link.textContent = `stream: ${s}`; });
+  }, (s) => { link.textContent = `stream: ${s}`; }, fetchHistory);
 
   void (async () => {
     try {
@@ -161,20 +224,36 @@ export function missionView(root: HTMLElement, missionId: string): () => void {
   };
 }
 
-function fuelChart(points: [number, number][]): SVGElement {
-  const w = 260, hgt = 60;
-  const svg = document.createElementNS("http://www.w3.org/2000/svg", "svg");
+// Fuel over mission time. The fraction axis spans the data to the next
+// tenth (a 2 % burn over an hour would be a flat line on 0-100 %), labelled
+// at both ends, with the replan threshold dashed when it falls inside.
+function fuelChart(points: [number, number][], thresholdFraction: number): SVGElement {
+  const w = 260, hgt = 60, left = 30;
+  const ns = "http://www.w3.org/2000/svg";
+  const svg = document.createElementNS(ns, "svg");
   svg.setAttribute("viewBox", `0 0 ${w} ${hgt}`);
   svg.setAttribute("role", "img");
   const last = points[points.length - 1];
   svg.setAttribute("aria-label", last ? `Fuel ${percent(last[1])} at ${missionTime(last[0])}` : "No fuel data yet");
-  if (points.length > 1) {
-    const t0 = points[0][0], t1 = Math.max(t0 + 1, last[0]);
-    const line = document.createElementNS("http://www.w3.org/2000/svg", "polyline");
-    line.setAttribute("points", points.map(([t, f]) =>
-      `${((t - t0) / (t1 - t0)) * w},${hgt - f * hgt}`).join(" "));
-    line.setAttribute("class", "fuel-line");
-    svg.append(line);
+  if (points.length < 2) return svg;
+  const fractions = points.map(([, f]) => f);
+  const lo = Math.max(0, Math.floor(Math.min(...fractions) * 10 - 1e-9) / 10);
+  const hi = Math.min(1, Math.max(lo + 0.1, Math.ceil(Math.max(...fractions) * 10 - 1e-9) / 10));
+  const t0 = points[0][0], t1 = Math.max(t0 + 1, last[0]);
+  const x = (t: number) => left + ((t - t0) / (t1 - t0)) * (w - left - 2);
+  const y = (f: number) => 2 + (1 - (f - lo) / (hi - lo)) * (hgt - 4);
+  const el = (name: string, attrs: Record<string, string | number>, text?: string) => {
+    const e = document.createElementNS(ns, name);
+    for (const [k, v] of Object.entries(attrs)) e.setAttribute(k, String(v));
+    if (text) e.textContent = text;
+    svg.append(e);
+  };
+  el("text", { x: 2, y: 10, class: "fuel-axis" }, percent(hi));
+  el("text", { x: 2, y: hgt - 2, class: "fuel-axis" }, percent(lo));
+  if (thresholdFraction > lo && thresholdFraction < hi) {
+    el("line", { x1: left, x2: w, y1: y(thresholdFraction), y2: y(thresholdFraction), class: "fuel-threshold" });
   }
+  el("polyline", { points: points.map(([t, f]) => `${x(t).toFixed(1)},${y(f).toFixed(1)}`).join(" "),
+                   class: "fuel-line" });
   return svg;
 }

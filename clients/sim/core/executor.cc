@@ -24,6 +24,18 @@ ship::MsoMode ToShipMode(mission::MsoMode m) {
   }
 }
 
+mission::MsoMode FromShipMode(ship::MsoMode m) {
+  switch (m) {
+    case ship::MsoMode::kMec:
+      return mission::MsoMode::kMec;
+    case ship::MsoMode::kPti:
+      return mission::MsoMode::kPti;
+    case ship::MsoMode::kPto:
+      return mission::MsoMode::kPto;
+  }
+  return mission::MsoMode::kUnspecified;
+}
+
 }  // namespace
 
 StatusOr<Executor> Executor::Create(const ExecutorConfig& config) {
@@ -381,7 +393,7 @@ void Executor::TrackTraffic() {
   }
   if (time_s_ - last_track_sample_s_ >= 10.0) {
     last_track_sample_s_ = time_s_;
-    report_.trajectory.push_back({time_s_, here});
+    report_.trajectory.push_back({time_s_, here, FromShipMode(model_.mode())});
     for (const TrafficVessel& v : config_.traffic) {
       report_.traffic_tracks[v.name].push_back({time_s_, v.At(time_s_).position});
     }

@@ -28,6 +28,8 @@ struct CpaRecord {
 struct TimedPoint {
   double time_s = 0.0;
   EastNorth position;
+  // Own ship: the machinery mode in use; traffic: unspecified.
+  mission::MsoMode mode = mission::MsoMode::kUnspecified;
 };
 
 struct MissionReport {
@@ -58,6 +60,12 @@ std::string ToJson(const MissionReport& report);
 
 // Obstacles as outer rings in the local frame (for the plot only).
 using Rings = std::vector<std::vector<EastNorth>>;
+// The trajectory over the obstacles, north up: the track coloured by the
+// machinery mode in use, time marks along it, the traffic's tracks, the named
+// locations, a scale bar (metres and nautical miles), a north arrow and a
+// legend. The Gantt chart: every plan version's tasks on a mission-time axis
+// with its replan reason, coloured by task kind, with a legend. Both are
+// well-formed XML (text escaped).
 std::string TrajectorySvg(const MissionReport& report, const Rings& obstacles,
                           const mission::LocationTable& locations);
 std::string GanttSvg(const MissionReport& report);

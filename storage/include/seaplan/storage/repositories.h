@@ -132,6 +132,7 @@ struct FeedbackRecord {
   int kind = 0;                      // seaplan.v1.Feedback.Kind value
   std::string payload;               // opaque blob (the report)
   TimestampMs received_at_ms = 0;
+  std::int64_t seq = 0;  // arrival order (assigned by storage; listing cursor)
 };
 
 // A log event to append; the event id is assigned by storage.
@@ -198,6 +199,11 @@ class MissionRepository {
   // The latest `limit` feedback reports of a mission, in arrival order.
   virtual absl::StatusOr<std::vector<FeedbackRecord>> ListFeedback(const std::string& mission_id,
                                                                    int limit) = 0;
+  // A mission's feedback reports with seq > after, in arrival order, at most
+  // page_size (1..1000). An unknown mission has none.
+  virtual absl::StatusOr<Page<FeedbackRecord>> ListFeedbackPage(const std::string& mission_id,
+                                                                std::int64_t after,
+                                                                int page_size) = 0;
 
   // Appends log events (ids assigned in order) and returns them.
   virtual absl::StatusOr<std::vector<LogEventRecord>> AppendEvents(
