@@ -118,8 +118,8 @@ JournalView ReadJournal(const fs::path& path) {
   return j;
 }
 
-// What a watcher through nginx received, resuming after every broken stream
-// from the last (version, event id) it saw, as the sim does.
+// What a watcher received, resuming after every broken stream from the last
+// (version, event id) it saw, as the sim does.
 struct WatchLog {
   std::mutex mu;
   std::vector<int> versions;
@@ -128,10 +128,11 @@ struct WatchLog {
   bool ended_ok = false;
 };
 
-void WatchThroughBalancer(const std::string& address, const std::string& mission_id,
-                          const std::atomic<bool>& stop, WatchLog* out) {
-  auto channel = grpc::CreateChannel(address, grpc::InsecureChannelCredentials());
-  auto stub = v1::MissionService::NewStub(channel);
+// Watches on `first` (a replica, or nginx) and resumes through `then`.
+void Watch(const std::string& first, const std::string& then, const std::string& mission_id,
+           const std::atomic<bool>& stop, WatchLog* out) {
+  auto stub =
+      v1::MissionService::NewStub(grpc::CreateChannel(first, grpc::InsecureChannelCredentials()));
   int last_version = 0;
   int64_t last_event = 0;
   const auto give_up = Clock::now() + 1200s;
@@ -163,6 +164,8 @@ void WatchThroughBalancer(const std::string& address, const std::string& mission
       std::lock_guard lock(out->mu);
       ++out->reconnects;
     }
+    stub =
+        v1::MissionService::NewStub(grpc::CreateChannel(then, grpc::InsecureChannelCredentials()));
     std::this_thread::sleep_for(200ms);
   }
 }
@@ -248,9 +251,15 @@ TEST_F(FailoverE2eTest, LeaseHolderKilledMidMissionLosesNothing) {
   ASSERT_FALSE(mission_id.empty())
       << "the sim created no mission: " << e2e::ReadWholeFile(dir_ / "sim.out");
 
+  // Watchers: one through nginx, and one on each replica (resuming through
+  // nginx when its replica goes), so one stream surely breaks.
   std::atomic<bool> stop_watch{false};
-  WatchLog watched;
-  std::thread watcher(WatchThroughBalancer, balancer, mission_id, std::cref(stop_watch), &watched);
+  WatchLog watched[kReplicas + 1];
+  std::vector<std::thread> watchers;
+  for (int i = 0; i <= kReplicas; ++i) {
+    const std::string first = i == kReplicas ? balancer : replicas_[i].address();
+    watchers.emplace_back(Watch, first, balancer, mission_id, std::cref(stop_watch), &watched[i]);
+  }
 
   // Kill the replica that holds the mission's work lease (is running its
   // replan), the first time one does.
@@ -295,16 +304,18 @@ TEST_F(FailoverE2eTest, LeaseHolderKilledMidMissionLosesNothing) {
     kill(sim, SIGKILL);
     waitpid(sim, &sim_status, 0);
   }
-  // The watcher ends by itself once the mission is final; bounded anyway.
+  // The watchers end by themselves once the mission is final; bounded anyway.
   for (int i = 0; i < 600; ++i) {
-    {
-      std::lock_guard lock(watched.mu);
-      if (watched.ended_ok) break;
+    int ended = 0;
+    for (WatchLog& w : watched) {
+      std::lock_guard lock(w.mu);
+      ended += w.ended_ok ? 1 : 0;
     }
+    if (ended == kReplicas + 1) break;
     std::this_thread::sleep_for(100ms);
   }
   stop_watch = true;
-  watcher.join();
+  for (std::thread& t : watchers) t.join();
 
   ASSERT_TRUE(sim_done) << "the sim did not finish in 20 min: "
                         << e2e::ReadWholeFile(dir_ / "sim.out");
@@ -350,19 +361,25 @@ TEST_F(FailoverE2eTest, LeaseHolderKilledMidMissionLosesNothing) {
   EXPECT_EQ(journal.acknowledged.size(), journal.reported.size())
       << "reports left unacknowledged at the end of a completed mission";
 
-  // The watcher through nginx saw every version and every log event once,
-  // in order, whichever replica wrote it and whichever served the stream.
+  // Every watcher saw every version and every log event once, in order,
+  // whichever replica wrote it and whichever served the stream.
   const std::vector<int64_t> events = db.Numbers(
       "SELECT event_id FROM log_events WHERE mission_id = $1 ORDER BY event_id", mission_id);
   ASSERT_FALSE(events.empty());
   EXPECT_EQ(events, OneTo<int64_t>(events.back()));
-  std::lock_guard lock(watched.mu);
-  EXPECT_TRUE(watched.ended_ok) << "the watch stream did not end with the mission";
-  EXPECT_EQ(watched.versions, OneTo<int>(static_cast<int>(current)));
-  EXPECT_EQ(watched.event_ids, events);
+  for (int i = 0; i <= kReplicas; ++i) {
+    const std::string who = i == kReplicas ? "the watcher through nginx"
+                                           : "the watcher on replica " + std::to_string(i + 1);
+    std::lock_guard lock(watched[i].mu);
+    EXPECT_TRUE(watched[i].ended_ok) << who << ": the stream did not end with the mission";
+    EXPECT_EQ(watched[i].versions, OneTo<int>(static_cast<int>(current))) << who;
+    EXPECT_EQ(watched[i].event_ids, events) << who;
+    if (i == killed) {
+      EXPECT_GE(watched[i].reconnects, 1) << who << " was never cut off";
+    }
+  }
   std::cerr << "plan versions " << current << ", log events " << events.size()
-            << ", acknowledged reports " << journal.acknowledged.size() << ", watch reconnects "
-            << watched.reconnects << "\n";
+            << ", acknowledged reports " << journal.acknowledged.size() << "\n";
 }
 
 }  // namespace

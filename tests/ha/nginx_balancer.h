@@ -125,6 +125,7 @@ class NginxBalancer {
                                           dir);
     const std::string bin = nginx.string(), prefix = dir.string() + "/", c = conf.string(),
                       err = (dir / "nginx-error.log").string(), out = (dir / "nginx.out").string();
+    std::fflush(nullptr);  // or the child's freopen flushes the parent's buffer again
     pid_ = fork();
     if (pid_ == 0) {
       prctl(PR_SET_PDEATHSIG, SIGTERM);  // the parent dies: nginx stops too
