@@ -76,8 +76,8 @@ v1::MissionSpec FjordSpec(const std::string& vessel) {
                                 {"port-e", 63.4427, 10.4627}};
   v1::MissionSpec spec;
   spec.set_name("bench " + vessel);
-  spec.set_domain(ha::ReadText(SourceDir() / "examples/fjord/domain.pddl"));
-  spec.set_problem(ha::ReadText(SourceDir() / "examples/fjord/case-a.pddl"));
+  spec.set_domain(e2e::ReadWholeFile(SourceDir() / "examples/fjord/domain.pddl"));
+  spec.set_problem(e2e::ReadWholeFile(SourceDir() / "examples/fjord/case-a.pddl"));
   for (const Port& p : kPorts) {
     auto* l = spec.add_locations();
     l->set_name(p.name);
@@ -243,8 +243,8 @@ class Bench {
       auto channel = grpc::CreateChannel(nginx.grpc_address(), grpc::InsecureChannelCredentials());
       auto planning = v1::PlanningService::NewStub(channel);
       v1::PlanRequest plan;
-      plan.set_domain(ha::ReadText(SourceDir() / "examples/fjord/domain.pddl"));
-      plan.set_problem(ha::ReadText(SourceDir() / "examples/fjord/case-a.pddl"));
+      plan.set_domain(e2e::ReadWholeFile(SourceDir() / "examples/fjord/domain.pddl"));
+      plan.set_problem(e2e::ReadWholeFile(SourceDir() / "examples/fjord/case-a.pddl"));
       plan.mutable_options()->set_anytime(false);
       plan.mutable_options()->mutable_time_limit()->set_seconds(10);
       Samples plans = Load(clients, seconds, [&](int, int) {

@@ -169,7 +169,13 @@ void MissionCoordinator::Shutdown() {
   renew_cv_.notify_all();
   if (background_.joinable()) background_.join();
   if (renewer_.joinable()) renewer_.join();
-  if (cluster_.work != nullptr) {
+  bool release = false;
+  {
+    std::lock_guard lock(jobs_mu_);
+    release = cluster_.work != nullptr && !leases_released_;
+    leases_released_ = true;  // once: a later call may find the store closed
+  }
+  if (release) {
     // Running replans were handed back one by one; this catches the rest.
     auto released = cluster_.work->ReleaseAll(holder_);
     if (!released.ok()) {

@@ -209,6 +209,7 @@ class MissionCoordinator {
   // reported twice (two feedbacks in one step): it must not replan again.
   std::map<std::string, int> running_bases_;
   bool stopping_ = false;
+  bool leases_released_ = false;
   // Cluster: leases held now, renewed by renewer_.
   std::map<std::string, storage::WorkLease> held_;
   std::thread background_;

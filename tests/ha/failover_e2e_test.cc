@@ -98,25 +98,8 @@ class Pg {
   PGconn* conn_;
 };
 
-// The sim's feedback journal: reports written ("R <seq> ...") and
-// acknowledged ("A <seq>").
-struct JournalView {
-  std::vector<int64_t> reported;
-  std::set<int64_t> acknowledged;
-};
-JournalView ReadJournal(const fs::path& path) {
-  JournalView j;
-  std::istringstream in(e2e::ReadWholeFile(path));
-  std::string line, tag;
-  int64_t seq = 0;
-  while (std::getline(in, line)) {
-    std::istringstream l(line);
-    if (!(l >> tag >> seq)) continue;
-    if (tag == "R") j.reported.push_back(seq);
-    if (tag == "A") j.acknowledged.insert(seq);
-  }
-  return j;
-}
+using e2e::JournalView;
+using e2e::ReadJournal;
 
 // What a watcher received, resuming after every broken stream from the last
 // (version, event id) it saw, as the sim does.

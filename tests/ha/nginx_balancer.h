@@ -25,25 +25,12 @@
 #include <utility>
 #include <vector>
 
+#include "e2e_support.h"
+#include "seaplan/storage/testing/postgres_cluster.h"
+
 namespace seaplan::ha {
 
 namespace fs = std::filesystem;
-
-// A free loopback TCP port (free when this returns; the caller binds it next).
-inline int FreePort() {
-  int fd = socket(AF_INET, SOCK_STREAM, 0);
-  sockaddr_in addr{};
-  addr.sin_family = AF_INET;
-  addr.sin_addr.s_addr = htonl(INADDR_LOOPBACK);
-  socklen_t len = sizeof(addr);
-  int port = 0;
-  if (bind(fd, reinterpret_cast<sockaddr*>(&addr), sizeof(addr)) == 0 &&
-      getsockname(fd, reinterpret_cast<sockaddr*>(&addr), &len) == 0) {
-    port = ntohs(addr.sin_port);
-  }
-  close(fd);
-  return port;
-}
 
 inline bool Accepts(int port) {
   int fd = socket(AF_INET, SOCK_STREAM, 0);
@@ -63,13 +50,6 @@ inline fs::path FindNginx() {
     if (access(p, X_OK) == 0) return p;
   }
   return {};
-}
-
-inline std::string ReadText(const fs::path& path) {
-  std::ifstream in(path, std::ios::binary);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
 }
 
 // A replica's loopback ports.
@@ -118,11 +98,11 @@ class NginxBalancer {
              const std::vector<ReplicaPorts>& replicas, const fs::path& dir) {
     dir_ = dir;
     fs::create_directories(dir);
-    grpc_port_ = FreePort();
-    http_port_ = FreePort();
+    grpc_port_ = storage::testing::FreeLoopbackPort();
+    http_port_ = storage::testing::FreeLoopbackPort();
     const fs::path conf = dir / "nginx.conf";
-    std::ofstream(conf) << NginxConfigFor(ReadText(repo_conf), replicas, grpc_port_, http_port_,
-                                          dir);
+    std::ofstream(conf) << NginxConfigFor(e2e::ReadWholeFile(repo_conf), replicas, grpc_port_,
+                                          http_port_, dir);
     const std::string bin = nginx.string(), prefix = dir.string() + "/", c = conf.string(),
                       err = (dir / "nginx-error.log").string(), out = (dir / "nginx.out").string();
     std::fflush(nullptr);  // or the child's freopen flushes the parent's buffer again
@@ -165,7 +145,7 @@ class NginxBalancer {
   int http_port() const { return http_port_; }
   // What nginx printed and logged (for failure messages).
   std::string log() const {
-    return ReadText(dir_ / "nginx.out") + ReadText(dir_ / "nginx-error.log");
+    return e2e::ReadWholeFile(dir_ / "nginx.out") + e2e::ReadWholeFile(dir_ / "nginx-error.log");
   }
 
  private:

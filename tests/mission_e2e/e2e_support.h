@@ -20,6 +20,7 @@
 #include <map>
 #include <optional>
 #include <regex>
+#include <set>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -131,6 +132,27 @@ class ServerProcess {
   int http_port_ = 0;
   std::string address_;
 };
+
+// The sim's feedback journal: every report written ("R <seq> ...") and
+// every acknowledgement ("A <seq>").
+struct JournalView {
+  std::vector<int64_t> reported;
+  std::set<int64_t> acknowledged;
+};
+inline JournalView ReadJournal(const fs::path& path) {
+  JournalView j;
+  std::istringstream in(ReadWholeFile(path));
+  std::string tag;
+  int64_t seq = 0;
+  std::string line;
+  while (std::getline(in, line)) {
+    std::istringstream l(line);
+    if (!(l >> tag >> seq)) continue;
+    if (tag == "R") j.reported.push_back(seq);
+    if (tag == "A") j.acknowledged.insert(seq);
+  }
+  return j;
+}
 
 struct ProcessResult {
   int exit_code = -1;      // -1: killed by a signal or did not start
