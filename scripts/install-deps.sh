@@ -15,6 +15,7 @@ build_packages=(
   build-essential cmake ninja-build pkg-config git
   libgrpc++-dev protobuf-compiler-grpc libprotobuf-dev protobuf-compiler grpc-proto
   libabsl-dev libsqlite3-dev sqlite3 libpq-dev postgresql
+  nginx  # the failover test and bench/replicas run it (as a child, not a service)
   libeigen3-dev libnlopt-cxx-dev libgeos-dev libgdal-dev gdal-bin libpagmo-dev
   libcli11-dev libcpp-httplib-dev libspdlog-dev libfmt-dev libssl-dev
   libgtest-dev libgmock-dev libbenchmark-dev
@@ -47,5 +48,15 @@ SUDO=""
 if [[ $(id -u) -ne 0 ]]; then SUDO="sudo"; fi
 export DEBIAN_FRONTEND=noninteractive
 echo "install-deps: installing ${#missing[@]} packages: ${missing[*]}"
+# Packages such as nginx and postgresql start a system service when
+# installed (nginx on port 80); the tests start their own instances, so keep
+# apt from starting any (policy-rc.d exit 101 = "not allowed") unless the
+# machine already has such a policy.
+POLICY=/usr/sbin/policy-rc.d
+if [[ ! -e $POLICY ]]; then
+  printf '#!/bin/sh\nexit 101\n' | $SUDO tee "$POLICY" >/dev/null
+  $SUDO chmod 755 "$POLICY"
+  trap '$SUDO rm -f "$POLICY"' EXIT
+fi
 $SUDO apt-get update -qq
 $SUDO apt-get install -y -qq --no-install-recommends "${missing[@]}"

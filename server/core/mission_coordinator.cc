@@ -1,6 +1,9 @@
 #include "server/core/mission_coordinator.h"
 
+#include <unistd.h>
+
 #include <algorithm>
+#include <random>
 
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
@@ -35,6 +38,14 @@ std::string DescribeFeedback(const v1::Feedback& f) {
   return text;
 }
 
+// host:pid:random, unique among the processes sharing a database.
+std::string ProcessHolderId() {
+  char host[256] = {};
+  if (gethostname(host, sizeof(host) - 1) != 0) host[0] = '\0';
+  std::random_device random;
+  return absl::StrFormat("%s:%d:%08x", host, static_cast<int>(getpid()), random());
+}
+
 }  // namespace
 
 bool IsFinalState(int state) {
@@ -58,6 +69,7 @@ v1::Mission MissionFromRecord(const storage::MissionRecord& r) {
 // ---- MissionNotifier ----
 
 std::uint64_t MissionNotifier::Generation(const std::string& mission_id) {
+  if (feed_ != nullptr) return feed_->Generation(mission_id);
   std::lock_guard lock(mu_);
   return generation_[mission_id];
 }
@@ -72,6 +84,12 @@ void MissionNotifier::Notify(const std::string& mission_id) {
 
 std::uint64_t MissionNotifier::Wait(const std::string& mission_id, std::uint64_t seen,
                                     std::chrono::milliseconds timeout) {
+  if (feed_ != nullptr) {
+    // The feed's Wait is not woken by Close(): `timeout` (the watch poll)
+    // bounds how long a closing server waits for its watchers.
+    if (closed()) return feed_->Generation(mission_id);
+    return feed_->Wait(mission_id, seen, timeout);
+  }
   std::unique_lock lock(mu_);
   cv_.wait_for(lock, timeout, [&] { return closed_ || generation_[mission_id] != seen; });
   return generation_[mission_id];
@@ -95,12 +113,15 @@ bool MissionNotifier::closed() {
 MissionCoordinator::MissionCoordinator(storage::MissionRepository& repo, WorkPool& pool,
                                        StopToken root,
                                        std::shared_ptr<mission::MissionEngine> engine,
-                                       Options options)
+                                       Options options, Cluster cluster)
     : repo_(repo),
       pool_(pool),
       root_(std::move(root)),
       adapter_(std::move(engine)),
-      options_(options) {
+      options_(options),
+      cluster_(std::move(cluster)),
+      holder_(cluster_.holder.empty() ? ProcessHolderId() : cluster_.holder),
+      notifier_(cluster_.changes) {
   // A mission left REPLANNING by a process that died (killed, crashed)
   // has no replan running anywhere: queue one, or its ship waits forever.
   // A replan of the same base by another replica cannot append twice
@@ -115,12 +136,22 @@ MissionCoordinator::MissionCoordinator(storage::MissionRepository& repo, WorkPoo
     for (const storage::MissionRecord& m : page->items) {
       log::Warn("mission {}: resuming the replan of version {} interrupted by a restart", m.id,
                 m.current_version);
-      jobs_.push_back({m.id, "replan resumed after a server restart", m.current_version});
+      const std::string reason = "replan resumed after a server restart";
+      if (cluster_.work != nullptr) {
+        // Recorded unless pending already (then its holder, or the sweep
+        // once that lease expires, runs it).
+        auto item = cluster_.work->Get(m.id);
+        if (item.ok() && !(item->has_value() && (*item)->pending())) {
+          (void)cluster_.work->Request(m.id, {reason, m.current_version});
+        }
+      }
+      jobs_.push_back({m.id, reason, m.current_version, std::nullopt});
     }
     if (page->next_after == 0) break;  // the last page
     after = page->next_after;
   }
   background_ = std::thread([this] { BackgroundLoop(); });
+  if (cluster_.work != nullptr) renewer_ = std::thread([this] { RenewLoop(); });
 }
 
 MissionCoordinator::~MissionCoordinator() {
@@ -135,7 +166,31 @@ void MissionCoordinator::Shutdown() {
     for (auto& [id, token] : running_replans_) token.Cancel();
   }
   jobs_cv_.notify_all();
+  renew_cv_.notify_all();
   if (background_.joinable()) background_.join();
+  if (renewer_.joinable()) renewer_.join();
+  bool release = false;
+  {
+    std::lock_guard lock(jobs_mu_);
+    release = cluster_.work != nullptr && !leases_released_;
+    leases_released_ = true;  // once: a later call may find the store closed
+  }
+  if (release) {
+    // Running replans were handed back one by one; this catches the rest.
+    auto released = cluster_.work->ReleaseAll(holder_);
+    if (!released.ok()) {
+      log::Warn("work leases of {} not released (they expire): {}", holder_,
+                released.status().ToString());
+    }
+    std::lock_guard lock(jobs_mu_);
+    held_.clear();
+  }
+}
+
+bool MissionCoordinator::ShuttingDown() {
+  if (root_.StopRequested()) return true;
+  std::lock_guard lock(jobs_mu_);
+  return stopping_;
 }
 
 std::shared_ptr<std::mutex> MissionCoordinator::MissionLock(const std::string& mission_id) {
@@ -166,22 +221,25 @@ absl::StatusOr<MissionRuntimeState> MissionCoordinator::LoadRuntime(const std::s
 
 absl::Status MissionCoordinator::SetState(const std::string& mission_id,
                                           mission::MissionState state, const std::string& message,
-                                          const std::string& failure_reason) {
+                                          const std::string& failure_reason,
+                                          const std::optional<storage::WorkFence>& fence) {
   storage::MissionUpdate update;
   update.state = MissionStateToProto(state);
+  update.fence = fence;
   if (!failure_reason.empty()) update.failure_reason = failure_reason;
   absl::Status st = repo_.Update(mission_id, update, {ServerEvent(message)});
   notifier_.Notify(mission_id);
   return st;
 }
 
-void MissionCoordinator::EndReplanning(const std::string& mission_id, const std::string& message) {
+void MissionCoordinator::EndReplanning(const std::string& mission_id, const std::string& message,
+                                       const std::optional<storage::WorkFence>& fence) {
   auto lock_ptr = MissionLock(mission_id);
   std::lock_guard lock(*lock_ptr);
   auto record = repo_.Get(mission_id);
   if (!record.ok()) return;
   if (MissionStateFromProto(record->state) == mission::MissionState::kReplanning) {
-    (void)SetState(mission_id, mission::MissionState::kActive, message);
+    (void)SetState(mission_id, mission::MissionState::kActive, message, "", fence);
     return;
   }
   // Cancelled (or finished) meanwhile: keep that state, log the outcome.
@@ -442,6 +500,10 @@ absl::StatusOr<v1::ReportFeedbackResponse> MissionCoordinator::ReportFeedback(
   if (decision.completed_changed) update.completed_tasks = decision.completed_task_ids;
   const bool replan = decision.replan_reason && !decision.mission_completed;
   const std::string replan_reason = replan ? *decision.replan_reason : "";
+  // In the report's transaction: acknowledged means its replan is recorded
+  // for whichever process gets to it, even if this one dies now.
+  if (replan && cluster_.work != nullptr)
+    update.request_work = storage::WorkRequest{replan_reason, mission.current_version()};
   if (decision.mission_completed || replan) {
     SEAPLAN_ASSIGN_OR_RETURN(
         mission::MissionState next,
@@ -490,10 +552,18 @@ absl::StatusOr<v1::ReportFeedbackResponse> MissionCoordinator::ReportFeedback(
       response.set_replan_triggered(true);
       response.set_replan_reason(replan_reason);
     } else if (static_cast<int>(jobs_.size()) >= options_.max_pending_replans || stopping_) {
+      if (cluster_.work != nullptr) {
+        // The request is in the database: a sweep (here or elsewhere) runs it.
+        log::Warn("mission {}: replan queue full, replan '{}' left to the next sweep", id,
+                  replan_reason);
+        response.set_replan_triggered(true);
+        response.set_replan_reason(replan_reason);
+        return response;
+      }
       log::Error("mission {}: replan queue full, replan '{}' dropped", id, replan_reason);
       EndReplanning(id, absl::StrCat("replan not started (server busy): ", replan_reason));
     } else {
-      jobs_.push_back({id, replan_reason, base});
+      jobs_.push_back({id, replan_reason, base, std::nullopt});
       jobs_cv_.notify_one();
       response.set_replan_triggered(true);
       response.set_replan_reason(replan_reason);
@@ -504,7 +574,8 @@ absl::StatusOr<v1::ReportFeedbackResponse> MissionCoordinator::ReportFeedback(
 
 absl::StatusOr<v1::PlanVersion> MissionCoordinator::Replan(
     const std::string& id, const std::string& reason, const StopToken& stop,
-    const std::function<absl::Status(std::function<void()>)>& run, bool* stopped) {
+    const std::function<absl::Status(std::function<void()>)>& run, bool* stopped,
+    const std::optional<storage::WorkFence>& fence) {
   *stopped = false;
   SEAPLAN_ASSIGN_OR_RETURN(MissionRuntimeState runtime, LoadRuntime(id));
   if (IsFinalState(runtime.mission.state())) {
@@ -520,11 +591,14 @@ absl::StatusOr<v1::PlanVersion> MissionCoordinator::Replan(
       run([&] { planned = adapter_.Replan(runtime.mission.spec(), runtime, reason, stop); }));
   if (stop.StopRequested()) {
     *stopped = true;
-    EndReplanning(id, absl::StrCat("replan stopped before it finished: ", reason));
+    // A leased replan stopped by the shutdown is handed back (RunLeasedJob):
+    // the mission stays REPLANNING for the process that takes it over.
+    if (!fence || !ShuttingDown())
+      EndReplanning(id, absl::StrCat("replan stopped before it finished: ", reason), fence);
     return absl::CancelledError("replan stopped");
   }
   if (!planned.ok()) {
-    EndReplanning(id, absl::StrCat("replan failed: ", planned.status().message()));
+    EndReplanning(id, absl::StrCat("replan failed: ", planned.status().message()), fence);
     return planned.status();
   }
   auto lock_ptr = MissionLock(id);
@@ -535,8 +609,8 @@ absl::StatusOr<v1::PlanVersion> MissionCoordinator::Replan(
                                            " while replanning; the new plan was discarded"));
   }
   if (!planned->has_value()) {
-    SEAPLAN_RETURN_IF_ERROR(
-        SetState(id, mission::MissionState::kCompleted, "the goal holds: mission completed"));
+    SEAPLAN_RETURN_IF_ERROR(SetState(id, mission::MissionState::kCompleted,
+                                     "the goal holds: mission completed", "", fence));
     return absl::FailedPreconditionError(
         "nothing left to plan: the goal already holds; the mission is completed");
   }
@@ -552,6 +626,7 @@ absl::StatusOr<v1::PlanVersion> MissionCoordinator::Replan(
       mission::MissionState next_state,
       mission::NextState(MissionStateFromProto(record.state), mission::MissionEvent::kNewVersion));
   update.state = MissionStateToProto(next_state);
+  update.fence = fence;
   std::vector<storage::NewLogEvent> events;
   for (const auto& line : next.log_messages) events.push_back(ServerEvent(line, now_s));
   events.push_back(ServerEvent(DescribeVersion(version), version.mission_time_origin_s()));
@@ -596,49 +671,180 @@ absl::StatusOr<v1::RequestReplanResponse> MissionCoordinator::RequestReplan(
 }
 
 void MissionCoordinator::BackgroundLoop() {
+  const auto sweep_every = options_.lease_ttl / 2;
+  auto next_sweep = StopToken::Clock::now() + sweep_every;
   while (true) {
     ReplanJob job;
     StopToken stop;
     {
       std::unique_lock lock(jobs_mu_);
-      jobs_cv_.wait(lock, [&] { return stopping_ || !jobs_.empty(); });
+      if (cluster_.work == nullptr) {
+        jobs_cv_.wait(lock, [&] { return stopping_ || !jobs_.empty(); });
+      } else {
+        jobs_cv_.wait_until(lock, next_sweep, [&] { return stopping_ || !jobs_.empty(); });
+      }
       if (stopping_) return;
+      if (jobs_.empty()) {  // Cluster: idle until the sweep is due
+        lock.unlock();
+        next_sweep = StopToken::Clock::now() + sweep_every;
+        Sweep();
+        continue;
+      }
       job = std::move(jobs_.front());
       jobs_.pop_front();
       stop = root_.Child(StopToken::Clock::now() + options_.background_replan_timeout);
       running_replans_[job.mission_id] = stop;
       running_bases_[job.mission_id] = job.base_version;
     }
-    // A trigger about a version that was replanned meanwhile (the job was
-    // queued just as an earlier replan of the same base ended) is stale.
-    if (auto record = repo_.Get(job.mission_id);
-        record.ok() && record->current_version != job.base_version) {
-      log::Info("mission {}: replan '{}' skipped: version {} was already replanned", job.mission_id,
-                job.reason, job.base_version);
-      std::lock_guard lock(jobs_mu_);
-      running_replans_.erase(job.mission_id);
-      running_bases_.erase(job.mission_id);
-      continue;
-    }
-    // On the work pool like every planning job (--planning-threads bounds
-    // them), waiting for a free worker: nobody would retry a refused one.
-    bool stopped = false;
-    auto version = Replan(
-        job.mission_id, job.reason, stop,
-        [&](std::function<void()> work) { return pool_.RunWhenFree(std::move(work), stop); },
-        &stopped);
-    if (!version.ok() &&
-        (absl::IsUnavailable(version.status()) || (!stopped && stop.StopRequested()))) {
-      EndReplanning(job.mission_id,
-                    absl::StrCat("replan not started: ", version.status().message()));
-    }
-    if (!version.ok()) {
-      log::Warn("mission {}: replan '{}' ended without a new version: {}", job.mission_id,
-                job.reason, version.status().ToString());
+    const std::string id = job.mission_id;
+    if (cluster_.work == nullptr) {
+      RunJob(std::move(job), stop);
+    } else {
+      RunLeasedJob(std::move(job), stop);
     }
     std::lock_guard lock(jobs_mu_);
-    running_replans_.erase(job.mission_id);
-    running_bases_.erase(job.mission_id);
+    running_replans_.erase(id);
+    running_bases_.erase(id);
+  }
+}
+
+void MissionCoordinator::RunJob(ReplanJob job, const StopToken& stop) {
+  // A trigger about a version that was replanned meanwhile (the job was
+  // queued just as an earlier replan of the same base ended) is stale.
+  if (auto record = repo_.Get(job.mission_id);
+      record.ok() && record->current_version != job.base_version) {
+    log::Info("mission {}: replan '{}' skipped: version {} was already replanned", job.mission_id,
+              job.reason, job.base_version);
+    return;
+  }
+  // On the work pool like every planning job (--planning-threads bounds
+  // them), waiting for a free worker: nobody would retry a refused one.
+  bool stopped = false;
+  auto version = Replan(
+      job.mission_id, job.reason, stop,
+      [&](std::function<void()> work) { return pool_.RunWhenFree(std::move(work), stop); },
+      &stopped);
+  if (!version.ok() &&
+      (absl::IsUnavailable(version.status()) || (!stopped && stop.StopRequested()))) {
+    EndReplanning(job.mission_id, absl::StrCat("replan not started: ", version.status().message()));
+  }
+  if (!version.ok()) {
+    log::Warn("mission {}: replan '{}' ended without a new version: {}", job.mission_id, job.reason,
+              version.status().ToString());
+  }
+}
+
+void MissionCoordinator::RunLeasedJob(ReplanJob job, const StopToken& stop) {
+  const std::string& id = job.mission_id;
+  std::optional<storage::WorkLease> lease = std::move(job.lease);
+  while (true) {
+    if (!lease) {
+      auto claimed = cluster_.work->Claim(id, holder_, options_.lease_ttl);
+      if (!claimed.ok()) {
+        log::Warn("mission {}: replan '{}' not claimed ({}); a sweep retries it", id, job.reason,
+                  claimed.status().ToString());
+        return;
+      }
+      if (!claimed->has_value()) {
+        log::Info("mission {}: replan '{}' left to the server holding its work (or done)", id,
+                  job.reason);
+        return;
+      }
+      lease = std::move(**claimed);
+    }
+    {
+      std::lock_guard lock(jobs_mu_);
+      held_[id] = *lease;
+    }
+    const storage::WorkFence fence{lease->holder, lease->token};
+    // The reason of the latest request (what the ship reported last).
+    const std::string reason = lease->reason.empty() ? job.reason : lease->reason;
+    absl::StatusOr<storage::MissionRecord> record = repo_.Get(id);
+    bool hand_back = !record.ok();  // storage unreachable: someone retries later
+    if (record.ok() && !IsFinalState(record->state) &&
+        record->current_version == lease->base_version) {
+      bool stopped = false;
+      auto version = Replan(
+          id, reason, stop,
+          [&](std::function<void()> work) { return pool_.RunWhenFree(std::move(work), stop); },
+          &stopped, fence);
+      hand_back = stopped && ShuttingDown();
+      if (!version.ok() && !hand_back &&
+          (absl::IsUnavailable(version.status()) || (!stopped && stop.StopRequested()))) {
+        EndReplanning(id, absl::StrCat("replan not started: ", version.status().message()), fence);
+      }
+      if (!version.ok()) {
+        log::Warn("mission {}: replan '{}' ended without a new version: {}", id, reason,
+                  version.status().ToString());
+      }
+    } else if (record.ok() && record->current_version != lease->base_version) {
+      log::Info("mission {}: replan '{}' skipped: version {} was already replanned", id, reason,
+                lease->base_version);
+    }
+    {
+      std::lock_guard lock(jobs_mu_);
+      held_.erase(id);
+    }
+    if (hand_back) {
+      if (absl::Status st = cluster_.work->Release(*lease); !st.ok())
+        log::Warn("mission {}: work not handed back ({}); it is taken over on expiry", id,
+                  st.ToString());
+      return;
+    }
+    absl::StatusOr<bool> more = cluster_.work->Complete(*lease);
+    if (!more.ok()) {
+      log::Warn("mission {}: work lease lost: {}", id, more.status().ToString());
+      return;
+    }
+    if (!*more || stop.StopRequested()) return;
+    // Requests came while this ran: claim again; the base check above tells
+    // a new trigger from one the version just appended already answered.
+    lease.reset();
+  }
+}
+
+void MissionCoordinator::Sweep() {
+  auto claimed = cluster_.work->ClaimNext(holder_, options_.lease_ttl, 1);
+  if (!claimed.ok()) {
+    log::Warn("work sweep failed: {}", claimed.status().ToString());
+    return;
+  }
+  std::lock_guard lock(jobs_mu_);
+  for (storage::WorkLease& lease : *claimed) {
+    log::Warn("mission {}: taking over replan '{}' of version {} (nobody held it)",
+              lease.mission_id, lease.reason, lease.base_version);
+    std::string id = lease.mission_id, reason = lease.reason;
+    const int base = lease.base_version;
+    jobs_.push_back({std::move(id), std::move(reason), base, std::move(lease)});
+  }
+}
+
+void MissionCoordinator::RenewLoop() {
+  std::unique_lock lock(jobs_mu_);
+  while (true) {
+    renew_cv_.wait_for(lock, options_.lease_ttl / 3, [&] { return stopping_; });
+    if (stopping_) return;
+    const std::map<std::string, storage::WorkLease> leases = held_;
+    lock.unlock();
+    for (const auto& [id, lease] : leases) {
+      absl::StatusOr<storage::WorkLease> renewed = cluster_.work->Renew(lease, options_.lease_ttl);
+      std::lock_guard relock(jobs_mu_);
+      auto it = held_.find(id);
+      const bool same = it != held_.end() && it->second.token == lease.token;
+      if (renewed.ok()) {
+        if (same) it->second = *renewed;
+      } else if (absl::IsAborted(renewed.status())) {
+        // Taken over (this process stalled past the TTL): stop planning; the
+        // fenced write would be refused anyway.
+        log::Warn("mission {}: work lease lost, its replan here stops: {}", id,
+                  renewed.status().ToString());
+        if (same) held_.erase(it);
+        if (auto r = running_replans_.find(id); r != running_replans_.end()) r->second.Cancel();
+      } else {
+        log::Warn("mission {}: work lease not renewed: {}", id, renewed.status().ToString());
+      }
+    }
+    lock.lock();
   }
 }
 

@@ -24,6 +24,18 @@
 // Versions of one mission are appended under a per-mission lock and
 // storage checks that each is current + 1 (MissionRepository::AppendVersion).
 //
+// Several server processes on one database (Cluster set): a report that
+// needs a replan records a work request in its own transaction; the
+// triggered replan runs only under the mission's work lease (claimed in the
+// database, renewed while planning, its token checked by the write that
+// appends the version), so exactly one process replans a mission at a time.
+// Every process sweeps for work nobody holds (a holder that died and whose
+// lease expired, work handed back by a process shutting down, a request
+// whose receiver died before claiming it) while it has nothing queued.
+// Shutdown hands running work back (the mission stays REPLANNING) instead of
+// ending it. Watchers wait on the database's change feed, so a commit of any
+// process wakes them.
+//
 // The mission itself (what a report means, the states and which change is
 // allowed, planning and replanning) is the mission engine's
 // (engine/mission); this class keeps transactions, locking, notification
@@ -37,6 +49,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <optional>
 #include <string>
 #include <thread>
 #include <unordered_map>
@@ -51,9 +64,12 @@
 
 namespace seaplan::server {
 
-// Per-mission change counters that watchers wait on.
+// Per-mission change counters that watchers wait on: the store's change
+// feed when there is one (commits of every process), else counters bumped
+// by this process's commits.
 class MissionNotifier {
  public:
+  explicit MissionNotifier(storage::ChangeFeed* feed = nullptr) : feed_(feed) {}
   std::uint64_t Generation(const std::string& mission_id);
   void Notify(const std::string& mission_id);
   // Waits until the generation differs from `seen`, `timeout` passes or
@@ -68,6 +84,7 @@ class MissionNotifier {
   std::condition_variable cv_;
   std::unordered_map<std::string, std::uint64_t> generation_;
   bool closed_ = false;
+  storage::ChangeFeed* feed_;
 };
 
 class MissionCoordinator {
@@ -81,11 +98,29 @@ class MissionCoordinator {
     std::chrono::milliseconds watch_poll{100};
     // Feedback reports handed to the engine as recent history.
     int feedback_history = 200;
+    // Lease on a mission's replan (Cluster): renewed every third of it while
+    // planning; a dead holder's work is taken over at most about 1.5 times
+    // it after its last renewal (expiry, then the next sweep).
+    std::chrono::milliseconds lease_ttl{5000};
+  };
+
+  // The shared database's work leases and change feed, for several server
+  // processes on one database. Without them (both null) replans are queued
+  // in this process only and watchers are woken by its own commits.
+  struct Cluster {
+    storage::WorkLeaseRepository* work = nullptr;
+    storage::ChangeFeed* changes = nullptr;
+    // This process's name in leases; "" = host, pid and a random part.
+    std::string holder;
   };
 
   // `engine` must not be null.
   MissionCoordinator(storage::MissionRepository& repo, WorkPool& pool, StopToken root,
-                     std::shared_ptr<mission::MissionEngine> engine, Options options);
+                     std::shared_ptr<mission::MissionEngine> engine, Options options,
+                     Cluster cluster);
+  MissionCoordinator(storage::MissionRepository& repo, WorkPool& pool, StopToken root,
+                     std::shared_ptr<mission::MissionEngine> engine, Options options)
+      : MissionCoordinator(repo, pool, std::move(root), std::move(engine), options, Cluster()) {}
   MissionCoordinator(storage::MissionRepository& repo, WorkPool& pool, StopToken root,
                      std::shared_ptr<mission::MissionEngine> engine)
       : MissionCoordinator(repo, pool, std::move(root), std::move(engine), Options{}) {}
@@ -116,36 +151,56 @@ class MissionCoordinator {
   absl::StatusOr<v1::ListFeedbackResponse> ListFeedback(const v1::ListFeedbackRequest& request,
                                                         const CallContext& ctx);
 
-  // Ends watch streams, cancels background replans, joins the thread.
+  // Ends watch streams, cancels background replans, joins the threads and
+  // hands this process's work leases back.
   void Shutdown();
 
   MissionNotifier& notifier() { return notifier_; }
+  const std::string& holder() const { return holder_; }
 
  private:
   struct ReplanJob {
     std::string mission_id;
     std::string reason;
     int base_version = 0;  // the plan version the trigger was about
+    // Set when the work was claimed by the sweeper (Cluster only).
+    std::optional<storage::WorkLease> lease;
   };
 
   std::shared_ptr<std::mutex> MissionLock(const std::string& mission_id);
+  // Shutdown() was called or the server cancels all work.
+  bool ShuttingDown();
   absl::StatusOr<MissionRuntimeState> LoadRuntime(const std::string& mission_id);
   // Replans now; `run` executes the engine call (on the pool or inline).
   absl::StatusOr<v1::PlanVersion> Replan(
       const std::string& mission_id, const std::string& reason, const StopToken& stop,
-      const std::function<absl::Status(std::function<void()>)>& run, bool* stopped);
+      const std::function<absl::Status(std::function<void()>)>& run, bool* stopped,
+      const std::optional<storage::WorkFence>& fence = std::nullopt);
   absl::Status SetState(const std::string& mission_id, mission::MissionState state,
-                        const std::string& message, const std::string& failure_reason = "");
+                        const std::string& message, const std::string& failure_reason = "",
+                        const std::optional<storage::WorkFence>& fence = std::nullopt);
   // REPLANNING -> ACTIVE with `message` logged; a mission cancelled
   // meanwhile keeps its state (only the message is logged).
-  void EndReplanning(const std::string& mission_id, const std::string& message);
+  void EndReplanning(const std::string& mission_id, const std::string& message,
+                     const std::optional<storage::WorkFence>& fence = std::nullopt);
   void BackgroundLoop();
+  // One triggered replan (without Cluster: as it is).
+  void RunJob(ReplanJob job, const StopToken& stop);
+  // Cluster: claims the job's work (unless the sweeper did), replans under
+  // the lease and completes it, again while requests came meanwhile.
+  void RunLeasedJob(ReplanJob job, const StopToken& stop);
+  // Cluster: claims work nobody holds when this process is idle.
+  void Sweep();
+  // Cluster: renews the held leases; a lost one cancels its replan.
+  void RenewLoop();
 
   storage::MissionRepository& repo_;
   WorkPool& pool_;
   StopToken root_;
   MissionAdapter adapter_;
   Options options_;
+  Cluster cluster_;
+  std::string holder_;
   MissionNotifier notifier_;
 
   std::mutex locks_mu_;
@@ -153,6 +208,7 @@ class MissionCoordinator {
 
   std::mutex jobs_mu_;
   std::condition_variable jobs_cv_;
+  std::condition_variable renew_cv_;
   std::deque<ReplanJob> jobs_;
   std::map<std::string, StopToken> running_replans_;  // mission -> token of its background replan
   // mission -> base version of its running background replan. A trigger for
@@ -160,7 +216,11 @@ class MissionCoordinator {
   // reported twice (two feedbacks in one step): it must not replan again.
   std::map<std::string, int> running_bases_;
   bool stopping_ = false;
+  bool leases_released_ = false;
+  // Cluster: leases held now, renewed by renewer_.
+  std::map<std::string, storage::WorkLease> held_;
   std::thread background_;
+  std::thread renewer_;
 };
 
 // The API view of a stored mission.

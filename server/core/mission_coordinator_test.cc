@@ -7,6 +7,7 @@
 
 #include <atomic>
 #include <filesystem>
+#include <thread>
 
 #include "absl/strings/str_cat.h"
 #include "seaplan/storage/sqlite_store.h"
@@ -23,6 +24,8 @@ class TwoTaskEngine final : public mission::MissionEngine {
   explicit TwoTaskEngine(const WorkPool& pool) : pool_(pool) {}
   std::atomic<int> busy_in_replan{-1};  // the pool's busy count seen by Replan
   std::atomic<int> replans{0};
+  // When set, Replan waits until its StopToken stops (at most 20 s).
+  std::atomic<bool> block_replans{false};
 
   Status CheckSpec(const mission::MissionSpec&, std::vector<pddl::Diagnostic>*) override {
     return absl::OkStatus();
@@ -37,9 +40,14 @@ class TwoTaskEngine final : public mission::MissionEngine {
   StatusOr<std::optional<mission::PlannedVersion>> Replan(const mission::MissionSpec&,
                                                           const mission::MissionRuntime& runtime,
                                                           std::string_view reason,
-                                                          const StopToken&) override {
+                                                          const StopToken& stop) override {
     busy_in_replan = pool_.busy();
     ++replans;
+    if (block_replans) {
+      for (int i = 0; i < 2000 && !stop.StopRequested(); ++i)
+        std::this_thread::sleep_for(std::chrono::milliseconds(10));
+      return absl::CancelledError("replan stopped");
+    }
     mission::PlannedVersion v =
         Version(runtime.current.version + 1, mission::PlanQuality::kSatisficing);
     v.version.reason = std::string(reason);
@@ -118,14 +126,15 @@ class MissionCoordinatorTest : public ::testing::Test {
 
   absl::StatusOr<v1::ReportFeedbackResponse> Report(const std::string& id, int seq,
                                                     v1::Feedback::Kind kind,
-                                                    const std::string& task) {
+                                                    const std::string& task,
+                                                    MissionCoordinator* through = nullptr) {
     v1::ReportFeedbackRequest req;
     req.set_mission_id(id);
     req.set_vessel_id("ship0");
     req.set_sequence_number(seq);
     req.mutable_feedback()->set_kind(kind);
     req.mutable_feedback()->set_task_id(task);
-    return coordinator_->ReportFeedback(req, Call());
+    return (through != nullptr ? through : coordinator_.get())->ReportFeedback(req, Call());
   }
 
   v1::Mission Get(const std::string& id) {
@@ -134,6 +143,24 @@ class MissionCoordinatorTest : public ::testing::Test {
     auto m = coordinator_->GetMission(req, Call());
     EXPECT_TRUE(m.ok()) << m.status();
     return m.ok() ? *m : v1::Mission();
+  }
+
+  // A coordinator as one replica of several on this database: work leases
+  // and the change feed of the store, a short lease.
+  std::unique_ptr<MissionCoordinator> Replica(const std::string& holder,
+                                              std::shared_ptr<TwoTaskEngine> engine, WorkPool& pool,
+                                              StopToken root) {
+    MissionCoordinator::Options options;
+    options.watch_poll = std::chrono::milliseconds(10);
+    options.lease_ttl = std::chrono::milliseconds(300);
+    return std::make_unique<MissionCoordinator>(
+        store_->missions(), pool, std::move(root), std::move(engine), options,
+        MissionCoordinator::Cluster{&store_->work(), &store_->changes(), holder});
+  }
+  // Waits (bounded, 20 s) until the mission has `version`.
+  void AwaitVersion(const std::string& id, int version) {
+    for (int i = 0; i < 4000 && store_->missions().Get(id)->current_version < version; ++i)
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
 
   fs::path dir_;
@@ -209,6 +236,79 @@ TEST_F(MissionCoordinatorTest, CancelledIsFinal) {
   EXPECT_TRUE(absl::IsFailedPrecondition(coordinator_->RequestReplan(replan, Call()).status()));
   EXPECT_TRUE(absl::IsFailedPrecondition(
       Report(m.mission_id(), 1, v1::Feedback::KIND_TASK_COMPLETED, "v1-t0").status()));
+}
+
+}  // namespace
+}  // namespace seaplan::server
+
+namespace seaplan::server {
+namespace {
+
+// Replicas: a replica shutting down hands its running replan back (the
+// mission stays REPLANNING) and another replica's sweep finishes it.
+TEST_F(MissionCoordinatorTest, ShutdownHandsTheRunningReplanToAnotherReplica) {
+  WorkPool pool_a(1), pool_b(1);
+  auto engine_a = std::make_shared<TwoTaskEngine>(pool_a);
+  auto engine_b = std::make_shared<TwoTaskEngine>(pool_b);
+  engine_a->block_replans = true;
+  StopToken root_a;
+  auto a = Replica("replica-a", engine_a, pool_a, root_a);
+  const v1::Mission m = Create();
+  auto r = Report(m.mission_id(), 1, v1::Feedback::KIND_TASK_FAILED, "v1-t0", a.get());
+  ASSERT_TRUE(r.ok()) << r.status();
+  ASSERT_TRUE(r->replan_triggered());
+  for (int i = 0; i < 4000 && engine_a->replans.load() == 0; ++i)
+    std::this_thread::sleep_for(std::chrono::milliseconds(5));
+  ASSERT_EQ(engine_a->replans.load(), 1);
+  EXPECT_EQ((*store_->work().Get(m.mission_id()))->holder, "replica-a");
+
+  // B starts while A plans: the work is A's, B does not run it.
+  auto b = Replica("replica-b", engine_b, pool_b, StopToken());
+  std::this_thread::sleep_for(std::chrono::milliseconds(200));
+  EXPECT_EQ(engine_b->replans.load(), 0);
+
+  root_a.Cancel();  // SIGTERM: the server cancels its work, then shuts down
+  a->Shutdown();
+  EXPECT_EQ(Get(m.mission_id()).state(), v1::MISSION_STATE_REPLANNING);
+
+  AwaitVersion(m.mission_id(), 2);
+  const v1::Mission after = Get(m.mission_id());
+  EXPECT_EQ(after.current_version(), 2);
+  EXPECT_EQ(after.state(), v1::MISSION_STATE_ACTIVE);
+  EXPECT_EQ(engine_b->replans.load(), 1);
+  auto v2 = store_->missions().GetVersion(m.mission_id(), 2);
+  ASSERT_TRUE(v2.ok()) << v2.status();
+  EXPECT_EQ(v2->reason, "task failed");
+  b->Shutdown();
+  EXPECT_FALSE((*store_->work().Get(m.mission_id()))->pending());
+}
+
+// Replicas: the lease of a replica that died mid-replan expires, another
+// takes the work over, and the dead holder's late write is refused.
+TEST_F(MissionCoordinatorTest, DeadReplicasLeaseExpiresAndAnotherReplicaReplans) {
+  const v1::Mission m = Create();
+  // What a replica killed while replanning leaves behind.
+  storage::MissionUpdate replanning;
+  replanning.state = v1::MISSION_STATE_REPLANNING;
+  replanning.request_work = storage::WorkRequest{"task failed", 1};
+  ASSERT_TRUE(store_->missions().Update(m.mission_id(), replanning, {}).ok());
+  auto dead = store_->work().Claim(m.mission_id(), "dead-replica", std::chrono::milliseconds(300));
+  ASSERT_TRUE(dead.ok() && dead->has_value());
+
+  WorkPool pool_b(1);
+  auto engine_b = std::make_shared<TwoTaskEngine>(pool_b);
+  auto b = Replica("replica-b", engine_b, pool_b, StopToken());
+  AwaitVersion(m.mission_id(), 2);
+  EXPECT_EQ(Get(m.mission_id()).current_version(), 2);
+  EXPECT_EQ(Get(m.mission_id()).state(), v1::MISSION_STATE_ACTIVE);
+  EXPECT_EQ(engine_b->replans.load(), 1);
+
+  storage::MissionUpdate late;
+  late.fence = storage::WorkFence{(*dead)->holder, (*dead)->token};
+  storage::PlanVersionRecord v3{m.mission_id(), 3, "late", 0, "", ""};
+  EXPECT_TRUE(absl::IsAborted(store_->missions().AppendVersion(v3, late, {})));
+  EXPECT_EQ(Get(m.mission_id()).current_version(), 2);
+  b->Shutdown();
 }
 
 }  // namespace

@@ -20,7 +20,8 @@ ServiceCore::ServiceCore(storage::Store& store, const CoreOptions& options,
                     : mission::MakeMissionEngine([&charts = store.charts()](const std::string& id) {
                         return LoadMap(charts, id);
                       }),
-                options.missions),
+                options.missions,
+                MissionCoordinator::Cluster{&store.work(), &store.changes(), options.holder}),
       vessels_(store.missions()) {}
 
 ServiceCore::~ServiceCore() {

@@ -28,6 +28,9 @@ struct CoreOptions {
   // RESOURCE_EXHAUSTED.
   int planning_threads = 2;
   MissionCoordinator::Options missions;
+  // This process's name in the database's work leases; "" = host, pid and
+  // a random part.
+  std::string holder;
 };
 
 class ServiceCore {

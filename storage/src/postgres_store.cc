@@ -744,8 +744,20 @@ struct PostgresStore::Impl final : ChartRepository, MissionRepository {
     return res.Int(0, 0) == 1;
   }
 
+  // Locks the work row so that a claim cannot slip in before the commit.
+  static absl::Status CheckFenceLocked(PGconn* conn, const std::string& id, const WorkFence& f) {
+    SEAPLAN_ASSIGN_OR_RETURN(
+        Result r, Run(conn,
+                      "SELECT 1 FROM mission_work WHERE mission_id = $1 AND holder = $2 AND "
+                      "token = $3 FOR UPDATE",
+                      Params().Text(id).Text(f.holder).I8(f.token)));
+    if (r.rows() == 0) return internal::LostLeaseError(id, f);
+    return absl::OkStatus();
+  }
+
   static absl::Status ApplyUpdateLocked(PGconn* conn, const std::string& id, const MissionUpdate& u,
                                         TimestampMs now_ms) {
+    if (u.fence) SEAPLAN_RETURN_IF_ERROR(CheckFenceLocked(conn, id, *u.fence));
     Params p;
     p.Text(id);
     p.Opt(u.state, kInt4Oid, [](Params& q, int v) -> Params& { return q.I4(v); });

@@ -358,6 +358,12 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
 
   absl::Status ApplyUpdateLocked(const std::string& id, const MissionUpdate& u,
                                  TimestampMs now_ms) {
+    if (u.fence) {
+      Stmt f(db, "SELECT 1 FROM mission_work WHERE mission_id = ?1 AND holder = ?2 AND token = ?3");
+      f.Text(1, id).Text(2, u.fence->holder).Int(3, u.fence->token);
+      SEAPLAN_ASSIGN_OR_RETURN(bool held, f.Step());
+      if (!held) return internal::LostLeaseError(id, *u.fence);
+    }
     Stmt s(
         db,
         "UPDATE missions SET state = COALESCE(?2, state), last_state = COALESCE(?3, last_state), "

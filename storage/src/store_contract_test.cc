@@ -361,6 +361,30 @@ TEST_P(StoreTest, ExpiredLeaseIsTakenOverAndTheOldHolderIsFenced) {
   ASSERT_TRUE(other->Close().ok());
 }
 
+// A holder whose lease was taken over cannot append a version or change
+// the mission: its fenced writes are refused and change nothing.
+TEST_P(StoreTest, WritesFencedByALostLeaseAreRefused) {
+  ASSERT_TRUE(missions().Create(TestMission("m"), TestVersion("m", 1), {}).ok());
+  ASSERT_TRUE(work().Request("m", {"replan", 1}).ok());
+  auto dead = work().Claim("m", "dead-replica", milliseconds(1));
+  ASSERT_TRUE(dead.ok() && dead->has_value());
+  MissionUpdate stale;
+  stale.fence = WorkFence{(*dead)->holder, (*dead)->token};
+  std::this_thread::sleep_for(milliseconds(50));  // the 1 ms lease has expired
+  auto live = work().Claim("m", "live-replica", milliseconds(60000));
+  ASSERT_TRUE(live.ok() && live->has_value());
+  EXPECT_EQ(missions().AppendVersion(TestVersion("m", 2), stale, {}).code(),
+            absl::StatusCode::kAborted);
+  stale.last_state = "from the stale holder";
+  EXPECT_EQ(missions().Update("m", stale, {}).code(), absl::StatusCode::kAborted);
+  EXPECT_EQ(missions().Get("m")->current_version, 1);
+  EXPECT_NE(missions().Get("m")->last_state, "from the stale holder");
+  MissionUpdate held;
+  held.fence = WorkFence{(*live)->holder, (*live)->token};
+  EXPECT_TRUE(missions().AppendVersion(TestVersion("m", 2), held, {}).ok());
+  EXPECT_EQ(missions().Get("m")->current_version, 2);
+}
+
 TEST_P(StoreTest, ReleasedWorkIsFreeAtOnce) {
   for (const char* id : {"a", "b", "c"}) {
     ASSERT_TRUE(missions().Create(TestMission(id), TestVersion(id, 1), {}).ok());

@@ -63,6 +63,12 @@ std::string NotFoundMessage(const std::string& what, const std::string& id) {
   return absl::StrCat(what, " '", id, "' not found");
 }
 
+absl::Status LostLeaseError(const std::string& mission_id, const WorkFence& fence) {
+  return absl::AbortedError(absl::StrCat("the work lease of mission '", mission_id, "' (holder '",
+                                         fence.holder, "', token ", fence.token,
+                                         ") is no longer held: the write was refused"));
+}
+
 absl::StatusOr<std::optional<WorkLease>> WorkLeaseBase::Claim(const std::string& mission_id,
                                                               const std::string& holder,
                                                               std::chrono::milliseconds ttl) {

@@ -39,6 +39,8 @@ TimestampMs LatestTime(const std::vector<NewLogEvent>& events, TimestampMs fallb
 
 // "<what> '<id>' not found".
 std::string NotFoundMessage(const std::string& what, const std::string& id);
+// Aborted: a write fenced by a lease that is no longer held.
+absl::Status LostLeaseError(const std::string& mission_id, const WorkFence& fence);
 
 // ---- Column lists and row readers shared by the backends ----
 // A `Row` offers Int(col), Real(col) and Bytes(col) (text and blobs as

@@ -12,6 +12,7 @@
 #include <sys/wait.h>
 #include <unistd.h>
 
+#include <algorithm>
 #include <chrono>
 #include <cstdlib>
 #include <filesystem>
@@ -19,6 +20,7 @@
 #include <map>
 #include <optional>
 #include <regex>
+#include <set>
 #include <sstream>
 #include <string>
 #include <thread>
@@ -39,9 +41,11 @@ inline std::string ReadWholeFile(const fs::path& path) {
   return ss.str();
 }
 
-// seaplan-server on 127.0.0.1 (HTTP off), database and port file in the
-// folder given to Start, on an ephemeral port or the given one (a restart
-// on the port of a killed server). SIGTERM and reaped on destruction.
+// seaplan-server on 127.0.0.1 (HTTP off unless `extra_args` sets
+// --http-addr), database and port file in the folder given to Start, on an
+// ephemeral port or the given one (a restart on the port of a killed
+// server); `extra_args` are appended (e.g. --database URL). SIGTERM and
+// reaped on destruction.
 // It accepts the fixtures' admin token (seaplan/testing/test_token.h),
 // which this process's gRPC calls and the clients it starts present by
 // default (UseTestAdminTokenByDefault).
@@ -53,7 +57,8 @@ class ServerProcess {
   ~ServerProcess() { Stop(); }
 
   // False when the binary does not start or never reports its port (15 s).
-  bool Start(const fs::path& server_bin, const fs::path& dir, int port = 0) {
+  bool Start(const fs::path& server_bin, const fs::path& dir, int port = 0,
+             const std::vector<std::string>& extra_args = {}) {
     fs::create_directories(dir);
     const fs::path port_file = dir / "ports";
     fs::remove(port_file);
@@ -63,6 +68,24 @@ class ServerProcess {
     const std::string bin = server_bin.string(), data = (dir / "data").string(),
                       ports = port_file.string(), log = (dir / "server.log").string(),
                       grpc_addr = "127.0.0.1:" + std::to_string(port);
+    port_ = http_port_ = 0;
+    // Defaults, each left out when `extra_args` gives the flag itself.
+    const std::pair<std::string, std::string> defaults[] = {{"--http-addr", ""},
+                                                            {"--log-level", "warn"}};
+    std::vector<std::string> argv = {bin,       "--grpc-addr", grpc_addr, "--data-dir",
+                                     data,      "--port-file", ports,     "--admin-token-file",
+                                     token_file};
+    const auto given = [&](const std::string& flag) {
+      return std::find(extra_args.begin(), extra_args.end(), flag) != extra_args.end();
+    };
+    for (const auto& [flag, value] : defaults) {
+      if (!given(flag)) argv.insert(argv.end(), {flag, value});
+    }
+    const bool http = given("--http-addr");
+    argv.insert(argv.end(), extra_args.begin(), extra_args.end());
+    std::vector<char*> args;
+    for (std::string& a : argv) args.push_back(a.data());
+    args.push_back(nullptr);
     pid_ = fork();
     if (pid_ == 0) {
       int fd = open(log.c_str(), O_WRONLY | O_CREAT | O_APPEND, 0644);  // restarts append
@@ -70,9 +93,7 @@ class ServerProcess {
         dup2(fd, STDOUT_FILENO);
         dup2(fd, STDERR_FILENO);
       }
-      execl(bin.c_str(), bin.c_str(), "--grpc-addr", grpc_addr.c_str(), "--http-addr", "",
-            "--data-dir", data.c_str(), "--port-file", ports.c_str(), "--log-level", "warn",
-            "--admin-token-file", token_file.c_str(), static_cast<char*>(nullptr));
+      execv(args[0], args.data());
       _exit(127);
     }
     if (pid_ < 0) return false;
@@ -80,12 +101,13 @@ class ServerProcess {
       std::ifstream in(port_file);
       std::string line;
       while (std::getline(in, line)) {
+        if (line.rfind("http=", 0) == 0) http_port_ = std::stoi(line.substr(5));
         if (line.rfind("grpc=", 0) == 0) {
           port_ = std::stoi(line.substr(5));
           address_ = "127.0.0.1:" + line.substr(5);
-          return true;
         }
       }
+      if (port_ != 0 && (!http || http_port_ != 0)) return true;
       int status = 0;
       if (waitpid(pid_, &status, WNOHANG) == pid_) {
         pid_ = -1;
@@ -100,6 +122,8 @@ class ServerProcess {
   void Kill() { SignalAndReap(SIGKILL); }
   const std::string& address() const { return address_; }
   int port() const { return port_; }
+  int http_port() const { return http_port_; }  // 0 when HTTP is off
+  pid_t pid() const { return pid_; }
 
  private:
   void SignalAndReap(int signal) {
@@ -113,8 +137,30 @@ class ServerProcess {
 
   pid_t pid_ = -1;
   int port_ = 0;
+  int http_port_ = 0;
   std::string address_;
 };
+
+// The sim's feedback journal: every report written ("R <seq> ...") and
+// every acknowledgement ("A <seq>").
+struct JournalView {
+  std::vector<int64_t> reported;
+  std::set<int64_t> acknowledged;
+};
+inline JournalView ReadJournal(const fs::path& path) {
+  JournalView j;
+  std::istringstream in(ReadWholeFile(path));
+  std::string tag;
+  int64_t seq = 0;
+  std::string line;
+  while (std::getline(in, line)) {
+    std::istringstream l(line);
+    if (!(l >> tag >> seq)) continue;
+    if (tag == "R") j.reported.push_back(seq);
+    if (tag == "A") j.acknowledged.insert(seq);
+  }
+  return j;
+}
 
 struct ProcessResult {
   int exit_code = -1;      // -1: killed by a signal or did not start

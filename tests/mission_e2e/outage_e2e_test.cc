@@ -37,26 +37,8 @@ namespace fs = std::filesystem;
 using seaplan::testing::BinDir;
 using seaplan::testing::SourceDir;
 
-// The sim's feedback journal: every report written ("R <seq> ...") and
-// every acknowledgement ("A <seq>").
-struct JournalView {
-  std::vector<int64_t> reported;
-  std::set<int64_t> acknowledged;
-};
-JournalView ReadJournal(const fs::path& path) {
-  JournalView j;
-  std::istringstream in(e2e::ReadWholeFile(path));
-  std::string tag;
-  int64_t seq = 0;
-  std::string line;
-  while (std::getline(in, line)) {
-    std::istringstream l(line);
-    if (!(l >> tag >> seq)) continue;
-    if (tag == "R") j.reported.push_back(seq);
-    if (tag == "A") j.acknowledged.insert(seq);
-  }
-  return j;
-}
+using e2e::JournalView;
+using e2e::ReadJournal;
 
 // A connection to the server's SQLite file (read-write, as the server
 // itself opens it: a crashed server's WAL is then recovered the same way).

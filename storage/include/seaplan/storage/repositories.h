@@ -103,6 +103,14 @@ struct WorkRequest {
   int base_version = 0;  // the plan version the request is about
 };
 
+// The lease a write is made under (WorkLeaseRepository): the write is
+// refused with Aborted unless the mission's work item still has this holder
+// and token, i.e. nobody took the work over since the claim.
+struct WorkFence {
+  std::string holder;
+  std::int64_t token = 0;
+};
+
 // A partial update of a mission; unset fields keep their value.
 struct MissionUpdate {
   std::optional<int> state;
@@ -112,6 +120,8 @@ struct MissionUpdate {
   // Records work for the mission (WorkLeaseRepository::Request) in the same
   // transaction, so an acknowledged report that needs a replan cannot lose it.
   std::optional<WorkRequest> request_work;
+  // Checked first, in the same transaction (fencing a stale lease holder).
+  std::optional<WorkFence> fence;
 };
 
 struct PlanVersionRecord {

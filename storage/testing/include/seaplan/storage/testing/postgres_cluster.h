@@ -71,6 +71,10 @@ class TemporaryPostgresCluster {
   int databases_created_ = 0;
 };
 
+// A free TCP port on 127.0.0.1 (free when this returns; the caller binds
+// it next). 0 when none could be found.
+int FreeLoopbackPort();
+
 // One cluster shared by every test of this process, started on first use
 // and stopped at exit (or by its guardian). NotFound when PostgreSQL is not
 // installed; the reason in the status is meant to be printed.
