@@ -122,6 +122,13 @@ TEST(ChartRoutingTest, CacheLoadsAChartOnceAndRoutesLeaveTheBufferFirst) {
   // A goal inside the island cannot be sailed to.
   auto inside = (*routing)->Plan({"move", "a", "b", M(0, 1500), M(0, 0), 0}, StopToken());
   EXPECT_TRUE(absl::IsFailedPrecondition(inside.status())) << inside.status();
+  // In the user's latitude/longitude, with the nearest navigable point.
+  const std::string message(inside.status().message());
+  EXPECT_NE(message.find(chart::FormatLatLon((*routing)->frame().ToLatLon(M(0, 0)))),
+            std::string::npos)
+      << message;
+  EXPECT_NE(message.find("nearest navigable point is"), std::string::npos) << message;
+  EXPECT_EQ(message.find("7000000"), std::string::npos) << message;
 }
 
 TEST(ChartRoutingTest, ShortestWayOutFindsTheNearestFreeWater) {

@@ -354,20 +354,20 @@ StatusOr<RefinedPlan> RefinePlan(std::string_view domain_text, std::string_view 
   }
 
   // The first move from where the ship is under way starts with its motion.
-  std::optional<size_t> under_way_step;
+  size_t under_way_step = n;  // n: none
   if (options.under_way) {
     for (size_t i = 0; i < n; ++i) {
       if (legs[i] && legs[i]->from == options.under_way->location &&
-          (!under_way_step || plan.steps[i].start_s < plan.steps[*under_way_step].start_s)) {
+          (under_way_step == n || plan.steps[i].start_s < plan.steps[under_way_step].start_s)) {
         under_way_step = i;
       }
     }
     // Only when the plan starts with it: after a port operation there the
     // ship leaves from rest.
-    for (size_t i = 0; i < n && under_way_step; ++i) {
+    for (size_t i = 0; i < n && under_way_step < n; ++i) {
       if (!legs[i] &&
-          plan.steps[i].start_s + options.epsilon_s < plan.steps[*under_way_step].start_s) {
-        under_way_step.reset();
+          plan.steps[i].start_s + options.epsilon_s < plan.steps[under_way_step].start_s) {
+        under_way_step = n;
       }
     }
   }
