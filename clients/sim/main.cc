@@ -264,6 +264,7 @@ void FillShipState(const sim::FeedbackOut& fb, const chart::LocalFrame& frame, v
   st->set_speed_mps(fb.speed_mps);
   st->set_fuel_fraction(fb.fuel_fraction);
   st->set_mode(ToProtoMode(fb.mode));
+  st->set_collision_avoidance_active(fb.collision_avoidance_active);
 }
 
 // The live picture: the ship and the traffic it tracks (AIS-like: the

@@ -1,5 +1,6 @@
 #include "server/core/mission_engine_adapter.h"
 
+#include <cmath>
 #include <utility>
 
 #include "absl/strings/str_cat.h"
@@ -115,6 +116,7 @@ mission::MissionRuntime RuntimeFromProto(const MissionRuntimeState& state,
     mission::ShipReport report;
     if (last.has_position()) report.position = ToLocal(frame, last.position());
     report.fuel_fraction = last.fuel_fraction();
+    report.motion = mission::ShipMotion{last.heading_deg() * M_PI / 180.0, last.speed_mps()};
     runtime.last_report = report;
   }
   for (const v1::Feedback& f : state.recent_feedback)
@@ -274,6 +276,7 @@ mission::Feedback FeedbackFromProto(const v1::Feedback& feedback, const chart::L
     if (frame != nullptr && feedback.state().has_position())
       f.position = ToLocal(*frame, feedback.state().position());
     f.fuel_fraction = feedback.state().fuel_fraction();
+    f.collision_avoidance_active = feedback.state().collision_avoidance_active();
   }
   return f;
 }

@@ -166,11 +166,23 @@ TEST(MissionAdapterTest, TheEngineSeesTheStoredRoutesAndTheReportedPosition) {
   state.current_version = planned->version;
   state.engine_state = planned->engine_state;
   state.mission.add_completed_tasks("v2-t9");
+  v1::ShipState* last = state.mission.mutable_last_state();
+  last->mutable_position()->set_latitude_deg(63.44);
+  last->mutable_position()->set_longitude_deg(10.40);
+  last->set_heading_deg(90);
+  last->set_speed_mps(8.5);
   v1::Feedback f;
   f.set_task_id("v3-t1");
   f.mutable_state()->mutable_position()->set_latitude_deg(63.45);
   f.mutable_state()->mutable_position()->set_longitude_deg(10.40);
+  f.mutable_state()->set_collision_avoidance_active(true);
   adapter.OnFeedback(spec, state, f);
+  EXPECT_TRUE(engine->feedback.collision_avoidance_active);
+  // The ship's last state with its motion (a replan of a ship under way).
+  ASSERT_TRUE(engine->runtime.last_report.has_value());
+  ASSERT_TRUE(engine->runtime.last_report->motion.has_value());
+  EXPECT_NEAR(engine->runtime.last_report->motion->course_rad, M_PI / 2, 1e-12);
+  EXPECT_DOUBLE_EQ(engine->runtime.last_report->motion->speed_mps, 8.5);
   ASSERT_EQ(engine->runtime.current.tasks.size(), 1u);
   EXPECT_TRUE(engine->runtime.current.tasks[0].route.has_value());
   EXPECT_EQ(engine->runtime.completed_task_ids, std::vector<std::string>{"v2-t9"});

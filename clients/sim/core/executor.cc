@@ -91,6 +91,7 @@ FeedbackOut Executor::MakeFeedback(FeedbackKind kind, const std::string& task_id
   f.mode = model_.mode() == ship::MsoMode::kMec   ? mission::MsoMode::kMec
            : model_.mode() == ship::MsoMode::kPti ? mission::MsoMode::kPti
                                                   : mission::MsoMode::kPto;
+  f.collision_avoidance_active = avoidance_active_;
   f.detail = std::move(detail);
   return f;
 }
@@ -107,6 +108,7 @@ void Executor::SetPlan(const mission::PlanVersion& version) {
                  running_.end());
   los_.reset();
   route_.clear();
+  avoidance_active_ = false;
   waiting_ = false;
   Log(absl::StrFormat("plan version %d received (%s): %d tasks", version.version, version.reason,
                       static_cast<int>(version.tasks.size())));
@@ -259,6 +261,7 @@ void Executor::StepMove(std::vector<FeedbackOut>* out) {
       model_.set_state(hold);
       running_.erase(it);
       los_.reset();
+      avoidance_active_ = false;
       waiting_ = true;
       return;
     }
@@ -280,6 +283,7 @@ void Executor::StepMove(std::vector<FeedbackOut>* out) {
   avoidance_.set_land(land_.empty() ? nullptr : &land_);  // not in the constructor: executors move
   const colav::Command cmd = avoidance_.Step({time_s_, &model_, &autopilot_},
                                              {psi_d, speed, move_speed_mps_}, *los_, others_);
+  avoidance_active_ = cmd.collision_avoidance_active;
   LogAvoidance(cmd, *it, out);
   const colav::ActuatorCommand act =
       autopilot_.Update(cmd.course_rad, cmd.speed_mps, s.heading_rad(), s.yaw_rate_radps(),
@@ -324,6 +328,7 @@ void Executor::LogAvoidance(const colav::Command& c, const Running& move,
 }
 
 void Executor::Complete(const Running& r, std::vector<FeedbackOut>* out) {
+  if (r.task.kind == TaskKind::kMove) avoidance_active_ = false;
   completed_.insert(r.task.id);
   tank_.OnTaskCompleted(r.task.kind);
   Log(mission::TaskCompletedMessage(r.task.kind));

@@ -118,6 +118,7 @@ struct FeedbackOut {
   double speed_mps = 0.0;
   double fuel_fraction = 1.0;
   mission::MsoMode mode = mission::MsoMode::kUnspecified;
+  bool collision_avoidance_active = false;  // manoeuvring for traffic or rejoining the route
   std::string detail;
 };
 
@@ -193,6 +194,7 @@ class Executor {
   double fuel_burn_start_kg_ = 0.0;
   EastNorth last_position_;
   bool jumped_ = false;
+  bool avoidance_active_ = false;  // the move under way is off its route for traffic
   bool fuel_low_logged_ = false;
   std::set<size_t> jumps_done_, jumps_cleared_;
   MissionReport report_;

@@ -14,6 +14,7 @@
 #include "absl/strings/str_format.h"
 #include "absl/strings/str_join.h"
 #include "geos_internal.h"
+#include "seaplan/chart/geodesy.h"
 #include "seaplan/common/log.h"
 
 namespace seaplan::chart {
@@ -35,8 +36,10 @@ double PolylineLength(const std::vector<EastNorth>& pts) {
   for (size_t i = 1; i < pts.size(); ++i) len += Dist(pts[i - 1], pts[i]);
   return len;
 }
-std::string Fmt(EastNorth p) {
-  return absl::StrFormat("(%.1f, %.1f)", p.east_m, p.north_m);
+// Positions in messages: latitude and longitude, as the user gave them
+// (the local frame is internal).
+std::string Where(const ObstacleMap& map, EastNorth p) {
+  return FormatLatLon(map.frame().ToLatLon(p));
 }
 
 struct PreparedDeleter {
@@ -141,11 +144,11 @@ A1Outcome RunA1(const GeosContext& c, const std::vector<Hull>& hulls, EastNorth 
   A1Outcome out;
   for (size_t i = 0; i < hulls.size(); ++i) {
     if (PointInPrepared(c, hulls[i].prepared_shrunk.get(), start)) {
-      out.failure = absl::StrCat("start ", Fmt(start), " lies inside obstacle hull ", i);
+      out.failure = absl::StrCat("the start lies inside obstacle hull ", i);
       return out;
     }
     if (PointInPrepared(c, hulls[i].prepared_shrunk.get(), goal)) {
-      out.failure = absl::StrCat("goal ", Fmt(goal), " lies inside obstacle hull ", i);
+      out.failure = absl::StrCat("the goal lies inside obstacle hull ", i);
       return out;
     }
   }
@@ -415,9 +418,9 @@ StatusOr<AlternativesResult> PlanAlternatives(const ObstacleMap& map, EastNorth 
     }
     if (!map.Covers(p)) {
       const LocalBox& b = map.summary().coverage;
-      return absl::InvalidArgumentError(
-          absl::StrCat(name, " ", Fmt(p), " lies outside the chart coverage ", Fmt(b.min), "-",
-                       Fmt(b.max), " (EPSG:", map.frame().epsg(), ")"));
+      return absl::InvalidArgumentError(absl::StrCat(name, " ", Where(map, p),
+                                                     " lies outside the chart coverage ",
+                                                     Where(map, b.min), " to ", Where(map, b.max)));
     }
   }
   ObstacleQuery query(map);
@@ -425,7 +428,7 @@ StatusOr<AlternativesResult> PlanAlternatives(const ObstacleMap& map, EastNorth 
     if (query.Inside(p)) {
       const NearestObstacle n = query.Nearest(p);
       return absl::InvalidArgumentError(
-          absl::StrCat(name, " ", Fmt(p), " lies inside obstacle ", n.polygon_index,
+          absl::StrCat(name, " ", Where(map, p), " lies inside obstacle ", n.polygon_index,
                        " (land, shallow water or a hazard with its safety buffer; ",
                        absl::StrFormat("%.0f", -query.SignedDistanceM(p)), " m from its edge)"));
     }
@@ -508,8 +511,9 @@ StatusOr<AlternativesResult> PlanAlternatives(const ObstacleMap& map, EastNorth 
     };
     SEAPLAN_ASSIGN_OR_RETURN(std::vector<EastNorth> path, shortest(nullptr));
     if (path.empty()) {
-      return absl::NotFoundError(absl::StrCat("no obstacle-free route from ", Fmt(start), " to ",
-                                              Fmt(goal), " (", absl::StrJoin(notes, "; "), ")"));
+      return absl::NotFoundError(absl::StrCat("no obstacle-free route from ", Where(map, start),
+                                              " to ", Where(map, goal), " (",
+                                              absl::StrJoin(notes, "; "), ")"));
     }
     std::vector<std::vector<EastNorth>> routes = {path};
     // A second alternative in A1's spirit: around the other side of the
@@ -579,8 +583,8 @@ StatusOr<AlternativesResult> PlanAlternatives(const ObstacleMap& map, EastNorth 
   }
   result.note = absl::StrJoin(notes, "; ");
   if (result.alternatives.empty()) {
-    return absl::NotFoundError(absl::StrCat("no obstacle-free alternative from ", Fmt(start),
-                                            " to ", Fmt(goal), " (", result.note, ")"));
+    return absl::NotFoundError(absl::StrCat("no obstacle-free alternative from ", Where(map, start),
+                                            " to ", Where(map, goal), " (", result.note, ")"));
   }
   log::Debug("A1: {} alternative(s), fallback={}, {}", result.alternatives.size(),
              result.used_fallback, result.note);

@@ -101,6 +101,10 @@ TEST(Alternatives, StartOrGoalInsideObstacleIsNamed) {
   ASSERT_EQ(start_in.status().code(), absl::StatusCode::kInvalidArgument);
   EXPECT_NE(start_in.status().message().find("start"), absl::string_view::npos);
   EXPECT_NE(start_in.status().message().find("inside obstacle 0"), absl::string_view::npos);
+  // Where, in latitude and longitude (the local frame is internal).
+  EXPECT_NE(start_in.status().message().find(FormatLatLon(map.frame().ToLatLon(P(0, 0)))),
+            absl::string_view::npos)
+      << start_in.status().message();
   // Within the 10 m safety buffer counts as inside.
   auto goal_in = PlanAlternatives(map, P(-500, 0), P(55, 0));
   ASSERT_EQ(goal_in.status().code(), absl::StatusCode::kInvalidArgument);

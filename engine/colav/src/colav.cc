@@ -52,13 +52,13 @@ std::string_view PolicyName(Policy p) {
 Status CollisionAvoidanceOptions::Validate() const {
   if (!(safety_distance_m > 0) || !(margin_factor >= 1.0) || !(horizon_s > 0) ||
       !(prediction_step_s > 0) || prediction_step_s > horizon_s || !(decision_interval_s >= 0) ||
-      !(rule17_time_s >= 0) || !(land_clearance_m >= 0)) {
+      !(rule17_time_s >= 0) || !(land_clearance_m >= 0) || !(rejoined_cross_track_m > 0)) {
     return absl::InvalidArgumentError(absl::StrFormat(
-        "collision avoidance: safety_distance_m (%g), horizon_s (%g) and prediction_step_s (%g, "
-        "at most the horizon) must be > 0, margin_factor (%g) >= 1, decision_interval_s (%g), "
-        "rule17_time_s (%g) and land_clearance_m (%g) >= 0",
-        safety_distance_m, horizon_s, prediction_step_s, margin_factor, decision_interval_s,
-        rule17_time_s, land_clearance_m));
+        "collision avoidance: safety_distance_m (%g), horizon_s (%g), prediction_step_s (%g, "
+        "at most the horizon) and rejoined_cross_track_m (%g) must be > 0, margin_factor (%g) "
+        ">= 1, decision_interval_s (%g), rule17_time_s (%g) and land_clearance_m (%g) >= 0",
+        safety_distance_m, horizon_s, prediction_step_s, rejoined_cross_track_m, margin_factor,
+        decision_interval_s, rule17_time_s, land_clearance_m));
   }
   if (course_offsets_deg.empty() || speed_factors.empty()) {
     return absl::InvalidArgumentError(
@@ -101,9 +101,16 @@ Role CollisionAvoidance::RoleOf(int vessel_id) const {
 Command CollisionAvoidance::Step(const OwnShip& own, const DesiredMotion& desired,
                                  const PathFollower& path, const std::vector<Obstacle>& traffic) {
   if (own.model == nullptr || own.autopilot == nullptr) return Hold(desired);
-  return options_.policy == Policy::kScenarioMpc
-             ? StepScenarioMpc(own, desired, path, traffic)
-             : StepVelocityObstacle(own, desired, path, traffic);
+  Command out = options_.policy == Policy::kScenarioMpc
+                    ? StepScenarioMpc(own, desired, path, traffic)
+                    : StepVelocityObstacle(own, desired, path, traffic);
+  if (out.manoeuvring) {
+    rejoining_ = true;
+  } else if (std::abs(path.cross_track_m()) <= options_.rejoined_cross_track_m) {
+    rejoining_ = false;
+  }
+  out.collision_avoidance_active = out.manoeuvring || rejoining_;
+  return out;
 }
 
 Command CollisionAvoidance::Hold(const DesiredMotion& desired) const {

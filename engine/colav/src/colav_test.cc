@@ -104,6 +104,36 @@ TEST(CollisionAvoidanceTest, StandOnKeepsCourseUntilRule17ThenNotToPort) {
   EXPECT_GE(late.course_rad, -1e-9) << "rule 17 c: no turn to port for a vessel on the port side";
 }
 
+TEST(CollisionAvoidanceTest, StaysActiveUntilTheShipIsBackOnItsPath) {
+  Fixture f = Fixture::Make();
+  auto ca = CollisionAvoidance::Create({});
+  ASSERT_TRUE(ca.ok());
+  EXPECT_FALSE(f.Step(*ca, 0, {}).collision_avoidance_active);
+  const Command give_way = f.Step(*ca, 5, {Meeting(180, 9, 300)});
+  ASSERT_TRUE(give_way.manoeuvring);
+  EXPECT_TRUE(give_way.collision_avoidance_active);
+  // The vessel is gone and the manoeuvre ends with the ship 300 m off its
+  // path: it is still away for traffic, on its way back.
+  auto move_to = [&](double east_m) {
+    ship::ShipState s = f.model.state();
+    s.eta[1] = east_m;
+    f.model.set_state(s);
+  };
+  move_to(300);
+  const Command ended = f.Step(*ca, 60, {});
+  EXPECT_FALSE(ended.manoeuvring);
+  ASSERT_FALSE(ended.events.empty());
+  EXPECT_EQ(ended.events.back().kind, EventKind::kManoeuvreEnded);
+  EXPECT_TRUE(ended.collision_avoidance_active);
+  move_to(120);
+  EXPECT_TRUE(f.Step(*ca, 120, {}).collision_avoidance_active);
+  // Back within rejoined_cross_track_m (50 m): over, and it stays over.
+  move_to(30);
+  EXPECT_FALSE(f.Step(*ca, 180, {}).collision_avoidance_active);
+  move_to(120);
+  EXPECT_FALSE(f.Step(*ca, 240, {}).collision_avoidance_active);
+}
+
 TEST(CollisionAvoidanceTest, StaysOffTheLandWhenTheStarboardSideIsBlocked) {
   // Head-on in a channel whose east bank lies 250 m to starboard.
   EncounterSetup s;

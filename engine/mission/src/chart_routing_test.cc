@@ -122,6 +122,13 @@ TEST(ChartRoutingTest, CacheLoadsAChartOnceAndRoutesLeaveTheBufferFirst) {
   // A goal inside the island cannot be sailed to.
   auto inside = (*routing)->Plan({"move", "a", "b", M(0, 1500), M(0, 0), 0}, StopToken());
   EXPECT_TRUE(absl::IsFailedPrecondition(inside.status())) << inside.status();
+  // In the user's latitude/longitude, with the nearest navigable point.
+  const std::string message(inside.status().message());
+  EXPECT_NE(message.find(chart::FormatLatLon((*routing)->frame().ToLatLon(M(0, 0)))),
+            std::string::npos)
+      << message;
+  EXPECT_NE(message.find("nearest navigable point is"), std::string::npos) << message;
+  EXPECT_EQ(message.find("7000000"), std::string::npos) << message;
 }
 
 TEST(ChartRoutingTest, ShortestWayOutFindsTheNearestFreeWater) {
@@ -134,6 +141,74 @@ TEST(ChartRoutingTest, ShortestWayOutFindsTheNearestFreeWater) {
   EXPECT_FALSE(field.Inside({out->east_m, out->north_m}));
   EXPECT_GT(out->north_m, kN0 + 300);
   EXPECT_LT(std::hypot(out->east_m - kE0, out->north_m - kN0 - 280), 60);
+}
+
+TEST(ChartRoutingTest, LeadInsGoStraightOnOrTurnOnTheHullsCircle) {
+  LeadInOptions o;  // 20 s reaction, 400 m radius
+  const std::vector<LeadIn> c = LeadInCandidates({0, 0}, {0.0, 10.0}, M_PI, o);
+  ASSERT_EQ(c.size(), 6u);
+  // Straight on: 200 m (10 m/s for 20 s), then 1, 2 and 4 radii further.
+  EXPECT_EQ(c[0].points.back(), (EastNorth{0, 200}));
+  EXPECT_NEAR(c[3].points.back().north_m, 1800, 1e-9);
+  EXPECT_DOUBLE_EQ(c[3].end_course_rad, 0.0);
+  // Turned round to starboard (east) and to port (west) after 200 m.
+  const LeadIn& starboard = c[4];
+  EXPECT_NEAR(starboard.points.back().east_m, 800, 1e-6);
+  EXPECT_NEAR(starboard.points.back().north_m, 200, 1e-6);
+  EXPECT_NEAR(starboard.length_m, 200 + 400 * M_PI, 1e-6);
+  for (const EastNorth& p : starboard.points) EXPECT_GE(p.east_m, -1e-9);
+  const LeadIn& port = c[5];
+  EXPECT_NEAR(port.points.back().east_m, -800, 1e-6);
+  EXPECT_DOUBLE_EQ(port.end_course_rad, M_PI);
+  for (size_t i = 2; i < port.points.size(); ++i) {
+    EXPECT_NEAR(Distance(port.points[i], {-400, 200}), 400, 1e-6);
+  }
+}
+
+// A ship under way north at 9 m/s, 200 m west of an island, is sent to a
+// goal behind it. From rest the route would start southwards; under way it
+// starts on the ship's course and turns round on the side away from the
+// island (a starboard turn on a 400 m circle would cross it).
+TEST(ChartRoutingTest, AShipUnderWayGetsARouteThatStartsOnItsCourse) {
+  auto map = Island();
+  auto planner = route::RoutePlanner::Create(map, route::ShipParticulars{}, FastSettings().options);
+  ASSERT_TRUE(planner.ok()) << planner.status();
+  auto shared = std::make_shared<const route::RoutePlanner>(std::move(*planner));
+  ChartRouting routing(map->frame(), shared, route::Environment{});
+  RouteRequest req;
+  req.from_position = M(-500, 0);
+  req.to_position = M(0, -1500);
+  auto from_rest = routing.Plan(req, StopToken());
+  ASSERT_TRUE(from_rest.ok()) << from_rest.status();
+  const EastNorth first_leg = from_rest->waypoints[1].position - from_rest->waypoints[0].position;
+  EXPECT_LT(first_leg.north_m, 0) << "from rest the route leads off behind the ship";
+
+  req.start_motion = ShipMotion{0.0, 9.0};
+  auto under_way = routing.Plan(req, StopToken());
+  ASSERT_TRUE(under_way.ok()) << under_way.status();
+  const std::vector<RouteWaypoint>& w = under_way->waypoints;
+  ASSERT_GE(w.size(), 3u);
+  EXPECT_EQ(w.front().position, M(-500, 0));
+  const EastNorth lead = w[1].position - w[0].position;
+  EXPECT_NEAR(std::atan2(lead.east_m, lead.north_m), 0.0, 1e-6) << "straight on first";
+  EXPECT_GE(lead.Norm(), 9.0 * 20 - 1e-6) << "for the reaction time";
+  for (const RouteWaypoint& p : w) {
+    if (p.position.north_m > kN0) {
+      EXPECT_LT(p.position.east_m, kE0 - 500 + 1e-6) << "turned to port";
+    }
+  }
+  EXPECT_NEAR(w.back().position.north_m, kN0 - 1500, 1e-6);
+  double length = 0;
+  for (size_t i = 0; i + 1 < w.size(); ++i) {
+    EXPECT_FALSE(shared->field().SegmentHits(w[i].position, w[i + 1].position)) << "leg " << i;
+    length += Distance(w[i].position, w[i + 1].position);
+  }
+  EXPECT_NEAR(under_way->length_m, length, 1e-6);
+  // A ship at rest is routed as before.
+  req.start_motion = ShipMotion{0.0, 0.0};
+  auto rest_again = routing.Plan(req, StopToken());
+  ASSERT_TRUE(rest_again.ok());
+  EXPECT_DOUBLE_EQ(rest_again->length_m, from_rest->length_m);
 }
 
 }  // namespace

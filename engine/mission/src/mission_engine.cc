@@ -86,6 +86,7 @@ class Engine final : public MissionEngine {
       // A reported state is a full state: fuel 0 is an empty tank.
       if (runtime.last_report->position) ship.position = *runtime.last_report->position;
       ship.fuel_fraction = runtime.last_report->fuel_fraction;
+      ship.motion = runtime.last_report->motion;
     } else if (spec.initial_fuel_fraction > 0) {
       ship.fuel_fraction = spec.initial_fuel_fraction;
     }

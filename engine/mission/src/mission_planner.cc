@@ -14,8 +14,9 @@ namespace {
 StatusOr<PlanVersion> PlanRefineParse(const MissionDefinition& mission, std::string_view problem,
                                       const LocationTable& locations, int version,
                                       std::string reason, double origin_s,
-                                      const TemporalPlanner& planner, const RoutePlanner& router,
-                                      const StopToken& stop, NavigationLog* log) {
+                                      const RefineOptions& refine, const TemporalPlanner& planner,
+                                      const RoutePlanner& router, const StopToken& stop,
+                                      NavigationLog* log) {
   if (!planner) return absl::InvalidArgumentError("mission: no temporal planner given");
   if (log) log->Add(origin_s, messages::kComputingPlan);
   SEAPLAN_ASSIGN_OR_RETURN(PlannerOutcome outcome, planner(mission.domain, problem, stop));
@@ -27,15 +28,15 @@ StatusOr<PlanVersion> PlanRefineParse(const MissionDefinition& mission, std::str
   validate::Plan shifted = outcome.plan;
   for (validate::PlanStep& s : shifted.steps) s.start_s += origin_s;
   if (log) log->Add(origin_s, messages::kRefiningPlan);
-  SEAPLAN_ASSIGN_OR_RETURN(RefinedPlan refined, RefinePlan(mission.domain, problem, shifted,
-                                                           locations, router, mission.refine));
+  SEAPLAN_ASSIGN_OR_RETURN(RefinedPlan refined,
+                           RefinePlan(mission.domain, problem, shifted, locations, router, refine));
   if (log) log->Add(origin_s, messages::kParsingPlan);
   PlanVersion v;
   v.version = version;
   v.reason = std::move(reason);
   v.mission_time_origin_s = origin_s;
   v.makespan_s = refined.plan.steps.empty() ? origin_s : refined.makespan_s;
-  v.tasks = ParseTasks(refined, locations, mission.refine.moves, version);
+  v.tasks = ParseTasks(refined, locations, refine.moves, version);
   v.plan = std::move(refined.plan);
   v.problem = std::string(problem);
   v.quality = outcome.quality;
@@ -52,7 +53,7 @@ StatusOr<PlanVersion> PlanInitialVersion(const MissionDefinition& mission,
   SEAPLAN_RETURN_IF_ERROR(mission.refine.Validate());
   SEAPLAN_RETURN_IF_ERROR(mission.policy.Validate());
   return PlanRefineParse(mission, mission.problem, mission.locations, 1, "initial plan", 0.0,
-                         planner, router, stop, log);
+                         mission.refine, planner, router, stop, log);
 }
 
 StatusOr<ReplanResult> Replan(const MissionDefinition& mission, const PlanVersion& current,
@@ -90,10 +91,16 @@ StatusOr<ReplanResult> Replan(const MissionDefinition& mission, const PlanVersio
     if (log) log->Add(input.mission_time_s, messages::kMissionCompleted);
     return result;
   }
+  // A ship under way (a replan during a move) leaves where it is the way it
+  // is going; one at rest (or nearly) turns where it is.
+  RefineOptions refine = mission.refine;
+  if (input.ship.motion && input.ship.motion->speed_mps >= kUnderWaySpeedMps) {
+    refine.under_way = RefineOptions::UnderWayStart{regen.ship_location, *input.ship.motion};
+  }
   SEAPLAN_ASSIGN_OR_RETURN(
       PlanVersion v,
       PlanRefineParse(mission, regen.problem_text, regen.locations, current.version + 1,
-                      input.reason, input.mission_time_s, planner, router, stop, log));
+                      input.reason, input.mission_time_s, refine, planner, router, stop, log));
   if (log) log->Add(input.mission_time_s, messages::kReplanDone);
   result.version = std::move(v);
   return result;

@@ -75,6 +75,34 @@ TEST(MissionPlannerTest, ReplanShiftsToMissionTimeAndNumbersTheVersion) {
   EXPECT_NEAR(move.duration_s, std::hypot(600, 600) / 5.0, 1e-9);
   EXPECT_NEAR(r->version->tasks[1].start_s, move.end_s() + 0.001, 1e-9);
   EXPECT_GE(log.Find(messages::kReplanDone), 0);
+  // A ship under way: the move from where it is (and only that one) is
+  // routed from its course and speed; nearly stopped, from rest.
+  std::vector<RouteRequest> asked_routes;
+  const RoutePlanner straight = StraightLineRouter(5.0);
+  auto recording = [&](const RouteRequest& req) {
+    asked_routes.push_back(req);
+    return straight(req);
+  };
+  in.ship.motion = ShipMotion{1.2, 8.0};
+  ASSERT_TRUE(Replan(def, *v1, def.locations, in, FixedPlanner{rest, &asked}, recording,
+                     StopToken(), nullptr)
+                  .ok());
+  int with_motion = 0;
+  for (const RouteRequest& req : asked_routes) {
+    if (!req.start_motion) continue;
+    ++with_motion;
+    EXPECT_EQ(req.from, "port-s");
+    EXPECT_DOUBLE_EQ(req.start_motion->course_rad, 1.2);
+    EXPECT_DOUBLE_EQ(req.start_motion->speed_mps, 8.0);
+  }
+  EXPECT_GT(with_motion, 0);
+  EXPECT_LT(with_motion, static_cast<int>(asked_routes.size()));
+  asked_routes.clear();
+  in.ship.motion = ShipMotion{1.2, 0.5};
+  ASSERT_TRUE(Replan(def, *v1, def.locations, in, FixedPlanner{rest, &asked}, recording,
+                     StopToken(), nullptr)
+                  .ok());
+  for (const RouteRequest& req : asked_routes) EXPECT_FALSE(req.start_motion.has_value());
   // Unknown task ids are rejected.
   in.completed_task_ids = {"v9-t1"};
   EXPECT_TRUE(

@@ -353,6 +353,25 @@ StatusOr<RefinedPlan> RefinePlan(std::string_view domain_text, std::string_view 
     }
   }
 
+  // The first move from where the ship is under way starts with its motion.
+  size_t under_way_step = n;  // n: none
+  if (options.under_way) {
+    for (size_t i = 0; i < n; ++i) {
+      if (legs[i] && legs[i]->from == options.under_way->location &&
+          (under_way_step == n || plan.steps[i].start_s < plan.steps[under_way_step].start_s)) {
+        under_way_step = i;
+      }
+    }
+    // Only when the plan starts with it: after a port operation there the
+    // ship leaves from rest.
+    for (size_t i = 0; i < n && under_way_step < n; ++i) {
+      if (!legs[i] &&
+          plan.steps[i].start_s + options.epsilon_s < plan.steps[under_way_step].start_s) {
+        under_way_step = n;
+      }
+    }
+  }
+
   RefinedPlan result;
   std::vector<std::optional<Route>> routes(n);
   std::vector<double> starts(n);
@@ -366,6 +385,7 @@ StatusOr<RefinedPlan> RefinePlan(std::string_view domain_text, std::string_view 
                        locations.find(legs[i]->from)->second,
                        locations.find(legs[i]->to)->second,
                        starts[i]};
+      if (under_way_step == i) req.start_motion = options.under_way->motion;
       StatusOr<Route> route = route_planner(req);
       if (!route.ok()) {
         if (absl::IsNotFound(route.status()) || absl::IsFailedPrecondition(route.status())) {

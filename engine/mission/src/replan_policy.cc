@@ -15,6 +15,9 @@ Status ReplanPolicy::Validate() const {
   if (!(position_deviation_m > 0)) {
     return absl::InvalidArgumentError("replan policy: position_deviation_m must be > 0");
   }
+  if (!(avoidance_deviation_factor >= 1)) {
+    return absl::InvalidArgumentError("replan policy: avoidance_deviation_factor must be >= 1");
+  }
   if (!(delay_tolerance_s > 0)) {
     return absl::InvalidArgumentError("replan policy: delay_tolerance_s must be > 0");
   }
@@ -43,10 +46,14 @@ std::optional<std::string> DecideReplan(const Feedback& feedback, const PlanVers
   }
   if (feedback.position && active_task && active_task->kind == TaskKind::kMove &&
       active_task->route && feedback.kind != FeedbackKind::kTaskCompleted) {
-    double off = CrossTrackDistance(*active_task->route, *feedback.position);
-    if (off > policy.position_deviation_m) {
-      return absl::StrFormat("position %.0f m off the route of %s (limit %.0f m)", off,
-                             active_task->id, policy.position_deviation_m);
+    const double off = CrossTrackDistance(*active_task->route, *feedback.position);
+    const double limit_m = feedback.collision_avoidance_active
+                               ? policy.position_deviation_m * policy.avoidance_deviation_factor
+                               : policy.position_deviation_m;
+    if (off > limit_m) {
+      return absl::StrFormat(
+          "position %.0f m off the route of %s (limit %.0f m%s)", off, active_task->id, limit_m,
+          feedback.collision_avoidance_active ? " during collision avoidance" : "");
     }
   }
   if (policy.fuel_planned && feedback.fuel_fraction &&

@@ -53,6 +53,35 @@ TEST(ReplanPolicyTest, DeviationBeyondThresholdTriggers) {
   EXPECT_NE(reason->find("250 m off the route"), std::string::npos) << *reason;
 }
 
+// A give-way manoeuvre takes the ship 466 m off a route with a 350 m limit
+// while it sails on at full speed: replanning from there gave it a route
+// starting behind it, and its turning circle back to that route crossed an
+// islet. While its collision avoidance is active the ship is brought back by
+// its own path follower; only a deviation beyond 3 x the limit replans.
+TEST(ReplanPolicyTest, DeviationDuringCollisionAvoidanceWaitsForTheShipToRejoin) {
+  PlanVersion v = TwoTaskVersion(TaskKind::kLoad);
+  ReplanPolicy policy;
+  policy.position_deviation_m = 350;
+  Feedback avoiding{FeedbackKind::kPosition, "v2-t1", 2, 50, EastNorth{500, 466}, std::nullopt, ""};
+  avoiding.collision_avoidance_active = true;
+  EXPECT_FALSE(DecideReplan(avoiding, v, &v.tasks[0], policy));
+  // The same position without a manoeuvre is a deviation.
+  Feedback drifting = avoiding;
+  drifting.collision_avoidance_active = false;
+  auto drift = DecideReplan(drifting, v, &v.tasks[0], policy);
+  ASSERT_TRUE(drift);
+  EXPECT_NE(drift->find("466 m off the route of v2-t1 (limit 350 m)"), std::string::npos) << *drift;
+  // Far beyond what an avoidance manoeuvre takes: replanned all the same.
+  avoiding.position = EastNorth{500, 1100};
+  auto far = DecideReplan(avoiding, v, &v.tasks[0], policy);
+  ASSERT_TRUE(far);
+  EXPECT_NE(far->find("1100 m off the route of v2-t1 (limit 1050 m during collision avoidance)"),
+            std::string::npos)
+      << *far;
+  policy.avoidance_deviation_factor = 0.5;
+  EXPECT_FALSE(policy.Validate().ok());
+}
+
 TEST(ReplanPolicyTest, LowFuelTriggersOnlyWithoutRefuelAhead) {
   Feedback f{FeedbackKind::kTaskCompleted, "v2-t1", 2, 100, EastNorth{1000, 0}, 0.28, ""};
   PlanVersion with_refuel = TwoTaskVersion(TaskKind::kRefuel);

@@ -100,6 +100,12 @@ struct CollisionAvoidanceOptions {
   double slow_down_distance_m = 400.0;
   double min_approach_speed_mps = 1.0;
   double arrival_radius_m = 60.0;
+  // After a manoeuvre the ship is still off its path for traffic until it
+  // is back within this distance of it (Command::collision_avoidance_active):
+  // a mission planner that replans for the deviation meanwhile would route
+  // a ship under way from where its own path follower is already taking it
+  // back (and the new route can start behind it).
+  double rejoined_cross_track_m = 50.0;
   // Velocity-obstacle policy only: this hull's manoeuvrability (about 1 deg/s
   // at full rudder, ~20 s before the turn develops) and the path-ahead check
   // that slows the ship (x0.75, 0.5, 0.3) while a vessel would come within
@@ -142,6 +148,10 @@ struct Command {
   bool manoeuvring = false;  // differs from the desired motion because of traffic
   int vessel_id = -1;        // the vessel the manoeuvre is mainly for
   Role role = Role::kNone;
+  // Manoeuvring, or returning to the path after a manoeuvre until within
+  // options.rejoined_cross_track_m of it: the ship's deviation from its
+  // route is for traffic and is being corrected by the ship itself.
+  bool collision_avoidance_active = false;
   std::vector<Event> events;
 };
 
@@ -196,6 +206,7 @@ class CollisionAvoidance {
   double next_decision_s_ = -1e18;
   Behaviour behaviour_;  // the one commanded until the next decision
   bool manoeuvring_ = false;
+  bool rejoining_ = false;  // a manoeuvre ended; the ship is not back on its path yet
   int manoeuvre_vessel_ = -1;
   Role manoeuvre_role_ = Role::kNone;
   std::map<int, Role> roles_;      // fixed per encounter

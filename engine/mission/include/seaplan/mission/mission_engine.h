@@ -58,6 +58,7 @@ struct NamedPosition {
 struct ShipReport {
   std::optional<EastNorth> position;  // local frame
   double fuel_fraction = 0.0;
+  std::optional<ShipMotion> motion;  // course and speed over ground
 };
 
 struct MissionSpec {

@@ -57,6 +57,10 @@ StatusOr<PlanVersion> PlanInitialVersion(const MissionDefinition& mission,
                                          const TemporalPlanner& planner, const RoutePlanner& router,
                                          const StopToken& stop, NavigationLog* log);
 
+// A ship reported at this speed or more is under way: a replan routes its
+// next move from its motion (RefineOptions::under_way), not from rest.
+inline constexpr double kUnderWaySpeedMps = 1.0;
+
 struct ReplanInput {
   std::string reason;
   double mission_time_s = 0.0;  // now; the new version starts here

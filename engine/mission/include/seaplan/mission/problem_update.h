@@ -43,6 +43,7 @@ namespace seaplan::mission {
 struct ShipObservation {
   EastNorth position;
   std::optional<double> fuel_fraction;  // 0..1
+  std::optional<ShipMotion> motion;     // as reported; the problem does not use it
 };
 
 struct RegenerationOptions {

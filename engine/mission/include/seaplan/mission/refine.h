@@ -38,6 +38,10 @@ struct RouteRequest {
   EastNorth from_position;
   EastNorth to_position;
   double depart_s = 0.0;  // mission time of departure (scheduled)
+  // Set when the move starts where the ship is, under way (a replan during
+  // a move): the route must begin the way the ship is going, since a hull
+  // at speed cannot turn on the spot. nullopt: the ship starts from rest.
+  std::optional<ShipMotion> start_motion;
 };
 
 // Route-planning callback. Returns the route to sail; NotFound or
@@ -79,6 +83,13 @@ struct RefineOptions {
   // Durations of port operations by action name (lower case), overriding the
   // plan's (e.g. measured crane times). Empty: keep the plan's durations.
   std::map<std::string, double> port_operation_durations_s;
+  // The ship is under way at `location` (a replan during a move): the first
+  // move of the plan from there is requested with this start motion.
+  struct UnderWayStart {
+    std::string location;
+    ShipMotion motion;
+  };
+  std::optional<UnderWayStart> under_way;
 
   Status Validate() const;
 };

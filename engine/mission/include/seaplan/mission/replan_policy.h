@@ -17,7 +17,14 @@ namespace seaplan::mission {
 struct ReplanPolicy {
   double fuel_threshold_fraction = 0.3;  // replan when fuel <= this
   double position_deviation_m = 200.0;   // off the current move's route by more
-  double delay_tolerance_s = 120.0;      // a task completes later than planned by more
+  // While the ship reports collision avoidance active (manoeuvring for
+  // traffic or returning to its route after it) it is off its route on
+  // purpose and its own path follower is taking it back; a route replanned
+  // then would start where a ship under way can no longer follow it (behind
+  // it, round an obstacle it is already passing). The position trigger then
+  // waits until the deviation exceeds this factor times position_deviation_m.
+  double avoidance_deviation_factor = 3.0;
+  double delay_tolerance_s = 120.0;  // a task completes later than planned by more
   // The domain tracks fuel itself (a numeric fuel fluent, DomainPlansFuel):
   // the plan already schedules the refuelling stops, so low fuel triggers a
   // replan only when the tank is empty (the plan did not hold).
@@ -44,6 +51,9 @@ struct Feedback {
   std::optional<EastNorth> position;
   std::optional<double> fuel_fraction;
   std::string detail;
+  // The ship is manoeuvring for traffic or rejoining its route after a
+  // manoeuvre (its collision avoidance says so with each report).
+  bool collision_avoidance_active = false;
 };
 
 // Fuel at or below the threshold, with a tolerance of 1e-6 of the tank: a

@@ -23,6 +23,13 @@ namespace seaplan::mission {
 // Positions of the PDDL location objects (names lower case).
 using LocationTable = std::map<std::string, EastNorth, std::less<>>;
 
+// How a ship under way moves: course over ground (clockwise from north)
+// and speed. A replan that starts where the ship is starts with it.
+struct ShipMotion {
+  double course_rad = 0.0;
+  double speed_mps = 0.0;
+};
+
 // Machinery-system operating mode of a route segment (paper 002).
 enum class MsoMode { kUnspecified, kPto, kMec, kPti };
 std::string_view MsoModeName(MsoMode mode);  // "PTO", "MEC", "PTI", "-"
