@@ -42,6 +42,7 @@
 #include "seaplan/chart/obstacle_map.h"
 #include "seaplan/common/log.h"
 #include "sim_client.h"
+#include "tls_channel.h"
 
 namespace {
 
@@ -51,6 +52,7 @@ constexpr double kDeg = M_PI / 180.0;
 
 struct Flags {
   std::string server = "127.0.0.1:50051";
+  client::TlsFiles tls;
   std::string scenario;
   std::string mission_id;
   std::string report_dir = "sim-report";
@@ -297,6 +299,7 @@ int main(int argc, char** argv) {
       "seaplan-sim: simulate the onboard side of a mission against a seaplan server (gRPC)"};
   app.add_option("--server", f.server, "seaplan-server gRPC address HOST:PORT")
       ->capture_default_str();
+  client::AddTlsOptions(app, &f.tls);
   app.add_option("--scenario", f.scenario, "scenario file (examples/scenarios/*.scenario)")
       ->required();
   app.add_option("--mission-id", f.mission_id,
@@ -354,6 +357,12 @@ int main(int argc, char** argv) {
     return 1;
   }
   log::SetLevel(level);
+  // Bad TLS files are bad flags: said before any work.
+  auto credentials = client::ChannelCredentials(f.tls);
+  if (!credentials.ok()) {
+    std::fprintf(stderr, "seaplan-sim: %s\n", std::string(credentials.status().message()).c_str());
+    return 1;
+  }
 
   auto scenario = sim::LoadScenario(f.scenario);
   if (!scenario.ok()) {
@@ -419,7 +428,7 @@ int main(int argc, char** argv) {
   if (!executor.ok()) return fail(executor.status());
   mission::LocationTable locations = sim::LocalLocations(*scenario, frame);
 
-  sim::SimClient client(f.server);
+  sim::SimClient client(f.server, *credentials);
   {
     std::error_code ec;
     std::filesystem::create_directories(f.report_dir, ec);

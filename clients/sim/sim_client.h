@@ -47,7 +47,8 @@ struct FeedbackAck {
 
 class SimClient {
  public:
-  explicit SimClient(const std::string& address);
+  // `credentials`: plaintext or TLS (clients/common/tls_channel.h).
+  SimClient(const std::string& address, std::shared_ptr<grpc::ChannelCredentials> credentials);
   ~SimClient();
 
   absl::StatusOr<v1::Mission> CreateMission(const v1::MissionSpec& spec,

@@ -6,6 +6,7 @@
 #include "absl/strings/str_format.h"
 #include "seaplan/common/log.h"
 #include "seaplan/mission/mission_state.h"
+#include "server/core/caller_limits.h"
 #include "server/core/convert.h"
 
 namespace seaplan::server {
@@ -203,7 +204,7 @@ absl::StatusOr<v1::Mission> MissionCoordinator::CreateMission(
   SEAPLAN_RETURN_IF_ERROR(adapter_.CheckSpec(spec));
   absl::StatusOr<PlannedVersion> planned = absl::UnknownError("mission planning did not run");
   SEAPLAN_RETURN_IF_ERROR(pool_.Run([&] { planned = adapter_.PlanInitial(spec, ctx.stop); },
-                                    [&] { ctx.ForwardCancellation(); }));
+                                    ctx.stop, [&] { ctx.ForwardCancellation(); }));
   if (ctx.stop.StopRequested())
     return StopStatus(ctx.stop, root_.StopRequested(), "mission planning");
   if (!planned.ok()) return planned.status();
@@ -291,6 +292,13 @@ absl::StatusOr<v1::Mission> MissionCoordinator::CancelMission(
   return MissionFromRecord(record);
 }
 
+absl::Status MissionCoordinator::CheckVesselCaller(const CallContext& ctx,
+                                                   const std::string& mission_id) {
+  if (ctx.client_cert_subject.empty()) return absl::OkStatus();
+  SEAPLAN_ASSIGN_OR_RETURN(storage::MissionRecord record, repo_.Get(mission_id));
+  return CheckVesselCertificate(ctx, record.vessel_id, mission_id);
+}
+
 absl::Status MissionCoordinator::WatchMission(const v1::WatchMissionRequest& request,
                                               const CallContext& ctx,
                                               const StreamSink<v1::MissionEvent>& sink) {
@@ -300,6 +308,7 @@ absl::Status MissionCoordinator::WatchMission(const v1::WatchMissionRequest& req
     return absl::InvalidArgumentError("after_version and after_event_id must not be negative");
   }
   SEAPLAN_RETURN_IF_ERROR(repo_.Get(id).status());  // NotFound before anything is sent
+  SEAPLAN_RETURN_IF_ERROR(CheckVesselCaller(ctx, id));
   int last_version = request.after_version();
   std::int64_t last_event = request.after_event_id();
   int last_state_sent = -1;
@@ -364,12 +373,14 @@ absl::Status MissionCoordinator::WatchMission(const v1::WatchMissionRequest& req
 }
 
 absl::StatusOr<v1::ReportFeedbackResponse> MissionCoordinator::ReportFeedback(
-    const v1::ReportFeedbackRequest& request, const CallContext&) {
+    const v1::ReportFeedbackRequest& request, const CallContext& ctx) {
   const std::string& id = request.mission_id();
   if (id.empty()) return absl::InvalidArgumentError("mission_id is empty");
   if (request.vessel_id().empty()) return absl::InvalidArgumentError("vessel_id is empty");
   if (request.sequence_number() < 0)
     return absl::InvalidArgumentError("sequence_number must not be negative");
+  SEAPLAN_RETURN_IF_ERROR(CheckVesselCertificate(ctx, request.vessel_id(), id));
+  SEAPLAN_RETURN_IF_ERROR(CheckVesselCaller(ctx, id));
   v1::ReportFeedbackResponse response;
   // A retry of a stored report: answer "duplicate" and change nothing.
   SEAPLAN_ASSIGN_OR_RETURN(auto existing,
@@ -526,6 +537,7 @@ absl::StatusOr<v1::RequestReplanResponse> MissionCoordinator::RequestReplan(
   const std::string& id = request.mission_id();
   if (id.empty()) return absl::InvalidArgumentError("mission_id is empty");
   SEAPLAN_ASSIGN_OR_RETURN(storage::MissionRecord record, repo_.Get(id));
+  SEAPLAN_RETURN_IF_ERROR(CheckVesselCertificate(ctx, record.vessel_id, id));
   if (IsFinalState(record.state)) {
     return absl::FailedPreconditionError(
         absl::StrCat("mission '", id, "' is ", StateName(record.state), "; nothing to replan"));
@@ -538,7 +550,7 @@ absl::StatusOr<v1::RequestReplanResponse> MissionCoordinator::RequestReplan(
   auto version = Replan(
       id, reason, ctx.stop,
       [&](std::function<void()> work) {
-        return pool_.Run(std::move(work), [&] { ctx.ForwardCancellation(); });
+        return pool_.Run(std::move(work), ctx.stop, [&] { ctx.ForwardCancellation(); });
       },
       &stopped);
   if (stopped) return StopStatus(ctx.stop, root_.StopRequested(), "replanning");

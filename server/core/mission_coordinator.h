@@ -102,6 +102,10 @@ class MissionCoordinator {
                                             const CallContext& ctx);
   // Ends OK when the mission reached a final state and everything was sent;
   // Unavailable when the server shuts down; Cancelled when the client left.
+  // A caller with a vessel's client certificate acts only on that vessel's
+  // missions: PermissionDenied otherwise (OK without a certificate).
+  absl::Status CheckVesselCaller(const CallContext& ctx, const std::string& mission_id);
+
   absl::Status WatchMission(const v1::WatchMissionRequest& request, const CallContext& ctx,
                             const StreamSink<v1::MissionEvent>& sink);
   absl::StatusOr<v1::ReportFeedbackResponse> ReportFeedback(

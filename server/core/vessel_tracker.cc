@@ -5,6 +5,7 @@
 #include <thread>
 
 #include "absl/strings/str_cat.h"
+#include "server/core/caller_limits.h"
 
 namespace seaplan::server {
 namespace {
@@ -21,7 +22,6 @@ VesselTracker::VesselTracker(storage::MissionRepository& repo, Options options)
 
 absl::StatusOr<v1::ReportVesselStateResponse> VesselTracker::ReportVesselState(
     const v1::ReportVesselStateRequest& request, const CallContext& ctx) {
-  (void)ctx;
   if (request.mission_id().empty()) return absl::InvalidArgumentError("mission_id is empty");
   if (!request.has_state() || !request.state().has_position())
     return absl::InvalidArgumentError("state.position is missing");
@@ -46,6 +46,7 @@ absl::StatusOr<v1::ReportVesselStateResponse> VesselTracker::ReportVesselState(
     SEAPLAN_ASSIGN_OR_RETURN(storage::MissionRecord record, repo_.Get(request.mission_id()));
     vessel_id = record.vessel_id.empty() ? request.vessel_id() : record.vessel_id;
   }
+  SEAPLAN_RETURN_IF_ERROR(CheckVesselCertificate(ctx, vessel_id, request.mission_id()));
   if (!request.vessel_id().empty() && request.vessel_id() != vessel_id) {
     return absl::PermissionDeniedError(absl::StrCat("vessel ", request.vessel_id(),
                                                     " does not sail mission ", request.mission_id(),
@@ -114,6 +115,8 @@ absl::Status VesselTracker::WatchMission(MissionCoordinator& missions,
                                          const v1::WatchMissionRequest& request,
                                          const CallContext& ctx,
                                          const StreamSink<v1::MissionEvent>& sink) {
+  // Before the live picture starts: it must not reach another vessel.
+  SEAPLAN_RETURN_IF_ERROR(missions.CheckVesselCaller(ctx, request.mission_id()));
   // Two writers (the coordinator's loop and the pusher below) share the sink.
   std::mutex sink_mu;
   bool sink_open = true;

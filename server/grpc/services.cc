@@ -1,5 +1,12 @@
 #include "server/grpc/services.h"
 
+#include <grpcpp/security/auth_context.h>
+
+#include <string>
+#include <string_view>
+
+#include "server/core/caller_limits.h"
+#include "server/core/status_details.h"
 #include "server/grpc/status_mapping.h"
 
 namespace seaplan::server {
@@ -16,7 +23,27 @@ StopToken::Clock::time_point Deadline(const grpc::ServerContext* ctx) {
 }
 
 CallContext MakeCall(ServiceCore& core, grpc::ServerContext* ctx) {
-  return core.NewCall("grpc", Deadline(ctx), [ctx] { return ctx->IsCancelled(); });
+  CallContext call = core.NewCall("grpc", Deadline(ctx), [ctx] { return ctx->IsCancelled(); });
+  std::string_view authorization;
+  const auto& metadata = ctx->client_metadata();
+  if (auto it = metadata.find("authorization"); it != metadata.end())
+    authorization = std::string_view(it->second.data(), it->second.size());
+  call.caller_key = CallerKey(authorization, ctx->peer());
+  // Set only for a certificate the server verified against its client CA.
+  if (auto auth = ctx->auth_context(); auth && auth->IsPeerAuthenticated()) {
+    for (const auto& cn : auth->FindPropertyValues(GRPC_X509_CN_PROPERTY_NAME)) {
+      call.client_cert_subject.assign(cn.data(), cn.size());
+      break;
+    }
+  }
+  return call;
+}
+
+// The status to return; a refusal says when to retry (trailing metadata).
+grpc::Status Finish(grpc::ServerContext* ctx, const absl::Status& status) {
+  if (auto retry_after = GetRetryAfter(status))
+    ctx->AddTrailingMetadata("retry-after-ms", std::to_string(retry_after->count()));
+  return ToGrpcStatus(status);
 }
 
 template <typename Response, typename Fn>
@@ -24,11 +51,14 @@ grpc::Status Unary(ServiceCore& core, const char* method, grpc::ServerContext* c
                    Fn&& fn) {
   const auto started = StopToken::Clock::now();
   CallContext call = MakeCall(core, ctx);
-  absl::StatusOr<Response> result = fn(call);
-  absl::Status status = result.status();
-  if (result.ok()) *out = std::move(*result);
+  absl::Status status = core.Admit(call);
+  if (status.ok()) {
+    absl::StatusOr<Response> result = fn(call);
+    status = result.status();
+    if (result.ok()) *out = std::move(*result);
+  }
   LogCall("grpc", method, status, started);
-  return ToGrpcStatus(status);
+  return Finish(ctx, status);
 }
 
 template <typename Event, typename Fn>
@@ -37,9 +67,10 @@ grpc::Status Stream(ServiceCore& core, const char* method, grpc::ServerContext* 
   const auto started = StopToken::Clock::now();
   CallContext call = MakeCall(core, ctx);
   StreamSink<Event> sink = [writer](const Event& event) { return writer->Write(event); };
-  absl::Status status = fn(call, sink);
+  absl::Status status = core.Admit(call);
+  if (status.ok()) status = fn(call, sink);
   LogCall("grpc", method, status, started);
-  return ToGrpcStatus(status);
+  return Finish(ctx, status);
 }
 
 }  // namespace

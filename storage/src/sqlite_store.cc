@@ -122,8 +122,22 @@ absl::Status SqliteError(sqlite3* db, int rc, const char* what) {
     case SQLITE_BUSY:
     case SQLITE_LOCKED:
       return absl::UnavailableError(msg);
+    // The disk, not the request: the transaction was rolled back whole and
+    // the same call succeeds once an operator fixed the storage.
     case SQLITE_FULL:
-      return absl::ResourceExhaustedError(msg);
+      return absl::UnavailableError(
+          absl::StrCat(msg,
+                       " (the database's disk is full: nothing was stored; free space and "
+                       "retry)"));
+    case SQLITE_READONLY:
+      return absl::UnavailableError(
+          absl::StrCat(msg,
+                       " (the database is read-only: nothing was stored; make its file and folder "
+                       "writable and retry)"));
+    case SQLITE_IOERR:
+    case SQLITE_CANTOPEN:
+      return absl::UnavailableError(absl::StrCat(
+          msg, " (the database's storage failed: nothing was stored; check the disk and retry)"));
     default:
       return absl::InternalError(msg);
   }

@@ -123,10 +123,20 @@ InProcessServer::InProcessServer(std::shared_ptr<mission::MissionEngine> engine,
   auto store = storage::SqliteStore::Open((dir_.path() / "seaplan.db").string());
   EXPECT_TRUE(store.ok()) << store.status();
   store_ = std::move(*store);
-  Start(std::move(engine), planning_threads);
+  Start(std::move(engine), planning_threads, {});
 }
 
-void InProcessServer::Start(std::shared_ptr<mission::MissionEngine> engine, int planning_threads) {
+InProcessServer::InProcessServer(std::shared_ptr<mission::MissionEngine> engine,
+                                 int planning_threads,
+                                 const std::function<void(ServerOptions&)>& configure) {
+  auto store = storage::SqliteStore::Open((dir_.path() / "seaplan.db").string());
+  EXPECT_TRUE(store.ok()) << store.status();
+  store_ = std::move(*store);
+  Start(std::move(engine), planning_threads, configure);
+}
+
+void InProcessServer::Start(std::shared_ptr<mission::MissionEngine> engine, int planning_threads,
+                            const std::function<void(ServerOptions&)>& configure) {
   ServerOptions options;
   options.grpc_address = "127.0.0.1:0";
   options.http_address = "127.0.0.1:0";
@@ -134,14 +144,21 @@ void InProcessServer::Start(std::shared_ptr<mission::MissionEngine> engine, int 
   options.core.planning_threads = planning_threads;
   options.core.missions.watch_poll = std::chrono::milliseconds(20);
   options.shutdown_grace = std::chrono::milliseconds(500);
+  if (configure) {
+    configure(options);
+  }
   auto server = Server::Start(options, *store_, std::move(engine));
-  EXPECT_TRUE(server.ok()) << server.status();
+  start_status_ = server.status();
+  if (!configure) {
+    EXPECT_TRUE(server.ok()) << server.status();
+  }
+  if (!server.ok()) return;
   server_ = std::move(*server);
   channel_ = grpc::CreateChannel(grpc_target(), grpc::InsecureChannelCredentials());
 }
 
 InProcessServer::~InProcessServer() {
-  server_->Shutdown();
+  if (server_) server_->Shutdown();
   server_.reset();
   EXPECT_TRUE(store_->Close().ok());
 }

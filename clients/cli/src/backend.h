@@ -15,6 +15,7 @@
 #include "seaplan/v1/mission.pb.h"
 #include "seaplan/v1/planning.pb.h"
 #include "seaplan/v1/route.pb.h"
+#include "tls_channel.h"
 
 namespace seaplan::cli {
 
@@ -56,7 +57,9 @@ class Backend {
 };
 
 // A server at `address` (host:port). `timeout_s` <= 0 means no deadline.
-std::unique_ptr<Backend> MakeRemoteBackend(const std::string& address, double timeout_s);
+// `tls`: plaintext or TLS to the server (clients/common/tls_channel.h).
+std::unique_ptr<Backend> MakeRemoteBackend(const std::string& address, double timeout_s,
+                                           const client::TlsFiles& tls);
 
 // The server core in-process, with charts kept in memory for the call.
 std::unique_ptr<Backend> MakeLocalBackend();

@@ -11,7 +11,9 @@ int main(int argc, char** argv) {
   using namespace seaplan::cli;
   CliExecutable executable;
   executable.runs = [](const std::string&, const std::string& server) { return server.empty(); };
-  executable.make_backend = [](const std::string&, double) { return MakeLocalBackend(); };
+  executable.make_backend = [](const std::string&, double, const seaplan::client::TlsFiles&) {
+    return MakeLocalBackend();
+  };
   executable.hand_over = [](const std::string& command, const std::string&, char**) {
     std::cerr << "error: seaplan-charts runs " << command
               << " in-process: without --server, or run seaplan\n";

@@ -24,6 +24,7 @@ struct GlobalOptions {
   std::string server;  // empty: in-process
   bool json = false;
   double timeout_s = 0;
+  client::TlsFiles tls;
   const CliExecutable* executable = nullptr;
 };
 
@@ -65,7 +66,7 @@ absl::Status ParseLatLon(const std::string& text, v1::LatLon* position) {
 }
 
 std::unique_ptr<Backend> MakeBackend(const GlobalOptions& options) {
-  return options.executable->make_backend(options.server, options.timeout_s);
+  return options.executable->make_backend(options.server, options.timeout_s, options.tls);
 }
 
 void PrintJsonOr(const GlobalOptions& options, const google::protobuf::Message& message,
@@ -526,6 +527,7 @@ int RunCli(int argc, char** argv, const CliExecutable& executable) {
                  "Server address host:port (env SEAPLAN_SERVER); in-process when empty");
   app.add_flag("--json", options.json, "Machine-readable JSON output");
   app.add_option("--timeout", options.timeout_s, "RPC deadline in seconds (0: none)");
+  client::AddTlsOptions(app, &options.tls);
   std::string log_level = "warn";
   app.add_option("--log-level", log_level, "debug, info, warn, error or off (in-process work)")
       ->capture_default_str();
@@ -535,6 +537,8 @@ int RunCli(int argc, char** argv, const CliExecutable& executable) {
       throw CLI::ValidationError("--log-level", "expected debug, info, warn, error or off");
     }
     log::SetLevel(level);
+    if (absl::Status tls = client::CheckTlsFiles(options.tls); !tls.ok())
+      throw CLI::ValidationError(std::string(tls.message()));
   });
 
   int exit_code = kExitSuccess;

@@ -15,6 +15,7 @@
 #include <string>
 
 #include "backend.h"
+#include "tls_channel.h"
 
 namespace seaplan::cli {
 
@@ -22,8 +23,11 @@ struct CliExecutable {
   // Whether this executable runs `command` ("plan", "chart upload", ...)
   // against `server` (empty: in-process).
   std::function<bool(const std::string& command, const std::string& server)> runs;
-  // The backend of a command it runs (`timeout_s` <= 0: no deadline).
-  std::function<std::unique_ptr<Backend>(const std::string& server, double timeout_s)> make_backend;
+  // The backend of a command it runs (`timeout_s` <= 0: no deadline; `tls`
+  // checked with client::CheckTlsFiles).
+  std::function<std::unique_ptr<Backend>(const std::string& server, double timeout_s,
+                                         const client::TlsFiles& tls)>
+      make_backend;
   // Runs the whole command line `argv` in the executable that runs
   // `command`; returns an exit code only when that cannot be done.
   std::function<int(const std::string& command, const std::string& server, char** argv)> hand_over;

@@ -1,4 +1,6 @@
 #include <chrono>
+#include <cstdlib>
+#include <iostream>
 
 #include "absl/strings/cord.h"
 #include "backend.h"
@@ -25,8 +27,9 @@ absl::Status FromGrpc(const grpc::Status& status) {
 
 class RemoteBackend final : public Backend {
  public:
-  RemoteBackend(const std::string& address, double timeout_s)
-      : channel_(grpc::CreateChannel(address, grpc::InsecureChannelCredentials())),
+  RemoteBackend(const std::string& address, double timeout_s,
+                std::shared_ptr<grpc::ChannelCredentials> credentials)
+      : channel_(grpc::CreateChannel(address, std::move(credentials))),
         planning_(v1::PlanningService::NewStub(channel_)),
         charts_(v1::ChartService::NewStub(channel_)),
         routes_(v1::RouteService::NewStub(channel_)),
@@ -135,8 +138,16 @@ class RemoteBackend final : public Backend {
 
 }  // namespace
 
-std::unique_ptr<Backend> MakeRemoteBackend(const std::string& address, double timeout_s) {
-  return std::make_unique<RemoteBackend>(address, timeout_s);
+std::unique_ptr<Backend> MakeRemoteBackend(const std::string& address, double timeout_s,
+                                           const client::TlsFiles& tls) {
+  auto credentials = client::ChannelCredentials(tls);
+  if (!credentials.ok()) {
+    // RunCli checked the files before any command ran: only a file changed
+    // in between gets here.
+    std::cerr << "error: " << credentials.status().message() << "\n";
+    std::exit(kExitBadInput);
+  }
+  return std::make_unique<RemoteBackend>(address, timeout_s, *std::move(credentials));
 }
 
 }  // namespace seaplan::cli

@@ -41,7 +41,9 @@ int main(int argc, char** argv) {
   using namespace seaplan::cli;
   CliExecutable executable;
   executable.runs = RunsHere;
-  executable.make_backend = [](const std::string&, double) { return MakePlanningBackend(); };
+  executable.make_backend = [](const std::string&, double, const seaplan::client::TlsFiles&) {
+    return MakePlanningBackend();
+  };
   executable.hand_over = HandOver;
   return RunCli(argc, argv, executable);
 }
