@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <cstdint>
+#include <cstdio>
 #include <cstdlib>
 #include <memory>
 #include <string>
@@ -65,12 +66,21 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   if (!MessageToJson(*request, &json).ok()) std::abort();
   std::unique_ptr<google::protobuf::Message> again(prototype->New());
   if (!MessageFromJson(json, again.get()).ok()) std::abort();
-  // Values, not bits: protobuf prints -0.0 as 0 (equal values); NaN is
-  // never equal to itself, so NaNs compare equal here.
+  // Values, not bits: NaN is never equal to itself, so NaNs compare equal
+  // here.
   google::protobuf::util::DefaultFieldComparator comparator;
   comparator.set_treat_nan_as_equal(true);
   google::protobuf::util::MessageDifferencer differencer;
   differencer.set_field_comparator(&comparator);
-  if (!differencer.Compare(*request, *again)) std::abort();
+  // "-0" parses back as +0, which proto3 does not store: unset and default
+  // are the same value.
+  differencer.set_message_field_comparison(google::protobuf::util::MessageDifferencer::EQUIVALENT);
+  std::string differences;
+  differencer.ReportDifferencesToString(&differences);
+  if (!differencer.Compare(*request, *again)) {
+    std::fprintf(stderr, "JSON round trip changed the message:\n%s\nprinted: %s\n",
+                 differences.c_str(), json.c_str());
+    std::abort();
+  }
   return 0;
 }

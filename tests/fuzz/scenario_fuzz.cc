@@ -8,8 +8,14 @@
 #include <string_view>
 
 #include "scenario.h"
+#include "seaplan/common/log.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  static const bool quiet = [] {
+    seaplan::log::SetLevel(seaplan::log::Level::kOff);  // a line per input drowns the fuzzer's
+    return true;
+  }();
+  (void)quiet;
   const std::string_view text(reinterpret_cast<const char*>(data), size);
   auto scenario = seaplan::sim::ParseScenario(text, "/fuzz/run.scenario");
   if (!scenario.ok()) {

@@ -105,6 +105,16 @@ bool ReadPorts(const std::filesystem::path& file, int* grpc_port, int* http_port
   return *grpc_port > 0 && *http_port > 0;
 }
 
+// Waits up to 20 s for the server's port file; fails if the server exits.
+void WaitForPorts(Child& child, const std::filesystem::path& port_file, int* grpc_port,
+                  int* http_port) {
+  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  while (!ReadPorts(port_file, grpc_port, http_port) && std::chrono::steady_clock::now() < until) {
+    ASSERT_EQ(waitpid(child.pid(), nullptr, WNOHANG), 0) << "server exited early";
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+}
+
 TEST(ServerBinaryTest, ServesBothTransportsAndShutsDownCleanlyOnSigterm) {
   const std::filesystem::path binary = seaplan::testing::BinDir() / "seaplan-server";
   if (!std::filesystem::exists(binary)) GTEST_SKIP() << binary << " not built";
@@ -115,12 +125,7 @@ TEST(ServerBinaryTest, ServesBothTransportsAndShutsDownCleanlyOnSigterm) {
                "--data-dir", data_dir.string(), "--port-file", port_file.string(), "--log-level",
                "warn", "--planning-threads", "1"});
   int grpc_port = 0, http_port = 0;
-  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(20);
-  while (!ReadPorts(port_file, &grpc_port, &http_port) &&
-         std::chrono::steady_clock::now() < until) {
-    ASSERT_EQ(waitpid(child.pid(), nullptr, WNOHANG), 0) << "server exited early";
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
+  ASSERT_NO_FATAL_FAILURE(WaitForPorts(child, port_file, &grpc_port, &http_port));
   ASSERT_GT(grpc_port, 0) << "no port file";
 
   auto channel = grpc::CreateChannel("127.0.0.1:" + std::to_string(grpc_port),
@@ -284,12 +289,7 @@ TEST(ServerBinaryTest, TlsServerAnswersTheCliGivenTheCaCertificate) {
                "--log-level", "warn", "--tls-cert", d + "/server.pem", "--tls-key",
                d + "/server.key"});
   int grpc_port = 0, http_port = 0;
-  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(20);
-  while (!ReadPorts(port_file, &grpc_port, &http_port) &&
-         std::chrono::steady_clock::now() < until) {
-    ASSERT_EQ(waitpid(child.pid(), nullptr, WNOHANG), 0) << "server exited early";
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
+  ASSERT_NO_FATAL_FAILURE(WaitForPorts(child, port_file, &grpc_port, &http_port));
   ASSERT_GT(grpc_port, 0);
   const std::string server = " --server 127.0.0.1:" + std::to_string(grpc_port) + " --timeout 20";
   const std::string cli = (bin / "seaplan").string();
