@@ -189,7 +189,7 @@ TEST(LimitsE2eTest, RequestsAskingForMoreThanTheServersBudgetsAreRefused) {
       s.http().Post("/v1/RouteService/PlanRoute",
                     "{\"chartId\":\"any\",\"start\":{\"latitudeDeg\":63.44,\"longitudeDeg\":10.33},"
                     "\"goal\":{\"latitudeDeg\":63.45,\"longitudeDeg\":10.35},"
-                    "\"options\":{\"particles\":100000,\"iterations\":10000}}",
+                    "\"options\":{\"particles\":1000,\"iterations\":1000}}",
                     "application/json");
   ASSERT_TRUE(res);
   EXPECT_EQ(res->status, 400) << res->body;

@@ -78,8 +78,8 @@ class TestPki {
   }
   bool Issue(const std::string& ca, const std::string& name, const std::string& cn,
              const std::string& extension) const {
-    return Run("printf '%s\\n' '" + extension + "' > " + name + ".ext") &&
-           Run("openssl req -newkey ec -pkeyopt ec_paramgen_curve:prime256v1 -nodes -keyout " +
+    std::ofstream(dir_.path() / (name + ".ext")) << extension << "\n";
+    return Run("openssl req -newkey ec -pkeyopt ec_paramgen_curve:prime256v1 -nodes -keyout " +
                name + ".key -out " + name + ".csr -subj '/CN=" + cn + "'") &&
            Run("openssl x509 -req -in " + name + ".csr -CA " + ca + ".pem -CAkey " + ca +
                ".key -CAcreateserial -days 2 -out " + name + ".pem -extfile " + name + ".ext");
@@ -126,7 +126,8 @@ TEST(TlsE2eTest, BothTransportsServeTlsAndRefusePlaintextClients) {
   EXPECT_TRUE(over_tls.ok()) << over_tls.error_message();
   auto https = pki.Https(s.http_port());
   auto res = https->Post("/v1/MissionService/ListMissions", "{}", "application/json");
-  ASSERT_TRUE(res) << httplib::to_string(res.error());
+  ASSERT_TRUE(res) << httplib::to_string(res.error())
+                   << " verify=" << https->get_openssl_verify_result();
   EXPECT_EQ(res->status, 200) << res->body;
   auto health = https->Get("/healthz");
   ASSERT_TRUE(health);
