@@ -31,8 +31,9 @@ std::string_view PeerHost(std::string_view peer) {
 
 std::string CallerKey(std::string_view authorization, std::string_view peer) {
   if (!authorization.empty()) {
-    return absl::StrCat("credentials:",
-                        absl::Hex(absl::Hash<std::string>{}(std::string(authorization)), absl::kZeroPad16));
+    return absl::StrCat(
+        "credentials:",
+        absl::Hex(absl::Hash<std::string>{}(std::string(authorization)), absl::kZeroPad16));
   }
   return absl::StrCat("address:", std::string(PeerHost(peer)));
 }
