@@ -1,6 +1,11 @@
 # seaplan server image: a thin wrapper over the tested scripts.
 #   docker build -t seaplan .
-#   docker run -p 50051:50051 -p 8080:8080 -v seaplan-data:/data seaplan
+#   docker run -p 50051:50051 -p 8443:8080 -v seaplan-data:/data -v /etc/seaplan/tls:/tls:ro seaplan
+# The server listens on all interfaces inside the container, so it serves
+# only with TLS: /tls must hold server.pem (certificate chain) and server.key
+# (server/README.md shows how to make them). A trial on a trusted host
+# without certificates: add -e SEAPLAN_INSECURE=1 -e SEAPLAN_TLS_CERT= -e SEAPLAN_TLS_KEY=
+# (plaintext; the server logs a warning).
 FROM debian:12 AS build
 WORKDIR /src
 COPY scripts/install-deps.sh scripts/install-deps.sh
@@ -15,8 +20,9 @@ COPY --from=build /src/build/bin/seaplan-server /src/build/bin/seaplan /src/buil
 # The operator console, beside the server (its default --console-dir).
 COPY --from=build /src/build/bin/console /usr/local/bin/console
 COPY --from=build /src/examples /usr/share/seaplan/examples
-VOLUME /data
+VOLUME /data /tls
 EXPOSE 50051 8080
 # Listen on all interfaces inside the container; the host decides what to publish.
-ENV SEAPLAN_GRPC_ADDR=0.0.0.0:50051 SEAPLAN_HTTP_ADDR=0.0.0.0:8080 SEAPLAN_DATA_DIR=/data
+ENV SEAPLAN_GRPC_ADDR=0.0.0.0:50051 SEAPLAN_HTTP_ADDR=0.0.0.0:8080 SEAPLAN_DATA_DIR=/data \
+    SEAPLAN_TLS_CERT=/tls/server.pem SEAPLAN_TLS_KEY=/tls/server.key
 ENTRYPOINT ["/usr/local/bin/seaplan-server"]

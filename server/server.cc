@@ -1,10 +1,13 @@
 #include "server/server.h"
 
+#include <arpa/inet.h>
 #include <grpcpp/ext/proto_server_reflection_plugin.h>
 #include <grpcpp/grpcpp.h>
 #include <grpcpp/health_check_service_interface.h>
 
 #include <condition_variable>
+#include <fstream>
+#include <sstream>
 #include <thread>
 
 #include "absl/strings/str_cat.h"
@@ -13,6 +16,48 @@
 #include "server/http/gateway.h"
 
 namespace seaplan::server {
+namespace {
+
+absl::StatusOr<std::string> ReadPem(const std::string& path, const std::string& what) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in)
+    return absl::InvalidArgumentError(absl::StrCat("cannot read the ", what, " '", path, "'"));
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (text.str().find("-----BEGIN ") == std::string::npos) {
+    return absl::InvalidArgumentError(absl::StrCat("the ", what, " '", path, "' is not PEM"));
+  }
+  return text.str();
+}
+
+absl::StatusOr<std::shared_ptr<grpc::ServerCredentials>> GrpcCredentials(const TlsOptions& tls) {
+  if (!tls.enabled()) return grpc::InsecureServerCredentials();
+  if (tls.key_file.empty())
+    return absl::InvalidArgumentError("TLS: a certificate needs its private key file");
+  grpc::SslServerCredentialsOptions options(
+      tls.client_ca_file.empty() ? GRPC_SSL_DONT_REQUEST_CLIENT_CERTIFICATE
+      : tls.require_client_cert  ? GRPC_SSL_REQUEST_AND_REQUIRE_CLIENT_CERTIFICATE_AND_VERIFY
+                                 : GRPC_SSL_REQUEST_CLIENT_CERTIFICATE_AND_VERIFY);
+  grpc::SslServerCredentialsOptions::PemKeyCertPair pair;
+  SEAPLAN_ASSIGN_OR_RETURN(pair.cert_chain, ReadPem(tls.cert_file, "TLS certificate"));
+  SEAPLAN_ASSIGN_OR_RETURN(pair.private_key, ReadPem(tls.key_file, "TLS private key"));
+  options.pem_key_cert_pairs.push_back(std::move(pair));
+  if (!tls.client_ca_file.empty()) {
+    SEAPLAN_ASSIGN_OR_RETURN(options.pem_root_certs, ReadPem(tls.client_ca_file, "client CA"));
+  }
+  return grpc::SslServerCredentials(options);
+}
+
+}  // namespace
+
+bool IsLoopbackAddress(const std::string& address) {
+  std::string host;
+  int port = 0;
+  if (!SplitHostPort(address, &host, &port).ok()) return false;
+  if (host == "localhost" || host == "::1") return true;
+  in_addr v4{};
+  return inet_pton(AF_INET, host.c_str(), &v4) == 1 && (ntohl(v4.s_addr) >> 24) == 127;
+}
 
 absl::StatusOr<std::unique_ptr<Server>> Server::Start(
     const ServerOptions& options, storage::Store& store,
@@ -20,6 +65,22 @@ absl::StatusOr<std::unique_ptr<Server>> Server::Start(
   if (options.max_request_bytes == 0 || options.max_request_bytes > (1u << 31) - 1) {
     return absl::InvalidArgumentError("max request bytes must be in 1..2^31-1");
   }
+  if (!options.tls.enabled()) {
+    for (const std::string& address : {options.grpc_address, options.http_address}) {
+      if (address.empty() || IsLoopbackAddress(address)) continue;
+      if (!options.insecure) {
+        return absl::FailedPreconditionError(
+            absl::StrCat("refusing to listen on ", address,
+                         " without TLS: give --tls-cert and --tls-key (or listen on 127.0.0.1), or "
+                         "--insecure to serve plaintext on the network anyway"));
+      }
+      log::Warn(
+          "--insecure: serving plaintext on {}: anyone on the network can read and "
+          "change the traffic",
+          address);
+    }
+  }
+  SEAPLAN_ASSIGN_OR_RETURN(auto credentials, GrpcCredentials(options.tls));
   std::unique_ptr<Server> server(new Server());
   server->options_ = options;
   server->core_ = std::make_unique<ServiceCore>(store, options.core, std::move(mission_engine));
@@ -28,8 +89,7 @@ absl::StatusOr<std::unique_ptr<Server>> Server::Start(
   grpc::EnableDefaultHealthCheckService(true);
   grpc::reflection::InitProtoReflectionServerBuilderPlugin();
   grpc::ServerBuilder builder;
-  builder.AddListeningPort(options.grpc_address, grpc::InsecureServerCredentials(),
-                           &server->grpc_port_);
+  builder.AddListeningPort(options.grpc_address, credentials, &server->grpc_port_);
   builder.SetMaxReceiveMessageSize(static_cast<int>(options.max_request_bytes));
   grpc::ResourceQuota quota("seaplan-server");
   // Streams hold a thread each in the sync server; leave room beyond the
@@ -54,7 +114,8 @@ absl::StatusOr<std::unique_ptr<Server>> Server::Start(
         *server->core_,
         HttpGateway::Options{// JSON carries bytes as base64 (4/3 larger) plus syntax.
                              options.max_request_bytes / 3 * 4 + (1u << 20), options.worker_threads,
-                             options.console_dir});
+                             options.console_dir, options.tls, options.http_read_timeout,
+                             options.http_write_timeout});
     auto port = server->http_->Bind(options.http_address);
     if (!port.ok()) {
       server->Shutdown();
@@ -63,9 +124,15 @@ absl::StatusOr<std::unique_ptr<Server>> Server::Start(
     server->http_port_ = *port;
     server->http_->Start();
   }
-  log::Info("seaplan-server listening: grpc={} (port {}), http={} (port {}); planning workers: {}",
-            options.grpc_address, server->grpc_port_, options.http_address, server->http_port_,
-            options.core.planning_threads);
+  log::Info(
+      "seaplan-server listening: grpc={} (port {}), http={} (port {}), {}; planning workers: {} "
+      "(queue {})",
+      options.grpc_address, server->grpc_port_, options.http_address, server->http_port_,
+      !options.tls.enabled()               ? "plaintext"
+      : options.tls.client_ca_file.empty() ? "TLS"
+      : options.tls.require_client_cert    ? "mutual TLS (client certificate required)"
+                                           : "TLS (client certificate verified when given)",
+      options.core.planning_threads, options.core.planning_queue);
   return server;
 }
 

@@ -20,6 +20,7 @@
 #include "seaplan/common/status.h"
 #include "seaplan/storage/repositories.h"
 #include "server/core/service_core.h"
+#include "server/tls_options.h"
 
 namespace grpc {
 class Server;
@@ -38,11 +39,25 @@ struct ServerOptions {
   std::string console_dir;                    // operator console's static files; "" = none
   CoreOptions core;
   std::chrono::milliseconds shutdown_grace{2000};
+  // TLS on both transports (tls_options.h).
+  TlsOptions tls;
+  // Without TLS the server listens only on loopback addresses unless this
+  // is set (it then logs a warning): plaintext on a network is a choice.
+  bool insecure = false;
+  // The HTTP gateway closes connections idle in a read or write this long.
+  std::chrono::milliseconds http_read_timeout{10000};
+  std::chrono::milliseconds http_write_timeout{10000};
 };
+
+// Whether `address` ("host:port") listens only on the loopback interface:
+// 127.0.0.0/8, ::1 or localhost.
+bool IsLoopbackAddress(const std::string& address);
 
 class Server {
  public:
   // Binds both ports and starts serving. `store` must outlive the server.
+  // FailedPrecondition for a non-loopback address without TLS (unless
+  // `insecure`); InvalidArgument when the TLS files cannot be used.
   static absl::StatusOr<std::unique_ptr<Server>> Start(
       const ServerOptions& options, storage::Store& store,
       std::shared_ptr<mission::MissionEngine> mission_engine = nullptr);

@@ -43,6 +43,7 @@
 #include "seaplan/chart/obstacle_map.h"
 #include "seaplan/common/log.h"
 #include "sim_client.h"
+#include "tls_channel.h"
 
 namespace {
 
@@ -54,6 +55,7 @@ struct Flags {
   std::string server = "127.0.0.1:50051";
   std::string token;
   std::string token_file;
+  client::TlsFiles tls;
   std::string scenario;
   std::string mission_id;
   std::string report_dir = "sim-report";
@@ -305,6 +307,7 @@ int main(int argc, char** argv) {
                  "API token to present (else --token-file, env SEAPLAN_TOKEN or "
                  "SEAPLAN_TOKEN_FILE); a vessel token may only sail its own vessel's missions");
   app.add_option("--token-file", f.token_file, "file whose first line is the API token");
+  client::AddTlsOptions(app, &f.tls);
   app.add_option("--scenario", f.scenario, "scenario file (examples/scenarios/*.scenario)")
       ->required();
   app.add_option("--mission-id", f.mission_id,
@@ -362,6 +365,12 @@ int main(int argc, char** argv) {
     return 1;
   }
   log::SetLevel(level);
+  // Bad TLS files are bad flags: said before any work.
+  auto credentials = client::ChannelCredentials(f.tls);
+  if (!credentials.ok()) {
+    std::fprintf(stderr, "seaplan-sim: %s\n", std::string(credentials.status().message()).c_str());
+    return 1;
+  }
 
   auto scenario = sim::LoadScenario(f.scenario);
   if (!scenario.ok()) {
@@ -429,7 +438,7 @@ int main(int argc, char** argv) {
 
   absl::StatusOr<std::string> token = client::ResolveToken(f.token, f.token_file);
   if (!token.ok()) return fail(token.status());
-  sim::SimClient client(f.server, *token);
+  sim::SimClient client(f.server, *credentials, *token);
   {
     std::error_code ec;
     std::filesystem::create_directories(f.report_dir, ec);

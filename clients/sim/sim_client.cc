@@ -28,12 +28,14 @@ std::chrono::milliseconds Next(std::chrono::milliseconds backoff) {
 
 // gRPC's own reconnection backoff grows to 120 s by default: a ship would
 // then stay deaf long after the shore is back. Keep it short.
-std::shared_ptr<grpc::Channel> MakeChannel(const std::string& address, const std::string& token) {
+std::shared_ptr<grpc::Channel> MakeChannel(
+    const std::string& address, const std::shared_ptr<grpc::ChannelCredentials>& credentials,
+    const std::string& token) {
   grpc::ChannelArguments args;
   args.SetInt(GRPC_ARG_INITIAL_RECONNECT_BACKOFF_MS, 200);
   args.SetInt(GRPC_ARG_MIN_RECONNECT_BACKOFF_MS, 200);
   args.SetInt(GRPC_ARG_MAX_RECONNECT_BACKOFF_MS, 2000);
-  return client::CreateChannelWithToken(address, grpc::InsecureChannelCredentials(), args, token);
+  return client::CreateChannelWithToken(address, credentials, args, token);
 }
 
 bool Transient(grpc::StatusCode c) {
@@ -53,8 +55,10 @@ absl::Status FromGrpc(const grpc::Status& s) {
   return absl::Status(static_cast<absl::StatusCode>(s.error_code()), s.error_message());
 }
 
-SimClient::SimClient(const std::string& address, const std::string& token)
-    : channel_(MakeChannel(address, token)),
+SimClient::SimClient(const std::string& address,
+                     std::shared_ptr<grpc::ChannelCredentials> credentials,
+                     const std::string& token)
+    : channel_(MakeChannel(address, credentials, token)),
       missions_(v1::MissionService::NewStub(channel_)),
       charts_(v1::ChartService::NewStub(channel_)) {}
 

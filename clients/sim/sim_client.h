@@ -47,8 +47,10 @@ struct FeedbackAck {
 
 class SimClient {
  public:
+  // `credentials`: plaintext or TLS (clients/common/tls_channel.h);
   // `token`: presented on every call (empty: none).
-  explicit SimClient(const std::string& address, const std::string& token = "");
+  SimClient(const std::string& address, std::shared_ptr<grpc::ChannelCredentials> credentials,
+            const std::string& token = "");
   ~SimClient();
 
   absl::StatusOr<v1::Mission> CreateMission(const v1::MissionSpec& spec,

@@ -50,10 +50,70 @@ ParsedConfig ParseConfig(int argc, const char* const* argv) {
       ->check(CLI::Range(std::size_t{1024}, std::size_t{(1u << 31) - 1}))
       ->capture_default_str();
   app.add_option("--planning-threads", c.server.core.planning_threads,
-                 "planning/route jobs at once; more are refused with RESOURCE_EXHAUSTED")
+                 "planning/route jobs at once; more wait in the planning queue")
       ->envname("SEAPLAN_PLANNING_THREADS")
       ->check(CLI::Range(1, 256))
       ->capture_default_str();
+  app.add_option("--planning-queue", c.server.core.planning_queue,
+                 "calls waiting for a planning worker (each holds a transport thread); more are "
+                 "refused with RESOURCE_EXHAUSTED / 429")
+      ->envname("SEAPLAN_PLANNING_QUEUE")
+      ->check(CLI::Range(0, 1024))
+      ->capture_default_str();
+  app.add_option("--rate-limit", c.server.core.rate_limit.calls_per_s,
+                 "calls per second per caller (credentials, else address); over it: "
+                 "RESOURCE_EXHAUSTED / 429 with a retry-after; 0 = no limit")
+      ->envname("SEAPLAN_RATE_LIMIT")
+      ->check(CLI::Range(0.0, 1e6))
+      ->capture_default_str();
+  app.add_option("--rate-burst", c.server.core.rate_limit.burst,
+                 "calls a caller may make at once after being idle")
+      ->envname("SEAPLAN_RATE_BURST")
+      ->check(CLI::Range(1.0, 1e6))
+      ->capture_default_str();
+  app.add_option("--max-plan-time-s", c.server.core.budgets.max_plan_time_s,
+                 "largest planner time limit a request may ask for")
+      ->envname("SEAPLAN_MAX_PLAN_TIME_S")
+      ->check(CLI::Range(1.0, 86400.0))
+      ->capture_default_str();
+  app.add_option("--max-plan-memory-mb", c.server.core.budgets.max_plan_memory_mb,
+                 "largest planner memory limit a request may ask for")
+      ->envname("SEAPLAN_MAX_PLAN_MEMORY_MB")
+      ->check(CLI::Range(std::size_t{64}, std::size_t{1} << 20))
+      ->capture_default_str();
+  app.add_option("--max-route-time-s", c.server.core.budgets.max_route_time_s,
+                 "largest route optimizer time limit a request may ask for")
+      ->envname("SEAPLAN_MAX_ROUTE_TIME_S")
+      ->check(CLI::Range(1.0, 86400.0))
+      ->capture_default_str();
+  int read_timeout_ms = static_cast<int>(c.server.http_read_timeout.count());
+  int write_timeout_ms = static_cast<int>(c.server.http_write_timeout.count());
+  app.add_option("--http-read-timeout-ms", read_timeout_ms,
+                 "HTTP: a connection whose client sends nothing for this long is closed")
+      ->envname("SEAPLAN_HTTP_READ_TIMEOUT_MS")
+      ->check(CLI::Range(100, 600000))
+      ->capture_default_str();
+  app.add_option("--http-write-timeout-ms", write_timeout_ms,
+                 "HTTP: a connection whose client takes nothing for this long is closed")
+      ->envname("SEAPLAN_HTTP_WRITE_TIMEOUT_MS")
+      ->check(CLI::Range(100, 600000))
+      ->capture_default_str();
+  app.add_option("--tls-cert", c.server.tls.cert_file,
+                 "server certificate chain (PEM): TLS on both the gRPC and the HTTP port")
+      ->envname("SEAPLAN_TLS_CERT");
+  app.add_option("--tls-key", c.server.tls.key_file, "private key of --tls-cert (PEM)")
+      ->envname("SEAPLAN_TLS_KEY");
+  app.add_option("--tls-client-ca", c.server.tls.client_ca_file,
+                 "CA (PEM) for mutual TLS: clients present a certificate it signed; its subject "
+                 "CN names the vessel, which may act only on its own missions")
+      ->envname("SEAPLAN_TLS_CLIENT_CA");
+  bool client_cert_optional = false;
+  app.add_flag("--tls-client-cert-optional", client_cert_optional,
+               "with --tls-client-ca: also accept clients without a certificate")
+      ->envname("SEAPLAN_TLS_CLIENT_CERT_OPTIONAL");
+  app.add_flag("--insecure", c.server.insecure,
+               "serve plaintext (no TLS) on a non-loopback address (logs a warning)")
+      ->envname("SEAPLAN_INSECURE");
   app.add_option("--log-level", log_level, "debug, info, warn, error or off")
       ->envname("SEAPLAN_LOG_LEVEL")
       ->capture_default_str();
@@ -92,6 +152,16 @@ ParsedConfig ParseConfig(int argc, const char* const* argv) {
     return parsed;
   }
   c.server.shutdown_grace = std::chrono::milliseconds(grace_ms);
+  c.server.http_read_timeout = std::chrono::milliseconds(read_timeout_ms);
+  c.server.http_write_timeout = std::chrono::milliseconds(write_timeout_ms);
+  c.server.tls.require_client_cert = !client_cert_optional;
+  if (c.server.tls.cert_file.empty() != c.server.tls.key_file.empty() ||
+      (!c.server.tls.client_ca_file.empty() && c.server.tls.cert_file.empty())) {
+    parsed.exit = true;
+    parsed.exit_code = 2;
+    parsed.message = "--tls-cert and --tls-key go together; --tls-client-ca needs both\n";
+    return parsed;
+  }
   return parsed;
 }
 

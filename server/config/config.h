@@ -11,8 +11,24 @@
 //   instead of SQLite in --data-dir)
 //   --worker-threads       SEAPLAN_WORKER_THREADS      16
 //   --max-request-bytes    SEAPLAN_MAX_REQUEST_BYTES   67108864 (64 MiB: charts)
-//   --planning-threads     SEAPLAN_PLANNING_THREADS    2        (pool size; more ->
-//   RESOURCE_EXHAUSTED)
+//   --planning-threads     SEAPLAN_PLANNING_THREADS    2        (pool size; more wait)
+//   --planning-queue       SEAPLAN_PLANNING_QUEUE      12       (calls waiting for a worker;
+//   more -> RESOURCE_EXHAUSTED)
+//   --rate-limit           SEAPLAN_RATE_LIMIT          100      (calls/s per caller; 0 = off)
+//   --rate-burst           SEAPLAN_RATE_BURST          200      (calls at once per caller)
+//   --max-plan-time-s      SEAPLAN_MAX_PLAN_TIME_S     600      (a request's planner time limit)
+//   --max-plan-memory-mb   SEAPLAN_MAX_PLAN_MEMORY_MB  8192     (its memory limit)
+//   --max-route-time-s     SEAPLAN_MAX_ROUTE_TIME_S    300      (a route's optimizer time limit)
+//   --http-read-timeout-ms SEAPLAN_HTTP_READ_TIMEOUT_MS  10000  (idle read closes a connection)
+//   --http-write-timeout-ms SEAPLAN_HTTP_WRITE_TIMEOUT_MS 10000
+//   --tls-cert             SEAPLAN_TLS_CERT            none     (PEM chain: TLS on both ports)
+//   --tls-key              SEAPLAN_TLS_KEY             none     (PEM private key)
+//   --tls-client-ca        SEAPLAN_TLS_CLIENT_CA       none     (PEM: mutual TLS; cert CN =
+//   vessel id)
+//   --tls-client-cert-optional SEAPLAN_TLS_CLIENT_CERT_OPTIONAL off (with a client CA: accept
+//   clients without a certificate)
+//   --insecure             SEAPLAN_INSECURE            off      (plaintext on a non-loopback
+//   address)
 //   --log-level            SEAPLAN_LOG_LEVEL           info     (debug, info, warn, error, off)
 //   --port-file            SEAPLAN_PORT_FILE           none     (writes "grpc=P\nhttp=P\n" once
 //   listening)

@@ -29,6 +29,13 @@ struct CallContext {
   // vessel-scoped RPCs check the mission's vessel against it.
   Caller caller;
 
+  // Who calls, as far as the transport knows (set by it after NewCall).
+  // The subject CN of the client's verified TLS certificate (mutual TLS),
+  // which names a vessel; empty without one.
+  std::string client_cert_subject;
+  // The caller's rate-limit key (caller_limits.h: CallerKey).
+  std::string caller_key;
+
   // Cancels `stop` when the client is gone. Cheap; call it often. A
   // transport also reports the client "gone" when its deadline passes (gRPC
   // does); within kDeadlineSlack of the deadline that is left to the

@@ -44,7 +44,7 @@ absl::StatusOr<chart::ObstacleMap> LoadOnPool(
         map = chart::LoadChartBytes(files, options);
         if (map.ok() && serialized != nullptr) *serialized = chart::SerializeObstacleMap(*map);
       },
-      [&] { ctx.ForwardCancellation(); }));
+      ctx.stop, [&] { ctx.ForwardCancellation(); }));
   if (ctx.stop.StopRequested()) return StopStatus(ctx.stop, root.StopRequested(), what);
   return map;
 }

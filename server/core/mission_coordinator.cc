@@ -9,6 +9,7 @@
 #include "absl/strings/str_format.h"
 #include "seaplan/common/log.h"
 #include "seaplan/mission/mission_state.h"
+#include "server/core/caller_limits.h"
 #include "server/core/convert.h"
 
 namespace seaplan::server {
@@ -261,7 +262,7 @@ absl::StatusOr<v1::Mission> MissionCoordinator::CreateMission(
   SEAPLAN_RETURN_IF_ERROR(adapter_.CheckSpec(spec));
   absl::StatusOr<PlannedVersion> planned = absl::UnknownError("mission planning did not run");
   SEAPLAN_RETURN_IF_ERROR(pool_.Run([&] { planned = adapter_.PlanInitial(spec, ctx.stop); },
-                                    [&] { ctx.ForwardCancellation(); }));
+                                    ctx.stop, [&] { ctx.ForwardCancellation(); }));
   if (ctx.stop.StopRequested())
     return StopStatus(ctx.stop, root_.StopRequested(), "mission planning");
   if (!planned.ok()) return planned.status();
@@ -306,7 +307,8 @@ absl::StatusOr<v1::Mission> MissionCoordinator::CreateMission(
 absl::Status MissionCoordinator::CheckVesselAccess(const std::string& mission_id,
                                                    const CallContext& ctx) {
   SEAPLAN_ASSIGN_OR_RETURN(storage::MissionRecord record, repo_.Get(mission_id));
-  return auth::CheckVessel(ctx.caller, record.vessel_id, mission_id);
+  SEAPLAN_RETURN_IF_ERROR(auth::CheckVessel(ctx.caller, record.vessel_id, mission_id));
+  return CheckVesselCertificate(ctx, record.vessel_id, mission_id);
 }
 
 absl::StatusOr<v1::Mission> MissionCoordinator::GetMission(const v1::GetMissionRequest& request,
@@ -469,6 +471,7 @@ absl::StatusOr<v1::ReportFeedbackResponse> MissionCoordinator::ReportFeedback(
   }
   if (request.sequence_number() < 0)
     return absl::InvalidArgumentError("sequence_number must not be negative");
+  SEAPLAN_RETURN_IF_ERROR(CheckVesselCertificate(ctx, request.vessel_id(), id));
   v1::ReportFeedbackResponse response;
   // A retry of a stored report: answer "duplicate" and change nothing.
   SEAPLAN_ASSIGN_OR_RETURN(auto existing,
@@ -655,7 +658,7 @@ absl::StatusOr<v1::RequestReplanResponse> MissionCoordinator::RequestReplan(
   auto version = Replan(
       id, reason, ctx.stop,
       [&](std::function<void()> work) {
-        return pool_.Run(std::move(work), [&] { ctx.ForwardCancellation(); });
+        return pool_.Run(std::move(work), ctx.stop, [&] { ctx.ForwardCancellation(); });
       },
       &stopped);
   if (stopped) return StopStatus(ctx.stop, root_.StopRequested(), "replanning");

@@ -131,7 +131,8 @@ class MissionCoordinator {
   absl::StatusOr<v1::Mission> CreateMission(const v1::CreateMissionRequest& request,
                                             const CallContext& ctx);
   // NotFound when the mission is absent; PermissionDenied when ctx's caller
-  // is a vessel token of another vessel than the mission's.
+  // is a vessel token, or presents a vessel's client certificate, of
+  // another vessel than the mission's.
   absl::Status CheckVesselAccess(const std::string& mission_id, const CallContext& ctx);
   absl::StatusOr<v1::Mission> GetMission(const v1::GetMissionRequest& request,
                                          const CallContext& ctx);
@@ -141,6 +142,7 @@ class MissionCoordinator {
                                             const CallContext& ctx);
   // Ends OK when the mission reached a final state and everything was sent;
   // Unavailable when the server shuts down; Cancelled when the client left.
+
   absl::Status WatchMission(const v1::WatchMissionRequest& request, const CallContext& ctx,
                             const StreamSink<v1::MissionEvent>& sink);
   absl::StatusOr<v1::ReportFeedbackResponse> ReportFeedback(

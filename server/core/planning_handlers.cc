@@ -187,15 +187,33 @@ PlanRun RunPlanner(const v1::PlanRequest& request, const search::PlannerOptions&
   return run;
 }
 
+// The request's planner options, within the server's budgets.
+absl::StatusOr<search::PlannerOptions> PlannerOptionsWithin(const v1::PlannerOptions& options,
+                                                            const RequestBudgets& budgets) {
+  SEAPLAN_ASSIGN_OR_RETURN(search::PlannerOptions p, ToEngine(options));
+  if (p.time_limit_s > budgets.max_plan_time_s) {
+    return absl::InvalidArgumentError(absl::StrCat("options.time_limit: ", p.time_limit_s,
+                                                   " s is more than this server allows (",
+                                                   budgets.max_plan_time_s, " s)"));
+  }
+  if (p.memory_limit_mb > budgets.max_plan_memory_mb) {
+    return absl::InvalidArgumentError(absl::StrCat("options.memory_limit_mb: ", p.memory_limit_mb,
+                                                   " MB is more than this server allows (",
+                                                   budgets.max_plan_memory_mb, " MB)"));
+  }
+  return p;
+}
+
 }  // namespace
 
 absl::StatusOr<v1::PlanResponse> PlanningHandlers::Plan(const v1::PlanRequest& request,
                                                         const CallContext& ctx) {
   SEAPLAN_RETURN_IF_ERROR(CheckPddlInputs(request.domain(), request.problem()));
-  SEAPLAN_ASSIGN_OR_RETURN(search::PlannerOptions options, ToEngine(request.options()));
+  SEAPLAN_ASSIGN_OR_RETURN(search::PlannerOptions options,
+                           PlannerOptionsWithin(request.options(), budgets_));
   PlanRun run;
   SEAPLAN_RETURN_IF_ERROR(pool_.Run([&] { run = RunPlanner(request, options, ctx.stop, nullptr); },
-                                    [&] { ctx.ForwardCancellation(); }));
+                                    ctx.stop, [&] { ctx.ForwardCancellation(); }));
   if (ctx.stop.StopRequested()) return StopStatus(ctx.stop, root_.StopRequested(), "planning");
   if (!run.status.ok()) return run.status;
   return run.response;
@@ -204,7 +222,8 @@ absl::StatusOr<v1::PlanResponse> PlanningHandlers::Plan(const v1::PlanRequest& r
 absl::Status PlanningHandlers::PlanStream(const v1::PlanRequest& request, const CallContext& ctx,
                                           const StreamSink<v1::PlanStreamEvent>& sink) {
   SEAPLAN_RETURN_IF_ERROR(CheckPddlInputs(request.domain(), request.problem()));
-  SEAPLAN_ASSIGN_OR_RETURN(search::PlannerOptions options, ToEngine(request.options()));
+  SEAPLAN_ASSIGN_OR_RETURN(search::PlannerOptions options,
+                           PlannerOptionsWithin(request.options(), budgets_));
   // The planner's callbacks run on the worker; they queue events and the
   // RPC thread writes them (tick), so only one thread writes to the client.
   std::mutex mu;
@@ -242,7 +261,7 @@ absl::Status PlanningHandlers::PlanStream(const v1::PlanRequest& request, const 
   };
   PlanRun run;
   SEAPLAN_RETURN_IF_ERROR(
-      pool_.Run([&] { run = RunPlanner(request, options, ctx.stop, &observer); }, drain));
+      pool_.Run([&] { run = RunPlanner(request, options, ctx.stop, &observer); }, ctx.stop, drain));
   if (ctx.stop.StopRequested()) return StopStatus(ctx.stop, root_.StopRequested(), "planning");
   if (!run.status.ok()) return run.status;
   v1::PlanStreamEvent final_event;
@@ -298,7 +317,7 @@ absl::StatusOr<v1::ValidateResponse> PlanningHandlers::Validate(const v1::Valida
                                      r.first_failure->reason));
         }
       },
-      [&] { ctx.ForwardCancellation(); }));
+      ctx.stop, [&] { ctx.ForwardCancellation(); }));
   if (ctx.stop.StopRequested()) return StopStatus(ctx.stop, root_.StopRequested(), "validation");
   if (!status.ok()) return status;
   return response;

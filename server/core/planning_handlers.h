@@ -11,6 +11,7 @@
 #include "seaplan/common/stop_token.h"
 #include "seaplan/v1/planning.pb.h"
 #include "server/core/call_context.h"
+#include "server/core/caller_limits.h"
 #include "server/core/work_pool.h"
 
 namespace seaplan::server {
@@ -18,7 +19,8 @@ namespace seaplan::server {
 class PlanningHandlers {
  public:
   // `pool` and `root` outlive this; root is cancelled at shutdown.
-  PlanningHandlers(WorkPool& pool, StopToken root) : pool_(pool), root_(std::move(root)) {}
+  PlanningHandlers(WorkPool& pool, StopToken root, const RequestBudgets& budgets = {})
+      : pool_(pool), root_(std::move(root)), budgets_(budgets) {}
 
   absl::StatusOr<v1::PlanResponse> Plan(const v1::PlanRequest& request, const CallContext& ctx);
   // Writes progress and improved plans, then exactly one final_result
@@ -31,6 +33,7 @@ class PlanningHandlers {
  private:
   WorkPool& pool_;
   StopToken root_;
+  RequestBudgets budgets_;
 };
 
 }  // namespace seaplan::server

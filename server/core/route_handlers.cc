@@ -181,7 +181,6 @@ absl::StatusOr<v1::PlanRouteResponse> RouteHandlers::PlanRoute(const v1::PlanRou
   if (request.chart_id().empty()) return absl::InvalidArgumentError("chart_id is empty");
   SEAPLAN_RETURN_IF_ERROR(CheckLatLon(request.start(), "start"));
   SEAPLAN_RETURN_IF_ERROR(CheckLatLon(request.goal(), "goal"));
-  SEAPLAN_ASSIGN_OR_RETURN(auto map, LoadMap(charts_, request.chart_id()));
   route::RouteOptions options = OptionsToEngine(request.options());
   route::ShipParticulars ship = ShipToEngine(request.ship());
   route::Environment env = EnvironmentToEngine(request.environment());
@@ -197,6 +196,19 @@ absl::StatusOr<v1::PlanRouteResponse> RouteHandlers::PlanRoute(const v1::PlanRou
                              DurationSeconds(request.options().time_limit(), "options.time_limit"));
     if (s > 0) time_limit_s = s;
   }
+  if (time_limit_s > budgets_.max_route_time_s) {
+    return absl::InvalidArgumentError(absl::StrCat("options.time_limit: ", time_limit_s,
+                                                   " s is more than this server allows (",
+                                                   budgets_.max_route_time_s, " s)"));
+  }
+  const long long evaluations = static_cast<long long>(options.level2.pso.particles) *
+                                static_cast<long long>(options.level2.pso.iterations);
+  if (evaluations > budgets_.max_route_evaluations) {
+    return absl::InvalidArgumentError(
+        absl::StrCat("options: particles x iterations = ", evaluations,
+                     " is more than this server allows (", budgets_.max_route_evaluations, ")"));
+  }
+  SEAPLAN_ASSIGN_OR_RETURN(auto map, LoadMap(charts_, request.chart_id()));
   // The optimiser's own budget is a child of the call's token: the client's
   // deadline or cancellation still wins.
   const StopToken budget = ctx.stop.Child(StopToken::Clock::now() +
@@ -208,7 +220,7 @@ absl::StatusOr<v1::PlanRouteResponse> RouteHandlers::PlanRoute(const v1::PlanRou
   const auto started = std::chrono::steady_clock::now();
   SEAPLAN_RETURN_IF_ERROR(
       pool_.Run([&] { result = route::PlanRoute(*map, start, goal, ship, env, options, budget); },
-                [&] { ctx.ForwardCancellation(); }));
+                ctx.stop, [&] { ctx.ForwardCancellation(); }));
   if (ctx.stop.StopRequested())
     return StopStatus(ctx.stop, root_.StopRequested(), "route planning");
   if (!result.ok()) return result.status();
@@ -270,7 +282,7 @@ absl::StatusOr<v1::EstimateRiskResponse> RouteHandlers::EstimateRisk(
   absl::StatusOr<std::vector<route::PointRisk>> risks =
       absl::UnknownError("risk estimation did not run");
   SEAPLAN_RETURN_IF_ERROR(
-      pool_.Run([&] { risks = route::EstimateRisk(*map, track, ship, env, options); },
+      pool_.Run([&] { risks = route::EstimateRisk(*map, track, ship, env, options); }, ctx.stop,
                 [&] { ctx.ForwardCancellation(); }));
   if (ctx.stop.StopRequested())
     return StopStatus(ctx.stop, root_.StopRequested(), "risk estimation");

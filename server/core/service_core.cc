@@ -10,10 +10,11 @@ ServiceCore::ServiceCore(storage::Store& store, const CoreOptions& options,
                          std::shared_ptr<mission::MissionEngine> mission_engine)
     : auth_(store.tokens()),
       access_(auth_, store.tokens(), store.audit()),
-      pool_(options.planning_threads),
-      planning_(pool_, root_),
+      limiter_(options.rate_limit),
+      pool_(options.planning_threads, options.planning_queue),
+      planning_(pool_, root_, options.budgets),
       charts_(store.charts(), pool_, root_),
-      routes_(store.charts(), pool_, root_),
+      routes_(store.charts(), pool_, root_, options.budgets),
       missions_(store.missions(), pool_, root_,
                 mission_engine
                     ? std::move(mission_engine)

@@ -14,6 +14,7 @@
 #include "server/auth/authenticator.h"
 #include "server/core/access_handlers.h"
 #include "server/core/call_context.h"
+#include "server/core/caller_limits.h"
 #include "server/core/chart_handlers.h"
 #include "server/core/mission_coordinator.h"
 #include "server/core/planning_handlers.h"
@@ -24,9 +25,15 @@
 namespace seaplan::server {
 
 struct CoreOptions {
-  // Planning / route / chart-loading jobs running at once; more get
+  // Planning / route / chart-loading jobs running at once; more wait in a
+  // queue of at most `planning_queue` calls, beyond which they get
   // RESOURCE_EXHAUSTED.
   int planning_threads = 2;
+  int planning_queue = 12;
+  // Per-caller rate limit of every RPC (health checks aside).
+  RateLimiter::Options rate_limit;
+  // What one request may ask of the engines.
+  RequestBudgets budgets;
   MissionCoordinator::Options missions;
   // This process's name in the database's work leases; "" = host, pid and
   // a random part.
@@ -64,6 +71,11 @@ class ServiceCore {
   CallContext NewCall(std::string transport, StopToken::Clock::time_point deadline,
                       std::function<bool()> client_gone) const;
 
+  // Counts the call against its caller's rate limit (ctx.caller_key):
+  // ResourceExhausted with a retry-after when over it. The transports call
+  // it once per call before the handler.
+  absl::Status Admit(const CallContext& ctx) { return limiter_.Admit(ctx.caller_key); }
+
   // Shutdown, step 1: ends watch streams (clients resume elsewhere).
   void CloseStreams();
   // Shutdown, step 2 (after the grace period): stops all running work.
@@ -76,6 +88,7 @@ class ServiceCore {
   StopToken root_;
   auth::Authenticator auth_;
   AccessHandlers access_;
+  RateLimiter limiter_;
   WorkPool pool_;
   PlanningHandlers planning_;
   ChartHandlers charts_;

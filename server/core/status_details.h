@@ -12,6 +12,7 @@
 //         an "@type" member naming the type URL.
 #pragma once
 
+#include <chrono>
 #include <optional>
 
 #include "seaplan/common/status.h"
@@ -25,5 +26,12 @@ inline constexpr char kDiagnosticListTypeUrl[] = "type.googleapis.com/seaplan.v1
 absl::Status WithDiagnostics(absl::Status status, const v1::DiagnosticList& diagnostics);
 // The diagnostics attached to `status`, if any.
 std::optional<v1::DiagnosticList> GetDiagnostics(const absl::Status& status);
+
+// When a refused call (RESOURCE_EXHAUSTED) may be tried again. The
+// transports expose it: gRPC as the trailing metadata "retry-after-ms"
+// (milliseconds), HTTP as the header "Retry-After" (whole seconds, rounded up).
+inline constexpr char kRetryAfterTypeUrl[] = "type.seaplan/retry-after-ms";
+absl::Status WithRetryAfter(absl::Status status, std::chrono::milliseconds retry_after);
+std::optional<std::chrono::milliseconds> GetRetryAfter(const absl::Status& status);
 
 }  // namespace seaplan::server

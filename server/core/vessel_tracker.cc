@@ -5,6 +5,7 @@
 #include <thread>
 
 #include "absl/strings/str_cat.h"
+#include "server/core/caller_limits.h"
 
 namespace seaplan::server {
 namespace {
@@ -48,6 +49,7 @@ absl::StatusOr<v1::ReportVesselStateResponse> VesselTracker::ReportVesselState(
     SEAPLAN_RETURN_IF_ERROR(auth::CheckVessel(ctx.caller, record.vessel_id, record.id));
     vessel_id = record.vessel_id.empty() ? request.vessel_id() : record.vessel_id;
   }
+  SEAPLAN_RETURN_IF_ERROR(CheckVesselCertificate(ctx, vessel_id, request.mission_id()));
   if (!request.vessel_id().empty() && request.vessel_id() != vessel_id) {
     return absl::PermissionDeniedError(absl::StrCat("vessel ", request.vessel_id(),
                                                     " does not sail mission ", request.mission_id(),

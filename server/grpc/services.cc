@@ -1,5 +1,12 @@
 #include "server/grpc/services.h"
 
+#include <grpcpp/security/auth_context.h>
+
+#include <string>
+#include <string_view>
+
+#include "server/core/caller_limits.h"
+#include "server/core/status_details.h"
 #include "server/grpc/status_mapping.h"
 
 namespace seaplan::server {
@@ -16,19 +23,36 @@ StopToken::Clock::time_point Deadline(const grpc::ServerContext* ctx) {
 }
 
 // The call's context with its caller, or the status that ends the call
-// before any handler runs (no, bad or insufficient credentials). The
-// credential is the `authorization` metadata, "Bearer <token>".
+// before any handler runs: over the caller's rate limit, or no, bad or
+// insufficient credentials. The credential is the `authorization`
+// metadata, "Bearer <token>"; the rate limit is counted before the token is
+// looked up, so guessing tokens is limited too.
 absl::StatusOr<CallContext> MakeCall(ServiceCore& core, const char* method,
                                      grpc::ServerContext* ctx) {
+  CallContext call = core.NewCall("grpc", Deadline(ctx), [ctx] { return ctx->IsCancelled(); });
   std::string authorization;
   const auto& metadata = ctx->client_metadata();
   if (auto it = metadata.find("authorization"); it != metadata.end()) {
     authorization.assign(it->second.data(), it->second.size());
   }
-  SEAPLAN_ASSIGN_OR_RETURN(Caller caller, core.Authorize(method, authorization));
-  CallContext call = core.NewCall("grpc", Deadline(ctx), [ctx] { return ctx->IsCancelled(); });
-  call.caller = std::move(caller);
+  call.caller_key = CallerKey(authorization, ctx->peer());
+  // Set only for a certificate the server verified against its client CA.
+  if (auto auth = ctx->auth_context(); auth && auth->IsPeerAuthenticated()) {
+    for (const auto& cn : auth->FindPropertyValues(GRPC_X509_CN_PROPERTY_NAME)) {
+      call.client_cert_subject.assign(cn.data(), cn.size());
+      break;
+    }
+  }
+  SEAPLAN_RETURN_IF_ERROR(core.Admit(call));
+  SEAPLAN_ASSIGN_OR_RETURN(call.caller, core.Authorize(method, authorization));
   return call;
+}
+
+// The status to return; a refusal says when to retry (trailing metadata).
+grpc::Status Finish(grpc::ServerContext* ctx, const absl::Status& status) {
+  if (auto retry_after = GetRetryAfter(status))
+    ctx->AddTrailingMetadata("retry-after-ms", std::to_string(retry_after->count()));
+  return ToGrpcStatus(status);
 }
 
 template <typename Request, typename Response, typename Fn>
@@ -46,7 +70,7 @@ grpc::Status Unary(ServiceCore& core, const char* method, grpc::ServerContext* c
     }
   }
   LogCall("grpc", method, status, started);
-  return ToGrpcStatus(status);
+  return Finish(ctx, status);
 }
 
 template <typename Event, typename Fn>
@@ -60,7 +84,7 @@ grpc::Status Stream(ServiceCore& core, const char* method, grpc::ServerContext* 
     status = fn(*call, sink);
   }
   LogCall("grpc", method, status, started);
-  return ToGrpcStatus(status);
+  return Finish(ctx, status);
 }
 
 }  // namespace

@@ -1,8 +1,9 @@
 #include "server/http/gateway.h"
 
-#include <google/protobuf/struct.pb.h>
-#include <google/protobuf/util/json_util.h>
 #include <httplib.h>
+#include <openssl/err.h>
+#include <openssl/ssl.h>
+#include <openssl/x509.h>
 
 #include <charconv>
 #include <condition_variable>
@@ -15,6 +16,9 @@
 #include "seaplan/common/json.h"
 #include "seaplan/common/log.h"
 #include "server/auth/csrf.h"
+#include "server/core/caller_limits.h"
+#include "server/core/status_details.h"
+#include "server/http/json_codec.h"
 #include "server/http/status_mapping.h"
 
 namespace seaplan::server {
@@ -33,29 +37,11 @@ void Reply(httplib::Response& res, const absl::Status& status) {
   res.status = ToHttpStatus(status.code());
   // RFC 6750: a 401 names the scheme it wants.
   if (absl::IsUnauthenticated(status)) res.set_header("WWW-Authenticate", "Bearer");
-  res.set_content(ErrorJson(status), kJson);
-}
-
-absl::Status ToJson(const google::protobuf::Message& message, std::string* out) {
-  google::protobuf::util::JsonPrintOptions options;
-  options.always_print_primitive_fields = true;
-  auto st = google::protobuf::util::MessageToJsonString(message, out, options);
-  if (!st.ok())
-    return absl::InternalError(absl::StrCat("cannot print the response as JSON: ", st.ToString()));
-  return absl::OkStatus();
-}
-
-absl::Status FromJson(const std::string& body, google::protobuf::Message* message) {
-  if (body.empty()) return absl::OkStatus();  // an empty body is the empty message
-  google::protobuf::util::JsonParseOptions options;
-  options.ignore_unknown_fields = false;
-  auto st = google::protobuf::util::JsonStringToMessage(body, message, options);
-  if (!st.ok()) {
-    return absl::InvalidArgumentError(absl::StrCat("request body is not a valid ",
-                                                   message->GetDescriptor()->full_name(),
-                                                   " in JSON: ", std::string(st.message())));
+  if (auto retry_after = GetRetryAfter(status)) {
+    // Whole seconds (RFC 9110), rounded up.
+    res.set_header("Retry-After", std::to_string((retry_after->count() + 999) / 1000));
   }
-  return absl::OkStatus();
+  res.set_content(ErrorJson(status), kJson);
 }
 
 absl::StatusOr<StopToken::Clock::time_point> Deadline(const httplib::Request& req) {
@@ -156,6 +142,74 @@ struct StreamState {
   }
 };
 
+// The OpenSSL error queue as text (emptied).
+std::string OpenSslErrors() {
+  std::string text;
+  while (unsigned long e = ERR_get_error()) {
+    char buffer[256];
+    ERR_error_string_n(e, buffer, sizeof(buffer));
+    if (!text.empty()) text += "; ";
+    text += buffer;
+  }
+  return text.empty() ? "unknown OpenSSL error" : text;
+}
+
+// The server's TLS context: certificate chain and key, TLS 1.2 at least,
+// and client certificates verified against the client CA (mutual TLS).
+bool SetUpTls(const TlsOptions& tls, SSL_CTX& ctx, std::string* error) {
+  SSL_CTX_set_min_proto_version(&ctx, TLS1_2_VERSION);
+  SSL_CTX_set_options(&ctx, SSL_OP_NO_COMPRESSION | SSL_OP_NO_RENEGOTIATION);
+  if (SSL_CTX_use_certificate_chain_file(&ctx, tls.cert_file.c_str()) != 1) {
+    *error = absl::StrCat("cannot use the certificate '", tls.cert_file, "': ", OpenSslErrors());
+    return false;
+  }
+  if (SSL_CTX_use_PrivateKey_file(&ctx, tls.key_file.c_str(), SSL_FILETYPE_PEM) != 1 ||
+      SSL_CTX_check_private_key(&ctx) != 1) {
+    *error = absl::StrCat("cannot use the private key '", tls.key_file,
+                          "' with the certificate: ", OpenSslErrors());
+    return false;
+  }
+  if (!tls.client_ca_file.empty()) {
+    if (SSL_CTX_load_verify_locations(&ctx, tls.client_ca_file.c_str(), nullptr) != 1) {
+      *error =
+          absl::StrCat("cannot read the client CA '", tls.client_ca_file, "': ", OpenSslErrors());
+      return false;
+    }
+    // The CA's name goes into the certificate request, so clients pick the
+    // right certificate.
+    if (STACK_OF(X509_NAME)* names = SSL_load_client_CA_file(tls.client_ca_file.c_str()))
+      SSL_CTX_set_client_CA_list(&ctx, names);
+    SSL_CTX_set_verify(
+        &ctx, SSL_VERIFY_PEER | (tls.require_client_cert ? SSL_VERIFY_FAIL_IF_NO_PEER_CERT : 0),
+        nullptr);
+  }
+  return true;
+}
+
+// The subject CN of the client's certificate when the handshake verified
+// one; empty otherwise.
+std::string ClientCertSubject(const httplib::Request& req) {
+  if (req.ssl == nullptr || SSL_get_verify_result(req.ssl) != X509_V_OK) return "";
+  X509* cert = SSL_get_peer_certificate(req.ssl);
+  if (cert == nullptr) return "";
+  std::string cn;
+  char buffer[256];
+  const int n = X509_NAME_get_text_by_NID(X509_get_subject_name(cert), NID_commonName, buffer,
+                                          sizeof(buffer));
+  if (n > 0) cn.assign(buffer, static_cast<std::size_t>(n));
+  X509_free(cert);
+  return cn;
+}
+
+// The core's context of an HTTP call: deadline, who calls.
+CallContext MakeCall(ServiceCore& core, const httplib::Request& req,
+                     StopToken::Clock::time_point deadline, std::function<bool()> client_gone) {
+  CallContext call = core.NewCall("http", deadline, std::move(client_gone));
+  call.caller_key = CallerKey(req.get_header_value("Authorization"), req.remote_addr);
+  call.client_cert_subject = ClientCertSubject(req);
+  return call;
+}
+
 }  // namespace
 
 absl::Status SplitHostPort(const std::string& address, std::string* host, int* port) {
@@ -177,13 +231,21 @@ absl::Status SplitHostPort(const std::string& address, std::string* host, int* p
 }
 
 HttpGateway::HttpGateway(ServiceCore& core, const Options& options)
-    : core_(core), options_(options), server_(std::make_unique<httplib::Server>()) {
+    : core_(core), options_(options) {
+  if (options_.tls.enabled()) {
+    server_ = std::make_unique<httplib::SSLServer>(
+        [this](SSL_CTX& ctx) { return SetUpTls(options_.tls, ctx, &tls_error_); });
+  } else {
+    server_ = std::make_unique<httplib::Server>();
+  }
   const int threads = std::max(1, options_.threads);
   server_->new_task_queue = [threads] {
     return new httplib::ThreadPool(static_cast<std::size_t>(threads));
   };
   server_->set_payload_max_length(options_.max_body_bytes);
   server_->set_keep_alive_timeout(5);
+  server_->set_read_timeout(options_.read_timeout);
+  server_->set_write_timeout(options_.write_timeout);
   RegisterRoutes();
 }
 
@@ -195,6 +257,9 @@ absl::StatusOr<int> HttpGateway::Bind(const std::string& address) {
   std::string host;
   int port = 0;
   SEAPLAN_RETURN_IF_ERROR(SplitHostPort(address, &host, &port));
+  if (!server_->is_valid()) {
+    return absl::InvalidArgumentError(absl::StrCat("HTTPS: ", tls_error_));
+  }
   if (port == 0) {
     const int bound = server_->bind_to_any_port(host);
     if (bound <= 0) return absl::UnavailableError(absl::StrCat("HTTP: cannot bind ", address));
@@ -231,16 +296,18 @@ void HttpGateway::RegisterRoutes() {
                       return;
                     }
                     absl::Status status = [&]() -> absl::Status {
-                      SEAPLAN_ASSIGN_OR_RETURN(Caller caller, Authorize(core, method, hreq));
-                      Request request;
-                      SEAPLAN_RETURN_IF_ERROR(FromJson(body, &request));
                       SEAPLAN_ASSIGN_OR_RETURN(auto deadline, Deadline(hreq));
-                      CallContext call = core.NewCall("http", deadline, nullptr);
-                      call.caller = std::move(caller);
+                      CallContext call = MakeCall(core, hreq, deadline, nullptr);
+                      // Counted before the token is looked up: guessing
+                      // tokens is rate limited too.
+                      SEAPLAN_RETURN_IF_ERROR(core.Admit(call));
+                      SEAPLAN_ASSIGN_OR_RETURN(call.caller, Authorize(core, method, hreq));
+                      Request request;
+                      SEAPLAN_RETURN_IF_ERROR(MessageFromJson(body, &request));
                       SEAPLAN_ASSIGN_OR_RETURN(Response response, fn(request, call));
                       core.access().RecordIfAudited(method, call, request, response);
                       std::string json;
-                      SEAPLAN_RETURN_IF_ERROR(ToJson(response, &json));
+                      SEAPLAN_RETURN_IF_ERROR(MessageToJson(response, &json));
                       hres.status = 200;
                       hres.set_content(json, kJson);
                       return absl::OkStatus();
@@ -266,7 +333,8 @@ void HttpGateway::RegisterRoutes() {
           }
           absl::StatusOr<Caller> caller = Authorize(core, method, hreq);
           auto request = std::make_shared<Request>();
-          absl::Status parsed = caller.ok() ? FromJson(body, request.get()) : caller.status();
+          absl::Status parsed =
+              caller.ok() ? MessageFromJson(body, request.get()) : caller.status();
           auto deadline = Deadline(hreq);
           if (!parsed.ok() || !deadline.ok()) {
             const absl::Status& st = parsed.ok() ? deadline.status() : parsed;
@@ -277,17 +345,22 @@ void HttpGateway::RegisterRoutes() {
           auto state = std::make_shared<StreamState>();
           state->method = method;
           state->started = started;
-          state->call = core.NewCall("http", *deadline, [raw = state.get()] {
+          state->call = MakeCall(core, hreq, *deadline, [raw = state.get()] {
             std::lock_guard lock(raw->mu);
             return raw->client_gone;
           });
+          if (absl::Status admitted = core.Admit(state->call); !admitted.ok()) {
+            Reply(hres, admitted);
+            LogCall("http", method, admitted, started);
+            return;
+          }
           state->call.caller = std::move(*caller);
           // The worker holds only a raw pointer: the state outlives it (the
           // state's destructor joins the worker).
           state->worker = std::thread([raw = state.get(), request, fn] {
             StreamSink<Event> sink = [raw](const Event& event) {
               std::string json;
-              if (!ToJson(event, &json).ok()) return false;
+              if (!MessageToJson(event, &json).ok()) return false;
               std::lock_guard lock(raw->mu);
               if (raw->client_gone) return false;
               raw->lines.push_back(std::move(json) + "\n");

@@ -9,6 +9,8 @@
 //   GET /healthz  200 {"status":"SERVING"} / 503 {"status":"NOT_SERVING"}
 // A client deadline may be given as header "X-Seaplan-Timeout-Ms: <ms>"
 // (the gRPC deadline's equivalent; without it a request has no deadline).
+// With TLS options the gateway serves HTTPS only (the same port). Every RPC
+// counts against its caller's rate limit (429 with a Retry-After header).
 // Bodies are limited to max_body_bytes (413 beyond) and read as JSON
 // whatever their Content-Type (curl -d sends a form type); multipart bodies
 // are refused (400).
@@ -29,12 +31,14 @@
 #pragma once
 
 #include <atomic>
+#include <chrono>
 #include <memory>
 #include <string>
 #include <thread>
 
 #include "seaplan/common/status.h"
 #include "server/core/service_core.h"
+#include "server/tls_options.h"
 
 namespace httplib {
 class Server;
@@ -50,6 +54,12 @@ class HttpGateway {
     // Folder of the built operator console (index.html ...), served at
     // "/"; empty or without index.html: GET / answers 404 saying so.
     std::string console_dir;
+    // HTTPS when tls.enabled() (mutual TLS with tls.client_ca_file).
+    TlsOptions tls;
+    // A connection that sends or takes nothing for this long is closed
+    // (slow or stalled clients must not hold a worker thread).
+    std::chrono::milliseconds read_timeout{10000};
+    std::chrono::milliseconds write_timeout{10000};
   };
 
   HttpGateway(ServiceCore& core, const Options& options);
@@ -58,6 +68,7 @@ class HttpGateway {
   HttpGateway& operator=(const HttpGateway&) = delete;
 
   // Binds "host:port" (port 0 = ephemeral) and returns the bound port.
+  // InvalidArgument when the TLS files cannot be used.
   absl::StatusOr<int> Bind(const std::string& address);
   // Serves on a background thread.
   void Start();
@@ -75,6 +86,7 @@ class HttpGateway {
   std::unique_ptr<httplib::Server> server_;
   std::thread thread_;
   std::atomic<bool> serving_{true};
+  std::string tls_error_;  // why the TLS context could not be set up
 };
 
 // Splits "host:port" ("[::1]:80" too); InvalidArgument when malformed.

@@ -1,8 +1,12 @@
 #include "seaplan/storage/sqlite_store.h"
 
 #include <sqlite3.h>
+#include <unistd.h>
 
 #include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <filesystem>
 #include <mutex>
 #include <optional>
 #include <string_view>
@@ -148,8 +152,22 @@ absl::Status SqliteError(sqlite3* db, int rc, const char* what) {
     case SQLITE_BUSY:
     case SQLITE_LOCKED:
       return absl::UnavailableError(msg);
+    // The disk, not the request: the transaction was rolled back whole and
+    // the same call succeeds once an operator fixed the storage.
     case SQLITE_FULL:
-      return absl::ResourceExhaustedError(msg);
+      return absl::UnavailableError(
+          absl::StrCat(msg,
+                       " (the database's disk is full: nothing was stored; free space and "
+                       "retry)"));
+    case SQLITE_READONLY:
+      return absl::UnavailableError(absl::StrCat(
+          msg,
+          " (the database is read-only: nothing was stored; make the database file, its -wal and "
+          "-shm files and its folder writable and retry)"));
+    case SQLITE_IOERR:
+    case SQLITE_CANTOPEN:
+      return absl::UnavailableError(absl::StrCat(
+          msg, " (the database's storage failed: nothing was stored; check the disk and retry)"));
     default:
       return absl::InternalError(msg);
   }
@@ -959,7 +977,16 @@ absl::StatusOr<std::unique_ptr<SqliteStore>> SqliteStore::Open(const std::string
   sqlite3_extended_result_codes(impl->db, 1);
   sqlite3_busy_timeout(impl->db, options.busy_timeout_ms);
   auto fail = [&](const absl::Status& st) {
-    return absl::Status(st.code(), absl::StrCat("database '", path, "': ", st.message()));
+    // SQLite says "unable to open database file" for a read-only folder or
+    // file system: say which, so an operator knows what to fix.
+    std::string why;
+    const std::string folder = std::filesystem::path(path).parent_path().string();
+    if (::access(folder.empty() ? "." : folder.c_str(), W_OK) != 0) {
+      why = absl::StrCat(" (its folder is not writable: ", std::strerror(errno), ")");
+    } else if (::access(path.c_str(), F_OK) == 0 && ::access(path.c_str(), W_OK) != 0) {
+      why = absl::StrCat(" (the file is not writable: ", std::strerror(errno), ")");
+    }
+    return absl::Status(st.code(), absl::StrCat("database '", path, "'", why, ": ", st.message()));
   };
   // journal_mode returns a row; an in-memory database stays "memory".
   {

@@ -4,6 +4,7 @@
 #include <sqlite3.h>
 #include <unistd.h>
 
+#include <cstdlib>
 #include <filesystem>
 
 #include "store_test_backends.h"
@@ -181,6 +182,167 @@ TEST(SqliteStoreTest, RawSqlCannotChangePlanVersions) {
   EXPECT_NE(error.find("immutable"), std::string::npos) << error;
   EXPECT_NE(RawExec(path, "DELETE FROM plan_versions", &error), SQLITE_OK);
   EXPECT_EQ(repo.GetVersion("m1", 2)->content, "content-2");
+}
+
+// ---- the disk fails under the database: full or read-only ----
+
+// A tmpfs of `size` mounted on a fresh folder (unmounted at the end). Mounting
+// needs root: `reason` says why not otherwise, for the skip message.
+class TinyFilesystem {
+ public:
+  explicit TinyFilesystem(const std::string& size) {
+    if (::geteuid() != 0) {
+      reason_ = "needs root to mount a small tmpfs (run as root, as CI does)";
+      return;
+    }
+    if (!Mount("-t tmpfs -o size=" + size + ",mode=0755 tmpfs")) {
+      reason_ = "mount -t tmpfs failed (no mount permission in this container?)";
+      return;
+    }
+    mounted_ = true;
+  }
+  ~TinyFilesystem() {
+    if (mounted_) Run("umount -l '" + (dir_ / "").string() + "'");
+  }
+  bool mounted() const { return mounted_; }
+  const std::string& reason() const { return reason_; }
+  fs::path path(const std::string& name) const { return dir_ / name; }
+  // Changes the mount's options (size=..., ro, rw).
+  bool Remount(const std::string& options) { return Mount("-o remount," + options); }
+
+ private:
+  bool Mount(const std::string& args) {
+    return Run("mount " + args + " '" + (dir_ / "").string() + "'");
+  }
+  static bool Run(const std::string& command) {
+    return std::system((command + " >/dev/null 2>&1").c_str()) == 0;
+  }
+
+  TempDir dir_;
+  bool mounted_ = false;
+  std::string reason_;
+};
+
+// PRAGMA integrity_check of a database file, as a separate connection sees it.
+std::string IntegrityCheck(const fs::path& db_path) {
+  sqlite3* db = nullptr;
+  std::string result;
+  if (sqlite3_open(db_path.c_str(), &db) == SQLITE_OK) {
+    sqlite3_exec(
+        db, "PRAGMA integrity_check",
+        [](void* out, int, char** values, char**) {
+          *static_cast<std::string*>(out) += values[0] ? values[0] : "";
+          return 0;
+        },
+        &result, nullptr);
+  }
+  sqlite3_close(db);
+  return result;
+}
+
+// Opens the store at `path` and creates mission `id`: the first error.
+absl::Status OpenAndWrite(const fs::path& path, const std::string& id) {
+  auto store = SqliteStore::Open(path.string());
+  if (!store.ok()) return store.status();
+  absl::Status status = (*store)->missions().Create(TestMission(id), TestVersion(id, 1), {});
+  (void)(*store)->Close();
+  return status;
+}
+
+TEST(SqliteStoreTest, FullDiskIsUnavailableWithoutLossAndWritesResumeWhenSpaceIsBack) {
+  TinyFilesystem disk("384k");
+  if (!disk.mounted()) GTEST_SKIP() << "full-disk test skipped: " << disk.reason();
+  const fs::path path = disk.path("db.sqlite");
+  auto store = SqliteStore::Open(path.string());
+  ASSERT_TRUE(store.ok()) << store.status();
+  MissionRepository& repo = (*store)->missions();
+  // Missions with a large plan until the disk is full.
+  absl::Status full;
+  int stored = 0;
+  for (int i = 0; i < 1000 && full.ok(); ++i) {
+    PlanVersionRecord version = TestVersion("m" + std::to_string(i), 1);
+    version.content = std::string(16 * 1024, static_cast<char>('a' + i % 26));
+    full = repo.Create(TestMission("m" + std::to_string(i)), version, {});
+    if (full.ok()) ++stored;
+  }
+  ASSERT_FALSE(full.ok()) << "a 384 KiB disk held 1000 plans of 16 KiB";
+  EXPECT_EQ(full.code(), absl::StatusCode::kUnavailable) << full;
+  EXPECT_NE(full.message().find("full"), std::string_view::npos) << full;
+  EXPECT_GT(stored, 0);
+  // What was acknowledged is there; the refused mission is not, even in part.
+  for (int i = 0; i < stored; ++i) EXPECT_TRUE(repo.Get("m" + std::to_string(i)).ok()) << i;
+  EXPECT_FALSE(repo.Get("m" + std::to_string(stored)).ok());
+  // Space is back: the same write succeeds, and the file is sound.
+  ASSERT_TRUE(disk.Remount("size=16m"));
+  PlanVersionRecord version = TestVersion("m" + std::to_string(stored), 1);
+  EXPECT_TRUE(repo.Create(TestMission("m" + std::to_string(stored)), version, {}).ok());
+  ASSERT_TRUE((*store)->Close().ok());
+  EXPECT_EQ(IntegrityCheck(path), "ok");
+}
+
+TEST(SqliteStoreTest, ReadOnlyDiskIsUnavailableWithoutLossAndWritesResumeWhenWritable) {
+  TinyFilesystem disk("16m");
+  if (!disk.mounted()) GTEST_SKIP() << "read-only disk test skipped: " << disk.reason();
+  const fs::path path = disk.path("db.sqlite");
+  {
+    auto store = SqliteStore::Open(path.string());
+    ASSERT_TRUE(store.ok()) << store.status();
+    ASSERT_TRUE(
+        (*store)->missions().Create(TestMission("before"), TestVersion("before", 1), {}).ok());
+    ASSERT_TRUE((*store)->Close().ok());
+  }
+  // The data folder's filesystem is read-only when the server starts (a
+  // filesystem with open files cannot be remounted read-only).
+  ASSERT_TRUE(disk.Remount("ro"));
+  {
+    const absl::Status status = OpenAndWrite(path, "during");
+    EXPECT_EQ(status.code(), absl::StatusCode::kUnavailable) << status;
+    EXPECT_NE(status.message().find("not writable"), std::string_view::npos) << status.ToString();
+  }
+  ASSERT_TRUE(disk.Remount("rw"));
+  auto store = SqliteStore::Open(path.string());
+  ASSERT_TRUE(store.ok()) << store.status();
+  MissionRepository& repo = (*store)->missions();
+  EXPECT_TRUE(repo.Create(TestMission("after"), TestVersion("after", 1), {}).ok());
+  EXPECT_TRUE(repo.Get("before").ok());
+  EXPECT_FALSE(repo.Get("during").ok());
+  ASSERT_TRUE((*store)->Close().ok());
+  EXPECT_EQ(IntegrityCheck(path), "ok");
+}
+
+TEST(SqliteStoreTest, ReadOnlyDatabaseFileIsUnavailableAndWritableAgainAfterwards) {
+  if (::geteuid() == 0) {
+    GTEST_SKIP() << "file permissions do not bind root: the read-only disk test covers root";
+  }
+  TempDir dir;
+  const fs::path path = dir / "db.sqlite";
+  {
+    auto store = SqliteStore::Open(path.string());
+    ASSERT_TRUE(store.ok()) << store.status();
+    ASSERT_TRUE(
+        (*store)->missions().Create(TestMission("before"), TestVersion("before", 1), {}).ok());
+    ASSERT_TRUE((*store)->Close().ok());
+  }
+  fs::permissions(path, fs::perms::owner_read | fs::perms::group_read | fs::perms::others_read);
+  {
+    const absl::Status status = OpenAndWrite(path, "during");
+    EXPECT_EQ(status.code(), absl::StatusCode::kUnavailable) << status;
+    EXPECT_NE(status.message().find("read-only"), std::string_view::npos) << status;
+  }
+  // The operator makes the files writable again (SQLite created the -wal
+  // and -shm files with the database file's mode).
+  for (const char* suffix : {"", "-wal", "-shm"}) {
+    const fs::path file = path.string() + suffix;
+    if (fs::exists(file)) fs::permissions(file, fs::perms::owner_read | fs::perms::owner_write);
+  }
+  auto store = SqliteStore::Open(path.string());
+  ASSERT_TRUE(store.ok()) << store.status();
+  const absl::Status after =
+      (*store)->missions().Create(TestMission("after"), TestVersion("after", 1), {});
+  EXPECT_TRUE(after.ok()) << after;
+  EXPECT_TRUE((*store)->missions().Get("before").ok());
+  ASSERT_TRUE((*store)->Close().ok());
+  EXPECT_EQ(IntegrityCheck(path), "ok");
 }
 
 }  // namespace

@@ -126,7 +126,9 @@ TEST(PlanningE2eTest, ClientDeadlineStopsALongSearch) {
   SEAPLAN_REQUIRE_SHARED(problem_path, "bench/depots-time/p05.pddl");
   const std::string domain = seaplan::testing::ReadFile(problem_path.parent_path() / "domain.pddl");
   const std::string problem = seaplan::testing::ReadFile(problem_path);
-  InProcessServer s(nullptr, /*planning_threads=*/1);
+  // No wait queue: a second call is refused while the first runs.
+  InProcessServer s(nullptr, /*planning_threads=*/1,
+                    [](ServerOptions& options) { options.core.planning_queue = 0; });
   auto planning = v1::PlanningService::NewStub(s.channel());
   v1::PlanRequest req;
   req.set_domain(domain);

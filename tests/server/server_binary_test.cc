@@ -20,6 +20,8 @@
 
 #include <atomic>
 #include <chrono>
+#include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -104,6 +106,16 @@ bool ReadPorts(const std::filesystem::path& file, int* grpc_port, int* http_port
   return *grpc_port > 0 && *http_port > 0;
 }
 
+// Waits up to 20 s for the server's port file; fails if the server exits.
+void WaitForPorts(Child& child, const std::filesystem::path& port_file, int* grpc_port,
+                  int* http_port) {
+  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(20);
+  while (!ReadPorts(port_file, grpc_port, http_port) && std::chrono::steady_clock::now() < until) {
+    ASSERT_EQ(waitpid(child.pid(), nullptr, WNOHANG), 0) << "server exited early";
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+  }
+}
+
 TEST(ServerBinaryTest, ServesBothTransportsAndShutsDownCleanlyOnSigterm) {
   const std::filesystem::path binary = seaplan::testing::BinDir() / "seaplan-server";
   if (!std::filesystem::exists(binary)) GTEST_SKIP() << binary << " not built";
@@ -114,12 +126,7 @@ TEST(ServerBinaryTest, ServesBothTransportsAndShutsDownCleanlyOnSigterm) {
                "--data-dir", data_dir.string(), "--port-file", port_file.string(), "--log-level",
                "warn", "--planning-threads", "1"});
   int grpc_port = 0, http_port = 0;
-  const auto until = std::chrono::steady_clock::now() + std::chrono::seconds(20);
-  while (!ReadPorts(port_file, &grpc_port, &http_port) &&
-         std::chrono::steady_clock::now() < until) {
-    ASSERT_EQ(waitpid(child.pid(), nullptr, WNOHANG), 0) << "server exited early";
-    std::this_thread::sleep_for(std::chrono::milliseconds(20));
-  }
+  ASSERT_NO_FATAL_FAILURE(WaitForPorts(child, port_file, &grpc_port, &http_port));
   ASSERT_GT(grpc_port, 0) << "no port file";
 
   auto channel = grpc::CreateChannel("127.0.0.1:" + std::to_string(grpc_port),
@@ -249,6 +256,83 @@ TEST(ServerBinaryTest, BadFlagsAndBusyPortsFailWithNonZeroExit) {
     ASSERT_NE(status, -1);
     EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 1);
   }
+}
+
+// Runs a shell command; its exit code and standard output + error.
+std::pair<int, std::string> Shell(const std::string& command) {
+  std::string output;
+  FILE* pipe = ::popen((command + " 2>&1").c_str(), "r");
+  if (pipe == nullptr) return {-1, ""};
+  char buffer[4096];
+  while (std::size_t n = std::fread(buffer, 1, sizeof(buffer), pipe)) output.append(buffer, n);
+  const int status = ::pclose(pipe);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+}
+
+TEST(ServerBinaryTest, RefusesANonLoopbackAddressWithoutTlsAndSaysHow) {
+  const std::filesystem::path binary = seaplan::testing::BinDir() / "seaplan-server";
+  if (!std::filesystem::exists(binary)) GTEST_SKIP() << binary << " not built";
+  TempDir dir;
+  auto [code, output] =
+      Shell(binary.string() + " --grpc-addr 0.0.0.0:0 --http-addr '' --data-dir " +
+            (dir.path() / "data").string());
+  EXPECT_EQ(code, 1) << output;
+  EXPECT_NE(output.find("without TLS"), std::string::npos) << output;
+  EXPECT_NE(output.find("--tls-cert"), std::string::npos) << output;
+  // A certificate without its key is a usage error.
+  auto [usage, usage_output] = Shell(binary.string() + " --tls-cert x.pem");
+  EXPECT_EQ(usage, 2) << usage_output;
+}
+
+TEST(ServerBinaryTest, TlsServerAnswersTheCliGivenTheCaCertificate) {
+  const std::filesystem::path bin = seaplan::testing::BinDir();
+  if (!std::filesystem::exists(bin / "seaplan-server") || !std::filesystem::exists(bin / "seaplan"))
+    GTEST_SKIP() << "seaplan-server or seaplan not built in " << bin;
+  TempDir dir;
+  const std::string d = dir.path().string();
+  // A throwaway CA and a server certificate for 127.0.0.1.
+  const auto [made, made_output] = Shell(
+      "cd '" + d +
+      "' && openssl req -x509 -newkey ec -pkeyopt ec_paramgen_curve:prime256v1 "
+      "-nodes -keyout ca.key -out ca.pem -days 2 -subj '/CN=test CA' && "
+      "openssl req -newkey ec -pkeyopt ec_paramgen_curve:prime256v1 -nodes -keyout server.key "
+      "-out server.csr -subj '/CN=localhost' && "
+      "printf 'subjectAltName=IP:127.0.0.1,DNS:localhost\\n' > server.ext && "
+      "openssl x509 -req -in server.csr -CA ca.pem -CAkey ca.key -CAcreateserial -days 2 "
+      "-out server.pem -extfile server.ext");
+  if (made != 0) {
+    if (std::getenv("CI") != nullptr) FAIL() << made_output;
+    GTEST_SKIP() << "the openssl command failed: " << made_output;
+  }
+  const auto port_file = dir.path() / "ports";
+  Child child({(bin / "seaplan-server").string(), "--grpc-addr", "127.0.0.1:0", "--http-addr",
+               "127.0.0.1:0", "--data-dir", d + "/data", "--port-file", port_file.string(),
+               "--log-level", "warn", "--tls-cert", d + "/server.pem", "--tls-key",
+               d + "/server.key"});
+  int grpc_port = 0, http_port = 0;
+  ASSERT_NO_FATAL_FAILURE(WaitForPorts(child, port_file, &grpc_port, &http_port));
+  ASSERT_GT(grpc_port, 0);
+  const std::string server = " --server 127.0.0.1:" + std::to_string(grpc_port) + " --timeout 20";
+  const std::string cli = (bin / "seaplan").string();
+  auto [ok, ok_output] = Shell(cli + server + " --ca-cert " + d + "/ca.pem mission list");
+  EXPECT_EQ(ok, 0) << ok_output;
+  // Without the CA the CLI speaks plaintext, which the TLS port does not answer.
+  auto [plain, plain_output] = Shell(cli + server + " mission list");
+  EXPECT_EQ(plain, 3) << plain_output;
+  // Unreadable or non-PEM files are usage errors naming the option.
+  auto [bad, bad_output] =
+      Shell(cli + server + " --ca-cert " + d + "/server.csr.missing mission list");
+  EXPECT_EQ(bad, 2) << bad_output;
+  EXPECT_NE(bad_output.find("--ca-cert"), std::string::npos) << bad_output;
+  auto [sim, sim_output] = Shell(
+      (bin / "seaplan-sim").string() + " --server 127.0.0.1:" + std::to_string(grpc_port) +
+      " --ca-cert " + d + "/server.ext --scenario " +
+      (seaplan::testing::SourceDir() / "examples" / "scenarios" / "case-a.scenario").string() +
+      " --report-dir " + d + "/sim");
+  EXPECT_NE(sim, 0) << sim_output;
+  EXPECT_NE(sim_output.find("not a PEM file"), std::string::npos) << sim_output;
+  kill(child.pid(), SIGTERM);
+  EXPECT_NE(child.Wait(std::chrono::seconds(30)), -1);
 }
 
 }  // namespace

@@ -209,10 +209,11 @@ TEST(ServerE2eTest, ValidateJsonRoundTripOnTheFjordExample) {
 
 // ---- the bounded pool, deadlines and cancellation (fake mission engine) ----
 
-TEST(ServerE2eTest, FullPoolIsResourceExhaustedAtOnceOverBothTransports) {
+TEST(ServerE2eTest, FullPoolWithoutQueueIsResourceExhaustedAtOnceOverBothTransports) {
   auto engine = std::make_shared<FakeMissionEngine>();
   engine->block_until_stopped = true;
-  InProcessServer s(engine, /*planning_threads=*/1);
+  InProcessServer s(engine, /*planning_threads=*/1,
+                    [](ServerOptions& options) { options.core.planning_queue = 0; });
   auto missions = v1::MissionService::NewStub(s.channel());
   // The first create occupies the only planning worker until its deadline.
   auto first = std::async(std::launch::async, [&] {

@@ -123,6 +123,18 @@ mission::FeedbackOutcome FakeMissionEngine::OnFeedback(const mission::MissionSpe
 InProcessServer::InProcessServer(std::shared_ptr<mission::MissionEngine> engine,
                                  int planning_threads, bool default_admin_token)
     : default_admin_token_(default_admin_token) {
+  OpenStore();
+  Start(std::move(engine), planning_threads, {});
+}
+
+InProcessServer::InProcessServer(std::shared_ptr<mission::MissionEngine> engine,
+                                 int planning_threads,
+                                 const std::function<void(ServerOptions&)>& configure) {
+  OpenStore();
+  Start(std::move(engine), planning_threads, configure);
+}
+
+void InProcessServer::OpenStore() {
   auto store = storage::SqliteStore::Open((dir_.path() / "seaplan.db").string());
   EXPECT_TRUE(store.ok()) << store.status();
   store_ = std::move(*store);
@@ -130,10 +142,10 @@ InProcessServer::InProcessServer(std::shared_ptr<mission::MissionEngine> engine,
                                     .ImportAdmin(seaplan::testing::TestAdminToken(), "tests");
   EXPECT_TRUE(imported.ok()) << imported;
   if (default_admin_token_) seaplan::testing::UseTestAdminTokenByDefault();
-  Start(std::move(engine), planning_threads);
 }
 
-void InProcessServer::Start(std::shared_ptr<mission::MissionEngine> engine, int planning_threads) {
+void InProcessServer::Start(std::shared_ptr<mission::MissionEngine> engine, int planning_threads,
+                            const std::function<void(ServerOptions&)>& configure) {
   ServerOptions options;
   options.grpc_address = "127.0.0.1:0";
   options.http_address = "127.0.0.1:0";
@@ -141,14 +153,21 @@ void InProcessServer::Start(std::shared_ptr<mission::MissionEngine> engine, int 
   options.core.planning_threads = planning_threads;
   options.core.missions.watch_poll = std::chrono::milliseconds(20);
   options.shutdown_grace = std::chrono::milliseconds(500);
+  if (configure) {
+    configure(options);
+  }
   auto server = Server::Start(options, *store_, std::move(engine));
-  EXPECT_TRUE(server.ok()) << server.status();
+  start_status_ = server.status();
+  if (!configure) {
+    EXPECT_TRUE(server.ok()) << server.status();
+  }
+  if (!server.ok()) return;
   server_ = std::move(*server);
   channel_ = grpc::CreateChannel(grpc_target(), grpc::InsecureChannelCredentials());
 }
 
 InProcessServer::~InProcessServer() {
-  server_->Shutdown();
+  if (server_) server_->Shutdown();
   server_.reset();
   EXPECT_TRUE(store_->Close().ok());
 }

@@ -87,6 +87,10 @@ class InProcessServer {
   // Without `engine`, the server's own (engine/mission over its store's charts).
   explicit InProcessServer(std::shared_ptr<mission::MissionEngine> engine = nullptr,
                            int planning_threads = 2, bool default_admin_token = true);
+  // `configure` changes the test's options (TLS, limits) before the start;
+  // Start's status is in start_status() (the server is null when it failed).
+  InProcessServer(std::shared_ptr<mission::MissionEngine> engine, int planning_threads,
+                  const std::function<void(ServerOptions&)>& configure);
   ~InProcessServer();
 
   Server& server() { return *server_; }
@@ -96,15 +100,20 @@ class InProcessServer {
   std::shared_ptr<grpc::Channel> channel() { return channel_; }
   // With the admin token's Authorization header when `default_admin_token`.
   httplib::Client http() const;
+  const absl::Status& start_status() const { return start_status_; }
 
  private:
-  void Start(std::shared_ptr<mission::MissionEngine> engine, int planning_threads);
+  // Opens the database and imports the fixtures' admin token.
+  void OpenStore();
+  void Start(std::shared_ptr<mission::MissionEngine> engine, int planning_threads,
+             const std::function<void(ServerOptions&)>& configure);
 
   TempDir dir_;
   std::unique_ptr<storage::SqliteStore> store_;
   std::unique_ptr<Server> server_;
   std::shared_ptr<grpc::Channel> channel_;
   bool default_admin_token_ = true;
+  absl::Status start_status_;
 };
 
 // A minimal valid mission spec (the fake engine does not read the PDDL).

@@ -16,6 +16,7 @@
 #include "seaplan/v1/mission.pb.h"
 #include "seaplan/v1/planning.pb.h"
 #include "seaplan/v1/route.pb.h"
+#include "tls_channel.h"
 
 namespace seaplan::cli {
 
@@ -79,9 +80,11 @@ class Backend {
 };
 
 // A server at `address` (host:port), presenting `token` (empty: none).
-// `timeout_s` <= 0 means no deadline.
+// `timeout_s` <= 0 means no deadline. `tls`: plaintext or TLS to the server
+// (clients/common/tls_channel.h).
 std::unique_ptr<Backend> MakeRemoteBackend(const std::string& address, double timeout_s,
-                                           const std::string& token);
+                                           const std::string& token,
+                                           const client::TlsFiles& tls);
 
 // The server core in-process, with charts kept in memory for the call.
 std::unique_ptr<Backend> MakeLocalBackend();

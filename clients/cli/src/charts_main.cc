@@ -11,7 +11,8 @@ int main(int argc, char** argv) {
   using namespace seaplan::cli;
   CliExecutable executable;
   executable.runs = [](const std::string&, const std::string& server) { return server.empty(); };
-  executable.make_backend = [](const std::string&, double, const std::string&) {
+  executable.make_backend = [](const std::string&, double, const std::string&,
+                                const seaplan::client::TlsFiles&) {
     return MakeLocalBackend();
   };
   executable.hand_over = [](const std::string& command, const std::string&, char**) {

@@ -30,6 +30,7 @@ struct GlobalOptions {
   std::string token_file;
   bool json = false;
   double timeout_s = 0;
+  client::TlsFiles tls;
   const CliExecutable* executable = nullptr;
 };
 
@@ -94,7 +95,7 @@ std::string FormatTimeMs(std::int64_t ms) {
 
 std::unique_ptr<Backend> MakeBackend(const GlobalOptions& options) {
   return options.executable->make_backend(options.server, options.timeout_s,
-                                          ResolvedToken(options));
+                                          ResolvedToken(options), options.tls);
 }
 
 void PrintJsonOr(const GlobalOptions& options, const google::protobuf::Message& message,
@@ -662,6 +663,7 @@ int RunCli(int argc, char** argv, const CliExecutable& executable) {
   app.add_option("--token-file", options.token_file, "file whose first line is the API token");
   app.add_flag("--json", options.json, "Machine-readable JSON output");
   app.add_option("--timeout", options.timeout_s, "RPC deadline in seconds (0: none)");
+  client::AddTlsOptions(app, &options.tls);
   std::string log_level = "warn";
   app.add_option("--log-level", log_level, "debug, info, warn, error or off (in-process work)")
       ->capture_default_str();
@@ -671,6 +673,8 @@ int RunCli(int argc, char** argv, const CliExecutable& executable) {
       throw CLI::ValidationError("--log-level", "expected debug, info, warn, error or off");
     }
     log::SetLevel(level);
+    if (absl::Status tls = client::CheckTlsFiles(options.tls); !tls.ok())
+      throw CLI::ValidationError(std::string(tls.message()));
   });
 
   int exit_code = kExitSuccess;

@@ -15,6 +15,7 @@
 #include <string>
 
 #include "backend.h"
+#include "tls_channel.h"
 
 namespace seaplan::cli {
 
@@ -23,9 +24,11 @@ struct CliExecutable {
   // against `server` (empty: in-process).
   std::function<bool(const std::string& command, const std::string& server)> runs;
   // The backend of a command it runs (`timeout_s` <= 0: no deadline;
-  // `token`: the API token a server backend presents).
+  // `token`: the API token a server backend presents; `tls` checked with
+  // client::CheckTlsFiles).
   std::function<std::unique_ptr<Backend>(const std::string& server, double timeout_s,
-                                         const std::string& token)>
+                                         const std::string& token,
+                                         const client::TlsFiles& tls)>
       make_backend;
   // Runs the whole command line `argv` in the executable that runs
   // `command`; returns an exit code only when that cannot be done.

@@ -1,4 +1,6 @@
 #include <chrono>
+#include <cstdlib>
+#include <iostream>
 
 #include "absl/strings/cord.h"
 #include "backend.h"
@@ -27,8 +29,9 @@ absl::Status FromGrpc(const grpc::Status& status) {
 
 class RemoteBackend final : public Backend {
  public:
-  RemoteBackend(const std::string& address, double timeout_s, const std::string& token)
-      : channel_(client::CreateChannelWithToken(address, grpc::InsecureChannelCredentials(),
+  RemoteBackend(const std::string& address, double timeout_s,
+                std::shared_ptr<grpc::ChannelCredentials> credentials, const std::string& token)
+      : channel_(client::CreateChannelWithToken(address, std::move(credentials),
                                                 grpc::ChannelArguments(), token)),
         planning_(v1::PlanningService::NewStub(channel_)),
         charts_(v1::ChartService::NewStub(channel_)),
@@ -161,8 +164,16 @@ class RemoteBackend final : public Backend {
 }  // namespace
 
 std::unique_ptr<Backend> MakeRemoteBackend(const std::string& address, double timeout_s,
-                                           const std::string& token) {
-  return std::make_unique<RemoteBackend>(address, timeout_s, token);
+                                           const std::string& token,
+                                           const client::TlsFiles& tls) {
+  auto credentials = client::ChannelCredentials(tls);
+  if (!credentials.ok()) {
+    // RunCli checked the files before any command ran: only a file changed
+    // in between gets here.
+    std::cerr << "error: " << credentials.status().message() << "\n";
+    std::exit(kExitBadInput);
+  }
+  return std::make_unique<RemoteBackend>(address, timeout_s, *std::move(credentials), token);
 }
 
 }  // namespace seaplan::cli

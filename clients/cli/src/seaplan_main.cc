@@ -41,7 +41,8 @@ int main(int argc, char** argv) {
   using namespace seaplan::cli;
   CliExecutable executable;
   executable.runs = RunsHere;
-  executable.make_backend = [](const std::string&, double, const std::string&) {
+  executable.make_backend = [](const std::string&, double, const std::string&,
+                                const seaplan::client::TlsFiles&) {
     return MakePlanningBackend();
   };
   executable.hand_over = HandOver;

@@ -338,8 +338,14 @@ StatusOr<ObstacleMap> LoadFromRoot(const std::string& root, const std::string& d
                                               "RETURN_LINKAGES=OFF",
                                               "LNAM_REFS=OFF",
                                               nullptr};
+    // Only the chart formats: an upload must not reach GDAL's other
+    // drivers (OSM, SQLite-based, network ones...), whose cost and attack
+    // surface have nothing to do with charts (a 36-byte "<osm" upload took
+    // the OSM driver over 10 s under the fuzzer).
+    static const char* const kChartDrivers[] = {"S57", "OpenFileGDB", "ESRI Shapefile", "GeoJSON",
+                                                nullptr};
     std::unique_ptr<GDALDataset, GdalDatasetCloser> ds(
-        GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, nullptr,
+        GDALDataset::Open(path.c_str(), GDAL_OF_VECTOR | GDAL_OF_READONLY, kChartDrivers,
                           s57 ? kS57Options : nullptr, nullptr));
     if (!ds) {
       // In a folder or archive with several datasets, one unreadable file

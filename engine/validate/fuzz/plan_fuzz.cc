@@ -2,9 +2,7 @@
 // error or a validation result, never a crash, a hang or unbounded memory;
 // every plan that parses prints and parses back to itself.
 //
-//   CC=clang CXX=clang++ cmake -S . -B build-fuzz -G Ninja -DSEAPLAN_BUILD_FUZZ=ON
-//   cmake --build build-fuzz --target plan_fuzz
-//   build-fuzz/bin/plan_fuzz -max_total_time=60 -max_len=2000
+//   bash scripts/fuzz.sh run plan 60   (tests/fuzz/README.md)
 #include <cstddef>
 #include <cstdint>
 #include <cstdlib>
