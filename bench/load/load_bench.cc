@@ -31,10 +31,12 @@
 #include <thread>
 #include <vector>
 
+#include "client_token.h"
 #include "seaplan/v1/chart.grpc.pb.h"
 #include "seaplan/v1/mission.grpc.pb.h"
 #include "seaplan/v1/planning.grpc.pb.h"
 #include "seaplan/v1/route.grpc.pb.h"
+#include "token_channel.h"
 
 namespace fs = std::filesystem;
 using namespace seaplan;
@@ -266,7 +268,15 @@ int Run(const Options& o) {
     std::fprintf(stderr, "load: seaplan-server did not start from %s\n", o.bin.c_str());
     return 1;
   }
-  auto channel = grpc::CreateChannel(server.address(), grpc::InsecureChannelCredentials());
+  // Every client presents the admin token the server wrote at its first
+  // start (one caller: the bench runs with --rate-limit 0 by default).
+  const auto token = seaplan::client::ResolveToken("", (dir / "data" / "admin.token").string());
+  if (!token.ok()) {
+    std::fprintf(stderr, "load: %s\n", std::string(token.status().message()).c_str());
+    return 1;
+  }
+  auto channel = seaplan::client::CreateChannelWithToken(
+      server.address(), grpc::InsecureChannelCredentials(), grpc::ChannelArguments(), *token);
   // Setup: the chart for PlanRoute and the missions to watch and feed.
   std::string chart_id;
   {
@@ -340,9 +350,9 @@ int Run(const Options& o) {
     clients.emplace_back([&, id] {
       grpc::ChannelArguments args;
       args.SetInt("seaplan.load.client", id);  // a distinct channel per client
-      Workload own(
-          grpc::CreateCustomChannel(server.address(), grpc::InsecureChannelCredentials(), args), o,
-          chart_id, missions);
+      Workload own(seaplan::client::CreateChannelWithToken(
+                       server.address(), grpc::InsecureChannelCredentials(), args, *token),
+                   o, chart_id, missions);
       const int kind = id % 4;
       for (long n = 0; Clock::now() < end; ++n) {
         const auto t0 = Clock::now();

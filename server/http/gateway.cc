@@ -1,5 +1,7 @@
 #include "server/http/gateway.h"
 
+#include <google/protobuf/struct.pb.h>
+#include <google/protobuf/util/json_util.h>
 #include <httplib.h>
 #include <openssl/err.h>
 #include <openssl/ssl.h>

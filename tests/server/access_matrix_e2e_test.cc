@@ -12,7 +12,7 @@
 // here), and the code's table (server/auth/policy.cc) must say the same.
 //
 // Its own binary: it must not use the fixtures' default admin token
-// (InProcessServer(..., default_admin_token = false)).
+// (InProcessServer(..., AdminTokenUse::kNone)).
 #include <google/protobuf/descriptor.h>
 #include <google/protobuf/dynamic_message.h>
 #include <google/protobuf/util/json_util.h>
@@ -101,7 +101,7 @@ class AccessMatrixTest : public ::testing::Test {
  protected:
   void SetUp() override {
     engine_ = std::make_shared<FakeMissionEngine>();
-    server_ = std::make_unique<InProcessServer>(engine_, 2, /*default_admin_token=*/false);
+    server_ = std::make_unique<InProcessServer>(engine_, 2, InProcessServer::AdminTokenUse::kNone);
     auth_ = std::make_unique<auth::Authenticator>(server_->store().tokens());
     Add("admin", auth::Role::kAdmin);
     Add("operator", auth::Role::kOperator);

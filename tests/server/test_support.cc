@@ -121,8 +121,8 @@ mission::FeedbackOutcome FakeMissionEngine::OnFeedback(const mission::MissionSpe
 }
 
 InProcessServer::InProcessServer(std::shared_ptr<mission::MissionEngine> engine,
-                                 int planning_threads, bool default_admin_token)
-    : default_admin_token_(default_admin_token) {
+                                 int planning_threads, AdminTokenUse admin_token)
+    : default_admin_token_(admin_token == AdminTokenUse::kPresentByDefault) {
   OpenStore();
   Start(std::move(engine), planning_threads, {});
 }

@@ -84,9 +84,13 @@ class FakeMissionEngine final : public mission::MissionEngine {
 // every request of http() present it, so tests need not handle tokens.
 class InProcessServer {
  public:
+  // Whether this process's calls present the fixtures' admin token when
+  // they carry no credential of their own.
+  enum class AdminTokenUse { kPresentByDefault, kNone };
   // Without `engine`, the server's own (engine/mission over its store's charts).
   explicit InProcessServer(std::shared_ptr<mission::MissionEngine> engine = nullptr,
-                           int planning_threads = 2, bool default_admin_token = true);
+                           int planning_threads = 2,
+                           AdminTokenUse admin_token = AdminTokenUse::kPresentByDefault);
   // `configure` changes the test's options (TLS, limits) before the start;
   // Start's status is in start_status() (the server is null when it failed).
   InProcessServer(std::shared_ptr<mission::MissionEngine> engine, int planning_threads,
