@@ -20,6 +20,7 @@
 
 #include <algorithm>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -46,12 +47,16 @@ std::string Read(const fs::path& p) {
   return ss.str();
 }
 
+// The nearest-rank `p` quantile of sorted, non-empty `ms`.
+double Quantile(const std::vector<double>& ms, double p) {
+  const auto rank = static_cast<size_t>(std::lround(p * static_cast<double>(ms.size() - 1)));
+  return ms[std::min(ms.size() - 1, rank)];
+}
+
 void PrintStats(const char* what, std::vector<double> ms) {
   if (ms.empty()) return;
   std::sort(ms.begin(), ms.end());
-  auto pct = [&](double p) {
-    return ms[std::min(ms.size() - 1, static_cast<size_t>(p * (ms.size() - 1) + 0.5))];
-  };
+  auto pct = [&](double p) { return Quantile(ms, p); };
   std::printf("%-48s n=%zu p50=%.2f ms p95=%.2f ms max=%.2f ms\n", what, ms.size(), pct(0.5),
               pct(0.95), ms.back());
 }
@@ -232,7 +237,7 @@ bool ServerBench(const fs::path& src, const fs::path& bin, int n) {
   if (!all_versions) std::printf("server: failed (%zu of %d new versions)\n", ms.size(), n);
   if (!ms.empty()) {
     std::sort(ms.begin(), ms.end());
-    double p95 = ms[std::min(ms.size() - 1, static_cast<size_t>(0.95 * (ms.size() - 1) + 0.5))];
+    const double p95 = Quantile(ms, 0.95);
     std::printf("target p95 < 100 ms: %s\n", p95 < 100 ? "met" : "NOT met");
   }
   // Whole case C simulation.
