@@ -13,7 +13,7 @@ BUILD_DIR=${BUILD_DIR:-build}
 JOBS=${JOBS:-$(nproc)}
 BUILD_DIR="$BUILD_DIR" JOBS="$JOBS" bash scripts/build.sh
 filters=("$@")
-if [[ ${#filters[@]} -eq 0 ]]; then filters=(engine/ server/ storage/ clients/ bench/ tests/); fi
+if [[ ${#filters[@]} -eq 0 ]]; then filters=(engine/ proto/convert/ server/ storage/ clients/ bench/ tests/); fi
 regexes=()
 for f in "${filters[@]}"; do regexes+=("^$PWD/${f%/}/"); done
 run-clang-tidy -p "$BUILD_DIR" -j "$JOBS" -quiet "${regexes[@]}"

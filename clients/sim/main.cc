@@ -42,6 +42,7 @@
 #include "scenario.h"
 #include "seaplan/chart/obstacle_map.h"
 #include "seaplan/common/log.h"
+#include "seaplan/convert/mission_convert.h"
 #include "sim_client.h"
 #include "tls_channel.h"
 
@@ -88,116 +89,6 @@ std::string ReadAll(const std::string& path, bool* ok) {
   std::stringstream ss;
   ss << in.rdbuf();
   return ss.str();
-}
-
-v1::MsoMode ToProtoMode(mission::MsoMode m) {
-  switch (m) {
-    case mission::MsoMode::kPto:
-      return v1::MSO_MODE_PTO;
-    case mission::MsoMode::kMec:
-      return v1::MSO_MODE_MEC;
-    case mission::MsoMode::kPti:
-      return v1::MSO_MODE_PTI;
-    default:
-      return v1::MSO_MODE_UNSPECIFIED;
-  }
-}
-mission::MsoMode FromProtoMode(v1::MsoMode m) {
-  switch (m) {
-    case v1::MSO_MODE_PTO:
-      return mission::MsoMode::kPto;
-    case v1::MSO_MODE_MEC:
-      return mission::MsoMode::kMec;
-    case v1::MSO_MODE_PTI:
-      return mission::MsoMode::kPti;
-    default:
-      return mission::MsoMode::kUnspecified;
-  }
-}
-mission::TaskKind FromProtoKind(v1::Task::Kind k) {
-  switch (k) {
-    case v1::Task::KIND_MOVE:
-      return mission::TaskKind::kMove;
-    case v1::Task::KIND_LOAD:
-      return mission::TaskKind::kLoad;
-    case v1::Task::KIND_UNLOAD:
-      return mission::TaskKind::kUnload;
-    case v1::Task::KIND_REPAIR:
-      return mission::TaskKind::kRepair;
-    case v1::Task::KIND_REFUEL:
-      return mission::TaskKind::kRefuel;
-    default:
-      return mission::TaskKind::kOther;
-  }
-}
-v1::Feedback::Kind ToProtoFeedback(mission::FeedbackKind k) {
-  switch (k) {
-    case mission::FeedbackKind::kTaskStarted:
-      return v1::Feedback::KIND_TASK_STARTED;
-    case mission::FeedbackKind::kTaskCompleted:
-      return v1::Feedback::KIND_TASK_COMPLETED;
-    case mission::FeedbackKind::kTaskFailed:
-      return v1::Feedback::KIND_TASK_FAILED;
-    case mission::FeedbackKind::kPosition:
-      return v1::Feedback::KIND_POSITION;
-    case mission::FeedbackKind::kGnssFault:
-      return v1::Feedback::KIND_GNSS_FAULT;
-    case mission::FeedbackKind::kMachineryFault:
-      return v1::Feedback::KIND_MACHINERY_FAULT;
-    case mission::FeedbackKind::kOperatorChange:
-      return v1::Feedback::KIND_OPERATOR_CHANGE;
-    case mission::FeedbackKind::kCollisionAvoidance:
-      return v1::Feedback::KIND_COLLISION_AVOIDANCE;
-  }
-  return v1::Feedback::KIND_UNSPECIFIED;
-}
-
-mission::PlanVersion FromProto(const v1::PlanVersion& p, const chart::LocalFrame& frame) {
-  mission::PlanVersion v;
-  v.version = p.version();
-  v.reason = p.reason();
-  v.mission_time_origin_s = p.mission_time_origin_s();
-  v.makespan_s = p.makespan_s();
-  v.problem = p.problem();
-  for (const v1::TimedAction& a : p.plan()) {
-    validate::PlanStep s;
-    s.start_s = a.start_s();
-    s.duration_s = a.duration_s();
-    s.name = a.name();
-    s.args.assign(a.arguments().begin(), a.arguments().end());
-    v.plan.steps.push_back(std::move(s));
-  }
-  for (const v1::Task& t : p.tasks()) {
-    mission::Task m;
-    m.id = t.task_id();
-    m.kind = FromProtoKind(t.kind());
-    m.start_s = t.start_s();
-    m.duration_s = t.duration_s();
-    m.action.start_s = t.action().start_s();
-    m.action.duration_s = t.action().duration_s();
-    m.action.name = t.action().name();
-    m.action.args.assign(t.action().arguments().begin(), t.action().arguments().end());
-    m.from_location = t.from_location();
-    m.to_location = t.to_location();
-    if (t.has_route() && t.route().waypoints_size() > 0) {
-      mission::Route r;
-      r.length_m = t.route().length_m();
-      r.sailing_time_s = t.route().sailing_time_s();
-      r.fuel_kg = t.route().fuel_kg();
-      for (const v1::RouteWaypoint& w : t.route().waypoints()) {
-        mission::RouteWaypoint rw;
-        EastNorth lp = frame.ToLocal({w.position().latitude_deg(), w.position().longitude_deg()});
-        rw.position = {lp.east_m, lp.north_m};
-        rw.mode = FromProtoMode(w.mode());
-        rw.eta_s = w.eta_s();
-        rw.distance_from_start_m = w.distance_from_start_m();
-        r.waypoints.push_back(rw);
-      }
-      m.route = std::move(r);
-    }
-    v.tasks.push_back(std::move(m));
-  }
-  return v;
 }
 
 v1::MissionSpec MakeSpec(const sim::Scenario& s, const std::string& domain,
@@ -265,7 +156,7 @@ void FillShipState(const sim::FeedbackOut& fb, const chart::LocalFrame& frame, v
   st->set_heading_deg(CompassDeg(fb.heading_rad));
   st->set_speed_mps(fb.speed_mps);
   st->set_fuel_fraction(fb.fuel_fraction);
-  st->set_mode(ToProtoMode(fb.mode));
+  st->set_mode(convert::MsoModeToProto(fb.mode));
   st->set_collision_avoidance_active(fb.collision_avoidance_active);
 }
 
@@ -497,7 +388,7 @@ int main(int argc, char** argv) {
     std::fprintf(stderr, "seaplan-sim: no plan version for mission %s\n", mission_id.c_str());
     return client.terminal_state() == v1::MISSION_STATE_UNSPECIFIED ? 3 : 2;
   }
-  executor->SetPlan(FromProto(*first, frame));
+  executor->SetPlan(convert::PlanVersionFromProto(*first, frame));
   double current_origin = first->mission_time_origin_s();
 
   const double time_factor = f.time_factor >= 0 ? f.time_factor : scenario->time_factor;
@@ -519,7 +410,7 @@ int main(int argc, char** argv) {
       // triggers of one situation) is a duplicate: keep executing.
       if (v->mission_time_origin_s() > current_origin + 1e-6) {
         current_origin = v->mission_time_origin_s();
-        executor->SetPlan(FromProto(*v, frame));
+        executor->SetPlan(convert::PlanVersionFromProto(*v, frame));
       } else {
         executor->Log(absl::StrCat("ignored plan version ", v->version(),
                                    " (planned from the same state as version ",
@@ -568,7 +459,7 @@ int main(int argc, char** argv) {
         req.set_mission_id(mission_id);
         req.set_vessel_id(scenario->vessel_id);
         v1::Feedback* p = req.mutable_feedback();
-        p->set_kind(ToProtoFeedback(fb.kind));
+        p->set_kind(convert::FeedbackKindToProto(fb.kind));
         p->set_task_id(fb.task_id);
         p->set_plan_version(fb.plan_version);
         p->set_mission_time_s(fb.mission_time_s);
@@ -616,7 +507,7 @@ int main(int argc, char** argv) {
       auto v = client.WaitForVersion(executor->plan_version(), replan_timeout);
       if (v) {
         current_origin = v->mission_time_origin_s();
-        executor->SetPlan(FromProto(*v, frame));
+        executor->SetPlan(convert::PlanVersionFromProto(*v, frame));
       } else if (client.terminal_state() == v1::MISSION_STATE_COMPLETED &&
                  !executor->WaitingForPlan()) {
         // The goal already holds: nothing to replan.

@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "absl/strings/str_cat.h"
+#include "seaplan/convert/mission_convert.h"
 #include "server/core/convert.h"
 #include "server/core/route_convert.h"
 #include "server/core/status_details.h"
@@ -11,97 +12,8 @@
 namespace seaplan::server {
 namespace {
 
-v1::Task::Kind KindToProto(mission::TaskKind k) {
-  switch (k) {
-    case mission::TaskKind::kMove:
-      return v1::Task::KIND_MOVE;
-    case mission::TaskKind::kLoad:
-      return v1::Task::KIND_LOAD;
-    case mission::TaskKind::kUnload:
-      return v1::Task::KIND_UNLOAD;
-    case mission::TaskKind::kRepair:
-      return v1::Task::KIND_REPAIR;
-    case mission::TaskKind::kRefuel:
-      return v1::Task::KIND_REFUEL;
-    case mission::TaskKind::kOther:
-      return v1::Task::KIND_OTHER;
-  }
-  return v1::Task::KIND_OTHER;
-}
-
-mission::TaskKind KindFromProto(v1::Task::Kind k) {
-  switch (k) {
-    case v1::Task::KIND_MOVE:
-      return mission::TaskKind::kMove;
-    case v1::Task::KIND_LOAD:
-      return mission::TaskKind::kLoad;
-    case v1::Task::KIND_UNLOAD:
-      return mission::TaskKind::kUnload;
-    case v1::Task::KIND_REPAIR:
-      return mission::TaskKind::kRepair;
-    case v1::Task::KIND_REFUEL:
-      return mission::TaskKind::kRefuel;
-    default:
-      return mission::TaskKind::kOther;
-  }
-}
-
-mission::MsoMode ModeFromProto(v1::MsoMode m) {
-  switch (m) {
-    case v1::MSO_MODE_PTO:
-      return mission::MsoMode::kPto;
-    case v1::MSO_MODE_MEC:
-      return mission::MsoMode::kMec;
-    case v1::MSO_MODE_PTI:
-      return mission::MsoMode::kPti;
-    default:
-      return mission::MsoMode::kUnspecified;
-  }
-}
-
-v1::TimedAction StepToProto(const validate::PlanStep& s) {
-  v1::TimedAction a;
-  a.set_start_s(s.start_s);
-  a.set_duration_s(s.duration_s);
-  a.set_name(s.name);
-  for (const auto& arg : s.args) a.add_arguments(arg);
-  return a;
-}
-
-validate::PlanStep StepFromProto(const v1::TimedAction& a) {
-  validate::PlanStep s;
-  s.start_s = a.start_s();
-  s.duration_s = a.duration_s();
-  s.name = a.name();
-  s.args.assign(a.arguments().begin(), a.arguments().end());
-  return s;
-}
-
-EastNorth ToLocal(const chart::LocalFrame& frame, const v1::LatLon& p) {
-  const EastNorth local = frame.ToLocal({p.latitude_deg(), p.longitude_deg()});
-  return {local.east_m, local.north_m};
-}
-
-mission::FeedbackKind FeedbackKindFromProto(v1::Feedback::Kind kind) {
-  switch (kind) {
-    case v1::Feedback::KIND_TASK_STARTED:
-      return mission::FeedbackKind::kTaskStarted;
-    case v1::Feedback::KIND_TASK_COMPLETED:
-      return mission::FeedbackKind::kTaskCompleted;
-    case v1::Feedback::KIND_TASK_FAILED:
-      return mission::FeedbackKind::kTaskFailed;
-    case v1::Feedback::KIND_GNSS_FAULT:
-      return mission::FeedbackKind::kGnssFault;
-    case v1::Feedback::KIND_MACHINERY_FAULT:
-      return mission::FeedbackKind::kMachineryFault;
-    case v1::Feedback::KIND_OPERATOR_CHANGE:
-      return mission::FeedbackKind::kOperatorChange;
-    case v1::Feedback::KIND_COLLISION_AVOIDANCE:
-      return mission::FeedbackKind::kCollisionAvoidance;
-    default:
-      return mission::FeedbackKind::kPosition;
-  }
-}
+using convert::FeedbackKindFromProto;
+using convert::ToLocal;
 
 // The engine's view of the stored runtime state; positions through `frame`.
 mission::MissionRuntime RuntimeFromProto(const MissionRuntimeState& state,
@@ -170,99 +82,6 @@ absl::StatusOr<mission::MissionSpec> SpecFromProto(const v1::MissionSpec& spec) 
                           spec.initial_state().position().longitude_deg()};
   out.initial_fuel_fraction = spec.initial_state().fuel_fraction();
   return out;
-}
-
-v1::PlanVersion PlanVersionToProto(const mission::PlanVersion& v, const chart::LocalFrame& frame) {
-  v1::PlanVersion p;
-  p.set_version(v.version);
-  p.set_reason(v.reason);
-  p.set_makespan_s(v.makespan_s);
-  p.set_problem(v.problem);
-  p.set_mission_time_origin_s(v.mission_time_origin_s);
-  p.set_planner_status(v.quality == mission::PlanQuality::kOptimal ? v1::SOLVED_OPTIMALLY
-                                                                   : v1::SOLVED_SATISFICING);
-  for (const auto& s : v.plan.steps) *p.add_plan() = StepToProto(s);
-  for (const auto& t : v.tasks) {
-    v1::Task* task = p.add_tasks();
-    task->set_task_id(t.id);
-    task->set_kind(KindToProto(t.kind));
-    task->set_start_s(t.start_s);
-    task->set_duration_s(t.duration_s);
-    *task->mutable_action() = StepToProto(t.action);
-    task->set_from_location(t.from_location);
-    task->set_to_location(t.to_location);
-    if (!t.route) continue;
-    v1::RouteAlternative* r = task->mutable_route();
-    r->set_index(t.route->alternative_index);
-    r->set_length_m(t.route->length_m);
-    r->set_sailing_time_s(t.route->sailing_time_s);
-    r->set_fuel_kg(t.route->fuel_kg);
-    r->set_expected_grounding_cost(t.route->expected_grounding_cost);
-    r->set_max_grounding_probability(t.route->max_grounding_probability);
-    for (const auto& w : t.route->waypoints) {
-      v1::RouteWaypoint* rw = r->add_waypoints();
-      const chart::LatLon ll = frame.ToLatLon({w.position.east_m, w.position.north_m});
-      rw->mutable_position()->set_latitude_deg(ll.lat_deg);
-      rw->mutable_position()->set_longitude_deg(ll.lon_deg);
-      rw->set_mode(MsoModeToProto(w.mode));
-      rw->set_eta_s(w.eta_s);
-      rw->set_distance_from_start_m(w.distance_from_start_m);
-      rw->set_time_to_grounding_s(w.time_to_grounding_s);
-      rw->set_grounding_probability(w.grounding_probability);
-      rw->set_expected_grounding_cost(w.expected_grounding_cost);
-      rw->set_fuel_kg(w.fuel_kg);
-    }
-    AddModeSchedule(*t.route, task->mutable_mode_schedule());
-  }
-  return p;
-}
-
-mission::PlanVersion PlanVersionFromProto(const v1::PlanVersion& p,
-                                          const chart::LocalFrame& frame) {
-  mission::PlanVersion v;
-  v.version = p.version();
-  v.reason = p.reason();
-  v.mission_time_origin_s = p.mission_time_origin_s();
-  v.makespan_s = p.makespan_s();
-  v.problem = p.problem();
-  v.quality = p.planner_status() == v1::SOLVED_OPTIMALLY ? mission::PlanQuality::kOptimal
-                                                         : mission::PlanQuality::kSatisficing;
-  for (const auto& a : p.plan()) v.plan.steps.push_back(StepFromProto(a));
-  for (const auto& t : p.tasks()) {
-    mission::Task task;
-    task.id = t.task_id();
-    task.kind = KindFromProto(t.kind());
-    task.start_s = t.start_s();
-    task.duration_s = t.duration_s();
-    task.action = StepFromProto(t.action());
-    task.from_location = t.from_location();
-    task.to_location = t.to_location();
-    if (t.has_route()) {
-      const v1::RouteAlternative& r = t.route();
-      mission::Route route;
-      route.alternative_index = r.index();
-      route.length_m = r.length_m();
-      route.sailing_time_s = r.sailing_time_s();
-      route.fuel_kg = r.fuel_kg();
-      route.expected_grounding_cost = r.expected_grounding_cost();
-      route.max_grounding_probability = r.max_grounding_probability();
-      for (const auto& w : r.waypoints()) {
-        mission::RouteWaypoint m;
-        m.position = ToLocal(frame, w.position());
-        m.mode = ModeFromProto(w.mode());
-        m.eta_s = w.eta_s();
-        m.distance_from_start_m = w.distance_from_start_m();
-        m.time_to_grounding_s = w.time_to_grounding_s();
-        m.grounding_probability = w.grounding_probability();
-        m.expected_grounding_cost = w.expected_grounding_cost();
-        m.fuel_kg = w.fuel_kg();
-        route.waypoints.push_back(m);
-      }
-      task.route = std::move(route);
-    }
-    v.tasks.push_back(std::move(task));
-  }
-  return v;
 }
 
 mission::Feedback FeedbackFromProto(const v1::Feedback& feedback, const chart::LocalFrame* frame) {

@@ -18,6 +18,7 @@
 #include "seaplan/chart/geodesy.h"
 #include "seaplan/common/status.h"
 #include "seaplan/common/stop_token.h"
+#include "seaplan/convert/mission_convert.h"
 #include "seaplan/mission/mission_engine.h"
 #include "seaplan/mission/mission_state.h"
 #include "seaplan/v1/mission.pb.h"
@@ -65,11 +66,10 @@ class MissionAdapter {
 // ---- translations (exposed for their tests) ----
 
 absl::StatusOr<mission::MissionSpec> SpecFromProto(const v1::MissionSpec& spec);
-// Plan versions with their routes; waypoints through `frame`.
-v1::PlanVersion PlanVersionToProto(const mission::PlanVersion& version,
-                                   const chart::LocalFrame& frame);
-mission::PlanVersion PlanVersionFromProto(const v1::PlanVersion& version,
-                                          const chart::LocalFrame& frame);
+// Plan versions with their routes (proto/convert, shared with the simulation
+// client); waypoints through `frame`.
+using convert::PlanVersionFromProto;
+using convert::PlanVersionToProto;
 // Position through `frame` (none without a frame or a state).
 mission::Feedback FeedbackFromProto(const v1::Feedback& feedback, const chart::LocalFrame* frame);
 // Stored mission states are v1::MissionState numbers.

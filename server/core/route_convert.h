@@ -25,10 +25,4 @@ route::RouteOptions OptionsToEngine(const v1::OptimizerOptions& o);
 absl::StatusOr<std::shared_ptr<const chart::ObstacleMap>> LoadMap(storage::ChartRepository& charts,
                                                                   const std::string& id);
 
-v1::MsoMode MsoModeToProto(mission::MsoMode mode);
-// Appends the route's mode schedule (mission::ModeSchedule: runs of equal
-// modes over its segments).
-void AddModeSchedule(const mission::Route& route,
-                     google::protobuf::RepeatedPtrField<v1::ModeScheduleEntry>* out);
-
 }  // namespace seaplan::server

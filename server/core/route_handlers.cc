@@ -8,6 +8,7 @@
 #include "absl/strings/str_cat.h"
 #include "seaplan/chart/geojson.h"
 #include "seaplan/chart/obstacle_map.h"
+#include "seaplan/convert/mission_convert.h"
 #include "seaplan/mission/chart_routing.h"
 #include "seaplan/route/route_planner.h"
 #include "server/core/convert.h"
@@ -126,32 +127,6 @@ v1::RouteAlternative AlternativeToProto(const route::RouteAlternative& a, int in
 
 }  // namespace
 
-v1::MsoMode MsoModeToProto(mission::MsoMode mode) {
-  switch (mode) {
-    case mission::MsoMode::kPto:
-      return v1::MSO_MODE_PTO;
-    case mission::MsoMode::kMec:
-      return v1::MSO_MODE_MEC;
-    case mission::MsoMode::kPti:
-      return v1::MSO_MODE_PTI;
-    case mission::MsoMode::kUnspecified:
-      break;
-  }
-  return v1::MSO_MODE_UNSPECIFIED;
-}
-
-void AddModeSchedule(const mission::Route& route,
-                     google::protobuf::RepeatedPtrField<v1::ModeScheduleEntry>* out) {
-  for (const mission::ModeScheduleEntry& e : mission::ModeSchedule(route)) {
-    v1::ModeScheduleEntry* m = out->Add();
-    m->set_from_waypoint(e.from_waypoint);
-    m->set_to_waypoint(e.to_waypoint);
-    m->set_mode(MsoModeToProto(e.mode));
-    m->set_start_s(e.start_s);
-    m->set_duration_s(e.duration_s);
-  }
-}
-
 absl::StatusOr<std::shared_ptr<const chart::ObstacleMap>> LoadMap(storage::ChartRepository& charts,
                                                                   const std::string& id) {
   SEAPLAN_ASSIGN_OR_RETURN(storage::ChartRecord record, charts.Get(id, /*with_blobs=*/true));
@@ -233,7 +208,7 @@ absl::StatusOr<v1::PlanRouteResponse> RouteHandlers::PlanRoute(const v1::PlanRou
   response.set_chosen_alternative(result->chosen);
   if (result->chosen >= 0 && result->chosen < response.alternatives_size()) {
     *response.mutable_chosen_route() = response.alternatives(result->chosen);
-    AddModeSchedule(
+    convert::AddModeSchedule(
         mission::RouteFromAlternative(
             result->alternatives[static_cast<std::size_t>(result->chosen)], result->chosen),
         response.mutable_mode_schedule());

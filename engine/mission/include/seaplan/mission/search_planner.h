@@ -15,8 +15,13 @@
 
 namespace seaplan::mission {
 
-inline constexpr double kReplanImproveMinS = 0.01;
-inline constexpr double kReplanImproveMaxS = 0.04;
+// SEAPLAN_WALL_CLOCK_SCALE (a CMake setting, above 1 in sanitizer builds)
+// stretches these budgets so that a slower build's replans search as much.
+#ifndef SEAPLAN_WALL_CLOCK_SCALE
+#define SEAPLAN_WALL_CLOCK_SCALE 1
+#endif
+inline constexpr double kReplanImproveMinS = 0.01 * SEAPLAN_WALL_CLOCK_SCALE;
+inline constexpr double kReplanImproveMaxS = 0.04 * SEAPLAN_WALL_CLOCK_SCALE;
 
 enum class PlanningPhase { kInitial, kReplan };
 
