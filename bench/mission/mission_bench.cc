@@ -162,8 +162,8 @@ bool ServerBench(const fs::path& src, const fs::path& bin, int n) {
   const fs::path token_file = dir / "data" / "admin.token";
   auto token = client::ResolveToken("", token_file.string());
   if (!token.ok()) {
-    std::printf("server: skipped (%s)\n", std::string(token.status().message()).c_str());
-    return;
+    std::printf("server: failed (%s)\n", std::string(token.status().message()).c_str());
+    return false;
   }
   auto channel = client::CreateChannelWithToken(server.address, grpc::InsecureChannelCredentials(),
                                                 grpc::ChannelArguments(), *token);
