@@ -646,6 +646,7 @@ absl::StatusOr<v1::RequestReplanResponse> MissionCoordinator::RequestReplan(
   if (id.empty()) return absl::InvalidArgumentError("mission_id is empty");
   SEAPLAN_ASSIGN_OR_RETURN(storage::MissionRecord record, repo_.Get(id));
   SEAPLAN_RETURN_IF_ERROR(auth::CheckVessel(ctx.caller, record.vessel_id, id));
+  SEAPLAN_RETURN_IF_ERROR(CheckVesselCertificate(ctx, record.vessel_id, id));
   if (IsFinalState(record.state)) {
     return absl::FailedPreconditionError(
         absl::StrCat("mission '", id, "' is ", StateName(record.state), "; nothing to replan"));

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "seaplan/testing/shared_data.h"
+#include "server/auth/authenticator.h"
 #include "test_support.h"
 
 namespace seaplan::server::testing {
@@ -26,6 +27,12 @@ TEST(LimitsE2eTest, RateLimitPerCallerOverBothTransportsWithRetryAfter) {
     options.core.rate_limit = {/*calls_per_s=*/0.01, /*burst=*/3.0};
   });
   ASSERT_TRUE(s.start_status().ok()) << s.start_status();
+  // A second caller: a viewer token of its own (calls without a credential
+  // present the fixtures' admin token).
+  auto viewer =
+      auth::Authenticator(s.store().tokens()).Issue(auth::Role::kViewer, "", "viewer", 0, "");
+  ASSERT_TRUE(viewer.ok()) << viewer.status();
+  const std::string another_caller = "Bearer " + viewer->bearer;
   auto missions = v1::MissionService::NewStub(s.channel());
   auto list = [&](const std::string& authorization, ClientContext* ctx) {
     if (!authorization.empty()) ctx->AddMetadata("authorization", authorization);
@@ -47,7 +54,7 @@ TEST(LimitsE2eTest, RateLimitPerCallerOverBothTransportsWithRetryAfter) {
     ASSERT_NE(it, trailers.end());
     EXPECT_GT(std::stoll(std::string(it->second.data(), it->second.size())), 1000);
   }
-  // HTTP from the same address shares the bucket.
+  // HTTP with the same credentials shares the bucket.
   auto res = s.http().Post("/v1/MissionService/ListMissions", "{}", "application/json");
   ASSERT_TRUE(res);
   EXPECT_EQ(res->status, 429) << res->body;
@@ -56,9 +63,9 @@ TEST(LimitsE2eTest, RateLimitPerCallerOverBothTransportsWithRetryAfter) {
   // A caller with its own credentials has its own bucket, on both transports.
   {
     ClientContext ctx;
-    EXPECT_TRUE(list("Bearer another-caller", &ctx).ok());
+    EXPECT_TRUE(list(another_caller, &ctx).ok());
   }
-  httplib::Headers headers{{"Authorization", "Bearer another-caller"}};
+  httplib::Headers headers{{"Authorization", another_caller}};
   auto other = s.http().Post("/v1/MissionService/ListMissions", headers, "{}", "application/json");
   ASSERT_TRUE(other);
   EXPECT_EQ(other->status, 200) << other->body;

@@ -312,7 +312,9 @@ TEST(ServerBinaryTest, TlsServerAnswersTheCliGivenTheCaCertificate) {
   int grpc_port = 0, http_port = 0;
   ASSERT_NO_FATAL_FAILURE(WaitForPorts(child, port_file, &grpc_port, &http_port));
   ASSERT_GT(grpc_port, 0);
-  const std::string server = " --server 127.0.0.1:" + std::to_string(grpc_port) + " --timeout 20";
+  // The admin token the server wrote at its first start.
+  const std::string server = " --server 127.0.0.1:" + std::to_string(grpc_port) +
+                             " --timeout 20 --token-file " + d + "/data/admin.token";
   const std::string cli = (bin / "seaplan").string();
   auto [ok, ok_output] = Shell(cli + server + " --ca-cert " + d + "/ca.pem mission list");
   EXPECT_EQ(ok, 0) << ok_output;

@@ -8,6 +8,7 @@
 #include <fstream>
 #include <sstream>
 
+#include "seaplan/testing/test_token.h"
 #include "test_support.h"
 
 namespace seaplan::server::testing {
@@ -63,6 +64,8 @@ class TestPki {
     https->set_ca_cert_path(pem("ca").c_str());
     https->enable_server_certificate_verification(true);
     https->set_read_timeout(30, 0);
+    // The fixtures' admin token: what is tested here is the transport.
+    https->set_bearer_token_auth(seaplan::testing::TestAdminToken());
     return https;
   }
 
