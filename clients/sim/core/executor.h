@@ -191,7 +191,6 @@ class Executor {
   double last_fuel_sample_s_ = -1e9;
   double last_track_sample_s_ = -1e9;
   double last_land_sample_s_ = -1e9;
-  double fuel_burn_start_kg_ = 0.0;
   EastNorth last_position_;
   bool jumped_ = false;
   bool avoidance_active_ = false;  // the move under way is off its route for traffic
