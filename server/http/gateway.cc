@@ -207,7 +207,10 @@ std::string ClientCertSubject(const httplib::Request& req) {
 CallContext MakeCall(ServiceCore& core, const httplib::Request& req,
                      StopToken::Clock::time_point deadline, std::function<bool()> client_gone) {
   CallContext call = core.NewCall("http", deadline, std::move(client_gone));
-  call.caller_key = CallerKey(req.get_header_value("Authorization"), req.remote_addr);
+  // The credential authorisation reads (header, or a console session's
+  // cookie): one bucket per token whichever way it is presented.
+  const absl::StatusOr<std::string> credential = Credential(req);
+  call.caller_key = CallerKey(credential.ok() ? *credential : std::string(), req.remote_addr);
   call.client_cert_subject = ClientCertSubject(req);
   return call;
 }
