@@ -10,9 +10,11 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <regex>
 #include <sstream>
 #include <string>
 #include <thread>
+#include <vector>
 
 #include "seaplan/testing/shared_data.h"
 #include "seaplan/testing/test_token.h"
@@ -188,6 +190,9 @@ TEST(CliInProcessTest, MissionsNeedAServer) {
   auto result = RunSeaplan({"mission", "list"});
   EXPECT_EQ(result.exit_code, 2);
   EXPECT_NE(result.err.find("--server"), std::string::npos) << result.err;
+  auto feedback = RunSeaplan({"mission", "feedback", "m-1"});
+  EXPECT_EQ(feedback.exit_code, 2);
+  EXPECT_NE(feedback.err.find("--server"), std::string::npos) << feedback.err;
 }
 
 // seaplan runs plan and validate itself and hands chart, route and risk to
@@ -315,9 +320,9 @@ TEST(CliRemoteTest, TokenCommandsAndTheirEffect) {
   EXPECT_NE(audit.out.find("AccessService/RevokeToken  " + viewer_id), std::string::npos)
       << audit.out;
 
-  auto none = RunSeaplan({"-u", "SEAPLAN_TOKEN", (BinDir() / "seaplan").string(), "--server",
-                          addr, "mission", "list"},
-                         "/usr/bin/env");
+  auto none = RunSeaplan(
+      {"-u", "SEAPLAN_TOKEN", (BinDir() / "seaplan").string(), "--server", addr, "mission", "list"},
+      "/usr/bin/env");
   EXPECT_EQ(none.exit_code, 3);
   EXPECT_NE(none.err.find("--token"), std::string::npos) << none.err;
   auto missing = RunSeaplan({"--server", addr, "--token-file", "/nonexistent", "mission", "list"});
@@ -365,6 +370,95 @@ TEST(CliRemoteTest, CommandsWorkAgainstARunningServer) {
   auto missing = RunSeaplan({"--server", addr, "mission", "get", "no-such-mission"});
   EXPECT_EQ(missing.exit_code, 2) << missing.out << missing.err;
   EXPECT_NE(missing.err.find("NOT_FOUND"), std::string::npos) << missing.err;
+}
+
+// Every `"key":"number"` of a JSON text, in order (int64 fields are strings
+// in proto3 JSON; "sequence" does not match "sequenceNumber").
+std::vector<long long> JsonInt64s(const std::string& json, const std::string& key) {
+  std::vector<long long> values;
+  const std::regex pattern("\"" + key + "\":\"(\\d+)\"");
+  for (auto it = std::sregex_iterator(json.begin(), json.end(), pattern);
+       it != std::sregex_iterator(); ++it) {
+    values.push_back(std::stoll((*it)[1].str()));
+  }
+  return values;
+}
+
+// `mission feedback` lists what seaplan-sim reported on a real mission:
+// every stored report once, oldest first, whatever the page size; --limit
+// stops early and says where to go on; --after-sequence goes on from there.
+TEST(CliRemoteTest, MissionFeedbackListsTheStoredReportsPaged) {
+  ServerProcess server;
+  ASSERT_TRUE(server.started()) << "seaplan-server did not report its ports";
+  const std::string addr = server.address();
+  const auto report_dir = ScratchDir() / "feedback-sim";
+  auto sim = RunSeaplan({"--server", addr, "--scenario",
+                         (SourceDir() / "examples/scenarios/case-a.scenario").string(),
+                         "--report-dir", report_dir.string(), "--replan-timeout-s", "60"},
+                        BinDir() / "seaplan-sim");
+  ASSERT_EQ(sim.exit_code, 0) << sim.out << sim.err;
+
+  auto missions = RunSeaplan({"--server", addr, "--json", "mission", "list"});
+  ASSERT_EQ(missions.exit_code, 0) << missions.err;
+  std::smatch id;
+  ASSERT_TRUE(std::regex_search(missions.out, id, std::regex("\"missionId\":\"([^\"]+)\"")))
+      << missions.out;
+  const std::string mission_id = id[1].str();
+
+  auto all = RunSeaplan({"--server", addr, "--json", "mission", "feedback", mission_id});
+  ASSERT_EQ(all.exit_code, 0) << all.err;
+  const std::vector<long long> sequences = JsonInt64s(all.out, "sequence");
+  ASSERT_GE(sequences.size(), 4u) << all.out.substr(0, 2000);
+  for (std::size_t i = 1; i < sequences.size(); ++i) EXPECT_LT(sequences[i - 1], sequences[i]);
+  EXPECT_EQ(all.out.find("nextAfterSequence"), std::string::npos) << "nothing is left";
+  EXPECT_NE(all.out.find("\"kind\":\"KIND_TASK_COMPLETED\""), std::string::npos);
+  EXPECT_NE(all.out.find("\"vesselId\":\"mass-1\""), std::string::npos);
+
+  // The table, two reports per call: a header and one row per report.
+  auto table =
+      RunSeaplan({"--server", addr, "mission", "feedback", mission_id, "--page-size", "2"});
+  ASSERT_EQ(table.exit_code, 0) << table.err;
+  std::istringstream lines(table.out);
+  std::string line;
+  std::getline(lines, line);
+  EXPECT_NE(line.find("seq"), std::string::npos) << line;
+  EXPECT_NE(line.find("mission s"), std::string::npos) << line;
+  std::vector<long long> rows;
+  while (std::getline(lines, line)) rows.push_back(std::stoll(line));
+  EXPECT_EQ(rows, sequences);
+  EXPECT_NE(table.out.find("TASK_COMPLETED"), std::string::npos) << table.out;
+  EXPECT_NE(table.out.find("mass-1"), std::string::npos) << table.out;
+
+  // Three reports, over two calls, then the rest from the cursor given.
+  auto first = RunSeaplan({"--server", addr, "--json", "mission", "feedback", mission_id,
+                           "--page-size", "2", "--limit", "3"});
+  ASSERT_EQ(first.exit_code, 0) << first.err;
+  EXPECT_EQ(JsonInt64s(first.out, "sequence"),
+            std::vector<long long>(sequences.begin(), sequences.begin() + 3));
+  EXPECT_EQ(JsonInt64s(first.out, "nextAfterSequence"), std::vector<long long>{sequences[2]});
+  auto first_table =
+      RunSeaplan({"--server", addr, "mission", "feedback", mission_id, "--limit", "3"});
+  EXPECT_NE(first_table.err.find("--after-sequence " + std::to_string(sequences[2])),
+            std::string::npos)
+      << first_table.err;
+  auto rest = RunSeaplan({"--server", addr, "--json", "mission", "feedback", mission_id,
+                          "--after-sequence", std::to_string(sequences[2])});
+  ASSERT_EQ(rest.exit_code, 0) << rest.err;
+  EXPECT_EQ(JsonInt64s(rest.out, "sequence"),
+            std::vector<long long>(sequences.begin() + 3, sequences.end()));
+
+  auto after_all = RunSeaplan({"--server", addr, "mission", "feedback", mission_id,
+                               "--after-sequence", std::to_string(sequences.back())});
+  EXPECT_EQ(after_all.exit_code, 0) << after_all.err;
+  EXPECT_EQ(after_all.out, "no feedback\n");
+
+  auto unknown = RunSeaplan({"--server", addr, "mission", "feedback", "no-such-mission"});
+  EXPECT_EQ(unknown.exit_code, 2) << unknown.out << unknown.err;
+  EXPECT_NE(unknown.err.find("NOT_FOUND"), std::string::npos) << unknown.err;
+  auto bad_page =
+      RunSeaplan({"--server", addr, "mission", "feedback", mission_id, "--page-size=-1"});
+  EXPECT_EQ(bad_page.exit_code, 2) << bad_page.out << bad_page.err;
+  EXPECT_NE(bad_page.err.find("page_size must not be negative"), std::string::npos) << bad_page.err;
 }
 
 }  // namespace

@@ -55,6 +55,8 @@ class Backend {
                                      v1::RequestReplanResponse* response) = 0;
   virtual absl::Status CancelMission(const v1::CancelMissionRequest& request,
                                      v1::Mission* response) = 0;
+  virtual absl::Status ListFeedback(const v1::ListFeedbackRequest& request,
+                                    v1::ListFeedbackResponse* response) = 0;
 
   // Tokens and the audit log live on a server: in-process backends answer
   // FailedPrecondition.

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cstdlib>
-#include <ctime>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -83,19 +82,9 @@ std::string ResolvedToken(const GlobalOptions& options) {
   return *token;
 }
 
-// "2026-11-25 16:20:00Z" for ms since the epoch.
-std::string FormatTimeMs(std::int64_t ms) {
-  const std::time_t seconds = static_cast<std::time_t>(ms / 1000);
-  std::tm utc{};
-  gmtime_r(&seconds, &utc);
-  char text[32];
-  std::strftime(text, sizeof text, "%Y-%m-%d %H:%M:%SZ", &utc);
-  return text;
-}
-
 std::unique_ptr<Backend> MakeBackend(const GlobalOptions& options) {
-  return options.executable->make_backend(options.server, options.timeout_s,
-                                          ResolvedToken(options), options.tls);
+  return options.executable->make_backend(options.server, options.timeout_s, ResolvedToken(options),
+                                          options.tls);
 }
 
 void PrintJsonOr(const GlobalOptions& options, const google::protobuf::Message& message,
@@ -423,6 +412,10 @@ struct MissionArgs {
   int after_version = 0;
   std::int64_t after_event = 0;
   bool follow = true;
+  // mission feedback: the store's cursor, reports per call, most to print (0: all)
+  std::int64_t after_sequence = 0;
+  int page_size = 0;
+  std::int64_t limit = 0;
 };
 
 int RunMissionCreate(const GlobalOptions& options, const MissionArgs& args) {
@@ -475,6 +468,46 @@ int RunMissionList(const GlobalOptions& options) {
   PrintJsonOr(options, all, [&] {
     if (all.missions_size() == 0) std::cout << "no missions\n";
     for (const auto& m : all.missions()) PrintMission(std::cout, m);
+  });
+  return kExitSuccess;
+}
+
+// The stored feedback reports, oldest first, page after page until the last
+// or `--limit`; the answer's next_after_sequence is where to go on from
+// (0: nothing more stored yet).
+int RunMissionFeedback(const GlobalOptions& options, const MissionArgs& args) {
+  v1::ListFeedbackRequest request;
+  request.set_mission_id(args.id);
+  request.set_after_sequence(args.after_sequence);
+  request.set_page_size(args.page_size);
+  auto backend = MakeBackend(options);
+  v1::ListFeedbackResponse all;
+  const auto full = [&] { return args.limit > 0 && all.feedback_size() >= args.limit; };
+  bool cut = false;  // stopped at --limit with reports left
+  for (bool more = true; more && !cut;) {
+    v1::ListFeedbackResponse page;
+    if (auto s = backend->ListFeedback(request, &page); !s.ok()) return ReportError(std::cerr, s);
+    for (const auto& f : page.feedback()) {
+      if (full()) {
+        cut = true;
+        break;
+      }
+      *all.add_feedback() = f;
+    }
+    more = page.next_after_sequence() != 0;
+    request.set_after_sequence(page.next_after_sequence());
+    cut = cut || (more && full());
+  }
+  if (cut) all.set_next_after_sequence(all.feedback(all.feedback_size() - 1).sequence());
+  PrintJsonOr(options, all, [&] {
+    if (all.feedback_size() == 0) {
+      std::cout << "no feedback\n";
+      return;
+    }
+    PrintFeedbackTable(std::cout, all);
+    if (cut) {
+      std::cerr << "more reports follow: --after-sequence " << all.next_after_sequence() << "\n";
+    }
   });
   return kExitSuccess;
 }
@@ -796,6 +829,17 @@ int RunCli(int argc, char** argv, const CliExecutable& executable) {
   cancel_cmd->add_option("--reason", mission.reason, "Why");
   cancel_cmd->callback(
       runner("mission cancel", [&] { return RunMissionCancel(options, mission); }));
+
+  auto* feedback_cmd = mission_cmd->add_subcommand(
+      "feedback", "List a mission's stored feedback reports (oldest first)");
+  feedback_cmd->add_option("id", mission.id, "Mission id")->required();
+  feedback_cmd->add_option("--after-sequence", mission.after_sequence,
+                           "Start after this stored report (its seq; 0: from the first)");
+  feedback_cmd->add_option("--page-size", mission.page_size,
+                           "Reports per call, default 50, at most 1000");
+  feedback_cmd->add_option("--limit", mission.limit, "Print at most this many (0: all)");
+  feedback_cmd->callback(
+      runner("mission feedback", [&] { return RunMissionFeedback(options, mission); }));
 
   TokenArgs token_args;
   auto* token_cmd = app.add_subcommand("token", "API tokens (admin; needs --server)");

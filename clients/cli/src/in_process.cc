@@ -79,5 +79,9 @@ absl::Status InProcessBackend::RequestReplan(const v1::RequestReplanRequest&,
 absl::Status InProcessBackend::CancelMission(const v1::CancelMissionRequest&, v1::Mission*) {
   return NeedsServer("mission cancel");
 }
+absl::Status InProcessBackend::ListFeedback(const v1::ListFeedbackRequest&,
+                                            v1::ListFeedbackResponse*) {
+  return NeedsServer("mission feedback");
+}
 
 }  // namespace seaplan::cli

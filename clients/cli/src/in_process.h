@@ -34,6 +34,7 @@ class InProcessBackend : public Backend {
                             const std::function<bool(const v1::MissionEvent&)>&) override;
   absl::Status RequestReplan(const v1::RequestReplanRequest&, v1::RequestReplanResponse*) override;
   absl::Status CancelMission(const v1::CancelMissionRequest&, v1::Mission*) override;
+  absl::Status ListFeedback(const v1::ListFeedbackRequest&, v1::ListFeedbackResponse*) override;
 
  protected:
   // The answer to `method` ("chart upload", ...) when this backend does not serve it.

@@ -1,7 +1,11 @@
 #include "output.h"
 
+#include <algorithm>
 #include <cstdio>
+#include <ctime>
 #include <iomanip>
+#include <string>
+#include <vector>
 
 #include "google/protobuf/util/json_util.h"
 #include "seaplan/v1/common.pb.h"
@@ -171,6 +175,52 @@ void PrintPlanVersion(std::ostream& out, const v1::PlanVersion& version) {
         << task.action().name();
     for (const auto& arg : task.action().arguments()) out << " " << arg;
     out << ") [" << Seconds(task.duration_s()) << "]\n";
+  }
+}
+
+std::string FormatTimeMs(std::int64_t ms) {
+  const std::time_t seconds = static_cast<std::time_t>(ms / 1000);
+  std::tm utc{};
+  gmtime_r(&seconds, &utc);
+  char text[32];
+  std::strftime(text, sizeof text, "%Y-%m-%d %H:%M:%SZ", &utc);
+  return text;
+}
+
+void PrintFeedbackTable(std::ostream& out, const v1::ListFeedbackResponse& response) {
+  // The vessel column is as wide as its longest "vessel (its sequence number)".
+  std::vector<std::string> vessels;
+  std::size_t vessel_width = std::string("vessel (#)").size();
+  for (const auto& stored : response.feedback()) {
+    vessels.push_back(stored.vessel_id() + " (" + std::to_string(stored.sequence_number()) + ")");
+    vessel_width = std::max(vessel_width, vessels.back().size());
+  }
+  const int width = static_cast<int>(vessel_width);
+  char line[512];
+  std::snprintf(line, sizeof line,
+                "%6s  %-*s  %-20s  %9s  %-20s  %-12s  %9s  %10s  %7s  %9s  %-4s  %4s  %s\n", "seq",
+                width, "vessel (#)", "received", "mission s", "kind", "task", "latitude",
+                "longitude", "hdg deg", "speed m/s", "mode", "fuel", "detail");
+  out << line;
+  int row = 0;
+  for (const auto& stored : response.feedback()) {
+    const v1::Feedback& f = stored.feedback();
+    const v1::ShipState& s = f.state();
+    std::string kind = v1::Feedback_Kind_Name(f.kind());
+    if (kind.rfind("KIND_", 0) == 0) kind = kind.substr(5);
+    const std::int64_t received_ms =
+        stored.received_at().seconds() * 1000 + stored.received_at().nanos() / 1000000;
+    std::snprintf(line, sizeof line,
+                  "%6lld  %-*s  %-20s  %9.1f  %-20s  %-12s  %9.5f  %10.5f  %7.1f  %9.2f  %-4s  "
+                  "%3.0f%%",
+                  static_cast<long long>(stored.sequence()), width, vessels[row++].c_str(),
+                  FormatTimeMs(received_ms).c_str(), f.mission_time_s(), kind.c_str(),
+                  f.task_id().empty() ? "-" : f.task_id().c_str(), s.position().latitude_deg(),
+                  s.position().longitude_deg(), s.heading_deg(), s.speed_mps(),
+                  MsoModeName(s.mode()), s.fuel_fraction() * 100);
+    out << line;
+    if (!f.detail().empty()) out << "  " << f.detail();
+    out << "\n";
   }
 }
 

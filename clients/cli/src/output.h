@@ -1,6 +1,7 @@
 // Human-readable and JSON rendering of seaplan.v1 messages for the CLI.
 #pragma once
 
+#include <cstdint>
 #include <ostream>
 #include <string>
 
@@ -34,6 +35,10 @@ void PrintRisk(std::ostream& out, const seaplan::v1::EstimateRiskResponse& respo
 void PrintMission(std::ostream& out, const seaplan::v1::Mission& mission);
 void PrintPlanVersion(std::ostream& out, const seaplan::v1::PlanVersion& version);
 void PrintLogEvent(std::ostream& out, const seaplan::v1::LogEvent& event);
+// Stored feedback reports, one line each under a header.
+void PrintFeedbackTable(std::ostream& out, const seaplan::v1::ListFeedbackResponse& response);
+// "2026-11-25 16:20:00Z" for ms since the epoch.
+std::string FormatTimeMs(std::int64_t ms);
 
 // Prints an error with its diagnostics (carried as a DiagnosticList payload)
 // and returns the exit code for its status code.

@@ -121,6 +121,11 @@ class RemoteBackend final : public Backend {
     auto context = MakeContext();
     return FromGrpc(missions_->CancelMission(context.get(), request, response));
   }
+  absl::Status ListFeedback(const v1::ListFeedbackRequest& request,
+                            v1::ListFeedbackResponse* response) override {
+    auto context = MakeContext();
+    return FromGrpc(missions_->ListFeedback(context.get(), request, response));
+  }
   absl::Status CreateToken(const v1::CreateTokenRequest& request,
                            v1::CreateTokenResponse* response) override {
     auto context = MakeContext();
