@@ -110,6 +110,34 @@ try {
   await page.waitForFunction(() => /obstacles at 2 m$/.test(document.querySelector("#p-status")?.textContent ?? ""), null, { timeout: 60000 });
   const previewed = await page.evaluate(() => window.seaplanMap.obstacleCount());
   check(previewed > 0, `chart preview at 2 m draws ${previewed} obstacles`);
+  // The scale bars' labels (NM line, metric steps) at several zoom levels:
+  // each label's text box inside the map, none overlapping another, the
+  // metric steps left to right.
+  for (const dz of [0, 1.3, -2.6, 3.7, 1.9]) {
+    const labels = await page.evaluate((d) => {
+      const m = window.seaplanMap.map;
+      m.getView().setZoom(m.getView().getZoom() + d);
+      m.renderSync();
+      const mapBox = document.querySelector("#preview-map").getBoundingClientRect();
+      return [...document.querySelectorAll("#preview-map .ol-scale-line-inner, #preview-map .ol-scale-step-text")].map((el) => {
+        const range = document.createRange();
+        range.selectNodeContents(el);
+        const b = range.getBoundingClientRect();
+        return { text: el.textContent, step: el.classList.contains("ol-scale-step-text"),
+                 left: b.left, right: b.right, top: b.top, bottom: b.bottom,
+                 inside: b.left >= mapBox.left && b.right <= mapBox.right && b.top >= mapBox.top && b.bottom <= mapBox.bottom };
+      });
+    }, dz);
+    const overlaps = [];
+    labels.forEach((a, i) => labels.slice(i + 1).forEach((b) => {
+      if (a.left < b.right && b.left < a.right && a.top < b.bottom && b.top < a.bottom) overlaps.push(`"${a.text}"/"${b.text}"`);
+    }));
+    const steps = labels.filter((l) => l.step);
+    const inRow = steps.every((l, i) => i === 0 || l.left > steps[i - 1].right);
+    check(labels.length >= 4 && steps.length >= 3 && overlaps.length === 0 && inRow && labels.every((l) => l.inside),
+          `scale labels apart and inside the map (${labels.map((l) => l.text).join(", ")}` +
+          `${overlaps.length ? `; overlapping: ${overlaps.join(" ")}` : ""})`);
+  }
   await page.screenshot({ path: join(artifacts, "charts.png"), fullPage: true });
 
   // 2. New mission: case B typed into the form.

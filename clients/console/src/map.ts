@@ -103,8 +103,9 @@ export class ChartMap {
       // The focusable chart element itself takes the arrow keys and +/-.
       keyboardEventTarget: target,
       controls: [new Zoom(), new ScaleLine({ units: "nautical", bar: false, minWidth: 90 }),
-                 new ScaleLine({ units: "metric", bar: true, steps: 2, text: false, minWidth: 140,
-                                 className: "ol-scale-bar ol-scale-metric" }),
+                 // OpenLayers names the bar's inner element after the class name
+                 // ("ol-scale-bar-inner" lays the steps out in a row): keep its own.
+                 new ScaleLine({ units: "metric", bar: true, steps: 2, text: false, minWidth: 140 }),
                  new NorthArrow(), new Legend()],
       layers: [
         new VectorLayer({ source: this.obstacles, style: () => this.obstacleStyle(),
