@@ -319,6 +319,35 @@ try {
   const targets = await page.$$eval("#traffic-body tr", (rows) => rows.length);
   check(targets > 0, `traffic listed (${targets} targets)`);
 
+  // Hover read-outs: a route leg's grounding risk, a target's CPA/TCPA.
+  const hover = async (layerName) => {
+    const at = await page.evaluate((name) => {
+      const m = window.seaplanMap.map;
+      const layer = m.getAllLayers().find((l) => l.get("name") === name);
+      const f = layer?.getSource().getFeatures()[0];
+      if (!f) return null;
+      const g = f.getGeometry();
+      const c = g.getType() === "Point" ? g.getCoordinates() : g.getCoordinateAt(0.5);
+      m.getView().setCenter(c);
+      m.renderSync();
+      const px = m.getPixelFromCoordinate(c);
+      const box = m.getTargetElement().getBoundingClientRect();
+      return { x: box.left + px[0], y: box.top + px[1] };
+    }, layerName);
+    if (!at) return "";
+    await page.mouse.move(at.x - 20, at.y - 20);
+    await page.mouse.move(at.x, at.y);
+    await page.waitForTimeout(200);
+    const text = await page.$eval("#mission-map .map-tip", (e) => (e.offsetParent ? e.textContent : "")).catch(() => "");
+    await page.mouse.move(0, 0);
+    return (text ?? "").replace(/\s+/g, " ").trim();
+  };
+  const routeTip = await hover("routes");
+  check(/time to grounding/.test(routeTip) && /P\(grounding\) \d/.test(routeTip) && /mode (PTO|MEC|PTI)/.test(routeTip),
+        `route leg on hover: ${routeTip.slice(0, 120)}`);
+  const targetTip = await hover("traffic");
+  check(/CPA .+ in -?\d+ s/.test(targetTip), `traffic on hover: ${targetTip.slice(0, 120)}`);
+
   // 6. Screenshot of the map: not blank, land and route colours present.
   await page.waitForTimeout(500);
   const mapPng = await page.locator("#mission-map").screenshot({ path: join(artifacts, "mission-map.png") });

@@ -89,9 +89,13 @@ export class ChartMap {
   private readonly tipOverlay: Overlay;
   private ship: ShipState | undefined;
   private fitted = false;
+  // The layers whose features have a read-out on hover: hit detection
+  // leaves out the chart's polygons and the track (thousands of vertices,
+  // nothing to say), which made the first hover over a large chart take
+  // 180 ms.
+  private readonly hoverLayers: Set<unknown>;
 
   constructor(target: HTMLElement) {
-    const own = new VectorSource({ features: [this.trackFeature, this.shipFeature] });
     this.shipFeature.set("kind", "ship");
     this.trackFeature.set("kind", "track");
     this.tip = document.createElement("div");
@@ -111,17 +115,30 @@ export class ChartMap {
         new VectorLayer({ source: this.obstacles, style: () => this.obstacleStyle(),
                           properties: { name: "obstacles" } }),
         new VectorLayer({ source: this.routes, style: (f) => this.routeStyle(f as Feature),
-                          properties: { name: "routes" } }),
+                          properties: { name: "routes", hover: true } }),
         new VectorLayer({ source: this.places, style: (f) => this.placeStyle(f as Feature),
-                          properties: { name: "locations" } }),
+                          properties: { name: "locations", hover: true } }),
         new VectorLayer({ source: this.traffic, style: (f) => this.trafficStyle(f as Feature),
-                          properties: { name: "traffic" } }),
-        new VectorLayer({ source: own, style: (f) => this.ownStyle(f as Feature),
-                          properties: { name: "ship" } }),
+                          properties: { name: "traffic", hover: true } }),
+        new VectorLayer({ source: new VectorSource({ features: [this.trackFeature] }),
+                          style: () => this.trackStyle(), properties: { name: "track" } }),
+        new VectorLayer({ source: new VectorSource({ features: [this.shipFeature] }),
+                          style: () => this.shipStyle(), properties: { name: "ship", hover: true } }),
       ],
       overlays: [this.tipOverlay],
       // North-up: no rotation.
       view: new View({ center: fromLonLat([10.4, 63.44]), zoom: 11, enableRotation: false }),
+    });
+    this.hoverLayers = new Set(this.map.getAllLayers().filter((l) => l.get("hover")));
+    // OpenLayers times canvas reads for 150 ms (3 x 50 ms) at the first hit
+    // detection of the page, to choose how to read pixels: an operator's
+    // first hover, or the first frames of a drag, would stall that long.
+    // Done once the map has drawn, when the page is idle instead.
+    this.map.once("rendercomplete", () => {
+      const warm = () => this.map.forEachFeatureAtPixel([0, 0], () => true, {
+        layerFilter: (l) => this.hoverLayers.has(l) });
+      if ("requestIdleCallback" in window) window.requestIdleCallback(warm, { timeout: 2000 });
+      else setTimeout(warm, 0);
     });
     // Styles read the palette's CSS variables: redraw when it changes.
     window.addEventListener("seaplan-palette", this.onPalette);
@@ -131,7 +148,8 @@ export class ChartMap {
     this.map.on("pointermove", (e) => {
       if (e.dragging) return;
       const f = this.map.forEachFeatureAtPixel(e.pixel, (feature) => feature as Feature,
-                                               { hitTolerance: 5 });
+                                               { hitTolerance: 5,
+                                                 layerFilter: (l) => this.hoverLayers.has(l) });
       const html = f ? this.describe(f) : "";
       if (!html) {
         this.tipOverlay.setPosition(undefined);
@@ -143,7 +161,7 @@ export class ChartMap {
   }
 
   private readonly onPalette = () => {
-    this.landStyle = undefined;
+    this.styles.clear();
     this.map.getAllLayers().forEach((l) => l.changed());
   };
 
@@ -243,53 +261,69 @@ export class ChartMap {
     this.fitted = true;
   }
 
-  // One style for every obstacle, made once per palette: the layer asks for
-  // it per feature whenever it rebuilds its drawing (thousands of polygons),
-  // and reading the CSS variables each time cost a computed-style lookup each.
-  private landStyle: Style | undefined;
+  // Styles are made once per palette and kept by what they show: a layer
+  // asks for a feature's style every time it rebuilds its drawing (on zoom,
+  // and on pans beyond the drawn margin; thousands of obstacle polygons),
+  // and a new Style, or a CSS variable read through getComputedStyle
+  // (which may force a style recalculation), per call was most of that.
+  private readonly styles = new globalThis.Map<string, Style>();
+  private cached(key: string, make: () => Style): Style {
+    let style = this.styles.get(key);
+    if (!style) {
+      style = make();
+      this.styles.set(key, style);
+    }
+    return style;
+  }
+
   private obstacleStyle(): Style {
-    this.landStyle ??= new Style({ fill: new Fill({ color: css("--land", "#c8b88a") }),
-                                   stroke: new Stroke({ color: css("--land-edge", "#8a7a50"), width: 0.5 }) });
-    return this.landStyle;
+    return this.cached("land", () => new Style({
+      fill: new Fill({ color: css("--land", "#c8b88a") }),
+      stroke: new Stroke({ color: css("--land-edge", "#8a7a50"), width: 0.5 }) }));
   }
 
   private routeStyle(f: Feature): Style {
-    const [name, fallback] = MODE_VARS[f.get("mode") as string] ?? MODE_VARS["-"];
-    const colour = css(name, fallback);
-    return new Style({ stroke: new Stroke({ color: colour, width: f.get("current") ? 5 : 3 }) });
+    const mode = MODE_VARS[f.get("mode") as string] ? (f.get("mode") as string) : "-";
+    const current = !!f.get("current");
+    return this.cached(`route ${mode} ${current}`, () => {
+      const [name, fallback] = MODE_VARS[mode];
+      return new Style({ stroke: new Stroke({ color: css(name, fallback), width: current ? 5 : 3 }) });
+    });
   }
 
   private placeStyle(f: Feature): Style {
-    return new Style({
+    const name = f.get("name") as string;
+    return this.cached(`place ${name}`, () => new Style({
       image: new Circle({ radius: 5, fill: new Fill({ color: css("--fg", "#222") }) }),
-      text: new Text({ text: f.get("name") as string, offsetY: -14, font: "12px sans-serif",
+      text: new Text({ text: name, offsetY: -14, font: "12px sans-serif",
                        fill: new Fill({ color: css("--fg", "#222") }),
                        stroke: new Stroke({ color: css("--bg", "#fff"), width: 3 }) }),
-    });
+    }));
   }
 
   private trafficStyle(f: Feature): Style {
-    const t = f.get("target") as TrackedTarget;
-    return new Style({
+    const id = (f.get("target") as TrackedTarget).targetId;
+    return this.cached(`target ${id}`, () => new Style({
       image: new RegularShape({ points: 4, radius: 7, fill: new Fill({ color: css("--target", "#c03") }),
                                 stroke: new Stroke({ color: css("--bg", "#fff"), width: 1 }) }),
-      text: new Text({ text: t.targetId, offsetY: -15, font: "11px sans-serif",
+      text: new Text({ text: id, offsetY: -15, font: "11px sans-serif",
                        fill: new Fill({ color: css("--target", "#c03") }),
                        stroke: new Stroke({ color: css("--bg", "#fff"), width: 3 }) }),
-    });
+    }));
   }
 
-  private ownStyle(f: Feature): Style | undefined {
-    if (f.get("kind") === "track") {
-      return new Style({ stroke: new Stroke({ color: css("--track", "#1f3a93"), width: 2,
-                                             lineDash: [6, 4] }) });
-    }
+  private trackStyle(): Style {
+    return this.cached("track", () => new Style({
+      stroke: new Stroke({ color: css("--track", "#1f3a93"), width: 2, lineDash: [6, 4] }) }));
+  }
+
+  private shipStyle(): Style | undefined {
     if (!this.ship?.position) return undefined;
-    return new Style({
-      image: new Icon({ src: shipIcon(css("--ship", "#111"), css("--bg", "#fff")),
-                        rotation: ((this.ship.headingDeg ?? 0) * Math.PI) / 180,
-                        rotateWithView: true }),
-    });
+    // One icon per palette, turned to the heading (a new Icon would load its image again).
+    const style = this.cached("ship", () => new Style({
+      image: new Icon({ src: shipIcon(css("--ship", "#111"), css("--bg", "#fff")), rotateWithView: true }) }));
+    style.getImage()?.setRotation(((this.ship.headingDeg ?? 0) * Math.PI) / 180);
+    return style;
   }
 
   private describe(f: Feature): string {
