@@ -7,7 +7,10 @@
 //   - the console's first load on loopback (navigation to the first view
 //     drawn), median of several cold loads, against a GET /healthz round
 //     trip in the same page (baseline ratio);
-//   - the bundle size.
+//   - the bundle size;
+//   - main-thread CPU per frame of the pans and drags, from a Chromium trace
+//     (thread time, which a loaded machine does not stretch), and each frame
+//     over 50 ms with its CPU and garbage-collection time.
 //
 //   node bench/console/render_bench.mjs [--frames 120] [--loads 5]
 //   env: SEAPLAN_SERVER_BIN, CONSOLE_DIR (default build/bin/...),
@@ -63,12 +66,6 @@ try {
 
   const page = await browser.context.newPage();
   await signIn(page, server);
-  await page.addInitScript(() => {
-    window.__long = [];
-    new PerformanceObserver((list) => {
-      for (const e of list.getEntries()) window.__long?.push([e.startTime, e.duration]);
-    }).observe({ type: "longtask" });
-  });
   // First load: cold navigations (cache disabled) to the first view drawn.
   const cdp = await browser.context.newCDPSession(page);
   await cdp.send("Network.setCacheDisabled", { cacheDisabled: true });
@@ -94,6 +91,18 @@ try {
   await page.click("#p-show");
   await page.waitForFunction(() => /obstacles at/.test(document.querySelector("#p-status")?.textContent ?? ""), null, { timeout: 120000 });
   const obstaclesMs = Date.now() - tLoad;
+  // Main-thread long tasks (over 50 ms) from here on. Installed in the page
+  // as it is: the views are one document (hash routes), so a script run at
+  // each new document would never run again.
+  const observing = await page.evaluate(() => {
+    window.__long = [];
+    if (!PerformanceObserver.supportedEntryTypes.includes("longtask")) return false;
+    new PerformanceObserver((list) => {
+      for (const e of list.getEntries()) window.__long?.push([e.startTime, e.duration]);
+    }).observe({ type: "longtask" });
+    return true;
+  });
+  if (!observing) throw new Error("this Chromium reports no main-thread long tasks");
   const vertices = await page.evaluate((n) => {
     const m = window.seaplanMap;
     // A track wandering over the chart's extent.
@@ -203,7 +212,8 @@ try {
     const onData = (e) => { for (const x of e.value) events.push(x); };
     cdpTrace.on("Tracing.dataCollected", onData);
     await cdpTrace.send("Tracing.start", { transferMode: "ReportEvents",
-      traceConfig: { includedCategories: ["toplevel", "devtools.timeline", "v8"], excludedCategories: ["*"] } });
+      traceConfig: { recordMode: "recordAsMuchAsPossible", bufferSizeInKb: 400 * 1024,
+                     includedCategories: ["toplevel", "devtools.timeline"], excludedCategories: ["*"] } });
     // Starting a trace stalls the renderer for a moment (a 350 ms frame was
     // seen right after it): the measured frames begin once it has settled.
     await page.waitForTimeout(300);
@@ -214,7 +224,7 @@ try {
     cdpTrace.off("Tracing.dataCollected", onData);
     const marks = events.filter((e) => e.name === "TimeStamp" && e.args?.data?.message === "frame")
       .sort((a, b) => a.ts - b.ts);
-    if (marks.length < 2) return { result, cpu: [], slow: [] };
+    if (marks.length < 2) return { result, cpu: [], slow: [], marks: marks.length };
     const { pid, tid } = marks[0];
     const onMain = (e) => e.pid === pid && e.tid === tid && e.ph === "X" && e.dur !== undefined;
     const tasks = [];
@@ -237,13 +247,17 @@ try {
                     gcWall: gc.reduce((t, g) => t + g.dur, 0) / 1000 });
       }
     }
-    return { result, cpu, slow };
+    return { result, cpu, slow, marks: marks.length };
   };
   const measure = async () => {
     await pan(10);  // warm-up
     const r = await traced(() => pan(frames));
     const dragged = await traced(() => drag(frames));
     const [a, b] = [slowFrames(r.result), slowFrames(dragged.result)];
+    // Every frame of the page's own count is between two marks of the trace.
+    for (const [t, n] of [[r, r.result.frames.length], [dragged, dragged.result.frames.length]]) {
+      if (t.marks < n + 1) console.log(`note: the trace holds ${t.marks} frame marks for ${n} frames`);
+    }
     return { work: stats(r.result.work), frame: stats(r.result.frames), drag: stats(dragged.result.frames),
              cpuFrame: stats(r.cpu.length ? r.cpu : [0]), cpuDrag: stats(dragged.cpu.length ? dragged.cpu : [0]),
              slowDetail: [...r.slow, ...dragged.slow],
