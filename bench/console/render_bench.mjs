@@ -71,17 +71,24 @@ try {
   await cdp.send("Network.setCacheDisabled", { cacheDisabled: true });
   const loadMs = [];
   const healthMs = [];
+  const documents = new Set();
   for (let i = 0; i < loads; i++) {
+    // From a blank page: going to the console's own URL again with only the
+    // hash changed would stay in the same document and load nothing.
+    await page.goto("about:blank");
     const t0 = Date.now();
     await page.goto(`${server.url}#/missions`);
     await page.waitForSelector("main h1");
     loadMs.push(Date.now() - t0);
+    documents.add(await page.evaluate(() => performance.timeOrigin));
     healthMs.push(await page.evaluate(async () => {
       const t = performance.now();
       await (await fetch("/healthz", { cache: "no-store" })).text();
       return performance.now() - t;
     }));
   }
+
+  if (documents.size !== loads) throw new Error(`${loads} loads made ${documents.size} documents`);
 
   // The chart view with the obstacles and a 10,000-point track.
   await page.goto(`${server.url}#/charts`);

@@ -67,6 +67,8 @@ try {
   page.on("pageerror", (e) => consoleErrors.push(String(e)));
   const external = [];
   page.on("request", (r) => { if (!r.url().startsWith(server.url) && !r.url().startsWith("data:")) external.push(r.url()); });
+  const scriptCodings = [];
+  page.on("response", (r) => { if (r.url().endsWith("/app.js")) scriptCodings.push(r.headers()["content-encoding"] ?? "identity"); });
 
   // 0. Sign-in: the console asks for a token, a wrong one is refused, the
   // admin token the server wrote at its first start opens the session; the
@@ -79,6 +81,10 @@ try {
   check(true, `a wrong token is refused (${await page.$eval("#sign-in-error", (e) => e.textContent)})`);
   await signIn(page, server);
   check(/^admin /.test(await page.$eval("#signed-in-as", (e) => e.textContent ?? "")), "signed in as admin");
+  // Compressed, but not with brotli: the server's library brotli-compresses
+  // at its slowest setting (1.5 s for the script on every load).
+  check(scriptCodings.length > 0 && scriptCodings.every((c) => c === "gzip"),
+        `the script comes gzip-compressed (${scriptCodings.join(", ")})`);
   const cookieOnly = await page.evaluate(async () =>
     (await fetch("/v1/MissionService/ListMissions", { method: "POST", body: "{}" })).status);
   check(cookieOnly === 403, `the session cookie without the CSRF header gets 403 (${cookieOnly})`);
