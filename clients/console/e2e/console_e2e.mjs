@@ -325,33 +325,38 @@ try {
   const targets = await page.$$eval("#traffic-body tr", (rows) => rows.length);
   check(targets > 0, `traffic listed (${targets} targets)`);
 
-  // Hover read-outs: a route leg's grounding risk, a target's CPA/TCPA.
-  const hover = async (layerName) => {
-    const at = await page.evaluate((name) => {
-      const m = window.seaplanMap.map;
-      const layer = m.getAllLayers().find((l) => l.get("name") === name);
-      const f = layer?.getSource().getFeatures()[0];
-      if (!f) return null;
-      const g = f.getGeometry();
-      const c = g.getType() === "Point" ? g.getCoordinates() : g.getCoordinateAt(0.5);
-      m.getView().setCenter(c);
-      m.renderSync();
-      const px = m.getPixelFromCoordinate(c);
-      const box = m.getTargetElement().getBoundingClientRect();
-      return { x: box.left + px[0], y: box.top + px[1] };
-    }, layerName);
-    if (!at) return "";
-    await page.mouse.move(at.x - 20, at.y - 20);
-    await page.mouse.move(at.x, at.y);
-    await page.waitForTimeout(200);
-    const text = await page.$eval("#mission-map .map-tip", (e) => (e.offsetParent ? e.textContent : "")).catch(() => "");
+  // Hover read-outs: a route leg's grounding risk, a target's CPA/TCPA. The
+  // ship or a label may lie over a feature: up to five features are tried.
+  const hover = async (layerName, wanted) => {
+    let text = "";
+    for (let k = 0; k < 5 && !wanted.test(text); k++) {
+      const at = await page.evaluate(({ name, k }) => {
+        const m = window.seaplanMap.map;
+        const features = m.getAllLayers().find((l) => l.get("name") === name)?.getSource().getFeatures() ?? [];
+        const f = features[Math.floor((k * features.length) / 5)];
+        if (!f) return null;
+        const g = f.getGeometry();
+        const c = g.getType() === "Point" ? g.getCoordinates() : g.getCoordinateAt(0.5);
+        m.getView().setCenter(c);
+        m.renderSync();
+        const px = m.getPixelFromCoordinate(c);
+        const box = m.getTargetElement().getBoundingClientRect();
+        return { x: box.left + px[0], y: box.top + px[1] };
+      }, { name: layerName, k });
+      if (!at) break;
+      await page.mouse.move(at.x - 20, at.y - 20);
+      await page.mouse.move(at.x, at.y);
+      await page.waitForTimeout(200);
+      text = await page.$eval("#mission-map .map-tip", (e) => (e.offsetParent ? e.textContent : "")).catch(() => "");
+      text = (text ?? "").replace(/\s+/g, " ").trim();
+    }
     await page.mouse.move(0, 0);
-    return (text ?? "").replace(/\s+/g, " ").trim();
+    return text;
   };
-  const routeTip = await hover("routes");
+  const routeTip = await hover("routes", /time to grounding/);
   check(/time to grounding/.test(routeTip) && /P\(grounding\) \d/.test(routeTip) && /mode (PTO|MEC|PTI)/.test(routeTip),
         `route leg on hover: ${routeTip.slice(0, 120)}`);
-  const targetTip = await hover("traffic");
+  const targetTip = await hover("traffic", /CPA/);
   check(/CPA .+ in -?\d+ s/.test(targetTip), `traffic on hover: ${targetTip.slice(0, 120)}`);
 
   // 6. Screenshot of the map: not blank, land and route colours present.
