@@ -11,10 +11,12 @@
 // keeps the margin, the hull that turns on a circle of ~240 m must too.
 //
 // Usage: route_pairs_bench [shared_dir] [--pairs N] [--seed S] [--chart noaa|trondheim|alesund]
-//                          [--min-depth M] [--turn-radius M] [--verbose]
+//                          [--min-depth M] [--turn-radius M] [--lookahead M]
+//                          [--wheel-over-radius M] [--verbose]
 // --turn-radius: the route planner's Level2Options::turn_radius_m (0: no
-// turn check, the planner as it was). ROUTE_PAIRS_DUMP=1 prints every sailed
-// route ("R east north") and its executed track ("T east north").
+// turn check, the planner as it was). --lookahead, --wheel-over-radius: the
+// sailing's path follower (default the simulation client's, 400 m and 300 m). ROUTE_PAIRS_DUMP=1
+// prints every sailed route ("R east north") and its executed track ("T east north").
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
@@ -51,7 +53,7 @@ struct Sailed {
 // Sails `route` from rest at `speed_mps` in the simulation client's closed
 // loop and measures the executed track against the unbuffered obstacles.
 StatusOr<Sailed> Sail(const std::vector<EastNorth>& route, double speed_mps,
-                      chart::ObstacleQuery& query) {
+                      const colav::PathFollowerOptions& follower, chart::ObstacleQuery& query) {
   colav::EncounterSetup setup;
   for (const EastNorth& p : route) {
     if (setup.path.empty() || (p - setup.path.back()).Norm() >= 1.0) setup.path.push_back(p);
@@ -63,6 +65,8 @@ StatusOr<Sailed> Sail(const std::vector<EastNorth>& route, double speed_mps,
   }
   setup.cruise_speed_mps = speed_mps;
   setup.start_at_rest = true;
+  if (follower.lookahead_m > 0) setup.follower.lookahead_m = follower.lookahead_m;
+  if (follower.turn_radius_m >= 0) setup.follower.turn_radius_m = follower.turn_radius_m;
   setup.max_time_s = 2.0 * length_m / speed_mps + 900.0;
   SEAPLAN_ASSIGN_OR_RETURN(colav::EncounterOutcome out, colav::SimulateEncounter(setup));
   Sailed s{out.arrived, std::numeric_limits<double>::infinity(), {}};
@@ -79,7 +83,7 @@ StatusOr<Sailed> Sail(const std::vector<EastNorth>& route, double speed_mps,
 }
 
 int RunCase(const std::string& shared, const ChartCase& c, const route::SweepOptions& sweep,
-            double turn_radius_m, bool verbose) {
+            double turn_radius_m, const colav::PathFollowerOptions& follower, bool verbose) {
   chart::ChartOptions copt;
   copt.min_depth_m = c.min_depth_m;
   auto map = chart::LoadChartFile(shared + "/" + c.path, copt);
@@ -136,7 +140,7 @@ int RunCase(const std::string& shared, const ChartCase& c, const route::SweepOpt
   failures_shown = 0;
   for (const route::PairOutcome& p : result->pairs) {
     if (!p.routed) continue;
-    auto s = Sail(p.route, kSailSpeedMps, query);
+    auto s = Sail(p.route, kSailSpeedMps, follower, query);
     if (!s.ok()) {
       std::printf("    SAIL FAILED (%.0f, %.0f) -> (%.0f, %.0f): %s\n", p.from.east_m,
                   p.from.north_m, p.to.east_m, p.to.north_m, s.status().ToString().c_str());
@@ -177,6 +181,8 @@ int main(int argc, char** argv) {
   double min_depth_override = 0.0;
   bool verbose = false;
   double turn_radius_m = -1.0;  // the planner's default
+  // The sailing's path follower: <= 0 / < 0 keep the simulation client's.
+  colav::PathFollowerOptions follower{0.0, 60.0, 0.0, -1.0};
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--pairs" && i + 1 < argc) {
@@ -189,6 +195,10 @@ int main(int argc, char** argv) {
       min_depth_override = std::atof(argv[++i]);
     } else if (a == "--turn-radius" && i + 1 < argc) {
       turn_radius_m = std::atof(argv[++i]);
+    } else if (a == "--lookahead" && i + 1 < argc) {
+      follower.lookahead_m = std::atof(argv[++i]);
+    } else if (a == "--wheel-over-radius" && i + 1 < argc) {
+      follower.turn_radius_m = std::atof(argv[++i]);
     } else if (a == "--verbose") {
       verbose = true;
     } else if (!a.empty() && a[0] != '-') {
@@ -197,7 +207,8 @@ int main(int argc, char** argv) {
       std::fprintf(
           stderr,
           "usage: route_pairs_bench [shared_dir] [--pairs N] [--seed S] "
-          "[--chart noaa|trondheim|alesund] [--min-depth M] [--turn-radius M] [--verbose]\n");
+          "[--chart noaa|trondheim|alesund] [--min-depth M] [--turn-radius M] [--lookahead M] "
+          "[--wheel-over-radius M] [--verbose]\n");
       return 2;
     }
   }
@@ -215,7 +226,7 @@ int main(int argc, char** argv) {
   for (ChartCase c : cases) {
     if (!only.empty() && c.name != only) continue;
     if (min_depth_override > 0) c.min_depth_m = min_depth_override;
-    status = std::max(status, RunCase(shared, c, sweep, turn_radius_m, verbose));
+    status = std::max(status, RunCase(shared, c, sweep, turn_radius_m, follower, verbose));
   }
   return status;
 }
