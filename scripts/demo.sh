@@ -22,21 +22,14 @@ SCENARIO=${SCENARIO:-examples/scenarios/case-c.scenario}
 mkdir -p "$DATA_DIR" "$OUT_DIR"
 PORT_FILE=$(mktemp)
 
-"$BIN/seaplan-server" --grpc-addr 127.0.0.1:0 --http-addr "${HTTP_ADDR:-127.0.0.1:0}" --data-dir "$DATA_DIR" \
-  --port-file "$PORT_FILE" --log-level warn &
-SERVER_PID=$!
+. scripts/server_lib.sh
 cleanup() {
-  kill -TERM "$SERVER_PID" 2>/dev/null || true
-  wait "$SERVER_PID" 2>/dev/null || true
+  stop_seaplan_server
   rm -f "$PORT_FILE"
 }
 trap cleanup EXIT
-
-for _ in $(seq 1 100); do
-  grep -q '^grpc=' "$PORT_FILE" 2>/dev/null && break
-  kill -0 "$SERVER_PID" 2>/dev/null || { echo "demo: seaplan-server exited early" >&2; exit 1; }
-  sleep 0.1
-done
+start_seaplan_server "$BIN" "$PORT_FILE" --grpc-addr 127.0.0.1:0 --http-addr "${HTTP_ADDR:-127.0.0.1:0}" \
+  --data-dir "$DATA_DIR" --log-level warn || { echo "demo: seaplan-server exited early" >&2; exit 1; }
 # The server wrote its admin token to $DATA_DIR/admin.token at its first
 # start (mode 0600); the CLI and the simulation client read it through
 # SEAPLAN_TOKEN_FILE (give another admin token's file there to override).
@@ -46,8 +39,8 @@ export SEAPLAN_TOKEN_FILE=${SEAPLAN_TOKEN_FILE:-$DATA_DIR/admin.token}
     "elsewhere): set SEAPLAN_TOKEN_FILE to an admin token's file or use another DATA_DIR" >&2
   exit 1
 }
-GRPC_PORT=$(sed -n 's/^grpc=//p' "$PORT_FILE")
-HTTP_PORT=$(sed -n 's/^http=//p' "$PORT_FILE")
+GRPC_PORT=$(server_port grpc "$PORT_FILE")
+HTTP_PORT=$(server_port http "$PORT_FILE")
 SERVER=127.0.0.1:$GRPC_PORT
 echo "== seaplan-server on $SERVER (gRPC) and 127.0.0.1:$HTTP_PORT (HTTP), database in $DATA_DIR"
 echo "== operator console: http://127.0.0.1:$HTTP_PORT/ (open it in a browser while the demo runs;"
@@ -63,5 +56,5 @@ echo "== Mission loop: $SCENARIO through seaplan-server and seaplan-sim"
 if [[ "${KEEP_SERVING:-0}" == "1" ]]; then
   echo
   echo "== serving the console at http://127.0.0.1:$HTTP_PORT/ until Ctrl-C"
-  wait "$SERVER_PID"
+  wait "$SEAPLAN_SERVER_PID"
 fi

@@ -43,14 +43,17 @@ Situation Open(std::string name, std::string description, std::vector<EncounterV
   return s;
 }
 
+// A channel between banks at x = -half_m and x = +half_m, the own ship's
+// track at x = lane_m.
 Situation Channel(std::string name, std::string description, std::vector<EncounterVessel> traffic,
-                  std::vector<Expectation> expected, const CollisionAvoidanceOptions& o) {
+                  std::vector<Expectation> expected, const CollisionAvoidanceOptions& o,
+                  double half_m = kChannelHalfM, double lane_m = kLaneM) {
   Situation s =
       Open(std::move(name), std::move(description), std::move(traffic), std::move(expected), o);
-  s.setup.path = {{kLaneM, 0}, {kLaneM, kLegM}};
+  s.setup.path = {{lane_m, 0}, {lane_m, kLegM}};
   const double y0 = -2000, y1 = kLegM + 2000;
-  s.setup.land = {{{-3000, y0}, {-kChannelHalfM, y0}, {-kChannelHalfM, y1}, {-3000, y1}},
-                  {{kChannelHalfM, y0}, {3000, y0}, {3000, y1}, {kChannelHalfM, y1}}};
+  s.setup.land = {{{-3000, y0}, {-half_m, y0}, {-half_m, y1}, {-3000, y1}},
+                  {{half_m, y0}, {3000, y0}, {3000, y1}, {half_m, y1}}};
   return s;
 }
 
@@ -147,6 +150,26 @@ std::vector<Situation> Situations(const CollisionAvoidanceOptions& o) {
                       {SameCourse(1, "A", 0.4 * kSpeed, 1000, 0, kLaneM),
                        Meeting(2, "B", 180, 8, 500, -kLaneM, kLaneM)},
                       {kOvertaking, kHeadOn}, o));
+  // A narrower channel, banks 700 m apart, the own track 200 m from the
+  // starboard bank (rule 9): a starboard turn soon meets the land, and
+  // what the avoidance may do there depends on how much water it has.
+  constexpr double kNarrowHalfM = 350.0, kNarrowLaneM = 150.0;
+  v.push_back(Channel("narrow-crossing-starboard",
+                      "a ferry crossing from the near starboard bank, 200 m off our track",
+                      {Meeting(1, "A", 270, 5, 260, 0, kNarrowLaneM)}, {kGiveWay}, o, kNarrowHalfM,
+                      kNarrowLaneM));
+  v.push_back(Channel("narrow-head-on", "a vessel coming down the channel's axis",
+                      {Meeting(1, "A", 180, 8, 420, -kNarrowLaneM, kNarrowLaneM)}, {kHeadOn}, o,
+                      kNarrowHalfM, kNarrowLaneM));
+  v.push_back(Channel("narrow-crossing-port", "a ferry crossing from the port bank (stand-on)",
+                      {Meeting(1, "A", 90, 5, 400, 0, kNarrowLaneM)}, {kStandOnPort}, o,
+                      kNarrowHalfM, kNarrowLaneM));
+  Situation narrow_overtake =
+      Channel("narrow-overtaking", "a vessel at 40 % of our speed, 1 km ahead on our track",
+              {SameCourse(1, "A", 0.4 * kSpeed, 1000, 0, kNarrowLaneM)}, {kOvertaking}, o,
+              kNarrowHalfM, kNarrowLaneM);
+  narrow_overtake.max_time_lost = 0.10;
+  v.push_back(narrow_overtake);
   return v;
 }
 

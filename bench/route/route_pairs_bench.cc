@@ -3,17 +3,30 @@
 // per chart: how many pairs Level 1 connects, how many of those get a route,
 // how many routes come within the safety margin of an UNBUFFERED obstacle
 // (exact GEOS distance), and the time per route (median, p95) with its ratio
-// to the Level-1 time measured in the same run.
+// to the Level-1 time measured in the same run. Then each chosen route is
+// sailed from rest by the simulation client's closed loop (engine/colav:
+// the SITS hull, its autopilot and LOS path follower with the wheel-over,
+// at 9 m/s, no traffic, no wind) and the executed track's clearance from
+// the unbuffered obstacles is measured the same way: the route's polyline
+// keeps the margin, the hull that turns on a circle of ~240 m must too.
 //
 // Usage: route_pairs_bench [shared_dir] [--pairs N] [--seed S] [--chart noaa|trondheim|alesund]
-//                          [--min-depth M] [--verbose]
+//                          [--min-depth M] [--turn-radius M] [--lookahead M]
+//                          [--wheel-over-radius M] [--verbose]
+// --turn-radius: the route planner's Level2Options::turn_radius_m (0: no
+// turn check, the planner as it was). --lookahead, --wheel-over-radius: the
+// sailing's path follower (default the simulation client's, 400 m and 300 m). ROUTE_PAIRS_DUMP=1
+// prints every sailed route ("R east north") and its executed track ("T east north").
 #include <cstdio>
 #include <cstdlib>
+#include <limits>
 #include <memory>
+#include <optional>
 #include <string>
 #include <vector>
 
 #include "seaplan/chart/obstacle_map.h"
+#include "seaplan/colav/encounter_sim.h"
 #include "seaplan/common/log.h"
 #include "seaplan/route/route_planner.h"
 #include "seaplan/route/route_sweep.h"
@@ -22,14 +35,55 @@ using namespace seaplan;
 
 namespace {
 
+// The fjord scenarios' ordered speed (the hull's PTO service speed is 9.15 m/s).
+constexpr double kSailSpeedMps = 9.0;
+
 struct ChartCase {
   std::string name;
   std::string path;  // under the shared folder
   double min_depth_m;
 };
 
+struct Sailed {
+  bool arrived = false;
+  double clearance_m = 0.0;  // of the executed track from the unbuffered obstacles
+  EastNorth closest;
+};
+
+// Sails `route` from rest at `speed_mps` in the simulation client's closed
+// loop and measures the executed track against the unbuffered obstacles.
+StatusOr<Sailed> Sail(const std::vector<EastNorth>& route, double speed_mps,
+                      const colav::PathFollowerOptions& follower, chart::ObstacleQuery& query) {
+  colav::EncounterSetup setup;
+  for (const EastNorth& p : route) {
+    if (setup.path.empty() || (p - setup.path.back()).Norm() >= 1.0) setup.path.push_back(p);
+  }
+  if (setup.path.size() < 2) return Sailed{true, std::numeric_limits<double>::infinity(), {}};
+  double length_m = 0.0;
+  for (size_t i = 1; i < setup.path.size(); ++i) {
+    length_m += (setup.path[i] - setup.path[i - 1]).Norm();
+  }
+  setup.cruise_speed_mps = speed_mps;
+  setup.start_at_rest = true;
+  if (follower.lookahead_m > 0) setup.follower.lookahead_m = follower.lookahead_m;
+  if (follower.turn_radius_m >= 0) setup.follower.turn_radius_m = follower.turn_radius_m;
+  setup.max_time_s = 2.0 * length_m / speed_mps + 900.0;
+  SEAPLAN_ASSIGN_OR_RETURN(colav::EncounterOutcome out, colav::SimulateEncounter(setup));
+  Sailed s{out.arrived, std::numeric_limits<double>::infinity(), {}};
+  if (std::getenv("ROUTE_PAIRS_DUMP") != nullptr) {
+    std::printf("PAIR\n");
+    for (const EastNorth& p : setup.path) std::printf("R %.1f %.1f\n", p.east_m, p.north_m);
+    for (const EastNorth& p : out.track) std::printf("T %.1f %.1f\n", p.east_m, p.north_m);
+  }
+  if (const std::optional<chart::Clearance> c = query.UnbufferedClearance(out.track)) {
+    s.clearance_m = c->distance_m;
+    s.closest = c->route_point;
+  }
+  return s;
+}
+
 int RunCase(const std::string& shared, const ChartCase& c, const route::SweepOptions& sweep,
-            bool verbose) {
+            double turn_radius_m, const colav::PathFollowerOptions& follower, bool verbose) {
   chart::ChartOptions copt;
   copt.min_depth_m = c.min_depth_m;
   auto map = chart::LoadChartFile(shared + "/" + c.path, copt);
@@ -40,6 +94,7 @@ int RunCase(const std::string& shared, const ChartCase& c, const route::SweepOpt
   auto shared_map = std::make_shared<const chart::ObstacleMap>(std::move(*map));
   route::RouteOptions ropt;
   ropt.min_depth_m = c.min_depth_m;
+  if (turn_radius_m >= 0) ropt.level2.turn_radius_m = turn_radius_m;
   auto planner = route::RoutePlanner::Create(shared_map, route::ShipParticulars{}, ropt);
   if (!planner.ok()) {
     std::printf("%-10s planner failed: %s\n", c.name.c_str(), planner.status().ToString().c_str());
@@ -77,7 +132,42 @@ int RunCase(const std::string& shared, const ChartCase& c, const route::SweepOpt
       result->within_margin, min_clearance, result->clearance_exact ? "" : " (buffered check)", med,
       p95, l1_med > 0 ? med / l1_med : 0.0, l1_med);
   std::fflush(stdout);
-  const bool pass = result->routed == result->connected && result->within_margin == 0;
+
+  // The executed tracks.
+  chart::ObstacleQuery query(*shared_map);
+  int sailed = 0, not_arrived = 0, aground = 0, within = 0;
+  double min_sailed = std::numeric_limits<double>::infinity();
+  failures_shown = 0;
+  for (const route::PairOutcome& p : result->pairs) {
+    if (!p.routed) continue;
+    auto s = Sail(p.route, kSailSpeedMps, follower, query);
+    if (!s.ok()) {
+      std::printf("    SAIL FAILED (%.0f, %.0f) -> (%.0f, %.0f): %s\n", p.from.east_m,
+                  p.from.north_m, p.to.east_m, p.to.north_m, s.status().ToString().c_str());
+      ++not_arrived;
+      continue;
+    }
+    ++sailed;
+    min_sailed = std::min(min_sailed, s->clearance_m);
+    if (!s->arrived) ++not_arrived;
+    if (s->clearance_m <= 0) ++aground;
+    const bool close = s->clearance_m < result->margin_m - 1e-3;
+    if (close) ++within;
+    if ((close || !s->arrived) && (verbose || failures_shown < 3)) {
+      ++failures_shown;
+      std::printf(
+          "    SAILED %s (%.0f, %.0f) -> (%.0f, %.0f): track clearance %.2f m at (%.0f, %.0f)\n",
+          s->arrived ? "CLOSE" : "NOT ARRIVED", p.from.east_m, p.from.north_m, p.to.east_m,
+          p.to.north_m, s->clearance_m, s->closest.east_m, s->closest.north_m);
+    }
+  }
+  std::printf(
+      "%-10s sailed from rest at %.0f m/s: %d routes, not arrived %d, track aground %d, "
+      "track within margin %d, min track clearance %.2f m\n",
+      c.name.c_str(), kSailSpeedMps, sailed, not_arrived, aground, within, min_sailed);
+  std::fflush(stdout);
+  const bool pass = result->routed == result->connected && result->within_margin == 0 &&
+                    not_arrived == 0 && within == 0;
   return pass ? 0 : 2;
 }
 
@@ -90,6 +180,9 @@ int main(int argc, char** argv) {
   std::string only;
   double min_depth_override = 0.0;
   bool verbose = false;
+  double turn_radius_m = -1.0;  // the planner's default
+  // The sailing's path follower: <= 0 / < 0 keep the simulation client's.
+  colav::PathFollowerOptions follower{0.0, 60.0, 0.0, -1.0};
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--pairs" && i + 1 < argc) {
@@ -100,14 +193,22 @@ int main(int argc, char** argv) {
       only = argv[++i];
     } else if (a == "--min-depth" && i + 1 < argc) {
       min_depth_override = std::atof(argv[++i]);
+    } else if (a == "--turn-radius" && i + 1 < argc) {
+      turn_radius_m = std::atof(argv[++i]);
+    } else if (a == "--lookahead" && i + 1 < argc) {
+      follower.lookahead_m = std::atof(argv[++i]);
+    } else if (a == "--wheel-over-radius" && i + 1 < argc) {
+      follower.turn_radius_m = std::atof(argv[++i]);
     } else if (a == "--verbose") {
       verbose = true;
     } else if (!a.empty() && a[0] != '-') {
       shared = a;
     } else {
-      std::fprintf(stderr,
-                   "usage: route_pairs_bench [shared_dir] [--pairs N] [--seed S] "
-                   "[--chart noaa|trondheim|alesund] [--min-depth M] [--verbose]\n");
+      std::fprintf(
+          stderr,
+          "usage: route_pairs_bench [shared_dir] [--pairs N] [--seed S] "
+          "[--chart noaa|trondheim|alesund] [--min-depth M] [--turn-radius M] [--lookahead M] "
+          "[--wheel-over-radius M] [--verbose]\n");
       return 2;
     }
   }
@@ -125,7 +226,7 @@ int main(int argc, char** argv) {
   for (ChartCase c : cases) {
     if (!only.empty() && c.name != only) continue;
     if (min_depth_override > 0) c.min_depth_m = min_depth_override;
-    status = std::max(status, RunCase(shared, c, sweep, verbose));
+    status = std::max(status, RunCase(shared, c, sweep, turn_radius_m, follower, verbose));
   }
   return status;
 }

@@ -74,6 +74,14 @@ StatusOr<EncounterOutcome> SimulateEncounter(const EncounterSetup& setup) {
   const double heading = CourseOf(setup.path[1] - setup.path[0]);
   SEAPLAN_ASSIGN_OR_RETURN(UnderWay ship, ShipUnderWay(start, heading, setup.cruise_speed_mps,
                                                        setup.environment, setup.autopilot));
+  if (setup.start_at_rest) {
+    SEAPLAN_ASSIGN_OR_RETURN(
+        ship.model,
+        ship::ShipModel::Create(ship::ShipParams{}, ship::MachineryParams{}, setup.environment,
+                                ship::ShipState::At(start.north_m, start.east_m, heading, 0.0),
+                                ship::MsoMode::kPto));
+    ship.autopilot = Autopilot(setup.autopilot);
+  }
   ship::ShipModel& model = ship.model;
   Autopilot& autopilot = ship.autopilot;
 
@@ -100,8 +108,11 @@ StatusOr<EncounterOutcome> SimulateEncounter(const EncounterSetup& setup) {
       }
     }
     out.max_path_deviation_m = std::max(out.max_path_deviation_m, PathDistance(setup.path, here));
-    if (!land.empty() && t - last_land_sample >= kLandSampleS) {
+    if (t - last_land_sample >= kLandSampleS) {
       last_land_sample = t;
+      out.track.push_back(here);
+    }
+    if (!land.empty() && last_land_sample == t) {
       const double c = land.SignedClearance(here, 1000.0);
       out.min_land_clearance_m = std::min(out.min_land_clearance_m, c);
       if (c < 0) out.aground_s += kLandSampleS;
@@ -150,6 +161,8 @@ StatusOr<EncounterOutcome> SimulateEncounter(const EncounterSetup& setup) {
     model.Step(a.throttle, a.rudder_rad, setup.dt_s);
   }
   out.arrival_time_s = t;
+  const ship::ShipState& end = model.state();
+  out.track.push_back({end.east_m(), end.north_m()});
   return out;
 }
 

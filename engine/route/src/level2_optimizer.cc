@@ -418,8 +418,24 @@ struct Repair {
   int followed_count = 0;
 };
 
+// Can a hull turning on `radius_m` sail the corner at w[k]? Its turn takes
+// radius tan(theta / 2) of each leg; an inner leg is shared with the turn
+// at its other end.
+bool TurnSailable(const std::vector<EastNorth>& w, size_t k, double radius_m) {
+  const EastNorth a = w[k - 1], b = w[k], c = w[k + 1];
+  const double in_m = Dist(a, b), out_m = Dist(b, c);
+  if (in_m < 1e-9 || out_m < 1e-9) return true;
+  const double course_in = std::atan2(b.east_m - a.east_m, b.north_m - a.north_m);
+  const double course_out = std::atan2(c.east_m - b.east_m, c.north_m - b.north_m);
+  const double theta = std::abs(std::remainder(course_out - course_in, 2.0 * M_PI));
+  const double need_m = radius_m * std::tan(std::min(theta, 0.999 * M_PI) / 2.0);
+  const double in_share = k == 1 ? 1.0 : 0.5;
+  const double out_share = k + 2 == w.size() ? 1.0 : 0.5;
+  return need_m <= in_share * in_m + 1e-6 && need_m <= out_share * out_m + 1e-6;
+}
+
 Repair RepairRoute(const ObstacleField& field, const std::vector<EastNorth>& refs,
-                   std::vector<EastNorth>* positions) {
+                   double turn_radius_m, std::vector<EastNorth>* positions) {
   std::vector<EastNorth>& w = *positions;
   const size_t n = w.size() - 1;
   Repair r;
@@ -448,6 +464,11 @@ Repair RepairRoute(const ObstacleField& field, const std::vector<EastNorth>& ref
         snap(k + 1);
       }
       changed = true;
+    }
+    // Turns the hull cannot sail: only moved waypoints go back (a corner
+    // between references is the Level-1 path's own).
+    for (size_t k = 1; turn_radius_m > 0 && k < n; ++k) {
+      if (!r.snapped[k] && !TurnSailable(w, k, turn_radius_m)) changed |= snap(k);
     }
   }
   return r;
@@ -534,6 +555,9 @@ absl::Status Level2Options::Validate() const {
   }
   if (threads < 1 || threads > 256)
     return absl::InvalidArgumentError("threads must be in [1, 256]");
+  if (!(turn_radius_m >= 0.0 && turn_radius_m < 1e5)) {
+    return absl::InvalidArgumentError("turn_radius_m must be in [0, 1e5)");
+  }
   return absl::OkStatus();
 }
 
@@ -677,7 +701,7 @@ StatusOr<Level2Result> OptimizeLevel2(const Level2Problem& problem, const Level2
       refs[k] = route[k].refs.ref;
       positions[k] = route[k].position;
     }
-    const Repair repair = RepairRoute(field, refs, &positions);
+    const Repair repair = RepairRoute(field, refs, options.turn_radius_m, &positions);
     out.snapped_waypoints = repair.snapped_count;
     if (repair.snapped_count > 0 || repair.followed_count > 0) {
       const std::vector<EastNorth>& line = problem.alternatives[a];

@@ -107,6 +107,59 @@ TEST(Level2OptimizerTest, CoarseOptimisedRoutesTouchNoObstacle) {
   }
 }
 
+// The corners at moved waypoints (off their Level-1 reference) that a hull
+// turning on `radius_m` cannot sail: R tan(theta / 2) must fit in half of
+// each adjacent leg (the whole of the first and the last).
+int UnsailableMovedCorners(const AlternativeResult& alt, double radius_m) {
+  const std::vector<WaypointResult>& w = alt.waypoints;
+  int count = 0;
+  for (size_t k = 1; k + 1 < w.size(); ++k) {
+    const EastNorth a = w[k - 1].position, b = w[k].position, c = w[k + 1].position;
+    if (std::hypot(b.east_m - w[k].reference.east_m, b.north_m - w[k].reference.north_m) < 1e-6) {
+      continue;
+    }
+    const double in_m = std::hypot(b.east_m - a.east_m, b.north_m - a.north_m);
+    const double out_m = std::hypot(c.east_m - b.east_m, c.north_m - b.north_m);
+    const double theta =
+        std::abs(std::remainder(std::atan2(c.east_m - b.east_m, c.north_m - b.north_m) -
+                                    std::atan2(b.east_m - a.east_m, b.north_m - a.north_m),
+                                2 * M_PI));
+    const double need_m = radius_m * std::tan(theta / 2);
+    if (need_m > (k == 1 ? 1.0 : 0.5) * in_m + 1e-6 ||
+        need_m > (k + 2 == w.size() ? 1.0 : 0.5) * out_m + 1e-6) {
+      ++count;
+    }
+  }
+  return count;
+}
+
+TEST(Level2OptimizerTest, MovedWaypointsOnlyWhereTheHullCanTurn) {
+  // 100 segments of ~45 m: the swarm moves each waypoint on its own and the
+  // route zigzags; a waypoint whose turn needs more than half of a leg on a
+  // 300 m circle goes back to the Level-1 path (turn_radius_m 0: it stays).
+  auto s = MakeScenario();
+  Level2Options o = SmallOptions();
+  o.segments = 100;
+  o.turn_radius_m = 0.0;
+  auto free = OptimizeLevel2(s->problem, o);
+  ASSERT_TRUE(free.ok()) << free.status();
+  int free_unsailable = 0;
+  for (const AlternativeResult& alt : free->alternatives) {
+    free_unsailable += UnsailableMovedCorners(alt, 300.0);
+  }
+  EXPECT_GT(free_unsailable, 0) << "the scenario no longer zigzags: the test proves nothing";
+  o.turn_radius_m = 300.0;
+  auto r = OptimizeLevel2(s->problem, o);
+  ASSERT_TRUE(r.ok()) << r.status();
+  for (const AlternativeResult& alt : r->alternatives) {
+    EXPECT_EQ(UnsailableMovedCorners(alt, 300.0), 0);
+    EXPECT_FALSE(alt.crosses_obstacle);
+    EXPECT_GT(alt.snapped_waypoints, 0);
+  }
+  o.turn_radius_m = -1.0;
+  EXPECT_FALSE(OptimizeLevel2(s->problem, o).ok());
+}
+
 TEST(Level2OptimizerTest, RobustModeOnDownwindShoreSegmentAndSaferAlternativeChosen) {
   auto s = MakeScenario();
   auto r = OptimizeLevel2(s->problem, Level2Options{});

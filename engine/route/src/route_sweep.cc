@@ -112,6 +112,7 @@ StatusOr<SweepResult> RunRouteSweep(const RoutePlanner& planner, const chart::Ob
       line.push_back(w.local);
     }
     pair.waypoints = static_cast<int>(line.size());
+    pair.route = line;
     const std::optional<chart::Clearance> clearance = query.UnbufferedClearance(line);
     if (clearance) {
       pair.clearance_m = clearance->distance_m;

@@ -27,6 +27,9 @@ struct EncounterSetup {
   std::vector<EastNorth>
       path;  // >= 2 points; the ship starts at the first on the first leg's course
   double cruise_speed_mps = 9.0;
+  // The ship starts under way at the cruise speed (false), or at rest as a
+  // ship leaving its berth does in the simulation client (true).
+  bool start_at_rest = false;
   std::vector<EncounterVessel> traffic;
   std::vector<std::vector<EastNorth>> land;  // outer rings
   ship::Environment environment;
@@ -67,6 +70,7 @@ struct EncounterOutcome {
   double min_nonzero_offset_rad = 1e18;
   double min_speed_factor = 1.0;  // commanded speed / desired speed
   int manoeuvres = 0;             // manoeuvre-start events
+  std::vector<EastNorth> track;   // the ship's position every 2 s, and at the end
   std::vector<std::string> log;   // "t: event" lines
 };
 

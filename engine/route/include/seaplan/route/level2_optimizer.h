@@ -37,7 +37,12 @@
 //     Level-1 polyline between them (its vertices are inserted, evaluated
 //     like the others, not moved). The DP runs again on the repaired route.
 //     A route is therefore obstacle-free whenever its Level-1 path is, and
-//     has segments + 1 waypoints plus the inserted ones.
+//     has segments + 1 waypoints plus the inserted ones. The same repair
+//     sends back to its reference a moved waypoint whose turn the hull
+//     cannot sail: a course change theta needs R tan(theta / 2) of each
+//     adjacent leg to turn on a circle of radius R (turn_radius_m), and the
+//     waypoints optimised one by one can zigzag on legs of 100 m, which a
+//     hull turning on ~300 m overshoots by hundreds of metres.
 // The chosen alternative is the obstacle-free one with the lowest expected
 // cost (sum of C_grounding + C_mso + switching; C_path only shapes the route
 // and is not a cost of sailing it, so it is reported but not compared).
@@ -142,6 +147,12 @@ struct Level2Options {
   double ttg_step_s = 30.0;
   int threads = 2;
   RiskEvaluation risk_evaluation = RiskEvaluation::kFast;
+  // The radius the ship turns on as it sails the route (this hull: ~240 m
+  // at full rudder, and the simulation client's path follower starts its
+  // turns for 300 m). A moved waypoint whose course change needs more of
+  // an adjacent leg than half of it (the whole of a leg from the start or
+  // to the goal) goes back to its reference (step 4). 0: no turn check.
+  double turn_radius_m = 300.0;
 
   absl::Status Validate() const;
 };

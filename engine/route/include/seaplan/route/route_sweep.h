@@ -53,6 +53,7 @@ struct PairOutcome {
   double clearance_m = std::numeric_limits<double>::infinity();
   EastNorth closest_route_point;
   int waypoints = 0;
+  std::vector<EastNorth> route;  // the chosen route's waypoints (local frame); empty if not routed
 };
 
 struct SweepResult {
