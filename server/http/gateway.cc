@@ -204,9 +204,10 @@ std::string ClientCertSubject(const httplib::Request& req) {
 }
 
 // The core's context of an HTTP call: deadline, who calls.
-CallContext MakeCall(ServiceCore& core, const httplib::Request& req,
+CallContext MakeCall(ServiceCore& core, const std::string& method, const httplib::Request& req,
                      StopToken::Clock::time_point deadline, std::function<bool()> client_gone) {
   CallContext call = core.NewCall("http", deadline, std::move(client_gone));
+  call.method = method;
   // The credential authorisation reads (header, or a console session's
   // cookie): one bucket per token whichever way it is presented.
   const absl::StatusOr<std::string> credential = Credential(req);
@@ -302,7 +303,7 @@ void HttpGateway::RegisterRoutes() {
                     }
                     absl::Status status = [&]() -> absl::Status {
                       SEAPLAN_ASSIGN_OR_RETURN(auto deadline, Deadline(hreq));
-                      CallContext call = MakeCall(core, hreq, deadline, nullptr);
+                      CallContext call = MakeCall(core, method, hreq, deadline, nullptr);
                       // Counted before the token is looked up: guessing
                       // tokens is rate limited too.
                       SEAPLAN_RETURN_IF_ERROR(core.Admit(call));
@@ -310,7 +311,6 @@ void HttpGateway::RegisterRoutes() {
                       Request request;
                       SEAPLAN_RETURN_IF_ERROR(MessageFromJson(body, &request));
                       SEAPLAN_ASSIGN_OR_RETURN(Response response, fn(request, call));
-                      core.access().RecordIfAudited(method, call, request, response);
                       std::string json;
                       SEAPLAN_RETURN_IF_ERROR(MessageToJson(response, &json));
                       hres.status = 200;
@@ -350,7 +350,7 @@ void HttpGateway::RegisterRoutes() {
           auto state = std::make_shared<StreamState>();
           state->method = method;
           state->started = started;
-          state->call = MakeCall(core, hreq, *deadline, [raw = state.get()] {
+          state->call = MakeCall(core, method, hreq, *deadline, [raw = state.get()] {
             std::lock_guard lock(raw->mu);
             return raw->client_gone;
           });
