@@ -20,6 +20,7 @@
 #include "server/auth/csrf.h"
 #include "server/core/caller_limits.h"
 #include "server/core/status_details.h"
+#include "server/http/guarded_http_server.h"
 #include "server/http/json_codec.h"
 #include "server/http/status_mapping.h"
 
@@ -238,20 +239,28 @@ absl::Status SplitHostPort(const std::string& address, std::string* host, int* p
 
 HttpGateway::HttpGateway(ServiceCore& core, const Options& options)
     : core_(core), options_(options) {
+  SSL_CTX* tls = nullptr;
   if (options_.tls.enabled()) {
-    server_ = std::make_unique<httplib::SSLServer>(
-        [this](SSL_CTX& ctx) { return SetUpTls(options_.tls, ctx, &tls_error_); });
-  } else {
-    server_ = std::make_unique<httplib::Server>();
+    tls = SSL_CTX_new(TLS_server_method());
+    if (tls == nullptr) {
+      tls_error_ = absl::StrCat("cannot create a TLS context: ", OpenSslErrors());
+    } else if (!SetUpTls(options_.tls, *tls, &tls_error_)) {
+      SSL_CTX_free(tls);
+      tls = nullptr;
+    }
   }
-  const int threads = std::max(1, options_.threads);
-  server_->new_task_queue = [threads] {
-    return new httplib::ThreadPool(static_cast<std::size_t>(threads));
-  };
+  GuardedHttpServer::Limits limits;
+  limits.worker_threads = std::max(1, options_.threads);
+  limits.head_timeout = options_.read_timeout;
+  limits.read_timeout = options_.read_timeout;
+  limits.write_timeout = options_.write_timeout;
+  limits.min_body_bytes_per_s = options_.min_body_bytes_per_s;
+  server_ = std::make_unique<GuardedHttpServer>(limits, tls);
+  if (tls != nullptr) SSL_CTX_free(tls);  // the server holds its own reference
   server_->set_payload_max_length(options_.max_body_bytes);
-  server_->set_keep_alive_timeout(5);
-  server_->set_read_timeout(options_.read_timeout);
-  server_->set_write_timeout(options_.write_timeout);
+  server_->set_keep_alive_timeout(
+      std::chrono::duration_cast<std::chrono::seconds>(limits.idle_timeout).count());
+  server_->set_keep_alive_max_count(static_cast<std::size_t>(limits.max_requests_per_connection));
   RegisterRoutes();
 }
 
@@ -263,9 +272,7 @@ absl::StatusOr<int> HttpGateway::Bind(const std::string& address) {
   std::string host;
   int port = 0;
   SEAPLAN_RETURN_IF_ERROR(SplitHostPort(address, &host, &port));
-  if (!server_->is_valid()) {
-    return absl::InvalidArgumentError(absl::StrCat("HTTPS: ", tls_error_));
-  }
+  if (!tls_error_.empty()) return absl::InvalidArgumentError(absl::StrCat("HTTPS: ", tls_error_));
   if (port == 0) {
     const int bound = server_->bind_to_any_port(host);
     if (bound <= 0) return absl::UnavailableError(absl::StrCat("HTTP: cannot bind ", address));
@@ -284,6 +291,7 @@ void HttpGateway::Start() {
 void HttpGateway::Stop() {
   if (server_) server_->stop();
   if (thread_.joinable()) thread_.join();
+  if (server_) server_->StopConnections();
 }
 
 void HttpGateway::RegisterRoutes() {
