@@ -44,9 +44,12 @@ struct ServerOptions {
   // Without TLS the server listens only on loopback addresses unless this
   // is set (it then logs a warning): plaintext on a network is a choice.
   bool insecure = false;
-  // The HTTP gateway closes connections idle in a read or write this long.
+  // The HTTP gateway closes connections idle in a read or write this long;
+  // a request's head must arrive within http_read_timeout of its first
+  // byte and its body at http_min_body_bytes_per_s at least.
   std::chrono::milliseconds http_read_timeout{10000};
   std::chrono::milliseconds http_write_timeout{10000};
+  std::size_t http_min_body_bytes_per_s = 16 * 1024;
 };
 
 // Whether `address` ("host:port") listens only on the loopback interface:

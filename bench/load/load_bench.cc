@@ -13,8 +13,6 @@
 // and stopped at the end; every loop ends at the duration (calls in flight
 // then finish within their deadlines).
 #include <grpcpp/grpcpp.h>
-#include <signal.h>
-#include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -31,7 +29,7 @@
 #include <thread>
 #include <vector>
 
-#include "client_token.h"
+#include "e2e_support.h"
 #include "seaplan/v1/chart.grpc.pb.h"
 #include "seaplan/v1/mission.grpc.pb.h"
 #include "seaplan/v1/planning.grpc.pb.h"
@@ -59,57 +57,15 @@ struct Options {
   fs::path bin, source = SEAPLAN_BENCH_SOURCE_DIR;
 };
 
-// The server binary, started on ephemeral loopback ports.
-class ServerProcess {
- public:
-  bool Start(const Options& o, const fs::path& dir) {
-    fs::remove_all(dir);
-    fs::create_directories(dir);
-    const fs::path ports = dir / "ports";
-    pid_ = fork();
-    if (pid_ == 0) {
-      const std::string b = (o.bin / "seaplan-server").string(), d = (dir / "data").string(),
-                        p = ports.string();
-      execl(b.c_str(), b.c_str(), "--grpc-addr", "127.0.0.1:0", "--http-addr", "", "--data-dir",
-            d.c_str(), "--port-file", p.c_str(), "--log-level", "error", "--rate-limit",
-            o.rate_limit.c_str(), static_cast<char*>(nullptr));
-      _exit(127);
-    }
-    for (int i = 0; i < 600; ++i) {
-      std::ifstream in(ports);
-      std::string line;
-      while (std::getline(in, line)) {
-        if (line.rfind("grpc=", 0) == 0) {
-          address_ = "127.0.0.1:" + line.substr(5);
-          return true;
-        }
-      }
-      std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    }
-    return false;
+// Peak resident set (VmHWM) of process `pid` in MiB; -1 when unreadable.
+double PeakRssMiB(pid_t pid) {
+  std::ifstream in("/proc/" + std::to_string(pid) + "/status");
+  std::string line;
+  while (std::getline(in, line)) {
+    if (line.rfind("VmHWM:", 0) == 0) return std::stod(line.substr(6)) / 1024.0;
   }
-  ~ServerProcess() {
-    if (pid_ > 0) {
-      kill(pid_, SIGTERM);
-      int st;
-      waitpid(pid_, &st, 0);
-    }
-  }
-  const std::string& address() const { return address_; }
-  // Peak resident set (VmHWM) in MiB; -1 when unreadable.
-  double PeakRssMiB() const {
-    std::ifstream in("/proc/" + std::to_string(pid_) + "/status");
-    std::string line;
-    while (std::getline(in, line)) {
-      if (line.rfind("VmHWM:", 0) == 0) return std::stod(line.substr(6)) / 1024.0;
-    }
-    return -1;
-  }
-
- private:
-  pid_t pid_ = -1;
-  std::string address_;
-};
+  return -1;
+}
 
 // Latencies and outcomes of one RPC.
 struct Tally {
@@ -263,20 +219,19 @@ double Ms(Clock::time_point t0) {
 int Run(const Options& o) {
   const fs::path dir =
       fs::temp_directory_path() / ("seaplan-load-bench-" + std::to_string(getpid()));
-  ServerProcess server;
-  if (!server.Start(o, dir)) {
-    std::fprintf(stderr, "load: seaplan-server did not start from %s\n", o.bin.c_str());
+  fs::remove_all(dir);
+  e2e::ServerProcess server;
+  if (!server.Start(o.bin / "seaplan-server", dir, 0,
+                    {"--log-level", "error", "--rate-limit", o.rate_limit})) {
+    std::fprintf(stderr, "load: seaplan-server did not start from %s (log: %s)\n", o.bin.c_str(),
+                 (dir / "server.log").c_str());
     return 1;
   }
-  // Every client presents the admin token the server wrote at its first
-  // start (one caller: the bench runs with --rate-limit 0 by default).
-  const auto token = seaplan::client::ResolveToken("", (dir / "data" / "admin.token").string());
-  if (!token.ok()) {
-    std::fprintf(stderr, "load: %s\n", std::string(token.status().message()).c_str());
-    return 1;
-  }
+  // Every client presents the admin token the server was started with (one
+  // caller: the bench runs with --rate-limit 0 by default).
+  const std::string& token = seaplan::testing::TestAdminToken();
   auto channel = seaplan::client::CreateChannelWithToken(
-      server.address(), grpc::InsecureChannelCredentials(), grpc::ChannelArguments(), *token);
+      server.address(), grpc::InsecureChannelCredentials(), grpc::ChannelArguments(), token);
   // Setup: the chart for PlanRoute and the missions to watch and feed.
   std::string chart_id;
   {
@@ -351,7 +306,7 @@ int Run(const Options& o) {
       grpc::ChannelArguments args;
       args.SetInt("seaplan.load.client", id);  // a distinct channel per client
       Workload own(seaplan::client::CreateChannelWithToken(
-                       server.address(), grpc::InsecureChannelCredentials(), args, *token),
+                       server.address(), grpc::InsecureChannelCredentials(), args, token),
                    o, chart_id, missions);
       const int kind = id % 4;
       for (long n = 0; Clock::now() < end; ++n) {
@@ -366,7 +321,7 @@ int Run(const Options& o) {
   }
   for (auto& c : clients) c.join();
   const double wall_s = std::chrono::duration<double>(Clock::now() - started).count();
-  const double peak_rss = server.PeakRssMiB();
+  const double peak_rss = PeakRssMiB(server.pid());
   auto tallies = recorder.Take();
   long total_ok = 0, total_errors = 0, total_exhausted = 0;
   std::printf("load: %d clients, %.1f s (wall %.1f s), server %s, rate limit %s\n", o.clients,

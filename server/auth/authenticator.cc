@@ -10,8 +10,10 @@ namespace {
 
 // (Debian's Abseil string helpers take its own string_view, not std's.)
 std::string_view Trim(std::string_view s) {
-  while (!s.empty() && absl::ascii_isspace(static_cast<unsigned char>(s.front()))) s.remove_prefix(1);
-  while (!s.empty() && absl::ascii_isspace(static_cast<unsigned char>(s.back()))) s.remove_suffix(1);
+  while (!s.empty() && absl::ascii_isspace(static_cast<unsigned char>(s.front())))
+    s.remove_prefix(1);
+  while (!s.empty() && absl::ascii_isspace(static_cast<unsigned char>(s.back())))
+    s.remove_suffix(1);
   return s;
 }
 
@@ -47,8 +49,7 @@ absl::StatusOr<Caller> Authenticator::Authenticate(std::string_view authorizatio
         "seaplan-sim: --token, --token-file or SEAPLAN_TOKEN)");
   }
   constexpr std::string_view kScheme = "Bearer ";
-  if (authorization.size() <= kScheme.size() ||
-      !StartsWithIgnoreCase(authorization, kScheme)) {
+  if (authorization.size() <= kScheme.size() || !StartsWithIgnoreCase(authorization, kScheme)) {
     return absl::UnauthenticatedError("the Authorization header must read 'Bearer <token>'");
   }
   return AuthenticateToken(Trim(authorization.substr(kScheme.size())));
@@ -89,11 +90,10 @@ absl::StatusOr<Caller> Authenticator::Check(std::string_view method,
   return caller;
 }
 
-absl::StatusOr<Authenticator::NewToken> Authenticator::Issue(Role role,
-                                                             const std::string& vessel_id,
-                                                             const std::string& description,
-                                                             std::int64_t expires_in_ms,
-                                                             const std::string& created_by) const {
+absl::StatusOr<Authenticator::NewToken> Authenticator::Issue(
+    Role role, const std::string& vessel_id, const std::string& description,
+    std::int64_t expires_in_ms, const std::string& created_by,
+    std::optional<storage::AuditRecord> audit) const {
   if ((role == Role::kVessel) != !vessel_id.empty()) {
     return absl::InvalidArgumentError(role == Role::kVessel
                                           ? "a vessel token needs the vessel id it is bound to"
@@ -113,7 +113,8 @@ absl::StatusOr<Authenticator::NewToken> Authenticator::Issue(Role role,
   r.created_by = created_by;
   r.created_at_ms = now_();
   r.expires_at_ms = expires_in_ms == 0 ? 0 : r.created_at_ms + expires_in_ms;
-  SEAPLAN_RETURN_IF_ERROR(tokens_.Insert(r));
+  if (audit) audit->target = r.id;
+  SEAPLAN_RETURN_IF_ERROR(tokens_.Insert(r, audit ? &*audit : nullptr));
   out.bearer = std::move(generated.bearer);
   return out;
 }

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <functional>
+#include <optional>
 #include <string>
 #include <string_view>
 
@@ -34,10 +35,13 @@ class Authenticator {
     std::string bearer;  // shown once
   };
   // A new token. `expires_in_ms` 0: never expires. InvalidArgument for a
-  // vessel token without a vessel id or another role with one.
+  // vessel token without a vessel id or another role with one. `audit`
+  // (the creating call's row) is stored with the token, in its transaction,
+  // naming the new token as its target.
   absl::StatusOr<NewToken> Issue(Role role, const std::string& vessel_id,
                                  const std::string& description, std::int64_t expires_in_ms,
-                                 const std::string& created_by) const;
+                                 const std::string& created_by,
+                                 std::optional<storage::AuditRecord> audit = std::nullopt) const;
   // Stores `bearer` (a token of our format, e.g. read from a file the
   // operator wrote) as an admin token unless its id is stored already; when
   // it is, the stored hash must match (else FailedPrecondition).

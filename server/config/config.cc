@@ -89,7 +89,8 @@ ParsedConfig ParseConfig(int argc, const char* const* argv) {
   int read_timeout_ms = static_cast<int>(c.server.http_read_timeout.count());
   int write_timeout_ms = static_cast<int>(c.server.http_write_timeout.count());
   app.add_option("--http-read-timeout-ms", read_timeout_ms,
-                 "HTTP: a connection whose client sends nothing for this long is closed")
+                 "HTTP: a connection whose client sends nothing for this long, or whose request "
+                 "head has not arrived this long after its first byte, is closed")
       ->envname("SEAPLAN_HTTP_READ_TIMEOUT_MS")
       ->check(CLI::Range(100, 600000))
       ->capture_default_str();
@@ -97,6 +98,12 @@ ParsedConfig ParseConfig(int argc, const char* const* argv) {
                  "HTTP: a connection whose client takes nothing for this long is closed")
       ->envname("SEAPLAN_HTTP_WRITE_TIMEOUT_MS")
       ->check(CLI::Range(100, 600000))
+      ->capture_default_str();
+  app.add_option("--http-min-body-rate", c.server.http_min_body_bytes_per_s,
+                 "HTTP: bytes/s a request body must arrive at, on average, after the head "
+                 "(slower: the connection is closed)")
+      ->envname("SEAPLAN_HTTP_MIN_BODY_RATE")
+      ->check(CLI::Range(std::size_t{1}, std::size_t{1} << 30))
       ->capture_default_str();
   app.add_option("--tls-cert", c.server.tls.cert_file,
                  "server certificate chain (PEM): TLS on both the gRPC and the HTTP port")

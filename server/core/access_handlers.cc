@@ -1,14 +1,11 @@
 #include "server/core/access_handlers.h"
 
 #include "absl/strings/str_cat.h"
-#include "seaplan/common/log.h"
+#include "server/core/audit_entry.h"
 #include "server/core/convert.h"
 
 namespace seaplan::server {
 namespace {
-
-using google::protobuf::FieldDescriptor;
-using google::protobuf::Message;
 
 std::optional<auth::Role> RoleFromProto(v1::Role role) {
   switch (role) {
@@ -41,28 +38,6 @@ v1::TokenInfo TokenToProto(const storage::TokenRecord& t) {
   out.set_expires_at_ms(t.expires_at_ms);
   out.set_revoked_at_ms(t.revoked_at_ms);
   return out;
-}
-
-// A non-empty string field `name` of `m` or of its direct sub-messages.
-std::string FindStringField(const Message& m, std::string_view name, int depth = 1) {
-  const auto* descriptor = m.GetDescriptor();
-  const auto* reflection = m.GetReflection();
-  if (const FieldDescriptor* f = descriptor->FindFieldByName(std::string(name));
-      f != nullptr && f->type() == FieldDescriptor::TYPE_STRING && !f->is_repeated()) {
-    std::string value = reflection->GetString(m, f);
-    if (!value.empty()) return value;
-  }
-  if (depth == 0) return "";
-  for (int i = 0; i < descriptor->field_count(); ++i) {
-    const FieldDescriptor* f = descriptor->field(i);
-    if (f->type() != FieldDescriptor::TYPE_MESSAGE || f->is_repeated() ||
-        !reflection->HasField(m, f)) {
-      continue;
-    }
-    std::string value = FindStringField(reflection->GetMessage(m, f), name, depth - 1);
-    if (!value.empty()) return value;
-  }
-  return "";
 }
 
 }  // namespace
@@ -100,9 +75,10 @@ absl::StatusOr<v1::CreateTokenResponse> AccessHandlers::CreateToken(
   if (request.expires_in_s() < 0 || request.expires_in_s() > std::int64_t{100} * 365 * 86400) {
     return absl::InvalidArgumentError("expires_in_s: 0 (never) or up to 100 years");
   }
-  SEAPLAN_ASSIGN_OR_RETURN(auth::Authenticator::NewToken created,
-                           auth_.Issue(*role, request.vessel_id(), request.description(),
-                                       request.expires_in_s() * 1000, ctx.caller.token_id));
+  SEAPLAN_ASSIGN_OR_RETURN(
+      auth::Authenticator::NewToken created,
+      auth_.Issue(*role, request.vessel_id(), request.description(), request.expires_in_s() * 1000,
+                  ctx.caller.token_id, AuditEntry(ctx, "")));
   v1::CreateTokenResponse out;
   *out.mutable_token() = TokenToProto(created.record);
   out.set_bearer(std::move(created.bearer));
@@ -118,10 +94,11 @@ absl::StatusOr<v1::ListTokensResponse> AccessHandlers::ListTokens(const v1::List
 }
 
 absl::StatusOr<v1::RevokeTokenResponse> AccessHandlers::RevokeToken(
-    const v1::RevokeTokenRequest& request, const CallContext&) {
+    const v1::RevokeTokenRequest& request, const CallContext& ctx) {
   if (request.token_id().empty()) return absl::InvalidArgumentError("token_id is empty");
+  const auto audit = AuditEntry(ctx, request.token_id());
   SEAPLAN_ASSIGN_OR_RETURN(storage::TokenRecord revoked,
-                           tokens_.Revoke(request.token_id(), auth_.Now()));
+                           tokens_.Revoke(request.token_id(), auth_.Now(), AuditPointer(audit)));
   v1::RevokeTokenResponse out;
   *out.mutable_token() = TokenToProto(revoked);
   return out;
@@ -150,29 +127,6 @@ absl::StatusOr<v1::ListAuditEventsResponse> AccessHandlers::ListAuditEvents(
   }
   out.set_next_page_token(MakePageToken(page.next_after));
   return out;
-}
-
-void AccessHandlers::RecordIfAudited(std::string_view method, const CallContext& ctx,
-                                     const Message& request, const Message& response) {
-  const auth::MethodRule* rule = auth::FindRule(method);
-  if (rule == nullptr || !rule->audited) return;
-  storage::AuditRecord record;
-  record.time_ms = auth_.Now();
-  record.token_id = ctx.caller.token_id;
-  record.role = ctx.caller.internal() ? "server" : std::string(auth::RoleName(ctx.caller.role));
-  record.vessel_id = ctx.caller.vessel_id;
-  record.action = std::string(method);
-  for (std::string_view field : {"mission_id", "chart_id", "token_id"}) {
-    for (const Message* m : {&request, &response}) {
-      if (record.target.empty()) record.target = FindStringField(*m, field);
-    }
-  }
-  record.detail = FindStringField(request, "reason", 0);
-  absl::StatusOr<storage::AuditRecord> stored = audit_.Append(std::move(record));
-  if (!stored.ok()) {
-    log::Error("audit: cannot record {} by token '{}': {}", std::string(method),
-               ctx.caller.token_id, stored.status().ToString());
-  }
 }
 
 }  // namespace seaplan::server

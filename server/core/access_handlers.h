@@ -1,10 +1,6 @@
-// AccessService (tokens, the audit log) and the audit trail every
-// transport writes through after an audited call.
+// AccessService: tokens and the audit log. Token creation and revocation
+// store their audit row in their own transaction (audit_entry.h).
 #pragma once
-
-#include <google/protobuf/message.h>
-
-#include <string_view>
 
 #include "seaplan/storage/repositories.h"
 #include "seaplan/v1/access.pb.h"
@@ -29,15 +25,6 @@ class AccessHandlers {
                                                       const CallContext& ctx);
   absl::StatusOr<v1::ListAuditEventsResponse> ListAuditEvents(
       const v1::ListAuditEventsRequest& request, const CallContext& ctx);
-
-  // After a successful call of `method`: when the access table marks it
-  // audited, appends who (ctx.caller), what (the method), on what (a
-  // mission_id of the request or the response, else a chart_id, else a
-  // token_id, at the top or one message down) and why (a `reason` field).
-  // A failed write is logged, not returned: the call has already happened.
-  void RecordIfAudited(std::string_view method, const CallContext& ctx,
-                       const google::protobuf::Message& request,
-                       const google::protobuf::Message& response);
 
  private:
   const auth::Authenticator& auth_;

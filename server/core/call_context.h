@@ -35,6 +35,9 @@ struct CallContext {
   std::string client_cert_subject;
   // The caller's rate-limit key (caller_limits.h: CallerKey).
   std::string caller_key;
+  // The RPC, "Service/Method" (set by the transport with the caller); an
+  // audited one's handler writes its audit row (audit_entry.h).
+  std::string method;
 
   // Cancels `stop` when the client is gone. Cheap; call it often. A
   // transport also reports the client "gone" when its deadline passes (gRPC

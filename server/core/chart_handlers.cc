@@ -6,6 +6,7 @@
 #include "absl/strings/str_cat.h"
 #include "seaplan/chart/geojson.h"
 #include "seaplan/chart/obstacle_map.h"
+#include "server/core/audit_entry.h"
 #include "server/core/convert.h"
 
 namespace seaplan::server {
@@ -117,7 +118,9 @@ absl::StatusOr<v1::UploadChartResponse> ChartHandlers::UploadChart(
   record.obstacles = std::move(serialized);
   record.source_files = stored_files.SerializeAsString();
   record.created_at_ms = NowMs();
-  SEAPLAN_ASSIGN_OR_RETURN(storage::ChartRecord stored, charts_.Insert(std::move(record)));
+  const auto audit = AuditEntry(ctx, record.id);
+  SEAPLAN_ASSIGN_OR_RETURN(storage::ChartRecord stored,
+                           charts_.Insert(std::move(record), AuditPointer(audit)));
   v1::UploadChartResponse response;
   *response.mutable_chart() = ChartFromRecord(stored);
   for (const auto& w : map.summary().warnings) response.add_warnings(w);

@@ -9,6 +9,7 @@
 #include "absl/strings/str_format.h"
 #include "seaplan/common/log.h"
 #include "seaplan/mission/mission_state.h"
+#include "server/core/audit_entry.h"
 #include "server/core/caller_limits.h"
 #include "server/core/convert.h"
 
@@ -223,10 +224,12 @@ absl::StatusOr<MissionRuntimeState> MissionCoordinator::LoadRuntime(const std::s
 absl::Status MissionCoordinator::SetState(const std::string& mission_id,
                                           mission::MissionState state, const std::string& message,
                                           const std::string& failure_reason,
-                                          const std::optional<storage::WorkFence>& fence) {
+                                          const std::optional<storage::WorkFence>& fence,
+                                          std::optional<storage::AuditRecord> audit) {
   storage::MissionUpdate update;
   update.state = MissionStateToProto(state);
   update.fence = fence;
+  update.audit = std::move(audit);
   if (!failure_reason.empty()) update.failure_reason = failure_reason;
   absl::Status st = repo_.Update(mission_id, update, {ServerEvent(message)});
   notifier_.Notify(mission_id);
@@ -290,10 +293,11 @@ absl::StatusOr<v1::Mission> MissionCoordinator::CreateMission(
   events.push_back(ServerEvent(absl::StrCat("mission created: ", spec.name())));
   for (const auto& line : planned->log_messages) events.push_back(ServerEvent(line));
   events.push_back(ServerEvent(DescribeVersion(version), version.mission_time_origin_s()));
+  const auto audit = AuditEntry(ctx, record.id);
   absl::Status st = repo_.Create(
       record,
       {record.id, 1, version.reason(), now, version.SerializeAsString(), planned->engine_state},
-      events);
+      events, AuditPointer(audit));
   if (absl::IsAlreadyExists(st) && !request.request_id().empty()) {
     // A concurrent retry with the same key won: answer with its mission.
     SEAPLAN_ASSIGN_OR_RETURN(auto existing, repo_.FindByRequestId(request.request_id()));
@@ -358,7 +362,7 @@ absl::StatusOr<v1::ListFeedbackResponse> MissionCoordinator::ListFeedback(
 }
 
 absl::StatusOr<v1::Mission> MissionCoordinator::CancelMission(
-    const v1::CancelMissionRequest& request, const CallContext&) {
+    const v1::CancelMissionRequest& request, const CallContext& ctx) {
   if (request.mission_id().empty()) return absl::InvalidArgumentError("mission_id is empty");
   const std::string& id = request.mission_id();
   {
@@ -374,7 +378,8 @@ absl::StatusOr<v1::Mission> MissionCoordinator::CancelMission(
     const std::string reason =
         request.reason().empty() ? "cancelled by operator" : request.reason();
     SEAPLAN_RETURN_IF_ERROR(SetState(id, mission::MissionState::kCancelled,
-                                     absl::StrCat("mission cancelled: ", reason)));
+                                     absl::StrCat("mission cancelled: ", reason), "", std::nullopt,
+                                     AuditEntry(ctx, id, request.reason())));
   }
   {
     std::lock_guard lock(jobs_mu_);
@@ -653,8 +658,11 @@ absl::StatusOr<v1::RequestReplanResponse> MissionCoordinator::RequestReplan(
   }
   const std::string reason =
       request.reason().empty() ? "replan requested by operator" : request.reason();
-  SEAPLAN_RETURN_IF_ERROR(
-      SetState(id, mission::MissionState::kReplanning, absl::StrCat("replanning: ", reason)));
+  // The request is what is audited (with the state change it makes), whether
+  // or not the replan then finds a plan.
+  SEAPLAN_RETURN_IF_ERROR(SetState(id, mission::MissionState::kReplanning,
+                                   absl::StrCat("replanning: ", reason), "", std::nullopt,
+                                   AuditEntry(ctx, id, request.reason())));
   bool stopped = false;
   auto version = Replan(
       id, reason, ctx.stop,

@@ -178,9 +178,12 @@ class MissionCoordinator {
       const std::string& mission_id, const std::string& reason, const StopToken& stop,
       const std::function<absl::Status(std::function<void()>)>& run, bool* stopped,
       const std::optional<storage::WorkFence>& fence = std::nullopt);
+  // Sets the state and logs `message`; `audit` (an audited call's row) is
+  // stored in the same transaction.
   absl::Status SetState(const std::string& mission_id, mission::MissionState state,
                         const std::string& message, const std::string& failure_reason = "",
-                        const std::optional<storage::WorkFence>& fence = std::nullopt);
+                        const std::optional<storage::WorkFence>& fence = std::nullopt,
+                        std::optional<storage::AuditRecord> audit = std::nullopt);
   // REPLANNING -> ACTIVE with `message` logged; a mission cancelled
   // meanwhile keeps its state (only the message is logged).
   void EndReplanning(const std::string& mission_id, const std::string& message,

@@ -30,6 +30,7 @@ StopToken::Clock::time_point Deadline(const grpc::ServerContext* ctx) {
 absl::StatusOr<CallContext> MakeCall(ServiceCore& core, const char* method,
                                      grpc::ServerContext* ctx) {
   CallContext call = core.NewCall("grpc", Deadline(ctx), [ctx] { return ctx->IsCancelled(); });
+  call.method = method;
   std::string authorization;
   const auto& metadata = ctx->client_metadata();
   if (auto it = metadata.find("authorization"); it != metadata.end()) {
@@ -55,19 +56,16 @@ grpc::Status Finish(grpc::ServerContext* ctx, const absl::Status& status) {
   return ToGrpcStatus(status);
 }
 
-template <typename Request, typename Response, typename Fn>
-grpc::Status Unary(ServiceCore& core, const char* method, grpc::ServerContext* ctx,
-                   const Request& request, Response* out, Fn&& fn) {
+template <typename Response, typename Fn>
+grpc::Status Unary(ServiceCore& core, const char* method, grpc::ServerContext* ctx, Response* out,
+                   Fn&& fn) {
   const auto started = StopToken::Clock::now();
   absl::StatusOr<CallContext> call = MakeCall(core, method, ctx);
   absl::Status status = call.status();
   if (call.ok()) {
     absl::StatusOr<Response> result = fn(*call);
     status = result.status();
-    if (result.ok()) {
-      *out = std::move(*result);
-      core.access().RecordIfAudited(method, *call, request, *out);
-    }
+    if (result.ok()) *out = std::move(*result);
   }
   LogCall("grpc", method, status, started);
   return Finish(ctx, status);
@@ -94,7 +92,7 @@ class GrpcServices::Planning final : public v1::PlanningService::Service {
   explicit Planning(ServiceCore& core) : core_(core) {}
   grpc::Status Plan(grpc::ServerContext* ctx, const v1::PlanRequest* req,
                     v1::PlanResponse* resp) override {
-    return Unary(core_, "PlanningService/Plan", ctx, *req, resp,
+    return Unary(core_, "PlanningService/Plan", ctx, resp,
                  [&](const CallContext& c) { return core_.planning().Plan(*req, c); });
   }
   grpc::Status PlanStream(grpc::ServerContext* ctx, const v1::PlanRequest* req,
@@ -106,7 +104,7 @@ class GrpcServices::Planning final : public v1::PlanningService::Service {
   }
   grpc::Status Validate(grpc::ServerContext* ctx, const v1::ValidateRequest* req,
                         v1::ValidateResponse* resp) override {
-    return Unary(core_, "PlanningService/Validate", ctx, *req, resp,
+    return Unary(core_, "PlanningService/Validate", ctx, resp,
                  [&](const CallContext& c) { return core_.planning().Validate(*req, c); });
   }
 
@@ -119,22 +117,22 @@ class GrpcServices::Charts final : public v1::ChartService::Service {
   explicit Charts(ServiceCore& core) : core_(core) {}
   grpc::Status UploadChart(grpc::ServerContext* ctx, const v1::UploadChartRequest* req,
                            v1::UploadChartResponse* resp) override {
-    return Unary(core_, "ChartService/UploadChart", ctx, *req, resp,
+    return Unary(core_, "ChartService/UploadChart", ctx, resp,
                  [&](const CallContext& c) { return core_.charts().UploadChart(*req, c); });
   }
   grpc::Status GetChart(grpc::ServerContext* ctx, const v1::GetChartRequest* req,
                         v1::GetChartResponse* resp) override {
-    return Unary(core_, "ChartService/GetChart", ctx, *req, resp,
+    return Unary(core_, "ChartService/GetChart", ctx, resp,
                  [&](const CallContext& c) { return core_.charts().GetChart(*req, c); });
   }
   grpc::Status GetObstacles(grpc::ServerContext* ctx, const v1::GetObstaclesRequest* req,
                             v1::GetObstaclesResponse* resp) override {
-    return Unary(core_, "ChartService/GetObstacles", ctx, *req, resp,
+    return Unary(core_, "ChartService/GetObstacles", ctx, resp,
                  [&](const CallContext& c) { return core_.charts().GetObstacles(*req, c); });
   }
   grpc::Status ListCharts(grpc::ServerContext* ctx, const v1::ListChartsRequest* req,
                           v1::ListChartsResponse* resp) override {
-    return Unary(core_, "ChartService/ListCharts", ctx, *req, resp,
+    return Unary(core_, "ChartService/ListCharts", ctx, resp,
                  [&](const CallContext& c) { return core_.charts().ListCharts(*req, c); });
   }
 
@@ -147,12 +145,12 @@ class GrpcServices::Routes final : public v1::RouteService::Service {
   explicit Routes(ServiceCore& core) : core_(core) {}
   grpc::Status PlanRoute(grpc::ServerContext* ctx, const v1::PlanRouteRequest* req,
                          v1::PlanRouteResponse* resp) override {
-    return Unary(core_, "RouteService/PlanRoute", ctx, *req, resp,
+    return Unary(core_, "RouteService/PlanRoute", ctx, resp,
                  [&](const CallContext& c) { return core_.routes().PlanRoute(*req, c); });
   }
   grpc::Status EstimateRisk(grpc::ServerContext* ctx, const v1::EstimateRiskRequest* req,
                             v1::EstimateRiskResponse* resp) override {
-    return Unary(core_, "RouteService/EstimateRisk", ctx, *req, resp,
+    return Unary(core_, "RouteService/EstimateRisk", ctx, resp,
                  [&](const CallContext& c) { return core_.routes().EstimateRisk(*req, c); });
   }
 
@@ -165,17 +163,17 @@ class GrpcServices::Missions final : public v1::MissionService::Service {
   explicit Missions(ServiceCore& core) : core_(core) {}
   grpc::Status CreateMission(grpc::ServerContext* ctx, const v1::CreateMissionRequest* req,
                              v1::Mission* resp) override {
-    return Unary(core_, "MissionService/CreateMission", ctx, *req, resp,
+    return Unary(core_, "MissionService/CreateMission", ctx, resp,
                  [&](const CallContext& c) { return core_.missions().CreateMission(*req, c); });
   }
   grpc::Status GetMission(grpc::ServerContext* ctx, const v1::GetMissionRequest* req,
                           v1::Mission* resp) override {
-    return Unary(core_, "MissionService/GetMission", ctx, *req, resp,
+    return Unary(core_, "MissionService/GetMission", ctx, resp,
                  [&](const CallContext& c) { return core_.missions().GetMission(*req, c); });
   }
   grpc::Status ListMissions(grpc::ServerContext* ctx, const v1::ListMissionsRequest* req,
                             v1::ListMissionsResponse* resp) override {
-    return Unary(core_, "MissionService/ListMissions", ctx, *req, resp,
+    return Unary(core_, "MissionService/ListMissions", ctx, resp,
                  [&](const CallContext& c) { return core_.missions().ListMissions(*req, c); });
   }
   grpc::Status WatchMission(grpc::ServerContext* ctx, const v1::WatchMissionRequest* req,
@@ -187,27 +185,27 @@ class GrpcServices::Missions final : public v1::MissionService::Service {
   }
   grpc::Status ReportFeedback(grpc::ServerContext* ctx, const v1::ReportFeedbackRequest* req,
                               v1::ReportFeedbackResponse* resp) override {
-    return Unary(core_, "MissionService/ReportFeedback", ctx, *req, resp,
+    return Unary(core_, "MissionService/ReportFeedback", ctx, resp,
                  [&](const CallContext& c) { return core_.missions().ReportFeedback(*req, c); });
   }
   grpc::Status RequestReplan(grpc::ServerContext* ctx, const v1::RequestReplanRequest* req,
                              v1::RequestReplanResponse* resp) override {
-    return Unary(core_, "MissionService/RequestReplan", ctx, *req, resp,
+    return Unary(core_, "MissionService/RequestReplan", ctx, resp,
                  [&](const CallContext& c) { return core_.missions().RequestReplan(*req, c); });
   }
   grpc::Status CancelMission(grpc::ServerContext* ctx, const v1::CancelMissionRequest* req,
                              v1::Mission* resp) override {
-    return Unary(core_, "MissionService/CancelMission", ctx, *req, resp,
+    return Unary(core_, "MissionService/CancelMission", ctx, resp,
                  [&](const CallContext& c) { return core_.missions().CancelMission(*req, c); });
   }
   grpc::Status ReportVesselState(grpc::ServerContext* ctx, const v1::ReportVesselStateRequest* req,
                                  v1::ReportVesselStateResponse* resp) override {
-    return Unary(core_, "MissionService/ReportVesselState", ctx, *req, resp,
+    return Unary(core_, "MissionService/ReportVesselState", ctx, resp,
                  [&](const CallContext& c) { return core_.vessels().ReportVesselState(*req, c); });
   }
   grpc::Status ListFeedback(grpc::ServerContext* ctx, const v1::ListFeedbackRequest* req,
                             v1::ListFeedbackResponse* resp) override {
-    return Unary(core_, "MissionService/ListFeedback", ctx, *req, resp,
+    return Unary(core_, "MissionService/ListFeedback", ctx, resp,
                  [&](const CallContext& c) { return core_.missions().ListFeedback(*req, c); });
   }
 
@@ -220,27 +218,27 @@ class GrpcServices::Access final : public v1::AccessService::Service {
   explicit Access(ServiceCore& core) : core_(core) {}
   grpc::Status WhoAmI(grpc::ServerContext* ctx, const v1::WhoAmIRequest* req,
                       v1::WhoAmIResponse* resp) override {
-    return Unary(core_, "AccessService/WhoAmI", ctx, *req, resp,
+    return Unary(core_, "AccessService/WhoAmI", ctx, resp,
                  [&](const CallContext& c) { return core_.access().WhoAmI(*req, c); });
   }
   grpc::Status CreateToken(grpc::ServerContext* ctx, const v1::CreateTokenRequest* req,
                            v1::CreateTokenResponse* resp) override {
-    return Unary(core_, "AccessService/CreateToken", ctx, *req, resp,
+    return Unary(core_, "AccessService/CreateToken", ctx, resp,
                  [&](const CallContext& c) { return core_.access().CreateToken(*req, c); });
   }
   grpc::Status ListTokens(grpc::ServerContext* ctx, const v1::ListTokensRequest* req,
                           v1::ListTokensResponse* resp) override {
-    return Unary(core_, "AccessService/ListTokens", ctx, *req, resp,
+    return Unary(core_, "AccessService/ListTokens", ctx, resp,
                  [&](const CallContext& c) { return core_.access().ListTokens(*req, c); });
   }
   grpc::Status RevokeToken(grpc::ServerContext* ctx, const v1::RevokeTokenRequest* req,
                            v1::RevokeTokenResponse* resp) override {
-    return Unary(core_, "AccessService/RevokeToken", ctx, *req, resp,
+    return Unary(core_, "AccessService/RevokeToken", ctx, resp,
                  [&](const CallContext& c) { return core_.access().RevokeToken(*req, c); });
   }
   grpc::Status ListAuditEvents(grpc::ServerContext* ctx, const v1::ListAuditEventsRequest* req,
                                v1::ListAuditEventsResponse* resp) override {
-    return Unary(core_, "AccessService/ListAuditEvents", ctx, *req, resp,
+    return Unary(core_, "AccessService/ListAuditEvents", ctx, resp,
                  [&](const CallContext& c) { return core_.access().ListAuditEvents(*req, c); });
   }
 

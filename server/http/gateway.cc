@@ -22,6 +22,7 @@
 #include "server/auth/csrf.h"
 #include "server/core/caller_limits.h"
 #include "server/core/status_details.h"
+#include "server/http/guarded_http_server.h"
 #include "server/http/json_codec.h"
 #include "server/http/status_mapping.h"
 
@@ -206,9 +207,10 @@ std::string ClientCertSubject(const httplib::Request& req) {
 }
 
 // The core's context of an HTTP call: deadline, who calls.
-CallContext MakeCall(ServiceCore& core, const httplib::Request& req,
+CallContext MakeCall(ServiceCore& core, const std::string& method, const httplib::Request& req,
                      StopToken::Clock::time_point deadline, std::function<bool()> client_gone) {
   CallContext call = core.NewCall("http", deadline, std::move(client_gone));
+  call.method = method;
   // The credential authorisation reads (header, or a console session's
   // cookie): one bucket per token whichever way it is presented.
   const absl::StatusOr<std::string> credential = Credential(req);
@@ -257,20 +259,28 @@ std::string WithoutBrotli(absl::string_view accept_encoding) {
 
 HttpGateway::HttpGateway(ServiceCore& core, const Options& options)
     : core_(core), options_(options) {
+  SSL_CTX* tls = nullptr;
   if (options_.tls.enabled()) {
-    server_ = std::make_unique<httplib::SSLServer>(
-        [this](SSL_CTX& ctx) { return SetUpTls(options_.tls, ctx, &tls_error_); });
-  } else {
-    server_ = std::make_unique<httplib::Server>();
+    tls = SSL_CTX_new(TLS_server_method());
+    if (tls == nullptr) {
+      tls_error_ = absl::StrCat("cannot create a TLS context: ", OpenSslErrors());
+    } else if (!SetUpTls(options_.tls, *tls, &tls_error_)) {
+      SSL_CTX_free(tls);
+      tls = nullptr;
+    }
   }
-  const int threads = std::max(1, options_.threads);
-  server_->new_task_queue = [threads] {
-    return new httplib::ThreadPool(static_cast<std::size_t>(threads));
-  };
+  GuardedHttpServer::Limits limits;
+  limits.worker_threads = std::max(1, options_.threads);
+  limits.head_timeout = options_.read_timeout;
+  limits.read_timeout = options_.read_timeout;
+  limits.write_timeout = options_.write_timeout;
+  limits.min_body_bytes_per_s = options_.min_body_bytes_per_s;
+  server_ = std::make_unique<GuardedHttpServer>(limits, tls);
+  if (tls != nullptr) SSL_CTX_free(tls);  // the server holds its own reference
   server_->set_payload_max_length(options_.max_body_bytes);
-  server_->set_keep_alive_timeout(5);
-  server_->set_read_timeout(options_.read_timeout);
-  server_->set_write_timeout(options_.write_timeout);
+  server_->set_keep_alive_timeout(
+      std::chrono::duration_cast<std::chrono::seconds>(limits.idle_timeout).count());
+  server_->set_keep_alive_max_count(static_cast<std::size_t>(limits.max_requests_per_connection));
   server_->set_pre_routing_handler([](const httplib::Request& req, httplib::Response&) {
     // httplib hands the handlers a const view of the request it owns; the
     // coding it answers in is chosen from this header after routing.
@@ -290,9 +300,7 @@ absl::StatusOr<int> HttpGateway::Bind(const std::string& address) {
   std::string host;
   int port = 0;
   SEAPLAN_RETURN_IF_ERROR(SplitHostPort(address, &host, &port));
-  if (!server_->is_valid()) {
-    return absl::InvalidArgumentError(absl::StrCat("HTTPS: ", tls_error_));
-  }
+  if (!tls_error_.empty()) return absl::InvalidArgumentError(absl::StrCat("HTTPS: ", tls_error_));
   if (port == 0) {
     const int bound = server_->bind_to_any_port(host);
     if (bound <= 0) return absl::UnavailableError(absl::StrCat("HTTP: cannot bind ", address));
@@ -311,6 +319,7 @@ void HttpGateway::Start() {
 void HttpGateway::Stop() {
   if (server_) server_->stop();
   if (thread_.joinable()) thread_.join();
+  if (server_) server_->StopConnections();
 }
 
 void HttpGateway::RegisterRoutes() {
@@ -330,7 +339,7 @@ void HttpGateway::RegisterRoutes() {
                     }
                     absl::Status status = [&]() -> absl::Status {
                       SEAPLAN_ASSIGN_OR_RETURN(auto deadline, Deadline(hreq));
-                      CallContext call = MakeCall(core, hreq, deadline, nullptr);
+                      CallContext call = MakeCall(core, method, hreq, deadline, nullptr);
                       // Counted before the token is looked up: guessing
                       // tokens is rate limited too.
                       SEAPLAN_RETURN_IF_ERROR(core.Admit(call));
@@ -338,7 +347,6 @@ void HttpGateway::RegisterRoutes() {
                       Request request;
                       SEAPLAN_RETURN_IF_ERROR(MessageFromJson(body, &request));
                       SEAPLAN_ASSIGN_OR_RETURN(Response response, fn(request, call));
-                      core.access().RecordIfAudited(method, call, request, response);
                       std::string json;
                       SEAPLAN_RETURN_IF_ERROR(MessageToJson(response, &json));
                       hres.status = 200;
@@ -378,7 +386,7 @@ void HttpGateway::RegisterRoutes() {
           auto state = std::make_shared<StreamState>();
           state->method = method;
           state->started = started;
-          state->call = MakeCall(core, hreq, *deadline, [raw = state.get()] {
+          state->call = MakeCall(core, method, hreq, *deadline, [raw = state.get()] {
             std::lock_guard lock(raw->mu);
             return raw->client_gone;
           });

@@ -40,11 +40,9 @@
 #include "server/core/service_core.h"
 #include "server/tls_options.h"
 
-namespace httplib {
-class Server;
-}
-
 namespace seaplan::server {
+
+class GuardedHttpServer;
 
 class HttpGateway {
  public:
@@ -56,10 +54,14 @@ class HttpGateway {
     std::string console_dir;
     // HTTPS when tls.enabled() (mutual TLS with tls.client_ca_file).
     TlsOptions tls;
-    // A connection that sends or takes nothing for this long is closed
-    // (slow or stalled clients must not hold a worker thread).
+    // Slow clients (guarded_http_server.h): a request's head must arrive
+    // within read_timeout of its first byte, its body at min_body_bytes_per_s
+    // at least after that, and a connection that sends or takes nothing for
+    // read_timeout / write_timeout is closed. Connections waiting for their
+    // request hold no worker thread.
     std::chrono::milliseconds read_timeout{10000};
     std::chrono::milliseconds write_timeout{10000};
+    std::size_t min_body_bytes_per_s = 16 * 1024;
   };
 
   HttpGateway(ServiceCore& core, const Options& options);
@@ -83,7 +85,7 @@ class HttpGateway {
 
   ServiceCore& core_;
   Options options_;
-  std::unique_ptr<httplib::Server> server_;
+  std::unique_ptr<GuardedHttpServer> server_;
   std::thread thread_;
   std::atomic<bool> serving_{true};
   std::string tls_error_;  // why the TLS context could not be set up

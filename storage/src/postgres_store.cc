@@ -779,13 +779,37 @@ struct PostgresStore::Impl final : ChartRepository, MissionRepository {
                       "WHERE id = $1",
                       p));
     if (r.affected() == 0) return absl::NotFoundError(NotFoundMessage("mission", id));
-    if (u.request_work) return RequestWorkLocked(conn, id, *u.request_work).status();
-    return absl::OkStatus();
+    if (u.request_work)
+      SEAPLAN_RETURN_IF_ERROR(RequestWorkLocked(conn, id, *u.request_work).status());
+    return InsertAuditIfAny(conn, u.audit ? &*u.audit : nullptr);
+  }
+
+  // Appends an audit row (inside the transaction of the change it
+  // records, when there is one) and returns its seq.
+  static absl::StatusOr<std::int64_t> InsertAudit(PGconn* conn, const AuditRecord& a) {
+    SEAPLAN_ASSIGN_OR_RETURN(
+        Result r, Run(conn,
+                      "INSERT INTO audit_log(time_ms, token_id, role, vessel_id, action, "
+                      "target, detail) VALUES ($1, $2, $3, $4, $5, $6, $7) RETURNING seq",
+                      Params()
+                          .I8(a.time_ms)
+                          .Text(a.token_id)
+                          .Text(a.role)
+                          .Text(a.vessel_id)
+                          .Text(a.action)
+                          .Text(a.target)
+                          .Text(a.detail)));
+    return r.Int(0, 0);
+  }
+
+  static absl::Status InsertAuditIfAny(PGconn* conn, const AuditRecord* audit) {
+    if (audit == nullptr) return absl::OkStatus();
+    return InsertAudit(conn, *audit).status();
   }
 
   // ---- ChartRepository ----
-  absl::StatusOr<ChartRecord> Insert(ChartRecord c) override {
-    return WithConn([&](PGconn* conn) -> absl::StatusOr<ChartRecord> {
+  absl::StatusOr<ChartRecord> Insert(ChartRecord c, const AuditRecord* audit) override {
+    const absl::Status written = InTransaction([&](PGconn* conn) -> absl::Status {
       absl::StatusOr<Result> r =
           Run(conn,
               "INSERT INTO charts(id, name, format, options, summary, obstacles, source_files, "
@@ -804,8 +828,10 @@ struct PostgresStore::Impl final : ChartRepository, MissionRepository {
       }
       SEAPLAN_RETURN_IF_ERROR(r.status());
       c.seq = r->Int(0, 0);
-      return c;
+      return InsertAuditIfAny(conn, audit);
     });
+    if (!written.ok()) return written;
+    return c;
   }
 
   absl::StatusOr<ChartRecord> Get(const std::string& id, bool with_blobs) override {
@@ -867,7 +893,7 @@ struct PostgresStore::Impl final : ChartRepository, MissionRepository {
   }
 
   absl::Status Create(const MissionRecord& m, const PlanVersionRecord& first,
-                      const std::vector<NewLogEvent>& events) override {
+                      const std::vector<NewLogEvent>& events, const AuditRecord* audit) override {
     if (first.version != 1 || first.mission_id != m.id) {
       return absl::InvalidArgumentError(
           "the first plan version must be version 1 of the same mission");
@@ -900,7 +926,8 @@ struct PostgresStore::Impl final : ChartRepository, MissionRepository {
       }
       SEAPLAN_RETURN_IF_ERROR(st);
       SEAPLAN_RETURN_IF_ERROR(InsertVersionLocked(conn, first));
-      return AppendEventsLocked(conn, m.id, events).status();
+      SEAPLAN_RETURN_IF_ERROR(AppendEventsLocked(conn, m.id, events).status());
+      return InsertAuditIfAny(conn, audit);
     });
   }
 
@@ -1202,8 +1229,8 @@ class PostgresStore::Access final : public TokenRepository, public AuditReposito
  public:
   explicit Access(Impl& impl) : impl_(impl) {}
 
-  absl::Status Insert(const TokenRecord& t) override {
-    return impl_.WithConn([&](PGconn* conn) -> absl::Status {
+  absl::Status Insert(const TokenRecord& t, const AuditRecord* audit) override {
+    return impl_.InTransaction([&](PGconn* conn) -> absl::Status {
       absl::Status st = Impl::Run(conn,
                                   absl::StrCat("INSERT INTO api_tokens(", internal::kTokenColumns,
                                                ") VALUES ($1, $2, $3, $4, $5, $6, $7, $8, $9)"),
@@ -1221,7 +1248,8 @@ class PostgresStore::Access final : public TokenRepository, public AuditReposito
       if (absl::IsAlreadyExists(st)) {
         return absl::AlreadyExistsError(absl::StrCat("token '", t.id, "' exists"));
       }
-      return st;
+      SEAPLAN_RETURN_IF_ERROR(st);
+      return Impl::InsertAuditIfAny(conn, audit);
     });
   }
 
@@ -1242,32 +1270,26 @@ class PostgresStore::Access final : public TokenRepository, public AuditReposito
     });
   }
 
-  absl::StatusOr<TokenRecord> Revoke(const std::string& id, TimestampMs at_ms) override {
-    return impl_.WithConn([&](PGconn* conn) -> absl::StatusOr<TokenRecord> {
+  absl::StatusOr<TokenRecord> Revoke(const std::string& id, TimestampMs at_ms,
+                                     const AuditRecord* audit) override {
+    absl::StatusOr<TokenRecord> revoked = absl::UnknownError("token revocation did not run");
+    const absl::Status written = impl_.InTransaction([&](PGconn* conn) -> absl::Status {
       SEAPLAN_RETURN_IF_ERROR(
           Impl::Run(conn,
                     "UPDATE api_tokens SET revoked_at_ms = $2 WHERE id = $1 AND revoked_at_ms = 0",
                     Params().Text(id).I8(at_ms))
               .status());
-      return GetOn(conn, id);
+      revoked = GetOn(conn, id);  // NotFound for an unknown id: nothing is audited
+      SEAPLAN_RETURN_IF_ERROR(revoked.status());
+      return Impl::InsertAuditIfAny(conn, audit);
     });
+    if (!written.ok()) return written;
+    return revoked;
   }
 
   absl::StatusOr<AuditRecord> Append(AuditRecord a) override {
     return impl_.WithConn([&](PGconn* conn) -> absl::StatusOr<AuditRecord> {
-      SEAPLAN_ASSIGN_OR_RETURN(
-          Result r, Impl::Run(conn,
-                              "INSERT INTO audit_log(time_ms, token_id, role, vessel_id, action, "
-                              "target, detail) VALUES ($1, $2, $3, $4, $5, $6, $7) RETURNING seq",
-                              Params()
-                                  .I8(a.time_ms)
-                                  .Text(a.token_id)
-                                  .Text(a.role)
-                                  .Text(a.vessel_id)
-                                  .Text(a.action)
-                                  .Text(a.target)
-                                  .Text(a.detail)));
-      a.seq = r.Int(0, 0);
+      SEAPLAN_ASSIGN_OR_RETURN(a.seq, Impl::InsertAudit(conn, a));
       return a;
     });
   }

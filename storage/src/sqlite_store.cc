@@ -286,6 +286,29 @@ absl::Status InTransaction(sqlite3* db, F&& body) {
   return status;
 }
 
+// Appends an audit row; the caller is inside the transaction of the change
+// it records. Returns its seq.
+absl::StatusOr<std::int64_t> InsertAudit(sqlite3* db, const AuditRecord& r) {
+  Stmt s(db,
+         "INSERT INTO audit_log(time_ms, token_id, role, vessel_id, action, target, detail) "
+         "VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7)");
+  s.Int(1, r.time_ms)
+      .Text(2, r.token_id)
+      .Text(3, r.role)
+      .Text(4, r.vessel_id)
+      .Text(5, r.action)
+      .Text(6, r.target)
+      .Text(7, r.detail);
+  SEAPLAN_RETURN_IF_ERROR(s.Run());
+  return sqlite3_last_insert_rowid(db);
+}
+
+// The audit row of a write, when it has one (same transaction).
+absl::Status InsertAuditIfAny(sqlite3* db, const AuditRecord* audit) {
+  if (audit == nullptr) return absl::OkStatus();
+  return InsertAudit(db, *audit).status();
+}
+
 }  // namespace
 
 struct SqliteStore::Impl final : ChartRepository, MissionRepository {
@@ -408,8 +431,8 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
     s.Int(6, now_ms);
     SEAPLAN_RETURN_IF_ERROR(s.Run());
     if (sqlite3_changes(db) == 0) return absl::NotFoundError(NotFoundMessage("mission", id));
-    if (u.request_work) return RequestWorkLocked(id, *u.request_work).status();
-    return absl::OkStatus();
+    if (u.request_work) SEAPLAN_RETURN_IF_ERROR(RequestWorkLocked(id, *u.request_work).status());
+    return InsertAuditIfAny(db, u.audit ? &*u.audit : nullptr);
   }
 
   // Runs a write of mission `id` in one transaction and wakes its watchers
@@ -454,9 +477,19 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
   }
 
   // ---- ChartRepository ----
-  absl::StatusOr<ChartRecord> Insert(ChartRecord c) override {
+  absl::StatusOr<ChartRecord> Insert(ChartRecord c, const AuditRecord* audit) override {
     std::lock_guard lock(mu);
     SEAPLAN_RETURN_IF_ERROR(Usable());
+    const absl::Status written = InTransaction(db, [&]() -> absl::Status {
+      SEAPLAN_RETURN_IF_ERROR(InsertChartLocked(c));
+      return InsertAuditIfAny(db, audit);
+    });
+    if (!written.ok()) return written;
+    return c;
+  }
+
+  // Inserts `c` and sets its seq. Caller holds mu.
+  absl::Status InsertChartLocked(ChartRecord& c) {
     Stmt s(db,
            "INSERT INTO charts(id, name, format, options, summary, obstacles, source_files, "
            "created_at_ms) "
@@ -474,7 +507,7 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
       return absl::AlreadyExistsError(absl::StrCat("chart '", c.id, "' exists"));
     SEAPLAN_RETURN_IF_ERROR(st);
     c.seq = sqlite3_last_insert_rowid(db);
-    return c;
+    return absl::OkStatus();
   }
 
   absl::StatusOr<ChartRecord> Get(const std::string& id, bool with_blobs) override {
@@ -519,7 +552,7 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
   }
 
   absl::Status Create(const MissionRecord& m, const PlanVersionRecord& first,
-                      const std::vector<NewLogEvent>& events) override {
+                      const std::vector<NewLogEvent>& events, const AuditRecord* audit) override {
     if (first.version != 1 || first.mission_id != m.id) {
       return absl::InvalidArgumentError(
           "the first plan version must be version 1 of the same mission");
@@ -551,7 +584,8 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
       }
       SEAPLAN_RETURN_IF_ERROR(st);
       SEAPLAN_RETURN_IF_ERROR(InsertVersionLocked(first));
-      return AppendEventsLocked(m.id, events).status();
+      SEAPLAN_RETURN_IF_ERROR(AppendEventsLocked(m.id, events).status());
+      return InsertAuditIfAny(db, audit);
     });
   }
 
@@ -861,25 +895,28 @@ class SqliteStore::Access final : public TokenRepository, public AuditRepository
  public:
   explicit Access(Impl& impl) : impl_(impl) {}
 
-  absl::Status Insert(const TokenRecord& t) override {
+  absl::Status Insert(const TokenRecord& t, const AuditRecord* audit) override {
     std::lock_guard lock(impl_.mu);
     SEAPLAN_RETURN_IF_ERROR(impl_.Usable());
-    Stmt s(impl_.db, absl::StrCat("INSERT INTO api_tokens(", internal::kTokenColumns,
-                                  ") VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9)"));
-    s.Text(1, t.id)
-        .Text(2, t.secret_hash)
-        .Text(3, t.role)
-        .Text(4, t.vessel_id)
-        .Text(5, t.description)
-        .Text(6, t.created_by)
-        .Int(7, t.created_at_ms)
-        .Int(8, t.expires_at_ms)
-        .Int(9, t.revoked_at_ms);
-    absl::Status st = s.Run();
-    if (absl::IsAlreadyExists(st)) {
-      return absl::AlreadyExistsError(absl::StrCat("token '", t.id, "' exists"));
-    }
-    return st;
+    return InTransaction(impl_.db, [&]() -> absl::Status {
+      Stmt s(impl_.db, absl::StrCat("INSERT INTO api_tokens(", internal::kTokenColumns,
+                                    ") VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9)"));
+      s.Text(1, t.id)
+          .Text(2, t.secret_hash)
+          .Text(3, t.role)
+          .Text(4, t.vessel_id)
+          .Text(5, t.description)
+          .Text(6, t.created_by)
+          .Int(7, t.created_at_ms)
+          .Int(8, t.expires_at_ms)
+          .Int(9, t.revoked_at_ms);
+      absl::Status st = s.Run();
+      if (absl::IsAlreadyExists(st)) {
+        return absl::AlreadyExistsError(absl::StrCat("token '", t.id, "' exists"));
+      }
+      SEAPLAN_RETURN_IF_ERROR(st);
+      return InsertAuditIfAny(impl_.db, audit);
+    });
   }
 
   absl::StatusOr<TokenRecord> Get(const std::string& id) override {
@@ -902,31 +939,28 @@ class SqliteStore::Access final : public TokenRepository, public AuditRepository
     return out;
   }
 
-  absl::StatusOr<TokenRecord> Revoke(const std::string& id, TimestampMs at_ms) override {
+  absl::StatusOr<TokenRecord> Revoke(const std::string& id, TimestampMs at_ms,
+                                     const AuditRecord* audit) override {
     std::lock_guard lock(impl_.mu);
     SEAPLAN_RETURN_IF_ERROR(impl_.Usable());
-    Stmt s(impl_.db,
-           "UPDATE api_tokens SET revoked_at_ms = ?2 WHERE id = ?1 AND revoked_at_ms = 0");
-    s.Text(1, id).Int(2, at_ms);
-    SEAPLAN_RETURN_IF_ERROR(s.Run());
-    return GetLocked(id);
+    absl::StatusOr<TokenRecord> revoked = absl::UnknownError("token revocation did not run");
+    const absl::Status written = InTransaction(impl_.db, [&]() -> absl::Status {
+      Stmt s(impl_.db,
+             "UPDATE api_tokens SET revoked_at_ms = ?2 WHERE id = ?1 AND revoked_at_ms = 0");
+      s.Text(1, id).Int(2, at_ms);
+      SEAPLAN_RETURN_IF_ERROR(s.Run());
+      revoked = GetLocked(id);  // NotFound for an unknown id: nothing is audited
+      SEAPLAN_RETURN_IF_ERROR(revoked.status());
+      return InsertAuditIfAny(impl_.db, audit);
+    });
+    if (!written.ok()) return written;
+    return revoked;
   }
 
   absl::StatusOr<AuditRecord> Append(AuditRecord r) override {
     std::lock_guard lock(impl_.mu);
     SEAPLAN_RETURN_IF_ERROR(impl_.Usable());
-    Stmt s(impl_.db,
-           "INSERT INTO audit_log(time_ms, token_id, role, vessel_id, action, target, detail) "
-           "VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7)");
-    s.Int(1, r.time_ms)
-        .Text(2, r.token_id)
-        .Text(3, r.role)
-        .Text(4, r.vessel_id)
-        .Text(5, r.action)
-        .Text(6, r.target)
-        .Text(7, r.detail);
-    SEAPLAN_RETURN_IF_ERROR(s.Run());
-    r.seq = sqlite3_last_insert_rowid(impl_.db);
+    SEAPLAN_ASSIGN_OR_RETURN(r.seq, InsertAudit(impl_.db, r));
     return r;
   }
 

@@ -564,5 +564,89 @@ TEST_P(StoreTest, AuditLogAppendsInOrderAndPages) {
   EXPECT_EQ(audit.ListAudit(0, 0).status().code(), absl::StatusCode::kInvalidArgument);
 }
 
+// An audit row as a handler builds it; an empty `action` is refused by the
+// schema's CHECK, which is how the tests below make the audit insert fail.
+AuditRecord TestAudit(const std::string& action, const std::string& target) {
+  return {0, 42, "tok", "operator", "", action, target, ""};
+}
+
+std::vector<std::string> AuditTargets(Store& store) {
+  std::vector<std::string> out;
+  auto page = store.audit().ListAudit(1000, 0);
+  EXPECT_TRUE(page.ok()) << page.status();
+  if (page.ok()) {
+    for (const AuditRecord& r : page->items) out.push_back(r.action + " " + r.target);
+  }
+  return out;
+}
+
+// Every audited write with a good row stores the change and the row.
+TEST_P(StoreTest, AuditedWritesStoreTheirRowWithTheChange) {
+  const AuditRecord chart = TestAudit("ChartService/UploadChart", "c1");
+  ASSERT_TRUE(store().charts().Insert(ChartRecord{.id = "c1"}, &chart).ok());
+  const AuditRecord mission = TestAudit("MissionService/CreateMission", "m1");
+  ASSERT_TRUE(missions().Create(TestMission("m1"), TestVersion("m1", 1), {}, &mission).ok());
+  MissionUpdate cancel;
+  cancel.state = 5;
+  cancel.audit = TestAudit("MissionService/CancelMission", "m1");
+  ASSERT_TRUE(missions().Update("m1", cancel, {TestEvent("cancelled")}).ok());
+  const AuditRecord token = TestAudit("AccessService/CreateToken", "t1");
+  ASSERT_TRUE(store().tokens().Insert(TestToken("t1", "viewer"), &token).ok());
+  const AuditRecord revoke = TestAudit("AccessService/RevokeToken", "t1");
+  ASSERT_TRUE(store().tokens().Revoke("t1", 7000, &revoke).ok());
+  EXPECT_EQ(
+      AuditTargets(store()),
+      (std::vector<std::string>{"ChartService/UploadChart c1", "MissionService/CreateMission m1",
+                                "MissionService/CancelMission m1", "AccessService/CreateToken t1",
+                                "AccessService/RevokeToken t1"}));
+}
+
+// The audit row cannot be written: the change it records is rolled back
+// with it, on every write that takes one.
+TEST_P(StoreTest, AFailingAuditRowRollsTheAuditedChangeBack) {
+  const AuditRecord bad = TestAudit("", "x");
+  EXPECT_FALSE(store().charts().Insert(ChartRecord{.id = "c1"}, &bad).ok());
+  EXPECT_EQ(store().charts().Get("c1", false).status().code(), absl::StatusCode::kNotFound);
+
+  EXPECT_FALSE(missions().Create(TestMission("m1"), TestVersion("m1", 1), {}, &bad).ok());
+  EXPECT_EQ(missions().Get("m1").status().code(), absl::StatusCode::kNotFound);
+  EXPECT_EQ(missions().GetVersion("m1", 1).status().code(), absl::StatusCode::kNotFound);
+
+  ASSERT_TRUE(missions().Create(TestMission("m2"), TestVersion("m2", 1), {}).ok());
+  const int state_before = missions().Get("m2")->state;
+  MissionUpdate cancel;
+  cancel.state = state_before + 1;
+  cancel.audit = bad;
+  EXPECT_FALSE(missions().Update("m2", cancel, {TestEvent("cancelled")}).ok());
+  EXPECT_EQ(missions().Get("m2")->state, state_before);
+  EXPECT_TRUE(missions().ListEvents("m2", 0, 10)->empty());
+
+  EXPECT_FALSE(store().tokens().Insert(TestToken("t1", "viewer"), &bad).ok());
+  EXPECT_EQ(store().tokens().Get("t1").status().code(), absl::StatusCode::kNotFound);
+
+  ASSERT_TRUE(store().tokens().Insert(TestToken("t2", "viewer")).ok());
+  EXPECT_FALSE(store().tokens().Revoke("t2", 7000, &bad).ok());
+  EXPECT_EQ(store().tokens().Get("t2")->revoked_at_ms, 0);
+
+  EXPECT_TRUE(AuditTargets(store()).empty());
+}
+
+// The change fails: its audit row is not stored either.
+TEST_P(StoreTest, AFailedAuditedChangeLeavesNoAuditRow) {
+  ASSERT_TRUE(store().charts().Insert(ChartRecord{.id = "c1"}).ok());
+  const AuditRecord chart = TestAudit("ChartService/UploadChart", "c1");
+  EXPECT_EQ(store().charts().Insert(ChartRecord{.id = "c1"}, &chart).status().code(),
+            absl::StatusCode::kAlreadyExists);
+  const AuditRecord cancel_row = TestAudit("MissionService/CancelMission", "nope");
+  MissionUpdate cancel;
+  cancel.state = 5;
+  cancel.audit = cancel_row;
+  EXPECT_EQ(missions().Update("nope", cancel, {}).code(), absl::StatusCode::kNotFound);
+  const AuditRecord revoke = TestAudit("AccessService/RevokeToken", "nope");
+  EXPECT_EQ(store().tokens().Revoke("nope", 1, &revoke).status().code(),
+            absl::StatusCode::kNotFound);
+  EXPECT_TRUE(AuditTargets(store()).empty());
+}
+
 }  // namespace
 }  // namespace seaplan::storage

@@ -19,6 +19,13 @@
 //   feedback report with its log events and the mission update) does so in
 //   one transaction: on any error nothing of it is stored.
 //
+// Audited writes
+//   The writes of audited actions (a chart, a mission, a mission update, a
+//   token, a revocation) take the AuditRecord of the action and append it in
+//   the same transaction: the change and its audit row are stored together
+//   or not at all (a failing audit insert rolls the change back; a crash
+//   leaves neither or both).
+//
 // Errors
 //   NotFound (no such mission / chart / version), AlreadyExists (duplicate
 //   id or request id), Aborted (a concurrent writer got there first, e.g. the
@@ -56,6 +63,18 @@ struct Page {
   std::int64_t next_after = 0;
 };
 
+// Who did what, and when: one row per audited action (see "Audited writes").
+struct AuditRecord {
+  std::int64_t seq = 0;  // assigned by storage; listing cursor
+  TimestampMs time_ms = 0;
+  std::string token_id;  // the caller's token; empty for the server itself
+  std::string role;
+  std::string vessel_id;
+  std::string action;  // e.g. "CreateMission", "RevokeToken"
+  std::string target;  // what it acted on: a mission, chart or token id
+  std::string detail;
+};
+
 struct ChartRecord {
   std::int64_t seq = 0;  // insertion order (assigned by storage; listing cursor)
   std::string id;
@@ -71,8 +90,10 @@ struct ChartRecord {
 class ChartRepository {
  public:
   virtual ~ChartRepository() = default;
-  // Stores a new chart (seq is assigned). AlreadyExists when the id is taken.
-  virtual absl::StatusOr<ChartRecord> Insert(ChartRecord chart) = 0;
+  // Stores a new chart (seq is assigned), and `audit` when given in the
+  // same transaction. AlreadyExists when the id is taken.
+  virtual absl::StatusOr<ChartRecord> Insert(ChartRecord chart,
+                                             const AuditRecord* audit = nullptr) = 0;
   // NotFound when absent. `with_blobs` false leaves obstacles and
   // source_files empty (listing screens do not need megabytes).
   virtual absl::StatusOr<ChartRecord> Get(const std::string& id, bool with_blobs) = 0;
@@ -122,6 +143,9 @@ struct MissionUpdate {
   std::optional<WorkRequest> request_work;
   // Checked first, in the same transaction (fencing a stale lease holder).
   std::optional<WorkFence> fence;
+  // Appended to the audit log in the same transaction (an audited action:
+  // a cancel, a replan request).
+  std::optional<AuditRecord> audit;
 };
 
 struct PlanVersionRecord {
@@ -167,10 +191,12 @@ class MissionRepository {
   virtual ~MissionRepository() = default;
 
   // Stores a new mission together with its first plan version (version must
-  // be 1; mission.current_version is set to 1) and log events, atomically.
-  // AlreadyExists when the id or the non-empty request_id is taken.
+  // be 1; mission.current_version is set to 1), log events and `audit`
+  // (when given), atomically. AlreadyExists when the id or the non-empty
+  // request_id is taken.
   virtual absl::Status Create(const MissionRecord& mission, const PlanVersionRecord& first_version,
-                              const std::vector<NewLogEvent>& events) = 0;
+                              const std::vector<NewLogEvent>& events,
+                              const AuditRecord* audit = nullptr) = 0;
   virtual absl::StatusOr<MissionRecord> Get(const std::string& id) = 0;
   // The mission created with this idempotency key, if any.
   virtual absl::StatusOr<std::optional<MissionRecord>> FindByRequestId(
@@ -322,29 +348,21 @@ struct TokenRecord {
 class TokenRepository {
  public:
   virtual ~TokenRepository() = default;
+  // Stores the token and `audit` (when given) in one transaction.
   // AlreadyExists when the id is taken.
-  virtual absl::Status Insert(const TokenRecord& token) = 0;
+  virtual absl::Status Insert(const TokenRecord& token, const AuditRecord* audit = nullptr) = 0;
   // NotFound when absent.
   virtual absl::StatusOr<TokenRecord> Get(const std::string& id) = 0;
   // Every token (revoked ones too), oldest first.
   virtual absl::StatusOr<std::vector<TokenRecord>> List() = 0;
   // Marks the token revoked at `at_ms` (a second revocation keeps the first
-  // time) and returns it. NotFound when absent.
-  virtual absl::StatusOr<TokenRecord> Revoke(const std::string& id, TimestampMs at_ms) = 0;
+  // time), appends `audit` (when given) in the same transaction and returns
+  // the token. NotFound when absent (nothing is stored).
+  virtual absl::StatusOr<TokenRecord> Revoke(const std::string& id, TimestampMs at_ms,
+                                             const AuditRecord* audit = nullptr) = 0;
 };
 
-// Who did what, and when: one row per state-changing call.
-struct AuditRecord {
-  std::int64_t seq = 0;  // assigned by storage; listing cursor
-  TimestampMs time_ms = 0;
-  std::string token_id;  // the caller's token; empty for the server itself
-  std::string role;
-  std::string vessel_id;
-  std::string action;  // e.g. "CreateMission", "RevokeToken"
-  std::string target;  // what it acted on: a mission, chart or token id
-  std::string detail;
-};
-
+// The audit log (AuditRecord); audited writes append their row themselves.
 class AuditRepository {
  public:
   virtual ~AuditRepository() = default;
