@@ -14,9 +14,16 @@ done
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 
-# The domain of problem `name` in folder `dir`: the per-instance
-# domain-pNN.pddl when present, else domain.pddl.
+# The domain of problem `name` (pNN) in folder `dir`: the per-instance
+# domain-pNN.pddl or domain-N.pddl when present, else domain.pddl.
 domain_of() {
   local dir=$1 name=$2
-  if [[ -f $dir/domain-$name.pddl ]]; then echo "$dir/domain-$name.pddl"; else echo "$dir/domain.pddl"; fi
+  local k=$((10#${name#p}))
+  if [[ -f $dir/domain-$name.pddl ]]; then
+    echo "$dir/domain-$name.pddl"
+  elif [[ -f $dir/domain-$k.pddl ]]; then
+    echo "$dir/domain-$k.pddl"
+  else
+    echo "$dir/domain.pddl"
+  fi
 }

@@ -20,8 +20,9 @@ for p in "${problems[@]}"; do
   nice /usr/bin/time -f '%e %M' -o "$work/time" "$exe" plan "$domain" "$dir/$name.pddl" --no-anytime \
     --time-limit "$time_s" --memory-limit "$memory_mb" -o "$work/plan" >"$work/out" 2>/dev/null || true
   status=$(sed -n 's/^; status: //p' "$work/out" | head -1)
+  # No search line (a load error, or stopped while grounding): read fails, the row says "-".
   read -r expanded generated < <(sed -n 's/^; search: \([0-9]*\) expanded, \([0-9]*\) generated.*/\1 \2/p' \
-    "$work/out" | head -1 || true)
+    "$work/out" | head -1) || true
   read -r wall_s rss_kb < <(tail -1 "$work/time")
   valid=-
   if [[ -s $work/plan ]]; then

@@ -51,6 +51,10 @@ absl::Status PlannerOptions::Validate() const {
     return absl::InvalidArgumentError(absl::StrCat(
         "max_concurrent_actions must be >= 0 (0 = unbounded), got ", max_concurrent_actions));
   }
+  if (!(second_greedy_after_share >= 0) || !(second_greedy_after_share <= 1)) {
+    return absl::InvalidArgumentError(absl::StrCat(
+        "second_greedy_after_share must be in [0, 1], got ", second_greedy_after_share));
+  }
   if (!(epsilon_s > 0) || !(epsilon_s < 1)) {
     return absl::InvalidArgumentError(
         absl::StrCat("epsilon_s must be in (0, 1) seconds, got ", epsilon_s));
@@ -208,21 +212,35 @@ PlanResult PlannerRun::Run() {
 
   // Phase 1: greedy best-first search for a first plan. If it exhausts the
   // space without a proof (merged states whose schedules differ), retry
-  // once keeping many more schedule variants apart.
-  for (int attempt = 0;; ++attempt) {
+  // once keeping many more schedule variants apart. If it has found nothing
+  // when its share of the time is up, the rest goes to a greedy search that
+  // breaks ties newest first: the makespan order searches a plateau breadth
+  // first, which is what leaves sokoban and rtam instances unsolved.
+  const Clock::time_point switch_at =
+      start_ + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(
+                   options_.time_limit_s * options_.second_greedy_after_share));
+  bool many_variants = false, newest_first = options_.second_greedy_after_share <= 0;
+  while (true) {
     SearchParams params;
     params.weight = -1;
     params.epsilon_s = options_.epsilon_s;
     params.seed = options_.random_seed;
-    if (attempt > 0) {
+    if (many_variants) {
       params.max_variants = 64;
       params.bound_dominance = false;
     }
+    if (newest_first) params.plateau_order = SearchParams::PlateauOrder::kNewestFirst;
     LazySearch search(snap_, registry_, heuristic_, transitions_, timeline_, params);
     search.SetStopToken(&stop_);
     search.SetTemporalReachability(&reachability_);
     search.Initialize(initial);
+    bool switch_now = false;
     while (true) {
+      if (!newest_first && options_.second_greedy_after_share < 1 && (steps_ & 255) == 0 &&
+          Clock::now() >= switch_at) {
+        switch_now = true;
+        break;
+      }
       const Outcome poll = Poll(search);
       if (poll != Outcome::kContinue) {
         AddCounters(search);
@@ -242,7 +260,10 @@ PlanResult PlannerRun::Run() {
         if (search.complete()) {
           return finish(PlanStatus::kUnsolvableProven, "search space exhausted: no plan exists");
         }
-        if (attempt == 0) break;
+        if (!many_variants) {
+          many_variants = true;
+          break;
+        }
         return finish(PlanStatus::kError,
                       "search space exhausted without a plan, but duplicate states with running "
                       "actions or timed literals were merged, so this is no proof");
@@ -251,6 +272,10 @@ PlanResult PlannerRun::Run() {
     if (has_plan_) {
       AddCounters(search);
       break;
+    }
+    if (switch_now) {
+      AddCounters(search);
+      newest_first = true;
     }
   }
   if (!options_.anytime) return finish(PlanStatus::kSolvedSatisficing, "");

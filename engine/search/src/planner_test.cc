@@ -65,6 +65,11 @@ TEST(PlannerTest, OptionsAreValidated) {
   o = {};
   o.max_concurrent_actions = -2;
   EXPECT_FALSE(o.Validate().ok());
+  o = {};
+  o.second_greedy_after_share = 1.5;
+  EXPECT_FALSE(o.Validate().ok());
+  o.second_greedy_after_share = -0.1;
+  EXPECT_FALSE(o.Validate().ok());
   auto loaded = Load("match-domain.pddl", "match-problem.pddl");
   ASSERT_TRUE(loaded.task);
   o = {};
@@ -162,6 +167,35 @@ TEST(PlannerTest, UnsolvableIsProven) {
   const PlanResult r = SolveTask(*loaded.task, Quick(5), StopToken());
   EXPECT_EQ(r.status, PlanStatus::kUnsolvableProven) << r.message;
   EXPECT_TRUE(r.plan.steps.empty());
+}
+
+// The second first-plan configuration (ties newest first) from the start:
+// it must find valid plans where the first one does, with required
+// concurrency, refuelling, a timed window and conditional effects, and
+// still prove unsolvability by exhaustion.
+TEST(PlannerTest, NewestFirstGreedySolvesWhatTheFirstConfigurationSolves) {
+  const std::pair<const char*, const char*> problems[] = {
+      {"match-domain.pddl", "match-problem.pddl"},
+      {"fuel-domain.pddl", "fuel-problem.pddl"},
+      {"til-domain.pddl", "til-problem.pddl"},
+      {"cond-domain.pddl", "cond-problem.pddl"},
+      {"ineq-domain.pddl", "ineq-problem.pddl"}};
+  for (const auto& [domain, problem] : problems) {
+    SCOPED_TRACE(problem);
+    auto loaded = Load(domain, problem);
+    ASSERT_TRUE(loaded.task);
+    PlannerOptions o = Quick(5);
+    o.anytime = false;
+    o.second_greedy_after_share = 0;
+    const PlanResult r = SolveTask(*loaded.task, o, StopToken());
+    ASSERT_EQ(r.status, PlanStatus::kSolvedSatisficing) << r.message;
+    ExpectValid(*loaded.task, r);
+  }
+  auto toggle = Load("toggle-domain.pddl", "toggle-3.pddl");
+  ASSERT_TRUE(toggle.task);
+  PlannerOptions o = Quick(5);
+  o.second_greedy_after_share = 0;
+  EXPECT_EQ(SolveTask(*toggle.task, o, StopToken()).status, PlanStatus::kUnsolvableProven);
 }
 
 TEST(PlannerTest, TinyTimeLimitTimesOutQuickly) {

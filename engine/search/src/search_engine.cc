@@ -90,10 +90,14 @@ void LazySearch::Push(std::int32_t parent, const Event& event, double g_s, doubl
                       bool preferred, std::int32_t parent_h) {
   const auto index = static_cast<std::int32_t>(pending_.size());
   pending_.push_back(Pending{parent, event.snap, lb_s});
-  // Greedy: parent's h, then the makespan so far; weighted A*: makespan
-  // lower bound + weight * scale * h, then h.
-  const double real_key =
-      params_.weight < 0 ? g_s : lb_s + params_.weight * params_.scale_s * parent_h;
+  // Greedy: parent's h, then the makespan so far (or the newest record
+  // first); weighted A*: makespan lower bound + weight * scale * h, then h.
+  double real_key = lb_s + params_.weight * params_.scale_s * parent_h;
+  if (params_.weight < 0) {
+    real_key = params_.plateau_order == SearchParams::PlateauOrder::kNewestFirst
+                   ? -static_cast<double>(index)
+                   : g_s;
+  }
   open_all_.Insert(parent_h, real_key, index);
   if (preferred) open_preferred_.Insert(parent_h, real_key, index);
 }

@@ -11,7 +11,8 @@
 // parent's makespan and bound and checked when popped, which keeps
 // expansions cheap when thousands of starts apply (pairs of objects in TMS)
 // and the search follows helpful events anyway. Ordering:
-//   - greedy (weight < 0): (parent h, makespan so far);
+//   - greedy (weight < 0): (parent h, makespan so far), or (parent h,
+//     newest first) with PlateauOrder::kNewestFirst;
 //   - weighted A* (weight >= 0): makespan lower bound + weight * scale * h.
 // A bound prunes successors whose makespan lower bound cannot beat it.
 //
@@ -45,6 +46,13 @@ struct SearchParams {
   // (false: only equal bounds merge; the retry after an incomplete search).
   int max_variants = 8;
   bool bound_dominance = true;
+  // Greedy only: order among successors of equal h. kMakespan prefers the
+  // shorter schedule so far (good first makespans); kNewestFirst prefers
+  // the latest generated (depth first along a plateau), which escapes the
+  // plateaus of sokoban or rtam that the makespan order explores breadth
+  // first.
+  enum class PlateauOrder { kMakespan, kNewestFirst };
+  PlateauOrder plateau_order = PlateauOrder::kMakespan;
 };
 
 struct SearchCounters {

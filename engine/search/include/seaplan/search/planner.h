@@ -17,7 +17,9 @@
 //     fixed-time events; an inconsistent network prunes the successor;
 //   - first plan: lazy greedy best-first search with an FF relaxed-plan
 //     heuristic on the snap actions (numeric fluents as intervals) and
-//     helpful actions in a second, boosted open list;
+//     helpful actions in a second, boosted open list; ties by makespan so
+//     far, and when that finds nothing in half the time, a second greedy
+//     search that takes ties newest first (depth first on plateaus);
 //   - anytime: restarting weighted A* on makespan, pruned by the incumbent,
 //     until the time limit or an exhausted space;
 //   - every plan is scheduled at its earliest STN times, printed with
@@ -72,6 +74,10 @@ struct PlannerOptions {
   std::uint64_t random_seed = 1;
   // Separation of interfering events, seconds (> 0, the validator's epsilon).
   double epsilon_s = 0.001;
+  // Share of time_limit_s (in [0, 1]) after which a first-plan search that
+  // has found nothing restarts with its second configuration (plateaus
+  // searched newest first instead of by makespan); 1 never switches.
+  double second_greedy_after_share = 0.5;
 
   absl::Status Validate() const;
 };
