@@ -14,6 +14,7 @@
 #include <string>
 #include <thread>
 
+#include "seaplan/testing/child_process.h"
 #include "seaplan/testing/shared_data.h"
 #include "seaplan/testing/test_token.h"
 
@@ -239,14 +240,16 @@ class ServerProcess {
             "--admin-token-file", token_file.c_str(), static_cast<char*>(nullptr));
       _exit(127);
     }
-    for (int i = 0; i < 200 && port_.empty(); ++i) {
-      std::ifstream in(port_file);
-      std::string line;
-      while (std::getline(in, line)) {
-        if (line.rfind("grpc=", 0) == 0) port_ = line.substr(5);
-      }
-      if (port_.empty()) std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    }
+    const auto readiness =
+        seaplan::testing::WaitUntilChildReady(pid_, std::chrono::seconds(10), [&] {
+          std::ifstream in(port_file);
+          std::string line;
+          while (std::getline(in, line)) {
+            if (line.rfind("grpc=", 0) == 0) port_ = line.substr(5);
+          }
+          return !port_.empty();
+        });
+    if (readiness == seaplan::testing::ChildReadiness::kExited) pid_ = -1;  // reaped
   }
   ~ServerProcess() {
     if (pid_ > 0) {
@@ -315,9 +318,9 @@ TEST(CliRemoteTest, TokenCommandsAndTheirEffect) {
   EXPECT_NE(audit.out.find("AccessService/RevokeToken  " + viewer_id), std::string::npos)
       << audit.out;
 
-  auto none = RunSeaplan({"-u", "SEAPLAN_TOKEN", (BinDir() / "seaplan").string(), "--server",
-                          addr, "mission", "list"},
-                         "/usr/bin/env");
+  auto none = RunSeaplan(
+      {"-u", "SEAPLAN_TOKEN", (BinDir() / "seaplan").string(), "--server", addr, "mission", "list"},
+      "/usr/bin/env");
   EXPECT_EQ(none.exit_code, 3);
   EXPECT_NE(none.err.find("--token"), std::string::npos) << none.err;
   auto missing = RunSeaplan({"--server", addr, "--token-file", "/nonexistent", "mission", "list"});
