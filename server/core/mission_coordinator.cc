@@ -713,9 +713,9 @@ absl::StatusOr<v1::PlanVersion> MissionCoordinator::LeasedOperatorReplan(const s
   for (bool waited = false;; waited = true) {
     ctx.ForwardCancellation();
     if (ctx.stop.StopRequested()) {
-      return StopStatus(
-          ctx.stop, root_.StopRequested(),
-          absl::StrCat("waiting for the replan of mission '", id, "' another request started"));
+      return StopStatus(ctx.stop, root_.StopRequested(),
+                        absl::StrCat("replan of mission '", id,
+                                     "' (waiting for the replan under way; nothing recorded)"));
     }
     if (ShuttingDown()) {
       return absl::UnavailableError("replan not started: the server is shutting down");

@@ -168,9 +168,20 @@ class MissionCoordinatorTest : public ::testing::Test {
       std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
 
+  // Waits (bounded, 20 s) until `engine` has started a replan.
+  static bool ReplanStarted(const TwoTaskEngine& engine) {
+    for (int i = 0; i < 4000 && engine.replans.load() == 0; ++i)
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    return engine.replans.load() > 0;
+  }
+
   fs::path dir_;
   StopToken root_;
   WorkPool pool_{1};
+  // Two more replicas' pools and engines, for the tests that make them.
+  WorkPool pool_a_{1}, pool_b_{1};
+  std::shared_ptr<TwoTaskEngine> engine_a_ = std::make_shared<TwoTaskEngine>(pool_a_);
+  std::shared_ptr<TwoTaskEngine> engine_b_ = std::make_shared<TwoTaskEngine>(pool_b_);
   std::unique_ptr<storage::SqliteStore> store_;
   std::shared_ptr<TwoTaskEngine> engine_;
   std::unique_ptr<MissionCoordinator> coordinator_;
@@ -331,14 +342,11 @@ absl::StatusOr<v1::RequestReplanResponse> OperatorReplan(MissionCoordinator& rep
 // version each, planned once, numbered without gap (the second waits for
 // the first one's lease, then plans from its version).
 TEST_F(MissionCoordinatorTest, OperatorReplansOnTwoReplicasGetAVersionEach) {
-  WorkPool pool_a(1), pool_b(1);
-  auto engine_a = std::make_shared<TwoTaskEngine>(pool_a);
-  auto engine_b = std::make_shared<TwoTaskEngine>(pool_b);
-  engine_a->replan_ms = 200;  // long enough for the two calls to overlap
-  engine_b->replan_ms = 200;
+  engine_a_->replan_ms = 200;  // long enough for the two calls to overlap
+  engine_b_->replan_ms = 200;
   StopToken root_a, root_b;
-  auto a = Replica("replica-a", engine_a, pool_a, root_a);
-  auto b = Replica("replica-b", engine_b, pool_b, root_b);
+  auto a = Replica("replica-a", engine_a_, pool_a_, root_a);
+  auto b = Replica("replica-b", engine_b_, pool_b_, root_b);
   const v1::Mission m = Create();
   for (int round = 0; round < 2; ++round) {
     absl::StatusOr<v1::RequestReplanResponse> on_a = absl::UnknownError("not run"),
@@ -356,7 +364,7 @@ TEST_F(MissionCoordinatorTest, OperatorReplansOnTwoReplicasGetAVersionEach) {
     EXPECT_EQ(store_->missions().GetVersion(m.mission_id(), on_b->version().version())->reason,
               "operator on b");
   }
-  EXPECT_EQ(engine_a->replans.load() + engine_b->replans.load(), 4);  // none planned twice
+  EXPECT_EQ(engine_a_->replans.load() + engine_b_->replans.load(), 4);  // none planned twice
   // One at a time: each version was planned from the one before it (two
   // replans at once would both start from the same version).
   for (int v = 2; v <= 5; ++v)
@@ -375,18 +383,13 @@ TEST_F(MissionCoordinatorTest, OperatorReplansOnTwoReplicasGetAVersionEach) {
 // Replicas: an operator's replan on a replica that shuts down is handed
 // back (the caller hears so) and another replica plans that request.
 TEST_F(MissionCoordinatorTest, OperatorReplanOfAStoppingReplicaIsHandedOver) {
-  WorkPool pool_a(1), pool_b(1);
-  auto engine_a = std::make_shared<TwoTaskEngine>(pool_a);
-  auto engine_b = std::make_shared<TwoTaskEngine>(pool_b);
-  engine_a->block_replans = true;
+  engine_a_->block_replans = true;
   StopToken root_a;
-  auto a = Replica("replica-a", engine_a, pool_a, root_a);
+  auto a = Replica("replica-a", engine_a_, pool_a_, root_a);
   const v1::Mission m = Create();
   absl::StatusOr<v1::RequestReplanResponse> answer = absl::UnknownError("not run");
   std::thread caller([&] { answer = OperatorReplan(*a, m.mission_id(), "operator", root_a); });
-  for (int i = 0; i < 4000 && engine_a->replans.load() == 0; ++i)
-    std::this_thread::sleep_for(std::chrono::milliseconds(5));
-  ASSERT_EQ(engine_a->replans.load(), 1);
+  ASSERT_TRUE(ReplanStarted(*engine_a_));
   EXPECT_EQ((*store_->work().Get(m.mission_id()))->holder, "replica-a");
   EXPECT_EQ(Get(m.mission_id()).state(), v1::MISSION_STATE_REPLANNING);
   root_a.Cancel();  // SIGTERM
@@ -397,11 +400,40 @@ TEST_F(MissionCoordinatorTest, OperatorReplanOfAStoppingReplicaIsHandedOver) {
   a->Shutdown();
   EXPECT_EQ(Get(m.mission_id()).state(), v1::MISSION_STATE_REPLANNING);
 
-  auto b = Replica("replica-b", engine_b, pool_b, StopToken());
+  auto b = Replica("replica-b", engine_b_, pool_b_, StopToken());
   AwaitVersion(m.mission_id(), 2);
   EXPECT_EQ(Get(m.mission_id()).current_version(), 2);
   EXPECT_EQ(Get(m.mission_id()).state(), v1::MISSION_STATE_ACTIVE);
   EXPECT_EQ(store_->missions().GetVersion(m.mission_id(), 2)->reason, "operator");
+  b->Shutdown();
+}
+
+// Replicas: a call whose deadline passes while another replica's replan
+// holds the lease ends DEADLINE_EXCEEDED and leaves no request behind.
+TEST_F(MissionCoordinatorTest, OperatorReplanWaitingPastItsDeadlineRecordsNothing) {
+  engine_a_->block_replans = true;
+  StopToken root_a, root_b;
+  auto a = Replica("replica-a", engine_a_, pool_a_, root_a);
+  auto b = Replica("replica-b", engine_b_, pool_b_, root_b);
+  const v1::Mission m = Create();
+  ASSERT_TRUE(Report(m.mission_id(), 1, v1::Feedback::KIND_TASK_FAILED, "v1-t0", a.get()).ok());
+  ASSERT_TRUE(ReplanStarted(*engine_a_));
+  const std::int64_t requests = (*store_->work().Get(m.mission_id()))->requests;
+
+  v1::RequestReplanRequest req;
+  req.set_mission_id(m.mission_id());
+  auto answer = b->RequestReplan(
+      req, CallContext{
+               "test", root_b.Child(StopToken::Clock::now() + std::chrono::milliseconds(300)), {}});
+  EXPECT_TRUE(absl::IsDeadlineExceeded(answer.status())) << answer.status();
+  EXPECT_NE(answer.status().message().find("waiting for the replan under way"),
+            std::string_view::npos)
+      << answer.status();
+  EXPECT_EQ(engine_b_->replans.load(), 0);
+  EXPECT_EQ((*store_->work().Get(m.mission_id()))->requests, requests);
+  EXPECT_EQ((*store_->work().Get(m.mission_id()))->holder, "replica-a");
+  root_a.Cancel();
+  a->Shutdown();
   b->Shutdown();
 }
 

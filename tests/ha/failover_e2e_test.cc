@@ -142,14 +142,12 @@ TEST_F(FailoverE2eTest, LeaseHolderKilledMidMissionLosesNothing) {
       << "seaplan-server or seaplan-sim not built in " << BinDir();
   const fs::path nginx = ha::FindNginx();
   REQUIRE_DEPENDENCY(!nginx.empty(), "nginx not installed (apt-get install nginx)");
-  auto cluster = storage::testing::TemporaryPostgresCluster::Start();
-  REQUIRE_DEPENDENCY(!absl::IsNotFound(cluster.status()),
-                     "PostgreSQL not available: " + cluster.status().ToString());
-  ASSERT_TRUE(cluster.ok()) << cluster.status();
-  cluster_ = std::move(*cluster);
-  auto url = cluster_->CreateDatabase();
-  ASSERT_TRUE(url.ok()) << url.status();
-  database_url_ = *url;
+  auto database = ha::StartThrowawayDatabase();
+  REQUIRE_DEPENDENCY(!absl::IsNotFound(database.status()),
+                     "PostgreSQL not available: " + database.status().ToString());
+  ASSERT_TRUE(database.ok()) << database.status();
+  cluster_ = std::move(database->cluster);
+  database_url_ = database->url;
 
   char tmpl[] = "/tmp/seaplan-failover-XXXXXX";
   ASSERT_NE(mkdtemp(tmpl), nullptr);

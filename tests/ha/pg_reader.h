@@ -1,5 +1,5 @@
-// What the replica tests share: their skip rule for missing dependencies
-// and a libpq connection for their own reads of the shared database.
+// What the replica tests share: their skip rule for missing dependencies,
+// a throwaway database, and a libpq connection for their own reads of it.
 // Header-only; not thread-safe (one connection per test thread).
 #pragma once
 
@@ -8,9 +8,12 @@
 
 #include <cstdint>
 #include <cstdlib>
+#include <memory>
 #include <regex>
 #include <string>
 #include <vector>
+
+#include "seaplan/storage/testing/postgres_cluster.h"
 
 namespace seaplan::ha {
 
@@ -23,6 +26,20 @@ namespace seaplan::ha {
       GTEST_SKIP() << "failover test skipped: " << (reason);                          \
     }                                                                                 \
   } while (0)
+
+// A throwaway PostgreSQL cluster with one fresh database.
+struct ThrowawayDatabase {
+  std::unique_ptr<storage::testing::TemporaryPostgresCluster> cluster;
+  std::string url;
+};
+// NotFound when PostgreSQL is not installed.
+inline absl::StatusOr<ThrowawayDatabase> StartThrowawayDatabase() {
+  auto cluster = storage::testing::TemporaryPostgresCluster::Start();
+  if (!cluster.ok()) return cluster.status();
+  auto url = (*cluster)->CreateDatabase();
+  if (!url.ok()) return url.status();
+  return ThrowawayDatabase{std::move(*cluster), *url};
+}
 
 // One libpq connection for the test's own reads of the shared database.
 class Pg {
