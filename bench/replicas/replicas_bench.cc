@@ -12,7 +12,10 @@
 //   build/bin/seaplan_replicas_bench [--seconds 10] [--clients 8] [--kills 3]
 //
 // PostgreSQL is a throwaway cluster with fsync on (initdb + pg_ctl in the
-// temporary folder); nginx is Debian's, run as a child. See README.md.
+// temporary folder); nginx is Debian's, run as a child. Every call presents
+// the fixtures' admin token, one caller for the servers' rate limiter, so
+// the servers run with --rate-limit 0: the bench measures capacity, not the
+// per-caller limit. See README.md.
 #include <grpcpp/grpcpp.h>
 #include <libpq-fe.h>
 #include <signal.h>
@@ -164,18 +167,21 @@ class Bench {
       : dir_(std::move(dir)), database_url_(std::move(database_url)), nginx_(std::move(nginx)) {}
 
   bool StartReplica(int i) {
-    return replicas_[i].Start(
-        BinDir() / "seaplan-server", dir_ / ("replica" + std::to_string(i)), 0,
-        {"--database", database_url_, "--http-addr", "127.0.0.1:0", "--log-level", "error"});
+    return replicas_[i].Start(BinDir() / "seaplan-server", dir_ / ("replica" + std::to_string(i)),
+                              0,
+                              {"--database", database_url_, "--http-addr", "127.0.0.1:0",
+                               "--log-level", "error", "--rate-limit", "0"});
   }
 
   // Section 1: one server on SQLite, one on PostgreSQL, sequential reports
   // in alternating rounds of 50.
   void SqliteVsPostgres(int reports) {
     e2e::ServerProcess sqlite, postgres;
-    if (!sqlite.Start(BinDir() / "seaplan-server", dir_ / "sqlite", 0, {"--log-level", "error"}) ||
-        !postgres.Start(BinDir() / "seaplan-server", dir_ / "postgres", 0,
-                        {"--database", database_url_, "--log-level", "error"})) {
+    if (!sqlite.Start(BinDir() / "seaplan-server", dir_ / "sqlite", 0,
+                      {"--log-level", "error", "--rate-limit", "0"}) ||
+        !postgres.Start(
+            BinDir() / "seaplan-server", dir_ / "postgres", 0,
+            {"--database", database_url_, "--log-level", "error", "--rate-limit", "0"})) {
       std::printf("servers did not start\n");
       return;
     }

@@ -142,6 +142,20 @@ ParsedConfig ParseConfig(int argc, const char* const* argv) {
       ->envname("SEAPLAN_SHUTDOWN_GRACE_MS")
       ->check(CLI::Range(0, 600000))
       ->capture_default_str();
+  int lease_ms = static_cast<int>(c.server.core.missions.lease_ttl.count());
+  int sweep_ms = static_cast<int>(c.server.core.missions.sweep_interval.count());
+  app.add_option("--lease-ms", lease_ms,
+                 "replicas (--database postgresql://): the work lease on a mission's replan, "
+                 "renewed every third of it; a dead replica's work waits for its expiry")
+      ->envname("SEAPLAN_LEASE_MS")
+      ->check(CLI::Range(100, 3600000))
+      ->capture_default_str();
+  app.add_option("--sweep-ms", sweep_ms,
+                 "replicas: how often an idle replica looks for work nobody holds (shorter "
+                 "than --lease-ms)")
+      ->envname("SEAPLAN_SWEEP_MS")
+      ->check(CLI::Range(10, 3600000))
+      ->capture_default_str();
   try {
     app.parse(argc, argv);
   } catch (const CLI::ParseError& e) {
@@ -159,6 +173,14 @@ ParsedConfig ParseConfig(int argc, const char* const* argv) {
     return parsed;
   }
   c.server.shutdown_grace = std::chrono::milliseconds(grace_ms);
+  c.server.core.missions.lease_ttl = std::chrono::milliseconds(lease_ms);
+  c.server.core.missions.sweep_interval = std::chrono::milliseconds(sweep_ms);
+  if (absl::Status st = c.server.core.missions.Validate(); !st.ok()) {
+    parsed.exit = true;
+    parsed.exit_code = 2;
+    parsed.message = "--lease-ms / --sweep-ms: " + std::string(st.message()) + "\n";
+    return parsed;
+  }
   c.server.http_read_timeout = std::chrono::milliseconds(read_timeout_ms);
   c.server.http_write_timeout = std::chrono::milliseconds(write_timeout_ms);
   c.server.tls.require_client_cert = !client_cert_optional;

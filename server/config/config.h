@@ -34,6 +34,10 @@
 //   listening)
 //   --console-dir          SEAPLAN_CONSOLE_DIR         <binary's folder>/console
 //   --shutdown-grace-ms    SEAPLAN_SHUTDOWN_GRACE_MS   2000
+//   --lease-ms             SEAPLAN_LEASE_MS            5000     (replicas: work lease on a replan,
+//   renewed every third of it; 100..3600000)
+//   --sweep-ms             SEAPLAN_SWEEP_MS            2500     (replicas: idle look for work
+//   nobody holds; 10.., shorter than --lease-ms)
 //   --admin-token-file     SEAPLAN_ADMIN_TOKEN_FILE    none     (an admin token to accept;
 //   without it the first start writes a new one to <data-dir>/admin.token, mode 0600)
 //

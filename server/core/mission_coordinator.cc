@@ -112,6 +112,23 @@ bool MissionNotifier::closed() {
 
 // ---- MissionCoordinator ----
 
+absl::Status MissionCoordinator::Options::Validate() const {
+  if (lease_ttl < std::chrono::milliseconds(100)) {
+    return absl::InvalidArgumentError(
+        absl::StrCat("lease: ", lease_ttl.count(), " ms is too short (at least 100 ms)"));
+  }
+  if (sweep_interval < std::chrono::milliseconds(10)) {
+    return absl::InvalidArgumentError(absl::StrCat("sweep interval: ", sweep_interval.count(),
+                                                   " ms is too short (at least 10 ms)"));
+  }
+  if (sweep_interval >= lease_ttl) {
+    return absl::InvalidArgumentError(absl::StrCat("sweep interval: ", sweep_interval.count(),
+                                                   " ms must be shorter than the lease (",
+                                                   lease_ttl.count(), " ms)"));
+  }
+  return absl::OkStatus();
+}
+
 MissionCoordinator::MissionCoordinator(storage::MissionRepository& repo, WorkPool& pool,
                                        StopToken root,
                                        std::shared_ptr<mission::MissionEngine> engine,
@@ -166,6 +183,7 @@ void MissionCoordinator::Shutdown() {
     std::lock_guard lock(jobs_mu_);
     stopping_ = true;
     for (auto& [id, token] : running_replans_) token.Cancel();
+    for (auto& [id, token] : operator_replans_) token.Cancel();
   }
   jobs_cv_.notify_all();
   renew_cv_.notify_all();
@@ -385,6 +403,7 @@ absl::StatusOr<v1::Mission> MissionCoordinator::CancelMission(
     std::lock_guard lock(jobs_mu_);
     auto it = running_replans_.find(id);
     if (it != running_replans_.end()) it->second.Cancel();
+    if (auto op = operator_replans_.find(id); op != operator_replans_.end()) op->second.Cancel();
   }
   SEAPLAN_ASSIGN_OR_RETURN(storage::MissionRecord record, repo_.Get(id));
   return MissionFromRecord(record);
@@ -658,11 +677,23 @@ absl::StatusOr<v1::RequestReplanResponse> MissionCoordinator::RequestReplan(
   }
   const std::string reason =
       request.reason().empty() ? "replan requested by operator" : request.reason();
+  absl::StatusOr<v1::PlanVersion> version = cluster_.work == nullptr
+                                                ? LocalOperatorReplan(id, reason, ctx)
+                                                : LeasedOperatorReplan(id, reason, ctx);
+  SEAPLAN_RETURN_IF_ERROR(version.status());
+  v1::RequestReplanResponse response;
+  *response.mutable_version() = std::move(*version);
+  return response;
+}
+
+absl::StatusOr<v1::PlanVersion> MissionCoordinator::LocalOperatorReplan(const std::string& id,
+                                                                        const std::string& reason,
+                                                                        const CallContext& ctx) {
   // The request is what is audited (with the state change it makes), whether
   // or not the replan then finds a plan.
   SEAPLAN_RETURN_IF_ERROR(SetState(id, mission::MissionState::kReplanning,
                                    absl::StrCat("replanning: ", reason), "", std::nullopt,
-                                   AuditEntry(ctx, id, request.reason())));
+                                   AuditEntry(ctx, id, reason)));
   bool stopped = false;
   auto version = Replan(
       id, reason, ctx.stop,
@@ -671,19 +702,122 @@ absl::StatusOr<v1::RequestReplanResponse> MissionCoordinator::RequestReplan(
       },
       &stopped);
   if (stopped) return StopStatus(ctx.stop, root_.StopRequested(), "replanning");
-  if (!version.ok()) {
-    if (absl::IsResourceExhausted(version.status()) || absl::IsUnavailable(version.status())) {
-      EndReplanning(id, absl::StrCat("replan not started: ", version.status().message()));
-    }
-    return version.status();
+  if (!version.ok() &&
+      (absl::IsResourceExhausted(version.status()) || absl::IsUnavailable(version.status()))) {
+    EndReplanning(id, absl::StrCat("replan not started: ", version.status().message()));
   }
-  v1::RequestReplanResponse response;
-  *response.mutable_version() = std::move(*version);
-  return response;
+  return version;
+}
+
+absl::StatusOr<v1::PlanVersion> MissionCoordinator::LeasedOperatorReplan(const std::string& id,
+                                                                         const std::string& reason,
+                                                                         const CallContext& ctx) {
+  // The request and the claim are one write: no sweeper can take the
+  // request first, and while another process (or this one's background
+  // replan) holds the work nothing is recorded and this call waits, then
+  // plans from the version that replan appended. Each call thus gets a
+  // version of its own, appended by exactly one process.
+  std::optional<storage::WorkLease> lease;
+  for (bool waited = false;; waited = true) {
+    ctx.ForwardCancellation();
+    if (ctx.stop.StopRequested()) {
+      return StopStatus(ctx.stop, root_.StopRequested(),
+                        absl::StrCat("replan of mission '", id,
+                                     "' (waiting for the replan under way; nothing recorded)"));
+    }
+    if (ShuttingDown()) {
+      return absl::UnavailableError("replan not started: the server is shutting down");
+    }
+    const std::uint64_t generation = notifier_.Generation(id);
+    SEAPLAN_ASSIGN_OR_RETURN(storage::MissionRecord record, repo_.Get(id));
+    if (IsFinalState(record.state)) {
+      return absl::FailedPreconditionError(
+          absl::StrCat("mission '", id, "' is ", StateName(record.state), "; nothing to replan"));
+    }
+    SEAPLAN_ASSIGN_OR_RETURN(
+        lease, cluster_.work->RequestAndClaim(id, reason, holder_, options_.lease_ttl));
+    if (lease) break;
+    if (!waited) log::Info("mission {}: replan '{}' waits for the replan under way", id, reason);
+    // The other replan's version wakes this; its lease ends just after.
+    (void)notifier_.Wait(id, generation, options_.watch_poll);
+  }
+  const storage::WorkFence fence{lease->holder, lease->token};
+  {
+    std::lock_guard lock(jobs_mu_);
+    held_[id] = *lease;
+    operator_replans_[id] = ctx.stop;
+  }
+  bool stopped = false;
+  absl::StatusOr<v1::PlanVersion> version = absl::UnknownError("replanning did not run");
+  absl::StatusOr<storage::MissionRecord> claimed_record = repo_.Get(id);
+  if (!claimed_record.ok()) {
+    version = claimed_record.status();
+  } else if (IsFinalState(claimed_record->state)) {  // cancelled just before the claim
+    version = absl::FailedPreconditionError(absl::StrCat(
+        "mission '", id, "' is ", StateName(claimed_record->state), "; nothing to replan"));
+  } else if (absl::Status st = SetState(id, mission::MissionState::kReplanning,
+                                        absl::StrCat("replanning: ", reason), "", fence,
+                                        AuditEntry(ctx, id, reason));
+             !st.ok()) {
+    version = st;
+  } else {
+    version = Replan(
+        id, reason, ctx.stop,
+        [&](std::function<void()> work) {
+          return pool_.Run(std::move(work), ctx.stop, [&] { ctx.ForwardCancellation(); });
+        },
+        &stopped, fence);
+  }
+  bool lost = false;
+  {
+    std::lock_guard lock(jobs_mu_);
+    auto it = held_.find(id);
+    lost = it == held_.end() || it->second.token != lease->token;
+    if (!lost) held_.erase(it);
+    operator_replans_.erase(id);
+  }
+  if (stopped && ShuttingDown()) {
+    // The request stays pending, the mission REPLANNING: another process's
+    // sweep takes the work over.
+    if (absl::Status st = cluster_.work->Release(*lease); !st.ok())
+      log::Warn("mission {}: work not handed back ({}); it is taken over on expiry", id,
+                st.ToString());
+    return absl::UnavailableError(absl::StrCat(
+        "replan of mission '", id, "' handed to another server: this one is shutting down"));
+  }
+  if (!version.ok() && !stopped &&
+      (absl::IsResourceExhausted(version.status()) || absl::IsUnavailable(version.status()))) {
+    EndReplanning(id, absl::StrCat("replan not started: ", version.status().message()), fence);
+  }
+  absl::StatusOr<bool> more = cluster_.work->Complete(*lease);
+  if (!more.ok()) {
+    log::Warn("mission {}: work lease lost: {}", id, more.status().ToString());
+  } else if (*more) {
+    // Reports that needed a replan came meanwhile: their work is pending;
+    // run it here now rather than at the next sweep.
+    std::lock_guard lock(jobs_mu_);
+    if (!stopping_) {
+      jobs_.push_back({id, reason, lease->base_version, std::nullopt});
+      jobs_cv_.notify_one();
+    }
+  }
+  if (stopped && lost) {
+    return absl::AbortedError(
+        absl::StrCat("replan of mission '", id,
+                     "' stopped: this server lost the mission's work lease (it stalled past it)"));
+  }
+  if (stopped) {
+    if (auto record = repo_.Get(id); record.ok() && IsFinalState(record->state)) {
+      return absl::FailedPreconditionError(absl::StrCat(
+          "mission '", id, "' became ", StateName(record->state), " while replanning"));
+    }
+    return StopStatus(ctx.stop, root_.StopRequested(), "replanning");
+  }
+  return version;
 }
 
 void MissionCoordinator::BackgroundLoop() {
-  const auto sweep_every = options_.lease_ttl / 2;
+  const auto sweep_every = options_.sweep_interval;
   auto next_sweep = StopToken::Clock::now() + sweep_every;
   while (true) {
     ReplanJob job;
@@ -852,6 +986,7 @@ void MissionCoordinator::RenewLoop() {
                   renewed.status().ToString());
         if (same) held_.erase(it);
         if (auto r = running_replans_.find(id); r != running_replans_.end()) r->second.Cancel();
+        if (auto r = operator_replans_.find(id); r != operator_replans_.end()) r->second.Cancel();
       } else {
         log::Warn("mission {}: work lease not renewed: {}", id, renewed.status().ToString());
       }

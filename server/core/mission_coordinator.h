@@ -9,7 +9,8 @@
 //                  returns; a replan it triggers is queued, run on the
 //                  WorkPool (waiting for a free worker) by the coordinator's
 //                  background thread, and its version reaches the watchers.
-//   RequestReplan  synchronous replan on the WorkPool.
+//   RequestReplan  synchronous replan on the WorkPool: one new version per
+//                  call (with Cluster, under the mission's work lease).
 //   WatchMission   plan versions, log events and mission state changes,
 //                  resumable from (after_version, after_event_id).
 //   ListFeedback   the stored feedback reports, paged by arrival order.
@@ -29,6 +30,10 @@
 // triggered replan runs only under the mission's work lease (claimed in the
 // database, renewed while planning, its token checked by the write that
 // appends the version), so exactly one process replans a mission at a time.
+// An operator's RequestReplan records its request and claims the lease in
+// one write, waiting while another replan holds it, and plans on the
+// process that received it; if that process dies the request is pending
+// work like any other and a sweep elsewhere plans it.
 // Every process sweeps for work nobody holds (a holder that died and whose
 // lease expired, work handed back by a process shutting down, a request
 // whose receiver died before claiming it) while it has nothing queued.
@@ -99,9 +104,20 @@ class MissionCoordinator {
     // Feedback reports handed to the engine as recent history.
     int feedback_history = 200;
     // Lease on a mission's replan (Cluster): renewed every third of it while
-    // planning; a dead holder's work is taken over at most about 1.5 times
-    // it after its last renewal (expiry, then the next sweep).
+    // planning. Longer rides out longer stalls of a holder (a pause longer
+    // than two thirds of it loses the work to another process); shorter
+    // hands a dead holder's work over sooner.
     std::chrono::milliseconds lease_ttl{5000};
+    // How often an idle process looks for work nobody holds (Cluster): a
+    // dead holder's work is taken over at most lease_ttl + sweep_interval
+    // after its last renewal. Each sweep is one query per process.
+    std::chrono::milliseconds sweep_interval{2500};
+
+    // InvalidArgument naming the field: lease_ttl under 100 ms (renewals
+    // every third of it would flood the database), sweep_interval under
+    // 10 ms or not shorter than lease_ttl (takeover would wait on the sweep
+    // more than on the expiry).
+    absl::Status Validate() const;
   };
 
   // The shared database's work leases and change feed, for several server
@@ -191,6 +207,16 @@ class MissionCoordinator {
   void BackgroundLoop();
   // One triggered replan (without Cluster: as it is).
   void RunJob(ReplanJob job, const StopToken& stop);
+  // RequestReplan without Cluster: replans at once.
+  absl::StatusOr<v1::PlanVersion> LocalOperatorReplan(const std::string& mission_id,
+                                                      const std::string& reason,
+                                                      const CallContext& ctx);
+  // RequestReplan with Cluster: requests and claims the mission's work
+  // (waiting while another replan holds it), replans under the lease,
+  // completes it, or hands it back when this process shuts down.
+  absl::StatusOr<v1::PlanVersion> LeasedOperatorReplan(const std::string& mission_id,
+                                                       const std::string& reason,
+                                                       const CallContext& ctx);
   // Cluster: claims the job's work (unless the sweeper did), replans under
   // the lease and completes it, again while requests came meanwhile.
   void RunLeasedJob(ReplanJob job, const StopToken& stop);
@@ -220,6 +246,8 @@ class MissionCoordinator {
   // a base version already pending or running is the same situation
   // reported twice (two feedbacks in one step): it must not replan again.
   std::map<std::string, int> running_bases_;
+  // Cluster: mission -> stop token of the operator's replan holding its lease.
+  std::map<std::string, StopToken> operator_replans_;
   bool stopping_ = false;
   bool leases_released_ = false;
   // Cluster: leases held now, renewed by renewer_.

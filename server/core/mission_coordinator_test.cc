@@ -26,6 +26,8 @@ class TwoTaskEngine final : public mission::MissionEngine {
   std::atomic<int> replans{0};
   // When set, Replan waits until its StopToken stops (at most 20 s).
   std::atomic<bool> block_replans{false};
+  // Replan takes this long (or until its StopToken stops).
+  std::atomic<int> replan_ms{0};
 
   Status CheckSpec(const mission::MissionSpec&, std::vector<pddl::Diagnostic>*) override {
     return absl::OkStatus();
@@ -48,6 +50,8 @@ class TwoTaskEngine final : public mission::MissionEngine {
         std::this_thread::sleep_for(std::chrono::milliseconds(10));
       return absl::CancelledError("replan stopped");
     }
+    for (int i = 0; i < replan_ms / 10 && !stop.StopRequested(); ++i)
+      std::this_thread::sleep_for(std::chrono::milliseconds(10));
     mission::PlannedVersion v =
         Version(runtime.current.version + 1, mission::PlanQuality::kSatisficing);
     v.version.reason = std::string(reason);
@@ -153,6 +157,7 @@ class MissionCoordinatorTest : public ::testing::Test {
     MissionCoordinator::Options options;
     options.watch_poll = std::chrono::milliseconds(10);
     options.lease_ttl = std::chrono::milliseconds(300);
+    options.sweep_interval = std::chrono::milliseconds(150);
     return std::make_unique<MissionCoordinator>(
         store_->missions(), pool, std::move(root), std::move(engine), options,
         MissionCoordinator::Cluster{&store_->work(), &store_->changes(), holder});
@@ -163,9 +168,20 @@ class MissionCoordinatorTest : public ::testing::Test {
       std::this_thread::sleep_for(std::chrono::milliseconds(5));
   }
 
+  // Waits (bounded, 20 s) until `engine` has started a replan.
+  static bool ReplanStarted(const TwoTaskEngine& engine) {
+    for (int i = 0; i < 4000 && engine.replans.load() == 0; ++i)
+      std::this_thread::sleep_for(std::chrono::milliseconds(5));
+    return engine.replans.load() > 0;
+  }
+
   fs::path dir_;
   StopToken root_;
   WorkPool pool_{1};
+  // Two more replicas' pools and engines, for the tests that make them.
+  WorkPool pool_a_{1}, pool_b_{1};
+  std::shared_ptr<TwoTaskEngine> engine_a_ = std::make_shared<TwoTaskEngine>(pool_a_);
+  std::shared_ptr<TwoTaskEngine> engine_b_ = std::make_shared<TwoTaskEngine>(pool_b_);
   std::unique_ptr<storage::SqliteStore> store_;
   std::shared_ptr<TwoTaskEngine> engine_;
   std::unique_ptr<MissionCoordinator> coordinator_;
@@ -309,6 +325,133 @@ TEST_F(MissionCoordinatorTest, DeadReplicasLeaseExpiresAndAnotherReplicaReplans)
   EXPECT_TRUE(absl::IsAborted(store_->missions().AppendVersion(v3, late, {})));
   EXPECT_EQ(Get(m.mission_id()).current_version(), 2);
   b->Shutdown();
+}
+
+absl::StatusOr<v1::RequestReplanResponse> OperatorReplan(MissionCoordinator& replica,
+                                                         const std::string& id,
+                                                         const std::string& reason,
+                                                         const StopToken& root) {
+  v1::RequestReplanRequest req;
+  req.set_mission_id(id);
+  req.set_reason(reason);
+  return replica.RequestReplan(
+      req, CallContext{"test", root.Child(StopToken::Clock::time_point::max()), {}});
+}
+
+// Replicas: operators asking two replicas for a replan at once get a
+// version each, planned once, numbered without gap (the second waits for
+// the first one's lease, then plans from its version).
+TEST_F(MissionCoordinatorTest, OperatorReplansOnTwoReplicasGetAVersionEach) {
+  engine_a_->replan_ms = 200;  // long enough for the two calls to overlap
+  engine_b_->replan_ms = 200;
+  StopToken root_a, root_b;
+  auto a = Replica("replica-a", engine_a_, pool_a_, root_a);
+  auto b = Replica("replica-b", engine_b_, pool_b_, root_b);
+  const v1::Mission m = Create();
+  for (int round = 0; round < 2; ++round) {
+    absl::StatusOr<v1::RequestReplanResponse> on_a = absl::UnknownError("not run"),
+                                              on_b = absl::UnknownError("not run");
+    std::thread ta([&] { on_a = OperatorReplan(*a, m.mission_id(), "operator on a", root_a); });
+    std::thread tb([&] { on_b = OperatorReplan(*b, m.mission_id(), "operator on b", root_b); });
+    ta.join();
+    tb.join();
+    ASSERT_TRUE(on_a.ok()) << on_a.status();
+    ASSERT_TRUE(on_b.ok()) << on_b.status();
+    const int first = 2 + 2 * round;
+    EXPECT_EQ(std::min(on_a->version().version(), on_b->version().version()), first);
+    EXPECT_EQ(std::max(on_a->version().version(), on_b->version().version()), first + 1);
+    EXPECT_EQ(on_a->version().reason(), "operator on a");
+    EXPECT_EQ(store_->missions().GetVersion(m.mission_id(), on_b->version().version())->reason,
+              "operator on b");
+  }
+  EXPECT_EQ(engine_a_->replans.load() + engine_b_->replans.load(), 4);  // none planned twice
+  // One at a time: each version was planned from the one before it (two
+  // replans at once would both start from the same version).
+  for (int v = 2; v <= 5; ++v)
+    EXPECT_EQ(store_->missions().GetVersion(m.mission_id(), v)->engine_state, absl::StrCat("v", v));
+  const v1::Mission after = Get(m.mission_id());
+  EXPECT_EQ(after.current_version(), 5);
+  EXPECT_EQ(after.state(), v1::MISSION_STATE_ACTIVE);
+  auto work = store_->work().Get(m.mission_id());
+  ASSERT_TRUE(work.ok() && work->has_value());
+  EXPECT_FALSE((*work)->pending());
+  EXPECT_TRUE((*work)->holder.empty());
+  a->Shutdown();
+  b->Shutdown();
+}
+
+// Replicas: an operator's replan on a replica that shuts down is handed
+// back (the caller hears so) and another replica plans that request.
+TEST_F(MissionCoordinatorTest, OperatorReplanOfAStoppingReplicaIsHandedOver) {
+  engine_a_->block_replans = true;
+  StopToken root_a;
+  auto a = Replica("replica-a", engine_a_, pool_a_, root_a);
+  const v1::Mission m = Create();
+  absl::StatusOr<v1::RequestReplanResponse> answer = absl::UnknownError("not run");
+  std::thread caller([&] { answer = OperatorReplan(*a, m.mission_id(), "operator", root_a); });
+  ASSERT_TRUE(ReplanStarted(*engine_a_));
+  EXPECT_EQ((*store_->work().Get(m.mission_id()))->holder, "replica-a");
+  EXPECT_EQ(Get(m.mission_id()).state(), v1::MISSION_STATE_REPLANNING);
+  root_a.Cancel();  // SIGTERM
+  caller.join();
+  EXPECT_TRUE(absl::IsUnavailable(answer.status())) << answer.status();
+  EXPECT_NE(answer.status().message().find("handed to another server"), std::string_view::npos)
+      << answer.status();
+  a->Shutdown();
+  EXPECT_EQ(Get(m.mission_id()).state(), v1::MISSION_STATE_REPLANNING);
+
+  auto b = Replica("replica-b", engine_b_, pool_b_, StopToken());
+  AwaitVersion(m.mission_id(), 2);
+  EXPECT_EQ(Get(m.mission_id()).current_version(), 2);
+  EXPECT_EQ(Get(m.mission_id()).state(), v1::MISSION_STATE_ACTIVE);
+  EXPECT_EQ(store_->missions().GetVersion(m.mission_id(), 2)->reason, "operator");
+  b->Shutdown();
+}
+
+// Replicas: a call whose deadline passes while another replica's replan
+// holds the lease ends DEADLINE_EXCEEDED and leaves no request behind.
+TEST_F(MissionCoordinatorTest, OperatorReplanWaitingPastItsDeadlineRecordsNothing) {
+  engine_a_->block_replans = true;
+  StopToken root_a, root_b;
+  auto a = Replica("replica-a", engine_a_, pool_a_, root_a);
+  auto b = Replica("replica-b", engine_b_, pool_b_, root_b);
+  const v1::Mission m = Create();
+  ASSERT_TRUE(Report(m.mission_id(), 1, v1::Feedback::KIND_TASK_FAILED, "v1-t0", a.get()).ok());
+  ASSERT_TRUE(ReplanStarted(*engine_a_));
+  const std::int64_t requests = (*store_->work().Get(m.mission_id()))->requests;
+
+  v1::RequestReplanRequest req;
+  req.set_mission_id(m.mission_id());
+  auto answer = b->RequestReplan(
+      req, CallContext{
+               "test", root_b.Child(StopToken::Clock::now() + std::chrono::milliseconds(300)), {}});
+  EXPECT_TRUE(absl::IsDeadlineExceeded(answer.status())) << answer.status();
+  EXPECT_NE(answer.status().message().find("waiting for the replan under way"),
+            std::string_view::npos)
+      << answer.status();
+  EXPECT_EQ(engine_b_->replans.load(), 0);
+  EXPECT_EQ((*store_->work().Get(m.mission_id()))->requests, requests);
+  EXPECT_EQ((*store_->work().Get(m.mission_id()))->holder, "replica-a");
+  root_a.Cancel();
+  a->Shutdown();
+  b->Shutdown();
+}
+
+TEST(MissionCoordinatorOptionsTest, LeaseAndSweepAreChecked) {
+  MissionCoordinator::Options options;
+  EXPECT_TRUE(options.Validate().ok()) << options.Validate();
+  options.lease_ttl = std::chrono::milliseconds(99);
+  options.sweep_interval = std::chrono::milliseconds(50);
+  EXPECT_TRUE(absl::IsInvalidArgument(options.Validate()));
+  EXPECT_NE(options.Validate().message().find("lease"), std::string_view::npos);
+  options.lease_ttl = std::chrono::milliseconds(1000);
+  options.sweep_interval = std::chrono::milliseconds(1000);  // must be shorter than the lease
+  EXPECT_TRUE(absl::IsInvalidArgument(options.Validate()));
+  EXPECT_NE(options.Validate().message().find("sweep"), std::string_view::npos);
+  options.sweep_interval = std::chrono::milliseconds(5);
+  EXPECT_TRUE(absl::IsInvalidArgument(options.Validate()));
+  options.sweep_interval = std::chrono::milliseconds(999);
+  EXPECT_TRUE(options.Validate().ok());
 }
 
 }  // namespace

@@ -1209,6 +1209,39 @@ class PostgresStore::Work final : public internal::WorkLeaseBase {
                  Params().Text(holder).I8(ttl.count()).Text(mission_id).I8(limit));
   }
 
+  // The mission's row lock orders this with every other request of the
+  // mission; FOR UPDATE on the work row keeps sweepers (SKIP LOCKED) off it.
+  absl::StatusOr<std::vector<WorkLease>> RequestAndClaimFree(
+      const std::string& mission_id, const std::string& reason, const std::string& holder,
+      std::chrono::milliseconds ttl) override {
+    std::vector<WorkLease> out;
+    const absl::Status written = impl_.InTransaction([&](PGconn* conn) -> absl::Status {
+      SEAPLAN_ASSIGN_OR_RETURN(const int current, Impl::LockMission(conn, mission_id));
+      SEAPLAN_ASSIGN_OR_RETURN(
+          Result held,
+          Impl::Run(conn,
+                    absl::StrCat("SELECT 1 FROM mission_work WHERE mission_id = $1 AND holder IS "
+                                 "NOT NULL AND lease_expires_at_ms > ",
+                                 kDbNowMs, " FOR UPDATE"),
+                    Params().Text(mission_id)));
+      if (held.rows() > 0) return absl::OkStatus();  // a live lease: nothing recorded
+      SEAPLAN_RETURN_IF_ERROR(
+          Impl::RequestWorkLocked(conn, mission_id, {reason, current}).status());
+      SEAPLAN_ASSIGN_OR_RETURN(
+          Result claimed,
+          Impl::Run(conn,
+                    absl::StrCat("UPDATE mission_work SET holder = $2, token = token + 1, "
+                                 "claimed_requests = requests, lease_expires_at_ms = ",
+                                 kDbNowMs, " + $3 WHERE mission_id = $1 RETURNING ", kWorkColumns),
+                    Params().Text(mission_id).Text(holder).I8(ttl.count())));
+      for (int row = 0; row < claimed.rows(); ++row)
+        out.push_back(internal::ReadWork(ResultRow{claimed, row}));
+      return absl::OkStatus();
+    });
+    if (!written.ok()) return written;
+    return out;
+  }
+
   absl::StatusOr<std::vector<WorkLease>> UpdateHeld(const WorkLease& lease, LeaseChange change,
                                                     std::chrono::milliseconds ttl) override {
     Params p;

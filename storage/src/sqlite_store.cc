@@ -874,6 +874,43 @@ class SqliteStore::Work final : public internal::WorkLeaseBase {
     return out;
   }
 
+  absl::StatusOr<std::vector<WorkLease>> RequestAndClaimFree(
+      const std::string& mission_id, const std::string& reason, const std::string& holder,
+      std::chrono::milliseconds ttl) override {
+    std::lock_guard lock(impl_.mu);
+    SEAPLAN_RETURN_IF_ERROR(impl_.Usable());
+    std::vector<WorkLease> out;
+    const absl::Status written = InTransaction(impl_.db, [&]() -> absl::Status {
+      const TimestampMs now = NowMs();
+      int current = 0;
+      {
+        Stmt mission(impl_.db, "SELECT current_version FROM missions WHERE id = ?1");
+        mission.Text(1, mission_id);
+        SEAPLAN_ASSIGN_OR_RETURN(bool found, mission.Step());
+        if (!found) return absl::NotFoundError(NotFoundMessage("mission", mission_id));
+        current = static_cast<int>(mission.ColInt(0));
+      }
+      {
+        Stmt held(impl_.db,
+                  "SELECT 1 FROM mission_work WHERE mission_id = ?1 AND holder IS NOT NULL AND "
+                  "lease_expires_at_ms > ?2");
+        held.Text(1, mission_id).Int(2, now);
+        SEAPLAN_ASSIGN_OR_RETURN(bool is_held, held.Step());
+        if (is_held) return absl::OkStatus();  // a live lease: nothing recorded
+      }
+      SEAPLAN_RETURN_IF_ERROR(impl_.RequestWorkLocked(mission_id, {reason, current}).status());
+      Stmt s(impl_.db, absl::StrCat("UPDATE mission_work SET holder = ?2, token = token + 1, "
+                                    "claimed_requests = requests, lease_expires_at_ms = ?3 "
+                                    "WHERE mission_id = ?1 RETURNING ",
+                                    internal::kWorkColumns));
+      s.Text(1, mission_id).Text(2, holder).Int(3, now + ttl.count());
+      SEAPLAN_ASSIGN_OR_RETURN(out, impl_.WorkRowsLocked(s));
+      return absl::OkStatus();
+    });
+    if (!written.ok()) return written;
+    return out;
+  }
+
   absl::StatusOr<std::vector<WorkLease>> UpdateHeld(const WorkLease& lease, LeaseChange change,
                                                     std::chrono::milliseconds ttl) override {
     std::lock_guard lock(impl_.mu);

@@ -339,6 +339,48 @@ TEST_P(StoreTest, RequestsDuringARunAreNotLost) {
   EXPECT_GT((*next)[0].token, (*lease)->token);
 }
 
+// A request claimed in one step: it covers the requests pending before
+// it, and records nothing while another lease on the work is live.
+TEST_P(StoreTest, RequestAndClaimRecordsOnlyWhenItGetsTheWork) {
+  ASSERT_TRUE(missions().Create(TestMission("m"), TestVersion("m", 1), {}).ok());
+  ASSERT_TRUE(work().Request("m", {"task failed", 1}).ok());  // pending, nobody holds it
+  auto mine = work().RequestAndClaim("m", "operator", "r1", milliseconds(60000));
+  ASSERT_TRUE(mine.ok()) << mine.status();
+  ASSERT_TRUE(mine->has_value());
+  EXPECT_EQ((*mine)->holder, "r1");
+  EXPECT_EQ((*mine)->reason, "operator");
+  EXPECT_EQ((*mine)->requests, 2);
+  EXPECT_EQ((*mine)->claimed_requests, 2);
+  EXPECT_EQ((*mine)->base_version, 1);  // the mission's current version
+  // Held: another holder's request is not recorded, nor the holder's own.
+  std::unique_ptr<Store> other = OpenAnother();
+  ASSERT_NE(other, nullptr);
+  for (auto* w : {&other->work(), &work()}) {
+    auto refused = w->RequestAndClaim("m", "second operator", "r2", milliseconds(60000));
+    ASSERT_TRUE(refused.ok()) << refused.status();
+    EXPECT_FALSE(refused->has_value());
+  }
+  EXPECT_EQ((*work().Get("m"))->requests, 2);
+  EXPECT_FALSE(*work().Complete(**mine));  // nothing left pending
+  ASSERT_TRUE(missions().AppendVersion(TestVersion("m", 2), {}, {}).ok());
+  auto theirs = other->work().RequestAndClaim("m", "second operator", "r2", milliseconds(1));
+  ASSERT_TRUE(theirs.ok() && theirs->has_value()) << theirs.status();
+  EXPECT_EQ((*theirs)->claimed_requests, 3);
+  EXPECT_EQ((*theirs)->base_version, 2);
+  EXPECT_GT((*theirs)->token, (*mine)->token);
+  // An expired lease does not block: its pending request is covered too.
+  std::this_thread::sleep_for(milliseconds(50));
+  auto after = work().RequestAndClaim("m", "third", "r1", milliseconds(60000));
+  ASSERT_TRUE(after.ok() && after->has_value()) << after.status();
+  EXPECT_EQ((*after)->claimed_requests, 4);
+  EXPECT_EQ(other->work().Complete(**theirs).status().code(), absl::StatusCode::kAborted);
+  EXPECT_EQ(work().RequestAndClaim("nope", "x", "r1", milliseconds(1000)).status().code(),
+            absl::StatusCode::kNotFound);
+  EXPECT_EQ(work().RequestAndClaim("m", "x", "", milliseconds(1000)).status().code(),
+            absl::StatusCode::kInvalidArgument);
+  ASSERT_TRUE(other->Close().ok());
+}
+
 TEST_P(StoreTest, ExpiredLeaseIsTakenOverAndTheOldHolderIsFenced) {
   ASSERT_TRUE(missions().Create(TestMission("m"), TestVersion("m", 1), {}).ok());
   ASSERT_TRUE(work().Request("m", {"replan", 1}).ok());

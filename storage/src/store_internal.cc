@@ -80,6 +80,17 @@ absl::StatusOr<std::optional<WorkLease>> WorkLeaseBase::Claim(const std::string&
   return std::optional<WorkLease>(std::move(claimed[0]));
 }
 
+absl::StatusOr<std::optional<WorkLease>> WorkLeaseBase::RequestAndClaim(
+    const std::string& mission_id, const std::string& reason, const std::string& holder,
+    std::chrono::milliseconds ttl) {
+  SEAPLAN_RETURN_IF_ERROR(CheckLeaseArguments(holder, ttl));
+  if (mission_id.empty()) return absl::InvalidArgumentError("a mission id must not be empty");
+  SEAPLAN_ASSIGN_OR_RETURN(std::vector<WorkLease> claimed,
+                           RequestAndClaimFree(mission_id, reason, holder, ttl));
+  if (claimed.empty()) return std::optional<WorkLease>();
+  return std::optional<WorkLease>(std::move(claimed[0]));
+}
+
 absl::StatusOr<std::vector<WorkLease>> WorkLeaseBase::ClaimNext(const std::string& holder,
                                                                 std::chrono::milliseconds ttl,
                                                                 int limit) {

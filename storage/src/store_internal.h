@@ -151,6 +151,10 @@ class WorkLeaseBase : public WorkLeaseRepository {
   absl::StatusOr<std::optional<WorkLease>> Claim(const std::string& mission_id,
                                                  const std::string& holder,
                                                  std::chrono::milliseconds ttl) final;
+  absl::StatusOr<std::optional<WorkLease>> RequestAndClaim(const std::string& mission_id,
+                                                           const std::string& reason,
+                                                           const std::string& holder,
+                                                           std::chrono::milliseconds ttl) final;
   absl::StatusOr<std::vector<WorkLease>> ClaimNext(const std::string& holder,
                                                    std::chrono::milliseconds ttl, int limit) final;
   absl::StatusOr<WorkLease> Renew(const WorkLease& lease, std::chrono::milliseconds ttl) final;
@@ -168,6 +172,12 @@ class WorkLeaseBase : public WorkLeaseRepository {
                                                               const std::string& holder,
                                                               std::chrono::milliseconds ttl,
                                                               int limit) = 0;
+  // Records a request (`reason`, the current version) and claims the
+  // mission's item unless a live lease is on it (then nothing is written
+  // and nothing returned), in one transaction.
+  virtual absl::StatusOr<std::vector<WorkLease>> RequestAndClaimFree(
+      const std::string& mission_id, const std::string& reason, const std::string& holder,
+      std::chrono::milliseconds ttl) = 0;
   // Applies `change` if `lease` (holder and token) still holds the item;
   // the updated row, or nothing when the lease was lost.
   virtual absl::StatusOr<std::vector<WorkLease>> UpdateHeld(const WorkLease& lease,

@@ -16,6 +16,7 @@
 #include <thread>
 #include <vector>
 
+#include "seaplan/testing/child_process.h"
 #include "seaplan/testing/shared_data.h"
 #include "seaplan/testing/test_token.h"
 
@@ -244,14 +245,16 @@ class ServerProcess {
             "--admin-token-file", token_file.c_str(), static_cast<char*>(nullptr));
       _exit(127);
     }
-    for (int i = 0; i < 200 && port_.empty(); ++i) {
-      std::ifstream in(port_file);
-      std::string line;
-      while (std::getline(in, line)) {
-        if (line.rfind("grpc=", 0) == 0) port_ = line.substr(5);
-      }
-      if (port_.empty()) std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    }
+    const auto readiness =
+        seaplan::testing::WaitUntilChildReady(pid_, std::chrono::seconds(10), [&] {
+          std::ifstream in(port_file);
+          std::string line;
+          while (std::getline(in, line)) {
+            if (line.rfind("grpc=", 0) == 0) port_ = line.substr(5);
+          }
+          return !port_.empty();
+        });
+    if (readiness == seaplan::testing::ChildReadiness::kExited) pid_ = -1;  // reaped
   }
   ~ServerProcess() {
     if (pid_ > 0) {

@@ -13,7 +13,6 @@
 // reason printed when missing, a failure under CI (env CI set).
 #include <grpcpp/grpcpp.h>
 #include <gtest/gtest.h>
-#include <libpq-fe.h>
 #include <signal.h>
 #include <sys/stat.h>
 #include <sys/wait.h>
@@ -27,7 +26,6 @@
 #include <map>
 #include <memory>
 #include <mutex>
-#include <regex>
 #include <set>
 #include <sstream>
 #include <string>
@@ -36,6 +34,7 @@
 
 #include "e2e_support.h"
 #include "nginx_balancer.h"
+#include "pg_reader.h"
 #include "seaplan/storage/testing/postgres_cluster.h"
 #include "seaplan/testing/shared_data.h"
 #include "seaplan/v1/mission.grpc.pb.h"
@@ -51,55 +50,9 @@ using Clock = std::chrono::steady_clock;
 
 constexpr int kReplicas = 3;
 
-// Skips with `reason` printed, except under CI, where a missing dependency
-// must fail the run.
-#define REQUIRE_DEPENDENCY(ok, reason)                                                \
-  do {                                                                                \
-    if (!(ok)) {                                                                      \
-      if (std::getenv("CI") != nullptr) FAIL() << (reason) << " (required under CI)"; \
-      GTEST_SKIP() << "failover test skipped: " << (reason);                          \
-    }                                                                                 \
-  } while (0)
-
-// One libpq connection for the test's own reads of the shared database.
-class Pg {
- public:
-  explicit Pg(const std::string& url) : conn_(PQconnectdb(url.c_str())) {}
-  ~Pg() { PQfinish(conn_); }
-  Pg(const Pg&) = delete;
-  Pg& operator=(const Pg&) = delete;
-  bool ok() const { return PQstatus(conn_) == CONNECTION_OK; }
-  std::string error() const { return PQerrorMessage(conn_); }
-
-  // Rows of `sql` with $1 = `arg`, each column as text.
-  std::vector<std::vector<std::string>> Rows(const std::string& sql, const std::string& arg = "") {
-    const char* params[] = {arg.c_str()};
-    PGresult* r = PQexecParams(conn_, sql.c_str(), arg.empty() ? 0 : 1, nullptr,
-                               arg.empty() ? nullptr : params, nullptr, nullptr, 0);
-    std::vector<std::vector<std::string>> rows;
-    if (PQresultStatus(r) != PGRES_TUPLES_OK) {
-      ADD_FAILURE() << sql << ": " << PQresultErrorMessage(r);
-    } else {
-      for (int i = 0; i < PQntuples(r); ++i) {
-        auto& row = rows.emplace_back();
-        for (int c = 0; c < PQnfields(r); ++c) row.push_back(PQgetvalue(r, i, c));
-      }
-    }
-    PQclear(r);
-    return rows;
-  }
-  std::vector<int64_t> Numbers(const std::string& sql, const std::string& arg) {
-    std::vector<int64_t> out;
-    for (const auto& row : Rows(sql, arg)) out.push_back(std::stoll(row.at(0)));
-    return out;
-  }
-
- private:
-  PGconn* conn_;
-};
-
 using e2e::JournalView;
 using e2e::ReadJournal;
+using ha::Pg;
 
 // What a watcher received, resuming after every broken stream from the last
 // (version, event id) it saw, as the sim does.
@@ -189,14 +142,12 @@ TEST_F(FailoverE2eTest, LeaseHolderKilledMidMissionLosesNothing) {
       << "seaplan-server or seaplan-sim not built in " << BinDir();
   const fs::path nginx = ha::FindNginx();
   REQUIRE_DEPENDENCY(!nginx.empty(), "nginx not installed (apt-get install nginx)");
-  auto cluster = storage::testing::TemporaryPostgresCluster::Start();
-  REQUIRE_DEPENDENCY(!absl::IsNotFound(cluster.status()),
-                     "PostgreSQL not available: " + cluster.status().ToString());
-  ASSERT_TRUE(cluster.ok()) << cluster.status();
-  cluster_ = std::move(*cluster);
-  auto url = cluster_->CreateDatabase();
-  ASSERT_TRUE(url.ok()) << url.status();
-  database_url_ = *url;
+  auto database = ha::StartThrowawayDatabase();
+  REQUIRE_DEPENDENCY(!absl::IsNotFound(database.status()),
+                     "PostgreSQL not available: " + database.status().ToString());
+  ASSERT_TRUE(database.ok()) << database.status();
+  cluster_ = std::move(database->cluster);
+  database_url_ = database->url;
 
   char tmpl[] = "/tmp/seaplan-failover-XXXXXX";
   ASSERT_NE(mkdtemp(tmpl), nullptr);
@@ -263,11 +214,8 @@ TEST_F(FailoverE2eTest, LeaseHolderKilledMidMissionLosesNothing) {
           "w.holder IS NOT NULL",
           mission_id);
       if (!rows.empty()) {
-        // holder = host:pid:random
-        std::smatch m;
-        const std::string holder = rows[0][0];
-        if (std::regex_match(holder, m, std::regex("[^:]*:([0-9]+):.*"))) {
-          const pid_t pid = std::stoi(m[1]);
+        const pid_t pid = ha::HolderPid(rows[0][0]);
+        if (pid > 0) {
           for (int i = 0; i < kReplicas; ++i) {
             if (replicas_[i].pid() == pid) {
               replicas_[i].Kill();

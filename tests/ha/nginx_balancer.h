@@ -27,6 +27,7 @@
 
 #include "e2e_support.h"
 #include "seaplan/storage/testing/postgres_cluster.h"
+#include "seaplan/testing/child_process.h"
 
 namespace seaplan::ha {
 
@@ -115,16 +116,10 @@ class NginxBalancer {
             "-g", "daemon off;", static_cast<char*>(nullptr));
       _exit(127);
     }
-    for (int i = 0; i < 600; ++i) {
-      if (Accepts(grpc_port_) && Accepts(http_port_)) return true;
-      int status = 0;
-      if (waitpid(pid_, &status, WNOHANG) == pid_) {
-        pid_ = -1;
-        return false;
-      }
-      std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    }
-    return false;
+    const auto readiness = seaplan::testing::WaitUntilChildReady(
+        pid_, std::chrono::seconds(30), [&] { return Accepts(grpc_port_) && Accepts(http_port_); });
+    if (readiness == seaplan::testing::ChildReadiness::kExited) pid_ = -1;
+    return readiness == seaplan::testing::ChildReadiness::kReady;
   }
 
   // SIGTERM (fast shutdown), SIGKILL after 10 s; reaped.

@@ -27,6 +27,7 @@
 #include <utility>
 #include <vector>
 
+#include "seaplan/testing/child_process.h"
 #include "seaplan/testing/grpc_test_token.h"
 #include "seaplan/v1/mission.grpc.pb.h"
 
@@ -97,7 +98,7 @@ class ServerProcess {
       _exit(127);
     }
     if (pid_ < 0) return false;
-    for (int i = 0; i < 300; ++i) {
+    const auto listening = [&] {
       std::ifstream in(port_file);
       std::string line;
       while (std::getline(in, line)) {
@@ -107,15 +108,12 @@ class ServerProcess {
           address_ = "127.0.0.1:" + line.substr(5);
         }
       }
-      if (port_ != 0 && (!http || http_port_ != 0)) return true;
-      int status = 0;
-      if (waitpid(pid_, &status, WNOHANG) == pid_) {
-        pid_ = -1;
-        return false;
-      }
-      std::this_thread::sleep_for(std::chrono::milliseconds(50));
-    }
-    return false;
+      return port_ != 0 && (!http || http_port_ != 0);
+    };
+    const auto readiness =
+        seaplan::testing::WaitUntilChildReady(pid_, std::chrono::seconds(15), listening);
+    if (readiness == seaplan::testing::ChildReadiness::kExited) pid_ = -1;
+    return readiness == seaplan::testing::ChildReadiness::kReady;
   }
   void Stop() { SignalAndReap(SIGTERM); }
   // SIGKILL: no shutdown, no flush, as in a crash or an OOM kill.

@@ -3,7 +3,7 @@
 // tasks; an operator replan gives version 2; the mission is cancelled.
 #include <gtest/gtest.h>
 
-#include "seaplan/testing/shared_data.h"
+#include "seaplan/testing/case_a_mission.h"
 #include "test_support.h"
 
 namespace seaplan::server::testing {
@@ -12,32 +12,8 @@ namespace {
 using grpc::ClientContext;
 using grpc::StatusCode;
 
-std::string Example(const std::string& name) {
-  return seaplan::testing::ReadFile(seaplan::testing::SourceDir() / "examples" / "fjord" / name);
-}
-
-// Case A on five ports about 1 km apart along a line of latitude, legs
-// sailed at 5 m/s.
 v1::CreateMissionRequest CaseARequest(const std::string& name) {
-  v1::CreateMissionRequest req;
-  v1::MissionSpec* spec = req.mutable_spec();
-  spec->set_name(name);
-  spec->set_domain(Example("domain.pddl"));
-  spec->set_problem(Example("case-a.pddl"));
-  spec->set_vessel_id("ship0");
-  spec->mutable_ship()->set_service_speed_mps(5.0);
-  // Five ports about 1 km apart along a line of latitude.
-  const char* ports[] = {"port-a", "port-b", "port-c", "port-d", "port-e"};
-  for (int i = 0; i < 5; ++i) {
-    v1::NamedLocation* l = spec->add_locations();
-    l->set_name(ports[i]);
-    l->mutable_position()->set_latitude_deg(63.45);
-    l->mutable_position()->set_longitude_deg(10.30 + 0.02 * i);
-  }
-  *spec->mutable_initial_state()->mutable_position() = spec->locations(0).position();
-  spec->mutable_initial_state()->set_fuel_fraction(0.9);
-  spec->mutable_planner_options()->mutable_time_limit()->set_seconds(20);
-  return req;
+  return seaplan::testing::CaseAMissionRequest(name);
 }
 
 TEST(MissionE2eTest, CaseAPlannedRefinedAndReplannedWithTheRealEngine) {

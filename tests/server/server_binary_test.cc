@@ -218,6 +218,17 @@ TEST(ServerBinaryTest, ServesBothTransportsAndShutsDownCleanlyOnSigterm) {
   EXPECT_EQ(*(*store)->SchemaVersion(), storage::LatestSchemaVersion());
 }
 
+// Runs a shell command; its exit code and standard output + error.
+std::pair<int, std::string> Shell(const std::string& command) {
+  std::string output;
+  FILE* pipe = ::popen((command + " 2>&1").c_str(), "r");
+  if (pipe == nullptr) return {-1, ""};
+  char buffer[4096];
+  while (std::size_t n = std::fread(buffer, 1, sizeof(buffer), pipe)) output.append(buffer, n);
+  const int status = ::pclose(pipe);
+  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
+}
+
 TEST(ServerBinaryTest, BadFlagsAndBusyPortsFailWithNonZeroExit) {
   const std::filesystem::path binary = seaplan::testing::BinDir() / "seaplan-server";
   if (!std::filesystem::exists(binary)) GTEST_SKIP() << binary << " not built";
@@ -235,6 +246,17 @@ TEST(ServerBinaryTest, BadFlagsAndBusyPortsFailWithNonZeroExit) {
     const int status = child.Wait(std::chrono::seconds(10));
     ASSERT_NE(status, -1);
     EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) != 0);
+  }
+  {
+    // A sweep not shorter than the lease, from the environment too.
+    const auto [code, output] = Shell("SEAPLAN_SWEEP_MS=2000 " + binary.string() +
+                                      " --lease-ms 2000 --data-dir " + (dir.path() / "d").string());
+    EXPECT_EQ(code, 2) << output;
+    EXPECT_NE(output.find("must be shorter than the lease (2000 ms)"), std::string::npos) << output;
+    const auto [short_code, short_output] =
+        Shell(binary.string() + " --lease-ms 50 --data-dir " + (dir.path() / "d").string());
+    EXPECT_NE(short_code, 0) << short_output;
+    EXPECT_NE(short_output.find("--lease-ms"), std::string::npos) << short_output;
   }
   {
     // A port another socket holds: the server says so and exits 1.
@@ -256,17 +278,6 @@ TEST(ServerBinaryTest, BadFlagsAndBusyPortsFailWithNonZeroExit) {
     ASSERT_NE(status, -1);
     EXPECT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 1);
   }
-}
-
-// Runs a shell command; its exit code and standard output + error.
-std::pair<int, std::string> Shell(const std::string& command) {
-  std::string output;
-  FILE* pipe = ::popen((command + " 2>&1").c_str(), "r");
-  if (pipe == nullptr) return {-1, ""};
-  char buffer[4096];
-  while (std::size_t n = std::fread(buffer, 1, sizeof(buffer), pipe)) output.append(buffer, n);
-  const int status = ::pclose(pipe);
-  return {WIFEXITED(status) ? WEXITSTATUS(status) : -1, output};
 }
 
 TEST(ServerBinaryTest, RefusesANonLoopbackAddressWithoutTlsAndSaysHow) {

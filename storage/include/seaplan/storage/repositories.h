@@ -291,6 +291,15 @@ class WorkLeaseRepository {
   virtual absl::StatusOr<std::optional<WorkLease>> Claim(const std::string& mission_id,
                                                          const std::string& holder,
                                                          std::chrono::milliseconds ttl) = 0;
+  // Records a request about the mission's current version (read in the
+  // same transaction) and claims the work for `holder`, in one transaction,
+  // so that no other process can take the request first: the lease covers
+  // every request pending so far. When a live lease of any holder (this one
+  // included) is on the work, nothing is recorded and the answer is
+  // nullopt. NotFound when the mission is absent.
+  virtual absl::StatusOr<std::optional<WorkLease>> RequestAndClaim(
+      const std::string& mission_id, const std::string& reason, const std::string& holder,
+      std::chrono::milliseconds ttl) = 0;
   // Claims up to `limit` (1..1000) pending items that nobody holds or whose
   // lease expired, oldest request first. Concurrent callers get disjoint
   // items (PostgreSQL: FOR UPDATE SKIP LOCKED).
