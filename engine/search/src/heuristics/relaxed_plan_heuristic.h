@@ -11,6 +11,15 @@
 // plan plus the ends of running actions it does not contain; helpful
 // (preferred) events are the plan's operators applicable in the state.
 //
+// When the task has several agents (agent_loads.h), the extraction is
+// makespan-aware: the exploration also times every operator (its
+// preconditions' times and, for a start, its agents' ready times on the
+// path's schedule, plus durations), and a fact gets, among its achievers
+// reached before it is needed, the one that would finish first given the
+// durations of the plan's actions already charged to its agents; goals are
+// extracted one after another so that each sees the work given out before
+// it. Without agents the plan is FF's (first achiever of each fact).
+//
 // Not thread-safe: one instance per search (scratch arrays are reused, so an
 // evaluation allocates nothing once warmed up).
 #pragma once
@@ -22,6 +31,7 @@
 #include "../snap_task.h"
 #include "../state_registry.h"
 #include "../timeline.h"
+#include "agent_loads.h"
 
 namespace seaplan::search {
 
@@ -41,9 +51,11 @@ class RelaxedPlanHeuristic {
   // `usable` (empty: all): per SnapId, 0 for snaps known not to be able to
   // happen any more (TemporalReachability: their deadlines have passed);
   // the relaxed exploration leaves them out.
+  // `schedule` (may be null: every agent free at 0): the timeline built for
+  // the state's path, which tells when each agent is free.
   int Evaluate(const StateData& state, std::vector<SnapId>* preferred,
-               std::span<const double> window_slack = {},
-               std::span<const std::uint8_t> usable = {});
+               std::span<const double> window_slack = {}, std::span<const std::uint8_t> usable = {},
+               const Timeline* schedule = nullptr);
   // After a kDeadEnd: true when the relaxation proves it (false when the
   // numeric fixpoint was cut off after too many widening layers).
   bool last_dead_end_proven() const { return dead_end_proven_; }
@@ -70,7 +82,14 @@ class RelaxedPlanHeuristic {
     return true;
   }
   void MarkOp(int op);
-  void MarkFact(int fact);
+  // `need_layer`: the layer of the operator needing the fact (the goal
+  // layer for goals); with agents, any achiever applicable before it may
+  // be chosen (ChooseAchiever).
+  void MarkFact(int fact, int need_layer);
+  int ChooseAchiever(int fact, int need_layer) const;
+  // Earliest time `op`'s effects happen in the exploration, delayed by the
+  // durations already charged to its action's agents.
+  double FinishEstimate(int op) const;
   // Marks the changers of the condition's variables: the first operator
   // that raised a variable's interval, or lowered it, whichever direction
   // the condition needs (refuel, not the flight that burnt fuel).
@@ -127,6 +146,17 @@ class RelaxedPlanHeuristic {
   };
   std::vector<PairCheck> pair_check_;
   std::vector<std::int32_t> pair_facts_;
+
+  // Makespan-aware extraction (see the class comment); balance_ when the
+  // task has at least two agents.
+  AgentLoads agents_;
+  bool balance_ = false;
+  std::vector<std::int32_t> adder_begin_, adder_;  // CSR: real fact -> operators adding it
+  std::uint32_t stamp_ = 0;
+  std::vector<std::uint32_t> op_stamp_;  // == stamp_: applicable in this evaluation
+  std::vector<double> op_time_s_;        // when its effects happen (start: start time)
+  std::vector<double> fact_time_s_;
+  std::vector<double> ready_s_, load_s_;  // per agent: free at, and with charged work
 
   // Scratch per evaluation.
   std::vector<std::int32_t> fact_layer_, fact_achiever_;
