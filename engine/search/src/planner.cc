@@ -96,6 +96,10 @@ class PlannerRun {
   // Builds and validates; true when it is a new incumbent.
   bool Offer(const LazySearch& search);
   StateData InitialState() const;
+  // After the first plan: one more greedy search with the makespan-aware
+  // relaxed plan (agents' work spread, relaxed_plan_heuristic.h), which the
+  // later phases keep.
+  void SpreadWork(const StateData& initial);
 
   const task::GroundTask& task_;
   PlannerOptions options_;
@@ -185,6 +189,34 @@ bool PlannerRun::Offer(const LazySearch& search) {
   return true;
 }
 
+void PlannerRun::SpreadWork(const StateData& initial) {
+  heuristic_.SetMakespanAware(true);
+  if (!heuristic_.makespan_aware() || !has_plan_) return;
+  // Pruned by the first plan's makespan and given at most twice the first
+  // search's expansions: the first plan stays the fallback, so neither
+  // coverage nor the first plan's makespan can get worse, and the cost is
+  // bounded where spreading misleads the search (floortile, depots).
+  SearchParams params;
+  params.weight = -1;
+  params.bound_s = best_.makespan_s;
+  params.epsilon_s = options_.epsilon_s;
+  params.seed = options_.random_seed;
+  const std::size_t budget = std::max<std::size_t>(1000, 2 * done_counters_.expanded);
+  LazySearch search(snap_, registry_, heuristic_, transitions_, timeline_, params);
+  search.SetStopToken(&stop_);
+  search.SetTemporalReachability(&reachability_);
+  search.Initialize(initial);
+  while (search.counters().expanded <= budget && Poll(search) == Outcome::kContinue) {
+    const LazySearch::Status status = search.Step();
+    if (status == LazySearch::Status::kSolved) {
+      Offer(search);
+      break;
+    }
+    if (status == LazySearch::Status::kExhausted) break;
+  }
+  AddCounters(search);
+}
+
 PlanResult PlannerRun::Run() {
   const StateData initial = InitialState();
   best_.status = PlanStatus::kTimeout;
@@ -253,9 +285,11 @@ PlanResult PlannerRun::Run() {
       break;
     }
   }
+  SpreadWork(initial);
   if (!options_.anytime) return finish(PlanStatus::kSolvedSatisficing, "");
 
-  // Phase 2: restarting weighted A* on makespan, pruned by the incumbent.
+  // Phase 2: restarting weighted A* on makespan, pruned by the incumbent
+  // (with the makespan-aware relaxed plan SpreadWork turned on).
   bool proven = false;
   const double weights[] = {3, 2, 1.5, 1.2, 1};
   for (double w : weights) {

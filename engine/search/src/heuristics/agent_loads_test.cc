@@ -103,6 +103,8 @@ TEST_F(AgentLoadsTest, PerformersAreTheObjectsWhoseFactsTheActionHolds) {
 
 TEST_F(AgentLoadsTest, RelaxedPlanGivesTheSecondContainerToTheIdleShip) {
   RelaxedPlanHeuristic heuristic(*snap_, 0.001);
+  heuristic.SetMakespanAware(true);
+  ASSERT_TRUE(heuristic.makespan_aware());
   std::vector<SnapId> preferred;
   const int h = heuristic.Evaluate(testing::InitialState(*task_, *snap_), &preferred);
   // Goals in order. The repair sends ship0 to c (moves e-a, a-b, b-c and

@@ -156,8 +156,7 @@ RelaxedPlanHeuristic::RelaxedPlanHeuristic(const SnapTask& task, double epsilon_
       ++num_goal_facts_;
     }
   }
-  balance_ = agents_.active();
-  if (balance_) {
+  if (agents_.active()) {
     std::vector<std::int32_t> adders(static_cast<std::size_t>(num_facts_) + 1, 0);
     for (auto f : add_) {
       if (f < num_facts_) ++adders[f + 1];
@@ -174,6 +173,10 @@ RelaxedPlanHeuristic::RelaxedPlanHeuristic(const SnapTask& task, double epsilon_
     op_time_s_.assign(static_cast<std::size_t>(num_ops_), 0.0);
     fact_time_s_.assign(static_cast<std::size_t>(total_facts), 0.0);
   }
+}
+
+void RelaxedPlanHeuristic::SetMakespanAware(bool on) {
+  makespan_aware_ = on && agents_.active();
 }
 
 RelaxedPlanHeuristic::Interval RelaxedPlanHeuristic::EvalInterval(const task::NumericExpr& expr,
@@ -298,7 +301,7 @@ void RelaxedPlanHeuristic::MarkOp(int op) {
   op_marked_[op] = 1;
   marked_ops_.push_back(op);
   stack_.push_back(op);
-  if (balance_ && (op & 1) == 0) {
+  if (makespan_aware_ && (op & 1) == 0) {
     const double d = agents_.DurationOf(op / 2);
     for (auto g : agents_.AgentsOf(op / 2)) load_s_[static_cast<std::size_t>(g)] += d;
   }
@@ -309,7 +312,7 @@ void RelaxedPlanHeuristic::MarkFact(int fact, int need_layer) {
   fact_marked_[fact] = 1;
   marked_facts_.push_back(fact);
   if (fact_layer_[fact] <= 0) return;
-  MarkOp(balance_ ? ChooseAchiever(fact, need_layer) : fact_achiever_[fact]);
+  MarkOp(makespan_aware_ ? ChooseAchiever(fact, need_layer) : fact_achiever_[fact]);
 }
 
 double RelaxedPlanHeuristic::FinishEstimate(int op) const {
@@ -441,20 +444,20 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
   for (auto f : suppressed_list_) suppressed_[f] = 0;
   suppressed_list_.clear();
   exempt_ends_.clear();
-  if (balance_) {
+  if (makespan_aware_) {
     if (++stamp_ == 0) {  // wrapped: forget every old stamp
       std::fill(op_stamp_.begin(), op_stamp_.end(), 0);
       stamp_ = 1;
     }
     agents_.ReadyTimes(state, schedule, &ready_s_);
   }
-  // `time_s`: when the fact holds at the earliest (read only with balance_).
+  // `time_s`: when the fact holds at the earliest (read only with makespan_aware_).
   auto reach = [&](int f, int layer, int achiever, double time_s) {
     if (fact_layer_[f] >= 0) return;
     if (!suppressed_list_.empty() && f < num_facts_ && suppressed_[f]) PayBackExemptEnds(f);
     fact_layer_[f] = layer;
     fact_achiever_[f] = achiever;
-    if (balance_) fact_time_s_[f] = time_s;
+    if (makespan_aware_) fact_time_s_[f] = time_s;
     goals_left -= goal_fact_[f];
     new_facts_.push_back(f);
   };
@@ -580,7 +583,7 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
     for (; processed_applicable < applicable_.size(); ++processed_applicable) {
       const int op = applicable_[processed_applicable];
       double time_s = 0.0, started_s = 0.0;
-      if (balance_) {
+      if (makespan_aware_) {
         for (int i = pre_begin_[op]; i < pre_begin_[op + 1]; ++i) {
           time_s = std::max(time_s, fact_time_s_[pre_[i]]);
         }
@@ -694,7 +697,7 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
   marked_ops_.clear();
   marked_facts_.clear();
   stack_.clear();
-  if (balance_) load_s_ = ready_s_;
+  if (makespan_aware_) load_s_ = ready_s_;
   auto extract_needs = [&]() {
     while (!stack_.empty()) {
       const int op = stack_.back();

@@ -11,14 +11,14 @@
 // plan plus the ends of running actions it does not contain; helpful
 // (preferred) events are the plan's operators applicable in the state.
 //
-// When the task has several agents (agent_loads.h), the extraction is
-// makespan-aware: the exploration also times every operator (its
+// Makespan-aware mode (SetMakespanAware; only in tasks with several agents,
+// agent_loads.h): the exploration also times every operator (its
 // preconditions' times and, for a start, its agents' ready times on the
 // path's schedule, plus durations), and a fact gets, among its achievers
 // reached before it is needed, the one that would finish first given the
 // durations of the plan's actions already charged to its agents; goals are
 // extracted one after another so that each sees the work given out before
-// it. Without agents the plan is FF's (first achiever of each fact).
+// it. Otherwise the plan is FF's (first achiever of each fact).
 //
 // Not thread-safe: one instance per search (scratch arrays are reused, so an
 // evaluation allocates nothing once warmed up).
@@ -40,6 +40,13 @@ class RelaxedPlanHeuristic {
   static constexpr int kDeadEnd = 1 << 30;
 
   RelaxedPlanHeuristic(const SnapTask& task, double epsilon_s);
+
+  // Off by default. Ignored (stays off) in tasks with fewer than two
+  // agents. The planner turns it on after its first plan: spreading work
+  // makes plans shorter but can mislead the greedy search where the order
+  // of work matters more (floortile, depots).
+  void SetMakespanAware(bool on);
+  bool makespan_aware() const { return makespan_aware_; }
 
   // Returns the estimate (kDeadEnd when the goal is relaxed-unreachable).
   // `preferred` (may be null) receives the helpful snaps (SnapIds).
@@ -147,10 +154,10 @@ class RelaxedPlanHeuristic {
   std::vector<PairCheck> pair_check_;
   std::vector<std::int32_t> pair_facts_;
 
-  // Makespan-aware extraction (see the class comment); balance_ when the
-  // task has at least two agents.
+  // Makespan-aware extraction (see the class comment); the tables below
+  // exist only when the task has at least two agents.
   AgentLoads agents_;
-  bool balance_ = false;
+  bool makespan_aware_ = false;
   std::vector<std::int32_t> adder_begin_, adder_;  // CSR: real fact -> operators adding it
   std::uint32_t stamp_ = 0;
   std::vector<std::uint32_t> op_stamp_;  // == stamp_: applicable in this evaluation
