@@ -17,7 +17,11 @@
 //     fixed-time events; an inconsistent network prunes the successor;
 //   - first plan: lazy greedy best-first search with an FF relaxed-plan
 //     heuristic on the snap actions (numeric fluents as intervals) and
-//     helpful actions in a second, boosted open list;
+//     helpful actions in a second, boosted open list; then, in tasks with
+//     two or more agents (ships), one more greedy search whose relaxed plan
+//     spreads the work over them, bounded (by the first plan's makespan and
+//     twice the first search's expansions), whose plan replaces the first
+//     when shorter; that is the plan returned without anytime;
 //   - anytime: restarting weighted A* on makespan, pruned by the incumbent,
 //     until the time limit or an exhausted space;
 //   - every plan is scheduled at its earliest STN times, printed with
@@ -67,6 +71,8 @@ struct PlannerOptions {
   // search space but can make required-concurrency tasks unsolvable.
   int max_concurrent_actions = 0;
   // Keep improving the makespan after the first plan (until the limit).
+  // Off: the plan after the first greedy search and its bounded
+  // work-spreading retry (above).
   bool anytime = true;
   // Tie-breaking among equally good successors; same seed, same plan.
   std::uint64_t random_seed = 1;
