@@ -192,29 +192,42 @@ bool PlannerRun::Offer(const LazySearch& search) {
 void PlannerRun::SpreadWork(const StateData& initial) {
   heuristic_.SetMakespanAware(true);
   if (!heuristic_.makespan_aware() || !has_plan_) return;
-  // Pruned by the first plan's makespan and given at most twice the first
+  // Pruned by the incumbent and given, in all, at most twice the first
   // search's expansions: the first plan stays the fallback, so neither
   // coverage nor the first plan's makespan can get worse, and the cost is
-  // bounded where spreading misleads the search (floortile, depots).
-  SearchParams params;
-  params.weight = -1;
-  params.bound_s = best_.makespan_s;
-  params.epsilon_s = options_.epsilon_s;
-  params.seed = options_.random_seed;
-  const std::size_t budget = std::max<std::size_t>(1000, 2 * done_counters_.expanded);
-  LazySearch search(snap_, registry_, heuristic_, transitions_, timeline_, params);
-  search.SetStopToken(&stop_);
-  search.SetTemporalReachability(&reachability_);
-  search.Initialize(initial);
-  while (search.counters().expanded <= budget && Poll(search) == Outcome::kContinue) {
-    const LazySearch::Status status = search.Step();
-    if (status == LazySearch::Status::kSolved) {
-      Offer(search);
-      break;
+  // bounded where spreading misleads the search (floortile, depots). A
+  // greedy pass (large missions: another ship assignment), then, with what
+  // is left, weighted A* (w = 3) on makespan (small ones: the greedy
+  // search's detours).
+  std::size_t left = std::max<std::size_t>(1000, 2 * done_counters_.expanded);
+  for (const double weight : {-1.0, 3.0}) {
+    SearchParams params;
+    params.weight = weight;
+    params.scale_s = best_.makespan_s / std::max<double>(1.0, static_cast<double>(plan_events_));
+    params.bound_s = best_.makespan_s;
+    params.epsilon_s = options_.epsilon_s;
+    params.seed = options_.random_seed;
+    LazySearch search(snap_, registry_, heuristic_, transitions_, timeline_, params);
+    search.SetStopToken(&stop_);
+    search.SetTemporalReachability(&reachability_);
+    search.Initialize(initial);
+    bool stop = false;
+    while (search.counters().expanded <= left) {
+      if (Poll(search) != Outcome::kContinue) {
+        stop = true;
+        break;
+      }
+      const LazySearch::Status status = search.Step();
+      if (status == LazySearch::Status::kSolved) {
+        Offer(search);
+        break;
+      }
+      if (status == LazySearch::Status::kExhausted) break;
     }
-    if (status == LazySearch::Status::kExhausted) break;
+    AddCounters(search);
+    left -= std::min(left, search.counters().expanded);
+    if (stop || left == 0) return;
   }
-  AddCounters(search);
 }
 
 PlanResult PlannerRun::Run() {
