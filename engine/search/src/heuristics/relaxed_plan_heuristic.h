@@ -42,9 +42,9 @@ class RelaxedPlanHeuristic {
   RelaxedPlanHeuristic(const SnapTask& task, double epsilon_s);
 
   // Off by default. Ignored (stays off) in tasks with fewer than two
-  // agents. The planner turns it on after its first plan: spreading work
-  // makes plans shorter but can mislead the greedy search where the order
-  // of work matters more (floortile, depots).
+  // agents. The planner uses it only in bounded searches after its first
+  // plan: spreading work makes plans shorter but can mislead the search
+  // where the order of work matters more (floortile, depots).
   void SetMakespanAware(bool on);
   bool makespan_aware() const { return makespan_aware_; }
 
