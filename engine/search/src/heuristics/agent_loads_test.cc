@@ -62,9 +62,8 @@ constexpr char kProblem[] = R"((define (problem two-ships) (:domain haul)
 class AgentLoadsTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    auto loaded = task::LoadTask(kDomain, kProblem);
-    ASSERT_TRUE(loaded.ok()) << loaded.ErrorText();
-    task_ = loaded.task;
+    task_ = testing::LoadTaskOrFail(kDomain, kProblem);
+    ASSERT_NE(task_, nullptr);
     snap_ = std::make_unique<SnapTask>(*task_);
   }
 
