@@ -232,10 +232,12 @@ LazySearch::Status LazySearch::Step() {
     }
     usable = reachability_->usable_snaps();
   }
+  // The heuristic reads when each agent is free on the path's schedule.
+  EnsureTimeline(s);
   int h = heuristic_.Evaluate(current_, &preferred_,
                               std::span<const double>(slack_pool_.data() + cur.slack_begin,
                                                       static_cast<std::size_t>(cur.slack_count)),
-                              usable);
+                              usable, &timeline_);
   if (timed_check && h < RelaxedPlanHeuristic::kDeadEnd) {
     // The untimed relaxed plan counts a fact of the state as free even when
     // the state got it too late for a window (an image taken after its

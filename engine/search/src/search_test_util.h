@@ -1,15 +1,18 @@
-// Lookups the engine/search unit tests share: ground actions and facts by
-// their display name, and the initial state of a task. A name that is not
-// grounded is a test failure (ADD_FAILURE) and yields id 0, a valid index,
-// so the test goes on to report its other checks.
+// Helpers the engine/search unit tests share: loading a task from text,
+// ground actions and facts by their display name, and the initial state of
+// a task. A name that is not grounded is a test failure (ADD_FAILURE) and
+// yields id 0, a valid index, so the test goes on to report its other
+// checks.
 #pragma once
 
 #include <gtest/gtest.h>
 
 #include <cstddef>
+#include <memory>
 #include <string_view>
 
 #include "seaplan/task/ground_task.h"
+#include "seaplan/task/grounder.h"
 #include "snap_task.h"
 #include "state_registry.h"
 
@@ -29,6 +32,15 @@ inline task::FactId FactIdOf(const task::GroundTask& task, std::string_view disp
   }
   ADD_FAILURE() << "no fact " << display_name;
   return 0;
+}
+
+// Grounds a test's own domain and problem text; a task that does not load
+// is a test failure (with the loader's errors) and yields null.
+inline std::shared_ptr<const task::GroundTask> LoadTaskOrFail(std::string_view domain,
+                                                              std::string_view problem) {
+  auto loaded = task::LoadTask(domain, problem);
+  EXPECT_TRUE(loaded.ok()) << loaded.ErrorText();
+  return loaded.ok() ? loaded.task : nullptr;
 }
 
 // The task's initial facts and numeric values, no running action.

@@ -28,7 +28,8 @@ RelaxedPlanHeuristic::RelaxedPlanHeuristic(const SnapTask& task, double epsilon_
     : task_(task),
       num_facts_(task.num_facts()),
       num_ops_(2 * task.num_actions()),
-      epsilon_s_(epsilon_s) {
+      epsilon_s_(epsilon_s),
+      agents_(task) {
   const int total_facts = num_facts_ + task.num_actions();
   const auto& actions = task.task().actions;
   pre_begin_.push_back(0);
@@ -155,6 +156,27 @@ RelaxedPlanHeuristic::RelaxedPlanHeuristic(const SnapTask& task, double epsilon_
       ++num_goal_facts_;
     }
   }
+  if (agents_.active()) {
+    std::vector<std::int32_t> adders(static_cast<std::size_t>(num_facts_) + 1, 0);
+    for (auto f : add_) {
+      if (f < num_facts_) ++adders[f + 1];
+    }
+    for (std::size_t i = 1; i < adders.size(); ++i) adders[i] += adders[i - 1];
+    adder_begin_ = adders;
+    adder_.resize(static_cast<std::size_t>(adders.back()));
+    for (int op = 0; op < num_ops_; ++op) {
+      for (int i = add_begin_[op]; i < add_begin_[op + 1]; ++i) {
+        if (add_[i] < num_facts_) adder_[adders[add_[i]]++] = op;
+      }
+    }
+    op_stamp_.assign(static_cast<std::size_t>(num_ops_), 0);
+    op_time_s_.assign(static_cast<std::size_t>(num_ops_), 0.0);
+    fact_time_s_.assign(static_cast<std::size_t>(total_facts), 0.0);
+  }
+}
+
+void RelaxedPlanHeuristic::SetMakespanAware(bool on) {
+  makespan_aware_ = on && agents_.active();
 }
 
 RelaxedPlanHeuristic::Interval RelaxedPlanHeuristic::EvalInterval(const task::NumericExpr& expr,
@@ -279,14 +301,47 @@ void RelaxedPlanHeuristic::MarkOp(int op) {
   op_marked_[op] = 1;
   marked_ops_.push_back(op);
   stack_.push_back(op);
+  if (makespan_aware_ && (op & 1) == 0) {
+    const double d = agents_.DurationOf(op / 2);
+    for (auto g : agents_.AgentsOf(op / 2)) load_s_[static_cast<std::size_t>(g)] += d;
+  }
 }
 
-void RelaxedPlanHeuristic::MarkFact(int fact) {
+void RelaxedPlanHeuristic::MarkFact(int fact, int need_layer) {
   if (fact_marked_[fact]) return;
   fact_marked_[fact] = 1;
   marked_facts_.push_back(fact);
   if (fact_layer_[fact] <= 0) return;
-  MarkOp(fact_achiever_[fact]);
+  MarkOp(makespan_aware_ ? ChooseAchiever(fact, need_layer) : fact_achiever_[fact]);
+}
+
+double RelaxedPlanHeuristic::FinishEstimate(int op) const {
+  const int a = op / 2;
+  // A running action's end: its agents' work is already in their ready times.
+  if ((op & 1) != 0 && fact_layer_[num_facts_ + a] == 0) return op_time_s_[op];
+  double charged_s = 0.0;
+  for (auto g : agents_.AgentsOf(a)) {
+    charged_s = std::max(
+        charged_s, load_s_[static_cast<std::size_t>(g)] - ready_s_[static_cast<std::size_t>(g)]);
+  }
+  return op_time_s_[op] + charged_s;
+}
+
+int RelaxedPlanHeuristic::ChooseAchiever(int fact, int need_layer) const {
+  int best = fact_achiever_[fact];
+  if (fact >= num_facts_ || best < 0) return best;  // started(a): only its start adds it
+  double best_s = FinishEstimate(best);
+  for (int i = adder_begin_[fact]; i < adder_begin_[fact + 1]; ++i) {
+    const int op = adder_[i];
+    if (op == best || op_stamp_[op] != stamp_ || op_layer_[op] >= need_layer) continue;
+    const double t = FinishEstimate(op);
+    // Strictly earlier (beyond rounding): ties keep FF's first achiever.
+    if (t < best_s - 1e-6) {
+      best = op;
+      best_s = t;
+    }
+  }
+  return best;
 }
 
 void RelaxedPlanHeuristic::MarkNumeric(const task::NumericCondition& c, int layer,
@@ -363,7 +418,7 @@ bool RelaxedPlanHeuristic::IsExemptEnd(int fact, int op) const {
 
 int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* preferred,
                                    std::span<const double> window_slack,
-                                   std::span<const std::uint8_t> usable) {
+                                   std::span<const std::uint8_t> usable, const Timeline* schedule) {
   // All bytes 0xff is -1 in every int: memset, not an element loop.
   std::memset(fact_layer_.data(), 0xff, fact_layer_.size() * sizeof(fact_layer_[0]));
   // op_layer_ is only read for operators that became applicable (plan
@@ -389,11 +444,20 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
   for (auto f : suppressed_list_) suppressed_[f] = 0;
   suppressed_list_.clear();
   exempt_ends_.clear();
-  auto reach = [&](int f, int layer, int achiever) {
+  if (makespan_aware_) {
+    if (++stamp_ == 0) {  // wrapped: forget every old stamp
+      std::fill(op_stamp_.begin(), op_stamp_.end(), 0);
+      stamp_ = 1;
+    }
+    agents_.ReadyTimes(state, schedule, &ready_s_);
+  }
+  // `time_s`: when the fact holds at the earliest (read only with makespan_aware_).
+  auto reach = [&](int f, int layer, int achiever, double time_s) {
     if (fact_layer_[f] >= 0) return;
     if (!suppressed_list_.empty() && f < num_facts_ && suppressed_[f]) PayBackExemptEnds(f);
     fact_layer_[f] = layer;
     fact_achiever_[f] = achiever;
+    if (makespan_aware_) fact_time_s_[f] = time_s;
     goals_left -= goal_fact_[f];
     new_facts_.push_back(f);
   };
@@ -417,15 +481,18 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
       bits &= bits - 1;
       const int f = static_cast<int>(w * 64) + b;
       if (!suppressed_list_.empty() && suppressed_[f]) continue;
-      reach(f, 0, -1);
+      reach(f, 0, -1, 0.0);
     }
   }
   if (!suppressed_list_.empty()) ExemptRunningEnds(state);
   const auto& tils = task_.tils();
   for (std::size_t k = static_cast<std::size_t>(state.next_til); k < tils.size(); ++k) {
-    for (auto f : tils[k].add) reach(f, 0, -1);
+    for (auto f : tils[k].add) reach(f, 0, -1, tils[k].time_s);
   }
-  for (const auto& r : state.running) reach(num_facts_ + r.action, 0, -1);
+  for (const auto& r : state.running) {
+    const double started_s = schedule != nullptr ? schedule->StartedAt(r.action) : 0.0;
+    reach(num_facts_ + r.action, 0, -1, started_s + r.min_duration_s);
+  }
   // Operators without fact preconditions are enabled from the start.
   for (auto op : no_pre_ops_) {
     if (!usable.empty() && !usable[op]) continue;
@@ -515,7 +582,23 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
     const bool new_ops = processed_applicable < applicable_.size();
     for (; processed_applicable < applicable_.size(); ++processed_applicable) {
       const int op = applicable_[processed_applicable];
-      for (int i = add_begin_[op]; i < add_begin_[op + 1]; ++i) reach(add_[i], layer + 1, op);
+      double time_s = 0.0, started_s = 0.0;
+      if (makespan_aware_) {
+        for (int i = pre_begin_[op]; i < pre_begin_[op + 1]; ++i) {
+          time_s = std::max(time_s, fact_time_s_[pre_[i]]);
+        }
+        if ((op & 1) == 0) {
+          for (auto g : agents_.AgentsOf(op / 2)) {
+            time_s = std::max(time_s, ready_s_[static_cast<std::size_t>(g)]);
+          }
+        }
+        op_time_s_[op] = time_s;
+        op_stamp_[op] = stamp_;
+        started_s = time_s + agents_.DurationOf(op / 2);
+      }
+      for (int i = add_begin_[op]; i < add_begin_[op + 1]; ++i) {
+        reach(add_[i], layer + 1, op, add_[i] < num_facts_ ? time_s : started_s);
+      }
       if (has_num_eff_[op]) numeric_ops.push_back(op);
     }
     bool widened = false;
@@ -614,26 +697,38 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
   marked_ops_.clear();
   marked_facts_.clear();
   stack_.clear();
-  for (auto f : goal.positive) MarkFact(f);
+  if (makespan_aware_) load_s_ = ready_s_;
+  auto extract_needs = [&]() {
+    while (!stack_.empty()) {
+      const int op = stack_.back();
+      stack_.pop_back();
+      for (int i = pre_begin_[op]; i < pre_begin_[op + 1]; ++i) {
+        // Every exempt fact is suppressed (ExemptRunningEnds): the scan only
+        // for those.
+        if (!exempt_ends_.empty() && pre_[i] < num_facts_ && suppressed_[pre_[i]] &&
+            IsExemptEnd(pre_[i], op)) {
+          continue;
+        }
+        MarkFact(pre_[i], op_layer_[op]);
+      }
+      for (const auto* c : num_pre_[op]) {
+        if (!ConditionHoldsNumeric(*c, state)) MarkNumeric(*c, op_layer_[op], state, op / 2);
+      }
+    }
+  };
+  // One goal's whole support before the next goal's achiever is chosen, so
+  // that the choice sees the work charged so far (the set marked without
+  // agents does not depend on the order). Goals are taken in the task's
+  // order: taking those reached latest first (as list scheduling does)
+  // gave worse first plans on generated fjord missions.
+  for (auto f : goal.positive) {
+    MarkFact(f, goal_layer);
+    extract_needs();
+  }
   for (const auto& c : goal.numeric) {
     if (!ConditionHoldsNumeric(c, state)) MarkNumeric(c, goal_layer, state, -1);
   }
-  while (!stack_.empty()) {
-    const int op = stack_.back();
-    stack_.pop_back();
-    for (int i = pre_begin_[op]; i < pre_begin_[op + 1]; ++i) {
-      // Every exempt fact is suppressed (ExemptRunningEnds): the scan only
-      // for those.
-      if (!exempt_ends_.empty() && pre_[i] < num_facts_ && suppressed_[pre_[i]] &&
-          IsExemptEnd(pre_[i], op)) {
-        continue;
-      }
-      MarkFact(pre_[i]);
-    }
-    for (const auto* c : num_pre_[op]) {
-      if (!ConditionHoldsNumeric(*c, state)) MarkNumeric(*c, op_layer_[op], state, op / 2);
-    }
-  }
+  extract_needs();
   int h = static_cast<int>(marked_ops_.size());
   for (const auto& r : state.running) {
     if (!op_marked_[2 * r.action + 1]) ++h;

@@ -11,6 +11,15 @@
 // plan plus the ends of running actions it does not contain; helpful
 // (preferred) events are the plan's operators applicable in the state.
 //
+// Makespan-aware mode (SetMakespanAware; only in tasks with several agents,
+// agent_loads.h): the exploration also times every operator (its
+// preconditions' times and, for a start, its agents' ready times on the
+// path's schedule, plus durations), and a fact gets, among its achievers
+// reached before it is needed, the one that would finish first given the
+// durations of the plan's actions already charged to its agents; goals are
+// extracted one after another so that each sees the work given out before
+// it. Otherwise the plan is FF's (first achiever of each fact).
+//
 // Not thread-safe: one instance per search (scratch arrays are reused, so an
 // evaluation allocates nothing once warmed up).
 #pragma once
@@ -22,6 +31,7 @@
 #include "../snap_task.h"
 #include "../state_registry.h"
 #include "../timeline.h"
+#include "agent_loads.h"
 
 namespace seaplan::search {
 
@@ -30,6 +40,13 @@ class RelaxedPlanHeuristic {
   static constexpr int kDeadEnd = 1 << 30;
 
   RelaxedPlanHeuristic(const SnapTask& task, double epsilon_s);
+
+  // Off by default. Ignored (stays off) in tasks with fewer than two
+  // agents. The planner uses it only in bounded searches after its first
+  // plan: spreading work makes plans shorter but can mislead the search
+  // where the order of work matters more (floortile, depots).
+  void SetMakespanAware(bool on);
+  bool makespan_aware() const { return makespan_aware_; }
 
   // Returns the estimate (kDeadEnd when the goal is relaxed-unreachable).
   // `preferred` (may be null) receives the helpful snaps (SnapIds).
@@ -41,9 +58,11 @@ class RelaxedPlanHeuristic {
   // `usable` (empty: all): per SnapId, 0 for snaps known not to be able to
   // happen any more (TemporalReachability: their deadlines have passed);
   // the relaxed exploration leaves them out.
+  // `schedule` (may be null: every agent free at 0): the timeline built for
+  // the state's path, which tells when each agent is free.
   int Evaluate(const StateData& state, std::vector<SnapId>* preferred,
-               std::span<const double> window_slack = {},
-               std::span<const std::uint8_t> usable = {});
+               std::span<const double> window_slack = {}, std::span<const std::uint8_t> usable = {},
+               const Timeline* schedule = nullptr);
   // After a kDeadEnd: true when the relaxation proves it (false when the
   // numeric fixpoint was cut off after too many widening layers).
   bool last_dead_end_proven() const { return dead_end_proven_; }
@@ -70,7 +89,14 @@ class RelaxedPlanHeuristic {
     return true;
   }
   void MarkOp(int op);
-  void MarkFact(int fact);
+  // `need_layer`: the layer of the operator needing the fact (the goal
+  // layer for goals); with agents, any achiever applicable before it may
+  // be chosen (ChooseAchiever).
+  void MarkFact(int fact, int need_layer);
+  int ChooseAchiever(int fact, int need_layer) const;
+  // Earliest time `op`'s effects happen in the exploration, delayed by the
+  // durations already charged to its action's agents.
+  double FinishEstimate(int op) const;
   // Marks the changers of the condition's variables: the first operator
   // that raised a variable's interval, or lowered it, whichever direction
   // the condition needs (refuel, not the flight that burnt fuel).
@@ -127,6 +153,17 @@ class RelaxedPlanHeuristic {
   };
   std::vector<PairCheck> pair_check_;
   std::vector<std::int32_t> pair_facts_;
+
+  // Makespan-aware extraction (see the class comment); the tables below
+  // exist only when the task has at least two agents.
+  AgentLoads agents_;
+  bool makespan_aware_ = false;
+  std::vector<std::int32_t> adder_begin_, adder_;  // CSR: real fact -> operators adding it
+  std::uint32_t stamp_ = 0;
+  std::vector<std::uint32_t> op_stamp_;  // == stamp_: applicable in this evaluation
+  std::vector<double> op_time_s_;        // when its effects happen (start: start time)
+  std::vector<double> fact_time_s_;
+  std::vector<double> ready_s_, load_s_;  // per agent: free at, and with charged work
 
   // Scratch per evaluation.
   std::vector<std::int32_t> fact_layer_, fact_achiever_;

@@ -19,7 +19,12 @@
 //     heuristic on the snap actions (numeric fluents as intervals) and
 //     helpful actions in a second, boosted open list; ties by makespan so
 //     far, and when that finds nothing in half the time, a second greedy
-//     search that takes ties newest first (depth first on plateaus);
+//     search that takes ties newest first (depth first on plateaus); then, in
+//     tasks with two or more agents (ships), a greedy search and then
+//     weighted A* (w = 3) whose relaxed plan spreads the work over them,
+//     bounded (by the first plan's makespan and, together, twice the first
+//     search's expansions), whose plans replace the first when shorter; that
+//     is the plan returned without anytime;
 //   - anytime: restarting weighted A* on makespan, pruned by the incumbent,
 //     until the time limit or an exhausted space;
 //   - every plan is scheduled at its earliest STN times, printed with
@@ -69,6 +74,8 @@ struct PlannerOptions {
   // search space but can make required-concurrency tasks unsolvable.
   int max_concurrent_actions = 0;
   // Keep improving the makespan after the first plan (until the limit).
+  // Off: the plan after the first greedy search and its bounded
+  // work-spreading searches (above).
   bool anytime = true;
   // Tie-breaking among equally good successors; same seed, same plan.
   std::uint64_t random_seed = 1;
