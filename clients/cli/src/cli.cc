@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "CLI/CLI.hpp"
+#include "absl/strings/str_cat.h"
 #include "client_token.h"
 #include "google/protobuf/util/json_util.h"
 #include "output.h"
@@ -94,8 +95,8 @@ std::string FormatTimeMs(std::int64_t ms) {
 }
 
 std::unique_ptr<Backend> MakeBackend(const GlobalOptions& options) {
-  return options.executable->make_backend(options.server, options.timeout_s,
-                                          ResolvedToken(options), options.tls);
+  return options.executable->make_backend(options.server, options.timeout_s, ResolvedToken(options),
+                                          options.tls);
 }
 
 void PrintJsonOr(const GlobalOptions& options, const google::protobuf::Message& message,
@@ -228,8 +229,8 @@ absl::Status BuildUpload(const ChartArgs& args, v1::UploadChartRequest* request)
     std::sort(inner.begin(), inner.end());
     for (const std::string& relative : inner) {
       auto* file = request->add_files();
-      file->set_name(base + "/" + relative);
-      SEAPLAN_RETURN_IF_ERROR(ReadFile(path + "/" + relative, file->mutable_content()));
+      file->set_name(absl::StrCat(base, "/", relative));
+      SEAPLAN_RETURN_IF_ERROR(ReadFile(absl::StrCat(path, "/", relative), file->mutable_content()));
     }
   }
   const std::string& first = request->files(0).name();
