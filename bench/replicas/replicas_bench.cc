@@ -22,6 +22,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <filesystem>
 #include <memory>
@@ -54,7 +55,8 @@ fs::path BinDir() {
 double Percentile(std::vector<double> v, double q) {
   if (v.empty()) return 0;
   std::sort(v.begin(), v.end());
-  const std::size_t i = std::min(v.size() - 1, static_cast<std::size_t>(q * (v.size() - 1) + 0.5));
+  const std::size_t i = std::min(
+      v.size() - 1, static_cast<std::size_t>(std::lround(q * static_cast<double>(v.size() - 1))));
   return v[i];
 }
 
@@ -131,6 +133,7 @@ Samples Load(int clients, double seconds, Call call) {
   const auto start = Clock::now();
   const auto until = start + std::chrono::duration<double>(seconds);
   std::vector<std::thread> threads;
+  threads.reserve(static_cast<std::size_t>(clients));
   for (int c = 0; c < clients; ++c) {
     threads.emplace_back([&, c] {
       std::vector<double> mine;
@@ -235,6 +238,7 @@ class Bench {
       }
       ha::NginxBalancer nginx;
       std::vector<ha::ReplicaPorts> ports;
+      ports.reserve(static_cast<std::size_t>(n));
       for (int i = 0; i < n; ++i) ports.push_back({replicas_[i].port(), replicas_[i].http_port()});
       if (!nginx.Start(nginx_, SourceDir() / "deploy/nginx.conf", ports,
                        dir_ / ("nginx" + std::to_string(n)))) {

@@ -29,7 +29,7 @@ struct CommandResult {
 };
 
 fs::path ScratchDir() {
-  const auto dir = fs::temp_directory_path() / ("seaplan-cli-test-" + std::to_string(::getpid()));
+  auto dir = fs::temp_directory_path() / ("seaplan-cli-test-" + std::to_string(::getpid()));
   fs::create_directories(dir);
   return dir;
 }
@@ -101,7 +101,7 @@ TEST(CliInProcessTest, MalformedPddlExitsTwoWithLocation) {
   EXPECT_EQ(result.exit_code, 2) << result.out << result.err;
   // The undeclared predicate q on line 4 is named with its position.
   EXPECT_NE(result.err.find("domain:4:"), std::string::npos) << result.err;
-  EXPECT_NE(result.err.find("q"), std::string::npos) << result.err;
+  EXPECT_NE(result.err.find('q'), std::string::npos) << result.err;
 }
 
 TEST(CliInProcessTest, MissingFileAndUsageErrorsExitTwo) {
@@ -130,7 +130,7 @@ TEST(CliInProcessTest, JsonOutputIsTheApiMessage) {
   auto result = RunSeaplan({"--json", "plan", Example("domain.pddl"), Example("case-a.pddl"),
                             "--time-limit", "2", "--no-anytime"});
   ASSERT_EQ(result.exit_code, 0) << result.err;
-  EXPECT_EQ(result.out.rfind("{", 0), 0u) << result.out;
+  EXPECT_EQ(result.out.rfind('{', 0), 0u) << result.out;
   EXPECT_NE(result.out.find("\"status\":\"SOLVED_"), std::string::npos) << result.out;
   EXPECT_NE(result.out.find("\"makespanS\""), std::string::npos) << result.out;
 }
@@ -315,9 +315,9 @@ TEST(CliRemoteTest, TokenCommandsAndTheirEffect) {
   EXPECT_NE(audit.out.find("AccessService/RevokeToken  " + viewer_id), std::string::npos)
       << audit.out;
 
-  auto none = RunSeaplan({"-u", "SEAPLAN_TOKEN", (BinDir() / "seaplan").string(), "--server",
-                          addr, "mission", "list"},
-                         "/usr/bin/env");
+  auto none = RunSeaplan(
+      {"-u", "SEAPLAN_TOKEN", (BinDir() / "seaplan").string(), "--server", addr, "mission", "list"},
+      "/usr/bin/env");
   EXPECT_EQ(none.exit_code, 3);
   EXPECT_NE(none.err.find("--token"), std::string::npos) << none.err;
   auto missing = RunSeaplan({"--server", addr, "--token-file", "/nonexistent", "mission", "list"});
