@@ -3,21 +3,27 @@
 # first report) or failing test.
 #
 #   asan: AddressSanitizer + UndefinedBehaviorSanitizer (and LeakSanitizer)
-#         over every library, binary and test (benchmarks are left out: their
-#         smoke runs add nothing the tests do not cover) in build-asan/; the
-#         whole ctest suite but the operator console's JavaScript tests (they
-#         have no C++ of their own; the server paths the browser drives are
-#         run by console_api_e2e_test). Extra arguments go to ctest.
+#         over every library, binary, test and benchmark in build-asan/ (the
+#         benchmarks because bench/ holds tests too: the collision-avoidance
+#         encounter suite, the mission generator's); the whole ctest suite
+#         but the operator console's JavaScript (console_* and the console's
+#         render benchmark: no C++ of their own; the server paths the browser
+#         drives are run by tests/server/console_api_e2e_test.cc). Extra
+#         arguments go to ctest.
 #   tsan: ThreadSanitizer in build-tsan/, only what runs threads and its
 #         tests: the server (work pool, mission coordinator, route caches,
-#         in-process and as a binary with the simulation client), the
-#         Level-2 optimiser's PSO threads, stop tokens, the chart's per-thread
+#         caller rate limits, authentication; in-process, and as binaries
+#         with the simulation client, over TLS, and as replicas sharing
+#         PostgreSQL with replan leases and the change feed), the storage
+#         backends, the mission engine's chart-routing cache, the Level-2
+#         optimiser's PSO threads, stop tokens, the chart's per-thread
 #         obstacle queries.
 #   ci:   what CI runs after the test command (.ci/run), chosen to fit its
 #         time limit: asan without the tests labelled `data` (the real charts
 #         and benchmark problems: minutes each under ASan, and what they add
 #         is GDAL's and the planner's work on bigger inputs, which the unit
-#         tests run on small ones), then tsan.
+#         tests run on small ones) and without the benchmarks' smoke runs,
+#         then tsan.
 #
 #   scripts/sanitize.sh [asan|tsan|all|ci] [ctest arguments for asan]   (default all)
 #   JOBS=<cores>  CMAKE_ARGS=...            as scripts/build.sh
@@ -39,12 +45,12 @@ case "$what" in asan | tsan | all | ci) ;; *)
 esac
 shift $(($# > 0 ? 1 : 0))
 asan_ctest_args=("$@")
-if [[ "$what" == ci ]]; then asan_ctest_args+=(-LE data); fi
+if [[ "$what" == ci ]]; then asan_ctest_args+=(-LE 'data|bench-smoke'); fi
 bash scripts/install-deps.sh
 JOBS=${JOBS:-$(nproc)}
 supp="$PWD/scripts/sanitizers"
-configure() {  # dir, sanitizers
-  cmake -S . -B "$1" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSEAPLAN_BUILD_BENCH=OFF \
+configure() {  # dir, sanitizers, benchmarks ON/OFF
+  cmake -S . -B "$1" -G Ninja -DCMAKE_BUILD_TYPE=RelWithDebInfo -DSEAPLAN_BUILD_BENCH="$3" \
     -DSEAPLAN_SANITIZE="$2" "-DCMAKE_CXX_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" \
     "-DCMAKE_C_FLAGS_RELWITHDEBINFO=-O1 -g1 -DNDEBUG" ${CMAKE_ARGS:-}
 }
@@ -52,23 +58,24 @@ elapsed() { echo "sanitize: $1 took $((SECONDS - $2)) s"; }
 
 if [[ "$what" != tsan ]]; then
   start=$SECONDS
-  configure build-asan address,undefined
+  configure build-asan address,undefined ON
   cmake --build build-asan -j "$JOBS"
   elapsed "asan build" "$start"
   start=$SECONDS
   ASAN_OPTIONS="detect_leaks=1:check_initialization_order=1:detect_stack_use_after_return=1" \
     UBSAN_OPTIONS="print_stacktrace=1:halt_on_error=1:suppressions=$supp/ubsan.supp" \
     LSAN_OPTIONS="suppressions=$supp/lsan.supp:print_suppressions=0" \
-    ctest --test-dir build-asan --output-on-failure -j "$JOBS" -E '^console_' \
+    ctest --test-dir build-asan --output-on-failure -j "$JOBS" -E '^console_|console_render' \
     "${asan_ctest_args[@]}"
   elapsed "asan tests" "$start"
 fi
 
 if [[ "$what" != asan ]]; then
-  tsan_tests=(common_test chart_risk_test route_test route_planner_test server_core_test
-    server_e2e_test server_binary_test mission_e2e_test)
+  tsan_tests=(common_test chart_risk_test route_test route_planner_test mission_test
+    storage_test server_core_test server_auth_test server_e2e_test server_binary_test
+    access_matrix_e2e_test vessel_token_e2e_test failover_e2e_test mission_e2e_test)
   start=$SECONDS
-  configure build-tsan thread
+  configure build-tsan thread OFF
   cmake --build build-tsan -j "$JOBS" --target "${tsan_tests[@]}" seaplan-server seaplan-sim
   elapsed "tsan build" "$start"
   start=$SECONDS

@@ -18,6 +18,7 @@
 #include <algorithm>
 #include <atomic>
 #include <chrono>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -103,7 +104,7 @@ double Percentile(std::vector<double> v, double p) {
   if (v.empty()) return 0;
   std::sort(v.begin(), v.end());
   return v[std::min(v.size() - 1,
-                    static_cast<std::size_t>(p * static_cast<double>(v.size() - 1) + 0.5))];
+                    static_cast<std::size_t>(std::lround(p * static_cast<double>(v.size() - 1))))];
 }
 
 const char* kPorts[] = {"port-a", "port-b", "port-c", "port-d", "port-e"};
@@ -113,7 +114,7 @@ const double kLon[] = {10.327122, 10.346208, 10.386389, 10.428579, 10.462732};
 // The calls of the mix, each timed; `id` makes sequence numbers unique.
 class Workload {
  public:
-  Workload(std::shared_ptr<grpc::Channel> channel, const Options& o, std::string chart_id,
+  Workload(const std::shared_ptr<grpc::Channel>& channel, const Options& o, std::string chart_id,
            std::vector<std::pair<std::string, std::string>> missions)
       : planning_(v1::PlanningService::NewStub(channel)),
         routes_(v1::RouteService::NewStub(channel)),
@@ -301,6 +302,7 @@ int Run(const Options& o) {
   const auto started = Clock::now();
   const auto end = started + std::chrono::milliseconds(static_cast<long>(o.duration_s * 1000));
   std::vector<std::thread> clients;
+  clients.reserve(static_cast<std::size_t>(o.clients));
   for (int id = 0; id < o.clients; ++id) {
     clients.emplace_back([&, id] {
       grpc::ChannelArguments args;

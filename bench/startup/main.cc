@@ -1,4 +1,4 @@
-// seaplan-bench-startup [--runs 50] [--bin-dir DIR]
+// seaplan-bench-startup [--runs 50] [--bin-dir DIR] [--no-target]
 //
 // Start-up cost of the seaplan executables as whole processes: each command
 // is spawned --runs times (interleaved with the others, so load changes hit
@@ -9,7 +9,9 @@
 // two baselines of the same run: /bin/true (a C process) and
 // seaplan-startup-floor (an empty C++ main linked with libstdc++ only).
 // Exit code 1 when a command fails or when plan/validate miss the 15 ms
-// target: median CPU time (user + system) at most 15 ms.
+// target: median CPU time (user + system) at most 15 ms (--no-target: the
+// verdict is printed but only a failing command fails the run, for the ctest
+// smoke run, whose one sample on a loaded machine judges nothing).
 #include <fcntl.h>
 #include <spawn.h>
 #include <sys/resource.h>
@@ -53,6 +55,7 @@ double Milliseconds(const timeval& t) {
 // more NAME=VALUE, or empty) and waits for it.
 Sample Spawn(const std::vector<std::string>& args, const std::string& extra_env = "") {
   std::vector<char*> argv;
+  argv.reserve(args.size() + 1);
   for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);
   std::vector<char*> env;
@@ -108,14 +111,17 @@ double Median(std::vector<double> v) {
 int main(int argc, char** argv) {
   int runs = 50;
   fs::path bin_dir;
+  bool enforce_target = true;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--runs" && i + 1 < argc) {
       runs = std::max(1, std::atoi(argv[++i]));
     } else if (a == "--bin-dir" && i + 1 < argc) {
       bin_dir = argv[++i];
+    } else if (a == "--no-target") {
+      enforce_target = false;
     } else {
-      std::printf("usage: seaplan-bench-startup [--runs 50] [--bin-dir DIR]\n");
+      std::printf("usage: seaplan-bench-startup [--runs 50] [--bin-dir DIR] [--no-target]\n");
       return a == "--help" || a == "-h" ? 0 : 2;
     }
   }
@@ -182,7 +188,7 @@ int main(int argc, char** argv) {
       // and equals the wall time on an idle machine but for I/O.
       const bool met = Median(c.cpu_ms) <= kTargetMs;
       verdict = met ? "cpu <= 15 ms: met" : "cpu <= 15 ms: NOT met";
-      ok = ok && met;
+      ok = ok && (met || !enforce_target);
     }
     std::printf("%-28s %5d %10.2f %10.2f %10.2f %9.1f %9.1f %11.1f %s\n", c.name.c_str(),
                 c.libraries, median, min, Median(c.cpu_ms), true_ms > 0 ? median / true_ms : 0,

@@ -13,9 +13,10 @@ namespace {
 
 // Occupies every worker of `pool` until `release` is set.
 std::vector<std::future<absl::Status>> Occupy(WorkPool& pool, int count,
-                                              std::shared_future<void> released) {
+                                              const std::shared_future<void>& released) {
   std::atomic<int> started{0};
   std::vector<std::future<absl::Status>> blockers;
+  blockers.reserve(static_cast<std::size_t>(count));
   for (int i = 0; i < count; ++i) {
     blockers.push_back(std::async(std::launch::async, [&pool, &started, released] {
       return pool.Run(

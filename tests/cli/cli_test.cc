@@ -32,7 +32,7 @@ struct CommandResult {
 };
 
 fs::path ScratchDir() {
-  const auto dir = fs::temp_directory_path() / ("seaplan-cli-test-" + std::to_string(::getpid()));
+  auto dir = fs::temp_directory_path() / ("seaplan-cli-test-" + std::to_string(::getpid()));
   fs::create_directories(dir);
   return dir;
 }
@@ -104,7 +104,7 @@ TEST(CliInProcessTest, MalformedPddlExitsTwoWithLocation) {
   EXPECT_EQ(result.exit_code, 2) << result.out << result.err;
   // The undeclared predicate q on line 4 is named with its position.
   EXPECT_NE(result.err.find("domain:4:"), std::string::npos) << result.err;
-  EXPECT_NE(result.err.find("q"), std::string::npos) << result.err;
+  EXPECT_NE(result.err.find('q'), std::string::npos) << result.err;
 }
 
 TEST(CliInProcessTest, MissingFileAndUsageErrorsExitTwo) {
@@ -133,7 +133,7 @@ TEST(CliInProcessTest, JsonOutputIsTheApiMessage) {
   auto result = RunSeaplan({"--json", "plan", Example("domain.pddl"), Example("case-a.pddl"),
                             "--time-limit", "2", "--no-anytime"});
   ASSERT_EQ(result.exit_code, 0) << result.err;
-  EXPECT_EQ(result.out.rfind("{", 0), 0u) << result.out;
+  EXPECT_EQ(result.out.rfind('{', 0), 0u) << result.out;
   EXPECT_NE(result.out.find("\"status\":\"SOLVED_"), std::string::npos) << result.out;
   EXPECT_NE(result.out.find("\"makespanS\""), std::string::npos) << result.out;
 }

@@ -25,6 +25,7 @@
 #include <utility>
 #include <vector>
 
+#include "absl/strings/str_cat.h"
 #include "e2e_support.h"
 #include "seaplan/storage/testing/postgres_cluster.h"
 #include "seaplan/testing/child_process.h"
@@ -67,12 +68,13 @@ inline std::string NginxConfigFor(std::string conf, const std::vector<ReplicaPor
   for (int n = 1; n <= 9; ++n) {
     const std::string name = "replica" + std::to_string(n);
     if (n <= static_cast<int>(replicas.size())) {
-      conf = std::regex_replace(conf, std::regex(name + ":50051"),
-                                "127.0.0.1:" + std::to_string(replicas[n - 1].grpc));
-      conf = std::regex_replace(conf, std::regex(name + ":8080"),
-                                "127.0.0.1:" + std::to_string(replicas[n - 1].http));
+      conf = std::regex_replace(conf, std::regex(absl::StrCat(name, ":50051")),
+                                absl::StrCat("127.0.0.1:", replicas[n - 1].grpc));
+      conf = std::regex_replace(conf, std::regex(absl::StrCat(name, ":8080")),
+                                absl::StrCat("127.0.0.1:", replicas[n - 1].http));
     } else {
-      conf = std::regex_replace(conf, std::regex("[^\\n]*server " + name + ":[^\\n]*\\n"), "");
+      conf = std::regex_replace(
+          conf, std::regex(absl::StrCat("[^\\n]*server ", name, ":[^\\n]*\\n")), "");
     }
   }
   conf = std::regex_replace(conf, std::regex("listen 50051"),

@@ -85,6 +85,7 @@ class ServerProcess {
     const bool http = given("--http-addr");
     argv.insert(argv.end(), extra_args.begin(), extra_args.end());
     std::vector<char*> args;
+    args.reserve(argv.size() + 1);
     for (std::string& a : argv) args.push_back(a.data());
     args.push_back(nullptr);
     pid_ = fork();
@@ -173,6 +174,7 @@ inline pid_t StartProcess(const std::vector<std::string>& argv,
                           const std::vector<std::pair<std::string, std::string>>& env,
                           const fs::path& output_file) {
   std::vector<char*> args;
+  args.reserve(argv.size() + 1);
   for (const std::string& a : argv) args.push_back(const_cast<char*>(a.c_str()));
   args.push_back(nullptr);
   const std::string out = output_file.string();

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "CLI/CLI.hpp"
+#include "absl/strings/str_cat.h"
 #include "client_token.h"
 #include "google/protobuf/util/json_util.h"
 #include "output.h"
@@ -217,8 +218,8 @@ absl::Status BuildUpload(const ChartArgs& args, v1::UploadChartRequest* request)
     std::sort(inner.begin(), inner.end());
     for (const std::string& relative : inner) {
       auto* file = request->add_files();
-      file->set_name(base + "/" + relative);
-      SEAPLAN_RETURN_IF_ERROR(ReadFile(path + "/" + relative, file->mutable_content()));
+      file->set_name(absl::StrCat(base, "/", relative));
+      SEAPLAN_RETURN_IF_ERROR(ReadFile(absl::StrCat(path, "/", relative), file->mutable_content()));
     }
   }
   const std::string& first = request->files(0).name();

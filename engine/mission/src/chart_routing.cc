@@ -161,10 +161,7 @@ Route RouteFromAlternative(const route::RouteAlternative& a, int index) {
 ChartRouting::ChartRouting(chart::LocalFrame frame,
                            std::shared_ptr<const route::RoutePlanner> planner,
                            route::Environment environment, LeadInOptions lead_in)
-    : frame_(std::move(frame)),
-      planner_(std::move(planner)),
-      environment_(environment),
-      lead_in_(lead_in) {}
+    : frame_(frame), planner_(std::move(planner)), environment_(environment), lead_in_(lead_in) {}
 
 StatusOr<Route> ChartRouting::Plan(const RouteRequest& req, const StopToken& stop) {
   if (req.start_motion && req.start_motion->speed_mps > 0) return PlanUnderWay(req, stop);

@@ -1,6 +1,6 @@
 #include "word_tuple_table.h"
 
-#include <cstring>
+#include <algorithm>
 
 #include "absl/hash/hash.h"
 #include "absl/types/span.h"
@@ -44,8 +44,11 @@ std::size_t WordTupleTable::Hash::operator()(std::int32_t id) const {
 bool WordTupleTable::Eq::operator()(std::int32_t a, std::int32_t b) const {
   const auto wa = table->Get(a);
   const auto wb = table->Get(b);
-  return wa.size() == wb.size() &&
-         std::memcmp(wa.data(), wb.data(), wa.size() * sizeof(std::uint64_t)) == 0;
+  // std::equal, not memcmp: a tuple of no words (a state without numeric
+  // values or running actions) may have a null data(), which memcmp must not
+  // be given even for length 0 (UBSan reports it); libstdc++ compiles this
+  // to memcmp when the length is not zero.
+  return std::equal(wa.begin(), wa.end(), wb.begin(), wb.end());
 }
 
 }  // namespace seaplan::search
