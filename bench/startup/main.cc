@@ -55,6 +55,7 @@ double Milliseconds(const timeval& t) {
 // more NAME=VALUE, or empty) and waits for it.
 Sample Spawn(const std::vector<std::string>& args, const std::string& extra_env = "") {
   std::vector<char*> argv;
+  argv.reserve(args.size() + 1);
   for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);
   std::vector<char*> env;
