@@ -14,8 +14,10 @@
 //                          [--min-depth M] [--turn-radius M] [--lookahead M]
 //                          [--wheel-over-radius M] [--verbose]
 // --turn-radius: the route planner's Level2Options::turn_radius_m (0: no
-// turn check, the planner as it was). --lookahead, --wheel-over-radius: the
-// sailing's path follower (default the simulation client's, 400 m and 300 m). ROUTE_PAIRS_DUMP=1
+// turn check, the planner as it was). The routes are sailed with the
+// simulation client's path follower; --lookahead and --wheel-over-radius
+// sail the same routes once more with those changed and print a line each
+// (--wheel-over-radius may be repeated: a comparison of followers in one run). ROUTE_PAIRS_DUMP=1
 // prints every sailed route ("R east north") and its executed track ("T east north").
 #include <cstdio>
 #include <cstdlib>
@@ -65,8 +67,7 @@ StatusOr<Sailed> Sail(const std::vector<EastNorth>& route, double speed_mps,
   }
   setup.cruise_speed_mps = speed_mps;
   setup.start_at_rest = true;
-  if (follower.lookahead_m > 0) setup.follower.lookahead_m = follower.lookahead_m;
-  if (follower.turn_radius_m >= 0) setup.follower.turn_radius_m = follower.turn_radius_m;
+  setup.follower = follower;
   setup.max_time_s = 2.0 * length_m / speed_mps + 900.0;
   SEAPLAN_ASSIGN_OR_RETURN(colav::EncounterOutcome out, colav::SimulateEncounter(setup));
   Sailed s{out.arrived, std::numeric_limits<double>::infinity(), {}};
@@ -82,8 +83,53 @@ StatusOr<Sailed> Sail(const std::vector<EastNorth>& route, double speed_mps,
   return s;
 }
 
+struct SailTotals {
+  int not_arrived = 0;
+  int within = 0;
+};
+
+// Sails every routed pair with `follower` and prints one line of totals.
+SailTotals SailAll(const route::SweepResult& result, const std::string& chart_name,
+                   const std::string& label, const colav::PathFollowerOptions& follower,
+                   chart::ObstacleQuery& query, bool verbose) {
+  SailTotals t;
+  int sailed = 0, aground = 0, failures_shown = 0;
+  double min_sailed = std::numeric_limits<double>::infinity();
+  for (const route::PairOutcome& p : result.pairs) {
+    if (!p.routed) continue;
+    auto s = Sail(p.route, kSailSpeedMps, follower, query);
+    if (!s.ok()) {
+      std::printf("    SAIL FAILED (%.0f, %.0f) -> (%.0f, %.0f): %s\n", p.from.east_m,
+                  p.from.north_m, p.to.east_m, p.to.north_m, s.status().ToString().c_str());
+      ++t.not_arrived;
+      continue;
+    }
+    ++sailed;
+    min_sailed = std::min(min_sailed, s->clearance_m);
+    if (!s->arrived) ++t.not_arrived;
+    if (s->clearance_m <= 0) ++aground;
+    const bool close = s->clearance_m < result.margin_m - 1e-3;
+    if (close) ++t.within;
+    if ((close || !s->arrived) && (verbose || failures_shown < 3)) {
+      ++failures_shown;
+      std::printf(
+          "    SAILED %s (%.0f, %.0f) -> (%.0f, %.0f): track clearance %.2f m at (%.0f, %.0f)\n",
+          s->arrived ? "CLOSE" : "NOT ARRIVED", p.from.east_m, p.from.north_m, p.to.east_m,
+          p.to.north_m, s->clearance_m, s->closest.east_m, s->closest.north_m);
+    }
+  }
+  std::printf(
+      "%-10s sailed from rest at %.0f m/s (%s): %d routes, not arrived %d, track aground %d, "
+      "track within margin %d, min track clearance %.2f m\n",
+      chart_name.c_str(), kSailSpeedMps, label.c_str(), sailed, t.not_arrived, aground, t.within,
+      min_sailed);
+  std::fflush(stdout);
+  return t;
+}
+
 int RunCase(const std::string& shared, const ChartCase& c, const route::SweepOptions& sweep,
-            double turn_radius_m, const colav::PathFollowerOptions& follower, bool verbose) {
+            double turn_radius_m, const std::vector<colav::PathFollowerOptions>& followers,
+            bool verbose) {
   chart::ChartOptions copt;
   copt.min_depth_m = c.min_depth_m;
   auto map = chart::LoadChartFile(shared + "/" + c.path, copt);
@@ -133,41 +179,20 @@ int RunCase(const std::string& shared, const ChartCase& c, const route::SweepOpt
       p95, l1_med > 0 ? med / l1_med : 0.0, l1_med);
   std::fflush(stdout);
 
-  // The executed tracks.
+  // The executed tracks: with the simulation client's path follower and, when
+  // a follower flag is given, once more with the flags' follower (the same
+  // routes, so the two lines compare the followers alone).
   chart::ObstacleQuery query(*shared_map);
-  int sailed = 0, not_arrived = 0, aground = 0, within = 0;
-  double min_sailed = std::numeric_limits<double>::infinity();
-  failures_shown = 0;
-  for (const route::PairOutcome& p : result->pairs) {
-    if (!p.routed) continue;
-    auto s = Sail(p.route, kSailSpeedMps, follower, query);
-    if (!s.ok()) {
-      std::printf("    SAIL FAILED (%.0f, %.0f) -> (%.0f, %.0f): %s\n", p.from.east_m,
-                  p.from.north_m, p.to.east_m, p.to.north_m, s.status().ToString().c_str());
-      ++not_arrived;
-      continue;
-    }
-    ++sailed;
-    min_sailed = std::min(min_sailed, s->clearance_m);
-    if (!s->arrived) ++not_arrived;
-    if (s->clearance_m <= 0) ++aground;
-    const bool close = s->clearance_m < result->margin_m - 1e-3;
-    if (close) ++within;
-    if ((close || !s->arrived) && (verbose || failures_shown < 3)) {
-      ++failures_shown;
-      std::printf(
-          "    SAILED %s (%.0f, %.0f) -> (%.0f, %.0f): track clearance %.2f m at (%.0f, %.0f)\n",
-          s->arrived ? "CLOSE" : "NOT ARRIVED", p.from.east_m, p.from.north_m, p.to.east_m,
-          p.to.north_m, s->clearance_m, s->closest.east_m, s->closest.north_m);
-    }
+  const SailTotals sim = SailAll(*result, c.name, "the simulation client's follower",
+                                 colav::EncounterSetup{}.follower, query, verbose);
+  for (const colav::PathFollowerOptions& flagged : followers) {
+    const std::string label =
+        "look-ahead " + std::to_string(static_cast<int>(flagged.lookahead_m)) +
+        " m, wheel-over radius " + std::to_string(static_cast<int>(flagged.turn_radius_m)) + " m";
+    SailAll(*result, c.name, label, flagged, query, verbose);
   }
-  std::printf(
-      "%-10s sailed from rest at %.0f m/s: %d routes, not arrived %d, track aground %d, "
-      "track within margin %d, min track clearance %.2f m\n",
-      c.name.c_str(), kSailSpeedMps, sailed, not_arrived, aground, within, min_sailed);
-  std::fflush(stdout);
   const bool pass = result->routed == result->connected && result->within_margin == 0 &&
-                    not_arrived == 0 && within == 0;
+                    sim.not_arrived == 0 && sim.within == 0;
   return pass ? 0 : 2;
 }
 
@@ -181,8 +206,10 @@ int main(int argc, char** argv) {
   double min_depth_override = 0.0;
   bool verbose = false;
   double turn_radius_m = -1.0;  // the planner's default
-  // The sailing's path follower: <= 0 / < 0 keep the simulation client's.
-  colav::PathFollowerOptions follower{0.0, 60.0, 0.0, -1.0};
+  // The sailings' path followers: the simulation client's with the flags'
+  // look-ahead and each flagged wheel-over radius.
+  double lookahead_m = 0.0;
+  std::vector<double> wheel_over_radii_m;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--pairs" && i + 1 < argc) {
@@ -196,9 +223,9 @@ int main(int argc, char** argv) {
     } else if (a == "--turn-radius" && i + 1 < argc) {
       turn_radius_m = std::atof(argv[++i]);
     } else if (a == "--lookahead" && i + 1 < argc) {
-      follower.lookahead_m = std::atof(argv[++i]);
+      lookahead_m = std::atof(argv[++i]);
     } else if (a == "--wheel-over-radius" && i + 1 < argc) {
-      follower.turn_radius_m = std::atof(argv[++i]);
+      wheel_over_radii_m.push_back(std::atof(argv[++i]));
     } else if (a == "--verbose") {
       verbose = true;
     } else if (!a.empty() && a[0] != '-') {
@@ -211,6 +238,16 @@ int main(int argc, char** argv) {
           "[--wheel-over-radius M] [--verbose]\n");
       return 2;
     }
+  }
+  std::vector<colav::PathFollowerOptions> followers;
+  if (lookahead_m > 0 && wheel_over_radii_m.empty()) {
+    wheel_over_radii_m.push_back(colav::EncounterSetup{}.follower.turn_radius_m);
+  }
+  for (double r : wheel_over_radii_m) {
+    colav::PathFollowerOptions f = colav::EncounterSetup{}.follower;
+    if (lookahead_m > 0) f.lookahead_m = lookahead_m;
+    f.turn_radius_m = r;
+    followers.push_back(f);
   }
   log::SetLevel(log::Level::kWarn);
   // Drafts: the NOAA call that used to fail (8 m), the same for Trondheim,
@@ -226,7 +263,7 @@ int main(int argc, char** argv) {
   for (ChartCase c : cases) {
     if (!only.empty() && c.name != only) continue;
     if (min_depth_override > 0) c.min_depth_m = min_depth_override;
-    status = std::max(status, RunCase(shared, c, sweep, turn_radius_m, follower, verbose));
+    status = std::max(status, RunCase(shared, c, sweep, turn_radius_m, followers, verbose));
   }
   return status;
 }

@@ -37,8 +37,9 @@ struct EncounterSetup {
   double max_time_s = 3000.0;
   CollisionAvoidanceOptions avoidance;
   AutopilotOptions autopilot;
-  // The simulation client's path following (wheel-over for this hull).
-  PathFollowerOptions follower{400.0, 60.0, 0.0, 300.0};
+  // The simulation client's path following (wheel-over for this hull under
+  // the autopilot: a 450 m radius, see clients/sim/core/executor.h).
+  PathFollowerOptions follower{400.0, 60.0, 0.0, 450.0};
 };
 
 struct VesselOutcome {
