@@ -541,10 +541,12 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
     std::lock_guard lock(mu);
     SEAPLAN_RETURN_IF_ERROR(Usable());
     return InTransaction(db, [&]() -> absl::Status {
-      Stmt exists(db, "SELECT 1 FROM charts WHERE id = ?1");
-      exists.Text(1, id);
-      SEAPLAN_ASSIGN_OR_RETURN(bool found, exists.Step());
-      if (!found) return absl::NotFoundError(internal::NotFoundMessage("chart", id));
+      {
+        Stmt exists(db, "SELECT 1 FROM charts WHERE id = ?1");
+        exists.Text(1, id);
+        SEAPLAN_ASSIGN_OR_RETURN(bool found, exists.Step());
+        if (!found) return absl::NotFoundError(internal::NotFoundMessage("chart", id));
+      }
       Stmt active(db, absl::StrCat("SELECT id, spec FROM missions WHERE state IN ",
                                    internal::SqlIntList(use.active_states), " ORDER BY seq"));
       std::vector<std::string> users;

@@ -215,7 +215,9 @@ TEST(MissionChartE2eTest, ChartInUseIsNotDeletedAndADeletedChartIsGoneEverywhere
     v1::DeleteChartResponse resp;
     ClientContext ctx;
     const grpc::Status st = charts->DeleteChart(&ctx, req, &resp);
-    if (st.ok()) EXPECT_EQ(resp.chart_id(), id);
+    if (st.ok()) {
+      EXPECT_EQ(resp.chart_id(), id);
+    }
     return st;
   };
   const auto create = [&](v1::Mission* mission) {
