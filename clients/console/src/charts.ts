@@ -85,8 +85,8 @@ export function chartsView(root: HTMLElement): () => void {
       button.disabled = true;
       try {
         await call("ChartService/DeleteChart", { chartId: c.chartId });
-        listStatus.textContent = `Deleted ${c.name} (${c.chartId}).`;
         await load();
+        listStatus.textContent = `Deleted ${c.name} (${c.chartId}).`;
       } catch (e) {
         listStatus.textContent = `Delete refused: ${(e as Error).message}`;
         button.disabled = false;
