@@ -26,6 +26,7 @@ constexpr MethodRule kRules[] = {
     {"ChartService/GetChart", kEveryone, false, false},
     {"ChartService/ListCharts", kEveryone, false, false},
     {"ChartService/GetObstacles", kEveryone, false, false},
+    {"ChartService/DeleteChart", kAdmin, false, true},
     {"RouteService/PlanRoute", kStaff, false, false},
     {"RouteService/EstimateRisk", kStaff, false, false},
     {"MissionService/CreateMission", kStaff, false, true},

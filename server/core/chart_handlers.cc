@@ -6,6 +6,7 @@
 #include "absl/strings/str_cat.h"
 #include "seaplan/chart/geojson.h"
 #include "seaplan/chart/obstacle_map.h"
+#include "seaplan/v1/mission.pb.h"
 #include "server/core/audit_entry.h"
 #include "server/core/convert.h"
 
@@ -173,6 +174,28 @@ absl::StatusOr<v1::GetObstaclesResponse> ChartHandlers::GetObstacles(
   if (!map.ok()) return map.status();
   response.set_obstacle_count(map->summary().polygon_count);
   response.set_geojson(chart::ToGeoJson(*map));
+  return response;
+}
+
+absl::StatusOr<v1::DeleteChartResponse> ChartHandlers::DeleteChart(
+    const v1::DeleteChartRequest& request, const CallContext& ctx) {
+  if (request.chart_id().empty()) return absl::InvalidArgumentError("chart_id is empty");
+  // A finished mission never loads its chart again; an unfinished one
+  // replans with it.
+  storage::ChartUse use;
+  use.active_states = {v1::MISSION_STATE_PLANNING, v1::MISSION_STATE_ACTIVE,
+                       v1::MISSION_STATE_REPLANNING};
+  use.spec_uses_chart = [](const std::string& spec, const std::string& chart_id) {
+    v1::MissionSpec parsed;
+    // An unreadable spec counts as a user: deleting must not lose a chart
+    // a mission might need.
+    return !parsed.ParseFromString(spec) || parsed.chart_id() == chart_id;
+  };
+  const auto audit = AuditEntry(ctx, request.chart_id());
+  SEAPLAN_RETURN_IF_ERROR(charts_.Delete(request.chart_id(), use, AuditPointer(audit)));
+  if (on_deleted_) on_deleted_(request.chart_id());
+  v1::DeleteChartResponse response;
+  response.set_chart_id(request.chart_id());
   return response;
 }
 

@@ -156,6 +156,8 @@ class MissionCoordinator {
                                                         const CallContext& ctx);
   absl::StatusOr<v1::Mission> CancelMission(const v1::CancelMissionRequest& request,
                                             const CallContext& ctx);
+  // A chart was deleted: the engine drops its routings of it.
+  void ForgetChart(const std::string& chart_id) { adapter_.ForgetChart(chart_id); }
   // Ends OK when the mission reached a final state and everything was sent;
   // Unavailable when the server shuts down; Cancelled when the client left.
 

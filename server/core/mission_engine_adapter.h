@@ -58,6 +58,8 @@ class MissionAdapter {
   // `state` does not include `feedback` yet.
   mission::FeedbackOutcome OnFeedback(const v1::MissionSpec& spec, const MissionRuntimeState& state,
                                       const v1::Feedback& feedback);
+  // The chart was deleted: the engine drops what it keeps of it.
+  void ForgetChart(const std::string& chart_id) { engine_->ForgetChart(chart_id); }
 
  private:
   std::shared_ptr<mission::MissionEngine> engine_;

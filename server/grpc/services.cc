@@ -130,6 +130,11 @@ class GrpcServices::Charts final : public v1::ChartService::Service {
     return Unary(core_, "ChartService/GetObstacles", ctx, resp,
                  [&](const CallContext& c) { return core_.charts().GetObstacles(*req, c); });
   }
+  grpc::Status DeleteChart(grpc::ServerContext* ctx, const v1::DeleteChartRequest* req,
+                           v1::DeleteChartResponse* resp) override {
+    return Unary(core_, "ChartService/DeleteChart", ctx, resp,
+                 [&](const CallContext& c) { return core_.charts().DeleteChart(*req, c); });
+  }
   grpc::Status ListCharts(grpc::ServerContext* ctx, const v1::ListChartsRequest* req,
                           v1::ListChartsResponse* resp) override {
     return Unary(core_, "ChartService/ListCharts", ctx, resp,

@@ -506,6 +506,11 @@ void HttpGateway::RegisterRoutes() {
         return core.charts().GetObstacles(r, c);
       });
 
+  unary.operator()<v1::DeleteChartRequest, v1::DeleteChartResponse>(
+      "ChartService/DeleteChart", [&core](const v1::DeleteChartRequest& r, const R& c) {
+        return core.charts().DeleteChart(r, c);
+      });
+
   unary.operator()<v1::PlanRouteRequest, v1::PlanRouteResponse>(
       "RouteService/PlanRoute",
       [&core](const v1::PlanRouteRequest& r, const R& c) { return core.routes().PlanRoute(r, c); });

@@ -849,6 +849,32 @@ struct PostgresStore::Impl final : ChartRepository, MissionRepository {
     });
   }
 
+  absl::Status Delete(const std::string& id, const ChartUse& use,
+                      const AuditRecord* audit) override {
+    return InTransaction([&](PGconn* conn) -> absl::Status {
+      SEAPLAN_ASSIGN_OR_RETURN(
+          Result chart,
+          Run(conn, "SELECT 1 FROM charts WHERE id = $1 FOR UPDATE", Params().Text(id)));
+      if (chart.rows() == 0) return absl::NotFoundError(NotFoundMessage("chart", id));
+      // Mission writes of other processes wait until this commits, so the
+      // check below sees every mission that can use the chart.
+      SEAPLAN_RETURN_IF_ERROR(Run(conn, "LOCK TABLE missions IN SHARE MODE").status());
+      SEAPLAN_ASSIGN_OR_RETURN(
+          Result active,
+          Run(conn, absl::StrCat("SELECT id, spec FROM missions WHERE state IN ",
+                                 internal::SqlIntList(use.active_states), " ORDER BY seq")));
+      std::vector<std::string> users;
+      for (int row = 0; row < active.rows(); ++row) {
+        if (use.spec_uses_chart && use.spec_uses_chart(active.Bytes(row, 1), id))
+          users.push_back(active.Bytes(row, 0));
+      }
+      if (!users.empty()) return internal::ChartInUseError(id, users);
+      SEAPLAN_RETURN_IF_ERROR(
+          Run(conn, "DELETE FROM charts WHERE id = $1", Params().Text(id)).status());
+      return InsertAuditIfAny(conn, audit);
+    });
+  }
+
   // Fills a page from rows fetched with LIMIT page_size + 1.
   template <typename T, typename Read>
   static Page<T> ToPage(const Result& r, int page_size, Read&& read) {

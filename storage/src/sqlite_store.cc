@@ -536,6 +536,34 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
         s, page_size, [](const StmtRow& row) { return internal::ReadChart(row, false); });
   }
 
+  absl::Status Delete(const std::string& id, const ChartUse& use,
+                      const AuditRecord* audit) override {
+    std::lock_guard lock(mu);
+    SEAPLAN_RETURN_IF_ERROR(Usable());
+    return InTransaction(db, [&]() -> absl::Status {
+      {
+        Stmt exists(db, "SELECT 1 FROM charts WHERE id = ?1");
+        exists.Text(1, id);
+        SEAPLAN_ASSIGN_OR_RETURN(bool found, exists.Step());
+        if (!found) return absl::NotFoundError(internal::NotFoundMessage("chart", id));
+      }
+      Stmt active(db, absl::StrCat("SELECT id, spec FROM missions WHERE state IN ",
+                                   internal::SqlIntList(use.active_states), " ORDER BY seq"));
+      std::vector<std::string> users;
+      while (true) {
+        SEAPLAN_ASSIGN_OR_RETURN(bool row, active.Step());
+        if (!row) break;
+        if (use.spec_uses_chart && use.spec_uses_chart(active.ColBlob(1), id))
+          users.push_back(active.ColText(0));
+      }
+      if (!users.empty()) return internal::ChartInUseError(id, users);
+      Stmt del(db, "DELETE FROM charts WHERE id = ?1");
+      del.Text(1, id);
+      SEAPLAN_RETURN_IF_ERROR(del.Run());
+      return InsertAuditIfAny(db, audit);
+    });
+  }
+
   // ---- MissionRepository ----
   absl::Status InsertVersionLocked(const PlanVersionRecord& v) {
     Stmt s(db,

@@ -690,5 +690,71 @@ TEST_P(StoreTest, AFailedAuditedChangeLeavesNoAuditRow) {
   EXPECT_TRUE(AuditTargets(store()).empty());
 }
 
+// Missions in states 1..3 count; a spec "uses:<chart id>" refers to that chart.
+ChartUse TestChartUse() {
+  return {{1, 2, 3}, [](const std::string& spec, const std::string& chart_id) {
+            return spec == "uses:" + chart_id;
+          }};
+}
+
+MissionRecord MissionUsing(const std::string& id, const std::string& chart_id, int state) {
+  MissionRecord m = TestMission(id);
+  m.spec = "uses:" + chart_id;
+  m.state = state;
+  return m;
+}
+
+TEST_P(StoreTest, DeletingAChartRemovesItWithItsAuditRow) {
+  ASSERT_TRUE(store().charts().Insert(ChartRecord{.id = "c1", .obstacles = "big"}).ok());
+  ASSERT_TRUE(store().charts().Insert(ChartRecord{.id = "c2"}).ok());
+  // Finished missions (state 4) and active missions of other charts do not hold it.
+  ASSERT_TRUE(missions().Create(MissionUsing("done", "c1", 4), TestVersion("done", 1), {}).ok());
+  ASSERT_TRUE(missions().Create(MissionUsing("other", "c2", 2), TestVersion("other", 1), {}).ok());
+  const AuditRecord row = TestAudit("ChartService/DeleteChart", "c1");
+  const absl::Status deleted = store().charts().Delete("c1", TestChartUse(), &row);
+  ASSERT_TRUE(deleted.ok()) << deleted;
+  EXPECT_EQ(store().charts().Get("c1", true).status().code(), absl::StatusCode::kNotFound);
+  auto listed = store().charts().List(10, 0);
+  ASSERT_TRUE(listed.ok());
+  ASSERT_EQ(listed->items.size(), 1u);
+  EXPECT_EQ(listed->items[0].id, "c2");
+  EXPECT_EQ(AuditTargets(store()), std::vector<std::string>{"ChartService/DeleteChart c1"});
+  // A second delete (and an unknown id) is NotFound and audits nothing.
+  EXPECT_EQ(store().charts().Delete("c1", TestChartUse(), &row).code(),
+            absl::StatusCode::kNotFound);
+  EXPECT_EQ(AuditTargets(store()).size(), 1u);
+  // The id may be used again.
+  EXPECT_TRUE(store().charts().Insert(ChartRecord{.id = "c1"}).ok());
+}
+
+TEST_P(StoreTest, AChartActiveMissionsUseIsNotDeleted) {
+  ASSERT_TRUE(store().charts().Insert(ChartRecord{.id = "c1"}).ok());
+  ASSERT_TRUE(missions().Create(MissionUsing("m-a", "c1", 2), TestVersion("m-a", 1), {}).ok());
+  ASSERT_TRUE(missions().Create(MissionUsing("m-b", "c1", 3), TestVersion("m-b", 1), {}).ok());
+  const AuditRecord row = TestAudit("ChartService/DeleteChart", "c1");
+  const absl::Status refused = store().charts().Delete("c1", TestChartUse(), &row);
+  EXPECT_EQ(refused.code(), absl::StatusCode::kFailedPrecondition);
+  EXPECT_NE(refused.message().find("m-a, m-b"), std::string::npos) << refused;
+  EXPECT_TRUE(store().charts().Get("c1", false).ok());
+  EXPECT_TRUE(AuditTargets(store()).empty());
+  // Once both have ended the chart goes.
+  MissionUpdate end;
+  end.state = 4;
+  ASSERT_TRUE(missions().Update("m-a", end, {}).ok());
+  EXPECT_EQ(store().charts().Delete("c1", TestChartUse(), &row).code(),
+            absl::StatusCode::kFailedPrecondition);
+  ASSERT_TRUE(missions().Update("m-b", end, {}).ok());
+  EXPECT_TRUE(store().charts().Delete("c1", TestChartUse(), &row).ok());
+  EXPECT_EQ(store().charts().Get("c1", false).status().code(), absl::StatusCode::kNotFound);
+}
+
+TEST_P(StoreTest, AFailingAuditRowKeepsTheChart) {
+  ASSERT_TRUE(store().charts().Insert(ChartRecord{.id = "c1"}).ok());
+  const AuditRecord bad = TestAudit("", "c1");
+  EXPECT_FALSE(store().charts().Delete("c1", TestChartUse(), &bad).ok());
+  EXPECT_TRUE(store().charts().Get("c1", false).ok());
+  EXPECT_TRUE(AuditTargets(store()).empty());
+}
+
 }  // namespace
 }  // namespace seaplan::storage

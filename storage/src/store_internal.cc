@@ -63,6 +63,19 @@ std::string NotFoundMessage(const std::string& what, const std::string& id) {
   return absl::StrCat(what, " '", id, "' not found");
 }
 
+absl::Status ChartInUseError(const std::string& chart_id,
+                             const std::vector<std::string>& missions) {
+  return absl::FailedPreconditionError(
+      absl::StrCat("chart '", chart_id, "' is used by ", missions.size(),
+                   " mission(s) not yet finished (", absl::StrJoin(missions, ", "),
+                   "): cancel them or wait until they end, then delete the chart"));
+}
+
+std::string SqlIntList(const std::vector<int>& states) {
+  if (states.empty()) return "(NULL)";
+  return absl::StrCat("(", absl::StrJoin(states, ", "), ")");
+}
+
 absl::Status LostLeaseError(const std::string& mission_id, const WorkFence& fence) {
   return absl::AbortedError(absl::StrCat("the work lease of mission '", mission_id, "' (holder '",
                                          fence.holder, "', token ", fence.token,

@@ -39,6 +39,13 @@ TimestampMs LatestTime(const std::vector<NewLogEvent>& events, TimestampMs fallb
 
 // "<what> '<id>' not found".
 std::string NotFoundMessage(const std::string& what, const std::string& id);
+
+// The FailedPrecondition of a chart deletion refused because `missions`
+// use the chart.
+absl::Status ChartInUseError(const std::string& chart_id, const std::vector<std::string>& missions);
+
+// `states` as an SQL list "(1, 2, 3)"; "(NULL)" when empty (matches nothing).
+std::string SqlIntList(const std::vector<int>& states);
 // Aborted: a write fenced by a lease that is no longer held.
 absl::Status LostLeaseError(const std::string& mission_id, const WorkFence& fence);
 

@@ -375,6 +375,43 @@ TEST(CliRemoteTest, CommandsWorkAgainstARunningServer) {
   EXPECT_NE(missing.err.find("NOT_FOUND"), std::string::npos) << missing.err;
 }
 
+// `chart delete`: only an admin may; the chart is gone afterwards and a
+// second delete is NOT_FOUND (bad input, exit 2).
+TEST(CliRemoteTest, ChartDeleteRemovesTheChartForAnAdminOnly) {
+  ServerProcess server;
+  ASSERT_TRUE(server.started()) << "seaplan-server did not report its ports";
+  const std::string addr = server.address();
+  const std::string harbour = (SourceDir() / "engine/chart/testdata/harbour.geojson").string();
+  auto upload = RunSeaplan({"--server", addr, "--json", "chart", "upload", harbour});
+  ASSERT_EQ(upload.exit_code, 0) << upload.err;
+  const std::string key = "\"chartId\":\"";
+  const auto id_start = upload.out.find(key) + key.size();
+  ASSERT_NE(upload.out.find(key), std::string::npos) << upload.out;
+  const std::string chart_id =
+      upload.out.substr(id_start, upload.out.find('"', id_start) - id_start);
+
+  auto created = RunSeaplan({"--server", addr, "token", "create", "--role", "operator"});
+  ASSERT_EQ(created.exit_code, 0) << created.err;
+  const std::string operator_token = created.out.substr(0, created.out.find('\n'));
+  auto denied =
+      RunSeaplan({"--server", addr, "--token", operator_token, "chart", "delete", chart_id});
+  EXPECT_EQ(denied.exit_code, 3) << denied.out << denied.err;
+  EXPECT_NE(denied.err.find("PERMISSION_DENIED"), std::string::npos) << denied.err;
+  EXPECT_NE(RunSeaplan({"--server", addr, "chart", "list"}).out.find(chart_id), std::string::npos);
+
+  auto deleted = RunSeaplan({"--server", addr, "chart", "delete", chart_id});
+  ASSERT_EQ(deleted.exit_code, 0) << deleted.err;
+  EXPECT_EQ(deleted.out, "deleted chart " + chart_id + "\n");
+  auto listed = RunSeaplan({"--server", addr, "chart", "list"});
+  EXPECT_NE(listed.out.find("no charts"), std::string::npos) << listed.out;
+  auto again = RunSeaplan({"--server", addr, "chart", "delete", chart_id});
+  EXPECT_EQ(again.exit_code, 2) << again.out << again.err;
+  EXPECT_NE(again.err.find("NOT_FOUND"), std::string::npos) << again.err;
+  auto audit = RunSeaplan({"--server", addr, "audit"});
+  EXPECT_NE(audit.out.find("ChartService/DeleteChart  " + chart_id), std::string::npos)
+      << audit.out;
+}
+
 // Every `"key":"number"` of a JSON text, in order (int64 fields are strings
 // in proto3 JSON; "sequence" does not match "sequenceNumber").
 std::vector<long long> JsonInt64s(const std::string& json, const std::string& key) {

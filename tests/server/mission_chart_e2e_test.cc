@@ -199,6 +199,76 @@ TEST(MissionChartE2eTest, LegWithoutSafeRouteIsFailedPreconditionNamingTheLeg) {
   EXPECT_EQ(st.error_code(), StatusCode::FAILED_PRECONDITION) << st.error_message();
 }
 
+// DeleteChart: NOT_FOUND for an unknown chart; FAILED_PRECONDITION naming
+// the mission while an active mission uses it (the chart stays); once the
+// mission is cancelled the chart goes with its audit row, and the mission
+// engine's routings over it go too: a new mission on it is refused.
+TEST(MissionChartE2eTest, ChartInUseIsNotDeletedAndADeletedChartIsGoneEverywhere) {
+  InProcessServer s;  // with the server's own mission engine (its routing cache)
+  const std::string chart_id = UploadIslandChart(s);
+  ASSERT_FALSE(chart_id.empty());
+  auto charts = v1::ChartService::NewStub(s.channel());
+  auto missions = v1::MissionService::NewStub(s.channel());
+  const auto delete_chart = [&](const std::string& id) {
+    v1::DeleteChartRequest req;
+    req.set_chart_id(id);
+    v1::DeleteChartResponse resp;
+    ClientContext ctx;
+    const grpc::Status st = charts->DeleteChart(&ctx, req, &resp);
+    if (st.ok()) {
+      EXPECT_EQ(resp.chart_id(), id);
+    }
+    return st;
+  };
+  const auto create = [&](v1::Mission* mission) {
+    v1::CreateMissionRequest req;
+    *req.mutable_spec() = ChartSpec(chart_id, "port-e");
+    ClientContext ctx;
+    SetDeadline(&ctx, 60000);
+    return missions->CreateMission(&ctx, req, mission);
+  };
+  EXPECT_EQ(delete_chart("c-no-such-chart").error_code(), StatusCode::NOT_FOUND);
+  EXPECT_EQ(delete_chart("").error_code(), StatusCode::INVALID_ARGUMENT);
+
+  v1::Mission mission;
+  grpc::Status st = create(&mission);
+  ASSERT_TRUE(st.ok()) << st.error_message();
+  st = delete_chart(chart_id);
+  EXPECT_EQ(st.error_code(), StatusCode::FAILED_PRECONDITION) << st.error_message();
+  EXPECT_NE(st.error_message().find(mission.mission_id()), std::string::npos) << st.error_message();
+  ASSERT_TRUE(s.store().charts().Get(chart_id, false).ok());
+
+  {
+    v1::CancelMissionRequest cancel;
+    cancel.set_mission_id(mission.mission_id());
+    v1::Mission cancelled;
+    ClientContext ctx;
+    ASSERT_TRUE(missions->CancelMission(&ctx, cancel, &cancelled).ok());
+  }
+  st = delete_chart(chart_id);
+  ASSERT_TRUE(st.ok()) << st.error_message();
+  EXPECT_EQ(s.store().charts().Get(chart_id, false).status().code(), absl::StatusCode::kNotFound);
+  auto audit = s.store().audit().ListAudit(1000, 0);
+  ASSERT_TRUE(audit.ok());
+  int delete_rows = 0;
+  for (const auto& row : audit->items) {
+    if (row.action == "ChartService/DeleteChart") {
+      ++delete_rows;
+      EXPECT_EQ(row.target, chart_id);
+      EXPECT_EQ(row.role, "admin");
+    }
+  }
+  EXPECT_EQ(delete_rows, 1);  // the refused attempt left none
+
+  // The same spec as the first mission: without the dropped routing it
+  // would still plan over the deleted chart.
+  v1::Mission again;
+  st = create(&again);
+  EXPECT_EQ(st.error_code(), StatusCode::FAILED_PRECONDITION) << st.error_message();
+  EXPECT_NE(st.error_message().find(chart_id), std::string::npos) << st.error_message();
+  EXPECT_EQ(delete_chart(chart_id).error_code(), StatusCode::NOT_FOUND);
+}
+
 TEST(MissionChartE2eTest, TwoTriggeringFeedbacksInARowReplanOnce) {
   auto engine = std::make_shared<FakeMissionEngine>();
   engine->replan_delay_ms = 300;  // the second report arrives while the first replan runs

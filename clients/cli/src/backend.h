@@ -38,6 +38,8 @@ class Backend {
                                 v1::GetChartResponse* response) = 0;
   virtual absl::Status ListCharts(const v1::ListChartsRequest& request,
                                   v1::ListChartsResponse* response) = 0;
+  virtual absl::Status DeleteChart(const v1::DeleteChartRequest& request,
+                                   v1::DeleteChartResponse* response) = 0;
   virtual absl::Status PlanRoute(const v1::PlanRouteRequest& request,
                                  v1::PlanRouteResponse* response) = 0;
   virtual absl::Status EstimateRisk(const v1::EstimateRiskRequest& request,

@@ -285,6 +285,17 @@ int RunChartGet(const GlobalOptions& options, const std::string& id, const std::
   return kExitSuccess;
 }
 
+int RunChartDelete(const GlobalOptions& options, const std::string& id) {
+  v1::DeleteChartRequest request;
+  request.set_chart_id(id);
+  v1::DeleteChartResponse response;
+  if (auto s = MakeBackend(options)->DeleteChart(request, &response); !s.ok())
+    return ReportError(std::cerr, s);
+  PrintJsonOr(options, response,
+              [&] { std::cout << "deleted chart " << response.chart_id() << "\n"; });
+  return kExitSuccess;
+}
+
 // ---- route and risk ---------------------------------------------------------
 
 struct RouteArgs {
@@ -751,7 +762,7 @@ int RunCli(int argc, char** argv, const CliExecutable& executable) {
   validate_cmd->callback(runner(
       "validate", [&] { return RunValidate(options, v_domain, v_problem, v_plan, v_epsilon); }));
 
-  auto* chart_cmd = app.add_subcommand("chart", "Upload, list and show charts");
+  auto* chart_cmd = app.add_subcommand("chart", "Upload, list, show and delete charts");
   chart_cmd->require_subcommand(1);
   ChartArgs chart;
   auto* upload_cmd = chart_cmd->add_subcommand("upload", "Upload a chart");
@@ -774,6 +785,12 @@ int RunCli(int argc, char** argv, const CliExecutable& executable) {
   get_cmd->add_option("--geojson", chart_geojson, "Write the obstacles as GeoJSON to this file");
   get_cmd->callback(
       runner("chart get", [&] { return RunChartGet(options, chart_id, chart_geojson); }));
+  std::string delete_chart_id;
+  auto* delete_cmd = chart_cmd->add_subcommand(
+      "delete", "Delete a chart (admin token; refused while unfinished missions use it)");
+  delete_cmd->add_option("id", delete_chart_id, "Chart id")->required();
+  delete_cmd->callback(
+      runner("chart delete", [&] { return RunChartDelete(options, delete_chart_id); }));
 
   RouteArgs route;
   auto* route_cmd =

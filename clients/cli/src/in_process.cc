@@ -51,6 +51,10 @@ absl::Status InProcessBackend::GetChart(const v1::GetChartRequest&, v1::GetChart
 absl::Status InProcessBackend::ListCharts(const v1::ListChartsRequest&, v1::ListChartsResponse*) {
   return Refuse("chart list");
 }
+absl::Status InProcessBackend::DeleteChart(const v1::DeleteChartRequest&,
+                                           v1::DeleteChartResponse*) {
+  return Refuse("chart delete");
+}
 absl::Status InProcessBackend::PlanRoute(const v1::PlanRouteRequest&, v1::PlanRouteResponse*) {
   return Refuse("route");
 }

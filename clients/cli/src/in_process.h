@@ -25,6 +25,7 @@ class InProcessBackend : public Backend {
   absl::Status UploadChart(const v1::UploadChartRequest&, v1::UploadChartResponse*) override;
   absl::Status GetChart(const v1::GetChartRequest&, v1::GetChartResponse*) override;
   absl::Status ListCharts(const v1::ListChartsRequest&, v1::ListChartsResponse*) override;
+  absl::Status DeleteChart(const v1::DeleteChartRequest&, v1::DeleteChartResponse*) override;
   absl::Status PlanRoute(const v1::PlanRouteRequest&, v1::PlanRouteResponse*) override;
   absl::Status EstimateRisk(const v1::EstimateRiskRequest&, v1::EstimateRiskResponse*) override;
   absl::Status CreateMission(const v1::CreateMissionRequest&, v1::Mission*) override;

@@ -43,6 +43,10 @@ class LocalBackend final : public InProcessBackend {
                           v1::ListChartsResponse* response) override {
     return Assign(core_.charts().ListCharts(request, Call()), response);
   }
+  absl::Status DeleteChart(const v1::DeleteChartRequest& request,
+                           v1::DeleteChartResponse* response) override {
+    return Assign(core_.charts().DeleteChart(request, Call()), response);
+  }
   absl::Status PlanRoute(const v1::PlanRouteRequest& request,
                          v1::PlanRouteResponse* response) override {
     return Assign(core_.routes().PlanRoute(request, Call()), response);

@@ -73,6 +73,11 @@ class RemoteBackend final : public Backend {
     auto context = MakeContext();
     return FromGrpc(charts_->ListCharts(context.get(), request, response));
   }
+  absl::Status DeleteChart(const v1::DeleteChartRequest& request,
+                           v1::DeleteChartResponse* response) override {
+    auto context = MakeContext();
+    return FromGrpc(charts_->DeleteChart(context.get(), request, response));
+  }
   absl::Status PlanRoute(const v1::PlanRouteRequest& request,
                          v1::PlanRouteResponse* response) override {
     auto context = MakeContext();

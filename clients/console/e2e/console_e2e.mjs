@@ -452,6 +452,15 @@ try {
   check(consoleErrors.length === 0, `no console errors${consoleErrors.length ? `: ${consoleErrors.join(" | ")}` : ""}`);
   check(external.length === 0, `nothing loaded from elsewhere${external.length ? `: ${external.join(", ")}` : ""}`);
 
+  // 9b. The admin deletes the chart the finished mission used: it leaves the list.
+  await page.goto(`${server.url}#/charts`);
+  await page.waitForSelector(`button.delete-chart[data-chart-id="${chartId}"]`);
+  page.once("dialog", (d) => d.accept());
+  await page.click(`button.delete-chart[data-chart-id="${chartId}"]`);
+  await page.waitForFunction(() => /^Deleted /.test(document.querySelector("#charts-status")?.textContent ?? ""), null, { timeout: 30000 });
+  const listedAfter = await page.$$eval("#charts-body tr td:nth-child(2)", (cells) => cells.map((c) => c.textContent));
+  check(!listedAfter.includes(chartId), `chart ${chartId} deleted from the console (${listedAfter.length} left)`);
+
   // 10. Sign-out ends the session: the form again, and the cookie is refused.
   await page.click("#sign-out");
   await page.waitForSelector("#sign-in #token");

@@ -1,7 +1,7 @@
 // Charts: upload (S-57 cell with updates, zipped FileGDB / shapefiles,
-// GeoJSON) with progress and the server's errors, list, and a preview of
-// the obstacles at a chosen minimum depth.
-import { ApiError, call, headers, type ApiErrorBody, type Chart } from "./api";
+// GeoJSON) with progress and the server's errors, list, a preview of the
+// obstacles at a chosen minimum depth, and (admins only) deletion.
+import { ApiError, call, currentSession, headers, type ApiErrorBody, type Chart } from "./api";
 import { field, fileToBase64, h } from "./dom";
 import { ChartMap } from "./map";
 import { utc } from "./units";
@@ -43,6 +43,9 @@ export function chartsView(root: HTMLElement): () => void {
   const previewButton = h("button", { type: "button", id: "p-show", text: "Show obstacles" });
   const previewStatus = h("p", { class: "status", role: "status", id: "p-status" });
   const mapBox = h("div", { class: "map small", id: "preview-map" });
+  // Only admins may delete (the server checks too); others see no button.
+  const admin = currentSession()?.role === "admin";
+  const listStatus = h("p", { id: "charts-status", class: "status", role: "status" });
   const form = h("form", { "aria-labelledby": "upload-title", class: "upload" },
     h("h2", { id: "upload-title", text: "Upload" }), field("Name", name), field("Files", files),
     field("Format", format), field("Minimum depth (m)", depth, "shallower water is an obstacle"),
@@ -51,7 +54,9 @@ export function chartsView(root: HTMLElement): () => void {
     h("h1", { id: "charts-title", text: "Charts" }), form,
     h("h2", { text: "Stored charts" }),
     h("table", { class: "grid", "aria-label": "Charts" }, h("thead", {}, h("tr", {},
-      ...["Name", "Id", "Format", "Min depth", "Obstacles", "Uploaded"].map((t) => h("th", { scope: "col", text: t })))), body),
+      ...["Name", "Id", "Format", "Min depth", "Obstacles", "Uploaded", ...(admin ? ["Delete"] : [])]
+        .map((t) => h("th", { scope: "col", text: t })))), body),
+    listStatus,
     h("h2", { text: "Preview" }),
     h("div", { class: "toolbar" }, field("Chart", previewChart),
       field("Minimum depth (m)", previewDepth, "empty: the chart's own"), previewButton, previewStatus),
@@ -65,10 +70,29 @@ export function chartsView(root: HTMLElement): () => void {
     body.replaceChildren(...charts.map((c) => h("tr", {},
       h("td", { text: c.name }), h("td", { text: c.chartId }), h("td", { text: c.format.replace("CHART_FORMAT_", "") }),
       h("td", { text: `${c.minimumDepthM} m` }), h("td", { text: String(c.summary?.obstacleCount ?? 0) }),
-      h("td", { text: utc(c.createdAt) }))));
+      h("td", { text: utc(c.createdAt) }),
+      admin ? h("td", {}, deleteButton(c)) : null)));
     const selected = previewChart.value;
     previewChart.replaceChildren(...charts.map((c) => h("option", { value: c.chartId, text: c.name })));
     if (selected) previewChart.value = selected;
+  };
+  // The server refuses (412, naming them) while unfinished missions use the chart.
+  const deleteButton = (c: Chart) => {
+    const button = h("button", { type: "button", class: "delete-chart", "data-chart-id": c.chartId,
+                                 text: "Delete", "aria-label": `Delete chart ${c.name} (${c.chartId})` });
+    button.addEventListener("click", async () => {
+      if (!window.confirm(`Delete chart ${c.name} (${c.chartId})? This cannot be undone.`)) return;
+      button.disabled = true;
+      try {
+        await call("ChartService/DeleteChart", { chartId: c.chartId });
+        await load();
+        listStatus.textContent = `Deleted ${c.name} (${c.chartId}).`;
+      } catch (e) {
+        listStatus.textContent = `Delete refused: ${(e as Error).message}`;
+        button.disabled = false;
+      }
+    });
+    return button;
   };
   void load().catch((e) => { message.textContent = `Cannot list charts: ${(e as Error).message}`; });
 

@@ -288,6 +288,12 @@ RoutePlanner ChartRouter(std::shared_ptr<ChartRouting> routing, StopToken stop) 
   };
 }
 
+void ChartRoutingCache::Forget(const std::string& chart_id) {
+  const std::string prefix = absl::StrCat(chart_id, "|");
+  std::lock_guard lock(mu_);
+  std::erase_if(routings_, [&](const auto& entry) { return entry.first.starts_with(prefix); });
+}
+
 StatusOr<std::shared_ptr<ChartRouting>> ChartRoutingCache::Get(const std::string& chart_id,
                                                                const std::string& settings_key,
                                                                const ChartRouteSettings& settings) {

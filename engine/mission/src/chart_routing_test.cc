@@ -100,6 +100,15 @@ TEST(ChartRoutingTest, CacheLoadsAChartOnceAndRoutesLeaveTheBufferFirst) {
   EXPECT_EQ(routing->get(), again->get());
   EXPECT_EQ(loads.load(), 1);
   EXPECT_TRUE(absl::IsFailedPrecondition(cache.Get("other", "fast", FastSettings()).status()));
+  // Forgetting another chart keeps this one; forgetting it loads it again.
+  cache.Forget("isl");
+  EXPECT_EQ(cache.Get("island", "fast", FastSettings())->get(), routing->get());
+  EXPECT_EQ(loads.load(), 1);
+  cache.Forget("island");
+  auto reloaded = cache.Get("island", "fast", FastSettings());
+  ASSERT_TRUE(reloaded.ok());
+  EXPECT_NE(reloaded->get(), routing->get());
+  EXPECT_EQ(loads.load(), 2);
 
   // (0, 305) is in the buffer (island edge at 300, buffer 10 m): the route
   // starts there and leaves northwards first.

@@ -112,6 +112,8 @@ class Engine final : public MissionEngine {
     return mission::OnFeedback(policy, runtime.current, runtime.completed_task_ids, feedback);
   }
 
+  void ForgetChart(const std::string& chart_id) override { routings_.Forget(chart_id); }
+
  private:
   static StatusOr<EngineState> Decode(const std::string& engine_state) {
     auto decoded = DecodeEngineState(engine_state);

@@ -44,6 +44,7 @@
 
 #include <chrono>
 #include <cstdint>
+#include <functional>
 #include <optional>
 #include <string>
 #include <vector>
@@ -87,6 +88,18 @@ struct ChartRecord {
   TimestampMs created_at_ms = 0;
 };
 
+// Which missions keep a chart from being deleted: those whose state is one
+// of `active_states` and whose spec blob `spec_uses_chart` says refers to
+// the chart (storage does not read specs). Checked inside the deleting
+// transaction against every committed mission (PostgreSQL: with mission
+// writes locked out meanwhile). A mission whose creation read the chart
+// just before the delete and commits just after it is not seen: its later
+// replans answer NotFound for the chart.
+struct ChartUse {
+  std::vector<int> active_states;
+  std::function<bool(const std::string& spec, const std::string& chart_id)> spec_uses_chart;
+};
+
 class ChartRepository {
  public:
   virtual ~ChartRepository() = default;
@@ -99,6 +112,11 @@ class ChartRepository {
   virtual absl::StatusOr<ChartRecord> Get(const std::string& id, bool with_blobs) = 0;
   // Charts with seq > after, oldest first, at most page_size (1..1000), without blobs.
   virtual absl::StatusOr<Page<ChartRecord>> List(int page_size, std::int64_t after) = 0;
+  // Deletes the chart and appends `audit` (when given) in one transaction,
+  // unless a mission still uses it (see ChartUse): then FailedPrecondition
+  // naming those missions, and nothing changes. NotFound when absent.
+  virtual absl::Status Delete(const std::string& id, const ChartUse& use,
+                              const AuditRecord* audit = nullptr) = 0;
 };
 
 struct MissionRecord {

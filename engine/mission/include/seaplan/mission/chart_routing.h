@@ -146,6 +146,9 @@ class ChartRoutingCache {
   StatusOr<std::shared_ptr<ChartRouting>> Get(const std::string& chart_id,
                                               const std::string& settings_key,
                                               const ChartRouteSettings& settings);
+  // Drops every routing built on the chart (it was deleted): a later Get
+  // loads it again, and fails when it is gone.
+  void Forget(const std::string& chart_id);
 
  private:
   ChartLoader loader_;

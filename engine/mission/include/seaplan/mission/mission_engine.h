@@ -119,6 +119,9 @@ class MissionEngine {
   // Fast (no planning). `runtime` does not include `feedback` yet.
   virtual FeedbackOutcome OnFeedback(const MissionSpec& spec, const MissionRuntime& runtime,
                                      const Feedback& feedback) = 0;
+
+  // The chart was deleted: an engine that keeps charts in memory drops it.
+  virtual void ForgetChart(const std::string& chart_id) { (void)chart_id; }
 };
 
 // The engine over engine/search (temporal planner) and engine/route
