@@ -31,6 +31,7 @@
 #include <vector>
 
 #include "e2e_support.h"
+#include "seaplan/bench/percentile.h"
 #include "seaplan/v1/chart.grpc.pb.h"
 #include "seaplan/v1/mission.grpc.pb.h"
 #include "seaplan/v1/planning.grpc.pb.h"
@@ -100,12 +101,7 @@ class Recorder {
   std::map<std::string, Tally> tallies_;
 };
 
-double Percentile(std::vector<double> v, double p) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  return v[std::min(v.size() - 1,
-                    static_cast<std::size_t>(std::lround(p * static_cast<double>(v.size() - 1))))];
-}
+using seaplan::bench::Percentile;
 
 const char* kPorts[] = {"port-a", "port-b", "port-c", "port-d", "port-e"};
 const double kLat[] = {63.441795, 63.445835, 63.442244, 63.445835, 63.442693};

@@ -38,6 +38,7 @@
 #include "absl/strings/str_cat.h"
 #include "e2e_support.h"
 #include "nginx_balancer.h"
+#include "seaplan/bench/percentile.h"
 #include "seaplan/storage/testing/postgres_cluster.h"
 #include "seaplan/v1/mission.grpc.pb.h"
 #include "seaplan/v1/planning.grpc.pb.h"
@@ -55,13 +56,7 @@ fs::path BinDir() {
   return SEAPLAN_BENCH_BIN_DIR;
 }
 
-double Percentile(std::vector<double> v, double q) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  const std::size_t i = std::min(
-      v.size() - 1, static_cast<std::size_t>(std::lround(q * static_cast<double>(v.size() - 1))));
-  return v[i];
-}
+using seaplan::bench::Percentile;
 
 double MsSince(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "absl/strings/str_cat.h"
+#include "seaplan/bench/percentile.h"
 #include "seaplan/storage/postgres_store.h"
 #include "seaplan/storage/sqlite_store.h"
 #include "seaplan/storage/testing/postgres_cluster.h"
@@ -36,13 +37,7 @@ struct Backend {
   std::atomic<std::int64_t> next_sequence{0};
 };
 
-double Percentile(std::vector<double> v, double q) {
-  if (v.empty()) return 0;
-  std::sort(v.begin(), v.end());
-  const std::size_t i = std::min(
-      v.size() - 1, static_cast<std::size_t>(std::lround(q * static_cast<double>(v.size() - 1))));
-  return v[i];
-}
+using seaplan::bench::Percentile;
 
 // `count` reports from `writers` threads; appends each call's latency.
 absl::Status RunRound(Backend& b, int count, int writers, const std::string& payload) {
