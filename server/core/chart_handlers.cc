@@ -6,9 +6,11 @@
 #include "absl/strings/str_cat.h"
 #include "seaplan/chart/geojson.h"
 #include "seaplan/chart/obstacle_map.h"
+#include "seaplan/mission/mission_state.h"
 #include "seaplan/v1/mission.pb.h"
 #include "server/core/audit_entry.h"
 #include "server/core/convert.h"
+#include "server/core/mission_engine_adapter.h"
 
 namespace seaplan::server {
 namespace {
@@ -181,10 +183,14 @@ absl::StatusOr<v1::DeleteChartResponse> ChartHandlers::DeleteChart(
     const v1::DeleteChartRequest& request, const CallContext& ctx) {
   if (request.chart_id().empty()) return absl::InvalidArgumentError("chart_id is empty");
   // A finished mission never loads its chart again; an unfinished one
-  // replans with it.
+  // replans with it. Which states are final is the mission engine's to say.
   storage::ChartUse use;
-  use.active_states = {v1::MISSION_STATE_PLANNING, v1::MISSION_STATE_ACTIVE,
-                       v1::MISSION_STATE_REPLANNING};
+  for (int state = v1::MissionState_MIN; state <= v1::MissionState_MAX; ++state) {
+    if (state != v1::MISSION_STATE_UNSPECIFIED && v1::MissionState_IsValid(state) &&
+        !mission::IsFinal(MissionStateFromProto(state))) {
+      use.active_states.push_back(state);
+    }
+  }
   use.spec_uses_chart = [](const std::string& spec, const std::string& chart_id) {
     v1::MissionSpec parsed;
     // An unreadable spec counts as a user: deleting must not lose a chart
