@@ -408,8 +408,9 @@ try {
   }
   // The slowest of them: on a loaded machine there can be hundreds.
   const shown = [...slowDetail].sort((a, b) => b.wall - a.wall).slice(0, 12);
-  console.log(`frames over 50 ms (empty map too), each looked up in the trace by its index: ${slowDetail.length ? "" : "none"}` +
-              `${slowDetail.length > shown.length ? `${slowDetail.length}, the ${shown.length} slowest:` : ""}`);
+  const n = slowDetail.length;
+  console.log(`frames over 50 ms (empty map too), each looked up in the trace by its index: ` +
+              `${n === 0 ? "none" : n > shown.length ? `${n}, the ${shown.length} slowest:` : `${n}:`}`);
   for (const d of shown) {
     console.log(`  ${d.where} #${d.index}: ${fmt(d.wall)} ms (trace marks ${fmt(d.marks)} ms apart; the callbacks at its ends ran ${fmt(d.lag[0])} and ${fmt(d.lag[1])} ms after their frames began); ` +
                 `main thread ${fmt(d.cpu)} ms CPU (longest task ${fmt(d.longestWall)} ms wall, ${fmt(d.longestCpu)} CPU; ` +
