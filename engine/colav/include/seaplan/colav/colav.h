@@ -9,9 +9,11 @@
 //   collision avoidance and COLREGS compliance using simulation-based
 //   control behavior selection with predictive hazard assessment", IEEE
 //   T-ITS 2016). A finite set of control behaviours (a course offset added
-//   to the path follower's course, a factor on the route's speed) is each
-//   simulated over the horizon with the ship model (engine/ship), this
-//   autopilot and the path follower, the traffic moving straight on. Each is
+//   to the path follower's course or a track parallel to the path, a factor
+//   on the route's speed) is each simulated over the horizon with the ship
+//   model (engine/ship), this autopilot and the path follower, the traffic
+//   moving straight on (a vessel lying still with a margin that grows with
+//   the time ahead: it may get under way). Each is
 //   scored for collision risk, COLREG compliance, grounding and the
 //   deviation it costs, with a cost on changing the behaviour (hysteresis);
 //   the cheapest is commanded until the next decision. The predicted
@@ -213,9 +215,9 @@ class CollisionAvoidance {
                      const std::vector<Obstacle>& traffic, Behaviour b,
                      const std::vector<bool>& release) const;
   double PenaltyAt(double distance_m) const;
-  // The course that turns onto the behaviour's parallel track (by at least
-  // the smallest course offset) and follows it, for a follower updated at
-  // the ship's position.
+  // The course that turns onto a parallel track (from the path, by the
+  // smallest course offset) and follows it, for a follower updated at the
+  // ship's position.
   double TrackCourse(const PathFollower& follower, double track_offset_m) const;
   double CommandedCourse(const DesiredMotion& desired, const PathFollower& path, Behaviour b) const;
   // Per traffic entry: the uncertainty margin's growth (m/s of
