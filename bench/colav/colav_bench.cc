@@ -3,9 +3,12 @@
 // the side it was passed on, the role taken, the COLREG checks, the time
 // lost against the same leg without traffic and the largest deviation from
 // the path; then how many situations each policy passes and its run time as
-// a ratio to the velocity obstacles' in the same process.
+// a ratio to the velocity obstacles' in the same process. `sbmpc-basic` is
+// the MPC with its former behaviour set and prediction (course offsets and
+// speed factors only, every vessel on its present velocity), to measure the
+// parallel tracks and the uncertainty margin against in the same run.
 //
-//   build/bin/colav_bench [--policy sbmpc|vo|both] [--situation NAME] [--log]
+//   build/bin/colav_bench [--policy sbmpc|sbmpc-basic|vo|both|all] [--situation NAME] [--log]
 #include <chrono>
 #include <cmath>
 #include <cstdio>
@@ -19,7 +22,6 @@ namespace {
 
 using seaplan::colav::CollisionAvoidanceOptions;
 using seaplan::colav::Policy;
-using seaplan::colav::PolicyName;
 namespace suite = seaplan::colav::suite;
 
 struct Totals {
@@ -42,26 +44,40 @@ int main(int argc, char** argv) {
       show_log = true;
     } else {
       std::fprintf(stderr,
-                   "usage: colav_bench [--policy sbmpc|vo|both] [--situation NAME] [--log]\n");
+                   "usage: colav_bench [--policy sbmpc|sbmpc-basic|vo|both|all] [--situation "
+                   "NAME] [--log]\n");
       return 2;
     }
   }
-  if (policy != "both" && policy != "sbmpc" && policy != "vo") {
-    std::fprintf(stderr, "colav_bench: --policy must be sbmpc, vo or both, not '%s'\n",
+  struct Variant {
+    std::string name;
+    CollisionAvoidanceOptions options;
+  };
+  std::vector<Variant> policies;
+  if (policy == "sbmpc" || policy == "both" || policy == "all") policies.push_back({"sbmpc", {}});
+  if (policy == "sbmpc-basic" || policy == "all") {
+    CollisionAvoidanceOptions basic;
+    basic.track_offsets_m.clear();
+    basic.uncertain_speed_mps = 0;
+    policies.push_back({"basic", basic});
+  }
+  if (policy == "vo" || policy == "both" || policy == "all") {
+    CollisionAvoidanceOptions vo;
+    vo.policy = Policy::kVelocityObstacle;
+    policies.push_back({"vo", vo});
+  }
+  if (policies.empty()) {
+    std::fprintf(stderr,
+                 "colav_bench: --policy must be sbmpc, sbmpc-basic, vo, both or all, not '%s'\n",
                  policy.c_str());
     return 2;
   }
-  std::vector<Policy> policies;
-  if (policy != "vo") policies.push_back(Policy::kScenarioMpc);
-  if (policy != "sbmpc") policies.push_back(Policy::kVelocityObstacle);
   std::printf("%-38s %-5s %-24s %-16s %-13s %6s %6s  %s\n", "situation", "colav",
               "min CPA per vessel (m)", "passed on", "roles", "lost%", "dev m", "checks");
   std::vector<Totals> totals(policies.size());
   bool any = false;
   for (size_t p = 0; p < policies.size(); ++p) {
-    CollisionAvoidanceOptions o;
-    o.policy = policies[p];
-    for (const suite::Situation& s : suite::Situations(o)) {
+    for (const suite::Situation& s : suite::Situations(policies[p].options)) {
       if (!only.empty() && s.name != only) continue;
       any = true;
       const auto t0 = std::chrono::steady_clock::now();
@@ -85,9 +101,8 @@ int main(int argc, char** argv) {
       std::string checks = r->failures.empty() ? "ok" : "";
       for (const std::string& f : r->failures) checks += (checks.empty() ? "" : "; ") + f;
       std::printf("%-38s %-5s %-24s %-16s %-13s %6.1f %6.0f  %s\n", s.name.c_str(),
-                  std::string(PolicyName(policies[p])).c_str(), cpas.c_str(), sides.c_str(),
-                  roles.c_str(), r->time_lost * 100.0, r->outcome.max_path_deviation_m,
-                  checks.c_str());
+                  policies[p].name.c_str(), cpas.c_str(), sides.c_str(), roles.c_str(),
+                  r->time_lost * 100.0, r->outcome.max_path_deviation_m, checks.c_str());
       if (show_log) {
         for (const std::string& line : r->outcome.log) std::printf("    %s\n", line.c_str());
       }
@@ -98,12 +113,14 @@ int main(int argc, char** argv) {
     return 2;
   }
   for (size_t p = 0; p < policies.size(); ++p) {
-    std::printf("%s: %d of %d situations pass every check, %.1f s\n",
-                std::string(PolicyName(policies[p])).c_str(), totals[p].passed, totals[p].run,
-                totals[p].seconds);
+    std::printf("%s: %d of %d situations pass every check, %.1f s\n", policies[p].name.c_str(),
+                totals[p].passed, totals[p].run, totals[p].seconds);
   }
-  if (policies.size() == 2 && totals[1].seconds > 0) {
-    std::printf("run time sbmpc / vo: %.1f\n", totals[0].seconds / totals[1].seconds);
+  for (size_t p = 1; p < policies.size(); ++p) {
+    if (totals[p].seconds > 0) {
+      std::printf("run time %s / %s: %.1f\n", policies[0].name.c_str(), policies[p].name.c_str(),
+                  totals[0].seconds / totals[p].seconds);
+    }
   }
   return 0;
 }

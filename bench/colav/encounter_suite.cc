@@ -63,6 +63,13 @@ const Expectation kStandOnPort{Role::kCrossingStandOn, Side::kEither, true, true
 const Expectation kOvertaking{Role::kOvertaking, Side::kEither, false, false};
 const Expectation kOvertaken{Role::kOvertaken, Side::kEither, false, true};
 const Expectation kStill{Role::kNone, Side::kEither, false, false};
+// A vessel that is no encounter at first but may become one as the ship
+// manoeuvres for another: keep clear of it, whatever the role.
+// Give-way once under way; lying still it has no role, and keeping clear
+// of it may take the ship to port. With a minute's warning no side is
+// asked: passing astern of it at the safety distance is out of reach.
+const Expectation kGiveWayAfterStill{Role::kCrossingGiveWay, Side::kEither, false, false};
+const Expectation kKeepClear{Role::kNone, Side::kEither, false, false, false};
 
 }  // namespace
 
@@ -125,6 +132,31 @@ std::vector<Situation> Situations(const CollisionAvoidanceOptions& o) {
                           Meeting(3, "C", 250, 9, 380)},
                          {kOvertaking, kHeadOn, kGiveWay}, o);
   v.push_back(three);
+  v.push_back(Open(
+      "crossing-port-while-overtaken",
+      "stand-on twice: overtaken from astern at 13 m/s while a vessel crosses from port",
+      {SameCourse(1, "A", 13, -1300), Meeting(2, "B", 90, 8, 380)}, {kOvertaken, kStandOnPort}, o));
+  v.push_back(Open("head-on-with-vessel-to-starboard",
+                   "head-on while a faster vessel on a parallel course 300 m to starboard boxes "
+                   "us in",
+                   {Meeting(1, "A", 180, 9, 400), SameCourse(2, "B", 9.5, 150, 300)},
+                   {kHeadOn, kKeepClear}, o));
+  // Rule 13: coming up from more than 22.5 deg abaft its beam makes us the
+  // overtaking vessel although its course crosses ours from port.
+  v.push_back(Open("overtaking-crossing-course",
+                   "a vessel on course 030 at 3 m/s ahead on our port bow, we come from abaft "
+                   "its beam",
+                   {Meeting(1, "A", 30, 3, 400)}, {kOvertaking}, o));
+  // A vessel lying still 360 m east of the track gets under way westwards
+  // at 6 m/s 60 s before it would cross the track in front of us: seen on
+  // its present velocity, it is no conflict until then.
+  EncounterVessel departing = Meeting(1, "A", 270, 6, 400);
+  departing.still_until_s = 340;
+  departing.position = departing.position + departing.velocity * 340;
+  v.push_back(Open("departing-across-starboard",
+                   "a vessel lying still 360 m to starboard of the track gets under way across "
+                   "it at 6 m/s 60 s before it would reach us",
+                   {departing}, {kGiveWayAfterStill}, o));
   v.push_back(Open("two-crossing-starboard", "two vessels from starboard, 150 s apart",
                    {Meeting(1, "A", 270, 9, 350), Meeting(2, "B", 240, 9, 500)},
                    {kGiveWay, kGiveWay}, o));
@@ -198,7 +230,7 @@ StatusOr<Result> Run(const Situation& s) {
       fail(absl::StrFormat("%s: CPA %.0f m < %.0f m", name, v.min_distance_m,
                            opt.safety_distance_m));
     }
-    if (v.role != Role::kNone && v.role != e.role) {
+    if (e.role_checked && v.role != Role::kNone && v.role != e.role) {
       fail(absl::StrFormat("%s: role %s, expected %s", name, RoleName(v.role), RoleName(e.role)));
     }
     const Side side = v.bearing_rad < 0 ? Side::kPort : Side::kStarboard;
@@ -216,10 +248,19 @@ StatusOr<Result> Run(const Situation& s) {
   if (port_turn_ruled_out && o.max_port_offset_rad > 1 * kDeg) {
     fail(absl::StrFormat("turned %.0f deg to port", o.max_port_offset_rad / kDeg));
   }
-  if (o.manoeuvres > 0 && o.min_nonzero_offset_rad < 25 * kDeg && o.min_speed_factor > 0.6) {
-    fail(
-        absl::StrFormat("course offset of %.0f deg without a speed reduction: not readily apparent",
-                        o.min_nonzero_offset_rad / kDeg));
+  int small = 0;
+  const EncounterOutcome::Manoeuvre* first_small = nullptr;
+  for (const EncounterOutcome::Manoeuvre& m : o.manoeuvre_extents) {
+    if (m.max_offset_rad < 25 * kDeg && m.min_speed_factor > 0.6) {
+      if (small++ == 0) first_small = &m;
+    }
+  }
+  if (first_small != nullptr) {
+    fail(absl::StrFormat(
+        "%d manoeuvre(s) not readily apparent, the first at %.0f s: course offset of %.0f deg "
+        "at most, speed %.0f %%",
+        small, first_small->start_s, first_small->max_offset_rad / kDeg,
+        first_small->min_speed_factor * 100));
   }
   if (s.max_time_lost >= 0 && r.time_lost > s.max_time_lost) {
     fail(absl::StrFormat("time lost %.1f %% > %.0f %%", r.time_lost * 100, s.max_time_lost * 100));

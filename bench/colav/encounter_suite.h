@@ -24,8 +24,9 @@ struct Expectation {
   Role role = Role::kNone;  // the role the own ship should take (kNone: keep clear, either side)
   Side side = Side::kEither;
   bool no_port_turn =
-      false;              // rules 14, 15 (give-way) and 17 c (stand-on, vessel on the port side)
-  bool stand_on = false;  // keep course and speed until rule 17 applies
+      false;                 // rules 14, 15 (give-way) and 17 c (stand-on, vessel on the port side)
+  bool stand_on = false;     // keep course and speed until rule 17 applies
+  bool role_checked = true;  // false: any role (or none) will do
 };
 
 struct Situation {

@@ -19,6 +19,9 @@ constexpr int kLandCheckEvery = 5;
 constexpr double kSideCheckFactor = 4.0;
 // Below this speed a vessel is taken as lying still: no COLREG role, keep clear of it.
 constexpr double kStillMps = 0.5;
+// Without a non-zero course offset in the options, a parallel track is
+// turned onto by this much (rule 8: readily apparent).
+constexpr double kDefaultTurnRad = 30.0 * kDegToRad;
 
 bool IsStandOn(Role r) {
   return r == Role::kCrossingStandOn || r == Role::kOvertaken;
@@ -35,11 +38,13 @@ bool Passed(const Kinematics& own, const Kinematics& other, double distance_m) {
   return p.Norm() > distance_m && p.Dot(other.velocity - own.velocity) >= 0;
 }
 
-std::string BehaviourText(double offset_rad, double factor) {
+std::string BehaviourText(double offset_rad, double factor, double track_offset_m) {
   const double deg = std::round(std::abs(offset_rad) / kDegToRad);
   const std::string course =
-      deg < 0.5 ? std::string("course kept")
-                : absl::StrFormat("%s %.0f deg", offset_rad > 0 ? "starboard" : "port", deg);
+      track_offset_m != 0 ? absl::StrFormat("track %.0f m to %s", std::abs(track_offset_m),
+                                            track_offset_m > 0 ? "starboard" : "port")
+      : deg < 0.5         ? std::string("course kept")
+                  : absl::StrFormat("%s %.0f deg", offset_rad > 0 ? "starboard" : "port", deg);
   return absl::StrFormat("%s, speed %.0f %%", course, factor * 100.0);
 }
 
@@ -52,13 +57,16 @@ std::string_view PolicyName(Policy p) {
 Status CollisionAvoidanceOptions::Validate() const {
   if (!(safety_distance_m > 0) || !(margin_factor >= 1.0) || !(horizon_s > 0) ||
       !(prediction_step_s > 0) || prediction_step_s > horizon_s || !(decision_interval_s >= 0) ||
-      !(rule17_time_s >= 0) || !(land_clearance_m >= 0) || !(rejoined_cross_track_m > 0)) {
+      !(rule17_time_s >= 0) || !(land_clearance_m >= 0) || !(rejoined_cross_track_m > 0) ||
+      !(uncertain_speed_mps >= 0) || !(uncertain_margin_factor >= 0)) {
     return absl::InvalidArgumentError(absl::StrFormat(
         "collision avoidance: safety_distance_m (%g), horizon_s (%g), prediction_step_s (%g, "
         "at most the horizon) and rejoined_cross_track_m (%g) must be > 0, margin_factor (%g) "
-        ">= 1, decision_interval_s (%g), rule17_time_s (%g) and land_clearance_m (%g) >= 0",
+        ">= 1, decision_interval_s (%g), rule17_time_s (%g), land_clearance_m (%g), "
+        "uncertain_speed_mps (%g) and uncertain_margin_factor (%g) >= 0",
         safety_distance_m, horizon_s, prediction_step_s, rejoined_cross_track_m, margin_factor,
-        decision_interval_s, rule17_time_s, land_clearance_m));
+        decision_interval_s, rule17_time_s, land_clearance_m, uncertain_speed_mps,
+        uncertain_margin_factor));
   }
   if (course_offsets_deg.empty() || speed_factors.empty()) {
     return absl::InvalidArgumentError(
@@ -76,6 +84,12 @@ Status CollisionAvoidanceOptions::Validate() const {
           absl::StrFormat("collision avoidance: course offset %g deg is not in [-180, 180]", o));
     }
   }
+  for (double o : track_offsets_m) {
+    if (!std::isfinite(o) || o == 0) {
+      return absl::InvalidArgumentError(
+          absl::StrFormat("collision avoidance: track offset %g m must be finite and non-zero", o));
+    }
+  }
   return absl::OkStatus();
 }
 
@@ -91,6 +105,42 @@ CollisionAvoidance::CollisionAvoidance(const CollisionAvoidanceOptions& options)
   vo_.turn_rate_rad_s = options.turn_rate_rad_s;
   vo_.manoeuvre_lag_s = options.manoeuvre_lag_s;
   vo_.land_clearance_m = options.land_clearance_m;
+  min_turn_rad_ = std::numeric_limits<double>::infinity();
+  for (double o : options.course_offsets_deg) {
+    if (std::abs(o) > 1e-9) min_turn_rad_ = std::min(min_turn_rad_, std::abs(o) * kDegToRad);
+  }
+  if (!std::isfinite(min_turn_rad_) || min_turn_rad_ >= kQuarterTurnRad) {
+    min_turn_rad_ = kDefaultTurnRad;
+  }
+}
+
+double CollisionAvoidance::TrackCourse(const PathFollower& follower, double track_offset_m) const {
+  const std::vector<EastNorth>& pts = follower.path();
+  const size_t leg = static_cast<size_t>(follower.leg());
+  // Line of sight to the parallel track with the look-ahead that starts the
+  // turn at min_turn_rad_ from the leg's course: smaller alterations would
+  // not be readily apparent, and the path follower's own look-ahead (sized
+  // for rejoining the route) would turn by only a few degrees.
+  const double lookahead = std::abs(track_offset_m) / std::tan(min_turn_rad_);
+  return CourseOf(pts[leg + 1] - pts[leg]) -
+         std::atan((follower.cross_track_m() - track_offset_m) / lookahead);
+}
+
+double CollisionAvoidance::CommandedCourse(const DesiredMotion& desired, const PathFollower& path,
+                                           Behaviour b) const {
+  return b.track_offset_m != 0 ? TrackCourse(path, b.track_offset_m)
+                               : desired.course_rad + b.offset_rad;
+}
+
+std::vector<double> CollisionAvoidance::UncertainGrowth(
+    const std::vector<Obstacle>& traffic) const {
+  std::vector<double> growth(traffic.size(), 0.0);
+  for (size_t i = 0; i < traffic.size(); ++i) {
+    if (traffic[i].kinematics.velocity.Norm() < kStillMps) {
+      growth[i] = options_.uncertain_speed_mps;
+    }
+  }
+  return growth;
 }
 
 Role CollisionAvoidance::RoleOf(int vessel_id) const {
@@ -154,7 +204,9 @@ CollisionAvoidance::Prediction CollisionAvoidance::Predict(
   const double plan = options_.safety_distance_m * options_.margin_factor;
   const size_t n = traffic.size();
   Prediction p;
-  p.vessels.assign(n, {std::numeric_limits<double>::infinity(), 0.0, 0.0});
+  constexpr double kFar = std::numeric_limits<double>::infinity();
+  p.vessels.assign(n, {kFar, kFar, 0.0, 0.0});
+  const double max_margin = options_.uncertain_margin_factor * options_.safety_distance_m;
   std::vector<double> worst(n, 0.0), last_distance(n, 0.0);
   const bool releasable = std::find(release.begin(), release.end(), true) != release.end();
   bool active = !(b == Behaviour{});
@@ -182,7 +234,8 @@ CollisionAvoidance::Prediction CollisionAvoidance::Predict(
                            cruise * to_goal / options_.slow_down_distance_m);
         }
         if (active) {
-          course += b.offset_rad;
+          course = b.track_offset_m != 0 ? TrackCourse(follower, b.track_offset_m)
+                                         : course + b.offset_rad;
           speed *= b.speed_factor;
         }
         const ActuatorCommand c =
@@ -208,8 +261,11 @@ CollisionAvoidance::Prediction CollisionAvoidance::Predict(
         v.time_s = t;
         v.bearing_rad = WrapAngle(std::atan2(rel.east_m, rel.north_m) - course_over_ground);
       }
-      worst[i] = std::max(worst[i], weight * PenaltyAt(d));
-      if (release[i] && !(d > plan && d >= last_distance[i])) all_passed = false;
+      const double growth = i < growth_.size() ? growth_[i] : 0.0;
+      const double margin = std::min(growth * t, max_margin);
+      v.min_margin_m = std::min(v.min_margin_m, d - margin);
+      worst[i] = std::max(worst[i], weight * PenaltyAt(d - margin));
+      if (release[i] && !(d - margin > plan && d >= last_distance[i])) all_passed = false;
       last_distance[i] = d;
     }
     if (active && releasable && all_passed) active = false;  // rejoin the path
@@ -232,7 +288,7 @@ Command CollisionAvoidance::StepScenarioMpc(const OwnShip& own, const DesiredMot
                                             const std::vector<Obstacle>& traffic) {
   Command out = Hold(desired);
   if (own.time_s + 1e-9 < next_decision_s_) {
-    out.course_rad = desired.course_rad + behaviour_.offset_rad;
+    out.course_rad = CommandedCourse(desired, path, behaviour_);
     out.speed_mps = desired.speed_mps * behaviour_.speed_factor;
     out.manoeuvring = manoeuvring_;
     out.vessel_id = manoeuvre_vessel_;
@@ -244,6 +300,7 @@ Command CollisionAvoidance::StepScenarioMpc(const OwnShip& own, const DesiredMot
   const Kinematics self = OwnKinematics(*own.model);
   const size_t n = traffic.size();
   const std::vector<bool> none(n, false);
+  growth_ = UncertainGrowth(traffic);
   const Prediction nominal = Predict(own, desired, path, traffic, Behaviour{}, none);
 
   // The encounters: vessels the nominal behaviour brings within the planning
@@ -252,7 +309,7 @@ Command CollisionAvoidance::StepScenarioMpc(const OwnShip& own, const DesiredMot
   std::set<int> conflict;
   for (size_t i = 0; i < n; ++i) {
     const Obstacle& o = traffic[i];
-    const bool in_conflict = nominal.vessels[i].min_distance_m < plan;
+    const bool in_conflict = nominal.vessels[i].min_margin_m < plan;
     const bool held = manoeuvring_ && roles_.contains(o.id) && !Passed(self, o.kinematics, plan);
     if (in_conflict) conflict.insert(o.id);
     if (!in_conflict && !held) {
@@ -304,46 +361,58 @@ Command CollisionAvoidance::StepScenarioMpc(const OwnShip& own, const DesiredMot
   if (act) {
     const ScenarioMpcWeights& w = options_.weights;
     double best = std::numeric_limits<double>::infinity();
+    std::vector<Behaviour> behaviours;
     for (double factor : options_.speed_factors) {
       for (double offset_deg : options_.course_offsets_deg) {
-        const Behaviour b{offset_deg * kDegToRad, factor};
-        const Prediction p =
-            b == Behaviour{} ? nominal : Predict(own, desired, path, traffic, b, release);
-        double cost = p.collision_cost + p.land_cost;
-        for (size_t i = 0; i < n; ++i) {
-          if (!release[i]) continue;
-          const Role role = roles_[traffic[i].id];
-          const bool starboard_rule = role == Role::kHeadOn || role == Role::kCrossingGiveWay;
-          // Rules 14, 15: the other passed on our port side (port to port,
-          // astern of a crossing vessel).
-          if (starboard_rule && p.vessels[i].bearing_rad > 0 &&
-              p.vessels[i].min_distance_m < kSideCheckFactor * options_.safety_distance_m) {
-            cost += w.colreg_side;
-          }
-          // Rules 14, 15 and 17 c: no turn to port.
-          const bool no_port =
-              starboard_rule || (role == Role::kCrossingStandOn && rule17_.contains(traffic[i].id));
-          if (no_port && b.offset_rad < 0) {
-            cost += w.colreg_port_turn * (0.5 + 0.5 * std::abs(b.offset_rad) / kQuarterTurnRad);
-          }
+        behaviours.push_back({offset_deg * kDegToRad, factor, 0.0});
+      }
+      for (double track_m : options_.track_offsets_m) behaviours.push_back({0.0, factor, track_m});
+    }
+    const double safe = options_.safety_distance_m;
+    for (const Behaviour& b : behaviours) {
+      const double factor = b.speed_factor;
+      const Prediction p =
+          b == Behaviour{} ? nominal : Predict(own, desired, path, traffic, b, release);
+      double cost = p.collision_cost + p.land_cost;
+      for (size_t i = 0; i < n; ++i) {
+        if (!release[i]) continue;
+        const Role role = roles_[traffic[i].id];
+        const bool starboard_rule = role == Role::kHeadOn || role == Role::kCrossingGiveWay;
+        // Rules 14, 15: the other passed on our port side (port to port,
+        // astern of a crossing vessel).
+        if (starboard_rule && p.vessels[i].bearing_rad > 0 &&
+            p.vessels[i].min_distance_m < kSideCheckFactor * options_.safety_distance_m) {
+          cost += w.colreg_side;
         }
-        const double x = b.offset_rad / kQuarterTurnRad;
-        cost += w.course_offset * x * x * (b.offset_rad < 0 ? w.port_factor : 1.0) +
-                w.speed_reduction * (1.0 - std::min(factor, 1.0));
-        // Hysteresis on ending a manoeuvre: back to the nominal behaviour
-        // only once it is predicted clear (else the ship alternates between
-        // a manoeuvre and the nominal behaviour every decision, each undoing
-        // the other's prediction).
-        if (manoeuvring_ && b == Behaviour{} && nominal.collision_cost > 0) cost += w.collision;
-        if (manoeuvring_) {
-          cost +=
-              w.change_course * std::abs(b.offset_rad - behaviour_.offset_rad) / kQuarterTurnRad +
-              w.change_speed * std::abs(b.speed_factor - behaviour_.speed_factor);
+        // Rules 14, 15 and 17 c: no turn to port.
+        const bool no_port =
+            starboard_rule || (role == Role::kCrossingStandOn && rule17_.contains(traffic[i].id));
+        if (no_port && b.offset_rad < 0) {
+          cost += w.colreg_port_turn * (0.5 + 0.5 * std::abs(b.offset_rad) / kQuarterTurnRad);
         }
-        if (cost < best - 1e-9) {
-          best = cost;
-          chosen = b;
+        if (no_port && b.track_offset_m < 0) {
+          cost += w.colreg_port_turn * (0.5 + 0.5 * min_turn_rad_ / kQuarterTurnRad);
         }
+      }
+      const double x = b.offset_rad / kQuarterTurnRad;
+      const double y = b.track_offset_m / safe;
+      const double side = b.offset_rad < 0 || b.track_offset_m < 0 ? w.port_factor : 1.0;
+      cost += (w.course_offset * x * x + w.track_offset * y * y) * side +
+              w.speed_reduction * (1.0 - std::min(factor, 1.0));
+      // Hysteresis on ending a manoeuvre: back to the nominal behaviour
+      // only once it is predicted clear (else the ship alternates between
+      // a manoeuvre and the nominal behaviour every decision, each undoing
+      // the other's prediction).
+      if (manoeuvring_ && b == Behaviour{} && nominal.collision_cost > 0) cost += w.collision;
+      if (manoeuvring_) {
+        cost +=
+            w.change_course * (std::abs(b.offset_rad - behaviour_.offset_rad) / kQuarterTurnRad +
+                               std::abs(b.track_offset_m - behaviour_.track_offset_m) / safe) +
+            w.change_speed * std::abs(b.speed_factor - behaviour_.speed_factor);
+      }
+      if (cost < best - 1e-9) {
+        best = cost;
+        chosen = b;
       }
     }
   }
@@ -353,7 +422,7 @@ Command CollisionAvoidance::StepScenarioMpc(const OwnShip& own, const DesiredMot
     e.kind = EventKind::kManoeuvreStarted;
     e.vessel_id = main_vessel;
     e.role = RoleOf(main_vessel);
-    e.detail = BehaviourText(chosen.offset_rad, chosen.speed_factor);
+    e.detail = BehaviourText(chosen.offset_rad, chosen.speed_factor, chosen.track_offset_m);
     if (manoeuvring_) e.detail = "changed: " + e.detail;
     out.events.push_back(std::move(e));
   } else if (!manoeuvre && manoeuvring_) {
@@ -369,7 +438,7 @@ Command CollisionAvoidance::StepScenarioMpc(const OwnShip& own, const DesiredMot
     manoeuvre_vessel_ = main_vessel;
     manoeuvre_role_ = RoleOf(main_vessel);
   }
-  out.course_rad = desired.course_rad + chosen.offset_rad;
+  out.course_rad = CommandedCourse(desired, path, chosen);
   out.speed_mps = desired.speed_mps * chosen.speed_factor;
   out.manoeuvring = manoeuvre;
   out.vessel_id = manoeuvre ? manoeuvre_vessel_ : -1;

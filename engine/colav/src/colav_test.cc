@@ -46,6 +46,12 @@ TEST(CollisionAvoidanceTest, RejectsBadOptions) {
   o = {};
   o.course_offsets_deg = {270};
   EXPECT_FALSE(CollisionAvoidance::Create(o).ok());
+  o = {};
+  o.track_offsets_m = {0};
+  EXPECT_FALSE(CollisionAvoidance::Create(o).ok());
+  o = {};
+  o.uncertain_speed_mps = -1;
+  EXPECT_FALSE(CollisionAvoidance::Create(o).ok());
   EXPECT_TRUE(CollisionAvoidance::Create({}).ok());
 }
 
@@ -102,6 +108,28 @@ TEST(CollisionAvoidanceTest, StandOnKeepsCourseUntilRule17ThenNotToPort) {
   const Command late = g.Step(*late_ca, 0, {Meeting(90, 9, 200)});
   EXPECT_TRUE(late.manoeuvring);
   EXPECT_GE(late.course_rad, -1e-9) << "rule 17 c: no turn to port for a vessel on the port side";
+}
+
+TEST(CollisionAvoidanceTest, AVesselLyingStillNearThePathIsGivenMoreRoom) {
+  // Lying still 300 m east of the path, 2 km ahead: on its present
+  // velocity it stays beyond the planning distance (225 m), but it may get
+  // under way towards the path before the ship is past.
+  const std::vector<Obstacle> still = {{{{300, 2000}, {0, 0}}, 7}};
+  CollisionAvoidanceOptions certain;
+  certain.uncertain_speed_mps = 0;
+  Fixture f = Fixture::Make();
+  auto ca = CollisionAvoidance::Create(certain);
+  ASSERT_TRUE(ca.ok());
+  const Command ignored = f.Step(*ca, 0, still);
+  EXPECT_FALSE(ignored.manoeuvring);
+  EXPECT_TRUE(ignored.events.empty());
+  Fixture g = Fixture::Make();
+  auto robust = CollisionAvoidance::Create({});
+  ASSERT_TRUE(robust.ok());
+  const Command c = g.Step(*robust, 0, still);
+  ASSERT_FALSE(c.events.empty());
+  EXPECT_EQ(c.events[0].kind, EventKind::kPotentialCollision);
+  EXPECT_TRUE(c.manoeuvring);
 }
 
 TEST(CollisionAvoidanceTest, StaysActiveUntilTheShipIsBackOnItsPath) {

@@ -41,6 +41,11 @@ double ThrottleForSpeedOrTop(double speed_mps) {
 
 }  // namespace
 
+Kinematics EncounterVessel::At(double time_s) const {
+  if (time_s < still_until_s) return {position, {0.0, 0.0}};
+  return {position + velocity * (time_s - still_until_s), velocity};
+}
+
 StatusOr<UnderWay> ShipUnderWay(EastNorth position, double heading_rad, double speed_mps,
                                 const ship::Environment& environment,
                                 const AutopilotOptions& autopilot_options) {
@@ -91,6 +96,7 @@ StatusOr<EncounterOutcome> SimulateEncounter(const EncounterSetup& setup) {
   const EastNorth goal = setup.path.back();
   const CollisionAvoidanceOptions& o = setup.avoidance;
   double last_land_sample = -1e9;
+  bool was_manoeuvring = false;
   double t = 0.0;
   for (; t <= setup.max_time_s; t += setup.dt_s) {
     const ship::ShipState& s = model.state();
@@ -98,7 +104,7 @@ StatusOr<EncounterOutcome> SimulateEncounter(const EncounterSetup& setup) {
     const Kinematics own{here, VelocityOf(s.heading_rad(), s.surge_mps())};
     for (size_t i = 0; i < setup.traffic.size(); ++i) {
       const EncounterVessel& v = setup.traffic[i];
-      traffic[i] = {{v.position + v.velocity * t, v.velocity}, v.id};
+      traffic[i] = {v.At(t), v.id};
       const EastNorth rel = traffic[i].kinematics.position - here;
       VesselOutcome& vo = out.vessels[i];
       if (rel.Norm() < vo.min_distance_m) {
@@ -150,12 +156,14 @@ StatusOr<EncounterOutcome> SimulateEncounter(const EncounterSetup& setup) {
       const double offset = WrapAngle(cmd.course_rad - course);
       out.max_starboard_offset_rad = std::max(out.max_starboard_offset_rad, offset);
       out.max_port_offset_rad = std::max(out.max_port_offset_rad, -offset);
-      if (std::abs(offset) > 1e-3) {
-        out.min_nonzero_offset_rad = std::min(out.min_nonzero_offset_rad, std::abs(offset));
-      }
-      if (speed > 1e-6)
-        out.min_speed_factor = std::min(out.min_speed_factor, cmd.speed_mps / speed);
+      const double factor = speed > 1e-6 ? cmd.speed_mps / speed : 1.0;
+      out.min_speed_factor = std::min(out.min_speed_factor, factor);
+      if (!was_manoeuvring) out.manoeuvre_extents.push_back({.start_s = t});
+      EncounterOutcome::Manoeuvre& m = out.manoeuvre_extents.back();
+      m.max_offset_rad = std::max(m.max_offset_rad, std::abs(offset));
+      m.min_speed_factor = std::min(m.min_speed_factor, factor);
     }
+    was_manoeuvring = cmd.manoeuvring;
     const ActuatorCommand a = autopilot.Update(cmd.course_rad, cmd.speed_mps, s.heading_rad(),
                                                s.yaw_rate_radps(), s.surge_mps(), setup.dt_s);
     model.Step(a.throttle, a.rudder_rad, setup.dt_s);

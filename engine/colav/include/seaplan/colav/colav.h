@@ -9,9 +9,11 @@
 //   collision avoidance and COLREGS compliance using simulation-based
 //   control behavior selection with predictive hazard assessment", IEEE
 //   T-ITS 2016). A finite set of control behaviours (a course offset added
-//   to the path follower's course, a factor on the route's speed) is each
-//   simulated over the horizon with the ship model (engine/ship), this
-//   autopilot and the path follower, the traffic moving straight on. Each is
+//   to the path follower's course or a track parallel to the path, a factor
+//   on the route's speed) is each simulated over the horizon with the ship
+//   model (engine/ship), this autopilot and the path follower, the traffic
+//   moving straight on (a vessel lying still with a margin that grows with
+//   the time ahead: it may get under way). Each is
 //   scored for collision risk, COLREG compliance, grounding and the
 //   deviation it costs, with a cost on changing the behaviour (hysteresis);
 //   the cheapest is commanded until the next decision. The predicted
@@ -66,6 +68,7 @@ struct ScenarioMpcWeights {
   double colreg_side = 40.0;         // give-way vessel passed on the wrong side
   double colreg_port_turn = 30.0;    // port offset where rules 14, 15 or 17 c want starboard
   double course_offset = 6.0;        // at 90 deg; quadratic in the offset
+  double track_offset = 1.5;         // at one safety distance; quadratic in the offset
   double port_factor = 1.5;          // port offsets cost this much more
   double speed_reduction = 8.0;      // per unit of (1 - factor)
   double change_course = 3.0;        // hysteresis, per 90 deg of change
@@ -85,6 +88,19 @@ struct CollisionAvoidanceOptions {
   double decision_interval_s = 5.0;
   std::vector<double> course_offsets_deg = {-90, -60, -45, -30, 0, 30, 45, 60, 90};
   std::vector<double> speed_factors = {1.0, 0.5, 0.25};
+  // Tracks parallel to the path's leg, this far to starboard (> 0) or port,
+  // each with every speed factor: the ship turns onto one by the smallest
+  // course offset (readily apparent) and follows it until the vessels are
+  // past, as a ship keeps to the starboard side of a channel (rule 9) where
+  // holding a course offset would soon meet the bank.
+  std::vector<double> track_offsets_m = {-150, -75, 75, 150};
+  // A vessel lying still may get under way at any moment, in a direction
+  // its zero velocity does not tell: the distance kept from it grows by
+  // uncertain_speed_mps per second of prediction, up to
+  // uncertain_margin_factor x the safety distance (the room its departure
+  // takes before the next decisions can react to it).
+  double uncertain_speed_mps = 2.0;
+  double uncertain_margin_factor = 1.0;
   // Rule 17: a stand-on ship acts once the vessel comes within the planning
   // distance less than this far ahead (and it has not given way).
   double rule17_time_s = 240.0;
@@ -174,12 +190,14 @@ class CollisionAvoidance {
   struct Behaviour {
     double offset_rad = 0.0;
     double speed_factor = 1.0;
+    double track_offset_m = 0.0;  // != 0: follow a track this far beside the path's leg
     bool operator==(const Behaviour&) const = default;
   };
   struct VesselPrediction {
     double min_distance_m = 0.0;
-    double time_s = 0.0;       // of the closest approach
-    double bearing_rad = 0.0;  // relative bearing of the vessel then, starboard positive
+    double min_margin_m = 0.0;  // the distance less the vessel's uncertainty margin, lowest
+    double time_s = 0.0;        // of the closest approach
+    double bearing_rad = 0.0;   // relative bearing of the vessel then, starboard positive
   };
   struct Prediction {
     std::vector<VesselPrediction> vessels;  // per traffic entry
@@ -197,6 +215,14 @@ class CollisionAvoidance {
                      const std::vector<Obstacle>& traffic, Behaviour b,
                      const std::vector<bool>& release) const;
   double PenaltyAt(double distance_m) const;
+  // The course that turns onto a parallel track (from the path, by the
+  // smallest course offset) and follows it, for a follower updated at the
+  // ship's position.
+  double TrackCourse(const PathFollower& follower, double track_offset_m) const;
+  double CommandedCourse(const DesiredMotion& desired, const PathFollower& path, Behaviour b) const;
+  // Per traffic entry: the uncertainty margin's growth (m/s of
+  // prediction), 0 for a vessel under way.
+  std::vector<double> UncertainGrowth(const std::vector<Obstacle>& traffic) const;
   Command Hold(const DesiredMotion& desired) const;
   // Events for the vessels that came into a potential collision situation.
   void NoteEncounters(const std::set<int>& now, Command* out);
@@ -212,6 +238,8 @@ class CollisionAvoidance {
   std::map<int, Role> roles_;      // fixed per encounter
   std::set<int> rule17_;           // stand-on encounters in which rule 17 applies
   std::set<int> dangerous_;        // vessels in a potential collision situation
+  std::vector<double> growth_;     // UncertainGrowth of this decision
+  double min_turn_rad_ = 0.0;      // the smallest non-zero course offset
   bool path_slowed_ = false;       // velocity obstacles: the path-ahead check holds the speed
   std::vector<Obstacle> scratch_;  // velocity obstacles: the encounters of this step
 };

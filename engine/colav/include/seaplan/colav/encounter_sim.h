@@ -1,6 +1,7 @@
 // A closed-loop encounter simulation: the own ship (engine/ship model, this
 // library's autopilot and path follower) sails a path among traffic that
-// keeps a constant velocity, with the collision avoidance in the loop. It
+// keeps a constant velocity (after lying still, for a vessel that gets
+// under way), with the collision avoidance in the loop. It
 // measures what COLREG and the safety distance are judged on: the closest
 // approach to each vessel and the side it was passed on, the course offsets
 // and speed factors commanded, the deviation from the path, the land
@@ -20,7 +21,11 @@ struct EncounterVessel {
   int id = 0;
   std::string name;
   EastNorth position;  // at t = 0
-  EastNorth velocity;  // constant
+  EastNorth velocity;  // constant once under way
+  // The vessel lies still at `position` until this time, then moves at
+  // `velocity` at once (as the simulation client's scripted tracks do).
+  double still_until_s = 0.0;
+  Kinematics At(double time_s) const;
 };
 
 struct EncounterSetup {
@@ -64,15 +69,23 @@ struct EncounterOutcome {
   double min_land_clearance_m = 1e18;  // signed (< 0 aground), sampled every 2 s
   double aground_s = 0.0;
   // Commanded course minus the path follower's course while manoeuvring,
-  // starboard positive: the extremes over the run, and the smallest
-  // non-zero magnitude (rule 8: readily apparent).
+  // starboard positive: the extremes over the run.
   double max_starboard_offset_rad = 0.0;
   double max_port_offset_rad = 0.0;
-  double min_nonzero_offset_rad = 1e18;
   double min_speed_factor = 1.0;  // commanded speed / desired speed
   int manoeuvres = 0;             // manoeuvre-start events
-  std::vector<EastNorth> track;   // the ship's position every 2 s, and at the end
-  std::vector<std::string> log;   // "t: event" lines
+  // Per manoeuvre (a stretch of commands flagged manoeuvring): the largest
+  // course offset and the smallest speed factor commanded in it, what rule 8
+  // (readily apparent) is judged on. A manoeuvre onto a track parallel to
+  // the path turns away by a large offset and then steers a small one.
+  struct Manoeuvre {
+    double start_s = 0.0;
+    double max_offset_rad = 0.0;  // magnitude
+    double min_speed_factor = 1.0;
+  };
+  std::vector<Manoeuvre> manoeuvre_extents;
+  std::vector<EastNorth> track;  // the ship's position every 2 s, and at the end
+  std::vector<std::string> log;  // "t: event" lines
 };
 
 // A ship under way at `speed_mps` (PTO, calm-water operating point: its
