@@ -1035,6 +1035,7 @@ struct PostgresStore::Impl final : ChartRepository, MissionRepository {
                                      condition, " ORDER BY version LIMIT $3"),
                         Params().Text(mission_id).I4(value).I8(limit)));
       std::vector<PlanVersionRecord> out;
+      out.reserve(static_cast<std::size_t>(r.rows()));
       for (int row = 0; row < r.rows(); ++row)
         out.push_back(internal::ReadVersion(ResultRow{r, row}));
       return out;
@@ -1113,6 +1114,7 @@ struct PostgresStore::Impl final : ChartRepository, MissionRepository {
                            "latest ORDER BY seq"),
               Params().Text(mission_id).I8(limit)));
       std::vector<FeedbackRecord> out;
+      out.reserve(static_cast<std::size_t>(r.rows()));
       for (int row = 0; row < r.rows(); ++row)
         out.push_back(internal::ReadFeedback(ResultRow{r, row}));
       return out;
@@ -1159,6 +1161,7 @@ struct PostgresStore::Impl final : ChartRepository, MissionRepository {
                         "ORDER BY event_id LIMIT $3",
                         Params().Text(mission_id).I8(after_event_id).I8(limit)));
       std::vector<LogEventRecord> out;
+      out.reserve(static_cast<std::size_t>(r.rows()));
       for (int row = 0; row < r.rows(); ++row) {
         out.push_back(internal::ReadEvent(ResultRow{r, row}));
       }
@@ -1208,6 +1211,7 @@ class PostgresStore::Work final : public internal::WorkLeaseBase {
     return impl_.WithConn([&](PGconn* conn) -> absl::StatusOr<std::vector<WorkLease>> {
       SEAPLAN_ASSIGN_OR_RETURN(Result r, Impl::Run(conn, sql, params));
       std::vector<WorkLease> out;
+      out.reserve(static_cast<std::size_t>(r.rows()));
       for (int row = 0; row < r.rows(); ++row) out.push_back(internal::ReadWork(ResultRow{r, row}));
       return out;
     });
@@ -1323,6 +1327,7 @@ class PostgresStore::Access final : public TokenRepository, public AuditReposito
                                                             " FROM api_tokens ORDER BY "
                                                             "created_at_ms, id")));
       std::vector<TokenRecord> out;
+      out.reserve(static_cast<std::size_t>(r.rows()));
       for (int row = 0; row < r.rows(); ++row)
         out.push_back(internal::ReadToken(ResultRow{r, row}));
       return out;

@@ -214,8 +214,10 @@ TEST_P(StoreTest, RequestIdIsUniqueAndConcurrentWritersAreSerialised) {
   EXPECT_EQ((*found)->id, "a");
   EXPECT_FALSE(repo.FindByRequestId("other")->has_value());
   // Many threads appending events: ids stay 1..N without gaps or repeats.
+  constexpr int kWriters = 4;
   std::vector<std::thread> threads;
-  for (int t = 0; t < 4; ++t) {
+  threads.reserve(kWriters);
+  for (int t = 0; t < kWriters; ++t) {
     threads.emplace_back([&] {
       for (int i = 0; i < 25; ++i) ASSERT_TRUE(repo.AppendEvents("a", {TestEvent("e")}).ok());
     });

@@ -102,6 +102,7 @@ TEST(LimitsE2eTest, BusyPoolQueuesCallsAndRefusesBeyondTheQueueBound) {
       ":parameters () :precondition () :effect (p)))\",\"problem\":\"(define (problem q) "
       "(:domain d) (:init) (:goal (p)))\",\"plan\":\"0: (a)\"}";
   std::vector<std::future<int>> queued;
+  queued.reserve(kQueue);
   for (int i = 0; i < kQueue; ++i) {
     queued.push_back(std::async(std::launch::async, [&] {
       auto res = s.http().Post("/v1/PlanningService/Validate", body, "application/json");
@@ -149,8 +150,10 @@ TEST(LimitsE2eTest, TwelveConcurrentCaseAPlansOverHttpQueueAndAllSucceed) {
       std::this_thread::sleep_for(std::chrono::milliseconds(1));
     }
   });
+  constexpr int kCallers = 12;
   std::vector<std::future<std::pair<int, std::string>>> plans;
-  for (int i = 0; i < 12; ++i) {
+  plans.reserve(kCallers);
+  for (int i = 0; i < kCallers; ++i) {
     plans.push_back(std::async(std::launch::async, [&] {
       auto res = s.http().Post("/v1/PlanningService/Plan", body, "application/json");
       return res ? std::make_pair(res->status, res->body) : std::make_pair(-1, std::string());

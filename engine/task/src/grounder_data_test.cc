@@ -1,7 +1,7 @@
 #include <gtest/gtest.h>
 
-#include <cstdio>
 #include <filesystem>
+#include <string>
 
 #include "seaplan/task/grounder.h"
 #include "seaplan/testing/shared_data.h"
@@ -18,8 +18,7 @@ TEST(GrounderDataTest, EveryBenchProblemGroundsOrIsClearlyRejected) {
   for (const auto& entry : std::filesystem::directory_iterator(bench)) {
     if (!entry.is_directory()) continue;
     for (int k = 1; k <= 5; ++k) {
-      char name[16];
-      std::snprintf(name, sizeof name, "p%02d.pddl", k);
+      const std::string name = "p0" + std::to_string(k) + ".pddl";  // k < 10
       const auto problem = entry.path() / name;
       if (!std::filesystem::exists(problem)) continue;
       auto domain = entry.path() / ("domain-" + std::to_string(k) + ".pddl");
