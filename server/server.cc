@@ -115,7 +115,8 @@ absl::StatusOr<std::unique_ptr<Server>> Server::Start(
         HttpGateway::Options{// JSON carries bytes as base64 (4/3 larger) plus syntax.
                              options.max_request_bytes / 3 * 4 + (1u << 20), options.worker_threads,
                              options.console_dir, options.tls, options.http_read_timeout,
-                             options.http_write_timeout, options.http_min_body_bytes_per_s});
+                             options.http_write_timeout, options.http_min_body_bytes_per_s,
+                             options.http_max_body_time});
     auto port = server->http_->Bind(options.http_address);
     if (!port.ok()) {
       server->Shutdown();

@@ -46,10 +46,13 @@ struct ServerOptions {
   bool insecure = false;
   // The HTTP gateway closes connections idle in a read or write this long;
   // a request's head must arrive within http_read_timeout of its first
-  // byte and its body at http_min_body_bytes_per_s at least.
+  // byte and its body at http_min_body_bytes_per_s at least, complete
+  // within http_max_body_time after that (a large body at the minimum rate
+  // would hold a worker thread for size / rate).
   std::chrono::milliseconds http_read_timeout{10000};
   std::chrono::milliseconds http_write_timeout{10000};
   std::size_t http_min_body_bytes_per_s = 16 * 1024;
+  std::chrono::milliseconds http_max_body_time{300000};
 };
 
 // Whether `address` ("host:port") listens only on the loopback interface:

@@ -88,6 +88,8 @@ ParsedConfig ParseConfig(int argc, const char* const* argv) {
       ->capture_default_str();
   int read_timeout_ms = static_cast<int>(c.server.http_read_timeout.count());
   int write_timeout_ms = static_cast<int>(c.server.http_write_timeout.count());
+  int max_body_time_s = static_cast<int>(
+      std::chrono::duration_cast<std::chrono::seconds>(c.server.http_max_body_time).count());
   app.add_option("--http-read-timeout-ms", read_timeout_ms,
                  "HTTP: a connection whose client sends nothing for this long, or whose request "
                  "head has not arrived this long after its first byte, is closed")
@@ -104,6 +106,13 @@ ParsedConfig ParseConfig(int argc, const char* const* argv) {
                  "(slower: the connection is closed)")
       ->envname("SEAPLAN_HTTP_MIN_BODY_RATE")
       ->check(CLI::Range(std::size_t{1}, std::size_t{1} << 30))
+      ->capture_default_str();
+  app.add_option("--http-max-body-time-s", max_body_time_s,
+                 "HTTP: seconds a request body may take in all, after the head (longer: the "
+                 "connection is closed), so a large body at the minimum rate cannot hold a "
+                 "worker thread for size / rate")
+      ->envname("SEAPLAN_HTTP_MAX_BODY_TIME_S")
+      ->check(CLI::Range(1, 86400))
       ->capture_default_str();
   app.add_option("--tls-cert", c.server.tls.cert_file,
                  "server certificate chain (PEM): TLS on both the gRPC and the HTTP port")
@@ -183,6 +192,7 @@ ParsedConfig ParseConfig(int argc, const char* const* argv) {
   }
   c.server.http_read_timeout = std::chrono::milliseconds(read_timeout_ms);
   c.server.http_write_timeout = std::chrono::milliseconds(write_timeout_ms);
+  c.server.http_max_body_time = std::chrono::seconds(max_body_time_s);
   c.server.tls.require_client_cert = !client_cert_optional;
   if (c.server.tls.cert_file.empty() != c.server.tls.key_file.empty() ||
       (!c.server.tls.client_ca_file.empty() && c.server.tls.cert_file.empty())) {

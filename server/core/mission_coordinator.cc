@@ -312,14 +312,24 @@ absl::StatusOr<v1::Mission> MissionCoordinator::CreateMission(
   for (const auto& line : planned->log_messages) events.push_back(ServerEvent(line));
   events.push_back(ServerEvent(DescribeVersion(version), version.mission_time_origin_s()));
   const auto audit = AuditEntry(ctx, record.id);
+  // Storage checks the chart still exists in the creating transaction: a
+  // DeleteChart that committed while this mission was planned (it could not
+  // see the mission yet) leaves the mission unstored rather than on a chart
+  // its replans could no longer load.
   absl::Status st = repo_.Create(
       record,
       {record.id, 1, version.reason(), now, version.SerializeAsString(), planned->engine_state},
-      events, AuditPointer(audit));
+      events, AuditPointer(audit), spec.chart_id());
   if (absl::IsAlreadyExists(st) && !request.request_id().empty()) {
     // A concurrent retry with the same key won: answer with its mission.
     SEAPLAN_ASSIGN_OR_RETURN(auto existing, repo_.FindByRequestId(request.request_id()));
     if (existing) return MissionFromRecord(*existing);
+  }
+  if (absl::IsNotFound(st)) {
+    // As for a chart that was already gone when planning began.
+    return absl::FailedPreconditionError(
+        absl::StrCat("spec.chart_id: chart '", spec.chart_id(),
+                     "' was deleted while the mission was planned; the mission was not created"));
   }
   SEAPLAN_RETURN_IF_ERROR(st);
   notifier_.Notify(record.id);

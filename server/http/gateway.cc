@@ -14,9 +14,7 @@
 #include <mutex>
 
 #include "absl/strings/ascii.h"
-#include "absl/strings/match.h"
 #include "absl/strings/str_cat.h"
-#include "absl/strings/str_split.h"
 #include "seaplan/common/json.h"
 #include "seaplan/common/log.h"
 #include "server/auth/csrf.h"
@@ -239,24 +237,6 @@ absl::Status SplitHostPort(const std::string& address, std::string* host, int* p
   return absl::OkStatus();
 }
 
-namespace {
-
-// The Accept-Encoding header without its "br" coding. Debian's cpp-httplib
-// compresses with brotli at its slowest setting (quality 11) whenever a
-// client accepts it, as browsers do: 1.5 s for the console's 330 KB script
-// on every load, against milliseconds for gzip, which answers instead.
-std::string WithoutBrotli(absl::string_view accept_encoding) {
-  std::string kept;
-  for (absl::string_view coding : absl::StrSplit(accept_encoding, ',')) {
-    const absl::string_view name = absl::StripAsciiWhitespace(coding.substr(0, coding.find(';')));
-    if (absl::EqualsIgnoreCase(name, "br")) continue;
-    absl::StrAppend(&kept, kept.empty() ? "" : ", ", absl::StripAsciiWhitespace(coding));
-  }
-  return kept;
-}
-
-}  // namespace
-
 HttpGateway::HttpGateway(ServiceCore& core, const Options& options)
     : core_(core), options_(options) {
   SSL_CTX* tls = nullptr;
@@ -275,20 +255,13 @@ HttpGateway::HttpGateway(ServiceCore& core, const Options& options)
   limits.read_timeout = options_.read_timeout;
   limits.write_timeout = options_.write_timeout;
   limits.min_body_bytes_per_s = options_.min_body_bytes_per_s;
+  limits.max_body_time = options_.max_body_time;
   server_ = std::make_unique<GuardedHttpServer>(limits, tls);
   if (tls != nullptr) SSL_CTX_free(tls);  // the server holds its own reference
   server_->set_payload_max_length(options_.max_body_bytes);
   server_->set_keep_alive_timeout(
       std::chrono::duration_cast<std::chrono::seconds>(limits.idle_timeout).count());
   server_->set_keep_alive_max_count(static_cast<std::size_t>(limits.max_requests_per_connection));
-  server_->set_pre_routing_handler([](const httplib::Request& req, httplib::Response&) {
-    // httplib hands the handlers a const view of the request it owns; the
-    // coding it answers in is chosen from this header after routing.
-    auto& headers = const_cast<httplib::Headers&>(req.headers);
-    const auto [first, last] = headers.equal_range("Accept-Encoding");
-    for (auto it = first; it != last; ++it) it->second = WithoutBrotli(it->second);
-    return httplib::Server::HandlerResponse::Unhandled;
-  });
   RegisterRoutes();
 }
 

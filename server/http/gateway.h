@@ -56,12 +56,13 @@ class HttpGateway {
     TlsOptions tls;
     // Slow clients (guarded_http_server.h): a request's head must arrive
     // within read_timeout of its first byte, its body at min_body_bytes_per_s
-    // at least after that, and a connection that sends or takes nothing for
-    // read_timeout / write_timeout is closed. Connections waiting for their
-    // request hold no worker thread.
+    // at least after that and wholly within max_body_time, and a connection
+    // that sends or takes nothing for read_timeout / write_timeout is closed.
+    // Connections waiting for their request hold no worker thread.
     std::chrono::milliseconds read_timeout{10000};
     std::chrono::milliseconds write_timeout{10000};
     std::size_t min_body_bytes_per_s = 16 * 1024;
+    std::chrono::milliseconds max_body_time{300000};
   };
 
   HttpGateway(ServiceCore& core, const Options& options);

@@ -18,13 +18,18 @@
 //     to be streamed) is handed to a worker thread, which serves that one
 //     request with httplib's own request processing; a body the worker
 //     reads must keep min_body_bytes_per_s on average (head_timeout is the
-//     grace), else the read fails and the connection is closed;
+//     grace) and be complete within max_body_time after the grace, else the
+//     read fails and the connection is closed: a client sending a large
+//     body at just the minimum rate holds a worker for max_body_time at
+//     most, not for size / rate;
 //   - between keep-alive requests the connection is back in the waiting
 //     room (idle_timeout), holding no thread;
 //   - the waiting room holds at most max_waiting_connections; a new one
 //     beyond that closes the connection that has waited longest.
 // Handlers, routes and TLS (mutual TLS included: Request::ssl is set) work
-// as on httplib::Server / SSLServer.
+// as on httplib::Server / SSLServer, except that answers are never
+// brotli-compressed: "br" is dropped from Accept-Encoding as the head is
+// parsed (httplib compresses brotli at its slowest setting; gzip answers).
 //
 // Lifecycle: bind and listen as on httplib::Server (listen_after_bind runs
 // the accept loop); stop() ends the accept loop; StopConnections() then
@@ -54,8 +59,11 @@ class GuardedHttpServer final : public httplib::Server {
     // within this time of its first byte.
     std::chrono::milliseconds head_timeout{10000};
     // After the head, the body must arrive at this average rate at least
-    // (head_timeout is the grace): 64 MiB take at most about 17 min.
+    // (head_timeout is the grace)...
     std::size_t min_body_bytes_per_s = 64 * 1024;
+    // ... and be complete this long after the grace, whatever its size
+    // (at 64 KiB/s, bodies above 18.75 MiB need more than the minimum rate).
+    std::chrono::milliseconds max_body_time{300000};
     // A keep-alive connection with no new request for this long is closed.
     std::chrono::milliseconds idle_timeout{5000};
     // A single read or write that makes no progress for this long fails.

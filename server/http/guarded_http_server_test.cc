@@ -25,10 +25,20 @@ using Clock = std::chrono::steady_clock;
 using std::chrono::milliseconds;
 using std::chrono::seconds;
 
+// A compressible text of 190 KB.
+std::string Script() {
+  std::string script;
+  for (int i = 0; i < 5000; ++i) script += "function f" + std::to_string(i) + "() { return 1; }\n";
+  return script;
+}
+
 class GuardedHttpServerTest : public ::testing::Test {
  protected:
   void StartServer(const GuardedHttpServer::Limits& limits) {
     server_ = std::make_unique<GuardedHttpServer>(limits, nullptr);
+    server_->Get("/script.js", [](const httplib::Request&, httplib::Response& res) {
+      res.set_content(Script(), "application/javascript");
+    });
     server_->Get("/ping", [](const httplib::Request&, httplib::Response& res) {
       res.set_content("pong", "text/plain");
     });
@@ -184,6 +194,77 @@ TEST_F(GuardedHttpServerTest, ABodyBelowTheMinimumRateIsCut) {
     EXPECT_TRUE(d.closed_by_server);
     EXPECT_EQ(d.received.find("200 OK"), std::string::npos) << d.received;
   }
+}
+
+// A large body (read by a worker) sent faster than the minimum rate but
+// longer than max_body_time: cut at the time limit, and the only worker is
+// free again for the next client. (Without the limit the worker stays in
+// this body for size / rate.)
+TEST_F(GuardedHttpServerTest, ALargeBodyIsCutAtTheBodyTimeEvenAboveTheMinimumRate) {
+  GuardedHttpServer::Limits limits;
+  limits.worker_threads = 1;
+  limits.head_timeout = seconds(1);
+  limits.min_body_bytes_per_s = 1000;
+  limits.max_body_time = seconds(2);
+  limits.max_buffered_body_bytes = 1000;
+  StartServer(limits);
+  const int fd = Connect();
+  constexpr std::size_t kSize = 200000;  // 40 s at the 5000 bytes/s sent below
+  const std::string head =
+      "POST /size HTTP/1.1\r\nHost: x\r\nContent-Length: " + std::to_string(kSize) + "\r\n\r\n";
+  ASSERT_EQ(::send(fd, head.data(), head.size(), MSG_NOSIGNAL), static_cast<ssize_t>(head.size()));
+  const auto started = Clock::now();
+  const std::string chunk(500, 'x');
+  std::string received;
+  bool closed_by_server = false;
+  for (std::size_t sent = 0; sent < kSize && Clock::now() - started < seconds(60);) {
+    if (::send(fd, chunk.data(), chunk.size(), MSG_NOSIGNAL) !=
+        static_cast<ssize_t>(chunk.size())) {
+      closed_by_server = true;
+      break;
+    }
+    sent += chunk.size();
+    pollfd p{fd, POLLIN, 0};
+    if (::poll(&p, 1, 100) > 0) {
+      char buffer[1024];
+      const ssize_t n = ::recv(fd, buffer, sizeof(buffer), 0);
+      if (n <= 0) {
+        closed_by_server = true;
+        break;
+      }
+      received.append(buffer, static_cast<std::size_t>(n));
+    }
+  }
+  const auto took = Clock::now() - started;
+  EXPECT_TRUE(closed_by_server);
+  EXPECT_EQ(received.find("200 OK"), std::string::npos) << received;
+  // Cut at about 3 s (grace + body time); 20 s tells "cut" from "read whole".
+  EXPECT_LT(took, seconds(20));
+  httplib::Client client = Client(seconds(20));
+  auto res = client.Get("/ping");
+  ASSERT_TRUE(res) << httplib::to_string(res.error());
+  EXPECT_EQ(res->body, "pong");
+}
+
+// A client accepting brotli and gzip (as browsers do) gets gzip: httplib
+// would spend its slowest brotli setting on every answer.
+TEST_F(GuardedHttpServerTest, AnswersAreGzipForClientsThatAlsoAcceptBrotli) {
+  StartServer(GuardedHttpServer::Limits{});
+  const std::string script = Script();
+  httplib::Client client = Client(seconds(20));
+  client.set_decompress(false);
+  for (const char* accepted : {"gzip, deflate, br", "br;q=1.0, gzip;q=0.8", "BR, gzip"}) {
+    SCOPED_TRACE(accepted);
+    auto res = client.Get("/script.js", {{"Accept-Encoding", accepted}});
+    ASSERT_TRUE(res) << httplib::to_string(res.error());
+    EXPECT_EQ(res->get_header_value("Content-Encoding"), "gzip");
+    EXPECT_LT(res->body.size(), script.size());
+  }
+  // Brotli alone: uncompressed.
+  auto res = client.Get("/script.js", {{"Accept-Encoding", "br"}});
+  ASSERT_TRUE(res) << httplib::to_string(res.error());
+  EXPECT_FALSE(res->has_header("Content-Encoding"));
+  EXPECT_EQ(res->body, script);
 }
 
 // Idle connections (no byte sent) beyond the waiting room's capacity: the

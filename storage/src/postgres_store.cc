@@ -919,12 +919,22 @@ struct PostgresStore::Impl final : ChartRepository, MissionRepository {
   }
 
   absl::Status Create(const MissionRecord& m, const PlanVersionRecord& first,
-                      const std::vector<NewLogEvent>& events, const AuditRecord* audit) override {
+                      const std::vector<NewLogEvent>& events, const AuditRecord* audit,
+                      const std::string& chart_id) override {
     if (first.version != 1 || first.mission_id != m.id) {
       return absl::InvalidArgumentError(
           "the first plan version must be version 1 of the same mission");
     }
     return InTransaction([&](PGconn* conn) -> absl::Status {
+      if (!chart_id.empty()) {
+        // FOR SHARE conflicts with the FOR UPDATE a deletion takes first: a
+        // deletion under way is waited for (the row is then gone), and one
+        // that starts later waits for this commit and sees the mission.
+        SEAPLAN_ASSIGN_OR_RETURN(
+            Result chart,
+            Run(conn, "SELECT 1 FROM charts WHERE id = $1 FOR SHARE", Params().Text(chart_id)));
+        if (chart.rows() == 0) return absl::NotFoundError(NotFoundMessage("chart", chart_id));
+      }
       Params p;
       p.Text(m.id).Text(m.name).Text(m.vessel_id);
       if (m.request_id.empty()) {

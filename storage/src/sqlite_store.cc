@@ -580,7 +580,8 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
   }
 
   absl::Status Create(const MissionRecord& m, const PlanVersionRecord& first,
-                      const std::vector<NewLogEvent>& events, const AuditRecord* audit) override {
+                      const std::vector<NewLogEvent>& events, const AuditRecord* audit,
+                      const std::string& chart_id) override {
     if (first.version != 1 || first.mission_id != m.id) {
       return absl::InvalidArgumentError(
           "the first plan version must be version 1 of the same mission");
@@ -588,6 +589,14 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
     std::lock_guard lock(mu);
     SEAPLAN_RETURN_IF_ERROR(Usable());
     return MissionWriteLocked(m.id, [&]() -> absl::Status {
+      // BEGIN IMMEDIATE holds the database's write lock from the start, so
+      // a chart deletion (a write) commits wholly before or after this.
+      if (!chart_id.empty()) {
+        Stmt chart(db, "SELECT 1 FROM charts WHERE id = ?1");
+        chart.Text(1, chart_id);
+        SEAPLAN_ASSIGN_OR_RETURN(bool found, chart.Step());
+        if (!found) return absl::NotFoundError(NotFoundMessage("chart", chart_id));
+      }
       Stmt s(db,
              "INSERT INTO missions(id, name, vessel_id, request_id, spec, state, current_version, "
              "created_at_ms, "

@@ -4,6 +4,7 @@
 
 #include <atomic>
 #include <cmath>
+#include <iostream>
 #include <set>
 #include <thread>
 
@@ -756,6 +757,73 @@ TEST_P(StoreTest, AFailingAuditRowKeepsTheChart) {
   EXPECT_FALSE(store().charts().Delete("c1", TestChartUse(), &bad).ok());
   EXPECT_TRUE(store().charts().Get("c1", false).ok());
   EXPECT_TRUE(AuditTargets(store()).empty());
+}
+
+// A mission created on a chart that is gone is refused whole: no mission,
+// version, log event or audit row.
+TEST_P(StoreTest, AMissionOnADeletedChartIsNotCreated) {
+  ASSERT_TRUE(store().charts().Insert(ChartRecord{.id = "c1"}).ok());
+  const AuditRecord row = TestAudit("MissionService/CreateMission", "m-1");
+  ASSERT_TRUE(
+      missions()
+          .Create(MissionUsing("m-1", "c1", 2), TestVersion("m-1", 1), {TestEvent("a")}, &row, "c1")
+          .ok());
+  ASSERT_TRUE(missions().Update("m-1", MissionUpdate{.state = 4}, {}).ok());
+  ASSERT_TRUE(store().charts().Delete("c1", TestChartUse()).ok());
+  const absl::Status refused = missions().Create(
+      MissionUsing("m-2", "c1", 2), TestVersion("m-2", 1), {TestEvent("b")}, &row, "c1");
+  EXPECT_EQ(refused.code(), absl::StatusCode::kNotFound) << refused;
+  EXPECT_NE(refused.message().find("c1"), std::string::npos) << refused;
+  EXPECT_EQ(missions().Get("m-2").status().code(), absl::StatusCode::kNotFound);
+  EXPECT_EQ(missions().GetVersion("m-2", 1).status().code(), absl::StatusCode::kNotFound);
+  EXPECT_TRUE(missions().ListEvents("m-2", 0, 10)->empty());
+  EXPECT_EQ(AuditTargets(store()).size(), 1u);  // m-1's only
+}
+
+// A mission created on a chart while another connection (another server
+// process) deletes that chart: exactly one of the two commits, never both,
+// so no active mission is left on a deleted chart. Many rounds, so that the
+// two transactions overlap in every order.
+TEST_P(StoreTest, CreatingOnAChartAndDeletingItNeverBothSucceed) {
+  std::unique_ptr<Store> other = OpenAnother();
+  ASSERT_NE(other, nullptr);
+  constexpr int kRounds = 40;
+  int created = 0, deleted = 0;
+  for (int round = 0; round < kRounds; ++round) {
+    const std::string chart = "c" + std::to_string(round);
+    const std::string mission = "m" + std::to_string(round);
+    ASSERT_TRUE(store().charts().Insert(ChartRecord{.id = chart}).ok());
+    std::atomic<int> ready{0};
+    absl::Status create_status, delete_status;
+    std::thread creator([&] {
+      ++ready;
+      while (ready.load() < 2) {
+      }
+      create_status = other->missions().Create(MissionUsing(mission, chart, 2),
+                                               TestVersion(mission, 1), {}, nullptr, chart);
+    });
+    std::thread deleter([&] {
+      ++ready;
+      while (ready.load() < 2) {
+      }
+      delete_status = store().charts().Delete(chart, TestChartUse());
+    });
+    creator.join();
+    deleter.join();
+    ASSERT_NE(create_status.ok(), delete_status.ok())
+        << "round " << round << ": create " << create_status << ", delete " << delete_status;
+    if (create_status.ok()) {
+      ++created;
+      EXPECT_EQ(delete_status.code(), absl::StatusCode::kFailedPrecondition) << delete_status;
+      EXPECT_TRUE(store().charts().Get(chart, false).ok());
+    } else {
+      ++deleted;
+      EXPECT_EQ(create_status.code(), absl::StatusCode::kNotFound) << create_status;
+      EXPECT_EQ(missions().Get(mission).status().code(), absl::StatusCode::kNotFound);
+    }
+  }
+  std::cout << "creations first: " << created << ", deletions first: " << deleted << "\n";
+  ASSERT_TRUE(other->Close().ok());
 }
 
 }  // namespace

@@ -92,9 +92,12 @@ struct ChartRecord {
 // of `active_states` and whose spec blob `spec_uses_chart` says refers to
 // the chart (storage does not read specs). Checked inside the deleting
 // transaction against every committed mission (PostgreSQL: with mission
-// writes locked out meanwhile). A mission whose creation read the chart
-// just before the delete and commits just after it is not seen: its later
-// replans answer NotFound for the chart.
+// writes locked out meanwhile). A mission being created on the chart
+// cannot slip past it: MissionRepository::Create checks, in its own
+// transaction, that the chart it is given (its `chart_id`) still exists (PostgreSQL: locking
+// the chart row against a deletion until it commits), so whichever commits
+// second sees the other: the deletion is refused for the new mission, or
+// the creation for the deleted chart.
 struct ChartUse {
   std::vector<int> active_states;
   std::function<bool(const std::string& spec, const std::string& chart_id)> spec_uses_chart;
@@ -211,10 +214,13 @@ class MissionRepository {
   // Stores a new mission together with its first plan version (version must
   // be 1; mission.current_version is set to 1), log events and `audit`
   // (when given), atomically. AlreadyExists when the id or the non-empty
-  // request_id is taken.
+  // request_id is taken. `chart_id`, when not empty, is the chart the
+  // mission's spec names: NotFound, with nothing stored, unless it exists
+  // when this transaction commits (see ChartUse).
   virtual absl::Status Create(const MissionRecord& mission, const PlanVersionRecord& first_version,
                               const std::vector<NewLogEvent>& events,
-                              const AuditRecord* audit = nullptr) = 0;
+                              const AuditRecord* audit = nullptr,
+                              const std::string& chart_id = {}) = 0;
   virtual absl::StatusOr<MissionRecord> Get(const std::string& id) = 0;
   // The mission created with this idempotency key, if any.
   virtual absl::StatusOr<std::optional<MissionRecord>> FindByRequestId(
