@@ -1,13 +1,15 @@
 # Sourced by state_memory.sh and run_problems.sh: reads the options both
-# take (--time-limit S, --memory-limit MB, --bench DIR; defaults set by the
-# caller in time_s, memory_mb, bench) and the problems (domain/pNN) into
-# `problems`, and makes the scratch folder `work` (removed on exit).
+# take (--time-limit S, --memory-limit MB, --bench DIR, --cpu-limit S;
+# defaults set by the caller in time_s, memory_mb, bench, cpu_s) and the
+# problems (domain/pNN) into `problems`, and makes the scratch folder `work`
+# (removed on exit).
 problems=()
 while [[ $# -gt 0 ]]; do
   case $1 in
     --time-limit) time_s=$2; shift 2 ;;
     --memory-limit) memory_mb=$2; shift 2 ;;
     --bench) bench=$2; shift 2 ;;
+    --cpu-limit) cpu_s=$2; shift 2 ;;
     *) problems+=("$1"); shift ;;
   esac
 done

@@ -19,55 +19,53 @@ Timeline::Timeline(const SnapTask& task, double epsilon_s, bool bound_concurrenc
       open_max_duration_(static_cast<std::size_t>(task.num_actions()), 0.0),
       bound_concurrency_(bound_concurrency),
       open_deleters_(static_cast<std::size_t>(task.num_facts())),
-      open_needers_(static_cast<std::size_t>(task.num_facts())) {}
-
-void Timeline::ResetTables() {
-  for (auto f : touched_facts_) {
-    last_writer_[f] = -1;
-    readers_[f].clear();
-    inv_readers_[f].clear();
+      open_needers_(static_cast<std::size_t>(task.num_facts())) {
+  stn_.Reset();
+  is_action_node_.assign(1, 0);
+  for (const auto& til : task_.tils()) {
+    stn_.AddFixedNode(til.time_s);
+    is_action_node_.push_back(0);
   }
-  for (auto v : touched_vars_) {
-    var_last_writer_[v] = -1;
-    var_readers_[v].clear();
-    var_inv_readers_[v].clear();
-  }
-  touched_facts_.clear();
-  touched_vars_.clear();
-  for (auto a : open_actions_) open_start_[a] = -1;
-  open_actions_.clear();
-  for (auto f : envelope_touched_) {
-    open_deleters_[f].clear();
-    open_needers_[f].clear();
-  }
-  envelope_touched_.clear();
-  end_nodes_.clear();
+  committed_mark_ = stn_.GetMark();
 }
 
 bool Timeline::Build(std::span<const Event> events) {
-  ResetTables();
-  stn_.Reset();
-  is_action_node_.assign(1, false);
-  for (const auto& til : task_.tils()) {
-    stn_.AddFixedNode(til.time_s);
-    is_action_node_.push_back(false);
+  std::size_t common = 0;
+  const std::size_t shared = std::min(events.size(), path_.size());
+  while (common < shared) {
+    const Event& a = events[common];
+    const Event& b = path_[common].event;
+    if (a.snap != b.snap || a.min_duration_s != b.min_duration_s ||
+        a.max_duration_s != b.max_duration_s) {
+      break;
+    }
+    ++common;
   }
-  num_events_ = 0;
-  next_til_ = 0;
-  bool ok = true;
-  for (const Event& e : events) {
-    if (!AddToStn(e)) ok = false;  // keep going so tables stay coherent
-    Commit(e, EventNode(num_events_));
-    ++num_events_;
+  Rewind(common);
+  for (std::size_t i = common; i < events.size(); ++i) {
+    const Stn::Mark mark = stn_.GetMark();
+    const bool ok = AddToStn(events[i]);  // keep going so tables stay coherent
+    Commit(events[i], mark, ok && (path_.empty() || path_.back().consistent));
   }
   path_makespan_s_ = Current().makespan_s;
-  return ok;
+  return path_.empty() || path_.back().consistent;
 }
 
 void Timeline::Keep(const Event& event) {
-  Commit(event, EventNode(num_events_));
-  ++num_events_;
+  Commit(event, mark_, path_.empty() || path_.back().consistent);
   path_makespan_s_ = tentative_makespan_s_;
+}
+
+void Timeline::Rewind(std::size_t num_events) {
+  if (num_events < path_.size()) {
+    const PathEvent first = path_[num_events];
+    while (path_.size() > num_events) Uncommit();
+    committed_mark_ = first.mark;
+    next_til_ = first.next_til;
+  }
+  // Also drops a tentative node left without Undo().
+  stn_.Undo(committed_mark_);
+  is_action_node_.resize(static_cast<std::size_t>(stn_.num_nodes()));
 }
 
 bool Timeline::AddToStn(const Event& event) {
@@ -76,7 +74,7 @@ bool Timeline::AddToStn(const Event& event) {
     // events were (the pending-literal rule). Keep node numbering dense.
     const int node = stn_.BeginNode();
     is_action_node_.resize(static_cast<std::size_t>(node) + 1);
-    is_action_node_[node] = false;
+    is_action_node_[node] = 0;
     // Alias node: equal to the literal's fixed node.
     stn_.AddIncoming(TilNode(event.til()), 0.0);
     stn_.AddOutgoing(TilNode(event.til()), 0.0);
@@ -85,23 +83,23 @@ bool Timeline::AddToStn(const Event& event) {
   const SnapAction& snap = task_.snap(event.snap);
   const int node = stn_.BeginNode();
   is_action_node_.resize(static_cast<std::size_t>(node) + 1);
-  is_action_node_[node] = true;
+  is_action_node_[node] = 1;
   const double eps = epsilon_s_;
   for (auto f : snap.reads) {
     if (last_writer_[f] >= 0) stn_.AddIncoming(last_writer_[f], eps);
   }
   for (auto f : snap.writes) {
     if (last_writer_[f] >= 0) stn_.AddIncoming(last_writer_[f], eps);
-    for (auto r : readers_[f]) stn_.AddIncoming(r, eps);
-    for (auto r : inv_readers_[f]) stn_.AddIncoming(r, 0.0);
+    for (auto r : Since(readers_[f], last_writer_[f])) stn_.AddIncoming(r, eps);
+    for (auto r : Since(inv_readers_[f], last_writer_[f])) stn_.AddIncoming(r, 0.0);
   }
   for (auto v : snap.num_reads) {
     if (var_last_writer_[v] >= 0) stn_.AddIncoming(var_last_writer_[v], eps);
   }
   for (auto v : snap.num_writes) {
     if (var_last_writer_[v] >= 0) stn_.AddIncoming(var_last_writer_[v], eps);
-    for (auto r : var_readers_[v]) stn_.AddIncoming(r, eps);
-    for (auto r : var_inv_readers_[v]) stn_.AddIncoming(r, 0.0);
+    for (auto r : Since(var_readers_[v], var_last_writer_[v])) stn_.AddIncoming(r, eps);
+    for (auto r : Since(var_inv_readers_[v], var_last_writer_[v])) stn_.AddIncoming(r, 0.0);
   }
   if (!snap.is_end) {
     // The invariant must hold right after the start's happening: its
@@ -175,42 +173,19 @@ void Timeline::AddEnvelopeEdges(const Event& event, const SnapAction& snap) {
   }
 }
 
-void Timeline::TrackEnvelopes(task::ActionId a, bool started) {
-  const InvariantEnvelopes& env = task_.envelopes();
-  auto update = [&](std::vector<std::vector<task::ActionId>>& lists,
-                    const std::vector<task::FactId>& facts) {
-    for (auto f : facts) {
-      auto& list = lists[f];
-      if (started) {
-        if (open_deleters_[f].empty() && open_needers_[f].empty()) envelope_touched_.push_back(f);
-        list.push_back(a);
-      } else {
-        list.erase(std::find(list.begin(), list.end(), a));
-      }
-    }
-  };
-  update(open_deleters_, env.EndDeletes(a));
-  update(open_needers_, env.EnclosedNeeds(a));
-}
-
-void Timeline::Commit(const Event& event, int node) {
-  auto fact_fresh = [&](task::FactId f) {
-    return last_writer_[f] < 0 && readers_[f].empty() && inv_readers_[f].empty();
-  };
-  auto var_fresh = [&](task::NumericVarId v) {
-    return var_last_writer_[v] < 0 && var_readers_[v].empty() && var_inv_readers_[v].empty();
-  };
+void Timeline::Commit(const Event& event, const Stn::Mark& mark, bool consistent) {
+  const auto node = static_cast<std::int32_t>(EventNode(path_.size()));
+  path_.push_back(PathEvent{event, mark, undo_log_.size(), next_til_, consistent});
+  committed_mark_ = stn_.GetMark();
+  // A write keeps the reader lists (readers after it are told apart by
+  // their node numbers, Since) and logs the writer it replaces.
   auto write_fact = [&](task::FactId f) {
-    if (fact_fresh(f)) touched_facts_.push_back(f);
+    undo_log_.push_back(last_writer_[f]);
     last_writer_[f] = node;
-    readers_[f].clear();
-    inv_readers_[f].clear();
   };
   auto write_var = [&](task::NumericVarId v) {
-    if (var_fresh(v)) touched_vars_.push_back(v);
+    undo_log_.push_back(var_last_writer_[v]);
     var_last_writer_[v] = node;
-    var_readers_[v].clear();
-    var_inv_readers_[v].clear();
   };
   if (event.is_til()) {
     const TilEvent& til = task_.tils()[static_cast<std::size_t>(event.til())];
@@ -222,40 +197,102 @@ void Timeline::Commit(const Event& event, int node) {
   const SnapAction& snap = task_.snap(event.snap);
   for (auto f : snap.reads) {
     if (std::binary_search(snap.writes.begin(), snap.writes.end(), f)) continue;
-    if (fact_fresh(f)) touched_facts_.push_back(f);
     readers_[f].push_back(node);
   }
   for (auto v : snap.num_reads) {
     if (std::binary_search(snap.num_writes.begin(), snap.num_writes.end(), v)) continue;
-    if (var_fresh(v)) touched_vars_.push_back(v);
     var_readers_[v].push_back(node);
   }
   if (snap.is_end) {
-    for (auto f : snap.inv_reads) {
-      if (fact_fresh(f)) touched_facts_.push_back(f);
-      inv_readers_[f].push_back(node);
-    }
-    for (auto v : snap.inv_num_reads) {
-      if (var_fresh(v)) touched_vars_.push_back(v);
-      var_inv_readers_[v].push_back(node);
-    }
+    for (auto f : snap.inv_reads) inv_readers_[f].push_back(node);
+    for (auto v : snap.inv_num_reads) var_inv_readers_[v].push_back(node);
   }
   for (auto f : snap.writes) write_fact(f);
   for (auto v : snap.num_writes) write_var(v);
+  const InvariantEnvelopes& env = task_.envelopes();
+  const task::ActionId a = snap.action;
   if (!snap.is_end) {
-    if (task_.task().actions[snap.action].is_durative) {
-      open_start_[snap.action] = node;
-      open_min_duration_[snap.action] = event.min_duration_s;
-      open_max_duration_[snap.action] = event.max_duration_s;
-      open_actions_.push_back(snap.action);
-      TrackEnvelopes(snap.action, true);
+    if (task_.task().actions[a].is_durative) {
+      open_start_[a] = node;
+      open_min_duration_[a] = event.min_duration_s;
+      open_max_duration_[a] = event.max_duration_s;
+      open_actions_.push_back(a);
+      for (auto f : env.EndDeletes(a)) open_deleters_[f].push_back(a);
+      for (auto f : env.EnclosedNeeds(a)) open_needers_[f].push_back(a);
     }
-  } else {
-    open_start_[snap.action] = -1;
-    if (bound_concurrency_) end_nodes_.push_back(node);
-    open_actions_.erase(std::find(open_actions_.begin(), open_actions_.end(), snap.action));
-    TrackEnvelopes(snap.action, false);
+    return;
   }
+  // Erases `a` from `list`, logging where it was.
+  auto erase = [&](std::vector<std::int32_t>& list) {
+    const auto it = std::find(list.begin(), list.end(), a);
+    undo_log_.push_back(static_cast<std::int32_t>(it - list.begin()));
+    list.erase(it);
+  };
+  undo_log_.push_back(open_start_[a]);
+  open_start_[a] = -1;
+  if (bound_concurrency_) end_nodes_.push_back(node);
+  erase(open_actions_);
+  for (auto f : env.EndDeletes(a)) erase(open_deleters_[f]);
+  for (auto f : env.EnclosedNeeds(a)) erase(open_needers_[f]);
+}
+
+void Timeline::Uncommit() {
+  // Commit's steps in reverse order.
+  const PathEvent& last = path_.back();
+  const Event& event = last.event;
+  auto pop_log = [&]() {
+    const std::int32_t v = undo_log_.back();
+    undo_log_.pop_back();
+    return v;
+  };
+  auto unwrite_facts = [&](const std::vector<task::FactId>& facts) {
+    for (auto it = facts.rbegin(); it != facts.rend(); ++it) last_writer_[*it] = pop_log();
+  };
+  auto unwrite_vars = [&](const std::vector<task::NumericVarId>& vars) {
+    for (auto it = vars.rbegin(); it != vars.rend(); ++it) var_last_writer_[*it] = pop_log();
+  };
+  if (event.is_til()) {
+    const TilEvent& til = task_.tils()[static_cast<std::size_t>(event.til())];
+    unwrite_vars(til.num_writes);
+    unwrite_facts(til.writes);
+  } else {
+    const SnapAction& snap = task_.snap(event.snap);
+    const InvariantEnvelopes& env = task_.envelopes();
+    const task::ActionId a = snap.action;
+    if (!snap.is_end) {
+      if (task_.task().actions[a].is_durative) {
+        for (auto f : env.EnclosedNeeds(a)) open_needers_[f].pop_back();
+        for (auto f : env.EndDeletes(a)) open_deleters_[f].pop_back();
+        open_actions_.pop_back();
+        open_start_[a] = -1;
+      }
+    } else {
+      auto unerase = [&](std::vector<std::int32_t>& list) {
+        list.insert(list.begin() + pop_log(), a);
+      };
+      const auto& needs = env.EnclosedNeeds(a);
+      for (auto it = needs.rbegin(); it != needs.rend(); ++it) unerase(open_needers_[*it]);
+      const auto& deletes = env.EndDeletes(a);
+      for (auto it = deletes.rbegin(); it != deletes.rend(); ++it) unerase(open_deleters_[*it]);
+      unerase(open_actions_);
+      if (bound_concurrency_) end_nodes_.pop_back();
+      open_start_[a] = pop_log();
+    }
+    unwrite_vars(snap.num_writes);
+    unwrite_facts(snap.writes);
+    if (snap.is_end) {
+      for (auto v : snap.inv_num_reads) var_inv_readers_[v].pop_back();
+      for (auto f : snap.inv_reads) inv_readers_[f].pop_back();
+    }
+    for (auto v : snap.num_reads) {
+      if (!std::binary_search(snap.num_writes.begin(), snap.num_writes.end(), v))
+        var_readers_[v].pop_back();
+    }
+    for (auto f : snap.reads) {
+      if (!std::binary_search(snap.writes.begin(), snap.writes.end(), f)) readers_[f].pop_back();
+    }
+  }
+  path_.pop_back();
 }
 
 Timeline::Outcome Timeline::Current() const {

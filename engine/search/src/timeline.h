@@ -14,7 +14,12 @@
 //
 // Usage per expansion: Build(path), then for each candidate successor
 // TryAdd(event) + Undo(). One Timeline is reused across the whole search
-// (no allocation per expansion once warmed up).
+// (no allocation per expansion once warmed up). Build keeps the events the
+// new path shares with the one built before (their common prefix) and
+// undoes and adds only the rest: a greedy search jumping between branches
+// of its tree would otherwise schedule the whole path again at every pop.
+// The result is the same as building from scratch (every table change is
+// undone exactly, in reverse order).
 #pragma once
 
 #include <algorithm>
@@ -43,7 +48,8 @@ class Timeline {
   // search had running (max_concurrent_actions).
   Timeline(const SnapTask& task, double epsilon_s, bool bound_concurrency = false);
 
-  // Rebuilds the network for `events`; false when it is inconsistent.
+  // Makes `events` the path (keeping the prefix it shares with the current
+  // path); false when its network is inconsistent.
   bool Build(std::span<const Event> events);
 
   struct Outcome {
@@ -75,8 +81,8 @@ class Timeline {
   // f comes no earlier.
   double FactReadUntil(task::FactId f) const {
     double t = FactWrittenAt(f);
-    for (auto n : readers_[f]) t = std::max(t, stn_.time(n));
-    for (auto n : inv_readers_[f]) t = std::max(t, stn_.time(n));
+    for (auto n : Since(readers_[f], last_writer_[f])) t = std::max(t, stn_.time(n));
+    for (auto n : Since(inv_readers_[f], last_writer_[f])) t = std::max(t, stn_.time(n));
     return t;
   }
   // After Build: earliest time of the start of running action `a` (0 when
@@ -94,45 +100,67 @@ class Timeline {
   }
   int TilNode(int k) const { return 1 + k; }
   bool AddToStn(const Event& event);
-  void Commit(const Event& event, int node);
+  // Adds `event` (whose node AddToStn made, from `mark` on) to the path's
+  // tables; Uncommit undoes the last one.
+  void Commit(const Event& event, const Stn::Mark& mark, bool consistent);
+  void Uncommit();
+  // Drops the path's events from `num_events` on.
+  void Rewind(std::size_t num_events);
   // Orders implied by over-all envelopes (invariant_envelopes.h) between
   // `event` and the actions running when it happens.
   void AddEnvelopeEdges(const Event& event, const SnapAction& snap);
-  // Keeps open_deleters_ / open_needers_ in step with the running actions.
-  void TrackEnvelopes(task::ActionId a, bool started);
-  void ResetTables();
+  // Entries of an append-only reader list after the last writer `writer`
+  // (node numbers grow along the path).
+  static std::span<const std::int32_t> Since(const std::vector<std::int32_t>& list,
+                                             std::int32_t writer) {
+    std::size_t i = list.size();
+    while (i > 0 && list[i - 1] > writer) --i;
+    return {list.data() + i, list.size() - i};
+  }
 
   const SnapTask& task_;
   double epsilon_s_;
   Stn stn_;
   Stn::Mark mark_{};
-  std::size_t num_events_ = 0;
+  // The path: per event, what undoing it needs.
+  struct PathEvent {
+    Event event;
+    Stn::Mark mark;          // before the event's node
+    std::size_t undo_begin;  // its entries in undo_log_ start here
+    std::int32_t next_til;   // next_til_ before it
+    bool consistent;         // the network up to and including it
+  };
+  std::vector<PathEvent> path_;
+  Stn::Mark committed_mark_{};  // after the path's last event
+  // Old values overwritten by Commit (last writers, the start node an end
+  // closed, positions erased from lists), popped by Uncommit.
+  std::vector<std::int32_t> undo_log_;
   // Latest action event time of the built path: TryAdd only needs the new
   // node and the nodes propagation raised (times never decrease).
   double path_makespan_s_ = 0.0;
   double tentative_makespan_s_ = 0.0;  // of the last TryAdd, for Keep
   int next_til_ = 0;
-  std::vector<std::int32_t> last_writer_;           // per fact, STN node or -1
-  std::vector<std::vector<std::int32_t>> readers_;  // per fact, since last writer
+  std::vector<std::int32_t> last_writer_;  // per fact, STN node or -1
+  // Per fact: every event of the path that read it, in path order (so
+  // those after the last writer are a suffix, see Since).
+  std::vector<std::vector<std::int32_t>> readers_;
   std::vector<std::int32_t> var_last_writer_;
   std::vector<std::vector<std::int32_t>> var_readers_;
-  // Ends of actions whose invariant reads the fact / variable, since its
-  // last writer: a later writer comes at or after them (gap 0, not epsilon).
+  // Ends of actions whose invariant reads the fact / variable (those after
+  // its last writer count): a later writer comes at or after them (gap 0,
+  // not epsilon).
   std::vector<std::vector<std::int32_t>> inv_readers_;
   std::vector<std::vector<std::int32_t>> var_inv_readers_;
-  std::vector<std::int32_t> touched_facts_, touched_vars_;
   std::vector<std::int32_t> open_start_;  // per action: STN node of the running start, or -1
   std::vector<std::int32_t> open_actions_;
-  std::vector<double> open_min_duration_;  // per action
-  std::vector<double> open_max_duration_;  // per action
-  std::vector<std::int32_t> scratch_preds_;
-  std::vector<bool> is_action_node_;
+  std::vector<double> open_min_duration_;     // per action
+  std::vector<double> open_max_duration_;     // per action
+  std::vector<std::uint8_t> is_action_node_;  // bytes: resized at every TryAdd and Undo
   bool bound_concurrency_ = false;
   std::vector<std::int32_t> end_nodes_;
   // Per fact: running actions whose end deletes it / that need it over all
   // (InvariantEnvelopes::EndDeletes / EnclosedNeeds), for AddEnvelopeEdges.
   std::vector<std::vector<task::ActionId>> open_deleters_, open_needers_;
-  std::vector<task::FactId> envelope_touched_;
 };
 
 }  // namespace seaplan::search

@@ -105,5 +105,56 @@ TEST_F(TimelineTest, TryAddMakespanCountsEarlierEventsPushedLater) {
   t.Undo();
 }
 
+// Build keeps the prefix a new path shares with the one built before and
+// undoes the rest: every answer must be the one of a fresh build.
+TEST_F(TimelineTest, BuildFromAnotherBranchEqualsBuildingFromScratch) {
+  const int a = Action("work-a"), b = Action("work-b"), c = Action("work-c");
+  const std::vector<Event> first = Path();
+  // Shares its first two events with `first`, then ends b and a before c starts.
+  const std::vector<Event> second = {{2 * a, 10, 10},     {2 * b, 15, 15}, {2 * b + 1, 15, 15},
+                                     {2 * a + 1, 10, 10}, {2 * c, 20, 20}, {2 * c + 1, 20, 20}};
+  auto expect_same = [&](const Timeline& t, std::span<const Event> path) {
+    Timeline fresh(*snap_, 0.001);
+    ASSERT_TRUE(fresh.Build(path));
+    EXPECT_DOUBLE_EQ(t.Current().makespan_s, fresh.Current().makespan_s);
+    EXPECT_DOUBLE_EQ(t.Current().lower_bound_s, fresh.Current().lower_bound_s);
+    for (std::size_t k = 0; k < path.size(); ++k)
+      EXPECT_DOUBLE_EQ(t.EventTime(k), fresh.EventTime(k)) << k;
+    for (task::FactId f = 0; f < snap_->num_facts(); ++f) {
+      EXPECT_DOUBLE_EQ(t.FactWrittenAt(f), fresh.FactWrittenAt(f)) << f;
+      EXPECT_DOUBLE_EQ(t.FactReadUntil(f), fresh.FactReadUntil(f)) << f;
+    }
+    for (task::ActionId x = 0; x < snap_->num_actions(); ++x)
+      EXPECT_DOUBLE_EQ(t.StartedAt(x), fresh.StartedAt(x)) << x;
+  };
+  Timeline t(*snap_, 0.001);
+  ASSERT_TRUE(t.Build(first));
+  expect_same(t, first);
+  ASSERT_TRUE(t.Build(second));
+  expect_same(t, second);
+  // A prefix, then a path that shares nothing but grows from it again.
+  ASSERT_TRUE(t.Build(std::span<const Event>(first).first(3)));
+  expect_same(t, std::span<const Event>(first).first(3));
+  Timeline::Outcome out, fresh_out;
+  ASSERT_TRUE(t.TryAdd(first[3], &out));
+  t.Keep(first[3]);
+  Timeline fresh(*snap_, 0.001);
+  ASSERT_TRUE(fresh.Build(std::span<const Event>(first).first(3)));
+  ASSERT_TRUE(fresh.TryAdd(first[3], &fresh_out));
+  EXPECT_DOUBLE_EQ(out.makespan_s, fresh_out.makespan_s);
+  EXPECT_DOUBLE_EQ(out.lower_bound_s, fresh_out.lower_bound_s);
+  fresh.Undo();
+  expect_same(t, std::span<const Event>(first).first(4));
+  ASSERT_TRUE(t.Build(std::span<const Event>()));
+  EXPECT_DOUBLE_EQ(t.Current().makespan_s, 0.0);
+  ASSERT_TRUE(t.Build(first));
+  expect_same(t, first);
+  // A tentative event left without Undo() does not survive a Build.
+  ASSERT_TRUE(t.Build(std::span<const Event>(second).first(2)));
+  ASSERT_TRUE(t.TryAdd(second[2], &out));
+  ASSERT_TRUE(t.Build(second));
+  expect_same(t, second);
+}
+
 }  // namespace
 }  // namespace seaplan::search
