@@ -13,6 +13,7 @@
 #include "absl/strings/str_cat.h"
 #include "nlopt.hpp"
 #include "seaplan/common/log.h"
+#include "seaplan/route/turn_fillet.h"
 #include "seaplan/ship/hull_dynamics.h"
 
 namespace seaplan::route {
@@ -558,6 +559,12 @@ absl::Status Level2Options::Validate() const {
   if (!(turn_radius_m >= 0.0 && turn_radius_m < 1e5)) {
     return absl::InvalidArgumentError("turn_radius_m must be in [0, 1e5)");
   }
+  if (!(fillet_radius_m >= 0.0 && fillet_radius_m < 1e5)) {
+    return absl::InvalidArgumentError("fillet_radius_m must be in [0, 1e5)");
+  }
+  if (!(fillet_clearance_m >= 0.0 && std::isfinite(fillet_clearance_m))) {
+    return absl::InvalidArgumentError("fillet_clearance_m must be >= 0 and finite");
+  }
   return absl::OkStatus();
 }
 
@@ -681,6 +688,12 @@ StatusOr<Level2Result> OptimizeLevel2(const Level2Problem& problem, const Level2
     modes = assign(terms);
   }
 
+  TurnFilletOptions fillet;
+  fillet.radius_m = !options.fillet_turns           ? 0.0
+                    : options.fillet_radius_m > 0.0 ? options.fillet_radius_m
+                                                    : options.turn_radius_m;
+  fillet.clearance_m = options.fillet_clearance_m;
+
   Level2Result result;
   result.stopped = stop.StopRequested();
   result.alternatives.resize(alt_count);
@@ -703,11 +716,12 @@ StatusOr<Level2Result> OptimizeLevel2(const Level2Problem& problem, const Level2
     }
     const Repair repair = RepairRoute(field, refs, options.turn_radius_m, &positions);
     out.snapped_waypoints = repair.snapped_count;
-    if (repair.snapped_count > 0 || repair.followed_count > 0) {
+    bool changed = repair.snapped_count > 0 || repair.followed_count > 0;
+    std::vector<WaypointTask> repaired;
+    {
       const std::vector<EastNorth>& line = problem.alternatives[a];
       double total = 0.0;
       for (size_t i = 1; i < line.size(); ++i) total += Dist(line[i - 1], line[i]);
-      std::vector<WaypointTask> repaired;
       for (int k = 0; k <= n; ++k) {
         WaypointTask t = route[k];
         t.position = positions[k];
@@ -725,6 +739,37 @@ StatusOr<Level2Result> OptimizeLevel2(const Level2Problem& problem, const Level2
           ++out.inserted_waypoints;
         }
       }
+    }
+    // Step 5: corners the hull cannot sail become fillets (turn_fillet.h).
+    if (fillet.radius_m > 0.0) {
+      std::vector<EastNorth> line;
+      line.reserve(repaired.size());
+      for (const WaypointTask& t : repaired) line.push_back(t.position);
+      SEAPLAN_ASSIGN_OR_RETURN(FilletRoute filleted, FilletTurns(field, line, fillet));
+      out.filleted_turns = filleted.filleted;
+      out.unsailable_turns = std::move(filleted.unsailable);
+      if (filleted.filleted > 0) {
+        std::vector<WaypointTask> smooth;
+        smooth.reserve(filleted.points.size());
+        for (const FilletPoint& p : filleted.points) {
+          if (p.source >= 0) {
+            smooth.push_back(repaired[p.source]);
+            continue;
+          }
+          WaypointTask inserted;
+          inserted.alt = static_cast<int>(a);
+          inserted.k = smooth.back().k;
+          inserted.refs.ref = p.position;
+          inserted.refs.movable = false;  // a vertex of a fillet, not optimised
+          inserted.position = p.position;
+          smooth.push_back(inserted);
+          ++out.inserted_waypoints;
+        }
+        repaired = std::move(smooth);
+        changed = true;
+      }
+    }
+    if (changed) {
       // Inserted vertices: neighbours and drift heading along the repaired
       // route. The others keep their references (their cost terms are
       // defined on them; the fuel term's |w - r_{k+1}| is then the chord).

@@ -64,6 +64,7 @@ TEST(Level2OptimizerTest, SegmentsThatWouldCutTheIslandFollowTheLevel1Path) {
   o.pso.particles = 1;
   o.pso.iterations = 0;
   o.polish.max_evaluations = 0;
+  o.fillet_turns = false;  // the repair alone (the fillets: below)
   auto r = OptimizeLevel2(s->problem, o);
   ASSERT_TRUE(r.ok()) << r.status();
   const AlternativeResult& north = r->alternatives[0];
@@ -158,6 +159,59 @@ TEST(Level2OptimizerTest, MovedWaypointsOnlyWhereTheHullCanTurn) {
   }
   o.turn_radius_m = -1.0;
   EXPECT_FALSE(OptimizeLevel2(s->problem, o).ok());
+}
+
+TEST(Level2OptimizerTest, Level1CornersBecomeFilletsTheHullCanSail) {
+  // A Level-1 path along the island's north shore that turns south by 90 deg
+  // 60 m off its north-east corner. Two segments whose waypoint stays on its
+  // reference: the chord to the goal cuts the island, so the repair puts the
+  // corner (860, 260) back, and step 5 replaces it by a fillet round a 300 m
+  // circle, moved outwards so that the arc passes where the corner was.
+  auto s = MakeScenario();
+  s->problem.alternatives = {{{-2000, 260}, {860, 260}, {860, -1400}}};
+  Level2Options o;
+  o.segments = 2;
+  o.pso.particles = 1;
+  o.pso.iterations = 0;
+  o.polish.max_evaluations = 0;
+  auto max_turn = [](const AlternativeResult& alt) {
+    double m = 0.0;
+    for (size_t k = 1; k + 1 < alt.waypoints.size(); ++k) {
+      m = std::max(m, std::abs(TurnAngle(alt.waypoints[k - 1].position, alt.waypoints[k].position,
+                                         alt.waypoints[k + 1].position)));
+    }
+    return m;
+  };
+  o.fillet_turns = false;
+  auto sharp = OptimizeLevel2(s->problem, o);
+  ASSERT_TRUE(sharp.ok()) << sharp.status();
+  EXPECT_NEAR(max_turn(sharp->alternatives[0]), M_PI / 2, 1e-6);
+  EXPECT_EQ(sharp->alternatives[0].filleted_turns, 0);
+
+  o.fillet_turns = true;
+  auto r = OptimizeLevel2(s->problem, o);
+  ASSERT_TRUE(r.ok()) << r.status();
+  const AlternativeResult& alt = r->alternatives[0];
+  EXPECT_EQ(r->chosen, 0);
+  EXPECT_FALSE(alt.crosses_obstacle);
+  EXPECT_EQ(alt.filleted_turns, 1);
+  EXPECT_TRUE(alt.unsailable_turns.empty());
+  EXPECT_LE(max_turn(alt), 15.0 * M_PI / 180.0 + 1e-9);
+  // Every corner fits a 300 m circle (this helper skips the references).
+  AlternativeResult as_moved = alt;
+  for (WaypointResult& w : as_moved.waypoints) w.reference = {1e9, 1e9};
+  EXPECT_EQ(UnsailableMovedCorners(as_moved, 300.0), 0);
+  const double corner_clearance = s->field.SignedDistance({860, 260});
+  int near_corner = 0;
+  for (const WaypointResult& w : alt.waypoints) {
+    EXPECT_GT(w.ttg_s, 0.0);  // fillet vertices are evaluated like the others
+    if (Distance(w.position, {860, 260}) > 450.0) continue;
+    ++near_corner;
+    EXPECT_GE(s->field.SignedDistance(w.position), corner_clearance - 3.0);
+  }
+  // ~90 deg (a little more once the corner moves out) in steps of <= 15 deg.
+  EXPECT_GE(near_corner, 6);
+  EXPECT_LE(near_corner, 7);
 }
 
 TEST(Level2OptimizerTest, RobustModeOnDownwindShoreSegmentAndSaferAlternativeChosen) {

@@ -265,6 +265,16 @@ StatusOr<RouteResult> RoutePlanner::Plan(EastNorth start, EastNorth goal, const 
     alt.safe = !src.crosses_obstacle;
     alt.snapped_waypoints = src.snapped_waypoints;
     alt.inserted_waypoints = src.inserted_waypoints;
+    alt.filleted_turns = src.filleted_turns;
+    const double radius_m = options_.level2.fillet_radius_m > 0.0 ? options_.level2.fillet_radius_m
+                                                                  : options_.level2.turn_radius_m;
+    for (const UnsailableTurn& t : src.unsailable_turns) {
+      alt.warnings.push_back(
+          absl::StrCat("the turn of ", std::lround(std::abs(t.turn_rad) * 180.0 / M_PI), " deg at ",
+                       chart::FormatLatLon(map_->frame().ToLatLon(ToLocal(t.corner))),
+                       " cannot be sailed on a ", std::lround(radius_m),
+                       " m turning circle: the water is too narrow or the legs too short for it"));
+    }
     for (size_t k = 0; k < src.waypoints.size(); ++k) {
       const WaypointResult& wr = src.waypoints[k];
       RouteWaypoint rw;

@@ -111,6 +111,9 @@ StatusOr<SweepResult> RunRouteSweep(const RoutePlanner& planner, const chart::Ob
     for (const RouteWaypoint& w : routed->alternatives[routed->chosen].waypoints) {
       line.push_back(w.local);
     }
+    pair.filleted_turns = routed->alternatives[routed->chosen].filleted_turns;
+    pair.warnings = routed->alternatives[routed->chosen].warnings;
+    if (!pair.warnings.empty()) ++out.with_warnings;
     pair.waypoints = static_cast<int>(line.size());
     pair.route = line;
     const std::optional<chart::Clearance> clearance = query.UnbufferedClearance(line);

@@ -43,6 +43,12 @@
 //     adjacent leg to turn on a circle of radius R (turn_radius_m), and the
 //     waypoints optimised one by one can zigzag on legs of 100 m, which a
 //     hull turning on ~300 m overshoots by hundreds of metres.
+//  5. Turns: the corners that remain (the Level-1 path's own, at the
+//     obstacles' dilated hull vertices, often 70-90 deg) are replaced by
+//     fillets round the ship's turning circle, moved outwards where the
+//     water allows (turn_fillet.h); their vertices are inserted like the
+//     Level-1 vertices of step 4. A corner that cannot be filleted stays
+//     and is reported in unsailable_turns.
 // The chosen alternative is the obstacle-free one with the lowest expected
 // cost (sum of C_grounding + C_mso + switching; C_path only shapes the route
 // and is not a cost of sailing it, so it is reported but not compared).
@@ -70,6 +76,7 @@
 #include "seaplan/common/stop_token.h"
 #include "seaplan/route/grounding_risk.h"
 #include "seaplan/route/obstacle_field.h"
+#include "seaplan/route/turn_fillet.h"
 #include "seaplan/ship/ship_params.h"
 
 namespace seaplan::route {
@@ -153,6 +160,14 @@ struct Level2Options {
   // an adjacent leg than half of it (the whole of a leg from the start or
   // to the goal) goes back to its reference (step 4). 0: no turn check.
   double turn_radius_m = 300.0;
+  // Step 5: every corner of the repaired route that turns by 15 deg or more
+  // becomes a fillet, a polygon round a circle of fillet_radius_m (0:
+  // turn_radius_m) moved outwards where the water allows, preferably
+  // keeping fillet_clearance_m from the obstacles (turn_fillet.h). A corner
+  // that cannot be filleted stays and is reported (unsailable_turns).
+  bool fillet_turns = true;
+  double fillet_radius_m = 0.0;
+  double fillet_clearance_m = 50.0;
 
   absl::Status Validate() const;
 };
@@ -195,7 +210,11 @@ struct AlternativeResult {
   // Safety repair: waypoints moved back to their references, and Level-1
   // vertices inserted where the chord between two references cut a corner.
   int snapped_waypoints = 0;
-  int inserted_waypoints = 0;
+  int inserted_waypoints = 0;  // Level-1 vertices and fillet vertices
+  // Step 5: corners replaced by fillets, and those the hull cannot sail
+  // that could not be (water too narrow or legs too short for the circle).
+  int filleted_turns = 0;
+  std::vector<UnsailableTurn> unsailable_turns;
   int64_t evaluations = 0;
 };
 

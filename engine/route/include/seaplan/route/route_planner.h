@@ -25,6 +25,7 @@
 
 #include <memory>
 #include <optional>
+#include <string>
 #include <vector>
 
 #include "seaplan/chart/alternatives.h"
@@ -111,6 +112,11 @@ struct RouteAlternative {
   // Level-1 path, Level-1 vertices inserted.
   int snapped_waypoints = 0;
   int inserted_waypoints = 0;
+  // Corners replaced by fillets round the ship's turning circle
+  // (Level2Options::fillet_turns), and one warning per corner the hull
+  // cannot sail that could not be (where, how sharp, why).
+  int filleted_turns = 0;
+  std::vector<std::string> warnings;
 };
 
 struct RouteResult {

@@ -54,6 +54,8 @@ struct PairOutcome {
   EastNorth closest_route_point;
   int waypoints = 0;
   std::vector<EastNorth> route;  // the chosen route's waypoints (local frame); empty if not routed
+  int filleted_turns = 0;        // of the chosen route
+  std::vector<std::string> warnings;  // the chosen route's (corners it cannot make sailable)
 };
 
 struct SweepResult {
@@ -61,6 +63,7 @@ struct SweepResult {
   int connected = 0;            // Level 1 connects
   int routed = 0;               // of the connected pairs
   int within_margin = 0;        // routed with clearance < margin_m
+  int with_warnings = 0;        // routed with a warning (a corner left unsailable)
   double margin_m = 0.0;        // the chart's safety buffer
   bool clearance_exact = true;  // false: the map has no unbuffered obstacles
 };
