@@ -7,9 +7,10 @@
 #   scripts/install-deps.sh --runtime  only the shared libraries the binaries need
 set -euo pipefail
 
+# The packages of the libraries the five binaries name (readelf -d, NEEDED).
 runtime_packages=(
-  libgrpc++1.51 libprotobuf32 libsqlite3-0 libgeos-c1v5 libgdal32 libnlopt-cxx0
-  libpagmo8 libspdlog1.10 libabsl20220623 libfmt9 ca-certificates libpq5 libssl3
+  libgrpc++1.51 libgrpc29 libprotobuf32 libsqlite3-0 libgeos-c1v5 libgdal32 libnlopt0
+  libcpp-httplib0.11 libspdlog1.10 libabsl20220623 libfmt9 ca-certificates libpq5 libssl3
 )
 build_packages=(
   build-essential cmake ninja-build pkg-config git
