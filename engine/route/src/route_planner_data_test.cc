@@ -69,7 +69,9 @@ TEST(RoutePlannerDataTest, AlesundTwoAlternativesRiskAndModes) {
     EXPECT_LE(r->alternatives[r->chosen].expected_cost, alt.expected_cost);
     // 20 segments: 21 waypoints, unless the repair inserted Level-1 vertices
     // or fillets replaced corners (their vertices count as inserted).
-    if (alt.inserted_waypoints == 0) EXPECT_EQ(alt.waypoints.size(), 21u);
+    if (alt.inserted_waypoints == 0) {
+      EXPECT_EQ(alt.waypoints.size(), 21u);
+    }
     for (const std::string& w : alt.warnings) ADD_FAILURE() << w;
     EXPECT_GT(alt.length_m, 3000.0);
     EXPECT_GT(alt.sailing_time_s, alt.length_m / 10.0);
