@@ -426,9 +426,7 @@ bool TurnSailable(const std::vector<EastNorth>& w, size_t k, double radius_m) {
   const EastNorth a = w[k - 1], b = w[k], c = w[k + 1];
   const double in_m = Dist(a, b), out_m = Dist(b, c);
   if (in_m < 1e-9 || out_m < 1e-9) return true;
-  const double course_in = std::atan2(b.east_m - a.east_m, b.north_m - a.north_m);
-  const double course_out = std::atan2(c.east_m - b.east_m, c.north_m - b.north_m);
-  const double theta = std::abs(std::remainder(course_out - course_in, 2.0 * M_PI));
+  const double theta = std::abs(TurnAngle(a, b, c));
   const double need_m = radius_m * std::tan(std::min(theta, 0.999 * M_PI) / 2.0);
   const double in_share = k == 1 ? 1.0 : 0.5;
   const double out_share = k + 2 == w.size() ? 1.0 : 0.5;
