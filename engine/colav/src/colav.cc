@@ -126,10 +126,10 @@ double CollisionAvoidance::TrackCourse(const PathFollower& follower, double trac
          std::atan((follower.cross_track_m() - track_offset_m) / lookahead);
 }
 
-double CollisionAvoidance::CommandedCourse(const DesiredMotion& desired, const PathFollower& path,
+double CollisionAvoidance::CommandedCourse(double path_course_rad, const PathFollower& path,
                                            Behaviour b) const {
   return b.track_offset_m != 0 ? TrackCourse(path, b.track_offset_m)
-                               : desired.course_rad + b.offset_rad;
+                               : path_course_rad + b.offset_rad;
 }
 
 std::vector<double> CollisionAvoidance::UncertainGrowth(
@@ -234,8 +234,7 @@ CollisionAvoidance::Prediction CollisionAvoidance::Predict(
                            cruise * to_goal / options_.slow_down_distance_m);
         }
         if (active) {
-          course = b.track_offset_m != 0 ? TrackCourse(follower, b.track_offset_m)
-                                         : course + b.offset_rad;
+          course = CommandedCourse(course, follower, b);
           speed *= b.speed_factor;
         }
         const ActuatorCommand c =
@@ -288,7 +287,7 @@ Command CollisionAvoidance::StepScenarioMpc(const OwnShip& own, const DesiredMot
                                             const std::vector<Obstacle>& traffic) {
   Command out = Hold(desired);
   if (own.time_s + 1e-9 < next_decision_s_) {
-    out.course_rad = CommandedCourse(desired, path, behaviour_);
+    out.course_rad = CommandedCourse(desired.course_rad, path, behaviour_);
     out.speed_mps = desired.speed_mps * behaviour_.speed_factor;
     out.manoeuvring = manoeuvring_;
     out.vessel_id = manoeuvre_vessel_;
@@ -438,7 +437,7 @@ Command CollisionAvoidance::StepScenarioMpc(const OwnShip& own, const DesiredMot
     manoeuvre_vessel_ = main_vessel;
     manoeuvre_role_ = RoleOf(main_vessel);
   }
-  out.course_rad = CommandedCourse(desired, path, chosen);
+  out.course_rad = CommandedCourse(desired.course_rad, path, chosen);
   out.speed_mps = desired.speed_mps * chosen.speed_factor;
   out.manoeuvring = manoeuvre;
   out.vessel_id = manoeuvre ? manoeuvre_vessel_ : -1;

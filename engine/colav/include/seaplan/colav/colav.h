@@ -219,7 +219,9 @@ class CollisionAvoidance {
   // smallest course offset) and follows it, for a follower updated at the
   // ship's position.
   double TrackCourse(const PathFollower& follower, double track_offset_m) const;
-  double CommandedCourse(const DesiredMotion& desired, const PathFollower& path, Behaviour b) const;
+  // The course behaviour `b` commands when the path follower asks for
+  // `path_course_rad`: a parallel track's, or that course plus b's offset.
+  double CommandedCourse(double path_course_rad, const PathFollower& path, Behaviour b) const;
   // Per traffic entry: the uncertainty margin's growth (m/s of
   // prediction), 0 for a vessel under way.
   std::vector<double> UncertainGrowth(const std::vector<Obstacle>& traffic) const;
