@@ -90,10 +90,9 @@ absl::StatusOr<Caller> Authenticator::Check(std::string_view method,
   return caller;
 }
 
-absl::StatusOr<Authenticator::NewToken> Authenticator::Issue(
+absl::StatusOr<Authenticator::NewToken> Authenticator::Generate(
     Role role, const std::string& vessel_id, const std::string& description,
-    std::int64_t expires_in_ms, const std::string& created_by,
-    std::optional<storage::AuditRecord> audit) const {
+    std::int64_t expires_in_ms, const std::string& created_by) const {
   if ((role == Role::kVessel) != !vessel_id.empty()) {
     return absl::InvalidArgumentError(role == Role::kVessel
                                           ? "a vessel token needs the vessel id it is bound to"
@@ -113,9 +112,26 @@ absl::StatusOr<Authenticator::NewToken> Authenticator::Issue(
   r.created_by = created_by;
   r.created_at_ms = now_();
   r.expires_at_ms = expires_in_ms == 0 ? 0 : r.created_at_ms + expires_in_ms;
-  if (audit) audit->target = r.id;
-  SEAPLAN_RETURN_IF_ERROR(tokens_.Insert(r, audit ? &*audit : nullptr));
   out.bearer = std::move(generated.bearer);
+  return out;
+}
+
+absl::StatusOr<Authenticator::NewToken> Authenticator::Issue(
+    Role role, const std::string& vessel_id, const std::string& description,
+    std::int64_t expires_in_ms, const std::string& created_by,
+    std::optional<storage::AuditRecord> audit) const {
+  SEAPLAN_ASSIGN_OR_RETURN(NewToken out,
+                           Generate(role, vessel_id, description, expires_in_ms, created_by));
+  if (audit) audit->target = out.record.id;
+  SEAPLAN_RETURN_IF_ERROR(tokens_.Insert(out.record, audit ? &*audit : nullptr));
+  return out;
+}
+
+absl::StatusOr<std::optional<Authenticator::NewToken>> Authenticator::IssueFirstAdmin(
+    const std::string& description) const {
+  SEAPLAN_ASSIGN_OR_RETURN(NewToken out, Generate(Role::kAdmin, "", description, 0, ""));
+  SEAPLAN_ASSIGN_OR_RETURN(bool stored, tokens_.InsertFirstAdmin(out.record, now_()));
+  if (!stored) return std::nullopt;
   return out;
 }
 

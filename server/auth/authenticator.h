@@ -42,6 +42,11 @@ class Authenticator {
                                  const std::string& description, std::int64_t expires_in_ms,
                                  const std::string& created_by,
                                  std::optional<storage::AuditRecord> audit = std::nullopt) const;
+  // A new admin token (never expiring, no creator) unless a usable one is
+  // stored: nullopt then, and nothing is stored. Servers starting at once
+  // on one database create one between them
+  // (storage::TokenRepository::InsertFirstAdmin).
+  absl::StatusOr<std::optional<NewToken>> IssueFirstAdmin(const std::string& description) const;
   // Stores `bearer` (a token of our format, e.g. read from a file the
   // operator wrote) as an admin token unless its id is stored already; when
   // it is, the stored hash must match (else FailedPrecondition).
@@ -50,6 +55,11 @@ class Authenticator {
   storage::TimestampMs Now() const { return now_(); }
 
  private:
+  // A fresh token's record (not stored) and its bearer form.
+  absl::StatusOr<NewToken> Generate(Role role, const std::string& vessel_id,
+                                    const std::string& description, std::int64_t expires_in_ms,
+                                    const std::string& created_by) const;
+
   storage::TokenRepository& tokens_;
   Clock now_;
 };

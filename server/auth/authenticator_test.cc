@@ -3,7 +3,10 @@
 #include <gtest/gtest.h>
 #include <sys/stat.h>
 
+#include <atomic>
 #include <fstream>
+#include <thread>
+#include <vector>
 
 #include "seaplan/storage/sqlite_store.h"
 #include "server/auth/bootstrap.h"
@@ -122,6 +125,53 @@ TEST_F(AuthenticatorTest, FirstStartWritesAnAdminTokenOnceWithMode0600) {
   EXPECT_FALSE(third->created_bearer.empty());
   EXPECT_NE(third->created_bearer, first->created_bearer);
   std::filesystem::remove_all(dir);
+}
+
+// Servers starting at once on one data folder (here: threads, each with its
+// own connection to the folder's database): one creates the admin token and
+// writes the file, the others find it; no temporary file is left behind.
+TEST_F(AuthenticatorTest, FirstStartsAtOnceCreateOneAdminTokenAndOneFile) {
+  constexpr int kServers = 4, kRounds = 5;
+  for (int round = 0; round < kRounds; ++round) {
+    const auto dir = FreshDir("at-once-" + std::to_string(round));
+    std::filesystem::create_directories(dir);
+    std::vector<std::unique_ptr<storage::SqliteStore>> stores;
+    for (int i = 0; i < kServers; ++i) {
+      auto store = storage::SqliteStore::Open((dir / "seaplan.db").string());
+      ASSERT_TRUE(store.ok()) << store.status();
+      stores.push_back(std::move(*store));
+    }
+    std::vector<absl::StatusOr<BootstrapResult>> results(kServers, absl::UnknownError("not run"));
+    std::atomic<int> ready{0};
+    std::vector<std::thread> servers;
+    for (int i = 0; i < kServers; ++i) {
+      servers.emplace_back([&, i] {
+        const Authenticator auth(stores[i]->tokens());
+        ++ready;
+        while (ready.load() < kServers) {
+        }
+        results[i] = EnsureAdminToken(auth, stores[i]->tokens(), "", dir);
+      });
+    }
+    for (std::thread& t : servers) t.join();
+    std::string created;
+    for (const auto& r : results) {
+      ASSERT_TRUE(r.ok()) << r.status();
+      if (r->created_bearer.empty()) continue;
+      EXPECT_TRUE(created.empty()) << "round " << round << ": two servers created a token";
+      created = r->created_bearer;
+    }
+    ASSERT_FALSE(created.empty()) << "round " << round;
+    EXPECT_EQ(*ReadTokenFile(dir / "admin.token"), created);
+    EXPECT_EQ(stores[0]->tokens().List()->size(), 1u);
+    EXPECT_TRUE(Authenticator(stores[0]->tokens()).AuthenticateToken(created).ok());
+    for (const auto& entry : std::filesystem::directory_iterator(dir)) {
+      EXPECT_EQ(entry.path().filename().string().find("admin.token."), std::string::npos)
+          << "left behind: " << entry.path();
+    }
+    for (auto& store : stores) ASSERT_TRUE(store->Close().ok());
+    std::filesystem::remove_all(dir);
+  }
 }
 
 TEST_F(AuthenticatorTest, AdminTokenFileIsImportedOnce) {

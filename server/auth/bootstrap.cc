@@ -5,6 +5,7 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <cstdlib>
 #include <cstring>
 #include <fstream>
 
@@ -15,14 +16,16 @@
 namespace seaplan::server::auth {
 namespace {
 
-// Writes `content` to `path` readable by the owner only: a temporary file
-// created 0600, fsync'd, then renamed over `path`.
+// Writes `content` to `path` readable by the owner only: a temporary file of
+// a unique name beside it (mkostemp: created 0600, O_EXCL), fsync'd, then
+// renamed over `path`. Processes writing at once each write their own
+// temporary file, and a reader sees one whole file or the other.
 absl::Status WritePrivateFile(const std::filesystem::path& path, const std::string& content) {
-  const std::string tmp = path.string() + ".tmp";
-  ::unlink(tmp.c_str());
-  const int fd = ::open(tmp.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0600);
+  std::string tmp = (path.parent_path() / ("." + path.filename().string() + ".XXXXXX")).string();
+  const int fd = ::mkostemp(tmp.data(), O_CLOEXEC);
   if (fd < 0) {
-    return absl::UnavailableError(absl::StrCat("cannot create ", tmp, ": ", std::strerror(errno)));
+    return absl::UnavailableError(absl::StrCat("cannot create a temporary file beside ",
+                                               path.string(), ": ", std::strerror(errno)));
   }
   const bool written =
       ::write(fd, content.data(), content.size()) == static_cast<ssize_t>(content.size()) &&
@@ -30,9 +33,16 @@ absl::Status WritePrivateFile(const std::filesystem::path& path, const std::stri
   const int saved = errno;
   ::close(fd);
   if (!written || std::rename(tmp.c_str(), path.c_str()) != 0) {
+    const int failed = written ? errno : saved;
     ::unlink(tmp.c_str());
     return absl::UnavailableError(
-        absl::StrCat("cannot write ", path.string(), ": ", std::strerror(written ? errno : saved)));
+        absl::StrCat("cannot write ", path.string(), ": ", std::strerror(failed)));
+  }
+  // The rename itself survives a crash once the folder is flushed.
+  if (const int dir = ::open(path.parent_path().c_str(), O_RDONLY | O_DIRECTORY | O_CLOEXEC);
+      dir >= 0) {
+    (void)::fsync(dir);
+    ::close(dir);
   }
   return absl::OkStatus();
 }
@@ -70,24 +80,21 @@ absl::StatusOr<BootstrapResult> EnsureAdminToken(const Authenticator& auth,
     }
     return result;
   }
-  SEAPLAN_ASSIGN_OR_RETURN(std::vector<storage::TokenRecord> existing, tokens.List());
-  const storage::TimestampMs now = auth.Now();
-  for (const storage::TokenRecord& t : existing) {
-    const bool usable = t.revoked_at_ms == 0 && (t.expires_at_ms == 0 || t.expires_at_ms > now);
-    if (t.role == RoleName(Role::kAdmin) && usable) return result;
-  }
-  SEAPLAN_ASSIGN_OR_RETURN(Authenticator::NewToken created,
-                           auth.Issue(Role::kAdmin, "", "first admin token", 0, ""));
+  // One transaction checks for a usable admin token and stores the new one:
+  // of servers starting at once on one database, one creates it.
+  SEAPLAN_ASSIGN_OR_RETURN(std::optional<Authenticator::NewToken> created,
+                           auth.IssueFirstAdmin("first admin token"));
+  if (!created) return result;
   std::error_code ec;
   std::filesystem::create_directories(data_dir, ec);
   result.created_file = data_dir / kAdminTokenFileName;
-  if (absl::Status written = WritePrivateFile(result.created_file, created.bearer + "\n");
+  if (absl::Status written = WritePrivateFile(result.created_file, created->bearer + "\n");
       !written.ok()) {
     // Nobody could ever present it: revoke it, so the next start makes another.
-    (void)tokens.Revoke(created.record.id, now);
+    (void)tokens.Revoke(created->record.id, auth.Now());
     return written;
   }
-  result.created_bearer = std::move(created.bearer);
+  result.created_bearer = std::move(created->bearer);
   return result;
 }
 

@@ -35,6 +35,8 @@ using internal::SplitTasks;
 constexpr const char* kChangeChannel = "seaplan_mission_changes";
 // Serialises schema migrations of replicas that start together.
 constexpr std::int64_t kMigrationLockKey = 0x5ea91a40;
+// Serialises the first-admin check and insert of replicas that start together.
+constexpr std::int64_t kFirstAdminLockKey = 0x5ea91a41;
 // The database clock in ms (transaction start: stable within a write).
 constexpr const char* kDbNowMs = "(EXTRACT(EPOCH FROM now()) * 1000)::bigint";
 
@@ -1304,26 +1306,32 @@ class PostgresStore::Access final : public TokenRepository, public AuditReposito
 
   absl::Status Insert(const TokenRecord& t, const AuditRecord* audit) override {
     return impl_.InTransaction([&](PGconn* conn) -> absl::Status {
-      absl::Status st = Impl::Run(conn,
-                                  absl::StrCat("INSERT INTO api_tokens(", internal::kTokenColumns,
-                                               ") VALUES ($1, $2, $3, $4, $5, $6, $7, $8, $9)"),
-                                  Params()
-                                      .Text(t.id)
-                                      .Text(t.secret_hash)
-                                      .Text(t.role)
-                                      .Text(t.vessel_id)
-                                      .Text(t.description)
-                                      .Text(t.created_by)
-                                      .I8(t.created_at_ms)
-                                      .I8(t.expires_at_ms)
-                                      .I8(t.revoked_at_ms))
-                            .status();
-      if (absl::IsAlreadyExists(st)) {
-        return absl::AlreadyExistsError(absl::StrCat("token '", t.id, "' exists"));
-      }
-      SEAPLAN_RETURN_IF_ERROR(st);
+      SEAPLAN_RETURN_IF_ERROR(InsertOn(conn, t));
       return Impl::InsertAuditIfAny(conn, audit);
     });
+  }
+
+  absl::StatusOr<bool> InsertFirstAdmin(const TokenRecord& admin, TimestampMs now_ms) override {
+    bool inserted = false;
+    const absl::Status written = impl_.InTransaction([&](PGconn* conn) -> absl::Status {
+      // Held to the end of the transaction; under READ COMMITTED the check
+      // below then sees an admin token another process committed meanwhile.
+      SEAPLAN_RETURN_IF_ERROR(
+          Impl::Run(conn, "SELECT pg_advisory_xact_lock($1)", Params().I8(kFirstAdminLockKey))
+              .status());
+      SEAPLAN_ASSIGN_OR_RETURN(
+          Result usable,
+          Impl::Run(conn,
+                    "SELECT 1 FROM api_tokens WHERE role = 'admin' AND revoked_at_ms = 0 AND "
+                    "(expires_at_ms = 0 OR expires_at_ms > $1) LIMIT 1",
+                    Params().I8(now_ms)));
+      if (usable.rows() > 0) return absl::OkStatus();
+      SEAPLAN_RETURN_IF_ERROR(InsertOn(conn, admin));
+      inserted = true;
+      return absl::OkStatus();
+    });
+    if (!written.ok()) return written;
+    return inserted;
   }
 
   absl::StatusOr<TokenRecord> Get(const std::string& id) override {
@@ -1383,6 +1391,27 @@ class PostgresStore::Access final : public TokenRepository, public AuditReposito
   }
 
  private:
+  static absl::Status InsertOn(PGconn* conn, const TokenRecord& t) {
+    absl::Status st = Impl::Run(conn,
+                                absl::StrCat("INSERT INTO api_tokens(", internal::kTokenColumns,
+                                             ") VALUES ($1, $2, $3, $4, $5, $6, $7, $8, $9)"),
+                                Params()
+                                    .Text(t.id)
+                                    .Text(t.secret_hash)
+                                    .Text(t.role)
+                                    .Text(t.vessel_id)
+                                    .Text(t.description)
+                                    .Text(t.created_by)
+                                    .I8(t.created_at_ms)
+                                    .I8(t.expires_at_ms)
+                                    .I8(t.revoked_at_ms))
+                          .status();
+    if (absl::IsAlreadyExists(st)) {
+      return absl::AlreadyExistsError(absl::StrCat("token '", t.id, "' exists"));
+    }
+    return st;
+  }
+
   static absl::StatusOr<TokenRecord> GetOn(PGconn* conn, const std::string& id) {
     SEAPLAN_ASSIGN_OR_RETURN(Result r, Impl::Run(conn,
                                                  absl::StrCat("SELECT ", internal::kTokenColumns,

@@ -358,15 +358,21 @@ struct SqliteStore::Impl final : ChartRepository, MissionRepository {
         return absl::InternalError("SQLite migrations do not match the schema history");
       }
       if (m.version <= current) continue;
+      bool applied = false;
       absl::Status st = InTransaction(db, [&]() -> absl::Status {
+        // Read again under the write lock: another process opening the same
+        // file at once may have applied this migration since the read above.
+        SEAPLAN_ASSIGN_OR_RETURN(current, UserVersion());
+        if (m.version <= current) return absl::OkStatus();
         SEAPLAN_RETURN_IF_ERROR(Exec(db, m.sql));
+        applied = true;
         return Exec(db, absl::StrCat("PRAGMA user_version = ", m.version).c_str());
       });
       if (!st.ok()) {
         return absl::Status(st.code(), absl::StrCat("schema migration to version ", m.version, " (",
                                                     description, ") failed: ", st.message()));
       }
-      log::Info("storage: migrated schema to version {} ({})", m.version, description);
+      if (applied) log::Info("storage: migrated schema to version {} ({})", m.version, description);
     }
     return absl::OkStatus();
   }
@@ -973,22 +979,7 @@ class SqliteStore::Access final : public TokenRepository, public AuditRepository
     std::lock_guard lock(impl_.mu);
     SEAPLAN_RETURN_IF_ERROR(impl_.Usable());
     return InTransaction(impl_.db, [&]() -> absl::Status {
-      Stmt s(impl_.db, absl::StrCat("INSERT INTO api_tokens(", internal::kTokenColumns,
-                                    ") VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9)"));
-      s.Text(1, t.id)
-          .Text(2, t.secret_hash)
-          .Text(3, t.role)
-          .Text(4, t.vessel_id)
-          .Text(5, t.description)
-          .Text(6, t.created_by)
-          .Int(7, t.created_at_ms)
-          .Int(8, t.expires_at_ms)
-          .Int(9, t.revoked_at_ms);
-      absl::Status st = s.Run();
-      if (absl::IsAlreadyExists(st)) {
-        return absl::AlreadyExistsError(absl::StrCat("token '", t.id, "' exists"));
-      }
-      SEAPLAN_RETURN_IF_ERROR(st);
+      SEAPLAN_RETURN_IF_ERROR(InsertLocked(t));
       return InsertAuditIfAny(impl_.db, audit);
     });
   }
@@ -1031,6 +1022,27 @@ class SqliteStore::Access final : public TokenRepository, public AuditRepository
     return revoked;
   }
 
+  absl::StatusOr<bool> InsertFirstAdmin(const TokenRecord& admin, TimestampMs now_ms) override {
+    std::lock_guard lock(impl_.mu);
+    SEAPLAN_RETURN_IF_ERROR(impl_.Usable());
+    bool inserted = false;
+    // BEGIN IMMEDIATE takes the database's write lock before the check, so
+    // another process's check waits for this insert to commit (or roll back).
+    const absl::Status written = InTransaction(impl_.db, [&]() -> absl::Status {
+      Stmt usable(impl_.db,
+                  "SELECT 1 FROM api_tokens WHERE role = 'admin' AND revoked_at_ms = 0 AND "
+                  "(expires_at_ms = 0 OR expires_at_ms > ?1) LIMIT 1");
+      usable.Int(1, now_ms);
+      SEAPLAN_ASSIGN_OR_RETURN(bool exists, usable.Step());
+      if (exists) return absl::OkStatus();
+      SEAPLAN_RETURN_IF_ERROR(InsertLocked(admin));
+      inserted = true;
+      return absl::OkStatus();
+    });
+    if (!written.ok()) return written;
+    return inserted;
+  }
+
   absl::StatusOr<AuditRecord> Append(AuditRecord r) override {
     std::lock_guard lock(impl_.mu);
     SEAPLAN_RETURN_IF_ERROR(impl_.Usable());
@@ -1050,6 +1062,26 @@ class SqliteStore::Access final : public TokenRepository, public AuditRepository
   }
 
  private:
+  // The caller holds mu and is inside a transaction.
+  absl::Status InsertLocked(const TokenRecord& t) {
+    Stmt s(impl_.db, absl::StrCat("INSERT INTO api_tokens(", internal::kTokenColumns,
+                                  ") VALUES (?1, ?2, ?3, ?4, ?5, ?6, ?7, ?8, ?9)"));
+    s.Text(1, t.id)
+        .Text(2, t.secret_hash)
+        .Text(3, t.role)
+        .Text(4, t.vessel_id)
+        .Text(5, t.description)
+        .Text(6, t.created_by)
+        .Int(7, t.created_at_ms)
+        .Int(8, t.expires_at_ms)
+        .Int(9, t.revoked_at_ms);
+    absl::Status st = s.Run();
+    if (absl::IsAlreadyExists(st)) {
+      return absl::AlreadyExistsError(absl::StrCat("token '", t.id, "' exists"));
+    }
+    return st;
+  }
+
   absl::StatusOr<TokenRecord> GetLocked(const std::string& id) {
     Stmt s(impl_.db,
            absl::StrCat("SELECT ", internal::kTokenColumns, " FROM api_tokens WHERE id = ?1"));

@@ -7,6 +7,7 @@
 #include <iostream>
 #include <set>
 #include <thread>
+#include <vector>
 
 #include "store_test_backends.h"
 
@@ -582,6 +583,61 @@ TEST_P(StoreTest, TokensAreStoredListedAndRevokedOnce) {
   EXPECT_EQ((*all)[0].id, "t1");
   EXPECT_EQ((*all)[0].revoked_at_ms, 0);
   EXPECT_EQ((*all)[1].revoked_at_ms, 7000);
+}
+
+// The first admin token: stored only while no usable admin token is (a
+// revoked or expired one does not count), and of several connections (server
+// processes) asking at once on an empty database exactly one stores it.
+TEST_P(StoreTest, FirstAdminIsStoredOnceEvenWhenProcessesAskAtOnce) {
+  TokenRepository& tokens = store().tokens();
+  TokenRecord expired = TestToken("old", "admin");  // expires at 5000
+  ASSERT_TRUE(tokens.Insert(expired).ok());
+  ASSERT_TRUE(tokens.Insert(TestToken("revoked", "admin")).ok());
+  ASSERT_TRUE(tokens.Revoke("revoked", 2000).ok());
+  ASSERT_TRUE(tokens.Insert(TestToken("viewer", "viewer")).ok());
+  TokenRecord first = TestToken("first", "admin");
+  first.expires_at_ms = 0;
+  // At 4000 the expiring admin token is still usable; at 6000 it is not.
+  EXPECT_FALSE(*tokens.InsertFirstAdmin(first, 4000));
+  EXPECT_EQ(tokens.Get("first").status().code(), absl::StatusCode::kNotFound);
+  EXPECT_TRUE(*tokens.InsertFirstAdmin(first, 6000));
+  TokenRecord second = TestToken("second", "admin");
+  EXPECT_FALSE(*tokens.InsertFirstAdmin(second, 6000));
+  EXPECT_EQ(tokens.List()->size(), 4u);
+
+  constexpr int kRounds = 5, kProcesses = 4;
+  for (int round = 0; round < kRounds; ++round) {
+    absl::StatusOr<std::unique_ptr<TestDatabase>> fresh = TestDatabase::Create(GetParam());
+    ASSERT_TRUE(fresh.ok()) << fresh.status();
+    std::vector<std::unique_ptr<Store>> stores;
+    for (int p = 0; p < kProcesses; ++p) {
+      auto opened = (*fresh)->Open();
+      ASSERT_TRUE(opened.ok()) << opened.status();
+      stores.push_back(std::move(*opened));
+    }
+    std::atomic<int> ready{0};
+    std::vector<absl::StatusOr<bool>> stored(kProcesses, absl::UnknownError("not run"));
+    std::vector<std::thread> threads;
+    for (int p = 0; p < kProcesses; ++p) {
+      threads.emplace_back([&, p] {
+        TokenRecord admin = TestToken("admin-" + std::to_string(p), "admin");
+        admin.expires_at_ms = 0;
+        ++ready;
+        while (ready.load() < kProcesses) {
+        }
+        stored[p] = stores[p]->tokens().InsertFirstAdmin(admin, 6000);
+      });
+    }
+    for (std::thread& t : threads) t.join();
+    int created = 0;
+    for (int p = 0; p < kProcesses; ++p) {
+      ASSERT_TRUE(stored[p].ok()) << "round " << round << ": " << stored[p].status();
+      created += *stored[p] ? 1 : 0;
+    }
+    EXPECT_EQ(created, 1) << "round " << round;
+    EXPECT_EQ(stores[0]->tokens().List()->size(), 1u) << "round " << round;
+    for (auto& s : stores) ASSERT_TRUE(s->Close().ok());
+  }
 }
 
 TEST_P(StoreTest, AuditLogAppendsInOrderAndPages) {

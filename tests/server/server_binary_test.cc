@@ -1,7 +1,8 @@
 // The real seaplan-server binary (SEAPLAN_BIN_DIR): starts on ephemeral
 // loopback ports, learns them from --port-file, serves both transports,
 // lists its services through reflection, and on SIGTERM drains, exits 0
-// and leaves an intact database.
+// and leaves an intact database. Two servers starting at once on one
+// database (SQLite data folder, PostgreSQL) create one admin token.
 //
 // This is a separate test binary that does not link the server libraries:
 // libgrpc++_reflection carries its own copy of the reflection protos, which
@@ -24,13 +25,19 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
+#include <memory>
 #include <set>
 #include <thread>
+#include <vector>
 
 #include "grpc/health/v1/health.grpc.pb.h"
 #include "grpc/reflection/v1alpha/reflection.grpc.pb.h"
+#include "seaplan/storage/open_store.h"
 #include "seaplan/storage/sqlite_store.h"
+#include "seaplan/storage/testing/postgres_cluster.h"
 #include "seaplan/testing/shared_data.h"
+#include "seaplan/v1/access.grpc.pb.h"
 #include "seaplan/v1/mission.grpc.pb.h"
 
 extern char** environ;
@@ -217,6 +224,118 @@ TEST(ServerBinaryTest, ServesBothTransportsAndShutsDownCleanlyOnSigterm) {
   ASSERT_TRUE(store.ok()) << store.status();
   EXPECT_TRUE((*store)->CheckIntegrity().ok());
   EXPECT_EQ(*(*store)->SchemaVersion(), storage::LatestSchemaVersion());
+}
+
+// Servers started at once on one database, `rounds` times on a fresh one:
+// every server comes up, exactly one admin token is stored, exactly one
+// data folder holds admin.token (mode 0600, no temporary file left beside
+// it), and every server accepts the token it holds as admin.
+// `database`: empty for SQLite (then the servers share data_dirs[0]).
+void StartAtOnceCreatesOneAdminToken(const std::string& database, int servers, int rounds,
+                                     const std::function<std::string()>& fresh_database) {
+  const std::filesystem::path binary = seaplan::testing::BinDir() / "seaplan-server";
+  for (int round = 0; round < rounds; ++round) {
+    SCOPED_TRACE("round " + std::to_string(round));
+    TempDir dir;
+    const std::string url = database.empty() ? "" : fresh_database();
+    std::vector<std::filesystem::path> data_dirs;
+    std::vector<std::unique_ptr<Child>> children;
+    for (int i = 0; i < servers; ++i) {
+      data_dirs.push_back(dir.path() / (url.empty() ? "data" : "data-" + std::to_string(i)));
+    }
+    for (int i = 0; i < servers; ++i) {
+      std::vector<std::string> args = {binary.string(),
+                                       "--grpc-addr",
+                                       "127.0.0.1:0",
+                                       "--http-addr",
+                                       "127.0.0.1:0",
+                                       "--data-dir",
+                                       data_dirs[i].string(),
+                                       "--port-file",
+                                       (dir.path() / ("ports-" + std::to_string(i))).string(),
+                                       "--log-level",
+                                       "warn",
+                                       "--planning-threads",
+                                       "1"};
+      if (!url.empty()) {
+        args.push_back("--database");
+        args.push_back(url);
+      }
+      children.push_back(std::make_unique<Child>(args));
+    }
+    std::vector<int> grpc_ports(servers);
+    for (int i = 0; i < servers; ++i) {
+      int http_port = 0;
+      ASSERT_NO_FATAL_FAILURE(WaitForPorts(
+          *children[i], dir.path() / ("ports-" + std::to_string(i)), &grpc_ports[i], &http_port));
+      ASSERT_GT(grpc_ports[i], 0) << "server " << i << " wrote no port file";
+    }
+
+    if (url.empty()) data_dirs.resize(1);  // the servers' one folder
+    std::vector<std::string> token_files;
+    for (const auto& data_dir : data_dirs) {
+      if (!std::filesystem::exists(data_dir)) continue;
+      for (const auto& entry : std::filesystem::directory_iterator(data_dir)) {
+        const std::string name = entry.path().filename().string();
+        EXPECT_EQ(name.find("admin.token."), std::string::npos) << "left behind: " << entry.path();
+        if (name == "admin.token") token_files.push_back(entry.path().string());
+      }
+    }
+    ASSERT_EQ(token_files.size(), 1u) << "admin.token files written";
+    struct stat token_stat {};
+    ASSERT_EQ(stat(token_files[0].c_str(), &token_stat), 0);
+    EXPECT_EQ(token_stat.st_mode & 0777, 0600u);
+    std::string token;
+    std::getline(std::ifstream(token_files[0]), token);
+    ASSERT_EQ(token.rfind("seaplan_", 0), 0u) << token;
+
+    {
+      auto opened = storage::OpenStore(url, data_dirs[0].string());
+      ASSERT_TRUE(opened.ok()) << opened.status();
+      auto tokens = opened->store->tokens().List();
+      ASSERT_TRUE(tokens.ok()) << tokens.status();
+      ASSERT_EQ(tokens->size(), 1u) << "tokens stored";
+      EXPECT_EQ((*tokens)[0].role, "admin");
+      EXPECT_EQ(token.rfind("seaplan_" + (*tokens)[0].id + "_", 0), 0u) << token;
+      ASSERT_TRUE(opened->store->Close().ok());
+    }
+    for (int i = 0; i < servers; ++i) {
+      auto channel = grpc::CreateChannel("127.0.0.1:" + std::to_string(grpc_ports[i]),
+                                         grpc::InsecureChannelCredentials());
+      grpc::ClientContext ctx;
+      SetDeadline(&ctx, 10000);
+      ctx.AddMetadata("authorization", "Bearer " + token);
+      v1::WhoAmIResponse who;
+      const grpc::Status st =
+          v1::AccessService::NewStub(channel)->WhoAmI(&ctx, v1::WhoAmIRequest(), &who);
+      ASSERT_TRUE(st.ok()) << "server " << i << ": " << st.error_message();
+      EXPECT_EQ(who.role(), v1::ROLE_ADMIN);
+    }
+    for (auto& child : children) ASSERT_EQ(kill(child->pid(), SIGTERM), 0);
+    for (auto& child : children) EXPECT_NE(child->Wait(std::chrono::seconds(15)), -1);
+  }
+}
+
+TEST(ServerBinaryTest, ServersStartingAtOnceOnOneSqliteFolderCreateOneAdminToken) {
+  if (!std::filesystem::exists(seaplan::testing::BinDir() / "seaplan-server"))
+    GTEST_SKIP() << "seaplan-server not built";
+  StartAtOnceCreatesOneAdminToken("", 2, 4, nullptr);
+}
+
+TEST(ServerBinaryTest, ServersStartingAtOnceOnOnePostgresDatabaseCreateOneAdminToken) {
+  if (!std::filesystem::exists(seaplan::testing::BinDir() / "seaplan-server"))
+    GTEST_SKIP() << "seaplan-server not built";
+  auto cluster = storage::testing::ProcessCluster();
+  if (absl::IsNotFound(cluster.status())) {
+    if (std::getenv("CI") != nullptr) FAIL() << cluster.status();
+    GTEST_SKIP() << "PostgreSQL not available: " << cluster.status().message();
+  }
+  ASSERT_TRUE(cluster.ok()) << cluster.status();
+  StartAtOnceCreatesOneAdminToken("postgresql", 2, 4, [&]() -> std::string {
+    auto url = (*cluster)->CreateDatabase();
+    EXPECT_TRUE(url.ok()) << url.status();
+    return url.ok() ? *url : "";
+  });
 }
 
 // Runs a shell command; its exit code and standard output + error.

@@ -393,6 +393,13 @@ class TokenRepository {
   // the token. NotFound when absent (nothing is stored).
   virtual absl::StatusOr<TokenRecord> Revoke(const std::string& id, TimestampMs at_ms,
                                              const AuditRecord* audit = nullptr) = 0;
+  // Stores `admin` (a token of role "admin") unless a usable admin token
+  // (not revoked, not expired at `now_ms`) is stored, and returns whether it
+  // stored it. The check and the insert are one transaction that excludes
+  // every other call of this method on the database, from any process: of
+  // servers starting at once on an empty database, exactly one creates the
+  // first admin token.
+  virtual absl::StatusOr<bool> InsertFirstAdmin(const TokenRecord& admin, TimestampMs now_ms) = 0;
 };
 
 // The audit log (AuditRecord); audited writes append their row themselves.
