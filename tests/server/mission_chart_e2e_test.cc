@@ -1,13 +1,20 @@
 // MissionService over a chart: a mission whose spec names a stored chart
 // gets its moves routed by engine/route (duration = the route's sailing
 // time, waypoints with MSO modes); a leg with no safe route fails
-// CreateMission naming the leg. And the coordinator replans once for one
-// situation reported twice.
+// CreateMission naming the leg; CreateMission racing DeleteChart of its
+// chart never leaves a mission on a deleted chart (SQLite and PostgreSQL).
+// And the coordinator replans once for one situation reported twice.
 #include <gtest/gtest.h>
 
+#include <atomic>
 #include <chrono>
+#include <cstdlib>
+#include <iostream>
+#include <set>
 #include <thread>
+#include <vector>
 
+#include "seaplan/storage/testing/postgres_cluster.h"
 #include "test_support.h"
 
 namespace seaplan::server::testing {
@@ -267,6 +274,167 @@ TEST(MissionChartE2eTest, ChartInUseIsNotDeletedAndADeletedChartIsGoneEverywhere
   EXPECT_EQ(st.error_code(), StatusCode::FAILED_PRECONDITION) << st.error_message();
   EXPECT_NE(st.error_message().find(chart_id), std::string::npos) << st.error_message();
   EXPECT_EQ(delete_chart(chart_id).error_code(), StatusCode::NOT_FOUND);
+}
+
+// CreateMission on a chart racing DeleteChart of that chart, through the
+// server (its own mission engine, which loads the chart to plan), round
+// after round with the delete sent at another point of the creations: before
+// planning starts, while they plan, after they committed. A creation either
+// succeeds, and then the delete is refused naming a created mission (an
+// unfinished mission uses the chart), or it is FAILED_PRECONDITION; never a
+// stored mission whose chart is gone.
+void CreateRacesDelete(InProcessServer& s, int rounds) {
+  using std::chrono::steady_clock;
+  auto charts = v1::ChartService::NewStub(s.channel());
+  auto missions = v1::MissionService::NewStub(s.channel());
+  const auto create = [&](const std::string& chart_id, v1::Mission* mission) {
+    v1::CreateMissionRequest req;
+    *req.mutable_spec() = ChartSpec(chart_id, "port-e");
+    ClientContext ctx;
+    SetDeadline(&ctx, 120000);
+    return missions->CreateMission(&ctx, req, mission);
+  };
+  const auto delete_chart = [&](const std::string& chart_id) {
+    v1::DeleteChartRequest req;
+    req.set_chart_id(chart_id);
+    v1::DeleteChartResponse resp;
+    ClientContext ctx;
+    SetDeadline(&ctx, 60000);
+    return charts->DeleteChart(&ctx, req, &resp);
+  };
+  const auto cancel = [&](const std::string& mission_id) {
+    v1::CancelMissionRequest req;
+    req.set_mission_id(mission_id);
+    v1::Mission cancelled;
+    ClientContext ctx;
+    return missions->CancelMission(&ctx, req, &cancelled);
+  };
+  // The stored missions whose spec names `chart_id`.
+  const auto stored_on = [&](const std::string& chart_id) {
+    std::set<std::string> ids;
+    std::int64_t after = 0;
+    while (true) {
+      auto page = s.store().missions().List(0, 1000, after);
+      EXPECT_TRUE(page.ok()) << page.status();
+      if (!page.ok()) break;
+      for (const storage::MissionRecord& m : page->items) {
+        v1::MissionSpec spec;
+        EXPECT_TRUE(spec.ParseFromString(m.spec));
+        if (spec.chart_id() == chart_id) ids.insert(m.id);
+      }
+      if (page->next_after == 0) break;
+      after = page->next_after;
+    }
+    return ids;
+  };
+
+  // One creation's time here (the chart loaded, the move routed): the
+  // deletes are sent from 0 to 2.5 times it after the creations.
+  steady_clock::duration create_time{};
+  {
+    const std::string chart_id = UploadIslandChart(s);
+    v1::Mission mission;
+    const auto t0 = steady_clock::now();
+    const grpc::Status st = create(chart_id, &mission);
+    create_time = steady_clock::now() - t0;
+    ASSERT_TRUE(st.ok()) << st.error_message();
+  }
+  constexpr int kCreators = 2;
+  int deletes_first = 0, creates_first = 0, refused_after_planning = 0;
+  for (int round = 0; round < rounds; ++round) {
+    SCOPED_TRACE("round " + std::to_string(round));
+    const std::string chart_id = UploadIslandChart(s);
+    ASSERT_FALSE(chart_id.empty());
+    const auto delay = create_time * (round % 6) / 2;
+    std::atomic<int> ready{0};
+    const auto start_together = [&] {
+      ++ready;
+      while (ready.load() < kCreators + 1) {
+      }
+    };
+    std::vector<grpc::Status> created(kCreators);
+    std::vector<v1::Mission> mission(kCreators);
+    grpc::Status deleted;
+    std::vector<std::thread> threads;
+    for (int i = 0; i < kCreators; ++i) {
+      threads.emplace_back([&, i] {
+        start_together();
+        created[i] = create(chart_id, &mission[i]);
+      });
+    }
+    threads.emplace_back([&] {
+      start_together();
+      std::this_thread::sleep_for(delay);
+      deleted = delete_chart(chart_id);
+    });
+    for (std::thread& t : threads) t.join();
+
+    std::set<std::string> created_ids;
+    for (int i = 0; i < kCreators; ++i) {
+      if (created[i].ok()) {
+        created_ids.insert(mission[i].mission_id());
+        EXPECT_EQ(mission[i].state(), v1::MISSION_STATE_ACTIVE);
+        continue;
+      }
+      EXPECT_EQ(created[i].error_code(), StatusCode::FAILED_PRECONDITION)
+          << created[i].error_message();
+      EXPECT_NE(created[i].error_message().find(chart_id), std::string::npos)
+          << created[i].error_message();
+      if (created[i].error_message().find("deleted while the mission was planned") !=
+          std::string::npos) {
+        ++refused_after_planning;
+      }
+    }
+    // Storage holds exactly the missions the server said it created.
+    EXPECT_EQ(stored_on(chart_id), created_ids);
+    const bool chart_stored = s.store().charts().Get(chart_id, false).ok();
+    if (deleted.ok()) {
+      ++deletes_first;
+      EXPECT_TRUE(created_ids.empty()) << "a mission was created on a deleted chart";
+      EXPECT_FALSE(chart_stored);
+    } else {
+      ++creates_first;
+      EXPECT_EQ(deleted.error_code(), StatusCode::FAILED_PRECONDITION) << deleted.error_message();
+      ASSERT_FALSE(created_ids.empty())
+          << "the delete was refused but no mission was created: " << deleted.error_message();
+      EXPECT_TRUE(chart_stored);
+      bool names_a_created_mission = false;
+      for (const std::string& id : created_ids) {
+        names_a_created_mission |= deleted.error_message().find(id) != std::string::npos;
+      }
+      EXPECT_TRUE(names_a_created_mission) << deleted.error_message();
+      // Once its missions are cancelled the chart goes.
+      for (const std::string& id : created_ids) {
+        const grpc::Status st = cancel(id);
+        EXPECT_TRUE(st.ok()) << st.error_message();
+      }
+      const grpc::Status st = delete_chart(chart_id);
+      EXPECT_TRUE(st.ok()) << st.error_message();
+    }
+  }
+  std::cout << rounds << " rounds: the delete first in " << deletes_first
+            << ", a creation first in " << creates_first << "; " << refused_after_planning
+            << " creations refused after planning (the chart deleted meanwhile); one creation "
+            << std::chrono::duration_cast<std::chrono::milliseconds>(create_time).count()
+            << " ms\n";
+}
+
+TEST(MissionChartE2eTest, CreatingOnAChartWhileItIsDeletedNeverLeavesAMissionWithoutItsChart) {
+  InProcessServer s;  // SQLite, the server's own mission engine
+  CreateRacesDelete(s, 24);
+}
+
+TEST(MissionChartE2eTest, CreatingOnAChartWhileItIsDeletedOnPostgresql) {
+  auto cluster = storage::testing::ProcessCluster();
+  if (absl::IsNotFound(cluster.status())) {
+    if (std::getenv("CI") != nullptr) FAIL() << cluster.status();
+    GTEST_SKIP() << "PostgreSQL not available: " << cluster.status().message();
+  }
+  ASSERT_TRUE(cluster.ok()) << cluster.status();
+  auto url = (*cluster)->CreateDatabase();
+  ASSERT_TRUE(url.ok()) << url.status();
+  InProcessServer s(*url, nullptr);
+  CreateRacesDelete(s, 12);
 }
 
 TEST(MissionChartE2eTest, TwoTriggeringFeedbacksInARowReplanOnce) {

@@ -560,7 +560,7 @@ TEST(ServerE2eTest, ShutdownEndsWatchesAndReportsNotServing) {
   stopper.join();
   EXPECT_EQ(st.error_code(), StatusCode::UNAVAILABLE) << st.error_message();
   // The database is intact and holds the mission.
-  EXPECT_TRUE(s.store().CheckIntegrity().ok());
+  EXPECT_TRUE(s.sqlite_store().CheckIntegrity().ok());
   EXPECT_TRUE(s.store().missions().Get(mission.mission_id()).ok());
 }
 

@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include "absl/strings/str_cat.h"
+#include "seaplan/storage/open_store.h"
 #include "seaplan/testing/grpc_test_token.h"
 #include "server/auth/authenticator.h"
 #include "server/core/convert.h"
@@ -134,10 +135,23 @@ InProcessServer::InProcessServer(std::shared_ptr<mission::MissionEngine> engine,
   Start(std::move(engine), planning_threads, configure);
 }
 
-void InProcessServer::OpenStore() {
-  auto store = storage::SqliteStore::Open((dir_.path() / "seaplan.db").string());
-  EXPECT_TRUE(store.ok()) << store.status();
-  store_ = std::move(*store);
+InProcessServer::InProcessServer(const std::string& database_url,
+                                 std::shared_ptr<mission::MissionEngine> engine) {
+  OpenStore(database_url);
+  Start(std::move(engine), 2, {});
+}
+
+void InProcessServer::OpenStore(const std::string& database_url) {
+  if (database_url.empty()) {
+    auto store = storage::SqliteStore::Open((dir_.path() / "seaplan.db").string());
+    EXPECT_TRUE(store.ok()) << store.status();
+    sqlite_ = store->get();
+    store_ = std::move(*store);
+  } else {
+    auto opened = storage::OpenStore(database_url, dir_.path().string());
+    EXPECT_TRUE(opened.ok()) << opened.status();
+    store_ = std::move(opened->store);
+  }
   const absl::Status imported = auth::Authenticator(store_->tokens())
                                     .ImportAdmin(seaplan::testing::TestAdminToken(), "tests");
   EXPECT_TRUE(imported.ok()) << imported;

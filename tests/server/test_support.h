@@ -95,10 +95,14 @@ class InProcessServer {
   // Start's status is in start_status() (the server is null when it failed).
   InProcessServer(std::shared_ptr<mission::MissionEngine> engine, int planning_threads,
                   const std::function<void(ServerOptions&)>& configure);
+  // Over the PostgreSQL database at `database_url` (a fresh one) instead.
+  InProcessServer(const std::string& database_url, std::shared_ptr<mission::MissionEngine> engine);
   ~InProcessServer();
 
   Server& server() { return *server_; }
-  storage::SqliteStore& store() { return *store_; }
+  storage::Store& store() { return *store_; }
+  // The SQLite store (not with a `database_url`).
+  storage::SqliteStore& sqlite_store() { return *sqlite_; }
   std::string grpc_target() const { return "127.0.0.1:" + std::to_string(server_->grpc_port()); }
   int http_port() const { return server_->http_port(); }
   std::shared_ptr<grpc::Channel> channel() { return channel_; }
@@ -107,13 +111,15 @@ class InProcessServer {
   const absl::Status& start_status() const { return start_status_; }
 
  private:
-  // Opens the database and imports the fixtures' admin token.
-  void OpenStore();
+  // Opens the database (empty url: SQLite in the temporary folder) and
+  // imports the fixtures' admin token.
+  void OpenStore(const std::string& database_url = "");
   void Start(std::shared_ptr<mission::MissionEngine> engine, int planning_threads,
              const std::function<void(ServerOptions&)>& configure);
 
   TempDir dir_;
-  std::unique_ptr<storage::SqliteStore> store_;
+  std::unique_ptr<storage::Store> store_;
+  storage::SqliteStore* sqlite_ = nullptr;  // store_ on SQLite
   std::unique_ptr<Server> server_;
   std::shared_ptr<grpc::Channel> channel_;
   bool default_admin_token_ = true;
