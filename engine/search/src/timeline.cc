@@ -41,11 +41,15 @@ bool Timeline::Build(std::span<const Event> events) {
     }
     ++common;
   }
-  Rewind(common);
-  for (std::size_t i = common; i < events.size(); ++i) {
+  return Build(common, events.subspan(common));
+}
+
+bool Timeline::Build(std::size_t keep, std::span<const Event> rest) {
+  Rewind(keep);
+  for (const Event& event : rest) {
     const Stn::Mark mark = stn_.GetMark();
-    const bool ok = AddToStn(events[i]);  // keep going so tables stay coherent
-    Commit(events[i], mark, ok && (path_.empty() || path_.back().consistent));
+    const bool ok = AddToStn(event);  // keep going so tables stay coherent
+    Commit(event, mark, ok && (path_.empty() || path_.back().consistent));
   }
   path_makespan_s_ = Current().makespan_s;
   return path_.empty() || path_.back().consistent;

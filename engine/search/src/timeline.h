@@ -51,6 +51,10 @@ class Timeline {
   // Makes `events` the path (keeping the prefix it shares with the current
   // path); false when its network is inconsistent.
   bool Build(std::span<const Event> events);
+  // The same when the caller knows that the first `keep` events of the
+  // current path are those of the new one: keeps them and adds `rest`
+  // (no comparison of the shared prefix).
+  bool Build(std::size_t keep, std::span<const Event> rest);
 
   struct Outcome {
     double makespan_s = 0.0;     // latest action event time

@@ -154,6 +154,13 @@ TEST_F(TimelineTest, BuildFromAnotherBranchEqualsBuildingFromScratch) {
   ASSERT_TRUE(t.TryAdd(second[2], &out));
   ASSERT_TRUE(t.Build(second));
   expect_same(t, second);
+  // Told the shared prefix (as the search is, from its tree): the same.
+  ASSERT_TRUE(t.Build(2, std::span<const Event>(first).subspan(2)));
+  expect_same(t, first);
+  ASSERT_TRUE(t.Build(0, second));
+  expect_same(t, second);
+  ASSERT_TRUE(t.Build(6, std::span<const Event>()));
+  expect_same(t, second);
 }
 
 }  // namespace
