@@ -104,6 +104,9 @@ class Timeline {
   }
   int TilNode(int k) const { return 1 + k; }
   bool AddToStn(const Event& event);
+  // The makespan after the node added last (AddToStn since `mark`), given
+  // the one before it.
+  double MakespanSince(const Stn::Mark& mark, double makespan_s) const;
   // Adds `event` (whose node AddToStn made, from `mark` on) to the path's
   // tables; Uncommit undoes the last one.
   void Commit(const Event& event, const Stn::Mark& mark, bool consistent);
@@ -133,6 +136,7 @@ class Timeline {
     std::size_t undo_begin;  // its entries in undo_log_ start here
     std::int32_t next_til;   // next_til_ before it
     bool consistent;         // the network up to and including it
+    double makespan_s;       // of the path up to and including it
   };
   std::vector<PathEvent> path_;
   Stn::Mark committed_mark_{};  // after the path's last event
