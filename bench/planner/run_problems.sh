@@ -10,7 +10,10 @@
 # --cpu-limit S interrupts each run (SIGINT) once it has used S s of CPU time
 # (read from /proc every 0.1 s), so that two executables get the same work
 # budget for coverage; give a --time-limit well above it. An interrupted run
-# prints no status or counters (the row says `none`).
+# prints no status or counters (the row says `none`), and no plan: so a run
+# that has reported its first plan (`--stream`) is not interrupted but left
+# to finish the bounded searches that may shorten it (its cpu_s can then
+# exceed S; the first plan came within S).
 #
 # usage: run_problems.sh SEAPLAN [--time-limit 60] [--memory-limit 2048] [--cpu-limit S]
 #            [--bench DIR] PROBLEM...    (PROBLEM: domain/pNN, e.g. storage-2011/p01)
@@ -26,7 +29,8 @@ stop_at_cpu_limit() {
   local parent=$1 child= stat interrupted=0
   while kill -0 "$parent" 2>/dev/null; do
     [[ -n $child ]] || child=$(pgrep -P "$parent" | head -1) || true
-    if [[ -n $child && $interrupted == 0 ]] && read -r -a stat 2>/dev/null <"/proc/$child/stat"; then
+    if [[ -n $child && $interrupted == 0 ]] && ! grep -q '^improved plan:' "$work/err" &&
+      read -r -a stat 2>/dev/null <"/proc/$child/stat"; then
       # Fields 14 and 15: user and system time in clock ticks.
       if ((stat[13] + stat[14] >= cpu_s * ticks_per_s)); then
         kill -INT "$child" 2>/dev/null || true
@@ -44,9 +48,10 @@ for p in "${problems[@]}"; do
   dir=$bench/${p%/*} name=${p#*/}
   domain=$(domain_of "$dir" "$name")
   rm -f "$work/plan"
+  : >"$work/err"
   nice /usr/bin/time -f '%e %M %U %S' -o "$work/time" "$exe" plan "$domain" "$dir/$name.pddl" \
-    --no-anytime --time-limit "$time_s" --memory-limit "$memory_mb" -o "$work/plan" \
-    >"$work/out" 2>/dev/null &
+    --no-anytime --stream --time-limit "$time_s" --memory-limit "$memory_mb" -o "$work/plan" \
+    >"$work/out" 2>"$work/err" &
   runner=$!
   if [[ $cpu_s != 0 ]]; then stop_at_cpu_limit "$runner"; fi
   wait "$runner" || true

@@ -123,8 +123,38 @@ bool LazySearch::Pop(std::int32_t* state) {
 
 void LazySearch::EnsureTimeline(std::int32_t state) {
   if (timeline_path_of_ == state) return;  // usually the state just expanded
-  ExtractPath(state, &path_);
-  timeline_.Build(path_);
+  // Up to the deepest state the timeline's path shares with `state`'s (none
+  // before this search's first build: then up past the initial state).
+  // Parents change only in Materialize, for a state that is then appended
+  // to the path, so the path's states keep the parents they were built with.
+  branch_.clear();
+  std::int32_t shared = state;
+  while (shared >= 0 && info_[static_cast<std::size_t>(shared)].path_index < 0) {
+    branch_.push_back(shared);
+    shared = info_[static_cast<std::size_t>(shared)].parent;
+  }
+  const std::size_t keep_states =
+      shared >= 0 ? static_cast<std::size_t>(info_[static_cast<std::size_t>(shared)].path_index) + 1
+                  : 0;
+  for (std::size_t i = keep_states; i < timeline_states_.size(); ++i) {
+    info_[static_cast<std::size_t>(timeline_states_[i])].path_index = -1;
+  }
+  timeline_states_.resize(keep_states);
+  path_.clear();
+  for (auto it = branch_.rbegin(); it != branch_.rend(); ++it) {
+    NodeInfo& n = info_[static_cast<std::size_t>(*it)];
+    if (n.parent >= 0) path_.push_back(n.event);
+    n.path_index = static_cast<std::int32_t>(timeline_states_.size());
+    timeline_states_.push_back(*it);
+  }
+  timeline_.Build(keep_states > 0 ? keep_states - 1 : 0, path_);
+  timeline_path_of_ = state;
+}
+
+void LazySearch::AppendToTimelinePath(std::int32_t state) {
+  info_[static_cast<std::size_t>(state)].path_index =
+      static_cast<std::int32_t>(timeline_states_.size());
+  timeline_states_.push_back(state);
   timeline_path_of_ = state;
 }
 
@@ -196,8 +226,8 @@ std::int32_t LazySearch::Materialize(std::int32_t pending_index) {
   // The chosen state's schedule is the parent's plus this event: keep it
   // for the expansion that follows.
   timeline_.Keep(ev);
-  timeline_path_of_ = chosen;
   NodeInfo& n = info_[static_cast<std::size_t>(chosen)];
+  AppendToTimelinePath(chosen);
   n.parent = rec.parent;
   n.event = ev;
   n.g_s = out.makespan_s;

@@ -100,6 +100,9 @@ class LazySearch {
  private:
   struct NodeInfo {
     std::int32_t parent = -1;
+    // Position on the path the timeline holds (number of events before
+    // this state), -1 when not on it. Fills padding: no extra bytes.
+    std::int32_t path_index = -1;
     Event event{};
     double g_s = 0;   // makespan of the path's schedule
     double lb_s = 0;  // lower bound on any completion's makespan
@@ -111,14 +114,18 @@ class LazySearch {
     std::int32_t slack_begin = 0;
     std::int32_t slack_count = 0;
   };
-  // Copies of one logical state with mutually non-dominated schedules.
+  static_assert(sizeof(NodeInfo) <= 64);
 
   enum : std::uint8_t { kNew = 0, kOpen = 1, kClosed = 2 };
 
   NodeInfo& Info(StateId id);
   void ExtractPath(std::int32_t state, std::vector<Event>* out) const;
-  // Builds timeline_ for the path to `state` unless it already is.
+  // Builds timeline_ for the path to `state` unless it already is: walks up
+  // the search tree only to the nearest state on the timeline's path (their
+  // common ancestor) and rebuilds the schedule from there.
   void EnsureTimeline(std::int32_t state);
+  // `state`, whose parent is the timeline's last state, becomes its last.
+  void AppendToTimelinePath(std::int32_t state);
   // A lower bound that cannot beat the incumbent (anytime bound).
   bool OverBound(double lower_bound_s) const {
     return lower_bound_s >= params_.bound_s - params_.epsilon_s / 2;
@@ -176,6 +183,11 @@ class LazySearch {
   // of a parent pointer happens in Materialize, which then keeps or
   // rebuilds, so the cached path is never stale.
   std::int32_t timeline_path_of_ = -1;
+  // The states along the timeline's path (the initial state first), each
+  // with its NodeInfo::path_index; empty until this search first builds
+  // it (the timeline may still hold another search's path).
+  std::vector<std::int32_t> timeline_states_;
+  std::vector<std::int32_t> branch_;  // scratch of EnsureTimeline
   const StopToken* stop_ = nullptr;
   TemporalReachability* reachability_ = nullptr;
   StateData parent_state_;

@@ -41,19 +41,36 @@ bool Timeline::Build(std::span<const Event> events) {
     }
     ++common;
   }
-  Rewind(common);
-  for (std::size_t i = common; i < events.size(); ++i) {
+  return Build(common, events.subspan(common));
+}
+
+bool Timeline::Build(std::size_t keep, std::span<const Event> rest) {
+  Rewind(keep);
+  path_makespan_s_ = path_.empty() ? 0.0 : path_.back().makespan_s;
+  for (const Event& event : rest) {
     const Stn::Mark mark = stn_.GetMark();
-    const bool ok = AddToStn(events[i]);  // keep going so tables stay coherent
-    Commit(events[i], mark, ok && (path_.empty() || path_.back().consistent));
+    const bool ok = AddToStn(event);  // keep going so tables stay coherent
+    const bool consistent = ok && (path_.empty() || path_.back().consistent);
+    // Times only rise: the new node and the raised ones are all that can
+    // move the makespan (an inconsistent network's times mean nothing).
+    path_makespan_s_ = consistent ? MakespanSince(mark, path_makespan_s_) : Current().makespan_s;
+    Commit(event, mark, consistent);
   }
-  path_makespan_s_ = Current().makespan_s;
   return path_.empty() || path_.back().consistent;
 }
 
 void Timeline::Keep(const Event& event) {
-  Commit(event, mark_, path_.empty() || path_.back().consistent);
   path_makespan_s_ = tentative_makespan_s_;
+  Commit(event, mark_, path_.empty() || path_.back().consistent);
+}
+
+double Timeline::MakespanSince(const Stn::Mark& mark, double makespan_s) const {
+  const int new_node = stn_.num_nodes() - 1;
+  if (is_action_node_[new_node]) makespan_s = std::max(makespan_s, stn_.time(new_node));
+  stn_.ForEachRaisedSince(mark, [&](int n) {
+    if (is_action_node_[n]) makespan_s = std::max(makespan_s, stn_.time(n));
+  });
+  return makespan_s;
 }
 
 void Timeline::Rewind(std::size_t num_events) {
@@ -175,7 +192,8 @@ void Timeline::AddEnvelopeEdges(const Event& event, const SnapAction& snap) {
 
 void Timeline::Commit(const Event& event, const Stn::Mark& mark, bool consistent) {
   const auto node = static_cast<std::int32_t>(EventNode(path_.size()));
-  path_.push_back(PathEvent{event, mark, undo_log_.size(), next_til_, consistent});
+  path_.push_back(
+      PathEvent{event, mark, undo_log_.size(), next_til_, consistent, path_makespan_s_});
   committed_mark_ = stn_.GetMark();
   // A write keeps the reader lists (readers after it are told apart by
   // their node numbers, Since) and logs the writer it replaces.
@@ -317,12 +335,8 @@ bool Timeline::TryAdd(const Event& event, Outcome* outcome) {
   mark_ = stn_.GetMark();
   if (!AddToStn(event)) return false;
   // Current() without its scan over every node of the path.
-  double makespan = path_makespan_s_;
+  const double makespan = MakespanSince(mark_, path_makespan_s_);
   const int new_node = stn_.num_nodes() - 1;
-  if (is_action_node_[new_node]) makespan = std::max(makespan, stn_.time(new_node));
-  stn_.ForEachRaisedSince(mark_, [&](int n) {
-    if (is_action_node_[n]) makespan = std::max(makespan, stn_.time(n));
-  });
   tentative_makespan_s_ = makespan;
   outcome->makespan_s = makespan;
   // An ending action no longer bounds from below beyond its end node; a

@@ -51,6 +51,10 @@ class Timeline {
   // Makes `events` the path (keeping the prefix it shares with the current
   // path); false when its network is inconsistent.
   bool Build(std::span<const Event> events);
+  // The same when the caller knows that the first `keep` events of the
+  // current path are those of the new one: keeps them and adds `rest`
+  // (no comparison of the shared prefix).
+  bool Build(std::size_t keep, std::span<const Event> rest);
 
   struct Outcome {
     double makespan_s = 0.0;     // latest action event time
@@ -100,6 +104,9 @@ class Timeline {
   }
   int TilNode(int k) const { return 1 + k; }
   bool AddToStn(const Event& event);
+  // The makespan after the node added last (AddToStn since `mark`), given
+  // the one before it.
+  double MakespanSince(const Stn::Mark& mark, double makespan_s) const;
   // Adds `event` (whose node AddToStn made, from `mark` on) to the path's
   // tables; Uncommit undoes the last one.
   void Commit(const Event& event, const Stn::Mark& mark, bool consistent);
@@ -129,6 +136,7 @@ class Timeline {
     std::size_t undo_begin;  // its entries in undo_log_ start here
     std::int32_t next_til;   // next_til_ before it
     bool consistent;         // the network up to and including it
+    double makespan_s;       // of the path up to and including it
   };
   std::vector<PathEvent> path_;
   Stn::Mark committed_mark_{};  // after the path's last event

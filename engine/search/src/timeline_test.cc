@@ -154,6 +154,19 @@ TEST_F(TimelineTest, BuildFromAnotherBranchEqualsBuildingFromScratch) {
   ASSERT_TRUE(t.TryAdd(second[2], &out));
   ASSERT_TRUE(t.Build(second));
   expect_same(t, second);
+  // Told the shared prefix (as the search is, from its tree): the same.
+  ASSERT_TRUE(t.Build(2, std::span<const Event>(first).subspan(2)));
+  expect_same(t, first);
+  ASSERT_TRUE(t.Build(0, second));
+  expect_same(t, second);
+  ASSERT_TRUE(t.Build(6, std::span<const Event>()));
+  expect_same(t, second);
+  // The makespan a successor is scheduled against is the rebuilt path's.
+  ASSERT_TRUE(t.Build(2, std::span<const Event>(first).subspan(2, 1)));
+  ASSERT_TRUE(t.TryAdd(first[3], &out));
+  t.Undo();
+  EXPECT_DOUBLE_EQ(out.makespan_s, fresh_out.makespan_s);
+  EXPECT_DOUBLE_EQ(out.lower_bound_s, fresh_out.lower_bound_s);
 }
 
 }  // namespace
