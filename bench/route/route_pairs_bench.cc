@@ -12,11 +12,13 @@
 //
 // Usage: route_pairs_bench [shared_dir] [--pairs N] [--seed S] [--chart noaa|trondheim|alesund]
 //                          [--min-depth M] [--turn-radius M] [--no-fillet] [--fillet-radius M]
-//                          [--lookahead M] [--wheel-over-radius M] [--verbose]
+//                          [--fillet-min-radius M] [--lookahead M] [--wheel-over-radius M]
+//                          [--verbose]
 // --turn-radius: the route planner's Level2Options::turn_radius_m (0: no
 // turn check, the planner as it was); --no-fillet: Level2Options::fillet_turns
 // off (the corners as Level 1 placed them); --fillet-radius: its
-// fillet_radius_m. The routes are sailed with the
+// fillet_radius_m; --fillet-min-radius: its fillet_min_radius_m (0: the
+// fillet radius only). The routes are sailed with the
 // simulation client's path follower; --lookahead and --wheel-over-radius
 // sail the same routes once more with those changed and print a line each
 // (--wheel-over-radius may be repeated: a comparison of followers in one run). ROUTE_PAIRS_DUMP=1
@@ -131,7 +133,8 @@ SailTotals SailAll(const route::SweepResult& result, const std::string& chart_na
 
 int RunCase(const std::string& shared, const ChartCase& c, const route::SweepOptions& sweep,
             double turn_radius_m, bool fillet_turns, double fillet_radius_m,
-            const std::vector<colav::PathFollowerOptions>& followers, bool verbose) {
+            double fillet_min_radius_m, const std::vector<colav::PathFollowerOptions>& followers,
+            bool verbose) {
   chart::ChartOptions copt;
   copt.min_depth_m = c.min_depth_m;
   auto map = chart::LoadChartFile(shared + "/" + c.path, copt);
@@ -145,6 +148,7 @@ int RunCase(const std::string& shared, const ChartCase& c, const route::SweepOpt
   if (turn_radius_m >= 0) ropt.level2.turn_radius_m = turn_radius_m;
   ropt.level2.fillet_turns = fillet_turns;
   if (fillet_radius_m > 0) ropt.level2.fillet_radius_m = fillet_radius_m;
+  if (fillet_min_radius_m >= 0) ropt.level2.fillet_min_radius_m = fillet_min_radius_m;
   auto planner = route::RoutePlanner::Create(shared_map, route::ShipParticulars{}, ropt);
   if (!planner.ok()) {
     std::printf("%-10s planner failed: %s\n", c.name.c_str(), planner.status().ToString().c_str());
@@ -157,10 +161,11 @@ int RunCase(const std::string& shared, const ChartCase& c, const route::SweepOpt
   }
   std::vector<double> route_s, level1_s;
   double min_clearance = 1e300;
-  int failures_shown = 0, filleted = 0;
+  int failures_shown = 0, filleted = 0, tightened = 0;
   for (const route::PairOutcome& p : result->pairs) {
     if (!p.level1_connected) continue;
     filleted += p.filleted_turns;
+    tightened += p.tightened_turns;
     for (const std::string& w : p.warnings) {
       if (verbose) {
         std::printf("    WARNING (%.0f, %.0f) -> (%.0f, %.0f): %s\n", p.from.east_m, p.from.north_m,
@@ -188,8 +193,10 @@ int RunCase(const std::string& shared, const ChartCase& c, const route::SweepOpt
       result->routed, result->connected > 0 ? 100.0 * result->routed / result->connected : 0.0,
       result->within_margin, min_clearance, result->clearance_exact ? "" : " (buffered check)", med,
       p95, l1_med > 0 ? med / l1_med : 0.0, l1_med);
-  std::printf("%-10s turns filleted %d; routes with a corner left unsailable (warned) %d\n",
-              c.name.c_str(), filleted, result->with_warnings);
+  std::printf(
+      "%-10s turns filleted %d (%d of them on a circle under the fillet radius); routes with a "
+      "corner left unsailable (warned) %d\n",
+      c.name.c_str(), filleted, tightened, result->with_warnings);
   std::fflush(stdout);
 
   // The executed tracks: with the simulation client's path follower and, when
@@ -220,7 +227,8 @@ int main(int argc, char** argv) {
   bool verbose = false;
   double turn_radius_m = -1.0;  // the planner's default
   bool fillet_turns = true;
-  double fillet_radius_m = 0.0;  // the planner's default
+  double fillet_radius_m = 0.0;       // the planner's default
+  double fillet_min_radius_m = -1.0;  // the planner's default
   // The sailings' path followers: the simulation client's with the flags'
   // look-ahead and each flagged wheel-over radius.
   double lookahead_m = 0.0;
@@ -241,6 +249,8 @@ int main(int argc, char** argv) {
       fillet_turns = false;
     } else if (a == "--fillet-radius" && i + 1 < argc) {
       fillet_radius_m = std::atof(argv[++i]);
+    } else if (a == "--fillet-min-radius" && i + 1 < argc) {
+      fillet_min_radius_m = std::atof(argv[++i]);
     } else if (a == "--lookahead" && i + 1 < argc) {
       lookahead_m = std::atof(argv[++i]);
     } else if (a == "--wheel-over-radius" && i + 1 < argc) {
@@ -254,7 +264,8 @@ int main(int argc, char** argv) {
           stderr,
           "usage: route_pairs_bench [shared_dir] [--pairs N] [--seed S] "
           "[--chart noaa|trondheim|alesund] [--min-depth M] [--turn-radius M] [--no-fillet] "
-          "[--fillet-radius M] [--lookahead M] [--wheel-over-radius M] [--verbose]\n");
+          "[--fillet-radius M] [--fillet-min-radius M] [--lookahead M] [--wheel-over-radius M] "
+          "[--verbose]\n");
       return 2;
     }
   }
@@ -283,7 +294,7 @@ int main(int argc, char** argv) {
     if (!only.empty() && c.name != only) continue;
     if (min_depth_override > 0) c.min_depth_m = min_depth_override;
     status = std::max(status, RunCase(shared, c, sweep, turn_radius_m, fillet_turns,
-                                      fillet_radius_m, followers, verbose));
+                                      fillet_radius_m, fillet_min_radius_m, followers, verbose));
   }
   return status;
 }

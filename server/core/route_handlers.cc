@@ -122,6 +122,7 @@ v1::RouteAlternative AlternativeToProto(const route::RouteAlternative& a, int in
   out.set_expected_grounding_cost(a.expected_grounding_cost);
   out.set_total_cost(a.expected_cost);
   out.set_max_grounding_probability(max_p);
+  for (const std::string& warning : a.warnings) out.add_warnings(warning);
   return out;
 }
 

@@ -7,6 +7,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -185,6 +186,75 @@ TEST(CliInProcessTest, RouteTakesAChartFolderByPath) {
   auto result = RunSeaplan(args);
   ASSERT_EQ(result.exit_code, 0) << result.err;
   EXPECT_NE(result.out.find("alternative(s); chosen"), std::string::npos) << result.out;
+}
+
+// A chart of an L-shaped channel `width_m` wide at 63 N 10 E (GeoJSON, land
+// on both sides): east along the channel, then north at the bend.
+std::string LChannelChart(double width_m) {
+  const double lat0 = 63.0, lon0 = 10.0, m_per_deg_lat = 111320.0;
+  const double m_per_deg_lon = m_per_deg_lat * std::cos(lat0 * M_PI / 180.0);
+  auto rect = [&](double x0, double y0, double x1, double y1) {
+    std::string ring;
+    for (auto [x, y] : {std::pair{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}, {x0, y0}}) {
+      ring += (ring.empty() ? "[" : ",[") + std::to_string(lon0 + x / m_per_deg_lon) + "," +
+              std::to_string(lat0 + y / m_per_deg_lat) + "]";
+    }
+    return "{\"type\":\"Feature\",\"properties\":{\"name\":\"land\"},\"geometry\":"
+           "{\"type\":\"Polygon\",\"coordinates\":[[" +
+           ring + "]]}}";
+  };
+  const double h = width_m / 2.0;
+  return "{\"type\":\"FeatureCollection\",\"features\":[" + rect(-2000, h, -h, 2000) + "," +
+         rect(-2000, -2000, 2000, -h) + "," + rect(h, -h, 2000, 2000) + "]}";
+}
+
+TEST(CliInProcessTest, RouteWarnsOfATurnTheHullCannotSail) {
+  // A 90 deg bend in a channel 80 m wide: 50 m of it clear of the charted
+  // land's 15 m growth, narrower than a 300 m turning circle needs round
+  // the inner corner (88 m). The route is still given (Level 1 connects),
+  // with the warning naming the turn and why.
+  const auto chart = WriteScratch("l-channel.geojson", LChannelChart(80.0));
+  // From 1.5 km west of the bend to 1.5 km north of it, on the centre line.
+  const std::vector<std::string> args = {"route",
+                                         "--chart-file",
+                                         chart,
+                                         "--min-depth",
+                                         "5",
+                                         "--from",
+                                         "63.0,9.970320",
+                                         "--to",
+                                         "63.013475,10.0",
+                                         "--safety-distance",
+                                         "10",
+                                         "--segments",
+                                         "6",
+                                         "--particles",
+                                         "8",
+                                         "--iterations",
+                                         "10"};
+  auto result = RunSeaplan(args);
+  ASSERT_EQ(result.exit_code, 0) << result.out << result.err;
+  EXPECT_NE(result.out.find("alternative(s); chosen"), std::string::npos) << result.out;
+  EXPECT_NE(result.out.find("warning: the turn of "), std::string::npos) << result.out;
+  EXPECT_NE(result.out.find("cannot be sailed on a 300 m turning circle: the water is too "
+                            "narrow for it"),
+            std::string::npos)
+      << result.out;
+  // The same warning is in the API message (--json).
+  std::vector<std::string> json_args = {"--json"};
+  json_args.insert(json_args.end(), args.begin(), args.end());
+  auto json = RunSeaplan(json_args);
+  ASSERT_EQ(json.exit_code, 0) << json.err;
+  EXPECT_NE(json.out.find("\"warnings\":[\"the turn of "), std::string::npos) << json.out;
+
+  // 400 m wide, the same bend is filleted: no warning.
+  const auto wide = WriteScratch("wide-channel.geojson", LChannelChart(400.0));
+  std::vector<std::string> wide_args = args;
+  wide_args[2] = wide;
+  auto filleted = RunSeaplan(wide_args);
+  ASSERT_EQ(filleted.exit_code, 0) << filleted.out << filleted.err;
+  EXPECT_NE(filleted.out.find("alternative(s); chosen"), std::string::npos) << filleted.out;
+  EXPECT_EQ(filleted.out.find("warning:"), std::string::npos) << filleted.out;
 }
 
 TEST(CliInProcessTest, MissionsNeedAServer) {

@@ -115,6 +115,7 @@ void PrintAlternative(std::ostream& out, const v1::RouteAlternative& alt, bool c
       << " s, fuel " << std::setprecision(1) << alt.fuel_kg() << " kg, expected grounding cost "
       << std::setprecision(3) << alt.expected_grounding_cost() << ", total cost "
       << alt.total_cost() << "\n";
+  for (const std::string& warning : alt.warnings()) out << "    warning: " << warning << "\n";
   out << "      #  latitude    longitude   mode  TTG s   P(grounding)  E[cost]   fuel kg\n";
   int i = 0;
   for (const auto& w : alt.waypoints()) {

@@ -557,13 +557,23 @@ absl::Status Level2Options::Validate() const {
   if (!(turn_radius_m >= 0.0 && turn_radius_m < 1e5)) {
     return absl::InvalidArgumentError("turn_radius_m must be in [0, 1e5)");
   }
-  if (!(fillet_radius_m >= 0.0 && fillet_radius_m < 1e5)) {
-    return absl::InvalidArgumentError("fillet_radius_m must be in [0, 1e5)");
-  }
-  if (!(fillet_clearance_m >= 0.0 && std::isfinite(fillet_clearance_m))) {
-    return absl::InvalidArgumentError("fillet_clearance_m must be >= 0 and finite");
+  // Checked whether or not the fillets are on (a bad value is an error, not
+  // silently unused); radius 0 (fillets off with the turn check) is checked
+  // with the default radius.
+  TurnFilletOptions fillet = Fillet();
+  if (fillet.radius_m == 0.0) fillet.radius_m = TurnFilletOptions{}.radius_m;
+  if (absl::Status st = fillet.Validate(); !st.ok()) {
+    return absl::InvalidArgumentError(st.message());
   }
   return absl::OkStatus();
+}
+
+TurnFilletOptions Level2Options::Fillet() const {
+  TurnFilletOptions fillet;
+  fillet.radius_m = fillet_radius_m != 0.0 ? fillet_radius_m : turn_radius_m;
+  fillet.clearance_m = fillet_clearance_m;
+  fillet.min_radius_m = std::min(fillet_min_radius_m, fillet.radius_m);
+  return fillet;
 }
 
 StatusOr<Level2Result> OptimizeLevel2(const Level2Problem& problem, const Level2Options& options,
@@ -686,11 +696,7 @@ StatusOr<Level2Result> OptimizeLevel2(const Level2Problem& problem, const Level2
     modes = assign(terms);
   }
 
-  TurnFilletOptions fillet;
-  fillet.radius_m = !options.fillet_turns           ? 0.0
-                    : options.fillet_radius_m > 0.0 ? options.fillet_radius_m
-                                                    : options.turn_radius_m;
-  fillet.clearance_m = options.fillet_clearance_m;
+  const TurnFilletOptions fillet = options.Fillet();
 
   Level2Result result;
   result.stopped = stop.StopRequested();
@@ -739,12 +745,13 @@ StatusOr<Level2Result> OptimizeLevel2(const Level2Problem& problem, const Level2
       }
     }
     // Step 5: corners the hull cannot sail become fillets (turn_fillet.h).
-    if (fillet.radius_m > 0.0) {
+    if (options.FilletsOn()) {
       std::vector<EastNorth> line;
       line.reserve(repaired.size());
       for (const WaypointTask& t : repaired) line.push_back(t.position);
       SEAPLAN_ASSIGN_OR_RETURN(FilletRoute filleted, FilletTurns(field, line, fillet));
       out.filleted_turns = filleted.filleted;
+      out.tightened_turns = filleted.tightened;
       out.unsailable_turns = std::move(filleted.unsailable);
       if (filleted.filleted > 0) {
         std::vector<WaypointTask> smooth;

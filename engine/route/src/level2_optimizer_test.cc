@@ -330,6 +330,37 @@ TEST(Level2OptimizerTest, RejectsBadInput) {
   EXPECT_EQ(OptimizeLevel2(p, {}).status().code(), absl::StatusCode::kInvalidArgument);
 }
 
+TEST(Level2OptimizerTest, FilletOptionsAreCheckedByTheFilletsOwnValidation) {
+  // The options step 5 uses are those FilletTurns checks: the same ranges
+  // whether or not the fillets are on.
+  Level2Options o;
+  EXPECT_TRUE(o.Validate().ok());
+  EXPECT_DOUBLE_EQ(o.Fillet().radius_m, o.turn_radius_m);  // 0: the turn radius
+  o.fillet_radius_m = 200.0;
+  EXPECT_DOUBLE_EQ(o.Fillet().radius_m, 200.0);
+  EXPECT_TRUE(o.Validate().ok());
+  for (double bad : {-1.0, 1e5, std::nan("")}) {
+    for (bool on : {true, false}) {
+      Level2Options b;
+      b.fillet_turns = on;
+      b.fillet_radius_m = bad;
+      EXPECT_EQ(b.Validate().code(), absl::StatusCode::kInvalidArgument) << bad << " " << on;
+      EXPECT_EQ(b.Validate().code(), b.Fillet().Validate().code()) << bad << " " << on;
+    }
+  }
+  for (double bad : {-1.0, HUGE_VAL}) {
+    Level2Options b;
+    b.fillet_clearance_m = bad;
+    EXPECT_FALSE(b.Validate().ok()) << bad;
+    EXPECT_FALSE(b.Fillet().Validate().ok()) << bad;
+  }
+  // No turn radius and no fillet radius: no fillets, the options still valid.
+  Level2Options off;
+  off.turn_radius_m = 0.0;
+  EXPECT_TRUE(off.Validate().ok());
+  EXPECT_FALSE(off.FilletsOn());
+}
+
 TEST(Level2OptimizerTest, StopTokenEndsEarlyWithPartialResult) {
   auto s = MakeScenario();
   StopToken stop;

@@ -266,14 +266,20 @@ StatusOr<RouteResult> RoutePlanner::Plan(EastNorth start, EastNorth goal, const 
     alt.snapped_waypoints = src.snapped_waypoints;
     alt.inserted_waypoints = src.inserted_waypoints;
     alt.filleted_turns = src.filleted_turns;
-    const double radius_m = options_.level2.fillet_radius_m > 0.0 ? options_.level2.fillet_radius_m
-                                                                  : options_.level2.turn_radius_m;
+    alt.tightened_turns = src.tightened_turns;
+    const TurnFilletOptions fillet = options_.level2.Fillet();
+    const std::string circle =
+        fillet.min_radius_m > 0.0 && fillet.min_radius_m < fillet.radius_m
+            ? absl::StrCat("a turning circle of ", std::lround(fillet.min_radius_m), " to ",
+                           std::lround(fillet.radius_m), " m")
+            : absl::StrCat("a ", std::lround(fillet.radius_m), " m turning circle");
     for (const UnsailableTurn& t : src.unsailable_turns) {
       alt.warnings.push_back(
           absl::StrCat("the turn of ", std::lround(std::abs(t.turn_rad) * 180.0 / M_PI), " deg at ",
                        chart::FormatLatLon(map_->frame().ToLatLon(ToLocal(t.corner))),
-                       " cannot be sailed on a ", std::lround(radius_m),
-                       " m turning circle: the water is too narrow or the legs too short for it"));
+                       " cannot be sailed on ", circle, ": ",
+                       t.legs_too_short ? "the legs either side are too short for it"
+                                        : "the water is too narrow for it"));
     }
     for (size_t k = 0; k < src.waypoints.size(); ++k) {
       const WaypointResult& wr = src.waypoints[k];

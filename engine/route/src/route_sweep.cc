@@ -112,6 +112,7 @@ StatusOr<SweepResult> RunRouteSweep(const RoutePlanner& planner, const chart::Ob
       line.push_back(w.local);
     }
     pair.filleted_turns = routed->alternatives[routed->chosen].filleted_turns;
+    pair.tightened_turns = routed->alternatives[routed->chosen].tightened_turns;
     pair.warnings = routed->alternatives[routed->chosen].warnings;
     if (!pair.warnings.empty()) ++out.with_warnings;
     pair.waypoints = static_cast<int>(line.size());

@@ -87,6 +87,18 @@ double SampledClearance(const ObstacleField& field, const std::vector<EastNorth>
   return c;
 }
 
+// The circles a corner is tried on: radius_m, then every 10 % smaller
+// down to min_radius_m (which is tried last).
+std::vector<double> Radii(const TurnFilletOptions& o) {
+  std::vector<double> radii = {o.radius_m};
+  if (o.min_radius_m <= 0.0 || o.min_radius_m >= o.radius_m) return radii;
+  for (double r = 0.9 * o.radius_m; r > o.min_radius_m + 1e-6; r -= 0.1 * o.radius_m) {
+    radii.push_back(r);
+  }
+  radii.push_back(o.min_radius_m);
+  return radii;
+}
+
 }  // namespace
 
 double TurnAngle(EastNorth a, EastNorth b, EastNorth c) {
@@ -111,6 +123,10 @@ absl::Status TurnFilletOptions::Validate() const {
   }
   if (!(max_group_turn_rad > 0.0 && max_group_turn_rad < M_PI)) {
     return absl::InvalidArgumentError("fillet max_group_turn_rad must be in (0, pi)");
+  }
+  if (!(min_radius_m >= 0.0 && min_radius_m <= radius_m)) {
+    return absl::InvalidArgumentError(absl::StrCat(
+        "fillet min_radius_m must be in [0, radius_m = ", radius_m, "], got ", min_radius_m));
   }
   return absl::OkStatus();
 }
@@ -175,33 +191,44 @@ StatusOr<FilletRoute> FilletTurns(const ObstacleField& field, const std::vector<
     const EastNorth next = route[j + 1];
     const bool next_is_goal = j + 2 == n;
     const double reserved_m = need_at(j + 1);
-    // Candidates: the corner moved outwards along its bisector.
+    // Candidates: the corner moved outwards along its bisector, on the
+    // circle of radius_m, then (none clear) on smaller ones.
     const EastNorth outward = Unit(u - Unit(next - corner));
-    const double apex_m = r * (1.0 / std::cos(std::abs(theta) / 2.0) - 1.0);
     std::optional<Fillet> best;
     double best_clearance = -std::numeric_limits<double>::infinity();
-    for (double f : {1.0, 0.5, 1.5, 0.0, 2.0, 3.0}) {
-      const EastNorth c = corner + outward * (f * apex_m);
-      if (!InArea(field, c) && f > 0.0) continue;
-      std::optional<Fillet> fillet =
-          BuildFillet(prev, c, next, r, options.max_step_rad, Distance(prev, c) - used_m,
-                      reserved_m, next_is_goal);
-      if (!fillet) continue;
-      const std::vector<EastNorth>& q = fillet->vertices;
-      bool clear = !field.SegmentHits(prev, q.front()) && !field.SegmentHits(q.back(), next);
-      for (size_t k = 0; clear && k < q.size(); ++k) {
-        clear = InArea(field, q[k]) && (k == 0 || !field.SegmentHits(q[k - 1], q[k]));
+    bool any_fits_the_legs = false;
+    bool tightened = false;
+    for (double radius : Radii(options)) {
+      const double apex_m = radius * (1.0 / std::cos(std::abs(theta) / 2.0) - 1.0);
+      for (double f : {1.0, 0.5, 1.5, 0.0, 2.0, 3.0}) {
+        const EastNorth c = corner + outward * (f * apex_m);
+        if (!InArea(field, c) && f > 0.0) continue;
+        std::optional<Fillet> fillet =
+            BuildFillet(prev, c, next, radius, options.max_step_rad, Distance(prev, c) - used_m,
+                        reserved_m, next_is_goal);
+        if (!fillet) continue;
+        any_fits_the_legs = true;
+        const std::vector<EastNorth>& q = fillet->vertices;
+        bool clear = !field.SegmentHits(prev, q.front()) && !field.SegmentHits(q.back(), next);
+        for (size_t k = 0; clear && k < q.size(); ++k) {
+          clear = InArea(field, q[k]) && (k == 0 || !field.SegmentHits(q[k - 1], q[k]));
+        }
+        if (!clear) continue;
+        const double clearance = SampledClearance(field, q, 10.0);
+        if (clearance > best_clearance) {
+          best_clearance = clearance;
+          best = std::move(fillet);
+        }
+        if (clearance >= options.clearance_m) break;
       }
-      if (!clear) continue;
-      const double clearance = SampledClearance(field, q, 10.0);
-      if (clearance > best_clearance) {
-        best_clearance = clearance;
-        best = std::move(fillet);
+      if (best) {
+        tightened = radius < r;
+        break;
       }
-      if (clearance >= options.clearance_m) break;
     }
     if (!best) {
-      out.unsailable.push_back({route[i], theta, static_cast<int>(i), static_cast<int>(j)});
+      out.unsailable.push_back(
+          {route[i], theta, static_cast<int>(i), static_cast<int>(j), !any_fits_the_legs});
       for (size_t k = i; k <= j; ++k) out.points.push_back({route[k], static_cast<int>(k)});
       used_m = 0.0;
       i = j + 1;
@@ -210,6 +237,7 @@ StatusOr<FilletRoute> FilletTurns(const ObstacleField& field, const std::vector<
     for (const EastNorth& q : best->vertices) out.points.push_back({q, -1});
     used_m = best->tail_m;
     ++out.filleted;
+    if (tightened) ++out.tightened;
     out.merged_vertices += static_cast<int>(j - i);
     i = j + 1;
   }

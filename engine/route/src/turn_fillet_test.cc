@@ -146,6 +146,42 @@ TEST(TurnFilletTest, NarrowWaterIsReportedNotSilentlyReturned) {
   ExpectClear(field, Positions(*g));
 }
 
+TEST(TurnFilletTest, ACornerTooNarrowForTheCircleIsTriedOnSmallerOnesDownToTheSmallest) {
+  // A bend 80 m wide: a 300 m circle needs 88 m round the inner corner, a
+  // 240 m one (the hull at full rudder) 70 m.
+  const ObstacleField field = Field({
+      Rect(-2000, 40, -40, 2000),
+      Rect(-2000, -2000, 2000, -40),
+      Rect(40, -40, 2000, 2000),
+  });
+  const std::vector<EastNorth> route = {{-1500, 0}, {0, 0}, {0, 1500}};
+  TurnFilletOptions o;
+  auto only = FilletTurns(field, route, o);
+  ASSERT_TRUE(only.ok()) << only.status();
+  EXPECT_EQ(only->filleted, 0);
+  EXPECT_EQ(only->unsailable.size(), 1u);
+  o.min_radius_m = 240.0;
+  auto f = FilletTurns(field, route, o);
+  ASSERT_TRUE(f.ok()) << f.status();
+  EXPECT_EQ(f->filleted, 1);
+  EXPECT_EQ(f->tightened, 1);
+  EXPECT_TRUE(f->unsailable.empty());
+  const std::vector<EastNorth> w = Positions(*f);
+  ExpectSailable(w, 240.0);
+  ExpectClear(field, w);
+  // Narrower than the smallest circle allows: reported as before.
+  const ObstacleField narrow = Field({
+      Rect(-2000, 30, -30, 2000),
+      Rect(-2000, -2000, 2000, -30),
+      Rect(30, -30, 2000, 2000),
+  });
+  auto g = FilletTurns(narrow, route, o);
+  ASSERT_TRUE(g.ok()) << g.status();
+  EXPECT_EQ(g->filleted, 0);
+  EXPECT_EQ(g->unsailable.size(), 1u);
+  EXPECT_EQ(Positions(*g), route);
+}
+
 TEST(TurnFilletTest, ShortLegsAreReported) {
   // Open water, but a 90 deg turn 100 m after the start: a 300 m circle
   // needs 300 m of each leg.
@@ -163,6 +199,11 @@ TEST(TurnFilletTest, RejectsBadInput) {
   EXPECT_FALSE(FilletTurns(field, {{0, 0}}, o).ok());
   EXPECT_FALSE(FilletTurns(field, {{0, 0}, {NAN, 1}}, o).ok());
   o.radius_m = 0.0;
+  EXPECT_FALSE(FilletTurns(field, {{0, 0}, {1, 1}}, o).ok());
+  o.radius_m = 300.0;
+  o.min_radius_m = 301.0;  // above the radius
+  EXPECT_FALSE(FilletTurns(field, {{0, 0}, {1, 1}}, o).ok());
+  o.min_radius_m = -1.0;
   EXPECT_FALSE(FilletTurns(field, {{0, 0}, {1, 1}}, o).ok());
 }
 

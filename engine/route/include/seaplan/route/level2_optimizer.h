@@ -165,9 +165,24 @@ struct Level2Options {
   // turn_radius_m) moved outwards where the water allows, preferably
   // keeping fillet_clearance_m from the obstacles (turn_fillet.h). A corner
   // that cannot be filleted stays and is reported (unsailable_turns).
+  // fillet_min_radius_m > 0: a corner no fillet of that radius clears is
+  // tried on circles down to it (at most the fillet radius) before it is
+  // reported. Off: with 240 m (this hull at full rudder) 8 more NOAA corners
+  // of 200 routes were filleted and the sailed tracks did not improve
+  // (bench/route/README.md).
   bool fillet_turns = true;
   double fillet_radius_m = 0.0;
   double fillet_clearance_m = 50.0;
+  double fillet_min_radius_m = 0.0;
+
+  // The options step 5 passes to FilletTurns: radius fillet_radius_m (0:
+  // turn_radius_m), clearance fillet_clearance_m, smallest radius
+  // fillet_min_radius_m (at most the radius). Validate() checks them
+  // with TurnFilletOptions::Validate, the one definition of their ranges.
+  TurnFilletOptions Fillet() const;
+  // Step 5 runs: fillet_turns on and a radius (turn_radius_m 0 with no
+  // fillet_radius_m turns it off with the turn check).
+  bool FilletsOn() const { return fillet_turns && Fillet().radius_m > 0.0; }
 
   absl::Status Validate() const;
 };
@@ -214,6 +229,7 @@ struct AlternativeResult {
   // Step 5: corners replaced by fillets, and those the hull cannot sail
   // that could not be (water too narrow or legs too short for the circle).
   int filleted_turns = 0;
+  int tightened_turns = 0;  // of filleted_turns, on a circle under the fillet radius
   std::vector<UnsailableTurn> unsailable_turns;
   int64_t evaluations = 0;
 };

@@ -116,6 +116,7 @@ struct RouteAlternative {
   // (Level2Options::fillet_turns), and one warning per corner the hull
   // cannot sail that could not be (where, how sharp, why).
   int filleted_turns = 0;
+  int tightened_turns = 0;  // of those, on a circle smaller than the fillet radius
   std::vector<std::string> warnings;
 };
 

@@ -55,6 +55,7 @@ struct PairOutcome {
   int waypoints = 0;
   std::vector<EastNorth> route;  // the chosen route's waypoints (local frame); empty if not routed
   int filleted_turns = 0;        // of the chosen route
+  int tightened_turns = 0;       // of those, on a circle under the fillet radius
   std::vector<std::string> warnings;  // the chosen route's (corners it cannot make sailable)
 };
 

@@ -49,6 +49,12 @@ struct TurnFilletOptions {
   double clearance_m = 50.0;
   // Vertices merged into one corner turn together by less than this.
   double max_group_turn_rad = 150.0 * M_PI / 180.0;
+  // A corner no candidate on radius_m clears is tried on smaller circles
+  // down to this radius (0: radius_m only), e.g. the hull's own circle at
+  // full rudder when radius_m keeps a margin over it: a tighter turn the
+  // hull can still make beats a corner it cannot. Such corners count in
+  // FilletRoute::tightened.
+  double min_radius_m = 0.0;
 
   absl::Status Validate() const;
 };
@@ -62,12 +68,16 @@ struct UnsailableTurn {
   EastNorth corner;         // the route's vertex (the first of a merged group)
   double turn_rad = 0.0;    // course change of the corner (the group's sum)
   int first = 0, last = 0;  // input indices of the corner's vertices
+  // Why: no fillet fitted the legs either side (on any circle tried), or
+  // those that did all touched an obstacle (the water too narrow).
+  bool legs_too_short = false;
 };
 
 struct FilletRoute {
   std::vector<FilletPoint> points;  // start .. goal
   int filleted = 0;                 // corners replaced by a fillet
   int merged_vertices = 0;          // input vertices absorbed into a merged corner's fillet
+  int tightened = 0;                // filleted on a circle smaller than radius_m
   std::vector<UnsailableTurn> unsailable;
 };
 
