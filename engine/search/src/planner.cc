@@ -216,14 +216,18 @@ void PlannerRun::Start(LazySearch& search, const StateData& initial) {
 void PlannerRun::SpreadWork(const StateData& initial) {
   heuristic_.SetMakespanAware(true);
   if (!heuristic_.makespan_aware() || !has_plan_) return;
-  // Pruned by the incumbent and given, in all, at most twice the first
-  // search's expansions: the first plan stays the fallback, so neither
-  // coverage nor the first plan's makespan can get worse, and the cost is
-  // bounded where spreading misleads the search (floortile, depots). A
-  // greedy pass (large missions: another ship assignment), then, with what
-  // is left, weighted A* (w = 3) on makespan (small ones: the greedy
-  // search's detours).
-  std::size_t left = std::max<std::size_t>(1000, 2 * done_counters_.expanded);
+  // Pruned by the incumbent and given, in all, at most six times the first
+  // search's expansions without anytime phases (their plan is the one
+  // returned: with twice, the budget of the anytime case, both passes were
+  // cut short on generated fjord missions), twice with them (which improve
+  // it further and should not wait): the first plan stays the fallback, so
+  // neither coverage nor the first plan's makespan can get worse, and the
+  // cost is bounded where spreading misleads the search (floortile,
+  // depots). A greedy pass (large missions: another ship assignment), then,
+  // with what is left, weighted A* (w = 3) on makespan (small ones: the
+  // greedy search's detours).
+  const std::size_t budget_factor = options_.anytime ? 2 : 6;
+  std::size_t left = std::max<std::size_t>(1000, budget_factor * done_counters_.expanded);
   for (const double weight : {-1.0, 3.0}) {
     LazySearch search(snap_, registry_, heuristic_, transitions_, timeline_, BoundedParams(weight));
     Start(search, initial);

@@ -22,9 +22,10 @@
 //     search that takes ties newest first (depth first on plateaus); then, in
 //     tasks with two or more agents (ships), a greedy search and then
 //     weighted A* (w = 3) whose relaxed plan spreads the work over them,
-//     bounded (by the first plan's makespan and, together, twice the first
-//     search's expansions), whose plans replace the first when shorter; that
-//     is the plan returned without anytime;
+//     bounded (by the first plan's makespan and, together, six times the
+//     first search's expansions without anytime, twice with it), whose plans
+//     replace the first when shorter; that is the plan returned without
+//     anytime;
 //   - anytime: restarting weighted A* on makespan, pruned by the incumbent,
 //     until the time limit or an exhausted space;
 //   - every plan is scheduled at its earliest STN times, printed with
