@@ -72,8 +72,8 @@ int main(int argc, char** argv) {
                  policy.c_str());
     return 2;
   }
-  std::printf("%-38s %-5s %-24s %-16s %-13s %6s %6s  %s\n", "situation", "colav",
-              "min CPA per vessel (m)", "passed on", "roles", "lost%", "dev m", "checks");
+  std::printf("%-38s %-5s %-24s %-16s %-13s %6s %6s %6s  %s\n", "situation", "colav",
+              "min CPA per vessel (m)", "passed on", "roles", "lost%", "dev m", "land m", "checks");
   std::vector<Totals> totals(policies.size());
   bool any = false;
   for (size_t p = 0; p < policies.size(); ++p) {
@@ -100,9 +100,14 @@ int main(int argc, char** argv) {
       if (r->failures.empty()) ++totals[p].passed;
       std::string checks = r->failures.empty() ? "ok" : "";
       for (const std::string& f : r->failures) checks += (checks.empty() ? "" : "; ") + f;
-      std::printf("%-38s %-5s %-24s %-16s %-13s %6.1f %6.0f  %s\n", s.name.c_str(),
+      const std::string land =
+          s.setup.land.empty()
+              ? "-"
+              : std::to_string(static_cast<int>(std::lround(r->outcome.min_land_clearance_m)));
+      std::printf("%-38s %-5s %-24s %-16s %-13s %6.1f %6.0f %6s  %s\n", s.name.c_str(),
                   policies[p].name.c_str(), cpas.c_str(), sides.c_str(), roles.c_str(),
-                  r->time_lost * 100.0, r->outcome.max_path_deviation_m, checks.c_str());
+                  r->time_lost * 100.0, r->outcome.max_path_deviation_m, land.c_str(),
+                  checks.c_str());
       if (show_log) {
         for (const std::string& line : r->outcome.log) std::printf("    %s\n", line.c_str());
       }

@@ -202,6 +202,19 @@ std::vector<Situation> Situations(const CollisionAvoidanceOptions& o) {
               kNarrowHalfM, kNarrowLaneM);
   narrow_overtake.max_time_lost = 0.10;
   v.push_back(narrow_overtake);
+  // A passage 430 m wide, the own track 180 m from the starboard bank, and
+  // a vessel lying still 100 m to starboard of it, 80 m off that bank (a
+  // ferry at its berth): the planning distance fits between it and the port
+  // bank, its growing margin does not. The room given to it must not come
+  // out of the room kept from the port bank.
+  constexpr double kPassageHalfM = 215.0, kPassageLaneM = 35.0;
+  Situation passage = Channel(
+      "still-vessel-narrow-passage",
+      "a vessel lying still 100 m to starboard of the track, 80 m off the starboard bank, in a "
+      "passage 430 m wide",
+      {SameCourse(1, "A", 0, 2500, 100, kPassageLaneM)}, {kStill}, o, kPassageHalfM, kPassageLaneM);
+  passage.min_land_clearance_m = 60.0;  // the land cost's band
+  v.push_back(passage);
   return v;
 }
 
@@ -261,6 +274,11 @@ StatusOr<Result> Run(const Situation& s) {
         "at most, speed %.0f %%",
         small, first_small->start_s, first_small->max_offset_rad / kDeg,
         first_small->min_speed_factor * 100));
+  }
+  if (s.min_land_clearance_m >= 0 && !s.setup.land.empty() &&
+      o.min_land_clearance_m < s.min_land_clearance_m) {
+    fail(absl::StrFormat("land clearance %.0f m < %.0f m", o.min_land_clearance_m,
+                         s.min_land_clearance_m));
   }
   if (s.max_time_lost >= 0 && r.time_lost > s.max_time_lost) {
     fail(absl::StrFormat("time lost %.1f %% > %.0f %%", r.time_lost * 100, s.max_time_lost * 100));

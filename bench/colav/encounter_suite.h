@@ -33,8 +33,9 @@ struct Situation {
   std::string name;
   std::string description;
   EncounterSetup setup;
-  std::vector<Expectation> expected;  // per setup.traffic entry
-  double max_time_lost = -1.0;        // fraction of the leg without traffic; < 0: not checked
+  std::vector<Expectation> expected;   // per setup.traffic entry
+  double max_time_lost = -1.0;         // fraction of the leg without traffic; < 0: not checked
+  double min_land_clearance_m = -1.0;  // the ship's closest approach to land; < 0: not checked
 };
 
 // Every situation of the suite with `options` as the avoidance's.
@@ -51,7 +52,7 @@ struct Result {
 // grounding, arrival, the expected side and role, no port turn where ruled
 // out, a stand-on ship's first manoeuvre not before rule 17's time, course
 // offsets of at least 25 deg or speed reductions of at least 40 % (rule 8,
-// readily apparent), the time lost where bounded.
+// readily apparent), the time lost and the land clearance where bounded.
 StatusOr<Result> Run(const Situation& s);
 
 std::string_view SideName(Side s);  // "port", "starboard", "either"

@@ -57,16 +57,18 @@ std::string_view PolicyName(Policy p) {
 Status CollisionAvoidanceOptions::Validate() const {
   if (!(safety_distance_m > 0) || !(margin_factor >= 1.0) || !(horizon_s > 0) ||
       !(prediction_step_s > 0) || prediction_step_s > horizon_s || !(decision_interval_s >= 0) ||
-      !(rule17_time_s >= 0) || !(land_clearance_m >= 0) || !(rejoined_cross_track_m > 0) ||
+      !(rule17_time_s >= 0) || !(land_clearance_m >= 0) || !(min_land_clearance_m >= 0) ||
+      !(land_step_m > 0) || !(margin_land_clearance_m >= 0) || !(rejoined_cross_track_m > 0) ||
       !(uncertain_speed_mps >= 0) || !(uncertain_margin_factor >= 0)) {
     return absl::InvalidArgumentError(absl::StrFormat(
         "collision avoidance: safety_distance_m (%g), horizon_s (%g), prediction_step_s (%g, "
         "at most the horizon) and rejoined_cross_track_m (%g) must be > 0, margin_factor (%g) "
         ">= 1, decision_interval_s (%g), rule17_time_s (%g), land_clearance_m (%g), "
-        "uncertain_speed_mps (%g) and uncertain_margin_factor (%g) >= 0",
+        "min_land_clearance_m (%g), uncertain_speed_mps (%g), uncertain_margin_factor (%g) and "
+        "margin_land_clearance_m (%g) >= 0, land_step_m (%g) > 0",
         safety_distance_m, horizon_s, prediction_step_s, rejoined_cross_track_m, margin_factor,
-        decision_interval_s, rule17_time_s, land_clearance_m, uncertain_speed_mps,
-        uncertain_margin_factor));
+        decision_interval_s, rule17_time_s, land_clearance_m, min_land_clearance_m,
+        uncertain_speed_mps, uncertain_margin_factor, margin_land_clearance_m, land_step_m));
   }
   if (course_offsets_deg.empty() || speed_factors.empty()) {
     return absl::InvalidArgumentError(
@@ -143,6 +145,17 @@ std::vector<double> CollisionAvoidance::UncertainGrowth(
   return growth;
 }
 
+double CollisionAvoidance::PathLandClearance(const PathFollower& path, double reach_m,
+                                             double limit_m) const {
+  const std::vector<EastNorth>& pts = path.path();
+  double clear = limit_m, along = 0.0;
+  for (size_t j = static_cast<size_t>(path.leg()); j + 1 < pts.size() && along < reach_m; ++j) {
+    clear = std::min(clear, options_.land->Clearance(pts[j], pts[j + 1], limit_m));
+    along += (pts[j + 1] - pts[j]).Norm();
+  }
+  return clear;
+}
+
 Role CollisionAvoidance::RoleOf(int vessel_id) const {
   auto it = roles_.find(vessel_id);
   return it == roles_.end() ? Role::kNone : it->second;
@@ -207,7 +220,7 @@ CollisionAvoidance::Prediction CollisionAvoidance::Predict(
   constexpr double kFar = std::numeric_limits<double>::infinity();
   p.vessels.assign(n, {kFar, kFar, 0.0, 0.0});
   const double max_margin = options_.uncertain_margin_factor * options_.safety_distance_m;
-  std::vector<double> worst(n, 0.0), last_distance(n, 0.0);
+  std::vector<double> worst(n, 0.0), worst_certain(n, 0.0), last_distance(n, 0.0);
   const bool releasable = std::find(release.begin(), release.end(), true) != release.end();
   bool active = !(b == Behaviour{});
   bool arrived = false;
@@ -217,6 +230,9 @@ CollisionAvoidance::Prediction CollisionAvoidance::Predict(
   EastNorth land_from = here;
   for (size_t i = 0; i < n; ++i) last_distance[i] = (traffic[i].kinematics.position - here).Norm();
   const int steps = static_cast<int>(std::floor(options_.horizon_s / dt + 1e-9));
+  const double land_limit = std::max(
+      {options_.land_clearance_m, options_.min_land_clearance_m, options_.margin_land_clearance_m});
+  if (options_.land != nullptr) p.min_land_m = land_limit;
   for (int k = 1; k <= steps; ++k) {
     const double t = k * dt;
     const EastNorth before = here;
@@ -250,6 +266,7 @@ CollisionAvoidance::Prediction CollisionAvoidance::Predict(
     // changes its mind, a later decision acts): weigh it down linearly.
     const double weight = 1.0 - 0.5 * t / options_.horizon_s;
     bool all_passed = true;
+    double own_land_m = -1.0;  // the ship's distance to the land, once a margin needs it
     for (size_t i = 0; i < n; ++i) {
       const EastNorth other = traffic[i].kinematics.position + traffic[i].kinematics.velocity * t;
       const EastNorth rel = other - here;
@@ -261,16 +278,27 @@ CollisionAvoidance::Prediction CollisionAvoidance::Predict(
         v.bearing_rad = WrapAngle(std::atan2(rel.east_m, rel.north_m) - course_over_ground);
       }
       const double growth = i < growth_.size() ? growth_[i] : 0.0;
-      const double margin = std::min(growth * t, max_margin);
+      double margin = std::min(growth * t, max_margin);
+      if (margin > 0 && options_.land != nullptr) {
+        // No more room from the vessel than the ship has from the land
+        // beyond margin_land_clearance_m.
+        if (own_land_m < 0) {
+          own_land_m =
+              options_.land->Clearance(here, here, options_.margin_land_clearance_m + max_margin);
+        }
+        margin = std::min(margin, std::max(0.0, own_land_m - options_.margin_land_clearance_m));
+      }
       v.min_margin_m = std::min(v.min_margin_m, d - margin);
       worst[i] = std::max(worst[i], weight * PenaltyAt(d - margin));
+      worst_certain[i] = std::max(worst_certain[i], weight * PenaltyAt(d));
       if (release[i] && !(d - margin > plan && d >= last_distance[i])) all_passed = false;
       last_distance[i] = d;
     }
     if (active && releasable && all_passed) active = false;  // rejoin the path
     if (options_.land != nullptr && (k % kLandCheckEvery == 0 || k == steps)) {
-      const double clear = options_.land->Clearance(land_from, here, options_.land_clearance_m);
+      const double clear = options_.land->Clearance(land_from, here, land_limit);
       land_from = here;
+      p.min_land_m = std::min(p.min_land_m, clear);
       if (clear < options_.land_clearance_m) {
         const double x = (options_.land_clearance_m - clear) / options_.land_clearance_m;
         const double cost = clear <= 0 ? options_.weights.aground : options_.weights.land * x * x;
@@ -279,6 +307,7 @@ CollisionAvoidance::Prediction CollisionAvoidance::Predict(
     }
   }
   for (double w : worst) p.collision_cost += w;
+  for (double w : worst_certain) p.certain_collision_cost += w;
   return p;
 }
 
@@ -356,10 +385,32 @@ Command CollisionAvoidance::StepScenarioMpc(const OwnShip& own, const DesiredMot
     }
   }
 
+  // The land comes first: a behaviour that takes the ship closer to it
+  // than the hard minimum (or than the path ahead does) loses against any
+  // that does not; of those that all do, the one that stays furthest off.
+  double land_floor = options_.min_land_clearance_m;
+  if (options_.land != nullptr) {
+    const double cruise =
+        desired.cruise_speed_mps > 0 ? desired.cruise_speed_mps : desired.speed_mps;
+    land_floor = std::min(land_floor, PathLandClearance(path, cruise * options_.horizon_s,
+                                                        options_.min_land_clearance_m));
+  }
+  // The return to the path after a manoeuvre is the avoidance's doing too:
+  // where it would take the ship closer to the land than that (this hull,
+  // turning back at full speed, sweeps wide), the behaviours are compared
+  // for the land alone until the return is clear.
+  if (!act && (manoeuvring_ || rejoining_) && nominal.min_land_m < land_floor - 1e-6) {
+    act = true;
+    main_vessel = manoeuvre_vessel_;
+  }
+
   Behaviour chosen;
   if (act) {
     const ScenarioMpcWeights& w = options_.weights;
     double best = std::numeric_limits<double>::infinity();
+    double best_short = std::numeric_limits<double>::infinity();
+    const double margin_land = std::min(nominal.min_land_m, options_.margin_land_clearance_m);
+    const double nominal_uncertain = nominal.collision_cost - nominal.certain_collision_cost;
     std::vector<Behaviour> behaviours;
     for (double factor : options_.speed_factors) {
       for (double offset_deg : options_.course_offsets_deg) {
@@ -372,7 +423,15 @@ Command CollisionAvoidance::StepScenarioMpc(const OwnShip& own, const DesiredMot
       const double factor = b.speed_factor;
       const Prediction p =
           b == Behaviour{} ? nominal : Predict(own, desired, path, traffic, b, release);
-      double cost = p.collision_cost + p.land_cost;
+      // Room from a vessel lying still (its growing margin) is not worth
+      // coming closer to the land than the nominal behaviour does: such a
+      // behaviour is charged at least the nominal's cost of that margin.
+      double collision = p.collision_cost;
+      if (p.min_land_m < margin_land - options_.land_step_m) {
+        collision = p.certain_collision_cost +
+                    std::max(p.collision_cost - p.certain_collision_cost, nominal_uncertain);
+      }
+      double cost = collision + p.land_cost;
       for (size_t i = 0; i < n; ++i) {
         if (!release[i]) continue;
         const Role role = roles_[traffic[i].id];
@@ -409,8 +468,12 @@ Command CollisionAvoidance::StepScenarioMpc(const OwnShip& own, const DesiredMot
                                std::abs(b.track_offset_m - behaviour_.track_offset_m) / safe) +
             w.change_speed * std::abs(b.speed_factor - behaviour_.speed_factor);
       }
-      if (cost < best - 1e-9) {
+      // The shortfall from the floor in steps of land_step_m (0: none).
+      const double short_m = land_floor - p.min_land_m;
+      const double land_short = short_m > 1e-6 ? std::ceil(short_m / options_.land_step_m) : 0.0;
+      if (land_short < best_short || (land_short == best_short && cost < best - 1e-9)) {
         best = cost;
+        best_short = land_short;
         chosen = b;
       }
     }

@@ -52,6 +52,15 @@ TEST(CollisionAvoidanceTest, RejectsBadOptions) {
   o = {};
   o.uncertain_speed_mps = -1;
   EXPECT_FALSE(CollisionAvoidance::Create(o).ok());
+  o = {};
+  o.min_land_clearance_m = -1;
+  EXPECT_FALSE(CollisionAvoidance::Create(o).ok());
+  o = {};
+  o.land_step_m = 0;
+  EXPECT_FALSE(CollisionAvoidance::Create(o).ok());
+  o = {};
+  o.margin_land_clearance_m = -1;
+  EXPECT_FALSE(CollisionAvoidance::Create(o).ok());
   EXPECT_TRUE(CollisionAvoidance::Create({}).ok());
 }
 
@@ -177,6 +186,54 @@ TEST(CollisionAvoidanceTest, StaysOffTheLandWhenTheStarboardSideIsBlocked) {
   EXPECT_EQ(r->aground_s, 0);
   EXPECT_GE(r->vessels[0].min_distance_m, s.avoidance.safety_distance_m);
   EXPECT_LT(r->vessels[0].bearing_rad, 0) << "head-on: port to port";
+}
+
+// A passage 430 m wide with a vessel lying still 100 m to starboard of the
+// track, 80 m off the starboard bank: keeping its growing margin would take
+// the ship onto the port bank.
+EncounterSetup StillVesselInAPassage() {
+  EncounterSetup s;
+  s.path = {{0, 0}, {0, 3500}};
+  s.traffic = {{1, "A", {100, 2000}, {0, 0}}};
+  s.land = {{{180, -1000}, {2000, -1000}, {2000, 5000}, {180, 5000}},
+            {{-250, -1000}, {-2000, -1000}, {-2000, 5000}, {-250, 5000}}};
+  s.max_time_s = 1500;
+  return s;
+}
+
+TEST(CollisionAvoidanceTest, NoTrafficCostBuysComingWithinTheHardLandMinimum) {
+  // Without the land's weighted cost and without the limit on the margin's
+  // room, only the hard minimum keeps the ship off the port bank.
+  EncounterSetup s = StillVesselInAPassage();
+  s.avoidance.weights.land = 0;
+  s.avoidance.margin_land_clearance_m = 0;
+  s.avoidance.min_land_clearance_m = 0;  // the rule off: the margin wins
+  auto off = SimulateEncounter(s);
+  ASSERT_TRUE(off.ok()) << off.status();
+  EXPECT_LT(off->min_land_clearance_m, 40.0);
+  s.avoidance.min_land_clearance_m = 40;
+  auto on = SimulateEncounter(s);
+  ASSERT_TRUE(on.ok()) << on.status();
+  EXPECT_TRUE(on->arrived);
+  EXPECT_GE(on->min_land_clearance_m, 40.0 - 5.0);  // the predictions' step (land_step_m)
+  EXPECT_GE(on->vessels[0].min_distance_m, s.avoidance.safety_distance_m);
+}
+
+TEST(CollisionAvoidanceTest, TheStillVesselsMarginDoesNotComeOutOfTheLandsRoom) {
+  // The default options: the vessel is passed beyond the safety distance
+  // and the ship stays outside the land cost's band. With the margin
+  // allowed to push towards the land (margin_land_clearance_m 0) it comes
+  // closer.
+  EncounterSetup s = StillVesselInAPassage();
+  auto kept = SimulateEncounter(s);
+  ASSERT_TRUE(kept.ok()) << kept.status();
+  EXPECT_TRUE(kept->arrived);
+  EXPECT_GE(kept->vessels[0].min_distance_m, s.avoidance.safety_distance_m);
+  EXPECT_GE(kept->min_land_clearance_m, s.avoidance.land_clearance_m);
+  s.avoidance.margin_land_clearance_m = 0;
+  auto pushed = SimulateEncounter(s);
+  ASSERT_TRUE(pushed.ok()) << pushed.status();
+  EXPECT_LT(pushed->min_land_clearance_m, kept->min_land_clearance_m - 10.0);
 }
 
 TEST(CollisionAvoidanceTest, VelocityObstacleBaselineStillAvoids) {

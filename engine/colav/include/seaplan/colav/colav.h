@@ -45,6 +45,7 @@
 // Thread-compatible; one instance per own ship.
 #pragma once
 
+#include <limits>
 #include <map>
 #include <set>
 #include <string>
@@ -98,9 +99,17 @@ struct CollisionAvoidanceOptions {
   // its zero velocity does not tell: the distance kept from it grows by
   // uncertain_speed_mps per second of prediction, up to
   // uncertain_margin_factor x the safety distance (the room its departure
-  // takes before the next decisions can react to it).
+  // takes before the next decisions can react to it). That room must not
+  // come out of the room kept from the shore: the margin is at most the
+  // ship's predicted distance to the land less margin_land_clearance_m,
+  // and a behaviour that comes closer to the land than the nominal one does
+  // (within margin_land_clearance_m of it) gains nothing from the margin it
+  // opens. Where the water is narrow the ship passes at the planning
+  // distance, on the side with more water, or slows, instead of edging
+  // towards the land.
   double uncertain_speed_mps = 2.0;
   double uncertain_margin_factor = 1.0;
+  double margin_land_clearance_m = 120.0;
   // Rule 17: a stand-on ship acts once the vessel comes within the planning
   // distance less than this far ahead (and it has not given way).
   double rule17_time_s = 240.0;
@@ -110,6 +119,15 @@ struct CollisionAvoidanceOptions {
   // land_clearance_m to it cost `weights.land`, touching it `aground`.
   const LandIndex* land = nullptr;
   double land_clearance_m = 60.0;
+  // The hard minimum: a behaviour whose predicted track comes closer than
+  // this to the land (or than the path ahead does, where the path runs
+  // closer) loses against every behaviour that does not, whatever their
+  // traffic costs; among behaviours that all do, the one that stays
+  // furthest off (to land_step_m) wins. Half this hull's length: the land
+  // cost alone, weighed against the room given to traffic, let the ship
+  // come within a few metres of the shore.
+  double min_land_clearance_m = 40.0;
+  double land_step_m = 5.0;
   // Near the path's end the speed falls linearly to min_approach_speed_mps
   // over the last slow_down_distance_m, and the ship stops within
   // arrival_radius_m (as the simulation client sails a move).
@@ -202,7 +220,12 @@ class CollisionAvoidance {
   struct Prediction {
     std::vector<VesselPrediction> vessels;  // per traffic entry
     double collision_cost = 0.0;
+    double certain_collision_cost = 0.0;  // the same without the uncertainty margins
     double land_cost = 0.0;
+    // The predicted track's smallest distance to the land, at most the
+    // largest of land_clearance_m, min_land_clearance_m and
+    // margin_land_clearance_m.
+    double min_land_m = std::numeric_limits<double>::infinity();
   };
   explicit CollisionAvoidance(const CollisionAvoidanceOptions& options);
   Command StepScenarioMpc(const OwnShip& own, const DesiredMotion& desired,
@@ -225,6 +248,9 @@ class CollisionAvoidance {
   // Per traffic entry: the uncertainty margin's growth (m/s of
   // prediction), 0 for a vessel under way.
   std::vector<double> UncertainGrowth(const std::vector<Obstacle>& traffic) const;
+  // The path's smallest distance to the land from the leg the ship is on
+  // over `reach_m` of path, at most `limit_m`.
+  double PathLandClearance(const PathFollower& path, double reach_m, double limit_m) const;
   Command Hold(const DesiredMotion& desired) const;
   // Events for the vessels that came into a potential collision situation.
   void NoteEncounters(const std::set<int>& now, Command* out);
