@@ -42,6 +42,7 @@
 #include "scenario.h"
 #include "seaplan/chart/obstacle_map.h"
 #include "seaplan/common/log.h"
+#include "seaplan/common/wall_clock.h"
 #include "seaplan/convert/mission_convert.h"
 #include "sim_client.h"
 #include "tls_channel.h"
@@ -473,7 +474,7 @@ int main(int argc, char** argv) {
       // With the shore up, reports are answered before the ship moves on
       // (a replan it triggers is followed at once); with it down, the ship
       // executes on and the uplink keeps the backlog.
-      client.WaitSent(std::chrono::seconds(30));
+      client.WaitSent(std::chrono::milliseconds(static_cast<int64_t>(30'000 * kWallClockScale)));
     }
     if (client.shore_unreachable() != offline) {
       offline = !offline;

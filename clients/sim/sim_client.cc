@@ -5,6 +5,7 @@
 
 #include "absl/strings/str_cat.h"
 #include "seaplan/common/log.h"
+#include "seaplan/common/wall_clock.h"
 #include "token_channel.h"
 
 namespace seaplan::sim {
@@ -113,7 +114,10 @@ absl::StatusOr<v1::Chart> SimClient::UploadChart(const std::string& name,
 grpc::Status SimClient::PostFeedback(const v1::ReportFeedbackRequest& request,
                                      v1::ReportFeedbackResponse* response) {
   grpc::ClientContext ctx;
-  ctx.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(5));
+  // Longer in slower builds: a report that times out is taken for a shore
+  // outage, and the ship sails on without waiting for the replan it asks for.
+  ctx.set_deadline(std::chrono::system_clock::now() +
+                   std::chrono::milliseconds(static_cast<std::int64_t>(5000 * kWallClockScale)));
   return missions_->ReportFeedback(&ctx, request, response);
 }
 

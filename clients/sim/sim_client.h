@@ -100,7 +100,7 @@ class SimClient {
  private:
   void WatchLoop(std::string mission_id);
   void UplinkLoop();
-  // Posts one report once (deadline 5 s).
+  // Posts one report once (deadline 5 s, times kWallClockScale).
   grpc::Status PostFeedback(const v1::ReportFeedbackRequest& request,
                             v1::ReportFeedbackResponse* response);
 

@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include "absl/strings/str_cat.h"
+#include "seaplan/common/wall_clock.h"
 #include "seaplan/storage/open_store.h"
 #include "seaplan/testing/grpc_test_token.h"
 #include "server/auth/authenticator.h"
@@ -188,7 +189,9 @@ InProcessServer::~InProcessServer() {
 
 httplib::Client InProcessServer::http() const {
   httplib::Client client("127.0.0.1", server_->http_port());
-  client.set_read_timeout(30, 0);
+  // Stretched in slower builds (a sanitizer's): the same calls take longer.
+  client.set_read_timeout(
+      std::chrono::milliseconds(static_cast<std::int64_t>(30'000 * kWallClockScale)));
   if (default_admin_token_) {
     client.set_default_headers({{"Authorization", seaplan::testing::TestAdminAuthorization()}});
   }

@@ -337,6 +337,26 @@ void Executor::Complete(const Running& r, std::vector<FeedbackOut>* out) {
                               r.task.action.DisplayName()));
 }
 
+// StartTasks keeps the plan's order of an end before a start; this keeps
+// the order of a start before an end. A ship running late starts the tasks
+// that waited for it together, so without it a refuel planned to end 1 ms
+// after a load starts ended first, and the load was charged after the refill
+// the plan had charged it before: 10 % short, the tank ran dry (case C
+// numeric). Port operations of the ship only: a move planned to start before
+// the operation ends (not in a valid plan: it needs the ship) does not hold
+// it, as the move could never start while it runs.
+bool Executor::WaitsForPlannedStarts(const Running& r) const {
+  if (r.version != version_.version) return false;
+  const double end_s = r.task.end_s() - 1e-6;
+  bool holds = false;
+  for (const mission::Task& t : pending_) {
+    if (t.start_s >= end_s) continue;
+    if (t.kind == TaskKind::kMove) return false;
+    holds = true;
+  }
+  return holds;
+}
+
 void Executor::NoteFuel() {
   const bool low = mission::FuelAtOrBelow(tank_.fraction(), config_.fuel_threshold_fraction);
   if (low && !fuel_low_logged_) {
@@ -417,9 +437,10 @@ void Executor::Step(std::vector<FeedbackOut>* out) {
   InjectEvents(out);
   jumped_ = (position() - last_position_).Norm() > config_.jump_threshold_m;
   StartTasks(out);
-  // Port operations complete by time.
+  // Port operations complete by time, in the plan's order of events.
   for (auto it = running_.begin(); it != running_.end();) {
-    if (it->task.kind != TaskKind::kMove && time_s_ + 1e-9 >= it->started_s + it->task.duration_s) {
+    if (it->task.kind != TaskKind::kMove && time_s_ + 1e-9 >= it->started_s + it->task.duration_s &&
+        !WaitsForPlannedStarts(*it)) {
       Running done = *it;
       it = running_.erase(it);
       Complete(done, out);

@@ -171,6 +171,9 @@ class Executor {
   // Logs the avoidance's events (and reports manoeuvres as feedback).
   void LogAvoidance(const colav::Command& c, const Running& move, std::vector<FeedbackOut>* out);
   void Complete(const Running& r, std::vector<FeedbackOut>* out);
+  // A port operation whose time is up still waits for the tasks of its
+  // version planned to start before it ends (definition: executor.cc).
+  bool WaitsForPlannedStarts(const Running& r) const;
   void NoteFuel();  // logs crossing the fuel threshold (the server decides replans)
   void InjectEvents(std::vector<FeedbackOut>* out);
   void TrackTraffic();

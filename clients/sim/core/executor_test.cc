@@ -172,6 +172,58 @@ TEST(ExecutorTest, RunsAMoveAndAPortOperation) {
   EXPECT_LT(ex->time_s(), v.tasks[1].end_s() + 400);
 }
 
+// A port operation planned to start just before a refuel ends (the numeric
+// domain charges it before the refill) keeps that order when the ship
+// arrives late and the tasks that waited for it start together: the refuel
+// ends only once the load has started, and the tank is full afterwards as
+// planned (it ended 10 % short when the refuel ended first).
+TEST(ExecutorTest, LateShipKeepsAPlannedStartBeforeARefuelEnds) {
+  ExecutorConfig c;
+  c.start = {0, 0};
+  c.start_heading_rad = M_PI / 2;
+  c.initial_fuel_fraction = 0.45;
+  auto ex = Executor::Create(c);
+  ASSERT_TRUE(ex.ok()) << ex.status();
+  mission::PlanVersion v;
+  v.version = 1;
+  mission::Task move = MoveTask("v1-t1", {0, 0}, {1500, 0}, 0, 4.0);
+  move.duration_s = 30;  // planned far too short: the ship arrives late
+  v.tasks.push_back(move);
+  const auto port_task = [&](const std::string& id, mission::TaskKind kind, double start,
+                             double duration) {
+    mission::Task t;
+    t.id = id;
+    t.kind = kind;
+    t.start_s = start;
+    t.duration_s = duration;
+    t.action.name = std::string(mission::TaskKindName(kind));
+    v.tasks.push_back(t);
+  };
+  const double arrival = move.end_s() + 0.001;
+  port_task("v1-t2", mission::TaskKind::kLoad, arrival, 60);                 // 30 % -> 20 %
+  port_task("v1-t3", mission::TaskKind::kRefuel, arrival + 30, 80);          // ends at +110
+  port_task("v1-t4", mission::TaskKind::kUnload, arrival + 60.001, 49.997);  // 20 % -> 10 %
+  port_task("v1-t5", mission::TaskKind::kLoad, arrival + 109.999, 60);  // 10 % -> 0 %, then 100 %
+  ex->SetPlan(v);
+  std::vector<FeedbackOut> out;
+  for (int i = 0; i < 20000 && !ex->Finished(); ++i) ex->Step(&out);
+  ASSERT_TRUE(ex->Finished());
+  EXPECT_EQ(ex->completed_task_ids().size(), 5u);
+  EXPECT_GT(ex->time_s(), v.tasks.back().end_s() + 60);  // late indeed
+  EXPECT_NEAR(ex->fuel_fraction(), 1.0, 1e-9);
+  EXPECT_FALSE(ex->report().tank_ran_dry);
+  // The refuel's end is reported after the last load's start.
+  int last_load_started = -1, refuel_completed = -1;
+  for (int i = 0; i < static_cast<int>(out.size()); ++i) {
+    if (out[i].kind == mission::FeedbackKind::kTaskStarted && out[i].task_id == "v1-t5")
+      last_load_started = i;
+    if (out[i].kind == mission::FeedbackKind::kTaskCompleted && out[i].task_id == "v1-t3")
+      refuel_completed = i;
+  }
+  ASSERT_GE(last_load_started, 0);
+  EXPECT_GT(refuel_completed, last_load_started);
+}
+
 // Fjord case A: the ship stopped ~100 m abeam of the previous route's
 // end, the next route starts at the berth position behind it. Sailing to the
 // route's start first made the 9 m/s hull loop 400 m into the shore.

@@ -1,6 +1,8 @@
 #include "seaplan/mission/replan_policy.h"
 
+#include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "absl/strings/str_cat.h"
 #include "absl/strings/str_format.h"
@@ -56,23 +58,53 @@ std::optional<std::string> DecideReplan(const Feedback& feedback, const PlanVers
           feedback.collision_avoidance_active ? " during collision avoidance" : "");
     }
   }
+  // Whether a task of the current version is still to do (header).
+  const auto remains = [&](const Task& t) {
+    if (completed_task_ids != nullptr) {
+      if (completed_task_ids->contains(t.id)) return false;
+    } else if (t.end_s() < feedback.mission_time_s - 1e-6) {
+      return false;
+    }
+    if (feedback.kind == FeedbackKind::kTaskCompleted &&
+        (t.id == feedback.task_id || (active_task && t.id == active_task->id))) {
+      return false;
+    }
+    return true;
+  };
   if (policy.fuel_planned && feedback.fuel_fraction &&
       FuelAtOrBelow(*feedback.fuel_fraction, 0.0)) {
-    return std::string("fuel tank empty although fuel was planned");
+    // The domain lets an action take the last of the fuel, so a plan may
+    // empty the tank on purpose and refuel next: the plan did not hold only
+    // when fuel is spent before the next refill. A port operation pays when
+    // it starts (those started by the plan's time of this report have paid),
+    // a move when it arrives, as the executor charges them (fuel.h); a
+    // refuel fills the tank when it ends.
+    double plan_now_s = feedback.mission_time_s;
+    if (active_task != nullptr) {
+      plan_now_s = feedback.kind == FeedbackKind::kTaskCompleted ? active_task->end_s()
+                                                                 : active_task->start_s;
+    }
+    double refill_s = std::numeric_limits<double>::infinity();
+    double next_use_s = std::numeric_limits<double>::infinity();
+    for (const Task& t : current.tasks) {
+      if (!remains(t)) continue;
+      if (t.kind == TaskKind::kRefuel) {
+        refill_s = std::min(refill_s, t.end_s());
+      } else if (t.kind == TaskKind::kMove) {
+        next_use_s = std::min(next_use_s, t.end_s());
+      } else if (t.kind != TaskKind::kOther && t.start_s > plan_now_s + 1e-6) {
+        next_use_s = std::min(next_use_s, t.start_s);
+      }
+    }
+    if (next_use_s < refill_s - 1e-6) {
+      return std::string("fuel tank empty although fuel was planned");
+    }
   }
   if (!policy.fuel_planned && feedback.fuel_fraction &&
       FuelAtOrBelow(*feedback.fuel_fraction, policy.fuel_threshold_fraction)) {
     bool refuel_left = false, move_left = false;
     for (const Task& t : current.tasks) {
-      if (completed_task_ids != nullptr) {
-        if (completed_task_ids->contains(t.id)) continue;
-      } else if (t.end_s() < feedback.mission_time_s - 1e-6) {
-        continue;
-      }
-      if (feedback.kind == FeedbackKind::kTaskCompleted && t.id == feedback.task_id) continue;
-      if (active_task && t.id == active_task->id && feedback.kind == FeedbackKind::kTaskCompleted) {
-        continue;
-      }
+      if (!remains(t)) continue;
       refuel_left |= t.kind == TaskKind::kRefuel;
       move_left |= t.kind == TaskKind::kMove;
     }

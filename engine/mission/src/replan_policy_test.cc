@@ -101,6 +101,58 @@ TEST(ReplanPolicyTest, LowFuelTriggersOnlyWithoutRefuelAhead) {
   EXPECT_TRUE(DecideReplan(f, without, &without.tasks[0], planned));
 }
 
+// The numeric domain lets an action take the last of the fuel, so a plan
+// may empty the tank on purpose and refuel next (case C numeric: S -> A -> B
+// from 30 %, then the refuel at B). That plan holds; one whose next task
+// needs fuel before a refuelling ends does not.
+TEST(ReplanPolicyTest, PlannedFuelEmptiedJustBeforeARefuelHolds) {
+  ReplanPolicy planned;
+  planned.fuel_planned = true;
+  // Move (0-100 s), refuel (100.001-180.001 s), move (from 200 s).
+  PlanVersion refuel_next = TwoTaskVersion(TaskKind::kRefuel);
+  Feedback arrived{FeedbackKind::kTaskCompleted, "v2-t1", 2, 100, EastNorth{1000, 0}, 0.0, ""};
+  EXPECT_FALSE(DecideReplan(arrived, refuel_next, &refuel_next.tasks[0], planned));
+  Feedback refuelling{FeedbackKind::kTaskStarted, "v2-t2", 2, 100.001, EastNorth{1000, 0}, 0.0, ""};
+  EXPECT_FALSE(DecideReplan(refuelling, refuel_next, &refuel_next.tasks[1], planned));
+  const std::set<std::string> moved = {"v2-t1"};
+  EXPECT_FALSE(DecideReplan(refuelling, refuel_next, &refuel_next.tasks[1], planned, &moved));
+  // Still empty once the refuel is done: the next move has nothing to burn.
+  const std::set<std::string> refuelled = {"v2-t1", "v2-t2"};
+  Feedback done{FeedbackKind::kTaskCompleted, "v2-t2", 2, 180.001, EastNorth{1000, 0}, 0.0, ""};
+  auto after = DecideReplan(done, refuel_next, &refuel_next.tasks[1], planned, &refuelled);
+  ASSERT_TRUE(after);
+  EXPECT_EQ(*after, "fuel tank empty although fuel was planned");
+
+  // Move, load (100.001-180.001 s), move, and a refuel only after them.
+  PlanVersion load_next = TwoTaskVersion(TaskKind::kLoad);
+  Task late_refuel = load_next.tasks[1];
+  late_refuel.id = "v2-t4";
+  late_refuel.kind = TaskKind::kRefuel;
+  late_refuel.start_s = 300;
+  load_next.tasks.push_back(late_refuel);
+  auto empty = DecideReplan(arrived, load_next, &load_next.tasks[0], planned);
+  ASSERT_TRUE(empty);
+  EXPECT_EQ(*empty, "fuel tank empty although fuel was planned");
+  // Case C numeric: an unload takes the last 10 % as a refuel starts beside
+  // it; neither's start is a reason to replan, whichever is reported first.
+  PlanVersion beside = TwoTaskVersion(TaskKind::kUnload);  // unload 100.001-180.001
+  Task refuel = beside.tasks[1];
+  refuel.id = "v2-t4";
+  refuel.kind = TaskKind::kRefuel;
+  beside.tasks.push_back(refuel);  // 100.001-180.001, before the move at 200
+  for (const Task* started : {&beside.tasks[1], &beside.tasks[3]}) {
+    Feedback f{FeedbackKind::kTaskStarted, started->id, 2, 400, EastNorth{1000, 0}, 0.0, ""};
+    EXPECT_FALSE(DecideReplan(f, beside, started, planned, &moved)) << started->id;
+  }
+  // Empty while a move is under way: it cannot arrive as planned.
+  Feedback sailing{FeedbackKind::kPosition, "v2-t3", 2, 250, EastNorth{500, 0}, 0.0, ""};
+  EXPECT_TRUE(DecideReplan(sailing, refuel_next, &refuel_next.tasks[2], planned, &refuelled));
+  // Nothing left that needs fuel: nothing to replan.
+  PlanVersion last_move = TwoTaskVersion(TaskKind::kOther);
+  last_move.tasks.pop_back();
+  EXPECT_FALSE(DecideReplan(arrived, last_move, &last_move.tasks[0], planned));
+}
+
 TEST(ReplanPolicyTest, LateCompletionAndStaleVersion) {
   PlanVersion v = TwoTaskVersion(TaskKind::kLoad);
   Feedback late{FeedbackKind::kTaskCompleted, "v2-t1", 2, 300, EastNorth{1000, 0}, 0.9, ""};

@@ -27,7 +27,8 @@ struct ReplanPolicy {
   double delay_tolerance_s = 120.0;  // a task completes later than planned by more
   // The domain tracks fuel itself (a numeric fuel fluent, DomainPlansFuel):
   // the plan already schedules the refuelling stops, so low fuel triggers a
-  // replan only when the tank is empty (the plan did not hold).
+  // replan only when the tank is empty before a task that needs fuel (the
+  // plan did not hold; DecideReplan).
   bool fuel_planned = false;
   Status Validate() const;
 };
@@ -68,7 +69,11 @@ bool FuelAtOrBelow(double fuel_fraction, double threshold_fraction);
 // way (may be null). Fuel: only when no refuel task remains and a move does
 // (otherwise the plan already handles it, or nothing is left to burn fuel
 // on); this is what keeps a plan with fuel planned up front (numeric
-// fluents) from being replanned for fuel. A task "remains" when it is not in
+// fluents) from being replanned for fuel. With fuel planned, only an empty
+// tank that a remaining task is to draw on before the next refuel ends (a
+// port operation not yet started by the plan's time of the report, a move
+// not yet arrived): the domain lets a plan take the last of the fuel and
+// refuel next. A task "remains" when it is not in
 // `completed_task_ids` (with a list given; the task this feedback completes
 // counts as completed), or, without a list, when its planned end is not
 // before the feedback time (a late ship makes that guess wrong: prefer the

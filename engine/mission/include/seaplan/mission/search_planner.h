@@ -10,18 +10,15 @@
 // as given.
 #pragma once
 
+#include "seaplan/common/wall_clock.h"
 #include "seaplan/mission/mission_planner.h"
 #include "seaplan/search/planner.h"
 
 namespace seaplan::mission {
 
-// SEAPLAN_WALL_CLOCK_SCALE (a CMake setting, above 1 in sanitizer builds)
-// stretches these budgets so that a slower build's replans search as much.
-#ifndef SEAPLAN_WALL_CLOCK_SCALE
-#define SEAPLAN_WALL_CLOCK_SCALE 1
-#endif
-inline constexpr double kReplanImproveMinS = 0.01 * SEAPLAN_WALL_CLOCK_SCALE;
-inline constexpr double kReplanImproveMaxS = 0.04 * SEAPLAN_WALL_CLOCK_SCALE;
+// Stretched in slower builds (wall_clock.h) so that their replans search as much.
+inline constexpr double kReplanImproveMinS = 0.01 * kWallClockScale;
+inline constexpr double kReplanImproveMaxS = 0.04 * kWallClockScale;
 
 enum class PlanningPhase { kInitial, kReplan };
 

@@ -1,0 +1,16 @@
+// How much slower than a normal build this build runs: the multiplier of the
+// wall-clock budgets the code and its tests set for themselves (never of the
+// time limits a user gives). SEAPLAN_WALL_CLOCK_SCALE is a CMake setting,
+// above 1 in the sanitizer builds (CMakeLists.txt), where a fixed budget
+// buys less work and a fixed test timeout expires before the same work ends.
+#pragma once
+
+#ifndef SEAPLAN_WALL_CLOCK_SCALE
+#define SEAPLAN_WALL_CLOCK_SCALE 1
+#endif
+
+namespace seaplan {
+
+inline constexpr double kWallClockScale = SEAPLAN_WALL_CLOCK_SCALE;
+
+}  // namespace seaplan
