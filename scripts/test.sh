@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Sets up, builds and runs the whole test suite; exits non-zero on any failure.
 # Tests that need the shared benchmark/chart data read it from SEAPLAN_SHARED
-# (default: ../shared beside the clone) and skip with a reason when absent.
+# (default: ../shared beside the clone) and skip with a reason when absent
+# (under CI, with the environment variable CI set, they fail instead).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 bash scripts/build.sh
