@@ -5,11 +5,13 @@
 
 #include <algorithm>
 #include <cerrno>
+#include <chrono>
 #include <cstring>
 #include <filesystem>
 #include <mutex>
 #include <optional>
 #include <string_view>
+#include <thread>
 
 #include "absl/strings/str_cat.h"
 #include "seaplan/common/log.h"
@@ -1129,10 +1131,19 @@ absl::StatusOr<std::unique_ptr<SqliteStore>> SqliteStore::Open(const std::string
     return absl::Status(st.code(), absl::StrCat("database '", path, "'", why, ": ", st.message()));
   };
   // journal_mode returns a row; an in-memory database stays "memory".
-  {
+  // Switching a new file to WAL needs an exclusive lock, and SQLite answers
+  // SQLITE_BUSY at once (no busy handler) while another process opening the
+  // same new file holds a lock on it: retry within the busy timeout.
+  for (const auto give_up =
+           std::chrono::steady_clock::now() + std::chrono::milliseconds(options.busy_timeout_ms);
+       ;) {
     Stmt wal(impl->db, "PRAGMA journal_mode = WAL");
     auto row = wal.Step();
-    if (!row.ok()) return fail(row.status());
+    if (row.ok()) break;
+    const int code = sqlite3_extended_errcode(impl->db) & 0xff;
+    const bool busy = code == SQLITE_BUSY || code == SQLITE_LOCKED;
+    if (!busy || std::chrono::steady_clock::now() >= give_up) return fail(row.status());
+    std::this_thread::sleep_for(std::chrono::milliseconds(10));
   }
   absl::Status st = Exec(impl->db, options.synchronous_full
                                        ? "PRAGMA synchronous = FULL; PRAGMA foreign_keys = ON"
