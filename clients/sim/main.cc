@@ -474,7 +474,7 @@ int main(int argc, char** argv) {
       // With the shore up, reports are answered before the ship moves on
       // (a replan it triggers is followed at once); with it down, the ship
       // executes on and the uplink keeps the backlog.
-      client.WaitSent(std::chrono::milliseconds(static_cast<int64_t>(30'000 * kWallClockScale)));
+      client.WaitSent(ScaledWallClock(std::chrono::milliseconds(30'000)));
     }
     if (client.shore_unreachable() != offline) {
       offline = !offline;

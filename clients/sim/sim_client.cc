@@ -117,7 +117,7 @@ grpc::Status SimClient::PostFeedback(const v1::ReportFeedbackRequest& request,
   // Longer in slower builds: a report that times out is taken for a shore
   // outage, and the ship sails on without waiting for the replan it asks for.
   ctx.set_deadline(std::chrono::system_clock::now() +
-                   std::chrono::milliseconds(static_cast<std::int64_t>(5000 * kWallClockScale)));
+                   ScaledWallClock(std::chrono::milliseconds(5000)));
   return missions_->ReportFeedback(&ctx, request, response);
 }
 

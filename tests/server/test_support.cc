@@ -190,8 +190,7 @@ InProcessServer::~InProcessServer() {
 httplib::Client InProcessServer::http() const {
   httplib::Client client("127.0.0.1", server_->http_port());
   // Stretched in slower builds (a sanitizer's): the same calls take longer.
-  client.set_read_timeout(
-      std::chrono::milliseconds(static_cast<std::int64_t>(30'000 * kWallClockScale)));
+  client.set_read_timeout(ScaledWallClock(std::chrono::milliseconds(30'000)));
   if (default_admin_token_) {
     client.set_default_headers({{"Authorization", seaplan::testing::TestAdminAuthorization()}});
   }

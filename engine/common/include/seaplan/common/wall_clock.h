@@ -5,6 +5,9 @@
 // buys less work and a fixed test timeout expires before the same work ends.
 #pragma once
 
+#include <chrono>
+#include <cstdint>
+
 #ifndef SEAPLAN_WALL_CLOCK_SCALE
 #define SEAPLAN_WALL_CLOCK_SCALE 1
 #endif
@@ -12,5 +15,11 @@
 namespace seaplan {
 
 inline constexpr double kWallClockScale = SEAPLAN_WALL_CLOCK_SCALE;
+
+// A budget or timeout the code sets for itself, stretched by kWallClockScale.
+constexpr std::chrono::milliseconds ScaledWallClock(std::chrono::milliseconds budget) {
+  return std::chrono::milliseconds(
+      static_cast<std::int64_t>(static_cast<double>(budget.count()) * kWallClockScale));
+}
 
 }  // namespace seaplan
