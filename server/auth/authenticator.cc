@@ -69,6 +69,8 @@ absl::StatusOr<Caller> Authenticator::AuthenticateToken(std::string_view token) 
   if (!EqualConstantTime(HashSecret(parsed.secret), record->secret_hash)) {
     return absl::UnauthenticatedError(absl::StrCat("wrong secret for token '", parsed.id, "'"));
   }
+  // The rule a stored first admin token is checked by too
+  // (storage::internal::UsableAdminTokenQuery): keep the two alike.
   if (record->revoked_at_ms != 0) {
     return absl::UnauthenticatedError(absl::StrCat("token '", parsed.id, "' was revoked"));
   }

@@ -1319,12 +1319,8 @@ class PostgresStore::Access final : public TokenRepository, public AuditReposito
       SEAPLAN_RETURN_IF_ERROR(
           Impl::Run(conn, "SELECT pg_advisory_xact_lock($1)", Params().I8(kFirstAdminLockKey))
               .status());
-      SEAPLAN_ASSIGN_OR_RETURN(
-          Result usable,
-          Impl::Run(conn,
-                    "SELECT 1 FROM api_tokens WHERE role = 'admin' AND revoked_at_ms = 0 AND "
-                    "(expires_at_ms = 0 OR expires_at_ms > $1) LIMIT 1",
-                    Params().I8(now_ms)));
+      SEAPLAN_ASSIGN_OR_RETURN(Result usable, Impl::Run(conn, internal::UsableAdminTokenQuery("$1"),
+                                                        Params().I8(now_ms)));
       if (usable.rows() > 0) return absl::OkStatus();
       SEAPLAN_RETURN_IF_ERROR(InsertOn(conn, admin));
       inserted = true;

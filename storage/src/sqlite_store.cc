@@ -1031,9 +1031,7 @@ class SqliteStore::Access final : public TokenRepository, public AuditRepository
     // BEGIN IMMEDIATE takes the database's write lock before the check, so
     // another process's check waits for this insert to commit (or roll back).
     const absl::Status written = InTransaction(impl_.db, [&]() -> absl::Status {
-      Stmt usable(impl_.db,
-                  "SELECT 1 FROM api_tokens WHERE role = 'admin' AND revoked_at_ms = 0 AND "
-                  "(expires_at_ms = 0 OR expires_at_ms > ?1) LIMIT 1");
+      Stmt usable(impl_.db, internal::UsableAdminTokenQuery("?1"));
       usable.Int(1, now_ms);
       SEAPLAN_ASSIGN_OR_RETURN(bool exists, usable.Step());
       if (exists) return absl::OkStatus();

@@ -76,6 +76,13 @@ std::string SqlIntList(const std::vector<int>& states) {
   return absl::StrCat("(", absl::StrJoin(states, ", "), ")");
 }
 
+std::string UsableAdminTokenQuery(const char* now_param) {
+  return absl::StrCat(
+      "SELECT 1 FROM api_tokens WHERE role = 'admin' AND revoked_at_ms = 0 AND "
+      "(expires_at_ms = 0 OR expires_at_ms > ",
+      now_param, ") LIMIT 1");
+}
+
 absl::Status LostLeaseError(const std::string& mission_id, const WorkFence& fence) {
   return absl::AbortedError(absl::StrCat("the work lease of mission '", mission_id, "' (holder '",
                                          fence.holder, "', token ", fence.token,

@@ -49,6 +49,14 @@ std::string SqlIntList(const std::vector<int>& states);
 // Aborted: a write fenced by a lease that is no longer held.
 absl::Status LostLeaseError(const std::string& mission_id, const WorkFence& fence);
 
+// A query that returns a row when a usable admin token is stored: role
+// admin, not revoked, not expired at the time bound to the statement's first
+// parameter, which the backend's SQL writes as `now_param` ("?1", "$1").
+// Both backends' InsertFirstAdmin use it; the authenticator
+// (server/auth/authenticator.cc) refuses a revoked or expired token by the
+// same rule, so keep the two alike.
+std::string UsableAdminTokenQuery(const char* now_param);
+
 // ---- Column lists and row readers shared by the backends ----
 // A `Row` offers Int(col), Real(col) and Bytes(col) (text and blobs as
 // bytes), columns 0-based in the order of the list (or of the comment).
