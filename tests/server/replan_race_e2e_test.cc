@@ -8,6 +8,7 @@
 #include <gtest/gtest.h>
 
 #include <atomic>
+#include <functional>
 #include <iostream>
 #include <string>
 #include <thread>
@@ -84,6 +85,21 @@ void ExpectReplansOneAfterAnother(InProcessServer& s, const std::string& id, int
   EXPECT_EQ(ready, last_version - 1);
 }
 
+// An operator's RequestReplan over gRPC (deadline 30 s), sent once
+// `start_together` returns.
+grpc::Status RequestReplanOverGrpc(v1::MissionService::Stub& missions, const std::string& id,
+                                   const std::string& reason,
+                                   const std::function<void()>& start_together,
+                                   v1::RequestReplanResponse* answer) {
+  v1::RequestReplanRequest req;
+  req.set_mission_id(id);
+  req.set_reason(reason);
+  ClientContext ctx;
+  SetDeadline(&ctx, 30000);
+  start_together();
+  return missions.RequestReplan(&ctx, req, answer);
+}
+
 TEST(ReplanRaceE2eTest, TwoOperatorsAtOnceGetAVersionEachPlannedOneAfterTheOther) {
   auto engine = std::make_shared<FakeMissionEngine>();
   engine->replan_delay_ms = 200;  // the two calls overlap
@@ -107,13 +123,7 @@ TEST(ReplanRaceE2eTest, TwoOperatorsAtOnceGetAVersionEachPlannedOneAfterTheOther
     int http_code = 0;
     std::string http_body;
     std::thread a([&] {
-      v1::RequestReplanRequest req;
-      req.set_mission_id(id);
-      req.set_reason(by_grpc);
-      ClientContext ctx;
-      SetDeadline(&ctx, 30000);
-      start_together();
-      grpc_status = missions->RequestReplan(&ctx, req, &grpc_answer);
+      grpc_status = RequestReplanOverGrpc(*missions, id, by_grpc, start_together, &grpc_answer);
     });
     std::thread b([&] {
       httplib::Client http = s.http();
@@ -190,13 +200,8 @@ TEST(ReplanRaceE2eTest, AnOperatorRacingATriggeringReportGetsOneVersionPerReplan
       report_status = missions->ReportFeedback(&ctx, req, &report);
     });
     std::thread requester([&] {
-      v1::RequestReplanRequest req;
-      req.set_mission_id(id);
-      req.set_reason(operator_reason);
-      ClientContext ctx;
-      SetDeadline(&ctx, 30000);
-      start_together();
-      replan_status = missions->RequestReplan(&ctx, req, &replan);
+      replan_status =
+          RequestReplanOverGrpc(*missions, id, operator_reason, start_together, &replan);
     });
     reporter.join();
     requester.join();
