@@ -1,7 +1,8 @@
 // Limits that protect the server, end to end over both transports: the
-// per-caller rate limit, the planning wait queue and its bound, and HTTP
-// connections of clients that stall.
+// per-caller rate limit, the planning wait queue and its bound, the request
+// size cap, and HTTP connections of clients that stall.
 #include <arpa/inet.h>
+#include <google/protobuf/util/json_util.h>
 #include <gtest/gtest.h>
 #include <netinet/in.h>
 #include <poll.h>
@@ -204,6 +205,60 @@ TEST(LimitsE2eTest, RequestsAskingForMoreThanTheServersBudgetsAreRefused) {
   ASSERT_TRUE(res);
   EXPECT_EQ(res->status, 400) << res->body;
   EXPECT_NE(res->body.find("particles x iterations"), std::string::npos) << res->body;
+}
+
+// One message above --max-request-bytes: RESOURCE_EXHAUSTED / 413 before any
+// handler runs, nothing stored; the same chart under the cap is stored.
+TEST(LimitsE2eTest, ARequestAboveTheSizeCapIsRefusedOverBothTransports) {
+  constexpr std::size_t kCap = 64 * 1024;
+  InProcessServer s(nullptr, 1, [](ServerOptions& options) { options.max_request_bytes = kCap; });
+  ASSERT_TRUE(s.start_status().ok()) << s.start_status();
+  const std::string geojson = seaplan::testing::ReadFile(seaplan::testing::SourceDir() /
+                                                         "engine/chart/testdata/harbour.geojson");
+  ASSERT_FALSE(geojson.empty());
+  // Trailing spaces keep the GeoJSON valid at any size.
+  const auto upload = [&](std::size_t padding) {
+    v1::UploadChartRequest req;
+    req.set_name("harbour");
+    req.set_format(v1::CHART_FORMAT_GEOJSON);
+    v1::ChartFile* file = req.add_files();
+    file->set_name("harbour.geojson");
+    file->set_content(geojson + std::string(padding, ' '));
+    return req;
+  };
+  auto charts = v1::ChartService::NewStub(s.channel());
+  {
+    ClientContext ctx;
+    v1::UploadChartResponse resp;
+    const grpc::Status st = charts->UploadChart(&ctx, upload(kCap), &resp);
+    EXPECT_EQ(st.error_code(), StatusCode::RESOURCE_EXHAUSTED) << st.error_message();
+  }
+  // HTTP allows 4/3 of the cap (base64) plus 1 MiB of JSON: a 1 MiB file's
+  // base64 is beyond it.
+  std::string body;
+  ASSERT_TRUE(google::protobuf::util::MessageToJsonString(upload(1u << 20), &body).ok());
+  auto res = s.http().Post("/v1/ChartService/UploadChart", body, "application/json");
+  ASSERT_TRUE(res);
+  EXPECT_EQ(res->status, 413);
+  EXPECT_NE(res->body.find("RESOURCE_EXHAUSTED"), std::string::npos) << res->body;
+  {
+    ClientContext ctx;
+    v1::ListChartsResponse list;
+    ASSERT_TRUE(charts->ListCharts(&ctx, v1::ListChartsRequest(), &list).ok());
+    EXPECT_EQ(list.charts_size(), 0);
+  }
+  // The same chart within the cap, on each transport.
+  {
+    ClientContext ctx;
+    v1::UploadChartResponse resp;
+    const grpc::Status st = charts->UploadChart(&ctx, upload(kCap / 2), &resp);
+    EXPECT_TRUE(st.ok()) << st.error_message();
+  }
+  std::string within_cap;
+  ASSERT_TRUE(google::protobuf::util::MessageToJsonString(upload(kCap / 2), &within_cap).ok());
+  res = s.http().Post("/v1/ChartService/UploadChart", within_cap, "application/json");
+  ASSERT_TRUE(res);
+  EXPECT_EQ(res->status, 200) << res->body;
 }
 
 // A raw connection to the HTTP port; the server's answer and whether it
