@@ -497,11 +497,15 @@ int main(int argc, char** argv) {
       break;
     }
     if (plan_ran_out && !need_plan) {
-      // Everything acknowledged. A replan may still be under way that no
-      // answer announced (its report's answer was lost with a server that
-      // died, and the restarted server resumed the replan): follow it.
+      // Everything acknowledged. A replan may still be under way, or done,
+      // that no answer announced (its report's answer was lost with a server
+      // that died, and the restarted server resumed the replan, while the
+      // ship ran its plan out on board): follow it.
       auto m = client.GetMission(mission_id);
-      if (!m.ok() || m->state() != v1::MISSION_STATE_REPLANNING) break;
+      if (!m.ok()) break;
+      const bool newer_version =
+          m->state() == v1::MISSION_STATE_ACTIVE && m->current_version() > executor->plan_version();
+      if (m->state() != v1::MISSION_STATE_REPLANNING && !newer_version) break;
       need_plan = true;
     }
     if (need_plan) {

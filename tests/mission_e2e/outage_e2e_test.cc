@@ -26,6 +26,7 @@
 #include <thread>
 #include <vector>
 
+#include "absl/strings/str_cat.h"
 #include "e2e_support.h"
 #include "seaplan/testing/shared_data.h"
 #include "seaplan/v1/mission.grpc.pb.h"
@@ -260,6 +261,63 @@ TEST_F(OutageE2eTest, CaseCRidesOutAShoreOutageAndEveryReportIsStoredOnce) {
       << r.output;
   Db db(DbPath());
   EXPECT_EQ(db.IntegrityCheck(), "ok");
+}
+
+// A version the ship was never told about: while the shore is unreachable
+// to the ship (the server killed, then restarted where the ship cannot
+// reach it), an operator replans, and the ship runs its plan out on board.
+// Back on its port, the server gets every report, none of which triggers a
+// replan (they are about the older version); the ship then follows the newer
+// version to the end (it used to stop there, leaving the mission ACTIVE; a
+// server killed between storing a report that triggers a replan and
+// answering it does the same).
+TEST_F(OutageE2eTest, AVersionMadeWhileTheShipWasUnreachableIsFollowedAfterThePlanRanOut) {
+  constexpr int kTimeFactor = 400;  // case C: about 7.5 s of wall time
+  const fs::path run = dir_ / "case-c";
+  const pid_t sim = StartSim("case-c", run, kTimeFactor);
+  const std::string id = MissionId(run);
+  ASSERT_FALSE(id.empty()) << e2e::ReadWholeFile(run / "sim.out");
+  // Under way on its second version, not replanning.
+  bool under_way = false;
+  for (int i = 0; i < 2400 && !under_way; ++i) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(20));
+    Db db(DbPath());
+    const auto row = db.Rows("SELECT state, current_version FROM missions WHERE id = ?1", id);
+    under_way = !row.empty() && std::stoi(row[0][0]) == v1::MISSION_STATE_ACTIVE &&
+                std::stoi(row[0][1]) >= 2 && db.FeedbackCounts(id).size() >= 10;
+  }
+  ASSERT_TRUE(under_way) << e2e::ReadWholeFile(run / "sim.out");
+  const int port = server_.port();
+  server_.Kill();
+  const auto killed_at = std::chrono::steady_clock::now();
+  // On another port: the operator's replan.
+  ASSERT_TRUE(StartServer(0));
+  int operators_version = 0;
+  {
+    v1::RequestReplanRequest req;
+    req.set_mission_id(id);
+    req.set_reason("operator, shore only");
+    grpc::ClientContext ctx;
+    ctx.set_deadline(std::chrono::system_clock::now() + std::chrono::seconds(120));
+    v1::RequestReplanResponse resp;
+    const grpc::Status st = stub_->RequestReplan(&ctx, req, &resp);
+    ASSERT_TRUE(st.ok()) << st.error_message();
+    operators_version = resp.version().version();
+  }
+  server_.Stop();
+  // Long enough for the ship to run any version of case C out on board.
+  std::this_thread::sleep_until(killed_at + std::chrono::seconds(15));
+  ASSERT_TRUE(StartServer(port)) << "the server did not restart on port " << port;
+  const e2e::ProcessResult r = e2e::WaitProcess(sim, run / "sim.out", std::chrono::seconds(400));
+  ASSERT_FALSE(r.timed_out) << r.output;
+  const Outcome o = CheckMission(id, run, r);
+  EXPECT_GE(o.versions, operators_version);
+  // The ship executed on while unreachable, then received the operator's version.
+  const std::string followed = absl::StrCat("plan version ", operators_version, " received");
+  const std::size_t unreachable = r.output.find("shore unreachable: executing plan version");
+  EXPECT_NE(unreachable, std::string::npos) << r.output;
+  EXPECT_NE(r.output.find(followed), std::string::npos) << r.output;
+  EXPECT_LT(unreachable, r.output.find(followed)) << r.output;
 }
 
 // Kill -9 at random moments of running missions (one kill per mission),
