@@ -7,6 +7,7 @@
 #include <cstdlib>
 #include <filesystem>
 
+#include "seaplan/testing/tiny_filesystem.h"
 #include "store_test_backends.h"
 
 namespace seaplan::storage {
@@ -186,42 +187,7 @@ TEST(SqliteStoreTest, RawSqlCannotChangePlanVersions) {
 
 // ---- the disk fails under the database: full or read-only ----
 
-// A tmpfs of `size` mounted on a fresh folder (unmounted at the end). Mounting
-// needs root: `reason` says why not otherwise, for the skip message.
-class TinyFilesystem {
- public:
-  explicit TinyFilesystem(const std::string& size) {
-    if (::geteuid() != 0) {
-      reason_ = "needs root to mount a small tmpfs (run as root, as CI does)";
-      return;
-    }
-    if (!Mount("-t tmpfs -o size=" + size + ",mode=0755 tmpfs")) {
-      reason_ = "mount -t tmpfs failed (no mount permission in this container?)";
-      return;
-    }
-    mounted_ = true;
-  }
-  ~TinyFilesystem() {
-    if (mounted_) Run("umount -l '" + (dir_ / "").string() + "'");
-  }
-  bool mounted() const { return mounted_; }
-  const std::string& reason() const { return reason_; }
-  fs::path path(const std::string& name) const { return dir_ / name; }
-  // Changes the mount's options (size=..., ro, rw).
-  bool Remount(const std::string& options) { return Mount("-o remount," + options); }
-
- private:
-  bool Mount(const std::string& args) {
-    return Run("mount " + args + " '" + (dir_ / "").string() + "'");
-  }
-  static bool Run(const std::string& command) {
-    return std::system((command + " >/dev/null 2>&1").c_str()) == 0;
-  }
-
-  TempDir dir_;
-  bool mounted_ = false;
-  std::string reason_;
-};
+using seaplan::testing::TinyFilesystem;
 
 // PRAGMA integrity_check of a database file, as a separate connection sees it.
 std::string IntegrityCheck(const fs::path& db_path) {

@@ -31,13 +31,16 @@
 #include <thread>
 #include <vector>
 
+#include "absl/strings/escaping.h"
 #include "grpc/health/v1/health.grpc.pb.h"
 #include "grpc/reflection/v1alpha/reflection.grpc.pb.h"
 #include "seaplan/storage/open_store.h"
 #include "seaplan/storage/sqlite_store.h"
 #include "seaplan/storage/testing/postgres_cluster.h"
 #include "seaplan/testing/shared_data.h"
+#include "seaplan/testing/tiny_filesystem.h"
 #include "seaplan/v1/access.grpc.pb.h"
+#include "seaplan/v1/chart.grpc.pb.h"
 #include "seaplan/v1/mission.grpc.pb.h"
 
 extern char** environ;
@@ -336,6 +339,105 @@ TEST(ServerBinaryTest, ServersStartingAtOnceOnOnePostgresDatabaseCreateOneAdminT
     EXPECT_TRUE(url.ok()) << url.status();
     return url.ok() ? *url : "";
   });
+}
+
+// The data folder's disk fills up under a running server: an upload that
+// does not fit is refused with UNAVAILABLE / 503 saying the disk is full,
+// what was acknowledged stays readable, uploads succeed again once there is
+// space, and the server still shuts down cleanly onto a sound database.
+TEST(ServerBinaryTest, AFullDataDiskAnswersUnavailableOverBothTransportsAndTheServerRecovers) {
+  const std::filesystem::path binary = seaplan::testing::BinDir() / "seaplan-server";
+  if (!std::filesystem::exists(binary)) GTEST_SKIP() << binary << " not built";
+  seaplan::testing::TinyFilesystem disk("1m");
+  if (!disk.mounted()) GTEST_SKIP() << "full-disk test skipped: " << disk.reason();
+  TempDir dir;
+  const auto port_file = dir.path() / "ports";
+  const auto data_dir = disk.path("data");
+  Child child({binary.string(), "--grpc-addr", "127.0.0.1:0", "--http-addr", "127.0.0.1:0",
+               "--data-dir", data_dir.string(), "--port-file", port_file.string(), "--log-level",
+               "error", "--planning-threads", "1"});
+  int grpc_port = 0, http_port = 0;
+  ASSERT_NO_FATAL_FAILURE(WaitForPorts(child, port_file, &grpc_port, &http_port));
+  ASSERT_GT(grpc_port, 0) << "no port file";
+  std::string token;
+  std::getline(std::ifstream(data_dir / "admin.token"), token);
+  ASSERT_FALSE(token.empty());
+
+  // A small chart padded with 32 KiB of JSON whitespace: its source files are
+  // stored with it, so a few dozen uploads fill a 1 MiB disk.
+  std::string geojson = seaplan::testing::ReadFile(seaplan::testing::SourceDir() /
+                                                   "engine/chart/testdata/harbour.geojson");
+  ASSERT_FALSE(geojson.empty());
+  geojson.append(32 * 1024, ' ');  // at the end: GDAL recognises GeoJSON by its start
+  v1::UploadChartRequest upload;
+  upload.set_name("harbour");
+  upload.set_format(v1::CHART_FORMAT_GEOJSON);
+  upload.set_minimum_depth_m(5);
+  upload.add_files()->set_name("harbour.geojson");
+  upload.mutable_files(0)->set_content(geojson);
+  auto charts = v1::ChartService::NewStub(grpc::CreateChannel(
+      "127.0.0.1:" + std::to_string(grpc_port), grpc::InsecureChannelCredentials()));
+  auto upload_over_grpc = [&] {
+    grpc::ClientContext ctx;
+    SetDeadline(&ctx, 30000);
+    ctx.AddMetadata("authorization", "Bearer " + token);
+    v1::UploadChartResponse uploaded;
+    return charts->UploadChart(&ctx, upload, &uploaded);
+  };
+  grpc::Status full;
+  int stored = 0;
+  for (int i = 0; i < 200 && full.ok(); ++i) {
+    full = upload_over_grpc();
+    if (full.ok()) ++stored;
+  }
+  ASSERT_FALSE(full.ok()) << "a 1 MiB disk held 200 charts of 32 KiB";
+  EXPECT_EQ(full.error_code(), grpc::StatusCode::UNAVAILABLE) << full.error_message();
+  EXPECT_NE(full.error_message().find("disk is full"), std::string::npos) << full.error_message();
+  EXPECT_GT(stored, 0);
+  std::printf("the 1 MiB disk was full after %d charts\n", stored);
+
+  httplib::Client http("127.0.0.1", http_port);
+  const httplib::Headers auth{{"Authorization", "Bearer " + token}};
+  const std::string body =
+      "{\"name\":\"harbour\",\"format\":\"CHART_FORMAT_GEOJSON\",\"minimumDepthM\":5,"
+      "\"files\":[{\"name\":\"harbour.geojson\",\"content\":\"" +
+      absl::Base64Escape(geojson) + "\"}]}";
+  auto refused = http.Post("/v1/ChartService/UploadChart", auth, body, "application/json");
+  ASSERT_TRUE(refused);
+  EXPECT_EQ(refused->status, 503) << refused->body;
+  EXPECT_NE(refused->body.find("disk is full"), std::string::npos) << refused->body;
+
+  // Reads still work and see exactly the acknowledged charts.
+  auto listed =
+      http.Post("/v1/ChartService/ListCharts", auth, "{\"pageSize\":1000}", "application/json");
+  ASSERT_TRUE(listed);
+  ASSERT_EQ(listed->status, 200) << listed->body;
+  int listed_charts = 0;
+  for (std::size_t at = listed->body.find("\"chartId\""); at != std::string::npos;
+       at = listed->body.find("\"chartId\"", at + 1)) {
+    ++listed_charts;
+  }
+  EXPECT_EQ(listed_charts, stored);
+
+  // Space is back: the same upload succeeds on both transports.
+  ASSERT_TRUE(disk.Remount("size=32m"));
+  const grpc::Status again = upload_over_grpc();
+  EXPECT_TRUE(again.ok()) << again.error_message();
+  auto accepted = http.Post("/v1/ChartService/UploadChart", auth, body, "application/json");
+  ASSERT_TRUE(accepted);
+  EXPECT_EQ(accepted->status, 200) << accepted->body.substr(0, 300);
+
+  ASSERT_EQ(kill(child.pid(), SIGTERM), 0);
+  const int status = child.Wait(std::chrono::seconds(15));
+  ASSERT_NE(status, -1) << "did not exit within 15 s of SIGTERM";
+  ASSERT_TRUE(WIFEXITED(status)) << "killed by a signal";
+  EXPECT_EQ(WEXITSTATUS(status), 0);
+  auto store = storage::SqliteStore::Open((data_dir / "seaplan.db").string());
+  ASSERT_TRUE(store.ok()) << store.status();
+  EXPECT_TRUE((*store)->CheckIntegrity().ok());
+  auto all = (*store)->charts().List(1000, 0);
+  ASSERT_TRUE(all.ok()) << all.status();
+  EXPECT_EQ(static_cast<int>(all->items.size()), stored + 2);
 }
 
 // Runs a shell command; its exit code and standard output + error.
