@@ -119,12 +119,12 @@ LoadResult Ground(const pddl::Domain& domain, const pddl::Problem& problem,
                   const GroundingOptions& options, const StopToken& stop) {
   LoadResult result;
   if (absl::Status status = options.Validate(); !status.ok()) {
-    result.diagnostics.push_back({pddl::Severity::kError,
-                                  pddl::DiagnosticKind::kSemantic,
-                                  {},
-                                  "",
-                                  std::string(status.message()),
-                                  ""});
+    // Filled in place: for a braced temporary here, GCC 12 at -O3 warns that
+    // its location.file "may be used uninitialized" (a false positive).
+    pddl::Diagnostic& error = result.diagnostics.emplace_back();
+    error.severity = pddl::Severity::kError;
+    error.kind = pddl::DiagnosticKind::kSemantic;
+    error.message = std::string(status.message());
     return result;
   }
   const auto start = std::chrono::steady_clock::now();
@@ -187,12 +187,13 @@ LoadResult LoadTaskFromFiles(const std::string& domain_path, const std::string& 
   LoadResult result;
   for (const auto* path : {&domain_path, &problem_path}) {
     if (!read(*path, path == &domain_path ? domain_text : problem_text)) {
-      result.diagnostics.push_back({pddl::Severity::kError,
-                                    pddl::DiagnosticKind::kSyntax,
-                                    {*path, 0, 0},
-                                    *path,
-                                    "cannot read the file",
-                                    "a readable PDDL file"});
+      pddl::Diagnostic& error = result.diagnostics.emplace_back();  // in place: see Ground()
+      error.severity = pddl::Severity::kError;
+      error.kind = pddl::DiagnosticKind::kSyntax;
+      error.location.file = *path;
+      error.symbol = *path;
+      error.message = "cannot read the file";
+      error.expected = "a readable PDDL file";
     }
   }
   if (pddl::HasErrors(result.diagnostics)) return result;

@@ -329,6 +329,13 @@ TEST(GrounderTest, BudgetsEndInAnErrorNotUnboundedMemory) {
       << wide.ErrorText();
   options.max_actions = 0;
   EXPECT_FALSE(options.Validate().ok());
+  auto refused = LoadTask(domain, problem, options);
+  EXPECT_FALSE(refused.ok());
+  EXPECT_FALSE(refused.task);
+  EXPECT_NE(refused.ErrorText().find(
+                "error: GroundingOptions: max_actions, max_facts and max_work must be > 0"),
+            std::string::npos)
+      << refused.ErrorText();
 }
 
 // A problem whose grounding takes far longer than a stop token allows: the
@@ -450,7 +457,13 @@ TEST(GrounderTest, LoadTaskFromFilesNamesThePaths) {
       << bad.ErrorText();
   auto missing = LoadTaskFromFiles(dir + "/no-such-file.pddl", dir + "/fjord_case_a.pddl");
   EXPECT_FALSE(missing.ok());
-  EXPECT_NE(missing.ErrorText().find("cannot read"), std::string::npos);
+  ASSERT_EQ(missing.diagnostics.size(), 1u) << missing.ErrorText();
+  const pddl::Diagnostic& unreadable = missing.diagnostics[0];
+  EXPECT_EQ(unreadable.severity, pddl::Severity::kError);
+  EXPECT_EQ(unreadable.location.file, dir + "/no-such-file.pddl");
+  EXPECT_EQ(unreadable.symbol, dir + "/no-such-file.pddl");
+  EXPECT_EQ(unreadable.message, "cannot read the file");
+  EXPECT_EQ(unreadable.expected, "a readable PDDL file");
 }
 
 TEST(GrounderTest, FjordCaseAHasTheHandCountedSize) {
