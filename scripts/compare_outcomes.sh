@@ -11,11 +11,14 @@
 #   SIM=<seaplan-sim>   one simulation client for both servers (by default each
 #                       build's own), so that only the server side is compared
 #
-# Plans and routes are deterministic. A mission's plans come from an anytime
-# search with a wall-clock budget (the scenario's planner_time_limit_s), so
-# under load a mission can end differently from one run to the next: compare
+# Plans and routes are deterministic. Missions A and B plan with an anytime
+# search under a wall-clock budget (the scenario's planner_time_limit_s), so
+# under load they can end differently from one run to the next: compare
 # mission lines of two runs of the same build before reading a difference as
-# a change. Needs jq (scripts/install-deps.sh).
+# a change. Mission C's searches are bounded by expansions
+# (planner_max_expansions) and end the same on any machine (a seaplan-sim
+# older than that key refuses the scenario: give SIM the newer one). Needs jq
+# (scripts/install-deps.sh).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 if [[ $# -lt 2 ]]; then

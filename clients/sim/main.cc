@@ -129,6 +129,7 @@ v1::MissionSpec MakeSpec(const sim::Scenario& s, const std::string& domain,
   spec.mutable_replan_policy()->set_delay_tolerance_s(s.delay_tolerance_s);
   spec.mutable_planner_options()->mutable_time_limit()->set_seconds(
       static_cast<int64_t>(s.planner_time_limit_s));
+  spec.mutable_planner_options()->set_max_expansions(s.planner_max_expansions);
   spec.set_vessel_id(s.vessel_id);
   spec.set_ship_object(s.ship_object);
   return spec;

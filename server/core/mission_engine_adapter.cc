@@ -70,6 +70,7 @@ absl::StatusOr<mission::MissionSpec> SpecFromProto(const v1::MissionSpec& spec) 
   if (o.has_anytime()) out.planner.anytime = o.anytime();
   if (o.random_seed() != 0) out.planner.random_seed = o.random_seed();
   if (o.epsilon_s() > 0) out.planner.epsilon_s = o.epsilon_s();
+  out.planner.max_expansions = o.max_expansions();
   const v1::ReplanPolicy& r = spec.replan_policy();
   if (r.fuel_threshold_fraction() > 0)
     out.policy.fuel_threshold_fraction = r.fuel_threshold_fraction();

@@ -81,17 +81,20 @@ TEST(MissionAdapterTest, SpecDefaultsAndErrors) {
   ASSERT_TRUE(s.ok()) << s.status();
   const mission::MissionSpec defaults;
   EXPECT_EQ(s->planner.time_limit_s, defaults.planner.time_limit_s);
+  EXPECT_EQ(s->planner.max_expansions, 0u);
   EXPECT_EQ(s->policy.position_deviation_m, defaults.policy.position_deviation_m);
   EXPECT_EQ(s->service_speed_mps, 0.0);
   spec.mutable_replan_policy()->set_position_deviation_m(75);
   spec.mutable_planner_options()->set_anytime(false);
   spec.mutable_planner_options()->mutable_time_limit()->set_seconds(7);
+  spec.mutable_planner_options()->set_max_expansions(20000);
   spec.mutable_ship()->set_service_speed_mps(9);
   auto given = SpecFromProto(spec);
   ASSERT_TRUE(given.ok());
   EXPECT_EQ(given->policy.position_deviation_m, 75);
   EXPECT_FALSE(given->planner.anytime);
   EXPECT_EQ(given->planner.time_limit_s, 7);
+  EXPECT_EQ(given->planner.max_expansions, 20000u);
   EXPECT_EQ(given->service_speed_mps, 9);
   EXPECT_NE(given->routing_key, s->routing_key);  // the ship differs
   spec.mutable_planner_options()->mutable_time_limit()->set_seconds(-1);

@@ -73,6 +73,7 @@ absl::StatusOr<search::PlannerOptions> ToEngine(const v1::PlannerOptions& o) {
   if (o.has_anytime()) p.anytime = o.anytime();
   if (o.random_seed() != 0) p.random_seed = o.random_seed();
   if (o.epsilon_s() != 0) p.epsilon_s = o.epsilon_s();
+  p.max_expansions = o.max_expansions();
   absl::Status valid = p.Validate();
   if (!valid.ok()) return absl::InvalidArgumentError(absl::StrCat("options: ", valid.message()));
   return p;

@@ -86,6 +86,21 @@ TEST(CliInProcessTest, PlanPrintsAValidIpcPlan) {
   EXPECT_NE(check.out.find("Plan valid"), std::string::npos);
 }
 
+// --max-expansions reaches the planner: 5 expansions find no plan for case
+// A (the search needs more), and the status names the limit.
+TEST(CliInProcessTest, MaxExpansionsLimitsTheSearch) {
+  auto few = RunSeaplan({"plan", Example("domain.pddl"), Example("case-a.pddl"), "--time-limit",
+                         "60", "--max-expansions", "5"});
+  EXPECT_EQ(few.exit_code, 1) << few.out << few.err;
+  EXPECT_NE(few.out.find("expansion limit (5) reached before a plan was found"), std::string::npos)
+      << few.out;
+  EXPECT_NE(few.out.find("search: 5 expanded"), std::string::npos) << few.out;
+  auto bad = RunSeaplan(
+      {"plan", Example("domain.pddl"), Example("case-a.pddl"), "--max-expansions", "-3"});
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("expected a whole number >= 0, got -3"), std::string::npos) << bad.err;
+}
+
 TEST(CliInProcessTest, InvalidPlanExitsOneAndNamesTheFailure) {
   auto result = RunSeaplan(
       {"validate", Example("domain.pddl"), Example("case-a.pddl"), Example("case-a-paper.plan")});

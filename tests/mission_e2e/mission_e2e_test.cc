@@ -19,6 +19,7 @@
 
 #include "e2e_support.h"
 #include "seaplan/chart/obstacle_map.h"
+#include "seaplan/common/wall_clock.h"
 #include "seaplan/testing/shared_data.h"
 #include "seaplan/v1/chart.grpc.pb.h"
 #include "seaplan/v1/mission.grpc.pb.h"
@@ -91,14 +92,18 @@ class MissionE2eTest : public ::testing::Test {
     if (!HasFailure()) fs::remove_all(dir_, ec);
   }
 
+  // The sim waits for each plan version at most 120 s, stretched in the
+  // slower builds: the scenarios' planner time limits (60 s in case C) are
+  // safety nets that an expansion limit ends the search before.
   SimRun RunSim(const std::string& scenario, const std::string& extra = "") {
     SimRun r;
+    const std::string replan_timeout_s = std::to_string(static_cast<int>(120 * kWallClockScale));
     r.dir = dir_ / scenario;
-    std::string cmd = (BinDir() / "seaplan-sim").string() + " --server " + server_.address() +
-                      " --scenario " +
-                      (SourceDir() / "examples/scenarios" / (scenario + ".scenario")).string() +
-                      " --report-dir " + r.dir.string() + " --replan-timeout-s 60 " + extra +
-                      " > " + (dir_ / (scenario + ".out")).string() + " 2>&1";
+    std::string cmd =
+        (BinDir() / "seaplan-sim").string() + " --server " + server_.address() + " --scenario " +
+        (SourceDir() / "examples/scenarios" / (scenario + ".scenario")).string() +
+        " --report-dir " + r.dir.string() + " --replan-timeout-s " + replan_timeout_s + " " +
+        extra + " > " + (dir_ / (scenario + ".out")).string() + " 2>&1";
     int status = std::system(cmd.c_str());
     r.exit_code = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
     r.report = ReadWholeFile(r.dir / "report.json");
@@ -171,6 +176,8 @@ TEST_F(MissionE2eTest, CaseBExactlyOneReplanFromTheGnssJump) {
   EXPECT_NE(r.report.find("GNSS fault"), std::string::npos);
 }
 
+// Both scenarios plan under an expansion limit, so their plans, and the
+// comparison of their end times, do not depend on the machine's speed.
 TEST_F(MissionE2eTest, CaseCExecutorFuelReplansAndNumericFuelDoesBetter) {
   SimRun c = RunSim("case-c");
   ASSERT_EQ(c.exit_code, 0) << SimOutput("case-c");

@@ -108,6 +108,7 @@ struct PlanArgs {
   bool stream = false;
   std::uint64_t seed = 1;
   double epsilon_s = 0;
+  std::uint64_t max_expansions = 0;
 };
 
 int RunPlan(const GlobalOptions& options, const PlanArgs& args) {
@@ -125,6 +126,7 @@ int RunPlan(const GlobalOptions& options, const PlanArgs& args) {
   planner->set_anytime(!args.no_anytime);
   planner->set_random_seed(args.seed);
   planner->set_epsilon_s(args.epsilon_s);
+  planner->set_max_expansions(args.max_expansions);
 
   auto backend = MakeBackend(options);
   v1::PlanResponse response;
@@ -743,6 +745,18 @@ int RunCli(int argc, char** argv, const CliExecutable& executable) {
   plan_cmd->add_option("--memory-limit", plan.memory_limit_mb, "Memory limit (MB), default 2048");
   plan_cmd->add_option("--max-concurrent", plan.max_concurrent,
                        "Most actions running at once (0: any)");
+  plan_cmd
+      ->add_option("--max-expansions", plan.max_expansions,
+                   "Stop after this many expanded states, the same plan on any machine (0: no "
+                   "limit)")
+      ->check(CLI::Validator(
+          [](std::string& v) {
+            return v.find_first_not_of("0123456789") == std::string::npos && !v.empty()
+                       ? std::string()
+                       : "expected a whole number >= 0, got " + v;
+          },
+          "UINT"))
+      ->capture_default_str();
   plan_cmd->add_flag("--no-anytime", plan.no_anytime, "Stop at the first plan");
   plan_cmd->add_option("--seed", plan.seed, "Random seed")->capture_default_str();
   plan_cmd->add_option("--epsilon", plan.epsilon_s,

@@ -120,6 +120,10 @@ StatusOr<Scenario> ParseScenario(std::string_view text, std::string_view file) {
       SEAPLAN_RETURN_IF_ERROR(number(&s.safety_distance_m));
     } else if (key == "planner_time_limit_s") {
       SEAPLAN_RETURN_IF_ERROR(number(&s.planner_time_limit_s));
+    } else if (key == "planner_max_expansions") {
+      if (w.size() != 1 || !absl::SimpleAtoi(w[0], &s.planner_max_expansions)) {
+        return err("planner_max_expansions: expected a whole number >= 0 (0: no limit)");
+      }
     } else if (key == "time_factor") {
       SEAPLAN_RETURN_IF_ERROR(number(&s.time_factor));
     } else if (key == "port_operation") {

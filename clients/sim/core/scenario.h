@@ -29,6 +29,7 @@
 //   gnss_jump = 100 170 38 35 30 50         # start end from_i from_j to_i to_j
 //   traffic = ferry ferry 0 63.45 10.36 ; 900 63.43 10.40    # name kind (t lat lon ;)+
 //   planner_time_limit_s = 10
+//   planner_max_expansions = 20000          # 0: none; the same plan on any machine
 //   time_factor = 0                         # 0: as fast as possible
 #pragma once
 
@@ -79,6 +80,7 @@ struct Scenario {
   std::vector<GnssJump> gnss_jumps;  // cells only; the grid places them
   std::vector<ScenarioTraffic> traffic;
   double planner_time_limit_s = 10.0;
+  std::uint64_t planner_max_expansions = 0;  // PlannerOptions.max_expansions
   double time_factor = 0.0;
 };
 

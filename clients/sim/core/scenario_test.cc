@@ -4,6 +4,8 @@
 
 #include <cmath>
 
+#include "absl/strings/str_cat.h"
+
 namespace seaplan::sim {
 namespace {
 
@@ -21,6 +23,7 @@ traffic = ferry ferry 0 63.45 10.36 ; 900 63.43 10.40
 port_operation = load-cont 60
 wind = 10 250
 fuel_model = machinery
+planner_max_expansions = 25000
 )",
                          "/x/scenarios/b.scenario");
   ASSERT_TRUE(s.ok()) << s.status();
@@ -31,6 +34,7 @@ fuel_model = machinery
   ASSERT_EQ(s->traffic.size(), 1u);
   EXPECT_EQ(s->traffic[0].track.size(), 2u);
   EXPECT_EQ(s->fuel_model, FuelModelKind::kMachinery);
+  EXPECT_EQ(s->planner_max_expansions, 25000u);
   EXPECT_EQ(*ResolvePath(*s, s->domain_path, ""), "/x/fjord/domain.pddl");
   EXPECT_EQ(*ResolvePath(*s, "shared:enc/t.geojson", "/sh"), "/sh/enc/t.geojson");
   EXPECT_FALSE(ResolvePath(*s, "shared:enc/t.geojson", "").ok());
@@ -55,6 +59,15 @@ TEST(ScenarioTest, BadLinesNameTheLine) {
   auto g =
       ParseScenario("domain = d\nproblem = p\nlocation = a 1 2\ngnss_jump = 1 2 3 4 5 6\n", "f");
   EXPECT_NE(g.status().message().find("grid"), std::string::npos);
+  for (const char* bad : {"-1", "1.5", "many", "1 2"}) {
+    auto e = ParseScenario(absl::StrCat("domain = d\nplanner_max_expansions = ", bad, "\n"), "f");
+    ASSERT_FALSE(e.ok()) << bad;
+    EXPECT_NE(e.status().message().find("f:2: planner_max_expansions"), std::string::npos)
+        << e.status();
+  }
+  auto none = ParseScenario("domain = d\nproblem = p\nlocation = a 1 2\n", "f");
+  ASSERT_TRUE(none.ok()) << none.status();
+  EXPECT_EQ(none->planner_max_expansions, 0u) << "no limit unless given";
 }
 
 TEST(ScenarioTest, SeedsShiftTheTrafficAndTheWindWithinTheirBoundsReproducibly) {

@@ -1,6 +1,7 @@
 #include "seaplan/mission/search_planner.h"
 
 #include <algorithm>
+#include <cstdint>
 #include <utility>
 
 namespace seaplan::mission {
@@ -22,9 +23,16 @@ TemporalPlanner SearchPlanner(const search::PlannerOptions& options, PlanningPha
       r = search::Solve(domain, problem, first, stop);
       if (r.status == search::PlanStatus::kSolvedSatisficing && !stop.StopRequested()) {
         search::PlannerOptions improve = options;
-        improve.time_limit_s = std::min(
-            options.time_limit_s,
-            std::clamp(2.0 * r.stats.search_time_s, kReplanImproveMinS, kReplanImproveMaxS));
+        if (options.max_expansions > 0) {
+          // Effort instead of time, so that the replan is the same on any
+          // machine; the time limit stays the safety net.
+          improve.max_expansions = std::min<std::uint64_t>(
+              options.max_expansions, std::max<std::uint64_t>(1, 2 * r.stats.expanded));
+        } else {
+          improve.time_limit_s = std::min(
+              options.time_limit_s,
+              std::clamp(2.0 * r.stats.search_time_s, kReplanImproveMinS, kReplanImproveMaxS));
+        }
         search::PlanResult better = search::Solve(domain, problem, improve, stop);
         if (Solved(better.status) && better.makespan_s < r.makespan_s - 1e-9) r = std::move(better);
       }

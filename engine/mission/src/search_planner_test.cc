@@ -50,6 +50,23 @@ TEST(SearchPlannerTest, ReplanKeepsTheFirstPlanOrABetterOne) {
   EXPECT_LE(Makespan(replan->plan), Makespan(first->plan) + 1e-9);
 }
 
+// Under an expansion limit the replan's improvement search is bounded by
+// expansions too (twice the first search's), not by time: the same replan
+// every time, and never longer than the first plan.
+TEST(SearchPlannerTest, ReplanUnderAnExpansionLimitIsTheSameEveryTime) {
+  const std::string domain = ReadTestData("domain.pddl");
+  const std::string problem = ReadTestData("case-a.pddl");
+  search::PlannerOptions limited = Options(true);
+  limited.max_expansions = 5000;
+  auto first = SearchPlanner(Options(false), PlanningPhase::kInitial)(domain, problem, StopToken());
+  auto a = SearchPlanner(limited, PlanningPhase::kReplan)(domain, problem, StopToken());
+  auto b = SearchPlanner(limited, PlanningPhase::kReplan)(domain, problem, StopToken());
+  ASSERT_TRUE(first.ok() && a.ok() && b.ok());
+  ASSERT_TRUE(first->solved && a->solved && b->solved);
+  EXPECT_EQ(validate::FormatPlan(a->plan), validate::FormatPlan(b->plan));
+  EXPECT_LE(Makespan(a->plan), Makespan(first->plan) + 1e-9);
+}
+
 TEST(SearchPlannerTest, BadInputIsAnError) {
   auto out =
       SearchPlanner(Options(false), PlanningPhase::kInitial)("(define", "(define", StopToken());

@@ -94,8 +94,12 @@ class PlannerRun {
 
  private:
   enum class Outcome { kContinue, kStop, kMemout };
-  // Polls stop/memory/progress; called once per search step.
+  // Polls stop/expansion limit/memory/progress; called once per search step.
   Outcome Poll(const LazySearch& search);
+  // States expanded so far, finished phases and `search` together.
+  std::size_t Expanded(const LazySearch& search) const {
+    return done_counters_.expanded + search.counters().expanded;
+  }
   void AddCounters(const LazySearch& search);
   // Builds and validates; true when it is a new incumbent.
   bool Offer(const LazySearch& search);
@@ -128,6 +132,7 @@ class PlannerRun {
   std::size_t plan_events_ = 0;
   SearchCounters done_counters_;  // of finished phases
   std::size_t steps_ = 0;
+  bool expansion_limit_reached_ = false;
 };
 
 StateData PlannerRun::InitialState() const {
@@ -148,6 +153,10 @@ void PlannerRun::AddCounters(const LazySearch& search) {
 PlannerRun::Outcome PlannerRun::Poll(const LazySearch& search) {
   ++steps_;
   if (stop_.StopRequested()) return Outcome::kStop;
+  if (options_.max_expansions > 0 && Expanded(search) >= options_.max_expansions) {
+    expansion_limit_reached_ = true;
+    return Outcome::kStop;
+  }
   if ((steps_ & 15) == 0) {
     const std::size_t bytes = registry_.MemoryBytes() + search.MemoryBytes();
     const std::size_t mb = bytes >> 20;
@@ -157,7 +166,7 @@ PlannerRun::Outcome PlannerRun::Poll(const LazySearch& search) {
         std::chrono::duration<double>(Clock::now() - last_progress_).count() >= 0.5) {
       last_progress_ = Clock::now();
       SearchStatistics stats = best_.stats;
-      stats.expanded = done_counters_.expanded + search.counters().expanded;
+      stats.expanded = Expanded(search);
       stats.generated = done_counters_.generated + search.counters().generated;
       stats.evaluated = done_counters_.evaluated + search.counters().evaluated;
       stats.search_time_s = Seconds(start_);
@@ -187,7 +196,7 @@ bool PlannerRun::Offer(const LazySearch& search) {
   best_.stats.best_plan_time_s = now;
   if (observer_ && observer_->on_plan) {
     PlanResult copy = best_;
-    copy.stats.expanded = done_counters_.expanded + search.counters().expanded;
+    copy.stats.expanded = Expanded(search);
     copy.stats.generated = done_counters_.generated + search.counters().generated;
     copy.stats.evaluated = done_counters_.evaluated + search.counters().evaluated;
     copy.stats.search_time_s = now;
@@ -276,10 +285,18 @@ PlanResult PlannerRun::Run() {
   // once keeping many more schedule variants apart. If it has found nothing
   // when its share of the time is up, the rest goes to a greedy search that
   // breaks ties newest first: the makespan order searches a plateau breadth
-  // first, which is what leaves sokoban and rtam instances unsolved.
+  // first, which is what leaves sokoban and rtam instances unsolved. Under an
+  // expansion limit the share is of that limit, so that the clock decides
+  // nothing but the time limit.
   const Clock::time_point switch_at =
       start_ + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(
                    options_.time_limit_s * options_.second_greedy_after_share));
+  const auto switch_after_expansions = static_cast<std::size_t>(
+      static_cast<double>(options_.max_expansions) * options_.second_greedy_after_share);
+  auto switch_due = [&](const LazySearch& search) {
+    if (options_.max_expansions > 0) return Expanded(search) >= switch_after_expansions;
+    return (steps_ & 255) == 0 && Clock::now() >= switch_at;
+  };
   bool many_variants = false, newest_first = options_.second_greedy_after_share <= 0;
   while (true) {
     SearchParams params;
@@ -295,8 +312,7 @@ PlanResult PlannerRun::Run() {
     Start(search, initial);
     bool switch_now = false;
     while (true) {
-      if (!newest_first && options_.second_greedy_after_share < 1 && (steps_ & 255) == 0 &&
-          Clock::now() >= switch_at) {
+      if (!newest_first && options_.second_greedy_after_share < 1 && switch_due(search)) {
         switch_now = true;
         break;
       }
@@ -305,6 +321,11 @@ PlanResult PlannerRun::Run() {
         AddCounters(search);
         if (poll == Outcome::kMemout)
           return finish(PlanStatus::kMemout, "memory limit reached before a plan");
+        if (expansion_limit_reached_) {
+          return finish(PlanStatus::kTimeout,
+                        absl::StrCat("expansion limit (", options_.max_expansions,
+                                     ") reached before a plan was found"));
+        }
         return finish(stopped_status(), stop_.Reason() == StopReason::kCancelled
                                             ? "cancelled before a plan was found"
                                             : "time limit reached before a plan was found");

@@ -238,6 +238,54 @@ TEST(PlannerTest, SameSeedSamePlan) {
   EXPECT_EQ(validate::FormatPlan(a.plan), validate::FormatPlan(b.plan));
 }
 
+// The expansion limit ends every phase: before a plan (both first-plan
+// configurations: half the limit each) with kTimeout naming the limit, and
+// the anytime search after one.
+TEST(PlannerTest, ExpansionLimitEndsTheSearch) {
+  auto hard = Load("toggle-domain.pddl", "toggle-22.pddl");
+  ASSERT_TRUE(hard.task);
+  PlannerOptions o = Quick(60);
+  o.max_expansions = 300;
+  const PlanResult none = SolveTask(*hard.task, o, StopToken());
+  EXPECT_EQ(none.status, PlanStatus::kTimeout);
+  EXPECT_EQ(none.message, "expansion limit (300) reached before a plan was found");
+  EXPECT_EQ(none.stats.expanded, 300u);
+
+  const std::string domain = testing::ReadFile(testing::SourceDir() / "examples/fjord/domain.pddl");
+  const std::string problem =
+      testing::ReadFile(testing::SourceDir() / "examples/fjord/case-c.pddl");
+  o.max_expansions = 2000;
+  const PlanResult r = Solve(domain, problem, o, StopToken());
+  ASSERT_EQ(r.status, PlanStatus::kSolvedSatisficing) << r.message;
+  EXPECT_EQ(r.stats.expanded, 2000u);
+  EXPECT_LT(r.stats.search_time_s, 60);
+}
+
+// What the expansion limit is for: the same plan on a slower machine. The
+// second run is slowed down (its observer sleeps at every plan found); with
+// the same limit both end with the same plan after the same expansions.
+TEST(PlannerTest, ExpansionLimitGivesTheSamePlanAtAnySpeed) {
+  const std::string domain =
+      testing::ReadFile(testing::SourceDir() / "examples/fjord/domain-numeric.pddl");
+  const std::string problem =
+      testing::ReadFile(testing::SourceDir() / "examples/fjord/case-c-numeric.pddl");
+  PlannerOptions o = Quick(120);
+  o.max_expansions = 3000;
+  const PlanResult fast = Solve(domain, problem, o, StopToken());
+  PlanObserver slow_down;
+  slow_down.on_plan = [](const PlanResult&) {
+    std::this_thread::sleep_for(std::chrono::milliseconds(30));
+  };
+  const PlanResult slow = Solve(domain, problem, o, StopToken(), &slow_down);
+  ASSERT_EQ(fast.status, PlanStatus::kSolvedSatisficing) << fast.message;
+  ASSERT_EQ(slow.status, PlanStatus::kSolvedSatisficing) << slow.message;
+  EXPECT_EQ(fast.stats.expanded, 3000u);
+  EXPECT_EQ(slow.stats.expanded, 3000u);
+  EXPECT_GE(slow.stats.search_time_s, 0.03 * slow.stats.plans_found);
+  EXPECT_EQ(fast.stats.plans_found, slow.stats.plans_found);
+  EXPECT_EQ(validate::FormatPlan(fast.plan), validate::FormatPlan(slow.plan));
+}
+
 TEST(PlannerTest, ConcurrencyBoundIsRespected) {
   auto loaded = Load("match-domain.pddl", "match-problem.pddl");
   ASSERT_TRUE(loaded.task);

@@ -6,8 +6,11 @@
 // optimal, so a replan with anytime search asks for the first plan, then
 // runs a short improvement search (twice the first search's time, between
 // kReplanImproveMinS and kReplanImproveMaxS, within the time limit) and
-// keeps the better of the two. The first plan of a mission uses the options
-// as given.
+// keeps the better of the two; under an expansion limit
+// (PlannerOptions::max_expansions) the improvement search gets twice the
+// first search's expansions instead (at most the limit; the time limit
+// stays), so that a replan does not depend on the machine's speed either.
+// The first plan of a mission uses the options as given.
 #pragma once
 
 #include "seaplan/common/wall_clock.h"

@@ -18,7 +18,8 @@
 //   - first plan: lazy greedy best-first search with an FF relaxed-plan
 //     heuristic on the snap actions (numeric fluents as intervals) and
 //     helpful actions in a second, boosted open list; ties by makespan so
-//     far, and when that finds nothing in half the time, a second greedy
+//     far, and when that finds nothing in half the time (or half the
+//     expansion limit, when there is one), a second greedy
 //     search that takes ties newest first (depth first on plateaus); then, in
 //     tasks with two or more agents (ships), a greedy search and then
 //     weighted A* (w = 3) whose relaxed plan spreads the work over them,
@@ -27,7 +28,7 @@
 //     replace the first when shorter; that is the plan returned without
 //     anytime;
 //   - anytime: restarting weighted A* on makespan, pruned by the incumbent,
-//     until the time limit or an exhausted space;
+//     until the time limit, the expansion limit or an exhausted space;
 //   - every plan is scheduled at its earliest STN times, printed with
 //     validate::FormatPlan, parsed back and checked by validate::ValidatePlan
 //     before anyone sees it; a plan that fails is logged and dropped.
@@ -55,7 +56,7 @@ enum class PlanStatus {
   kSolvedSatisficing,  // a valid plan; better ones may exist
   kSolvedOptimally,    // a valid plan of minimal makespan (proven)
   kUnsolvableProven,   // the complete search space holds no plan
-  kTimeout,            // time limit or deadline reached before any plan
+  kTimeout,            // time limit, expansion limit or deadline reached before any plan
   kMemout,             // memory limit reached before any plan
   kUnsupported,        // the input uses PDDL the planner does not handle
   kCancelled,          // StopToken cancelled before any plan
@@ -69,6 +70,14 @@ const char* ToString(PlanStatus status);
 struct PlannerOptions {
   // Wall-clock budget of the search, seconds (> 0). The StopToken may stop earlier.
   double time_limit_s = 60;
+  // Effort budget: states expanded, all phases together, after which the
+  // search stops as at its time limit; 0 = none. A time limit buys more
+  // search on a faster machine; this buys the same everywhere: with it set
+  // and neither the time limit nor `stop` reached first, the same task and
+  // options give the same plan on any machine. The first-plan search then
+  // switches to its second configuration after second_greedy_after_share of
+  // these expansions instead of that share of the time.
+  std::uint64_t max_expansions = 0;
   // Budget for the planner's own data (states, open lists, side tables), MB (> 0).
   std::size_t memory_limit_mb = 2048;
   // Most actions running at once; 0 = unbounded. Smaller values shrink the
@@ -82,9 +91,10 @@ struct PlannerOptions {
   std::uint64_t random_seed = 1;
   // Separation of interfering events, seconds (> 0, the validator's epsilon).
   double epsilon_s = 0.001;
-  // Share of time_limit_s (in [0, 1]) after which a first-plan search that
-  // has found nothing restarts with its second configuration (plateaus
-  // searched newest first instead of by makespan); 1 never switches.
+  // Share of time_limit_s (of max_expansions when that is set; in [0, 1])
+  // after which a first-plan search that has found nothing restarts with its
+  // second configuration (plateaus searched newest first instead of by
+  // makespan); 1 never switches.
   double second_greedy_after_share = 0.5;
 
   absl::Status Validate() const;
