@@ -225,9 +225,10 @@ std::string LChannelChart(double width_m) {
 
 TEST(CliInProcessTest, RouteWarnsOfATurnTheHullCannotSail) {
   // A 90 deg bend in a channel 80 m wide: 50 m of it clear of the charted
-  // land's 15 m growth, narrower than a 300 m turning circle needs round
-  // the inner corner (88 m). The route is still given (Level 1 connects),
-  // with the warning naming the turn and why.
+  // land's 15 m growth, narrower than the turning circles the fillets are
+  // tried on (450 m down to 300 m) need round the inner corner (88 m at
+  // 300 m). The route is still given (Level 1 connects), with the warning
+  // naming the turn and why.
   const auto chart = WriteScratch("l-channel.geojson", LChannelChart(80.0));
   // From 1.5 km west of the bend to 1.5 km north of it, on the centre line.
   const std::vector<std::string> args = {"route",
@@ -251,9 +252,10 @@ TEST(CliInProcessTest, RouteWarnsOfATurnTheHullCannotSail) {
   ASSERT_EQ(result.exit_code, 0) << result.out << result.err;
   EXPECT_NE(result.out.find("alternative(s); chosen"), std::string::npos) << result.out;
   EXPECT_NE(result.out.find("warning: the turn of "), std::string::npos) << result.out;
-  EXPECT_NE(result.out.find("cannot be sailed on a 300 m turning circle: the water is too "
-                            "narrow for it"),
-            std::string::npos)
+  EXPECT_NE(
+      result.out.find("cannot be sailed on a turning circle of 300 to 450 m: the water is too "
+                      "narrow for it"),
+      std::string::npos)
       << result.out;
   // The same warning is in the API message (--json).
   std::vector<std::string> json_args = {"--json"};
@@ -262,8 +264,8 @@ TEST(CliInProcessTest, RouteWarnsOfATurnTheHullCannotSail) {
   ASSERT_EQ(json.exit_code, 0) << json.err;
   EXPECT_NE(json.out.find("\"warnings\":[\"the turn of "), std::string::npos) << json.out;
 
-  // 400 m wide, the same bend is filleted: no warning.
-  const auto wide = WriteScratch("wide-channel.geojson", LChannelChart(400.0));
+  // 1000 m wide, the same bend is filleted: no warning.
+  const auto wide = WriteScratch("wide-channel.geojson", LChannelChart(1000.0));
   std::vector<std::string> wide_args = args;
   wide_args[2] = wide;
   auto filleted = RunSeaplan(wide_args);

@@ -167,9 +167,11 @@ TEST(Level2OptimizerTest, Level1CornersBecomeFilletsTheHullCanSail) {
   // reference: the chord to the goal cuts the island, so the repair puts the
   // corner (860, 260) back, and step 5 replaces it by a fillet round a 300 m
   // circle, moved outwards so that the arc passes where the corner was.
+  // (300 m, not the default 450 m: the figures below are this circle's.)
   auto s = MakeScenario();
   s->problem.alternatives = {{{-2000, 260}, {860, 260}, {860, -1400}}};
   Level2Options o;
+  o.fillet_radius_m = 300.0;
   o.segments = 2;
   o.pso.particles = 1;
   o.pso.iterations = 0;
@@ -335,6 +337,8 @@ TEST(Level2OptimizerTest, FilletOptionsAreCheckedByTheFilletsOwnValidation) {
   // whether or not the fillets are on.
   Level2Options o;
   EXPECT_TRUE(o.Validate().ok());
+  EXPECT_DOUBLE_EQ(o.Fillet().radius_m, 450.0);  // the path follower's wheel-over radius
+  o.fillet_radius_m = 0.0;
   EXPECT_DOUBLE_EQ(o.Fillet().radius_m, o.turn_radius_m);  // 0: the turn radius
   o.fillet_radius_m = 200.0;
   EXPECT_DOUBLE_EQ(o.Fillet().radius_m, 200.0);
@@ -357,6 +361,7 @@ TEST(Level2OptimizerTest, FilletOptionsAreCheckedByTheFilletsOwnValidation) {
   // No turn radius and no fillet radius: no fillets, the options still valid.
   Level2Options off;
   off.turn_radius_m = 0.0;
+  off.fillet_radius_m = 0.0;
   EXPECT_TRUE(off.Validate().ok());
   EXPECT_FALSE(off.FilletsOn());
 }

@@ -155,33 +155,36 @@ struct Level2Options {
   int threads = 2;
   RiskEvaluation risk_evaluation = RiskEvaluation::kFast;
   // The radius the ship turns on as it sails the route (this hull: ~240 m
-  // at full rudder, and the simulation client's path follower starts its
-  // turns for 300 m). A moved waypoint whose course change needs more of
-  // an adjacent leg than half of it (the whole of a leg from the start or
-  // to the goal) goes back to its reference (step 4). 0: no turn check.
+  // at full rudder; the simulation client's path follower starts its
+  // turns for 450 m, the hull under its autopilot turning wider). A moved waypoint whose course
+  // change needs more of an adjacent leg than half of it (the whole of a leg from the start or to
+  // the goal) goes back to its reference (step 4). 0: no turn check.
   double turn_radius_m = 300.0;
   // Step 5: every corner of the repaired route that turns by 15 deg or more
   // becomes a fillet, a polygon round a circle of fillet_radius_m (0:
-  // turn_radius_m) moved outwards where the water allows, preferably
+  // turn_radius_m; 450 m, the path follower's wheel-over radius: on 200
+  // pairs per chart fewer sailed tracks went aground than with 300 m,
+  // bench/route/README.md) moved outwards where the water allows, preferably
   // keeping fillet_clearance_m from the obstacles (turn_fillet.h). A corner
   // that cannot be filleted stays and is reported (unsailable_turns).
   // fillet_min_radius_m > 0: a corner no fillet of that radius clears is
   // tried on circles down to it (at most the fillet radius) before it is
-  // reported. Off: with 240 m (this hull at full rudder) 8 more NOAA corners
-  // of 200 routes were filleted and the sailed tracks did not improve
-  // (bench/route/README.md).
+  // reported. 300 m (the turn check's circle): the corners the 450 m
+  // circle leaves (legs too short) are still filleted, as with 300 m
+  // before; down to 240 m (this hull at full rudder) with 300 m fillets
+  // did not improve the sailed tracks (bench/route/README.md).
   bool fillet_turns = true;
-  double fillet_radius_m = 0.0;
+  double fillet_radius_m = 450.0;
   double fillet_clearance_m = 50.0;
-  double fillet_min_radius_m = 0.0;
+  double fillet_min_radius_m = 300.0;
 
   // The options step 5 passes to FilletTurns: radius fillet_radius_m (0:
   // turn_radius_m), clearance fillet_clearance_m, smallest radius
   // fillet_min_radius_m (at most the radius). Validate() checks them
   // with TurnFilletOptions::Validate, the one definition of their ranges.
   TurnFilletOptions Fillet() const;
-  // Step 5 runs: fillet_turns on and a radius (turn_radius_m 0 with no
-  // fillet_radius_m turns it off with the turn check).
+  // Step 5 runs: fillet_turns on and a radius (turn_radius_m 0 with
+  // fillet_radius_m 0 turns it off with the turn check).
   bool FilletsOn() const { return fillet_turns && Fillet().radius_m > 0.0; }
 
   absl::Status Validate() const;
