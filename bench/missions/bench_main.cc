@@ -27,6 +27,7 @@
 
 #include "CLI/CLI.hpp"
 #include "absl/strings/numbers.h"
+#include "absl/strings/str_cat.h"
 #include "absl/strings/str_split.h"
 #include "absl/strings/strip.h"
 #include "child_process.h"
@@ -246,7 +247,7 @@ int main(int argc, char** argv) {
         const std::string name = seaplan::bench::FjordMissionName(spec);
         const fs::path file = work_dir / (name + ".pddl");
         std::ofstream(file, std::ios::binary) << *text;
-        problems.push_back({name, domain_name + " " + size,
+        problems.push_back({name, absl::StrCat(domain_name, " ", size),
                             examples / (fuel ? "domain-fuel.pddl" : "domain.pddl"), file});
       }
     }

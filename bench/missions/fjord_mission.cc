@@ -50,6 +50,7 @@ struct EastNorth {
 std::vector<EastNorth> FjordPorts(int count, SplitMix64& rng) {
   const double phase = rng.Between(0, 6.283);
   std::vector<EastNorth> ports;
+  ports.reserve(static_cast<std::size_t>(count));
   for (int i = 0; i < count; ++i) {
     ports.push_back(
         {60.0 * i + rng.Between(-15, 15), 80.0 * std::sin(0.7 * i + phase) + rng.Between(-30, 30)});
@@ -145,6 +146,7 @@ absl::StatusOr<std::string> GenerateFjordMission(const FjordMissionSpec& spec) {
   const auto start_ports = DistinctBelow(spec.ports, spec.ships, rng);
   const auto container_order = DistinctBelow(spec.containers, spec.containers, rng);
   std::vector<int> container_origin;
+  container_origin.reserve(static_cast<std::size_t>(spec.containers));
   for (int c = 0; c < spec.containers; ++c) container_origin.push_back(rng.Below(spec.ports));
   std::string init, goal;
   std::size_t next_container = 0;

@@ -45,6 +45,7 @@ ChildResult RunChild(const std::vector<std::string>& args, const ChildLimits& li
   posix_spawn_file_actions_adddup2(&actions, out_pipe[1], 1);
   posix_spawn_file_actions_adddup2(&actions, err_pipe[1], 2);
   std::vector<char*> argv;
+  argv.reserve(args.size() + 1);  // and the terminating null
   for (const auto& a : args) argv.push_back(const_cast<char*>(a.c_str()));
   argv.push_back(nullptr);
   const auto start = std::chrono::steady_clock::now();

@@ -407,6 +407,7 @@ int main(int argc, char** argv) {
     }
   };
   std::vector<std::thread> threads;
+  threads.reserve(static_cast<std::size_t>(jobs));
   for (int t = 0; t < jobs; ++t) threads.emplace_back(worker, t);
   for (auto& t : threads) t.join();
   fs::remove_all(settings.scratch);
@@ -414,6 +415,7 @@ int main(int argc, char** argv) {
   // Scores over the same problems: the planners run here, and the stored
   // figures of peers.md labelled "(peers.md)".
   std::vector<std::string> labels;
+  labels.reserve(planners.size());
   for (const auto& p : planners) labels.push_back(p.name);
   std::map<std::pair<std::string, std::string>, std::map<std::string, Run>> table;
   for (const auto& o : outcomes) {

@@ -75,6 +75,7 @@ risk::HullPolygon NaiveHull(const ship::ShipState& s, double l, double b) {
       {l / 2, -b / 2}, {l / 2, b / 2}, {-l / 2, b / 2}, {-l / 2, -b / 2}};
   std::vector<Eigen::Vector2d> world;
   for (const auto& c : body) {
+    // NOLINTNEXTLINE(performance-inefficient-vector-operation): naive on purpose (see above).
     world.push_back({s.eta[0] + c[0] * std::cos(s.eta[2]) - c[1] * std::sin(s.eta[2]),
                      s.eta[1] + c[0] * std::sin(s.eta[2]) + c[1] * std::cos(s.eta[2])});
   }

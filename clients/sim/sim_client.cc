@@ -59,7 +59,7 @@ absl::Status FromGrpc(const grpc::Status& s) {
 }
 
 SimClient::SimClient(const std::string& address,
-                     std::shared_ptr<grpc::ChannelCredentials> credentials,
+                     const std::shared_ptr<grpc::ChannelCredentials>& credentials,
                      const std::string& token)
     : channel_(MakeChannel(address, credentials, token)),
       missions_(v1::MissionService::NewStub(channel_)),

@@ -49,7 +49,8 @@ class SimClient {
  public:
   // `credentials`: plaintext or TLS (clients/common/tls_channel.h);
   // `token`: presented on every call (empty: none).
-  SimClient(const std::string& address, std::shared_ptr<grpc::ChannelCredentials> credentials,
+  SimClient(const std::string& address,
+            const std::shared_ptr<grpc::ChannelCredentials>& credentials,
             const std::string& token = "");
   ~SimClient();
 

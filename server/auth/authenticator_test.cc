@@ -144,6 +144,7 @@ TEST_F(AuthenticatorTest, FirstStartsAtOnceCreateOneAdminTokenAndOneFile) {
     std::vector<absl::StatusOr<BootstrapResult>> results(kServers, absl::UnknownError("not run"));
     std::atomic<int> ready{0};
     std::vector<std::thread> servers;
+    servers.reserve(kServers);
     for (int i = 0; i < kServers; ++i) {
       servers.emplace_back([&, i] {
         const Authenticator auth(stores[i]->tokens());

@@ -145,8 +145,10 @@ TEST_F(GuardedHttpServerTest, SlowHeadsDoNotHoldTheWorkers) {
   limits.worker_threads = 2;
   limits.head_timeout = seconds(60);  // not cut during the test
   StartServer(limits);
+  constexpr int kSlowConnections = 20;
   std::vector<int> slow;
-  for (int i = 0; i < 20; ++i) slow.push_back(Connect());
+  slow.reserve(kSlowConnections);
+  for (int i = 0; i < kSlowConnections; ++i) slow.push_back(Connect());
   std::atomic<bool> done{false};
   std::thread dribbler([&] {
     const std::string head = "GET /ping HTTP/1.1\r\nHost: x\r\nX-Slow: " + std::string(4096, 'a');

@@ -56,6 +56,7 @@ TEST_P(PostgresStoreTest, ReplicasStartingTogetherMigrateOnce) {
   ASSERT_TRUE(fresh.ok()) << fresh.status();
   std::vector<absl::StatusOr<std::unique_ptr<PostgresStore>>> opened(4);
   std::vector<std::thread> threads;
+  threads.reserve(opened.size());
   for (auto& slot : opened) {
     threads.emplace_back([&slot, &fresh] { slot = PostgresStore::Open(*fresh); });
   }

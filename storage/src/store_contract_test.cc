@@ -618,6 +618,7 @@ TEST_P(StoreTest, FirstAdminIsStoredOnceEvenWhenProcessesAskAtOnce) {
     std::atomic<int> ready{0};
     std::vector<absl::StatusOr<bool>> stored(kProcesses, absl::UnknownError("not run"));
     std::vector<std::thread> threads;
+    threads.reserve(kProcesses);
     for (int p = 0; p < kProcesses; ++p) {
       threads.emplace_back([&, p] {
         TokenRecord admin = TestToken("admin-" + std::to_string(p), "admin");

@@ -221,7 +221,7 @@ TEST(MissionChartE2eTest, ChartInUseIsNotDeletedAndADeletedChartIsGoneEverywhere
     req.set_chart_id(id);
     v1::DeleteChartResponse resp;
     ClientContext ctx;
-    const grpc::Status st = charts->DeleteChart(&ctx, req, &resp);
+    grpc::Status st = charts->DeleteChart(&ctx, req, &resp);
     if (st.ok()) {
       EXPECT_EQ(resp.chart_id(), id);
     }
@@ -356,6 +356,7 @@ void CreateRacesDelete(InProcessServer& s, int rounds) {
     std::vector<v1::Mission> mission(kCreators);
     grpc::Status deleted;
     std::vector<std::thread> threads;
+    threads.reserve(kCreators + 1);  // the creators and the deleter
     for (int i = 0; i < kCreators; ++i) {
       threads.emplace_back([&, i] {
         start_together();

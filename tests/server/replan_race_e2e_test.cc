@@ -105,7 +105,7 @@ TEST(ReplanRaceE2eTest, TwoOperatorsAtOnceGetAVersionEachPlannedOneAfterTheOther
   engine->replan_delay_ms = 200;  // the two calls overlap
   InProcessServer s(engine);
   const v1::Mission mission = CreateFakeMission(s);
-  const std::string id = mission.mission_id();
+  const std::string& id = mission.mission_id();
   auto missions = v1::MissionService::NewStub(s.channel());
   constexpr int kRounds = 4;
   for (int round = 0; round < kRounds; ++round) {
@@ -168,7 +168,7 @@ TEST(ReplanRaceE2eTest, AnOperatorRacingATriggeringReportGetsOneVersionPerReplan
   engine->replan_delay_ms = 150;
   InProcessServer s(engine);
   const v1::Mission mission = CreateFakeMission(s);
-  const std::string id = mission.mission_id();
+  const std::string& id = mission.mission_id();
   auto missions = v1::MissionService::NewStub(s.channel());
   constexpr int kRounds = 6;
   int version = 1, covered = 0, one_each = 0;

@@ -243,6 +243,7 @@ void StartAtOnceCreatesOneAdminToken(const std::string& database, int servers, i
     const std::string url = database.empty() ? "" : fresh_database();
     std::vector<std::filesystem::path> data_dirs;
     std::vector<std::unique_ptr<Child>> children;
+    data_dirs.reserve(static_cast<std::size_t>(servers));
     for (int i = 0; i < servers; ++i) {
       data_dirs.push_back(dir.path() / (url.empty() ? "data" : "data-" + std::to_string(i)));
     }

@@ -30,9 +30,10 @@ absl::Status FromGrpc(const grpc::Status& status) {
 class RemoteBackend final : public Backend {
  public:
   RemoteBackend(const std::string& address, double timeout_s,
-                std::shared_ptr<grpc::ChannelCredentials> credentials, const std::string& token)
-      : channel_(client::CreateChannelWithToken(address, std::move(credentials),
-                                                grpc::ChannelArguments(), token)),
+                const std::shared_ptr<grpc::ChannelCredentials>& credentials,
+                const std::string& token)
+      : channel_(
+            client::CreateChannelWithToken(address, credentials, grpc::ChannelArguments(), token)),
         planning_(v1::PlanningService::NewStub(channel_)),
         charts_(v1::ChartService::NewStub(channel_)),
         routes_(v1::RouteService::NewStub(channel_)),
@@ -183,7 +184,7 @@ std::unique_ptr<Backend> MakeRemoteBackend(const std::string& address, double ti
     std::cerr << "error: " << credentials.status().message() << "\n";
     std::exit(kExitBadInput);
   }
-  return std::make_unique<RemoteBackend>(address, timeout_s, *std::move(credentials), token);
+  return std::make_unique<RemoteBackend>(address, timeout_s, *credentials, token);
 }
 
 }  // namespace seaplan::cli

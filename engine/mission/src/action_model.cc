@@ -191,8 +191,8 @@ StatusOr<ActionInstance> ActionModel::Instantiate(std::string_view name,
   inst.name = std::string(name);
   inst.args = args;
   for (size_t i = 0; i < args.size(); ++i) inst.binding[schema->parameters[i].name] = args[i];
-  CollectReads(schema->condition, inst.binding,
-               schema->durative ? TimeSpec::kAtStart : TimeSpec::kAtStart, &inst);
+  // A durative action's conditions carry their own time (at start, over all, at end).
+  CollectReads(schema->condition, inst.binding, TimeSpec::kAtStart, &inst);
   for (const pddl::DurationConstraint& d : schema->duration) {
     CollectExprReads(d.value, inst.binding, &inst.reads_start);
   }

@@ -225,6 +225,7 @@ StatusOr<RegeneratedProblem> RegenerateProblem(std::string_view domain_text,
           clone_origin.emplace_back(it->second, o);
           // Scale the static values by new distance / old distance.
           std::vector<std::string> old_locs;
+          old_locs.reserve(locs.size());
           // The original atom's locations: undo the substitution.
           for (const std::string& l : locs) {
             old_locs.push_back(l == here ? tmpl : (l == tmpl && !other.empty() ? other : l));

@@ -162,7 +162,7 @@ TEST(ParseDomainTest, ReportsEveryErrorWithPosition) {
   EXPECT_EQ(mismatch->location.line, 4);
   EXPECT_EQ(mismatch->location.column, 31);
   EXPECT_EQ(mismatch->symbol, "?y");
-  EXPECT_NE(mismatch->expected.find("a"), std::string::npos);
+  EXPECT_NE(mismatch->expected.find('a'), std::string::npos);
   const Diagnostic* var = FindDiag(result.diagnostics, "undeclared variable");
   ASSERT_NE(var, nullptr);
   EXPECT_EQ(var->location.line, 5);

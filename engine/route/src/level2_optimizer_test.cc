@@ -17,6 +17,8 @@ ObstaclePolygon Island() {
 }
 
 struct Scenario {
+  Scenario(ObstacleField f, risk::DriftingGroundingModel m)
+      : field(std::move(f)), risk_model(std::move(m)), grounding(risk_model), problem{} {}
   ObstacleField field;
   risk::DriftingGroundingModel risk_model;
   DriftingGroundingAdapter grounding;
@@ -30,9 +32,7 @@ std::unique_ptr<Scenario> MakeScenario() {
   EXPECT_TRUE(field.ok()) << field.status();
   auto model = risk::DriftingGroundingModel::Create();
   EXPECT_TRUE(model.ok()) << model.status();
-  auto s = std::unique_ptr<Scenario>(new Scenario{
-      std::move(field).value(), std::move(model).value(), DriftingGroundingAdapter(*model), {}});
-  s->grounding = DriftingGroundingAdapter(s->risk_model);
+  auto s = std::make_unique<Scenario>(std::move(field).value(), std::move(model).value());
   s->problem.field = &s->field;
   s->problem.grounding = &s->grounding;
   s->problem.environment.wind_speed_mps = 20.0;

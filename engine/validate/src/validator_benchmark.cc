@@ -92,7 +92,8 @@ std::shared_ptr<const task::GroundTask> PairsTask() {
 Plan PairsPlan() {
   Plan plan;
   for (int i = 0; i < kSteps; ++i) {
-    plan.steps.push_back({(i / 2) * 10.001, "work", {"w" + std::to_string(i)}, 10.0, i + 1});
+    const int pair = i / 2;  // two steps start together
+    plan.steps.push_back({pair * 10.001, "work", {"w" + std::to_string(i)}, 10.0, i + 1});
   }
   return plan;
 }

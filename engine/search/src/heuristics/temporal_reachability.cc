@@ -215,7 +215,8 @@ double TemporalReachability::OpTime(int op, double t0) const {
   const bool is_end = op % 2 == 1;
   double t = t0;
   if (is_end) {
-    t = std::max(t, earliest_[static_cast<std::size_t>(num_facts_ + a)] + min_d_[a]);
+    t = std::max(t, earliest_[static_cast<std::size_t>(num_facts_) + static_cast<std::size_t>(a)] +
+                        min_d_[a]);
   }
   const int first = win_begin_[op];
   const int last = win_begin_[op + 1];
