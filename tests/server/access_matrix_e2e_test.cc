@@ -128,16 +128,8 @@ class AccessMatrixTest : public ::testing::Test {
     credentials_.push_back({"malformed token", "Bearer seaplan_not-a-token", std::nullopt});
 
     // A mission of vessel ship0 for the mission RPCs.
-    auto missions = v1::MissionService::NewStub(server_->channel());
-    grpc::ClientContext ctx;
-    SetDeadline(&ctx, 30000);
-    ctx.AddMetadata("authorization", admin_);
-    v1::CreateMissionRequest create;
-    *create.mutable_spec() = SampleSpec("matrix");
-    v1::Mission mission;
-    const grpc::Status st = missions->CreateMission(&ctx, create, &mission);
-    ASSERT_TRUE(st.ok()) << st.error_message();
-    mission_id_ = mission.mission_id();
+    mission_id_ = CreateMission("matrix");
+    ASSERT_FALSE(mission_id_.empty());
     chart_id_ = UploadHarbourChart();
   }
 
@@ -148,31 +140,19 @@ class AccessMatrixTest : public ::testing::Test {
     SetDeadline(&ctx, 30000);
     ctx.AddMetadata("authorization", admin_);
     v1::UploadChartResponse uploaded;
-    const grpc::Status st = charts->UploadChart(&ctx, HarbourUpload(), &uploaded);
+    const grpc::Status st = charts->UploadChart(&ctx, HarbourChartUpload(), &uploaded);
     EXPECT_TRUE(st.ok()) << st.error_message();
     return uploaded.chart().chart_id();
   }
 
-  static v1::UploadChartRequest HarbourUpload() {
-    v1::UploadChartRequest upload;
-    upload.set_name("harbour");
-    upload.set_format(v1::CHART_FORMAT_GEOJSON);
-    upload.set_minimum_depth_m(5);
-    v1::ChartFile* file = upload.add_files();
-    file->set_name("harbour.geojson");
-    file->set_content(seaplan::testing::ReadFile(seaplan::testing::SourceDir() /
-                                                 "engine/chart/testdata/harbour.geojson"));
-    return upload;
-  }
-
-  // A mission of vessel ship0 of its own, for a call that ends it.
-  std::string CreateMissionToCancel() {
+  // A mission of vessel ship0, created by the admin; empty on failure.
+  std::string CreateMission(const std::string& name) {
     auto missions = v1::MissionService::NewStub(server_->channel());
     grpc::ClientContext ctx;
     SetDeadline(&ctx, 30000);
     ctx.AddMetadata("authorization", admin_);
     v1::CreateMissionRequest create;
-    *create.mutable_spec() = SampleSpec("to cancel");
+    *create.mutable_spec() = SampleSpec(name);
     v1::Mission mission;
     const grpc::Status st = missions->CreateMission(&ctx, create, &mission);
     EXPECT_TRUE(st.ok()) << st.error_message();
@@ -208,7 +188,7 @@ class AccessMatrixTest : public ::testing::Test {
       validate.set_plan("0.000: (sail) [1.000]\n");
       request->CopyFrom(validate);
     } else if (name == "UploadChart") {
-      request->CopyFrom(HarbourUpload());
+      request->CopyFrom(HarbourChartUpload());
     } else if (name == "PlanRoute") {
       v1::PlanRouteRequest route;
       *route.mutable_start() = LatLon(62.4703, 6.1080);
@@ -250,7 +230,7 @@ class AccessMatrixTest : public ::testing::Test {
       if (f != nullptr && f->type() == FieldDescriptor::TYPE_STRING)
         r->SetString(request.get(), f, value);
     };
-    set("mission_id", name == "CancelMission" ? CreateMissionToCancel() : mission_id_);
+    set("mission_id", name == "CancelMission" ? CreateMission("to cancel") : mission_id_);
     if (name != "CreateToken") set("vessel_id", "ship0");  // a viewer token: no vessel
     set("chart_id", name == "DeleteChart" ? UploadHarbourChart() : chart_id_);
     set("reason", "access matrix");
@@ -263,13 +243,6 @@ class AccessMatrixTest : public ::testing::Test {
       r->SetInt64(request.get(), f, ++sequence_);
     }
     return request;
-  }
-
-  static v1::LatLon LatLon(double latitude_deg, double longitude_deg) {
-    v1::LatLon p;
-    p.set_latitude_deg(latitude_deg);
-    p.set_longitude_deg(longitude_deg);
-    return p;
   }
 
   // One durative action that reaches the goal: planned and validated at once.

@@ -4,7 +4,6 @@
 #include <google/protobuf/util/json_util.h>
 #include <gtest/gtest.h>
 
-#include "seaplan/testing/shared_data.h"
 #include "test_support.h"
 
 namespace seaplan::server::testing {
@@ -13,27 +12,11 @@ namespace {
 using grpc::ClientContext;
 using grpc::StatusCode;
 
-v1::LatLon Point(double lat, double lon) {
-  v1::LatLon p;
-  p.set_latitude_deg(lat);
-  p.set_longitude_deg(lon);
-  return p;
-}
-
 TEST(ChartRouteE2eTest, UploadGetListAndRouteOnAStoredChart) {
-  const std::string geojson = seaplan::testing::ReadFile(seaplan::testing::SourceDir() /
-                                                         "engine/chart/testdata/harbour.geojson");
-  ASSERT_FALSE(geojson.empty());
   InProcessServer s;
   auto charts = v1::ChartService::NewStub(s.channel());
-  v1::UploadChartRequest upload;
-  upload.set_name("harbour");
-  upload.set_format(v1::CHART_FORMAT_GEOJSON);
-  upload.set_minimum_depth_m(5);
+  v1::UploadChartRequest upload = HarbourChartUpload();
   upload.set_safety_buffer_m(10);
-  v1::ChartFile* file = upload.add_files();
-  file->set_name("harbour.geojson");
-  file->set_content(geojson);
   v1::UploadChartResponse uploaded;
   {
     ClientContext ctx;
@@ -90,8 +73,8 @@ TEST(ChartRouteE2eTest, UploadGetListAndRouteOnAStoredChart) {
     ClientContext ctx;
     v1::EstimateRiskRequest req;
     req.set_chart_id(chart.chart_id());
-    *req.add_track()->mutable_position() = Point(62.4705, 6.1085);
-    *req.add_track()->mutable_position() = Point(62.4712, 6.1090);
+    *req.add_track()->mutable_position() = LatLon(62.4705, 6.1085);
+    *req.add_track()->mutable_position() = LatLon(62.4712, 6.1090);
     v1::EstimateRiskResponse resp;
     grpc::Status st = routes->EstimateRisk(&ctx, req, &resp);
     ASSERT_TRUE(st.ok()) << st.error_message();
@@ -109,8 +92,8 @@ TEST(ChartRouteE2eTest, UploadGetListAndRouteOnAStoredChart) {
     SetDeadline(&ctx, 60000);
     v1::PlanRouteRequest req;
     req.set_chart_id(chart.chart_id());
-    *req.mutable_start() = Point(62.4703, 6.1080);
-    *req.mutable_goal() = Point(62.4718, 6.1117);
+    *req.mutable_start() = LatLon(62.4703, 6.1080);
+    *req.mutable_goal() = LatLon(62.4718, 6.1117);
     req.mutable_options()->set_particles(8);
     req.mutable_options()->set_iterations(10);
     req.mutable_options()->set_segments(6);
@@ -133,7 +116,7 @@ TEST(ChartRouteE2eTest, UploadGetListAndRouteOnAStoredChart) {
               route.waypoints_size() - 1);
 
     ClientContext ctx2;
-    *req.mutable_start() = Point(62.471, 6.102);  // on the land square
+    *req.mutable_start() = LatLon(62.471, 6.102);  // on the land square
     EXPECT_EQ(routes->PlanRoute(&ctx2, req, &resp).error_code(), StatusCode::INVALID_ARGUMENT);
   }
 }

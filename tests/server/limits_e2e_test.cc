@@ -213,30 +213,18 @@ TEST(LimitsE2eTest, ARequestAboveTheSizeCapIsRefusedOverBothTransports) {
   constexpr std::size_t kCap = 64 * 1024;
   InProcessServer s(nullptr, 1, [](ServerOptions& options) { options.max_request_bytes = kCap; });
   ASSERT_TRUE(s.start_status().ok()) << s.start_status();
-  const std::string geojson = seaplan::testing::ReadFile(seaplan::testing::SourceDir() /
-                                                         "engine/chart/testdata/harbour.geojson");
-  ASSERT_FALSE(geojson.empty());
-  // Trailing spaces keep the GeoJSON valid at any size.
-  const auto upload = [&](std::size_t padding) {
-    v1::UploadChartRequest req;
-    req.set_name("harbour");
-    req.set_format(v1::CHART_FORMAT_GEOJSON);
-    v1::ChartFile* file = req.add_files();
-    file->set_name("harbour.geojson");
-    file->set_content(geojson + std::string(padding, ' '));
-    return req;
-  };
   auto charts = v1::ChartService::NewStub(s.channel());
   {
     ClientContext ctx;
     v1::UploadChartResponse resp;
-    const grpc::Status st = charts->UploadChart(&ctx, upload(kCap), &resp);
+    const grpc::Status st = charts->UploadChart(&ctx, HarbourChartUpload(kCap), &resp);
     EXPECT_EQ(st.error_code(), StatusCode::RESOURCE_EXHAUSTED) << st.error_message();
   }
   // HTTP allows 4/3 of the cap (base64) plus 1 MiB of JSON: a 1 MiB file's
   // base64 is beyond it.
   std::string body;
-  ASSERT_TRUE(google::protobuf::util::MessageToJsonString(upload(1u << 20), &body).ok());
+  ASSERT_TRUE(
+      google::protobuf::util::MessageToJsonString(HarbourChartUpload(1u << 20), &body).ok());
   auto res = s.http().Post("/v1/ChartService/UploadChart", body, "application/json");
   ASSERT_TRUE(res);
   EXPECT_EQ(res->status, 413);
@@ -251,11 +239,12 @@ TEST(LimitsE2eTest, ARequestAboveTheSizeCapIsRefusedOverBothTransports) {
   {
     ClientContext ctx;
     v1::UploadChartResponse resp;
-    const grpc::Status st = charts->UploadChart(&ctx, upload(kCap / 2), &resp);
+    const grpc::Status st = charts->UploadChart(&ctx, HarbourChartUpload(kCap / 2), &resp);
     EXPECT_TRUE(st.ok()) << st.error_message();
   }
   std::string within_cap;
-  ASSERT_TRUE(google::protobuf::util::MessageToJsonString(upload(kCap / 2), &within_cap).ok());
+  ASSERT_TRUE(
+      google::protobuf::util::MessageToJsonString(HarbourChartUpload(kCap / 2), &within_cap).ok());
   res = s.http().Post("/v1/ChartService/UploadChart", within_cap, "application/json");
   ASSERT_TRUE(res);
   EXPECT_EQ(res->status, 200) << res->body;

@@ -6,6 +6,7 @@
 #include "seaplan/common/wall_clock.h"
 #include "seaplan/storage/open_store.h"
 #include "seaplan/testing/grpc_test_token.h"
+#include "seaplan/testing/shared_data.h"
 #include "server/auth/authenticator.h"
 #include "server/core/convert.h"
 
@@ -205,6 +206,28 @@ v1::MissionSpec SampleSpec(const std::string& name) {
   spec.set_vessel_id("ship0");
   spec.mutable_initial_state()->set_fuel_fraction(0.3);
   return spec;
+}
+
+v1::UploadChartRequest HarbourChartUpload(std::size_t padding) {
+  v1::UploadChartRequest upload;
+  upload.set_name("harbour");
+  upload.set_format(v1::CHART_FORMAT_GEOJSON);
+  upload.set_minimum_depth_m(5);
+  v1::ChartFile* file = upload.add_files();
+  file->set_name("harbour.geojson");
+  std::string content = seaplan::testing::ReadFile(seaplan::testing::SourceDir() /
+                                                   "engine/chart/testdata/harbour.geojson");
+  EXPECT_FALSE(content.empty()) << "engine/chart/testdata/harbour.geojson is missing";
+  content.append(padding, ' ');
+  file->set_content(std::move(content));
+  return upload;
+}
+
+v1::LatLon LatLon(double latitude_deg, double longitude_deg) {
+  v1::LatLon p;
+  p.set_latitude_deg(latitude_deg);
+  p.set_longitude_deg(longitude_deg);
+  return p;
 }
 
 }  // namespace seaplan::server::testing

@@ -16,6 +16,7 @@
 
 #include <atomic>
 #include <chrono>
+#include <cstddef>
 #include <filesystem>
 #include <functional>
 #include <memory>
@@ -128,6 +129,13 @@ class InProcessServer {
 
 // A minimal valid mission spec (the fake engine does not read the PDDL).
 v1::MissionSpec SampleSpec(const std::string& name = "case-a");
+
+// An upload of engine/chart's harbour test chart (GeoJSON, minimum depth
+// 5 m) followed by `padding` spaces, which keep the GeoJSON valid at any size.
+v1::UploadChartRequest HarbourChartUpload(std::size_t padding = 0);
+
+// A position in WGS84 degrees.
+v1::LatLon LatLon(double latitude_deg, double longitude_deg);
 
 // Runs `fn` with a deadline of `ms` on `ctx`.
 inline void SetDeadline(grpc::ClientContext* ctx, int ms) {
