@@ -48,8 +48,7 @@ StatusOr<SailedTrack> SailRoute(const std::vector<EastNorth>& route, double spee
     if (d <= 0.0) sailed.touches = true;
     // A segment that crosses an obstacle has its ends within its length of
     // the crossing: only then the (brute-force) segment test.
-    if (i > 0 && !sailed.touches &&
-        prev_d + d <= Distance(sailed.track[i - 1], sailed.track[i]) &&
+    if (i > 0 && !sailed.touches && prev_d + d <= Distance(sailed.track[i - 1], sailed.track[i]) &&
         field->SegmentHits(sailed.track[i - 1], sailed.track[i])) {
       sailed.touches = true;
     }
