@@ -10,7 +10,8 @@
 namespace seaplan::route {
 
 StatusOr<SailedTrack> SailRoute(const std::vector<EastNorth>& route, double speed_mps,
-                                const ObstacleField* field) {
+                                const ObstacleField* field,
+                                const colav::PathFollowerOptions* follower) {
   if (!(speed_mps > 0.0) || !std::isfinite(speed_mps)) {
     return absl::InvalidArgumentError(absl::StrCat("sail speed must be > 0, got ", speed_mps));
   }
@@ -30,6 +31,7 @@ StatusOr<SailedTrack> SailRoute(const std::vector<EastNorth>& route, double spee
   }
   setup.cruise_speed_mps = speed_mps;
   setup.start_at_rest = true;
+  if (follower != nullptr) setup.follower = *follower;
   // Twice the time at speed plus the acceleration and the slow approach.
   setup.max_time_s = 2.0 * length_m / speed_mps + 900.0;
   SEAPLAN_ASSIGN_OR_RETURN(colav::EncounterOutcome out, colav::SimulateEncounter(setup));

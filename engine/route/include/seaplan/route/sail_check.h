@@ -16,6 +16,7 @@
 
 #include <vector>
 
+#include "seaplan/colav/path_follower.h"
 #include "seaplan/common/east_north.h"
 #include "seaplan/common/status.h"
 #include "seaplan/route/obstacle_field.h"
@@ -35,9 +36,11 @@ struct SailedTrack {
 
 // Sails `route` (start .. goal; points closer than 1 m to the previous are
 // dropped) from rest at `speed_mps` and checks the track against `field`
-// (null: not checked). Errors: InvalidArgument for fewer than 2 distinct
-// points, non-finite points or speed <= 0.
+// (null: not checked), with the simulation client's path follower or
+// `follower` (to compare followers). Errors: InvalidArgument for fewer than
+// 2 distinct points, non-finite points, speed <= 0 or bad follower options.
 StatusOr<SailedTrack> SailRoute(const std::vector<EastNorth>& route, double speed_mps,
-                                const ObstacleField* field);
+                                const ObstacleField* field,
+                                const colav::PathFollowerOptions* follower = nullptr);
 
 }  // namespace seaplan::route
