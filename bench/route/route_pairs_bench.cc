@@ -13,16 +13,15 @@
 // Usage: route_pairs_bench [shared_dir] [--pairs N] [--seed S] [--chart noaa|trondheim|alesund]
 //                          [--min-depth M] [--turn-radius M] [--no-fillet] [--fillet-radius M]
 //                          [--fillet-min-radius M] [--lookahead M] [--wheel-over-radius M]
-//                          [--anticipation M] [--verbose]
-// --turn-radius: the route planner's Level2Options::turn_radius_m (0: no
-// turn check, the planner as it was); --no-fillet: Level2Options::fillet_turns
-// off (the corners as Level 1 placed them); --fillet-radius: its
-// fillet_radius_m; --fillet-min-radius: its fillet_min_radius_m (0: the
-// fillet radius only). The routes are sailed with the
-// simulation client's path follower; --lookahead, --wheel-over-radius and
-// --anticipation (PathFollowerOptions::anticipation_m) sail the same routes
-// once more with those changed and print a line each (the last two may be
-// repeated: every combination is sailed, a comparison of followers in one run). ROUTE_PAIRS_DUMP=1
+//                          [--no-sail-check] [--verbose]
+// --no-sail-check: Level2Options::sail_check off (the planner without step 6,
+// its routes' tracks not sailed); --turn-radius: the route planner's Level2Options::turn_radius_m
+// (0: no turn check, the planner as it was); --no-fillet: Level2Options::fillet_turns off (the
+// corners as Level 1 placed them); --fillet-radius: its fillet_radius_m; --fillet-min-radius: its
+// fillet_min_radius_m (0: the fillet radius only). The routes are sailed with the simulation
+// client's path follower; --lookahead and --wheel-over-radius sail the same routes once more with
+// those changed and print a line each
+// (--wheel-over-radius may be repeated, a comparison of followers in one run). ROUTE_PAIRS_DUMP=1
 // prints every sailed route ("R east north") and its executed track ("T east north").
 #include <cstdio>
 #include <cstdlib>
@@ -37,6 +36,7 @@
 #include "seaplan/common/log.h"
 #include "seaplan/route/route_planner.h"
 #include "seaplan/route/route_sweep.h"
+#include "seaplan/route/sail_check.h"
 
 using namespace seaplan;
 
@@ -61,24 +61,12 @@ struct Sailed {
 // loop and measures the executed track against the unbuffered obstacles.
 StatusOr<Sailed> Sail(const std::vector<EastNorth>& route, double speed_mps,
                       const colav::PathFollowerOptions& follower, chart::ObstacleQuery& query) {
-  colav::EncounterSetup setup;
-  for (const EastNorth& p : route) {
-    if (setup.path.empty() || (p - setup.path.back()).Norm() >= 1.0) setup.path.push_back(p);
-  }
-  if (setup.path.size() < 2) return Sailed{true, std::numeric_limits<double>::infinity(), {}};
-  double length_m = 0.0;
-  for (size_t i = 1; i < setup.path.size(); ++i) {
-    length_m += (setup.path[i] - setup.path[i - 1]).Norm();
-  }
-  setup.cruise_speed_mps = speed_mps;
-  setup.start_at_rest = true;
-  setup.follower = follower;
-  setup.max_time_s = 2.0 * length_m / speed_mps + 900.0;
-  SEAPLAN_ASSIGN_OR_RETURN(colav::EncounterOutcome out, colav::SimulateEncounter(setup));
+  SEAPLAN_ASSIGN_OR_RETURN(route::SailedTrack out,
+                           route::SailRoute(route, speed_mps, nullptr, &follower));
   Sailed s{out.arrived, std::numeric_limits<double>::infinity(), {}};
   if (std::getenv("ROUTE_PAIRS_DUMP") != nullptr) {
     std::printf("PAIR\n");
-    for (const EastNorth& p : setup.path) std::printf("R %.1f %.1f\n", p.east_m, p.north_m);
+    for (const EastNorth& p : route) std::printf("R %.1f %.1f\n", p.east_m, p.north_m);
     for (const EastNorth& p : out.track) std::printf("T %.1f %.1f\n", p.east_m, p.north_m);
   }
   if (const std::optional<chart::Clearance> c = query.UnbufferedClearance(out.track)) {
@@ -134,8 +122,8 @@ SailTotals SailAll(const route::SweepResult& result, const std::string& chart_na
 
 int RunCase(const std::string& shared, const ChartCase& c, const route::SweepOptions& sweep,
             double turn_radius_m, bool fillet_turns, double fillet_radius_m,
-            double fillet_min_radius_m, const std::vector<colav::PathFollowerOptions>& followers,
-            bool verbose) {
+            double fillet_min_radius_m, bool sail_check,
+            const std::vector<colav::PathFollowerOptions>& followers, bool verbose) {
   chart::ChartOptions copt;
   copt.min_depth_m = c.min_depth_m;
   auto map = chart::LoadChartFile(shared + "/" + c.path, copt);
@@ -150,6 +138,7 @@ int RunCase(const std::string& shared, const ChartCase& c, const route::SweepOpt
   ropt.level2.fillet_turns = fillet_turns;
   if (fillet_radius_m > 0) ropt.level2.fillet_radius_m = fillet_radius_m;
   if (fillet_min_radius_m >= 0) ropt.level2.fillet_min_radius_m = fillet_min_radius_m;
+  ropt.level2.sail_check = sail_check;
   auto planner = route::RoutePlanner::Create(shared_map, route::ShipParticulars{}, ropt);
   if (!planner.ok()) {
     std::printf("%-10s planner failed: %s\n", c.name.c_str(), planner.status().ToString().c_str());
@@ -209,8 +198,7 @@ int RunCase(const std::string& shared, const ChartCase& c, const route::SweepOpt
   for (const colav::PathFollowerOptions& flagged : followers) {
     const std::string label =
         "look-ahead " + std::to_string(static_cast<int>(flagged.lookahead_m)) +
-        " m, wheel-over radius " + std::to_string(static_cast<int>(flagged.turn_radius_m)) +
-        " m, anticipation " + std::to_string(static_cast<int>(flagged.anticipation_m)) + " m";
+        " m, wheel-over radius " + std::to_string(static_cast<int>(flagged.turn_radius_m)) + " m";
     SailAll(*result, c.name, label, flagged, query, verbose);
   }
   const bool pass = result->routed == result->connected && result->within_margin == 0 &&
@@ -229,13 +217,13 @@ int main(int argc, char** argv) {
   bool verbose = false;
   double turn_radius_m = -1.0;  // the planner's default
   bool fillet_turns = true;
+  bool sail_check = true;
   double fillet_radius_m = 0.0;       // the planner's default
   double fillet_min_radius_m = -1.0;  // the planner's default
   // The sailings' path followers: the simulation client's with the flags'
   // look-ahead and each flagged wheel-over radius.
   double lookahead_m = 0.0;
   std::vector<double> wheel_over_radii_m;
-  std::vector<double> anticipations_m;
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--pairs" && i + 1 < argc) {
@@ -248,6 +236,8 @@ int main(int argc, char** argv) {
       min_depth_override = std::atof(argv[++i]);
     } else if (a == "--turn-radius" && i + 1 < argc) {
       turn_radius_m = std::atof(argv[++i]);
+    } else if (a == "--no-sail-check") {
+      sail_check = false;
     } else if (a == "--no-fillet") {
       fillet_turns = false;
     } else if (a == "--fillet-radius" && i + 1 < argc) {
@@ -258,8 +248,6 @@ int main(int argc, char** argv) {
       lookahead_m = std::atof(argv[++i]);
     } else if (a == "--wheel-over-radius" && i + 1 < argc) {
       wheel_over_radii_m.push_back(std::atof(argv[++i]));
-    } else if (a == "--anticipation" && i + 1 < argc) {
-      anticipations_m.push_back(std::atof(argv[++i]));
     } else if (a == "--verbose") {
       verbose = true;
     } else if (!a.empty() && a[0] != '-') {
@@ -270,24 +258,20 @@ int main(int argc, char** argv) {
           "usage: route_pairs_bench [shared_dir] [--pairs N] [--seed S] "
           "[--chart noaa|trondheim|alesund] [--min-depth M] [--turn-radius M] [--no-fillet] "
           "[--fillet-radius M] [--fillet-min-radius M] [--lookahead M] [--wheel-over-radius M] "
-          "[--anticipation M] [--verbose]\n");
+          "[--no-sail-check] [--verbose]\n");
       return 2;
     }
   }
   std::vector<colav::PathFollowerOptions> followers;
   const colav::PathFollowerOptions sim_follower = colav::EncounterSetup{}.follower;
-  if (lookahead_m > 0 || !wheel_over_radii_m.empty() || !anticipations_m.empty()) {
-    if (wheel_over_radii_m.empty()) wheel_over_radii_m.push_back(sim_follower.turn_radius_m);
-    if (anticipations_m.empty()) anticipations_m.push_back(sim_follower.anticipation_m);
+  if (lookahead_m > 0 && wheel_over_radii_m.empty()) {
+    wheel_over_radii_m.push_back(sim_follower.turn_radius_m);
   }
   for (double r : wheel_over_radii_m) {
-    for (double ant : anticipations_m) {
-      colav::PathFollowerOptions f = sim_follower;
-      if (lookahead_m > 0) f.lookahead_m = lookahead_m;
-      f.turn_radius_m = r;
-      f.anticipation_m = ant;
-      followers.push_back(f);
-    }
+    colav::PathFollowerOptions f = sim_follower;
+    if (lookahead_m > 0) f.lookahead_m = lookahead_m;
+    f.turn_radius_m = r;
+    followers.push_back(f);
   }
   log::SetLevel(log::Level::kWarn);
   // Drafts: the NOAA call that used to fail (8 m), the same for Trondheim,
@@ -303,8 +287,9 @@ int main(int argc, char** argv) {
   for (ChartCase c : cases) {
     if (!only.empty() && c.name != only) continue;
     if (min_depth_override > 0) c.min_depth_m = min_depth_override;
-    status = std::max(status, RunCase(shared, c, sweep, turn_radius_m, fillet_turns,
-                                      fillet_radius_m, fillet_min_radius_m, followers, verbose));
+    status =
+        std::max(status, RunCase(shared, c, sweep, turn_radius_m, fillet_turns, fillet_radius_m,
+                                 fillet_min_radius_m, sail_check, followers, verbose));
   }
   return status;
 }

@@ -9,11 +9,11 @@ namespace seaplan::colav {
 
 Status PathFollowerOptions::Validate() const {
   if (!(lookahead_m > 0) || !(switch_distance_m >= 0) || !(search_distance_m >= 0) ||
-      !(turn_radius_m >= 0) || !(anticipation_m >= 0)) {
-    return absl::InvalidArgumentError(absl::StrFormat(
-        "path follower: lookahead_m (%g) must be > 0, switch_distance_m (%g), "
-        "search_distance_m (%g), turn_radius_m (%g) and anticipation_m (%g) >= 0",
-        lookahead_m, switch_distance_m, search_distance_m, turn_radius_m, anticipation_m));
+      !(turn_radius_m >= 0)) {
+    return absl::InvalidArgumentError(
+        absl::StrFormat("path follower: lookahead_m (%g) must be > 0, switch_distance_m (%g), "
+                        "search_distance_m (%g) and turn_radius_m (%g) >= 0",
+                        lookahead_m, switch_distance_m, search_distance_m, turn_radius_m));
   }
   return absl::OkStatus();
 }
@@ -46,11 +46,9 @@ PathFollower::PathFollower(std::vector<EastNorth> path, const PathFollowerOption
     start_distance_[i] = start_distance_[i - 1] + (path_[i] - path_[i - 1]).Norm();
   }
   wheel_over_m_.assign(path_.size() - 1, options_.switch_distance_m);
-  turn_rad_.assign(path_.size(), 0.0);
   for (size_t i = 0; i + 2 < path_.size(); ++i) {
-    turn_rad_[i + 1] = std::remainder(
-        CourseOf(path_[i + 2] - path_[i + 1]) - CourseOf(path_[i + 1] - path_[i]), 2.0 * M_PI);
-    const double turn = std::abs(turn_rad_[i + 1]);
+    const double turn = std::abs(std::remainder(
+        CourseOf(path_[i + 2] - path_[i + 1]) - CourseOf(path_[i + 1] - path_[i]), 2.0 * M_PI));
     // Capped below a right angle's tangent (a sharper corner is sailed
     // round anyway).
     const double w = options_.turn_radius_m * std::tan(std::min(turn, 0.45 * M_PI) / 2.0);
@@ -103,20 +101,6 @@ double PathFollower::Update(EastNorth here) {
   cross_track_m_ = (here - a).Dot({d.north_m / len, -d.east_m / len});
   leg_remaining_m_ = len - Along(leg_, here);
   double c = alpha - std::atan(cross_track_m_ / options_.lookahead_m);
-  if (options_.anticipation_m > 0) {
-    double lead = 0.0;
-    for (int k = leg_ + 1; k <= last; ++k) {
-      const double ahead = std::max(0.0, start_distance_[k] - s_here);
-      if (ahead >= options_.anticipation_m) break;
-      // Only the corners the wheel-over does not start early (a fillet's,
-      // a few degrees each): a sharp corner anticipated as well would be
-      // cut towards what it turns round.
-      if (wheel_over_m_[k - 1] > options_.switch_distance_m) continue;
-      lead += turn_rad_[k] * (1.0 - ahead / options_.anticipation_m);
-    }
-    // Bounded like the wheel-over: a path that doubles back is sailed round.
-    c += std::clamp(lead, -0.45 * M_PI, 0.45 * M_PI);
-  }
   c = std::fmod(c, 2.0 * M_PI);
   return c < 0 ? c + 2.0 * M_PI : c;
 }

@@ -5,8 +5,6 @@
 #include <cmath>
 #include <vector>
 
-#include "seaplan/colav/encounter_sim.h"
-
 namespace seaplan::colav {
 namespace {
 
@@ -86,38 +84,6 @@ TEST(PathFollowerTest, WheelOverStartsTheTurnBeforeTheCorner) {
   EXPECT_LT(wheel->Update({1800, 0}), M_PI / 2);  // turning left of east, towards north
   PathFollowerOptions bad;
   bad.turn_radius_m = -1;
-  EXPECT_FALSE(bad.Validate().ok());
-}
-
-TEST(PathFollowerTest, AnticipationHoldsTheHullOnAFillet) {
-  // A route's fillet: 90 deg round a 300 m circle in 15 deg steps (78 m
-  // apart) between 1.5 km legs, sailed by the hull under its autopilot.
-  // Each step is too small for the wheel-over, so without anticipation the
-  // follower steers each chord's course and the yaw-damped autopilot lags
-  // the arc, swinging wide; the corners ahead leading the course keep the
-  // hull near the arc.
-  std::vector<EastNorth> path = {{0, -1500}, {0, 0}};
-  const double r = 300.0, step = 15.0 * M_PI / 180.0;
-  // Vertices on the circle centred at (r, 0), from its west point north-about.
-  for (int k = 1; k <= 6; ++k) {
-    const double a = M_PI - k * step;
-    path.push_back({r + r * std::cos(a), r * std::sin(a)});
-  }
-  path.push_back({r + 1500, r});
-  auto max_deviation = [&](double anticipation_m) {
-    EncounterSetup setup;
-    setup.path = path;
-    setup.follower.anticipation_m = anticipation_m;
-    auto out = SimulateEncounter(setup);
-    EXPECT_TRUE(out.ok()) << out.status();
-    EXPECT_TRUE(out->arrived);
-    return out->max_path_deviation_m;
-  };
-  const double without = max_deviation(0.0);
-  const double with = max_deviation(300.0);
-  EXPECT_LT(with, 0.7 * without) << with << " vs " << without;  // 180 vs 292 m
-  PathFollowerOptions bad;
-  bad.anticipation_m = -1;
   EXPECT_FALSE(bad.Validate().ok());
 }
 

@@ -13,6 +13,7 @@
 #include "absl/strings/str_cat.h"
 #include "nlopt.hpp"
 #include "seaplan/common/log.h"
+#include "seaplan/route/sail_check.h"
 #include "seaplan/route/turn_fillet.h"
 #include "seaplan/ship/hull_dynamics.h"
 
@@ -473,6 +474,20 @@ Repair RepairRoute(const ObstacleField& field, const std::vector<EastNorth>& ref
   return r;
 }
 
+// Step 6: sails the candidate route's waypoints in the closed loop.
+StatusOr<SailedTrack> SailCandidate(const std::vector<WaypointTask>& tasks,
+                                    const Level2Options& options, const ObstacleField& field) {
+  std::vector<EastNorth> line;
+  line.reserve(tasks.size());
+  for (const WaypointTask& t : tasks) line.push_back(t.position);
+  return SailRoute(line, options.sail_speed_mps, &field);
+}
+
+// The track arrives and never enters the (buffered) obstacles.
+bool SailedClear(const SailedTrack& s) {
+  return s.arrived && !s.touches && s.clearance_m > 0.0;
+}
+
 // The Level-1 vertices strictly between arc lengths s0 < s1 of `line`.
 std::vector<EastNorth> VerticesBetween(const std::vector<EastNorth>& line, double s0, double s1) {
   std::vector<EastNorth> out;
@@ -556,6 +571,10 @@ absl::Status Level2Options::Validate() const {
     return absl::InvalidArgumentError("threads must be in [1, 256]");
   if (!(turn_radius_m >= 0.0 && turn_radius_m < 1e5)) {
     return absl::InvalidArgumentError("turn_radius_m must be in [0, 1e5)");
+  }
+  if (!(sail_speed_mps > 0.0 && sail_speed_mps < 50.0)) {
+    return absl::InvalidArgumentError(
+        absl::StrCat("sail_speed_mps must be in (0, 50), got ", sail_speed_mps));
   }
   // Checked whether or not the fillets are on (a bad value is an error, not
   // silently unused); radius 0 (fillets off with the turn check) is checked
@@ -719,9 +738,8 @@ StatusOr<Level2Result> OptimizeLevel2(const Level2Problem& problem, const Level2
       positions[k] = route[k].position;
     }
     const Repair repair = RepairRoute(field, refs, options.turn_radius_m, &positions);
-    out.snapped_waypoints = repair.snapped_count;
-    bool changed = repair.snapped_count > 0 || repair.followed_count > 0;
     std::vector<WaypointTask> repaired;
+    int repaired_inserted = 0;
     {
       const std::vector<EastNorth>& line = problem.alternatives[a];
       double total = 0.0;
@@ -740,40 +758,129 @@ StatusOr<Level2Result> OptimizeLevel2(const Level2Problem& problem, const Level2
           inserted.refs.movable = false;  // a Level-1 vertex, not optimised
           inserted.position = v;
           repaired.push_back(inserted);
-          ++out.inserted_waypoints;
+          ++repaired_inserted;
         }
       }
     }
-    // Step 5: corners the hull cannot sail become fillets (turn_fillet.h).
-    if (options.FilletsOn()) {
+    // Step 6's fallback: the Level-1 polyline itself, none of it optimised.
+    auto level1_tasks = [&]() {
+      const std::vector<EastNorth>& line = problem.alternatives[a];
+      std::vector<WaypointTask> tasks_l1;
+      tasks_l1.push_back(route.front());
+      tasks_l1.back().position = line.front();
+      tasks_l1.back().evaluations = 0;
+      for (size_t i = 1; i + 1 < line.size(); ++i) {
+        WaypointTask v;
+        v.alt = static_cast<int>(a);
+        v.k = 0;
+        v.refs.ref = line[i];
+        v.refs.movable = false;
+        v.position = line[i];
+        tasks_l1.push_back(v);
+      }
+      tasks_l1.push_back(route.back());
+      tasks_l1.back().position = line.back();
+      tasks_l1.back().evaluations = 0;
+      return tasks_l1;
+    };
+    // A candidate route: its waypoints, optionally filleted (step 5).
+    struct Candidate {
+      RouteSource source = RouteSource::kOptimised;
+      std::vector<WaypointTask> tasks;
+      bool changed = false;
+      int snapped = 0, inserted = 0, filleted = 0, tightened = 0;
+      std::vector<UnsailableTurn> unsailable;
+    };
+    auto make_candidate = [&](RouteSource source, std::vector<WaypointTask> waypoints, bool changed,
+                              int snapped, int inserted,
+                              const TurnFilletOptions* fillet_options) -> StatusOr<Candidate> {
+      Candidate c{source, std::move(waypoints), changed, snapped, inserted, 0, 0, {}};
+      if (fillet_options == nullptr) return c;
       std::vector<EastNorth> line;
-      line.reserve(repaired.size());
-      for (const WaypointTask& t : repaired) line.push_back(t.position);
-      SEAPLAN_ASSIGN_OR_RETURN(FilletRoute filleted, FilletTurns(field, line, fillet));
-      out.filleted_turns = filleted.filleted;
-      out.tightened_turns = filleted.tightened;
-      out.unsailable_turns = std::move(filleted.unsailable);
-      if (filleted.filleted > 0) {
-        std::vector<WaypointTask> smooth;
-        smooth.reserve(filleted.points.size());
-        for (const FilletPoint& p : filleted.points) {
-          if (p.source >= 0) {
-            smooth.push_back(repaired[p.source]);
-            continue;
-          }
-          WaypointTask inserted;
-          inserted.alt = static_cast<int>(a);
-          inserted.k = smooth.back().k;
-          inserted.refs.ref = p.position;
-          inserted.refs.movable = false;  // a vertex of a fillet, not optimised
-          inserted.position = p.position;
-          smooth.push_back(inserted);
-          ++out.inserted_waypoints;
+      line.reserve(c.tasks.size());
+      for (const WaypointTask& t : c.tasks) line.push_back(t.position);
+      SEAPLAN_ASSIGN_OR_RETURN(FilletRoute filleted, FilletTurns(field, line, *fillet_options));
+      c.filleted = filleted.filleted;
+      c.tightened = filleted.tightened;
+      c.unsailable = std::move(filleted.unsailable);
+      if (filleted.filleted == 0) return c;
+      std::vector<WaypointTask> smooth;
+      smooth.reserve(filleted.points.size());
+      for (const FilletPoint& p : filleted.points) {
+        if (p.source >= 0) {
+          smooth.push_back(c.tasks[p.source]);
+          continue;
         }
-        repaired = std::move(smooth);
-        changed = true;
+        WaypointTask inserted_task;
+        inserted_task.alt = static_cast<int>(a);
+        inserted_task.k = smooth.back().k;
+        inserted_task.refs.ref = p.position;
+        inserted_task.refs.movable = false;  // a vertex of a fillet, not optimised
+        inserted_task.position = p.position;
+        smooth.push_back(inserted_task);
+        ++c.inserted;
       }
+      c.tasks = std::move(smooth);
+      c.changed = true;
+      return c;
+    };
+    const bool repair_changed = repair.snapped_count > 0 || repair.followed_count > 0;
+    // Step 5: corners the hull cannot sail become fillets (turn_fillet.h).
+    SEAPLAN_ASSIGN_OR_RETURN(
+        Candidate chosen_candidate,
+        make_candidate(RouteSource::kOptimised, repaired, repair_changed, repair.snapped_count,
+                       repaired_inserted, options.FilletsOn() ? &fillet : nullptr));
+    // Step 6: the candidate is sailed in the closed loop; while its track
+    // enters the obstacles' buffer, the next candidate (see the header).
+    if (options.sail_check) {
+      SEAPLAN_ASSIGN_OR_RETURN(SailedTrack sailed,
+                               SailCandidate(chosen_candidate.tasks, options, field));
+      const int level1_vertices = static_cast<int>(problem.alternatives[a].size()) - 2;
+      // The fillets on a wider circle: the hull under its autopilot turns
+      // wider than the fillet radius on a run of small corners.
+      TurnFilletOptions wider = fillet;
+      wider.radius_m = 1.5 * fillet.radius_m;
+      wider.min_radius_m = fillet.min_radius_m > 0.0 ? fillet.radius_m : 0.0;
+      const bool fillets = options.FilletsOn();
+      for (int next = 0; !SailedClear(sailed) && next < 5; ++next) {
+        StatusOr<Candidate> c = absl::InternalError("unset");
+        if (next == 0 || next == 3) {  // the same route with its corners sharp
+          if (!fillets) continue;
+          c = next == 0 ? make_candidate(RouteSource::kOptimisedSharp, repaired, repair_changed,
+                                         repair.snapped_count, repaired_inserted, nullptr)
+                        : make_candidate(RouteSource::kLevel1Sharp, level1_tasks(), true, n - 1,
+                                         level1_vertices, nullptr);
+        } else if (next == 1 || next == 4) {  // the fillets on the wider circle
+          if (!fillets) continue;
+          c = next == 1 ? make_candidate(RouteSource::kOptimised, repaired, repair_changed,
+                                         repair.snapped_count, repaired_inserted, &wider)
+                        : make_candidate(RouteSource::kLevel1, level1_tasks(), true, n - 1,
+                                         level1_vertices, &wider);
+        } else {
+          c = make_candidate(RouteSource::kLevel1, level1_tasks(), true, n - 1, level1_vertices,
+                             fillets ? &fillet : nullptr);
+        }
+        if (!c.ok()) return c.status();
+        SEAPLAN_ASSIGN_OR_RETURN(SailedTrack s, SailCandidate(c->tasks, options, field));
+        if (SailedClear(s) || s.clearance_m > sailed.clearance_m) {
+          sailed = std::move(s);
+          chosen_candidate = std::move(*c);
+        }
+      }
+      out.sail_checked = true;
+      out.sailed_clear = SailedClear(sailed);
+      out.sailed_arrived = sailed.arrived;
+      out.sailed_clearance_m = sailed.clearance_m;
+      out.sailed_closest = sailed.closest;
     }
+    out.source = chosen_candidate.source;
+    out.snapped_waypoints = chosen_candidate.snapped;
+    out.inserted_waypoints = chosen_candidate.inserted;
+    out.filleted_turns = chosen_candidate.filleted;
+    out.tightened_turns = chosen_candidate.tightened;
+    out.unsailable_turns = std::move(chosen_candidate.unsailable);
+    const bool changed = chosen_candidate.changed;
+    repaired = std::move(chosen_candidate.tasks);
     if (changed) {
       // Inserted vertices: neighbours and drift heading along the repaired
       // route. The others keep their references (their cost terms are
@@ -836,8 +943,10 @@ StatusOr<Level2Result> OptimizeLevel2(const Level2Problem& problem, const Level2
     out.expected_cost = out.grounding_cost + out.mso_cost + out.switching_cost;
     out.objective = out.expected_cost + out.path_cost;
     result.evaluations += out.evaluations;
-    if (!out.crosses_obstacle && out.expected_cost < best) {
-      best = out.expected_cost;
+    // A route whose sailed track keeps clear beats any that does not.
+    const double rank = out.expected_cost + (out.sail_checked && !out.sailed_clear ? 1e300 : 0.0);
+    if (!out.crosses_obstacle && (rank < best || result.chosen < 0)) {
+      best = rank;
       result.chosen = static_cast<int>(a);
     }
   }

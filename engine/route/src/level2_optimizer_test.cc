@@ -2,7 +2,10 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+
+#include "seaplan/route/sail_check.h"
 
 namespace seaplan::route {
 namespace {
@@ -214,6 +217,75 @@ TEST(Level2OptimizerTest, Level1CornersBecomeFilletsTheHullCanSail) {
   // ~90 deg (a little more once the corner moves out) in steps of <= 15 deg.
   EXPECT_GE(near_corner, 6);
   EXPECT_LE(near_corner, 7);
+}
+
+TEST(Level2OptimizerTest, SailCheckKeepsACandidateWhoseTrackStaysOutOfTheObstacles) {
+  // The corner of the test above, on the default 450 m fillets. Sailed in
+  // the closed loop the hull swings wide of the fillet; a rock put where it
+  // swings widest (off the fillet's polyline) is hit by the track of that
+  // route, so step 6 keeps another candidate, whose track misses it.
+  auto s = MakeScenario();
+  s->problem.alternatives = {{{-2000, 260}, {860, 260}, {860, -1400}}};
+  Level2Options o;
+  o.segments = 2;
+  o.pso.particles = 1;
+  o.pso.iterations = 0;
+  o.polish.max_evaluations = 0;
+  auto polyline = [](const AlternativeResult& alt) {
+    std::vector<EastNorth> line;
+    for (const WaypointResult& w : alt.waypoints) line.push_back(w.position);
+    return line;
+  };
+  o.sail_check = false;
+  auto unchecked = OptimizeLevel2(s->problem, o);
+  ASSERT_TRUE(unchecked.ok()) << unchecked.status();
+  EXPECT_FALSE(unchecked->alternatives[0].sail_checked);
+  const std::vector<EastNorth> route = polyline(unchecked->alternatives[0]);
+  auto sailed = SailRoute(route, o.sail_speed_mps, nullptr);
+  ASSERT_TRUE(sailed.ok()) << sailed.status();
+  EastNorth widest;
+  double widest_m = 0.0;
+  for (const EastNorth& p : sailed->track) {
+    double d = 1e300;
+    for (size_t k = 1; k < route.size(); ++k) {
+      const EastNorth a = route[k - 1], ab = route[k] - a;
+      const double t = std::clamp((p - a).Dot(ab) / ab.Dot(ab), 0.0, 1.0);
+      d = std::min(d, Distance(p, a + ab * t));
+    }
+    if (d > widest_m) {
+      widest_m = d;
+      widest = p;
+    }
+  }
+  EXPECT_GT(widest_m, 100.0);  // 284 m
+  ObstacleFieldOptions fo;
+  fo.far_cutoff_m = 750;
+  auto field = ObstacleField::Build(
+      {Island(), ObstaclePolygon{{{{widest.east_m - 15, widest.north_m - 15},
+                                   {widest.east_m + 15, widest.north_m - 15},
+                                   {widest.east_m + 15, widest.north_m + 15},
+                                   {widest.east_m - 15, widest.north_m + 15}}}}},
+      {-2500, -1500}, {2500, 1500}, fo);
+  ASSERT_TRUE(field.ok()) << field.status();
+  for (size_t k = 1; k < route.size(); ++k)
+    EXPECT_FALSE(field->SegmentHits(route[k - 1], route[k]));
+  auto hit = SailRoute(route, o.sail_speed_mps, &*field);
+  ASSERT_TRUE(hit.ok()) << hit.status();
+  EXPECT_TRUE(hit->touches);
+  s->problem.field = &*field;
+  o.sail_check = true;
+  auto r = OptimizeLevel2(s->problem, o);
+  ASSERT_TRUE(r.ok()) << r.status();
+  const AlternativeResult& alt = r->alternatives[0];
+  EXPECT_EQ(r->chosen, 0);
+  EXPECT_FALSE(alt.crosses_obstacle);
+  EXPECT_TRUE(alt.sail_checked);
+  EXPECT_TRUE(alt.sailed_clear);
+  EXPECT_NE(alt.source, RouteSource::kOptimised);  // the sharp corner: 21 m off the rock
+  auto kept = SailRoute(polyline(alt), o.sail_speed_mps, &*field);
+  ASSERT_TRUE(kept.ok()) << kept.status();
+  EXPECT_FALSE(kept->touches);
+  EXPECT_NEAR(kept->clearance_m, alt.sailed_clearance_m, 1e-6);
 }
 
 TEST(Level2OptimizerTest, RobustModeOnDownwindShoreSegmentAndSaferAlternativeChosen) {

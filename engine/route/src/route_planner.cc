@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "absl/strings/str_cat.h"
+#include "absl/strings/str_format.h"
 #include "seaplan/common/log.h"
 #include "seaplan/ship/steady_state.h"
 
@@ -280,6 +281,17 @@ StatusOr<RouteResult> RoutePlanner::Plan(EastNorth start, EastNorth goal, const 
                        " cannot be sailed on ", circle, ": ",
                        t.legs_too_short ? "the legs either side are too short for it"
                                         : "the water is too narrow for it"));
+    }
+    if (src.sail_checked && !src.sailed_clear) {
+      // The closed loop's track (step 6 of level2_optimizer.h): no candidate
+      // route kept it out of the buffered obstacles.
+      alt.warnings.push_back(absl::StrFormat(
+          "the track this hull sails on the route (from rest at %.1f m/s) %s near %s",
+          options_.level2.sail_speed_mps,
+          src.sailed_arrived ? absl::StrFormat("comes within the %.0f m safety margin",
+                                               map_->summary().options.safety_buffer_m)
+                             : std::string("does not reach the goal"),
+          chart::FormatLatLon(map_->frame().ToLatLon(ToLocal(src.sailed_closest)))));
     }
     for (size_t k = 0; k < src.waypoints.size(); ++k) {
       const WaypointResult& wr = src.waypoints[k];

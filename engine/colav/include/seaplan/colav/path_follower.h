@@ -38,16 +38,6 @@ struct PathFollowerOptions {
   // so its arc meets both legs instead of overshooting the corner outwards
   // by about R (0: only switch_distance_m).
   double turn_radius_m = 0.0;
-  // Turn anticipation: an autopilot that damps the yaw rate keeps the hull
-  // turning only while the commanded course leads its heading, so on a
-  // path that curves (a fillet's run of small corners every ~60 m) a
-  // follower that steers each leg's course lags the arc by hundreds of
-  // metres. The corners ahead within this path distance whose wheel-over
-  // is no more than switch_distance_m (the sharper ones are started early
-  // by the wheel-over instead) add their course change, each weighted by
-  // 1 - distance / anticipation_m: on an arc of curvature k a lead of
-  // k * anticipation_m / 2 (0: off).
-  double anticipation_m = 0.0;
   Status Validate() const;
 };
 
@@ -80,7 +70,6 @@ class PathFollower {
   double cross_track_m_ = 0.0;
   double leg_remaining_m_ = 0.0;
   std::vector<double> wheel_over_m_;  // per leg: switch this far before its end
-  std::vector<double> turn_rad_;      // per point: signed course change there (clockwise > 0)
   double max_wheel_over_m_ = 0.0;
 };
 

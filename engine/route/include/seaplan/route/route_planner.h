@@ -114,7 +114,9 @@ struct RouteAlternative {
   int inserted_waypoints = 0;
   // Corners replaced by fillets round the ship's turning circle
   // (Level2Options::fillet_turns), and one warning per corner the hull
-  // cannot sail that could not be (where, how sharp, why).
+  // cannot sail that could not be (where, how sharp, why), and one when
+  // the track the hull sails on the route comes within the safety margin
+  // (Level2Options::sail_check; where).
   int filleted_turns = 0;
   int tightened_turns = 0;  // of those, on a circle smaller than the fillet radius
   std::vector<std::string> warnings;
