@@ -180,7 +180,8 @@ PlannerRun::Outcome PlannerRun::Poll(const LazySearch& search) {
     return Outcome::kStop;
   }
   if ((steps_ & 15) == 0) {
-    const std::size_t bytes = registry_.MemoryBytes() + search.MemoryBytes();
+    const std::size_t bytes = registry_.MemoryBytes() + search.MemoryBytes() +
+                              timeline_.MemoryBytes() + plan_timeline_.MemoryBytes();
     const std::size_t mb = bytes >> 20;
     best_.stats.peak_memory_mb = std::max(best_.stats.peak_memory_mb, mb);
     if (mb >= options_.memory_limit_mb) return Outcome::kMemout;
