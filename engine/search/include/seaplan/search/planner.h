@@ -86,7 +86,8 @@ struct PlannerOptions {
   // search switches to its second configuration after
   // second_greedy_after_share of this budget instead of the wall time.
   double cpu_time_limit_s = 0;
-  // Budget for the planner's own data (states, open lists, side tables), MB (> 0).
+  // Budget for the planner's own data (states, open lists, side tables,
+  // the schedule's network), MB (> 0).
   std::size_t memory_limit_mb = 2048;
   // Most actions running at once; 0 = unbounded. Smaller values shrink the
   // search space but can make required-concurrency tasks unsolvable.
