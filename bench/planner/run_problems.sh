@@ -13,7 +13,10 @@
 # prints no status or counters (the row says `none`), and no plan: so a run
 # that has reported its first plan (`--stream`) is not interrupted but left
 # to finish the bounded searches that may shorten it (its cpu_s can then
-# exceed S; the first plan came within S).
+# exceed S; the first plan came within S). S is also passed to `seaplan plan
+# --cpu-limit`, so that its switch to the second first-plan search comes at
+# S/2 of CPU time, as in a run of S s on a core of its own, not at half the
+# wall limit.
 #
 # usage: run_problems.sh SEAPLAN [--time-limit 60] [--memory-limit 2048] [--cpu-limit S]
 #            [--bench DIR] PROBLEM...    (PROBLEM: domain/pNN, e.g. storage-2011/p01)
@@ -50,7 +53,8 @@ for p in "${problems[@]}"; do
   rm -f "$work/plan"
   : >"$work/err"
   nice /usr/bin/time -f '%e %M %U %S' -o "$work/time" "$exe" plan "$domain" "$dir/$name.pddl" \
-    --no-anytime --stream --time-limit "$time_s" --memory-limit "$memory_mb" -o "$work/plan" \
+    --no-anytime --stream --time-limit "$time_s" --memory-limit "$memory_mb" --cpu-limit "$cpu_s" \
+    -o "$work/plan" \
     >"$work/out" 2>"$work/err" &
   runner=$!
   if [[ $cpu_s != 0 ]]; then stop_at_cpu_limit "$runner"; fi

@@ -74,6 +74,10 @@ absl::StatusOr<search::PlannerOptions> ToEngine(const v1::PlannerOptions& o) {
   if (o.random_seed() != 0) p.random_seed = o.random_seed();
   if (o.epsilon_s() != 0) p.epsilon_s = o.epsilon_s();
   p.max_expansions = o.max_expansions();
+  if (o.has_cpu_time_limit()) {
+    SEAPLAN_ASSIGN_OR_RETURN(p.cpu_time_limit_s,
+                             DurationSeconds(o.cpu_time_limit(), "options.cpu_time_limit"));
+  }
   absl::Status valid = p.Validate();
   if (!valid.ok()) return absl::InvalidArgumentError(absl::StrCat("options: ", valid.message()));
   return p;

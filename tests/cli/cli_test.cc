@@ -101,6 +101,24 @@ TEST(CliInProcessTest, MaxExpansionsLimitsTheSearch) {
   EXPECT_NE(bad.err.find("expected a whole number >= 0, got -3"), std::string::npos) << bad.err;
 }
 
+// --cpu-limit reaches the planner: 0.2 s of CPU time do not solve the
+// 22-bit toggle task, and the status names the limit; a negative limit is
+// a usage error.
+TEST(CliInProcessTest, CpuLimitLimitsTheSearch) {
+  const auto testdata = SourceDir() / "engine/search/testdata";
+  auto few = RunSeaplan({"plan", (testdata / "toggle-domain.pddl").string(),
+                         (testdata / "toggle-22.pddl").string(), "--time-limit", "60",
+                         "--cpu-limit", "0.2"});
+  EXPECT_EQ(few.exit_code, 1) << few.out << few.err;
+  EXPECT_NE(few.out.find("CPU time limit (0.2 s) reached before a plan was found"),
+            std::string::npos)
+      << few.out;
+  auto bad =
+      RunSeaplan({"plan", Example("domain.pddl"), Example("case-a.pddl"), "--cpu-limit", "-3"});
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("--cpu-limit"), std::string::npos) << bad.err;
+}
+
 TEST(CliInProcessTest, InvalidPlanExitsOneAndNamesTheFailure) {
   auto result = RunSeaplan(
       {"validate", Example("domain.pddl"), Example("case-a.pddl"), Example("case-a-paper.plan")});

@@ -109,6 +109,7 @@ struct PlanArgs {
   std::uint64_t seed = 1;
   double epsilon_s = 0;
   std::uint64_t max_expansions = 0;
+  double cpu_limit_s = 0;
 };
 
 int RunPlan(const GlobalOptions& options, const PlanArgs& args) {
@@ -127,6 +128,11 @@ int RunPlan(const GlobalOptions& options, const PlanArgs& args) {
   planner->set_random_seed(args.seed);
   planner->set_epsilon_s(args.epsilon_s);
   planner->set_max_expansions(args.max_expansions);
+  if (args.cpu_limit_s > 0) {
+    const auto cpu_ms = static_cast<std::int64_t>(args.cpu_limit_s * 1000);
+    planner->mutable_cpu_time_limit()->set_seconds(cpu_ms / 1000);
+    planner->mutable_cpu_time_limit()->set_nanos(static_cast<int>((cpu_ms % 1000) * 1000000));
+  }
 
   auto backend = MakeBackend(options);
   v1::PlanResponse response;
@@ -757,6 +763,10 @@ int RunCli(int argc, char** argv, const CliExecutable& executable) {
           },
           "UINT"))
       ->capture_default_str();
+  plan_cmd
+      ->add_option("--cpu-limit", plan.cpu_limit_s,
+                   "CPU time limit of the search (s), the same work under any load (0: none)")
+      ->check(CLI::NonNegativeNumber);
   plan_cmd->add_flag("--no-anytime", plan.no_anytime, "Stop at the first plan");
   plan_cmd->add_option("--seed", plan.seed, "Random seed")->capture_default_str();
   plan_cmd->add_option("--epsilon", plan.epsilon_s,

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <memory>
 
 #include "absl/strings/str_cat.h"
@@ -47,6 +48,11 @@ absl::Status PlannerOptions::Validate() const {
         "time_limit_s must be a positive finite number of seconds, got ", time_limit_s));
   }
   if (memory_limit_mb == 0) return absl::InvalidArgumentError("memory_limit_mb must be > 0");
+  if (!(cpu_time_limit_s >= 0) || !std::isfinite(cpu_time_limit_s)) {
+    return absl::InvalidArgumentError(
+        absl::StrCat("cpu_time_limit_s must be a finite number of seconds >= 0 (0 = none), got ",
+                     cpu_time_limit_s));
+  }
   if (max_concurrent_actions < 0) {
     return absl::InvalidArgumentError(absl::StrCat(
         "max_concurrent_actions must be >= 0 (0 = unbounded), got ", max_concurrent_actions));
@@ -65,6 +71,12 @@ absl::Status PlannerOptions::Validate() const {
 namespace {
 
 using Clock = std::chrono::steady_clock;
+
+double ThreadCpuSeconds() {
+  timespec t{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &t);
+  return static_cast<double>(t.tv_sec) + 1e-9 * static_cast<double>(t.tv_nsec);
+}
 
 double Seconds(Clock::time_point since) {
   return std::chrono::duration<double>(Clock::now() - since).count();
@@ -119,6 +131,7 @@ class PlannerRun {
   const PlanObserver* observer_;
   Clock::time_point start_ = Clock::now();
   Clock::time_point last_progress_ = Clock::now();
+  const double cpu_start_s_ = ThreadCpuSeconds();
   SnapTask snap_;
   StateRegistry registry_;
   RelaxedPlanHeuristic heuristic_;
@@ -133,6 +146,9 @@ class PlannerRun {
   SearchCounters done_counters_;  // of finished phases
   std::size_t steps_ = 0;
   bool expansion_limit_reached_ = false;
+  bool cpu_limit_reached_ = false;
+  // The search's CPU time so far (cpu_time_limit_s).
+  double CpuSeconds() const { return ThreadCpuSeconds() - cpu_start_s_; }
 };
 
 StateData PlannerRun::InitialState() const {
@@ -157,8 +173,15 @@ PlannerRun::Outcome PlannerRun::Poll(const LazySearch& search) {
     expansion_limit_reached_ = true;
     return Outcome::kStop;
   }
+  // A clock read costs about as much as a cheap expansion: every 256 steps.
+  if (options_.cpu_time_limit_s > 0 && (steps_ & 255) == 0 &&
+      CpuSeconds() >= options_.cpu_time_limit_s) {
+    cpu_limit_reached_ = true;
+    return Outcome::kStop;
+  }
   if ((steps_ & 15) == 0) {
-    const std::size_t bytes = registry_.MemoryBytes() + search.MemoryBytes();
+    const std::size_t bytes = registry_.MemoryBytes() + search.MemoryBytes() +
+                              timeline_.MemoryBytes() + plan_timeline_.MemoryBytes();
     const std::size_t mb = bytes >> 20;
     best_.stats.peak_memory_mb = std::max(best_.stats.peak_memory_mb, mb);
     if (mb >= options_.memory_limit_mb) return Outcome::kMemout;
@@ -287,7 +310,7 @@ PlanResult PlannerRun::Run() {
   // breaks ties newest first: the makespan order searches a plateau breadth
   // first, which is what leaves sokoban and rtam instances unsolved. Under an
   // expansion limit the share is of that limit, so that the clock decides
-  // nothing but the time limit.
+  // nothing but the time limit; under a CPU budget, of that budget.
   const Clock::time_point switch_at =
       start_ + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(
                    options_.time_limit_s * options_.second_greedy_after_share));
@@ -295,7 +318,11 @@ PlanResult PlannerRun::Run() {
       static_cast<double>(options_.max_expansions) * options_.second_greedy_after_share);
   auto switch_due = [&](const LazySearch& search) {
     if (options_.max_expansions > 0) return Expanded(search) >= switch_after_expansions;
-    return (steps_ & 255) == 0 && Clock::now() >= switch_at;
+    if ((steps_ & 255) != 0) return false;
+    if (options_.cpu_time_limit_s > 0) {
+      return CpuSeconds() >= options_.cpu_time_limit_s * options_.second_greedy_after_share;
+    }
+    return Clock::now() >= switch_at;
   };
   bool many_variants = false, newest_first = options_.second_greedy_after_share <= 0;
   while (true) {
@@ -325,6 +352,11 @@ PlanResult PlannerRun::Run() {
           return finish(PlanStatus::kTimeout,
                         absl::StrCat("expansion limit (", options_.max_expansions,
                                      ") reached before a plan was found"));
+        }
+        if (cpu_limit_reached_) {
+          return finish(PlanStatus::kTimeout,
+                        absl::StrCat("CPU time limit (", options_.cpu_time_limit_s,
+                                     " s) reached before a plan was found"));
         }
         return finish(stopped_status(), stop_.Reason() == StopReason::kCancelled
                                             ? "cancelled before a plan was found"

@@ -3,7 +3,9 @@
 #include <gtest/gtest.h>
 
 #include <chrono>
+#include <ctime>
 #include <filesystem>
+#include <limits>
 #include <thread>
 
 #include "seaplan/task/grounder.h"
@@ -70,6 +72,13 @@ TEST(PlannerTest, OptionsAreValidated) {
   EXPECT_FALSE(o.Validate().ok());
   o.second_greedy_after_share = -0.1;
   EXPECT_FALSE(o.Validate().ok());
+  o = {};
+  o.cpu_time_limit_s = -1;
+  EXPECT_FALSE(o.Validate().ok());
+  o.cpu_time_limit_s = std::numeric_limits<double>::infinity();
+  EXPECT_FALSE(o.Validate().ok());
+  o.cpu_time_limit_s = 0.5;
+  EXPECT_TRUE(o.Validate().ok());
   auto loaded = Load("match-domain.pddl", "match-problem.pddl");
   ASSERT_TRUE(loaded.task);
   o = {};
@@ -258,6 +267,28 @@ TEST(PlannerTest, ExpansionLimitEndsTheSearch) {
   const PlanResult r = Solve(domain, problem, o, StopToken());
   ASSERT_EQ(r.status, PlanStatus::kSolvedSatisficing) << r.message;
   EXPECT_EQ(r.stats.expanded, 2000u);
+  EXPECT_LT(r.stats.search_time_s, 60);
+}
+
+// The CPU budget ends the search whatever the wall limit: a thread that
+// runs 0.3 s of CPU time stops long before its 60 s, with kTimeout naming
+// the CPU limit, and has used that CPU time (not much more: the clock is
+// read every 256 steps).
+TEST(PlannerTest, CpuTimeLimitEndsTheSearch) {
+  auto hard = Load("toggle-domain.pddl", "toggle-22.pddl");
+  ASSERT_TRUE(hard.task);
+  PlannerOptions o = Quick(60);
+  o.cpu_time_limit_s = 0.3;
+  timespec before{}, after{};
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &before);
+  const PlanResult r = SolveTask(*hard.task, o, StopToken());
+  clock_gettime(CLOCK_THREAD_CPUTIME_ID, &after);
+  const double cpu_s = static_cast<double>(after.tv_sec - before.tv_sec) +
+                       1e-9 * static_cast<double>(after.tv_nsec - before.tv_nsec);
+  EXPECT_EQ(r.status, PlanStatus::kTimeout);
+  EXPECT_EQ(r.message, "CPU time limit (0.3 s) reached before a plan was found");
+  EXPECT_GE(cpu_s, 0.3);
+  EXPECT_LT(cpu_s, 2.0);
   EXPECT_LT(r.stats.search_time_s, 60);
 }
 

@@ -45,18 +45,31 @@ int Stn::BeginNode() {
   return v;
 }
 
+void Stn::Push(std::vector<Edge>& list, Edge edge) {
+  const std::size_t before = list.capacity();
+  list.push_back(edge);
+  edge_capacity_ += list.capacity() - before;
+}
+
+std::size_t Stn::MemoryBytes() const {
+  return edge_capacity_ * sizeof(Edge) +
+         (out_.capacity() + in_.capacity()) * sizeof(std::vector<Edge>) +
+         time_.capacity() * sizeof(double) + trail_.capacity() * sizeof(TrailEntry) +
+         (edge_log_.capacity() + queue_.capacity() + touches_.capacity()) * sizeof(std::int32_t);
+}
+
 void Stn::AddIncoming(int from, double weight) {
   const int v = num_nodes() - 1;
-  out_[from].push_back({v, weight});
+  Push(out_[from], {v, weight});
   edge_log_.push_back(from);
-  in_[v].push_back({from, weight});
+  Push(in_[v], {from, weight});
   if (time_[from] + weight > time_[v]) time_[v] = time_[from] + weight;
 }
 
 void Stn::AddOutgoing(int to, double weight) {
   const int v = num_nodes() - 1;
-  out_[v].push_back({to, weight});
-  in_[to].push_back({v, weight});
+  Push(out_[v], {to, weight});
+  Push(in_[to], {v, weight});
   edge_log_.push_back(~to);
 }
 

@@ -53,7 +53,15 @@ class Stn {
   Mark GetMark() const { return {trail_.size(), edge_log_.size(), time_.size()}; }
   void Undo(const Mark& mark);
 
+  // Heap bytes held, edge lists included: they keep their capacity through
+  // Undo and Reset, and on long paths whose events all wait for the same
+  // readers they are most of the search's memory.
+  std::size_t MemoryBytes() const;
+
  private:
+  // push_back that keeps edge_capacity_ up to date.
+  void Push(std::vector<Edge>& list, Edge edge);
+  std::size_t edge_capacity_ = 0;  // sum of the edge lists' capacities
   std::vector<double> time_;
   std::vector<bool> fixed_;
   std::vector<std::vector<Edge>> out_;

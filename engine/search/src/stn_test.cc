@@ -57,5 +57,28 @@ TEST(StnTest, PositiveCycleIsInconsistentAndUndoRestores) {
   EXPECT_TRUE(stn.FinishNode());
 }
 
+// The edge lists are counted at their capacity, which Undo and Reset keep:
+// a node waiting for 1,000 earlier ones holds 2,000 edges (each in two
+// lists) until the network is dropped.
+TEST(StnTest, MemoryBytesCountsEdgeListsAndKeepsThemAfterUndo) {
+  Stn stn;
+  stn.Reset();
+  for (int i = 0; i < 1000; ++i) {
+    stn.BeginNode();
+    ASSERT_TRUE(stn.FinishNode());
+  }
+  const std::size_t nodes_only = stn.MemoryBytes();
+  const auto mark = stn.GetMark();
+  stn.BeginNode();
+  for (int i = 1; i <= 1000; ++i) stn.AddIncoming(i, 1.0);
+  ASSERT_TRUE(stn.FinishNode());
+  const std::size_t with_edges = stn.MemoryBytes();
+  EXPECT_GE(with_edges - nodes_only, 2000 * sizeof(Stn::Edge));
+  stn.Undo(mark);
+  EXPECT_EQ(stn.MemoryBytes(), with_edges);
+  stn.Reset();
+  EXPECT_EQ(stn.MemoryBytes(), with_edges);
+}
+
 }  // namespace
 }  // namespace seaplan::search

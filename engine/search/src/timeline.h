@@ -56,6 +56,10 @@ class Timeline {
   // (no comparison of the shared prefix).
   bool Build(std::size_t keep, std::span<const Event> rest);
 
+  // Heap bytes of the schedule's network (the largest part of a timeline:
+  // its edge lists, kept at their largest size for reuse).
+  std::size_t MemoryBytes() const { return stn_.MemoryBytes(); }
+
   struct Outcome {
     double makespan_s = 0.0;     // latest action event time
     double lower_bound_s = 0.0;  // makespan, or later when running actions must still end

@@ -515,7 +515,24 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
   // started(a) new in its layer, end(a) applicable in the next one.
   bool skipped_pair = false, skipped_before = false;
   int skipped = 0;  // skipped_pairs_, kept in a register
+  auto numeric_goal_holds = [&]() {
+    for (const auto& c : goal.numeric) {
+      if (!Satisfiable(c, state, -1)) return false;
+    }
+    return true;
+  };
+  // Without numeric goals or agents' times, the extraction reads only the
+  // goal facts' achievers from the goal layer: once the last goal fact is
+  // reached, the rest of that layer's operators change nothing it reads.
+  const bool stop_at_last_goal = goal.numeric.empty() && !makespan_aware_;
   while (true) {
+    // Every goal fact reached by the previous layer: the operators these
+    // facts would enable are never part of the relaxed plan (its operators
+    // come before the goal layer), so the goal layer is not explored.
+    if (goals_left == 0 && numeric_goal_holds()) {
+      goal_layer = layer;
+      break;
+    }
     skipped_before = skipped_pair;
     skipped_pair = false;
     // Facts new at this layer enable operators. The hottest loop: raw
@@ -563,20 +580,6 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
         ++i;
       }
     }
-    // Goal reached?
-    bool goal_ok = goals_left == 0;
-    if (goal_ok) {
-      for (const auto& c : goal.numeric) {
-        if (!Satisfiable(c, state, -1)) {
-          goal_ok = false;
-          break;
-        }
-      }
-    }
-    if (goal_ok) {
-      goal_layer = layer;
-      break;
-    }
     // Apply this layer's new operators (facts) and all numeric effects.
     new_facts_.clear();
     const bool new_ops = processed_applicable < applicable_.size();
@@ -600,6 +603,11 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
         reach(add_[i], layer + 1, op, add_[i] < num_facts_ ? time_s : started_s);
       }
       if (has_num_eff_[op]) numeric_ops.push_back(op);
+      if (goals_left == 0 && stop_at_last_goal) break;
+    }
+    if (goals_left == 0 && stop_at_last_goal) {
+      goal_layer = layer + 1;
+      break;
     }
     bool widened = false;
     if (!numeric_ops.empty()) {

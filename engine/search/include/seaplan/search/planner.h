@@ -78,7 +78,16 @@ struct PlannerOptions {
   // switches to its second configuration after second_greedy_after_share of
   // these expansions instead of that share of the time.
   std::uint64_t max_expansions = 0;
-  // Budget for the planner's own data (states, open lists, side tables), MB (> 0).
+  // CPU budget, seconds of the calling thread's CPU time from the start of
+  // the search (after grounding); 0 = none. Reached, the search stops as at
+  // its time limit. Under load a wall-clock limit gives the search whatever
+  // share of a core it gets; this gives it the same work on a busy machine
+  // as on an idle one. When set (and max_expansions is not), the first-plan
+  // search switches to its second configuration after
+  // second_greedy_after_share of this budget instead of the wall time.
+  double cpu_time_limit_s = 0;
+  // Budget for the planner's own data (states, open lists, side tables,
+  // the schedule's network), MB (> 0).
   std::size_t memory_limit_mb = 2048;
   // Most actions running at once; 0 = unbounded. Smaller values shrink the
   // search space but can make required-concurrency tasks unsolvable.
@@ -91,7 +100,7 @@ struct PlannerOptions {
   std::uint64_t random_seed = 1;
   // Separation of interfering events, seconds (> 0, the validator's epsilon).
   double epsilon_s = 0.001;
-  // Share of time_limit_s (of max_expansions when that is set; in [0, 1])
+  // Share of time_limit_s (of max_expansions, else cpu_time_limit_s, when set; in [0, 1])
   // after which a first-plan search that has found nothing restarts with its
   // second configuration (plateaus searched newest first instead of by
   // makespan); 1 never switches.
