@@ -36,11 +36,9 @@ int CountBelow(const std::string& path, const char* layer, const char* field, do
     if (g == nullptr) continue;
     const auto t = wkbFlatten(g->getGeometryType());
     if (areas_only && t != wkbPolygon && t != wkbMultiPolygon) continue;
-    if (idx < 0) {
-      ++n;
-    } else if (!f->IsFieldSetAndNotNull(idx)) {
+    if (idx >= 0 && !f->IsFieldSetAndNotNull(idx)) {
       n += count_null ? 1 : 0;
-    } else if (f->GetFieldAsDouble(idx) < limit) {
+    } else if (idx < 0 || f->GetFieldAsDouble(idx) < limit) {
       ++n;
     }
   }
