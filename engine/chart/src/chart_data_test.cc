@@ -36,11 +36,9 @@ int CountBelow(const std::string& path, const char* layer, const char* field, do
     if (g == nullptr) continue;
     const auto t = wkbFlatten(g->getGeometryType());
     if (areas_only && t != wkbPolygon && t != wkbMultiPolygon) continue;
-    if (idx < 0) {
-      ++n;
-    } else if (!f->IsFieldSetAndNotNull(idx)) {
+    if (idx >= 0 && !f->IsFieldSetAndNotNull(idx)) {
       n += count_null ? 1 : 0;
-    } else if (f->GetFieldAsDouble(idx) < limit) {
+    } else if (idx < 0 || f->GetFieldAsDouble(idx) < limit) {
       ++n;
     }
   }
@@ -169,11 +167,12 @@ TEST(TrondheimGdb, ObstacleCountsAndRoute) {
 std::string ZipFolder(const std::filesystem::path& dir, const std::string& prefix) {
   static int n = 0;
   const std::string zip = "/vsimem/chart_data_test_" + std::to_string(++n) + ".zip";
+  const std::string entry_prefix = "/vsizip/" + zip + "/" + prefix;
   for (const auto& entry : std::filesystem::recursive_directory_iterator(dir)) {
     if (!entry.is_regular_file()) continue;
-    const std::string rel = prefix + std::filesystem::relative(entry.path(), dir).string();
+    const std::string rel = std::filesystem::relative(entry.path(), dir).string();
     const std::string bytes = testing::ReadFile(entry.path());
-    VSILFILE* f = VSIFOpenL(("/vsizip/" + zip + "/" + rel).c_str(), "wb");
+    VSILFILE* f = VSIFOpenL((entry_prefix + rel).c_str(), "wb");
     if (f == nullptr) return "";
     VSIFWriteL(bytes.data(), 1, bytes.size(), f);
     VSIFCloseL(f);

@@ -48,6 +48,7 @@ TEST(ChartGroundingTest, OriginShiftAndThreads) {
   EXPECT_TRUE(shifted.HullIntersects(risk::HullPolygon::Rectangle(0, 0, 0.0, 80, 16)));
   EXPECT_NEAR(shifted.Clearance(risk::HullPolygon::Rectangle(0, 150, 0.0, 80, 16)), 92.0, 1e-6);
   std::vector<std::thread> threads;
+  threads.reserve(4);
   std::vector<int> hits(4, 0);
   for (int t = 0; t < 4; ++t) {
     threads.emplace_back([&, t] {

@@ -42,8 +42,9 @@ double RectArea(const LocalFrame& f, double lon0, double lat0, double lon1, doub
 std::string MakeZip(const std::vector<std::pair<std::string, std::string>>& files) {
   static int n = 0;
   const std::string zip = "/vsimem/chart_loader_test_" + std::to_string(++n) + ".zip";
+  const std::string entry_prefix = "/vsizip/" + zip + "/";
   for (const auto& [name, bytes] : files) {
-    VSILFILE* f = VSIFOpenL(("/vsizip/" + zip + "/" + name).c_str(), "wb");
+    VSILFILE* f = VSIFOpenL((entry_prefix + name).c_str(), "wb");
     EXPECT_NE(f, nullptr);
     if (f == nullptr) return "";
     VSIFWriteL(bytes.data(), 1, bytes.size(), f);
@@ -269,7 +270,7 @@ std::filesystem::path WriteFileGdb(const std::filesystem::path& folder) {
   GDALAllRegister();
   GDALDriver* driver = GetGDALDriverManager()->GetDriverByName("OpenFileGDB");
   if (driver == nullptr) return {};
-  const std::filesystem::path gdb = folder / "Harbour.gdb";
+  std::filesystem::path gdb = folder / "Harbour.gdb";
   std::unique_ptr<GDALDataset> ds(
       driver->Create(gdb.string().c_str(), 0, 0, 0, GDT_Unknown, nullptr));
   if (!ds) return {};

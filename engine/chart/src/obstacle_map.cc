@@ -316,7 +316,7 @@ StatusOr<ObstacleMap> ObstacleMap::FromPolygons(std::vector<Polygon> obstacles, 
   }
   ObstacleSummary summary;
   summary.source_format = "polygons";
-  summary.features_per_layer[layer_name] = static_cast<int>(obstacles.size());
+  summary.features_per_layer[std::move(layer_name)] = static_cast<int>(obstacles.size());
   summary.options = options;
   if (coverage) {
     summary.coverage = *coverage;

@@ -259,11 +259,13 @@ TEST(ObstacleMap, CorruptBlobsAreRejected) {
 
 TEST(ObstacleMap, QueriesFromSeveralThreadsAgree) {
   std::vector<Polygon> islands;
+  islands.reserve(20);
   for (int i = 0; i < 20; ++i)
     islands.push_back(Square(kCx + 300.0 * i, kCy + 100.0 * (i % 3), 40));
   auto map = ObstacleMap::FromPolygons(islands, Utm33(), ChartOptions{});
   ASSERT_TRUE(map.ok());
   std::vector<EastNorth> points;
+  points.reserve(400);
   for (int i = 0; i < 400; ++i) points.push_back({kCx - 500 + 17.3 * i, kCy - 300 + 1.7 * i});
   std::vector<double> expected;
   {
@@ -272,6 +274,7 @@ TEST(ObstacleMap, QueriesFromSeveralThreadsAgree) {
   }
   std::vector<std::vector<double>> got(4);
   std::vector<std::thread> threads;
+  threads.reserve(4);
   for (int t = 0; t < 4; ++t) {
     threads.emplace_back([&, t] {
       ObstacleQuery q(*map);  // one query object per thread

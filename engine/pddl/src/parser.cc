@@ -278,15 +278,21 @@ class Builder {
       if (!types || i - 1 >= sig.parameter_types.size()) continue;
       const auto& want = sig.parameter_types[i - 1];
       TypeFit fit = Fit(types_, *types, want);
+      // Built only when reported, so arguments that fit allocate nothing.
+      const auto describe_argument = [&] {
+        std::string text = "argument ";
+        text.append(std::to_string(i)).append(" of ").append(what_kind).append(" '");
+        text.append(name).append("' has type ").append(JoinTypes(*types));
+        return text;
+      };
       if (fit == TypeFit::kNever) {
-        Error(DiagnosticKind::kSemantic, list.items[i],
-              "type mismatch: argument " + std::to_string(i) + " of " + what_kind + " '" + name +
-                  "' has type " + JoinTypes(*types),
+        Error(DiagnosticKind::kSemantic, list.items[i], "type mismatch: " + describe_argument(),
               "type " + JoinTypes(want));
       } else if (fit == TypeFit::kMaybe && warn_maybe_) {
-        Warn(list.items[i], "argument " + std::to_string(i) + " of " + what_kind + " '" + name +
-                                "' has type " + JoinTypes(*types) + ", wider than the declared " +
-                                JoinTypes(want) + "; only objects of the declared type can match");
+        std::string message = describe_argument();
+        message.append(", wider than the declared ").append(JoinTypes(want));
+        message.append("; only objects of the declared type can match");
+        Warn(list.items[i], std::move(message));
       }
     }
   }

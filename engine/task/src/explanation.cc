@@ -156,8 +156,11 @@ std::string ExplainMissingAction(const pddl::Domain& domain, const pddl::Problem
       for (const auto& t : symbols->object_declared_types[o.index()])
         have += (have.empty() ? "" : " or ") + t;
       for (const auto& t : wanted) want += (want.empty() ? "" : " or ") + t;
-      return call + ": type mismatch: argument " + std::to_string(i + 1) + " '" + args[i] +
-             "' is a " + have + ", but " + action->parameters[i].name + " must be a " + want;
+      std::string message = call;
+      message.append(": type mismatch: argument ").append(std::to_string(i + 1)).append(" '");
+      message.append(args[i]).append("' is a ").append(have).append(", but ");
+      message.append(action->parameters[i].name).append(" must be a ").append(want);
+      return message;
     }
     objects.push_back(o);
   }

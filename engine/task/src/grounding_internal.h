@@ -40,6 +40,7 @@ class Index {
   // For indexing vectors.
   constexpr std::size_t index() const { return static_cast<std::size_t>(value_); }
   constexpr bool valid() const { return value_ >= 0; }
+  // NOLINTNEXTLINE(modernize-use-nullptr): clang-tidy 14 sees a 0 in the defaulted <=>.
   constexpr auto operator<=>(const Index&) const = default;
 
  private:

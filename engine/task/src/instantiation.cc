@@ -705,6 +705,7 @@ class Instantiator {
         variant = &local_variant;
       }
       for (std::size_t v = 0; v < dnf.size(); ++v) {
+        // NOLINTNEXTLINE(bugprone-use-after-move): base is moved only on the last pass.
         Action a = v + 1 == dnf.size() ? std::move(base) : base;
         if (!FillConditions(a, dnf[v])) continue;
         a.variant = (*variant)++;

@@ -50,6 +50,7 @@ Explored Explore(StageFixture& f) {
 
 bool Reached(Explored& e, const std::string& predicate, const std::vector<std::string>& args) {
   std::vector<ObjectId> objects;
+  objects.reserve(args.size());
   for (const auto& a : args) objects.push_back(e.symbols->FindObject(a));
   return e.reachable->atoms.IsReached(
       e.reachable->atoms.Find(e.symbols->FindPredicate(predicate), objects));

@@ -29,6 +29,7 @@ constexpr const char* kFleetProblem = R"(
 
 std::vector<std::string> NamesOf(const SymbolTable& symbols, const std::vector<ObjectId>& objects) {
   std::vector<std::string> names;
+  names.reserve(objects.size());
   for (ObjectId o : objects) names.push_back(symbols.Name(o));
   return names;
 }
