@@ -117,6 +117,12 @@ TEST(CliInProcessTest, CpuLimitLimitsTheSearch) {
       RunSeaplan({"plan", Example("domain.pddl"), Example("case-a.pddl"), "--cpu-limit", "-3"});
   EXPECT_EQ(bad.exit_code, 2);
   EXPECT_NE(bad.err.find("--cpu-limit"), std::string::npos) << bad.err;
+  EXPECT_NE(bad.err.find("expected a number of seconds >= 0, got -3"), std::string::npos)
+      << bad.err;
+  auto word =
+      RunSeaplan({"plan", Example("domain.pddl"), Example("case-a.pddl"), "--cpu-limit", "ten"});
+  EXPECT_EQ(word.exit_code, 2);
+  EXPECT_NE(word.err.find("got ten"), std::string::npos) << word.err;
 }
 
 TEST(CliInProcessTest, InvalidPlanExitsOneAndNamesTheFailure) {

@@ -175,7 +175,7 @@ class AccessMatrixTest : public ::testing::Test {
     std::unique_ptr<Message> request(google::protobuf::MessageFactory::generated_factory()
                                          ->GetPrototype(method.input_type())
                                          ->New());
-    const std::string name(method.name());
+    const std::string& name = method.name();
     if (name == "Plan" || name == "PlanStream") {
       v1::PlanRequest plan;
       plan.set_domain(kDomain);

@@ -3,6 +3,7 @@
 #include "cli.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -766,7 +767,16 @@ int RunCli(int argc, char** argv, const CliExecutable& executable) {
   plan_cmd
       ->add_option("--cpu-limit", plan.cpu_limit_s,
                    "CPU time limit of the search (s), the same work under any load (0: none)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(CLI::Validator(
+          [](std::string& v) {
+            char* end = nullptr;
+            const double seconds = std::strtod(v.c_str(), &end);
+            return !v.empty() && end == v.c_str() + v.size() && std::isfinite(seconds) &&
+                           seconds >= 0
+                       ? std::string()
+                       : "expected a number of seconds >= 0, got " + v;
+          },
+          "SECONDS"));
   plan_cmd->add_flag("--no-anytime", plan.no_anytime, "Stop at the first plan");
   plan_cmd->add_option("--seed", plan.seed, "Random seed")->capture_default_str();
   plan_cmd->add_option("--epsilon", plan.epsilon_s,
