@@ -4,20 +4,13 @@
 
 #include <cmath>
 
+#include "obstacle_test_fields.h"
+
 namespace seaplan::route {
 namespace {
 
-ObstacleField Field(std::vector<ObstaclePolygon> obstacles) {
-  ObstacleFieldOptions fo;
-  fo.cell_m = 50.0;
-  auto field = ObstacleField::Build(std::move(obstacles), {-3000, -3000}, {3000, 3000}, fo);
-  EXPECT_TRUE(field.ok()) << field.status();
-  return std::move(field).value();
-}
-
-ObstaclePolygon Rect(double x0, double y0, double x1, double y1) {
-  return ObstaclePolygon{{{{x0, y0}, {x1, y0}, {x1, y1}, {x0, y1}}}};
-}
+using test_fields::Field;
+using test_fields::Rect;
 
 TEST(SailRouteTest, TheTrackOfASharpCornerIsCheckedNotThePolyline) {
   // North for 2 km, then a right angle to the east. The hull under its
