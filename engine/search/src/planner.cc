@@ -82,6 +82,16 @@ double Seconds(Clock::time_point since) {
   return std::chrono::duration<double>(Clock::now() - since).count();
 }
 
+SearchCounters Sum(const SearchCounters& a, const SearchCounters& b) {
+  return {a.expanded + b.expanded, a.generated + b.generated, a.evaluated + b.evaluated};
+}
+
+void SetCounters(const SearchCounters& counters, SearchStatistics& stats) {
+  stats.expanded = counters.expanded;
+  stats.generated = counters.generated;
+  stats.evaluated = counters.evaluated;
+}
+
 // Drives the phases (greedy first plan, then weighted A* with a bound) and
 // owns the per-call components. One instance per SolveTask call.
 class PlannerRun {
@@ -108,10 +118,11 @@ class PlannerRun {
   enum class Outcome { kContinue, kStop, kMemout };
   // Polls stop/expansion limit/memory/progress; called once per search step.
   Outcome Poll(const LazySearch& search);
-  // States expanded so far, finished phases and `search` together.
-  std::size_t Expanded(const LazySearch& search) const {
-    return done_counters_.expanded + search.counters().expanded;
+  // Counters so far, finished phases and `search` together.
+  SearchCounters TotalCounters(const LazySearch& search) const {
+    return Sum(done_counters_, search.counters());
   }
+  std::size_t Expanded(const LazySearch& search) const { return TotalCounters(search).expanded; }
   void AddCounters(const LazySearch& search);
   // Builds and validates; true when it is a new incumbent.
   bool Offer(const LazySearch& search);
@@ -147,8 +158,10 @@ class PlannerRun {
   std::size_t steps_ = 0;
   bool expansion_limit_reached_ = false;
   bool cpu_limit_reached_ = false;
-  // The search's CPU time so far (cpu_time_limit_s).
+  // The search's CPU time so far (cpu_time_limit_s), and its last reading in
+  // Poll.
   double CpuSeconds() const { return ThreadCpuSeconds() - cpu_start_s_; }
+  double cpu_seconds_ = 0;
 };
 
 StateData PlannerRun::InitialState() const {
@@ -161,9 +174,7 @@ StateData PlannerRun::InitialState() const {
 }
 
 void PlannerRun::AddCounters(const LazySearch& search) {
-  done_counters_.expanded += search.counters().expanded;
-  done_counters_.generated += search.counters().generated;
-  done_counters_.evaluated += search.counters().evaluated;
+  done_counters_ = TotalCounters(search);
 }
 
 PlannerRun::Outcome PlannerRun::Poll(const LazySearch& search) {
@@ -173,11 +184,14 @@ PlannerRun::Outcome PlannerRun::Poll(const LazySearch& search) {
     expansion_limit_reached_ = true;
     return Outcome::kStop;
   }
-  // A clock read costs about as much as a cheap expansion: every 256 steps.
-  if (options_.cpu_time_limit_s > 0 && (steps_ & 255) == 0 &&
-      CpuSeconds() >= options_.cpu_time_limit_s) {
-    cpu_limit_reached_ = true;
-    return Outcome::kStop;
+  // A clock read costs about as much as a cheap expansion: every 256 steps,
+  // and the phase switch reads the same figure.
+  if (options_.cpu_time_limit_s > 0 && (steps_ & 255) == 0) {
+    cpu_seconds_ = CpuSeconds();
+    if (cpu_seconds_ >= options_.cpu_time_limit_s) {
+      cpu_limit_reached_ = true;
+      return Outcome::kStop;
+    }
   }
   if ((steps_ & 15) == 0) {
     const std::size_t bytes = registry_.MemoryBytes() + search.MemoryBytes() +
@@ -189,9 +203,7 @@ PlannerRun::Outcome PlannerRun::Poll(const LazySearch& search) {
         std::chrono::duration<double>(Clock::now() - last_progress_).count() >= 0.5) {
       last_progress_ = Clock::now();
       SearchStatistics stats = best_.stats;
-      stats.expanded = Expanded(search);
-      stats.generated = done_counters_.generated + search.counters().generated;
-      stats.evaluated = done_counters_.evaluated + search.counters().evaluated;
+      SetCounters(TotalCounters(search), stats);
       stats.search_time_s = Seconds(start_);
       observer_->on_progress(stats);
     }
@@ -219,9 +231,7 @@ bool PlannerRun::Offer(const LazySearch& search) {
   best_.stats.best_plan_time_s = now;
   if (observer_ && observer_->on_plan) {
     PlanResult copy = best_;
-    copy.stats.expanded = Expanded(search);
-    copy.stats.generated = done_counters_.generated + search.counters().generated;
-    copy.stats.evaluated = done_counters_.evaluated + search.counters().evaluated;
+    SetCounters(TotalCounters(search), copy.stats);
     copy.stats.search_time_s = now;
     copy.message = absl::StrCat("plan ", best_.stats.plans_found, ", makespan ", best_.makespan_s);
     observer_->on_plan(copy);
@@ -286,9 +296,7 @@ PlanResult PlannerRun::Run() {
   const StateData initial = InitialState();
   best_.status = PlanStatus::kTimeout;
   auto finish = [&](PlanStatus status_if_no_plan, std::string message) {
-    best_.stats.expanded = done_counters_.expanded;
-    best_.stats.generated = done_counters_.generated;
-    best_.stats.evaluated = done_counters_.evaluated;
+    SetCounters(done_counters_, best_.stats);
     best_.stats.search_time_s = Seconds(start_);
     if (!has_plan_) {
       best_.status = status_if_no_plan;
@@ -318,10 +326,10 @@ PlanResult PlannerRun::Run() {
       static_cast<double>(options_.max_expansions) * options_.second_greedy_after_share);
   auto switch_due = [&](const LazySearch& search) {
     if (options_.max_expansions > 0) return Expanded(search) >= switch_after_expansions;
-    if ((steps_ & 255) != 0) return false;
     if (options_.cpu_time_limit_s > 0) {
-      return CpuSeconds() >= options_.cpu_time_limit_s * options_.second_greedy_after_share;
+      return cpu_seconds_ >= options_.cpu_time_limit_s * options_.second_greedy_after_share;
     }
+    if ((steps_ & 255) != 0) return false;
     return Clock::now() >= switch_at;
   };
   bool many_variants = false, newest_first = options_.second_greedy_after_share <= 0;
