@@ -190,7 +190,8 @@ struct Level2Options {
   // before; down to 240 m (this hull at full rudder) with 300 m fillets
   // did not improve the sailed tracks (bench/route/README.md).
   // Step 6: candidates sailed at sail_speed_mps (the fjord scenarios'
-  // ordered speed; the hull's PTO service speed is 9.15 m/s).
+  // ordered speed; the hull's PTO service speed is 9.15 m/s; RoutePlanner
+  // sails at the ship's ordered speed when it has one).
   bool sail_check = true;
   double sail_speed_mps = 9.0;
   bool fillet_turns = true;
