@@ -474,13 +474,24 @@ Repair RepairRoute(const ObstacleField& field, const std::vector<EastNorth>& ref
   return r;
 }
 
-// Step 6: sails the candidate route's waypoints in the closed loop.
-StatusOr<SailedTrack> SailCandidate(const std::vector<WaypointTask>& tasks,
-                                    const Level2Options& options, const ObstacleField& field) {
+// The waypoints' positions, the route they make.
+std::vector<EastNorth> Positions(const std::vector<WaypointTask>& tasks) {
   std::vector<EastNorth> line;
   line.reserve(tasks.size());
   for (const WaypointTask& t : tasks) line.push_back(t.position);
-  return SailRoute(line, options.sail_speed_mps, &field);
+  return line;
+}
+
+// A waypoint inserted at `position` (a Level-1 or fillet vertex) after
+// waypoint k of alternative `alt`: evaluated like the others, not moved.
+WaypointTask FixedWaypoint(size_t alt, int k, EastNorth position) {
+  WaypointTask t;
+  t.alt = static_cast<int>(alt);
+  t.k = k;
+  t.refs.ref = position;
+  t.refs.movable = false;
+  t.position = position;
+  return t;
 }
 
 // The track arrives and never enters the (buffered) obstacles.
@@ -716,21 +727,26 @@ StatusOr<Level2Result> OptimizeLevel2(const Level2Problem& problem, const Level2
   }
 
   const TurnFilletOptions fillet = options.Fillet();
+  // Step 6's fillets on a wider circle: the hull under its autopilot turns
+  // wider than the fillet radius on a run of small corners.
+  TurnFilletOptions wider = fillet;
+  wider.radius_m = 1.5 * fillet.radius_m;
+  wider.min_radius_m = fillet.min_radius_m > 0.0 ? fillet.radius_m : 0.0;
+  const bool fillets = options.FilletsOn();
 
   Level2Result result;
   result.stopped = stop.StopRequested();
   result.alternatives.resize(alt_count);
-  double best = std::numeric_limits<double>::infinity();
+  // Per alternative: its candidate routes (steps 5 and 6) in the order step 6
+  // sails them, each with its costs, modes and waypoints, and its polyline.
+  std::vector<std::vector<AlternativeResult>> candidates(alt_count);
+  std::vector<std::vector<std::vector<EastNorth>>> candidate_lines(alt_count);
   for (size_t a = 0; a < alt_count; ++a) {
-    AlternativeResult& out = result.alternatives[a];
     const size_t base = a * (n + 1);
-    // This alternative's waypoints, samples, costs and modes; rebuilt when
-    // the repair changed the route.
-    std::vector<WaypointTask> route(tasks.begin() + base, tasks.begin() + base + n + 1);
-    std::vector<RiskSample> route_samples(samples.begin() + base, samples.begin() + base + n + 1);
-    std::vector<CostTerms> route_terms(terms.begin() + base, terms.begin() + base + n + 1);
-    std::vector<int> route_modes(modes.begin() + base, modes.begin() + base + n + 1);
-    for (const WaypointTask& t : route) out.evaluations += t.evaluations;
+    // This alternative's waypoints, samples, costs and modes as optimised.
+    const std::vector<WaypointTask> route(tasks.begin() + base, tasks.begin() + base + n + 1);
+    int64_t route_evaluations = 0;
+    for (const WaypointTask& t : route) route_evaluations += t.evaluations;
 
     std::vector<EastNorth> refs(n + 1), positions(n + 1);
     for (int k = 0; k <= n; ++k) {
@@ -738,210 +754,235 @@ StatusOr<Level2Result> OptimizeLevel2(const Level2Problem& problem, const Level2
       positions[k] = route[k].position;
     }
     const Repair repair = RepairRoute(field, refs, options.turn_radius_m, &positions);
-    std::vector<WaypointTask> repaired;
-    int repaired_inserted = 0;
+    const std::vector<EastNorth>& line = problem.alternatives[a];
+    // The waypoints a candidate starts from: the optimised route repaired,
+    // or (step 6's fallback) the Level-1 polyline, none of it optimised.
+    struct Waypoints {
+      std::vector<WaypointTask> tasks;
+      bool changed = false;  // not the optimised route as it is
+      int snapped = 0, inserted = 0;
+    };
+    Waypoints repaired{
+        {}, repair.snapped_count > 0 || repair.followed_count > 0, repair.snapped_count, 0};
     {
-      const std::vector<EastNorth>& line = problem.alternatives[a];
       double total = 0.0;
       for (size_t i = 1; i < line.size(); ++i) total += Dist(line[i - 1], line[i]);
       for (int k = 0; k <= n; ++k) {
         WaypointTask t = route[k];
         t.position = positions[k];
         t.evaluations = 0;
-        repaired.push_back(t);
+        repaired.tasks.push_back(t);
         if (k == n || !repair.follow[k]) continue;
         for (EastNorth v : VerticesBetween(line, total * k / n, total * (k + 1) / n)) {
-          WaypointTask inserted;
-          inserted.alt = static_cast<int>(a);
-          inserted.k = k;
-          inserted.refs.ref = v;
-          inserted.refs.movable = false;  // a Level-1 vertex, not optimised
-          inserted.position = v;
-          repaired.push_back(inserted);
-          ++repaired_inserted;
+          repaired.tasks.push_back(FixedWaypoint(a, k, v));  // a Level-1 vertex
+          ++repaired.inserted;
         }
       }
     }
-    // Step 6's fallback: the Level-1 polyline itself, none of it optimised.
-    auto level1_tasks = [&]() {
-      const std::vector<EastNorth>& line = problem.alternatives[a];
-      std::vector<WaypointTask> tasks_l1;
-      tasks_l1.push_back(route.front());
-      tasks_l1.back().position = line.front();
-      tasks_l1.back().evaluations = 0;
-      for (size_t i = 1; i + 1 < line.size(); ++i) {
-        WaypointTask v;
-        v.alt = static_cast<int>(a);
-        v.k = 0;
-        v.refs.ref = line[i];
-        v.refs.movable = false;
-        v.position = line[i];
-        tasks_l1.push_back(v);
-      }
-      tasks_l1.push_back(route.back());
-      tasks_l1.back().position = line.back();
-      tasks_l1.back().evaluations = 0;
-      return tasks_l1;
+    Waypoints level1{{}, true, n - 1, static_cast<int>(line.size()) - 2};
+    level1.tasks.push_back(route.front());
+    level1.tasks.back().evaluations = 0;
+    for (size_t i = 1; i + 1 < line.size(); ++i)
+      level1.tasks.push_back(FixedWaypoint(a, 0, line[i]));
+    level1.tasks.push_back(route.back());
+    level1.tasks.back().evaluations = 0;
+
+    // The candidates: step 5's route first (its corners filleted), then
+    // step 6's (the header says why these).
+    struct CandidateMaker {
+      RouteSource source;
+      const Waypoints* from;
+      const TurnFilletOptions* fillet;  // null: the corners left sharp
     };
-    // A candidate route: its waypoints, optionally filleted (step 5).
-    struct Candidate {
-      RouteSource source = RouteSource::kOptimised;
-      std::vector<WaypointTask> tasks;
-      bool changed = false;
-      int snapped = 0, inserted = 0, filleted = 0, tightened = 0;
-      std::vector<UnsailableTurn> unsailable;
-    };
-    auto make_candidate = [&](RouteSource source, std::vector<WaypointTask> waypoints, bool changed,
-                              int snapped, int inserted,
-                              const TurnFilletOptions* fillet_options) -> StatusOr<Candidate> {
-      Candidate c{source, std::move(waypoints), changed, snapped, inserted, 0, 0, {}};
-      if (fillet_options == nullptr) return c;
-      std::vector<EastNorth> line;
-      line.reserve(c.tasks.size());
-      for (const WaypointTask& t : c.tasks) line.push_back(t.position);
-      SEAPLAN_ASSIGN_OR_RETURN(FilletRoute filleted, FilletTurns(field, line, *fillet_options));
-      c.filleted = filleted.filleted;
-      c.tightened = filleted.tightened;
-      c.unsailable = std::move(filleted.unsailable);
-      if (filleted.filleted == 0) return c;
-      std::vector<WaypointTask> smooth;
-      smooth.reserve(filleted.points.size());
-      for (const FilletPoint& p : filleted.points) {
-        if (p.source >= 0) {
-          smooth.push_back(c.tasks[p.source]);
-          continue;
+    std::vector<CandidateMaker> makers = {
+        {RouteSource::kOptimised, &repaired, fillets ? &fillet : nullptr}};
+    if (options.sail_check && fillets) {
+      makers.insert(makers.end(), {{RouteSource::kOptimisedSharp, &repaired, nullptr},
+                                   {RouteSource::kOptimised, &repaired, &wider},
+                                   {RouteSource::kLevel1, &level1, &fillet},
+                                   {RouteSource::kLevel1Sharp, &level1, nullptr},
+                                   {RouteSource::kLevel1, &level1, &wider}});
+    } else if (options.sail_check) {
+      makers.push_back({RouteSource::kLevel1, &level1, nullptr});
+    }
+    for (const CandidateMaker& maker : makers) {
+      AlternativeResult out;
+      out.source = maker.source;
+      out.snapped_waypoints = maker.from->snapped;
+      out.inserted_waypoints = maker.from->inserted;
+      out.evaluations = route_evaluations;
+      std::vector<WaypointTask> waypoints = maker.from->tasks;
+      bool changed = maker.from->changed;
+      if (maker.fillet != nullptr) {
+        SEAPLAN_ASSIGN_OR_RETURN(FilletRoute filleted,
+                                 FilletTurns(field, Positions(waypoints), *maker.fillet));
+        out.filleted_turns = filleted.filleted;
+        out.tightened_turns = filleted.tightened;
+        out.unsailable_turns = std::move(filleted.unsailable);
+        if (filleted.filleted > 0) {
+          std::vector<WaypointTask> smooth;
+          smooth.reserve(filleted.points.size());
+          for (const FilletPoint& p : filleted.points) {
+            if (p.source >= 0) {
+              smooth.push_back(waypoints[p.source]);
+            } else {  // a vertex of a fillet
+              smooth.push_back(FixedWaypoint(a, smooth.back().k, p.position));
+              ++out.inserted_waypoints;
+            }
+          }
+          waypoints = std::move(smooth);
+          changed = true;
         }
-        WaypointTask inserted_task;
-        inserted_task.alt = static_cast<int>(a);
-        inserted_task.k = smooth.back().k;
-        inserted_task.refs.ref = p.position;
-        inserted_task.refs.movable = false;  // a vertex of a fillet, not optimised
-        inserted_task.position = p.position;
-        smooth.push_back(inserted_task);
-        ++c.inserted;
       }
-      c.tasks = std::move(smooth);
-      c.changed = true;
+      std::vector<RiskSample> route_samples(samples.begin() + base, samples.begin() + base + n + 1);
+      std::vector<CostTerms> route_terms(terms.begin() + base, terms.begin() + base + n + 1);
+      std::vector<int> route_modes(modes.begin() + base, modes.begin() + base + n + 1);
+      if (changed) {
+        // Inserted vertices: neighbours and drift heading along the
+        // candidate. The others keep their references (their cost terms are
+        // defined on them; the fuel term's |w - r_{k+1}| is then the chord).
+        const size_t m = waypoints.size();
+        for (size_t k = 0; k < m; ++k) {
+          Refs& r = waypoints[k].refs;
+          if (!r.movable && k > 0 && k + 1 < m) {
+            r.prev = waypoints[k - 1].position;
+            r.next = waypoints[k + 1].position;
+            const EastNorth d{r.next.east_m - r.prev.east_m, r.next.north_m - r.prev.north_m};
+            r.heading_rad = std::atan2(d.east_m, d.north_m);
+          }
+        }
+        route_samples.assign(m, {});
+        route_terms.assign(m, {});
+        for (size_t k = 0; k < m; ++k) {
+          auto eval = make_evaluator(waypoints[k].refs);
+          eval->Evaluate(waypoints[k].position, &route_samples[k]);
+          ComputeCost(w, waypoints[k].refs, waypoints[k].position, route_samples[k],
+                      &route_terms[k]);
+          ++out.evaluations;
+        }
+        std::vector<ModeArray> costs(m - 1);
+        for (size_t k = 0; k + 1 < m; ++k) costs[k] = route_terms[k].mode_cost;
+        route_modes = AssignModes(costs, w.mode_switch_cost);
+        route_modes.push_back(route_modes.back());
+      }
+
+      const size_t m = waypoints.size();
+      for (size_t k = 0; k < m; ++k) {
+        const WaypointTask& t = waypoints[k];
+        WaypointResult wr;
+        wr.position = t.position;
+        wr.reference = t.refs.ref;
+        wr.heading_rad = t.refs.heading_rad;
+        wr.mode = static_cast<MsoMode>(route_modes[k]);
+        wr.ttg_s = route_samples[k].ttg_s;
+        wr.grounding_probability = route_samples[k].p;
+        wr.proximity = route_samples[k].proximity;
+        wr.mode_cost = route_terms[k].mode_cost;
+        wr.path_cost = route_terms[k].path;
+        if (k + 1 < m) {
+          const int mode = route_modes[k];
+          const double ground =
+              w.grounding_cost * (w.mu3 * wr.proximity + w.mu4 * wr.grounding_probability[mode]);
+          out.grounding_cost += ground;
+          out.mso_cost += wr.mode_cost[mode] - ground;
+          if (k > 0 && route_modes[k - 1] != mode) {
+            ++out.mode_switches;
+            out.switching_cost += w.mode_switch_cost;
+          }
+        }
+        out.path_cost += wr.path_cost;
+        if (field.Inside(wr.position)) out.crosses_obstacle = true;
+        if (k > 0 && field.SegmentHits(out.waypoints.back().position, wr.position))
+          out.crosses_obstacle = true;
+        out.waypoints.push_back(wr);
+      }
+      out.expected_cost = out.grounding_cost + out.mso_cost + out.switching_cost;
+      out.objective = out.expected_cost + out.path_cost;
+      candidate_lines[a].push_back(Positions(waypoints));
+      candidates[a].push_back(std::move(out));
+    }
+  }
+
+  // The choice: the obstacle-free alternative with the lowest expected cost;
+  // with the sail check, one whose sailed track keeps clear before any that
+  // does not. An alternative's candidates are sailed in order until one's
+  // track keeps clear (that one is kept), else the one whose track keeps the
+  // most clearance is. The alternatives are sailed cheapest first: the one
+  // whose remaining candidates could cost least (a lower bound, so the
+  // choice is the one sailing every alternative would make), until a clear
+  // alternative costs no more than any other could.
+  if (!options.sail_check) {
+    for (size_t a = 0; a < alt_count; ++a) result.alternatives[a] = std::move(candidates[a][0]);
+  } else {
+    struct Sailing {
+      size_t next = 0;  // the next candidate to sail
+      int kept = -1;    // the candidate kept so far
+      SailedTrack track;
+      bool done = false;
+    };
+    std::vector<Sailing> sailing(alt_count);
+    const double inf = std::numeric_limits<double>::infinity();
+    auto lowest_cost_to_come = [&](size_t a) {
+      double c = inf;
+      for (size_t j = sailing[a].next; j < candidates[a].size(); ++j) {
+        if (!candidates[a][j].crosses_obstacle) c = std::min(c, candidates[a][j].expected_cost);
+      }
       return c;
     };
-    const bool repair_changed = repair.snapped_count > 0 || repair.followed_count > 0;
-    // Step 5: corners the hull cannot sail become fillets (turn_fillet.h).
-    SEAPLAN_ASSIGN_OR_RETURN(
-        Candidate chosen_candidate,
-        make_candidate(RouteSource::kOptimised, repaired, repair_changed, repair.snapped_count,
-                       repaired_inserted, options.FilletsOn() ? &fillet : nullptr));
-    // Step 6: the candidate is sailed in the closed loop; while its track
-    // enters the obstacles' buffer, the next candidate (see the header).
-    if (options.sail_check) {
-      SEAPLAN_ASSIGN_OR_RETURN(SailedTrack sailed,
-                               SailCandidate(chosen_candidate.tasks, options, field));
-      const int level1_vertices = static_cast<int>(problem.alternatives[a].size()) - 2;
-      // The fillets on a wider circle: the hull under its autopilot turns
-      // wider than the fillet radius on a run of small corners.
-      TurnFilletOptions wider = fillet;
-      wider.radius_m = 1.5 * fillet.radius_m;
-      wider.min_radius_m = fillet.min_radius_m > 0.0 ? fillet.radius_m : 0.0;
-      const bool fillets = options.FilletsOn();
-      for (int next = 0; !SailedClear(sailed) && next < 5; ++next) {
-        StatusOr<Candidate> c = absl::InternalError("unset");
-        if (next == 0 || next == 3) {  // the same route with its corners sharp
-          if (!fillets) continue;
-          c = next == 0 ? make_candidate(RouteSource::kOptimisedSharp, repaired, repair_changed,
-                                         repair.snapped_count, repaired_inserted, nullptr)
-                        : make_candidate(RouteSource::kLevel1Sharp, level1_tasks(), true, n - 1,
-                                         level1_vertices, nullptr);
-        } else if (next == 1 || next == 4) {  // the fillets on the wider circle
-          if (!fillets) continue;
-          c = next == 1 ? make_candidate(RouteSource::kOptimised, repaired, repair_changed,
-                                         repair.snapped_count, repaired_inserted, &wider)
-                        : make_candidate(RouteSource::kLevel1, level1_tasks(), true, n - 1,
-                                         level1_vertices, &wider);
-        } else {
-          c = make_candidate(RouteSource::kLevel1, level1_tasks(), true, n - 1, level1_vertices,
-                             fillets ? &fillet : nullptr);
-        }
-        if (!c.ok()) return c.status();
-        SEAPLAN_ASSIGN_OR_RETURN(SailedTrack s, SailCandidate(c->tasks, options, field));
-        if (SailedClear(s) || s.clearance_m > sailed.clearance_m) {
-          sailed = std::move(s);
-          chosen_candidate = std::move(*c);
+    auto clear_choice = [&]() {
+      int best_a = -1;
+      for (size_t a = 0; a < alt_count; ++a) {
+        const Sailing& s = sailing[a];
+        if (s.kept < 0 || !SailedClear(s.track) || candidates[a][s.kept].crosses_obstacle) continue;
+        if (best_a < 0 || candidates[a][s.kept].expected_cost <
+                              candidates[best_a][sailing[best_a].kept].expected_cost) {
+          best_a = static_cast<int>(a);
         }
       }
+      return best_a;
+    };
+    for (;;) {
+      int next_a = -1;
+      double next_cost = inf;
+      for (size_t a = 0; a < alt_count; ++a) {
+        if (sailing[a].done) continue;
+        const double c = lowest_cost_to_come(a);
+        if (next_a < 0 || c < next_cost) {
+          next_a = static_cast<int>(a);
+          next_cost = c;
+        }
+      }
+      if (next_a < 0) break;  // every alternative sailed: none keeps clear
+      if (const int clear = clear_choice(); clear >= 0) {
+        const double c = candidates[clear][sailing[clear].kept].expected_cost;
+        if (c < next_cost || (c == next_cost && clear < next_a)) break;
+      }
+      Sailing& s = sailing[next_a];
+      SEAPLAN_ASSIGN_OR_RETURN(SailedTrack track, SailRoute(candidate_lines[next_a][s.next],
+                                                            options.sail_speed_mps, &field));
+      if (s.kept < 0 || SailedClear(track) || track.clearance_m > s.track.clearance_m) {
+        s.kept = static_cast<int>(s.next);
+        s.track = std::move(track);
+      }
+      ++s.next;
+      s.done = SailedClear(s.track) || s.next == candidates[next_a].size();
+    }
+    for (size_t a = 0; a < alt_count; ++a) {
+      const Sailing& s = sailing[a];
+      // Not sailed (a cheaper alternative keeps clear): its first candidate.
+      AlternativeResult& out = result.alternatives[a];
+      out = std::move(candidates[a][std::max(s.kept, 0)]);
+      if (s.kept < 0) continue;
       out.sail_checked = true;
-      out.sailed_clear = SailedClear(sailed);
-      out.sailed_arrived = sailed.arrived;
-      out.sailed_clearance_m = sailed.clearance_m;
-      out.sailed_closest = sailed.closest;
+      out.sailed_clear = SailedClear(s.track);
+      out.sailed_arrived = s.track.arrived;
+      out.sailed_clearance_m = s.track.clearance_m;
+      out.sailed_closest = s.track.closest;
     }
-    out.source = chosen_candidate.source;
-    out.snapped_waypoints = chosen_candidate.snapped;
-    out.inserted_waypoints = chosen_candidate.inserted;
-    out.filleted_turns = chosen_candidate.filleted;
-    out.tightened_turns = chosen_candidate.tightened;
-    out.unsailable_turns = std::move(chosen_candidate.unsailable);
-    const bool changed = chosen_candidate.changed;
-    repaired = std::move(chosen_candidate.tasks);
-    if (changed) {
-      // Inserted vertices: neighbours and drift heading along the repaired
-      // route. The others keep their references (their cost terms are
-      // defined on them; the fuel term's |w - r_{k+1}| is then the chord).
-      const size_t m = repaired.size();
-      for (size_t k = 0; k < m; ++k) {
-        Refs& r = repaired[k].refs;
-        if (!r.movable && k > 0 && k + 1 < m) {
-          r.prev = repaired[k - 1].position;
-          r.next = repaired[k + 1].position;
-          const EastNorth d{r.next.east_m - r.prev.east_m, r.next.north_m - r.prev.north_m};
-          r.heading_rad = std::atan2(d.east_m, d.north_m);
-        }
-      }
-      route_samples.assign(m, {});
-      route_terms.assign(m, {});
-      for (size_t k = 0; k < m; ++k) {
-        auto eval = make_evaluator(repaired[k].refs);
-        eval->Evaluate(repaired[k].position, &route_samples[k]);
-        ComputeCost(w, repaired[k].refs, repaired[k].position, route_samples[k], &route_terms[k]);
-        ++out.evaluations;
-      }
-      std::vector<ModeArray> costs(m - 1);
-      for (size_t k = 0; k + 1 < m; ++k) costs[k] = route_terms[k].mode_cost;
-      route_modes = AssignModes(costs, w.mode_switch_cost);
-      route_modes.push_back(route_modes.back());
-      route = std::move(repaired);
-    }
-
-    const size_t m = route.size();
-    for (size_t k = 0; k < m; ++k) {
-      const WaypointTask& t = route[k];
-      WaypointResult wr;
-      wr.position = t.position;
-      wr.reference = t.refs.ref;
-      wr.heading_rad = t.refs.heading_rad;
-      wr.mode = static_cast<MsoMode>(route_modes[k]);
-      wr.ttg_s = route_samples[k].ttg_s;
-      wr.grounding_probability = route_samples[k].p;
-      wr.proximity = route_samples[k].proximity;
-      wr.mode_cost = route_terms[k].mode_cost;
-      wr.path_cost = route_terms[k].path;
-      if (k + 1 < m) {
-        const int mode = route_modes[k];
-        const double ground =
-            w.grounding_cost * (w.mu3 * wr.proximity + w.mu4 * wr.grounding_probability[mode]);
-        out.grounding_cost += ground;
-        out.mso_cost += wr.mode_cost[mode] - ground;
-        if (k > 0 && route_modes[k - 1] != mode) {
-          ++out.mode_switches;
-          out.switching_cost += w.mode_switch_cost;
-        }
-      }
-      out.path_cost += wr.path_cost;
-      if (field.Inside(wr.position)) out.crosses_obstacle = true;
-      if (k > 0 && field.SegmentHits(out.waypoints.back().position, wr.position))
-        out.crosses_obstacle = true;
-      out.waypoints.push_back(wr);
-    }
-    out.expected_cost = out.grounding_cost + out.mso_cost + out.switching_cost;
-    out.objective = out.expected_cost + out.path_cost;
+  }
+  double best = std::numeric_limits<double>::infinity();
+  for (size_t a = 0; a < alt_count; ++a) {
+    const AlternativeResult& out = result.alternatives[a];
     result.evaluations += out.evaluations;
     // A route whose sailed track keeps clear beats any that does not.
     const double rank = out.expected_cost + (out.sail_checked && !out.sailed_clear ? 1e300 : 0.0);

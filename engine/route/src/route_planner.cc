@@ -248,13 +248,18 @@ StatusOr<RouteResult> RoutePlanner::Plan(EastNorth start, EastNorth goal, const 
     for (const auto& p : level1->alternatives[a].waypoints) line.push_back(ToVec(p));
     problem.alternatives.push_back(std::move(line));
   }
-  SEAPLAN_ASSIGN_OR_RETURN(Level2Result l2, OptimizeLevel2(problem, options_.level2, stop));
+  Level2Options level2 = options_.level2;
+  if (ship_.service_speed_mps > 0.0) {
+    level2.sail_speed_mps = speed_mps_[static_cast<int>(MsoMode::kPto)];
+  }
+  SEAPLAN_ASSIGN_OR_RETURN(Level2Result l2, OptimizeLevel2(problem, level2, stop));
 
   RouteResult out;
   out.used_level1_fallback = level1->used_fallback;
   out.stopped = l2.stopped;
   out.evaluations = l2.evaluations;
   out.level2_wall_s = l2.wall_s;
+  out.sail_speed_mps = level2.sail_check ? level2.sail_speed_mps : 0.0;
   out.chosen = l2.chosen;
   const CostWeights& w = options_.level2.weights;
   for (size_t a = 0; a < l2.alternatives.size(); ++a) {
@@ -287,7 +292,7 @@ StatusOr<RouteResult> RoutePlanner::Plan(EastNorth start, EastNorth goal, const 
       // route kept it out of the buffered obstacles.
       alt.warnings.push_back(absl::StrFormat(
           "the track this hull sails on the route (from rest at %.1f m/s) %s near %s",
-          options_.level2.sail_speed_mps,
+          level2.sail_speed_mps,
           src.sailed_arrived ? absl::StrFormat("comes within the %.0f m safety margin",
                                                map_->summary().options.safety_buffer_m)
                              : std::string("does not reach the goal"),

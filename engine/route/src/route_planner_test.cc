@@ -191,6 +191,9 @@ TEST(RoutePlannerTest, ServiceSpeedSetsEveryModesSpeedAndFuel) {
   // Slower through the water: less power, so a lower fuel rate (per metre
   // it can be more: the machinery's fixed loads run longer).
   EXPECT_LT(s.fuel_kg / s.sailing_time_s, f.fuel_kg / f.sailing_time_s);
+  // Step 6 sails the route at the speed it is ordered for, else at 9 m/s.
+  EXPECT_NEAR(rs->sail_speed_mps, 3.6, 1e-3);
+  EXPECT_EQ(rf->sail_speed_mps, FastOptions().level2.sail_speed_mps);
 
   // Faster than a mode's top speed: that mode sails at its top speed, the route is still planned.
   ShipParticulars racer;
@@ -202,6 +205,15 @@ TEST(RoutePlannerTest, ServiceSpeedSetsEveryModesSpeedAndFuel) {
   const RouteAlternative& t = rt->alternatives[rt->chosen];
   EXPECT_LT(t.sailing_time_s, f.sailing_time_s);
   EXPECT_GT(t.sailing_time_s, t.length_m / 30.0);
+  int pto_segments = 0;  // sailed at PTO's top speed, as step 6 sailed them
+  for (size_t k = 0; k + 1 < t.waypoints.size(); ++k) {
+    if (t.waypoints[k].mode != MsoMode::kPto) continue;
+    ++pto_segments;
+    EXPECT_NEAR(rt->sail_speed_mps, t.waypoints[k].segment_length_m / t.waypoints[k].segment_time_s,
+                1e-6);
+  }
+  EXPECT_GT(pto_segments, 0);
+  EXPECT_LT(rt->sail_speed_mps, 30.0);
 
   ShipParticulars bad;
   bad.service_speed_mps = -1.0;

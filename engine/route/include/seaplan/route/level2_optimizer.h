@@ -56,14 +56,18 @@
 //     fillet's run of small corners and overshoots corners between short
 //     legs, 100 m and more at times. While the track enters an obstacle or
 //     does not arrive, the next candidate is sailed: the repaired route
-//     with its corners sharp (the follower's wheel-over sails them), the
-//     Level-1 polyline filleted, then sharp; the first clear one is kept,
-//     else the one whose track keeps the most clearance (RouteSource and
-//     sailed_* in AlternativeResult say which and how close).
+//     with its corners sharp (the follower's wheel-over sails them), its
+//     fillets on a 1.5x wider circle, then the Level-1 polyline the same
+//     three ways; the first clear one is kept, else the one whose track
+//     keeps the most clearance (RouteSource and sailed_* in
+//     AlternativeResult say which and how close).
 // The chosen alternative is the obstacle-free one with the lowest expected
 // cost, one whose sailed track keeps clear before any that does not (sum of C_grounding + C_mso +
 // switching; C_path only shapes the route and is not a cost of sailing it, so it is reported but
-// not compared).
+// not compared). The alternatives are sailed cheapest first (by the lowest cost their candidates
+// not yet sailed could have), and no more once a clear one costs no more than any other could:
+// the same choice as sailing them all, without sailing the alternatives that lose on cost (they
+// are reported as step 5 made them, sail_checked false).
 //
 // Fast and exact risk evaluation (RiskEvaluation): the drifting ship's motion
 // does not depend on where it starts (uniform wind and current), so kFast
@@ -186,7 +190,8 @@ struct Level2Options {
   // before; down to 240 m (this hull at full rudder) with 300 m fillets
   // did not improve the sailed tracks (bench/route/README.md).
   // Step 6: candidates sailed at sail_speed_mps (the fjord scenarios'
-  // ordered speed; the hull's PTO service speed is 9.15 m/s).
+  // ordered speed; the hull's PTO service speed is 9.15 m/s; RoutePlanner
+  // sails at the ship's ordered speed when it has one).
   bool sail_check = true;
   double sail_speed_mps = 9.0;
   bool fillet_turns = true;
@@ -259,7 +264,7 @@ struct AlternativeResult {
   int tightened_turns = 0;  // of filleted_turns, on a circle under the fillet radius
   std::vector<UnsailableTurn> unsailable_turns;
   // Step 6: the candidate kept and its sailed track (sail_checked: the
-  // check ran; sailed_clear: the track arrives and never enters the
+  // alternative was sailed; sailed_clear: the track arrives and never enters the
   // obstacles; clearance: the smallest signed distance of its points from
   // them, <= 0 when it enters, and where).
   RouteSource source = RouteSource::kOptimised;

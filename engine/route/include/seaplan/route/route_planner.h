@@ -129,6 +129,11 @@ struct RouteResult {
   bool stopped = false;  // the StopToken fired; results are partial
   int64_t evaluations = 0;
   double level2_wall_s = 0.0;
+  // The speed step 6 sailed the routes at (0: no sail check): the PTO
+  // planning speed when the ship has a service speed (the speed the route
+  // is ordered for, PTO the mode most segments sail in), else
+  // level2.sail_speed_mps.
+  double sail_speed_mps = 0.0;
 };
 
 struct TrackPoint {
