@@ -8,21 +8,21 @@ constexpr double kTolerance = 1e-9;
 }
 
 void Stn::Reset() {
+  // Keep the per-node edge vectors (and their capacity) for reuse.
   time_.assign(1, 0.0);
   fixed_.assign(1, true);
-  edges_.clear();
-  sources_.clear();
+  if (out_.empty()) out_.resize(1);
+  out_[0].clear();
   trail_.clear();
-  if (head_.empty()) head_.resize(1);
-  head_[0] = Head{};
+  edge_log_.clear();
 }
 
 int Stn::AddFixedNode(double time_s) {
   const int v = num_nodes();
   time_.push_back(time_s);
   fixed_.push_back(true);
-  if (head_.size() <= static_cast<std::size_t>(v)) head_.resize(static_cast<std::size_t>(v) + 1);
-  head_[v] = Head{};
+  if (out_.size() <= static_cast<std::size_t>(v)) out_.emplace_back();
+  out_[v].clear();
   return v;
 }
 
@@ -30,42 +30,41 @@ int Stn::BeginNode() {
   const int v = num_nodes();
   time_.push_back(0.0);
   fixed_.push_back(false);
-  if (head_.size() <= static_cast<std::size_t>(v)) head_.resize(static_cast<std::size_t>(v) + 1);
-  head_[v] = Head{};
+  if (out_.size() <= static_cast<std::size_t>(v)) out_.emplace_back();
+  out_[v].clear();
   return v;
 }
 
-std::size_t Stn::MemoryBytes() const {
-  return edges_.capacity() * sizeof(Edge) + sources_.capacity() * sizeof(EdgeSource) +
-         head_.capacity() * sizeof(Head) + time_.capacity() * sizeof(double) +
-         trail_.capacity() * sizeof(TrailEntry) + queue_.capacity() * sizeof(std::int32_t);
+void Stn::Push(std::vector<Edge>& list, Edge edge) {
+  const std::size_t before = list.capacity();
+  list.push_back(edge);
+  edge_capacity_ += list.capacity() - before;
 }
 
-void Stn::PushEdge(std::int32_t from, std::int32_t to, double weight) {
-  Head& head = head_[static_cast<std::size_t>(from)];
-  sources_.push_back({from, head.first_to});
-  edges_.push_back({to, head.first, weight});
-  head.first = static_cast<std::int32_t>(edges_.size() - 1);
-  head.first_to = to;
+std::size_t Stn::MemoryBytes() const {
+  return edge_capacity_ * sizeof(Edge) + out_.capacity() * sizeof(std::vector<Edge>) +
+         time_.capacity() * sizeof(double) + trail_.capacity() * sizeof(TrailEntry) +
+         (edge_log_.capacity() + queue_.capacity() + touches_.capacity()) * sizeof(std::int32_t);
 }
 
 void Stn::AddIncoming(int from, double weight) {
   const int v = num_nodes() - 1;
-  // Every edge `from` got since v began goes to v, so a second one is its
-  // newest: keep the stronger weight in it (the same least solution, one
-  // edge fewer to scan). Undo drops it with v.
-  const Head& head = head_[static_cast<std::size_t>(from)];
-  if (head.first_to == v) {
-    double& w = edges_[static_cast<std::size_t>(head.first)].weight;
-    w = std::max(w, weight);
+  // Every edge `from` got since v began goes to v, so a second one is the
+  // list's last: keep the stronger weight in it (the same least solution,
+  // one edge fewer to scan). Undo drops it with v.
+  std::vector<Edge>& list = out_[from];
+  if (!list.empty() && list.back().to == v) {
+    list.back().weight = std::max(list.back().weight, weight);
   } else {
-    PushEdge(from, v, weight);
+    Push(list, {v, weight});
+    edge_log_.push_back(from);
   }
   if (time_[from] + weight > time_[v]) time_[v] = time_[from] + weight;
 }
 
 void Stn::AddOutgoing(int to, double weight) {
-  PushEdge(num_nodes() - 1, to, weight);
+  const int v = num_nodes() - 1;
+  Push(out_[v], {to, weight});
 }
 
 bool Stn::FinishNode() {
@@ -81,8 +80,7 @@ bool Stn::FinishNode() {
   for (std::size_t head = 0; head < queue_.size(); ++head) {
     const int u = queue_[head];
     const double tu = time_[u];
-    for (std::int32_t i = head_[u].first; i >= 0; i = edges_[i].next) {
-      const Edge& e = edges_[i];
+    for (const Edge& e : out_[u]) {
       const double candidate = tu + e.weight;
       if (candidate > time_[e.to] + kTolerance) {
         if (e.to == v || fixed_[e.to]) return false;
@@ -102,12 +100,9 @@ void Stn::Undo(const Mark& mark) {
     time_[trail_.back().node] = trail_.back().old_time;
     trail_.pop_back();
   }
-  while (edges_.size() > mark.edges) {
-    Head& head = head_[static_cast<std::size_t>(sources_.back().from)];
-    head.first = edges_.back().next;
-    head.first_to = sources_.back().next_to;
-    edges_.pop_back();
-    sources_.pop_back();
+  while (edge_log_.size() > mark.edge_log) {
+    out_[static_cast<std::size_t>(edge_log_.back())].pop_back();
+    edge_log_.pop_back();
   }
   time_.resize(mark.nodes);
   fixed_.resize(mark.nodes);

@@ -18,17 +18,16 @@ namespace seaplan::search {
 
 class Stn {
  public:
+  struct Edge {
+    std::int32_t to;
+    double weight;
+  };
+
   // Clears to a single node 0 (time zero).
   void Reset();
   int num_nodes() const { return static_cast<int>(time_.size()); }
   double time(int node) const { return time_[node]; }
-  // Calls f(to, weight) for every edge t[to] >= t[node] + weight.
-  template <typename F>
-  void ForEachOutEdge(int node, F&& f) const {
-    for (std::int32_t e = head_[node].first; e >= 0; e = edges_[e].next) {
-      f(edges_[e].to, edges_[e].weight);
-    }
-  }
+  const std::vector<Edge>& OutEdges(int node) const { return out_[node]; }
 
   // Adds a node fixed at `time_s` (timed initial literals). Only call
   // before any other node is added after Reset().
@@ -43,7 +42,7 @@ class Stn {
   bool FinishNode();
 
   struct Mark {
-    std::size_t trail, edges, nodes;
+    std::size_t trail, edge_log, nodes;
   };
   // Nodes whose time propagation raised since `mark` (possibly repeated);
   // times only ever increase, so their current times are the new maxima.
@@ -51,50 +50,34 @@ class Stn {
   void ForEachRaisedSince(const Mark& mark, F&& f) const {
     for (std::size_t i = mark.trail; i < trail_.size(); ++i) f(trail_[i].node);
   }
-  Mark GetMark() const { return {trail_.size(), edges_.size(), time_.size()}; }
+  Mark GetMark() const { return {trail_.size(), edge_log_.size(), time_.size()}; }
   void Undo(const Mark& mark);
 
-  // Heap bytes held (capacity, which Undo and Reset keep for reuse).
+  // Heap bytes held, edge lists included: they keep their capacity through
+  // Undo and Reset for reuse.
   std::size_t MemoryBytes() const;
 
  private:
-  void PushEdge(std::int32_t from, std::int32_t to, double weight);
-
+  // push_back that keeps edge_capacity_ up to date.
+  void Push(std::vector<Edge>& list, Edge edge);
+  std::size_t edge_capacity_ = 0;  // sum of the edge lists' capacities
   std::vector<double> time_;
   std::vector<bool> fixed_;
-  // Edges are added and undone last in, first out, so they live on one
-  // stack, each node's outgoing ones linked from its newest. Adding an edge
-  // touches the stack's top and the source's head, not a list per node:
-  // an event waiting for hundreds of earlier ones (each the end of an
-  // action that needed a fact over all) costs no cache miss per edge, and
-  // memory is what the network holds now, not the most each node position
-  // ever held.
-  struct Edge {
-    std::int32_t to;
-    std::int32_t next;  // the source's next older edge, or -1
-    double weight;
-  };
-  std::vector<Edge> edges_;
-  // Per edge, what Undo restores: its source and the source's head target.
-  struct EdgeSource {
-    std::int32_t from;
-    std::int32_t next_to;  // target of `next`, or -1
-  };
-  std::vector<EdgeSource> sources_;
-  // Per node: its newest outgoing edge (-1: none) and that edge's target,
-  // which tells a second edge to the node being added without reading the
-  // stack.
-  struct Head {
-    std::int32_t first = -1;
-    std::int32_t first_to = -1;
-  };
-  std::vector<Head> head_;
+  // Outgoing lists only: propagation reads nothing else (incoming lists,
+  // kept at their largest size per node position, were most of a long
+  // greedy search's memory).
+  std::vector<std::vector<Edge>> out_;
   struct TrailEntry {
     std::int32_t node;
     double old_time;
   };
   std::vector<TrailEntry> trail_;
+  // Nodes whose out_ got an edge to a newer node (AddIncoming). A node's
+  // own edges (AddOutgoing) need no entry: its list is cleared when its
+  // number is reused.
+  std::vector<std::int32_t> edge_log_;
   std::vector<std::int32_t> queue_;
+  std::vector<std::int32_t> touches_;
 };
 
 }  // namespace seaplan::search

@@ -358,8 +358,7 @@ double Timeline::WindowSlack(task::ActionId a, double makespan_s) const {
   // Latest start allowed by the events already ordered after it (earliest
   // times; a cheap, sound-enough signature, not a full latest schedule).
   double latest = kInfinity;
-  stn_.ForEachOutEdge(
-      start, [&](int to, double weight) { latest = std::min(latest, stn_.time(to) - weight); });
+  for (const auto& e : stn_.OutEdges(start)) latest = std::min(latest, stn_.time(e.to) - e.weight);
   if (!(latest < kInfinity)) return kInfinity;
   return std::round((latest + max_d - makespan_s) / epsilon_s_) * epsilon_s_;
 }
