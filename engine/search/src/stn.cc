@@ -1,5 +1,7 @@
 #include "stn.h"
 
+#include <algorithm>
+
 namespace seaplan::search {
 namespace {
 constexpr double kTolerance = 1e-9;
@@ -9,12 +11,8 @@ void Stn::Reset() {
   // Keep the per-node edge vectors (and their capacity) for reuse.
   time_.assign(1, 0.0);
   fixed_.assign(1, true);
-  if (out_.empty()) {
-    out_.resize(1);
-    in_.resize(1);
-  }
+  if (out_.empty()) out_.resize(1);
   out_[0].clear();
-  in_[0].clear();
   trail_.clear();
   edge_log_.clear();
 }
@@ -23,12 +21,8 @@ int Stn::AddFixedNode(double time_s) {
   const int v = num_nodes();
   time_.push_back(time_s);
   fixed_.push_back(true);
-  if (out_.size() <= static_cast<std::size_t>(v)) {
-    out_.emplace_back();
-    in_.emplace_back();
-  }
+  if (out_.size() <= static_cast<std::size_t>(v)) out_.emplace_back();
   out_[v].clear();
-  in_[v].clear();
   return v;
 }
 
@@ -36,12 +30,8 @@ int Stn::BeginNode() {
   const int v = num_nodes();
   time_.push_back(0.0);
   fixed_.push_back(false);
-  if (out_.size() <= static_cast<std::size_t>(v)) {
-    out_.emplace_back();
-    in_.emplace_back();
-  }
+  if (out_.size() <= static_cast<std::size_t>(v)) out_.emplace_back();
   out_[v].clear();
-  in_[v].clear();
   return v;
 }
 
@@ -52,25 +42,29 @@ void Stn::Push(std::vector<Edge>& list, Edge edge) {
 }
 
 std::size_t Stn::MemoryBytes() const {
-  return edge_capacity_ * sizeof(Edge) +
-         (out_.capacity() + in_.capacity()) * sizeof(std::vector<Edge>) +
+  return edge_capacity_ * sizeof(Edge) + out_.capacity() * sizeof(std::vector<Edge>) +
          time_.capacity() * sizeof(double) + trail_.capacity() * sizeof(TrailEntry) +
          (edge_log_.capacity() + queue_.capacity() + touches_.capacity()) * sizeof(std::int32_t);
 }
 
 void Stn::AddIncoming(int from, double weight) {
   const int v = num_nodes() - 1;
-  Push(out_[from], {v, weight});
-  edge_log_.push_back(from);
-  Push(in_[v], {from, weight});
+  // Every edge `from` got since v began goes to v, so a second one is the
+  // list's last: keep the stronger weight in it (the same least solution,
+  // one edge fewer to scan). Undo drops it with v.
+  std::vector<Edge>& list = out_[from];
+  if (!list.empty() && list.back().to == v) {
+    list.back().weight = std::max(list.back().weight, weight);
+  } else {
+    Push(list, {v, weight});
+    edge_log_.push_back(from);
+  }
   if (time_[from] + weight > time_[v]) time_[v] = time_[from] + weight;
 }
 
 void Stn::AddOutgoing(int to, double weight) {
   const int v = num_nodes() - 1;
   Push(out_[v], {to, weight});
-  Push(in_[to], {v, weight});
-  edge_log_.push_back(~to);
 }
 
 bool Stn::FinishNode() {
@@ -107,13 +101,8 @@ void Stn::Undo(const Mark& mark) {
     trail_.pop_back();
   }
   while (edge_log_.size() > mark.edge_log) {
-    const std::int32_t n = edge_log_.back();
+    out_[static_cast<std::size_t>(edge_log_.back())].pop_back();
     edge_log_.pop_back();
-    if (n >= 0) {
-      out_[n].pop_back();
-    } else {
-      in_[~n].pop_back();
-    }
   }
   time_.resize(mark.nodes);
   fixed_.resize(mark.nodes);

@@ -54,8 +54,7 @@ class Stn {
   void Undo(const Mark& mark);
 
   // Heap bytes held, edge lists included: they keep their capacity through
-  // Undo and Reset, and on long paths whose events all wait for the same
-  // readers they are most of the search's memory.
+  // Undo and Reset for reuse.
   std::size_t MemoryBytes() const;
 
  private:
@@ -64,14 +63,19 @@ class Stn {
   std::size_t edge_capacity_ = 0;  // sum of the edge lists' capacities
   std::vector<double> time_;
   std::vector<bool> fixed_;
+  // Outgoing lists only: propagation reads nothing else (incoming lists,
+  // kept at their largest size per node position, were most of a long
+  // greedy search's memory).
   std::vector<std::vector<Edge>> out_;
-  std::vector<std::vector<Edge>> in_;
   struct TrailEntry {
     std::int32_t node;
     double old_time;
   };
   std::vector<TrailEntry> trail_;
-  std::vector<std::int32_t> edge_log_;  // node whose out_ (>=0) or in_ (~node) got an edge
+  // Nodes whose out_ got an edge to a newer node (AddIncoming). A node's
+  // own edges (AddOutgoing) need no entry: its list is cleared when its
+  // number is reused.
+  std::vector<std::int32_t> edge_log_;
   std::vector<std::int32_t> queue_;
   std::vector<std::int32_t> touches_;
 };
