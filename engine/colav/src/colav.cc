@@ -329,7 +329,14 @@ Command CollisionAvoidance::StepScenarioMpc(const OwnShip& own, const DesiredMot
   const size_t n = traffic.size();
   const std::vector<bool> none(n, false);
   growth_ = UncertainGrowth(traffic);
-  const Prediction nominal = Predict(own, desired, path, traffic, Behaviour{}, none);
+  // The nominal prediction is read for the vessels and for the return to
+  // the path after a manoeuvre. With neither (no traffic and no manoeuvre
+  // under way or ending, as when a planned route is sailed alone) nothing
+  // below reads it, the decision is the nominal behaviour, and the
+  // prediction (a simulation over the whole horizon) is not made.
+  const bool nominal_read = n > 0 || manoeuvring_ || rejoining_;
+  const Prediction nominal =
+      nominal_read ? Predict(own, desired, path, traffic, Behaviour{}, none) : Prediction{};
 
   // The encounters: vessels the nominal behaviour brings within the planning
   // distance, and those a manoeuvre under way is for until they are passed.

@@ -171,6 +171,34 @@ TEST(CollisionAvoidanceTest, StaysActiveUntilTheShipIsBackOnItsPath) {
   EXPECT_FALSE(f.Step(*ca, 240, {}).collision_avoidance_active);
 }
 
+TEST(CollisionAvoidanceTest, WithTheVesselGoneTheReturnToThePathIsStillWeighedAgainstTheLand) {
+  // A give-way manoeuvre, then the vessel is gone with the ship 150 m east
+  // of its path heading 290 deg: the nominal return swings across the path
+  // towards a bank 60 m west of it. Without traffic the decision still
+  // predicts the return (the land check of a manoeuvre that ends) and
+  // keeps a behaviour; without the bank the manoeuvre ends.
+  for (const bool bank : {true, false}) {
+    SCOPED_TRACE(bank ? "bank" : "open water");
+    Fixture f = Fixture::Make();
+    const LandIndex land(bank ? std::vector<std::vector<EastNorth>>{{{-60, -1000},
+                                                                     {-2000, -1000},
+                                                                     {-2000, 9000},
+                                                                     {-60, 9000}}}
+                              : std::vector<std::vector<EastNorth>>{});
+    auto ca = CollisionAvoidance::Create({});
+    ASSERT_TRUE(ca.ok());
+    if (bank) ca->set_land(&land);
+    ASSERT_TRUE(f.Step(*ca, 0, {Meeting(180, 9, 300)}).manoeuvring);
+    ship::ShipState s = f.model.state();
+    s.eta[1] = 150.0;
+    s.eta[2] = -70.0 * kDeg;
+    f.model.set_state(s);
+    const Command c = f.Step(*ca, 60, {});
+    EXPECT_EQ(c.manoeuvring, bank);
+    EXPECT_TRUE(c.collision_avoidance_active);
+  }
+}
+
 TEST(CollisionAvoidanceTest, StaysOffTheLandWhenTheStarboardSideIsBlocked) {
   // Head-on in a channel whose east bank lies 250 m to starboard.
   EncounterSetup s;
