@@ -160,6 +160,40 @@ StatusOr<ObstacleField> ObstacleField::Build(std::vector<ObstaclePolygon> obstac
     CellObstacle entry;
     std::vector<int32_t> cand, hull;
   };
+  // Edges by grid row for the even-odd test of points in boundary cells:
+  // an edge counts for p only when p.north_m lies between its ends, so the
+  // edges whose extent misses p's row cannot change the parity. The row
+  // range is widened by 1 m against rounding of a point's row.
+  {
+    const int polygon_count = f.obstacle_count();
+    const size_t keys = static_cast<size_t>(f.ny_) * polygon_count;
+    auto rows_of = [&](const Edge& e) {
+      const double y0 = std::min(e.a.north_m, e.a.north_m + e.d.north_m) - 1.0;
+      const double y1 = std::max(e.a.north_m, e.a.north_m + e.d.north_m) + 1.0;
+      const double r0 = std::floor((y0 - f.grid_origin_.north_m) * f.inv_cell_);
+      const double r1 = std::floor((y1 - f.grid_origin_.north_m) * f.inv_cell_);
+      return std::pair<int, int>{static_cast<int>(std::clamp(r0, 0.0, f.ny_ - 1.0)),
+                                 static_cast<int>(std::clamp(r1, 0.0, f.ny_ - 1.0))};
+    };
+    f.row_edge_begin_.assign(keys + 1, 0);
+    for (int i = 0; i < polygon_count; ++i) {
+      for (int k = f.obstacle_edge_begin_[i]; k < f.obstacle_edge_begin_[i + 1]; ++k) {
+        const auto [r0, r1] = rows_of(f.edges_[k]);
+        for (int r = r0; r <= r1; ++r)
+          ++f.row_edge_begin_[static_cast<size_t>(r) * polygon_count + i + 1];
+      }
+    }
+    for (size_t key = 0; key < keys; ++key) f.row_edge_begin_[key + 1] += f.row_edge_begin_[key];
+    f.row_edges_.resize(f.row_edge_begin_[keys]);
+    std::vector<int32_t> fill(f.row_edge_begin_.begin(), f.row_edge_begin_.end() - 1);
+    for (int i = 0; i < polygon_count; ++i) {
+      for (int k = f.obstacle_edge_begin_[i]; k < f.obstacle_edge_begin_[i + 1]; ++k) {
+        const auto [r0, r1] = rows_of(f.edges_[k]);
+        for (int r = r0; r <= r1; ++r)
+          f.row_edges_[fill[static_cast<size_t>(r) * polygon_count + i]++] = k;
+      }
+    }
+  }
   std::vector<std::vector<TmpEntry>> tmp(cell_count);
   std::vector<float> clear(cell_count, std::numeric_limits<float>::max());
   std::vector<uint8_t> inside_flag(cell_count);
@@ -315,6 +349,20 @@ bool ObstacleField::PointInObstacle(int obstacle, EastNorth p) const {
   return inside;
 }
 
+bool ObstacleField::PointInObstacleInRow(int obstacle, int row, EastNorth p) const {
+  const size_t key = static_cast<size_t>(row) * obstacle_count() + obstacle;
+  bool inside = false;
+  for (int32_t j = row_edge_begin_[key]; j < row_edge_begin_[key + 1]; ++j) {
+    const Edge& e = edges_[row_edges_[j]];
+    const double by = e.a.north_m + e.d.north_m;
+    if ((e.a.north_m > p.north_m) != (by > p.north_m)) {
+      const double x = e.a.east_m + (p.north_m - e.a.north_m) * e.d.east_m / e.d.north_m;
+      if (p.east_m < x) inside = !inside;
+    }
+  }
+  return inside;
+}
+
 double ObstacleField::ObstacleDistanceBruteForce(int obstacle, EastNorth p) const {
   double min2 = std::numeric_limits<double>::infinity();
   for (int k = obstacle_edge_begin_[obstacle]; k < obstacle_edge_begin_[obstacle + 1]; ++k) {
@@ -338,7 +386,12 @@ double ObstacleField::EntrySignedDistance(const CellObstacle& entry, EastNorth p
     min2 = std::min(min2, EdgeDistance2(edges_[candidates_[k]], p));
   }
   const double d = std::sqrt(min2);
-  const bool inside = entry.inside < 0 ? PointInObstacle(entry.obstacle, p) : entry.inside == 1;
+  // p lies in the grid (the callers found its cell): its row as CellAt has it.
+  const bool inside =
+      entry.inside < 0
+          ? PointInObstacleInRow(
+                entry.obstacle, static_cast<int>((p.north_m - grid_origin_.north_m) * inv_cell_), p)
+          : entry.inside == 1;
   return inside ? -d : d;
 }
 

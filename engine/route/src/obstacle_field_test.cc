@@ -100,6 +100,39 @@ TEST(ObstacleFieldTest, LargeJaggedCoastEqualsBruteForceAndDeepInsideIsInside) {
   EXPECT_TRUE(f.HullHits({0, 0}, 0.3));
 }
 
+TEST(ObstacleFieldTest, InsideIsExactOnGridRowBoundariesAndAtVertexNorthings) {
+  // The grid's even-odd test looks only at the edges that reach a point's
+  // row: points on the rows' boundaries and at the northing of a vertex
+  // (an edge ending exactly there) give the brute-force answer.
+  ObstaclePolygon coast;
+  coast.rings.emplace_back();
+  for (int i = 0; i < 400; ++i) {
+    const double a = 2 * M_PI * i / 400, r = 2300 + 300 * std::sin(17 * a) * std::cos(5 * a);
+    coast.rings[0].push_back({r * std::cos(a), r * std::sin(a)});
+  }
+  auto built = ObstacleField::Build({coast}, {-4000, -4000}, {4000, 4000}, {});
+  ASSERT_TRUE(built.ok()) << built.status();
+  const ObstacleField& f = *built;
+  const double origin = f.area_min().north_m - f.options().margin_m, cell = f.options().cell_m;
+  std::vector<double> northings;
+  for (double y = origin; y < 4000; y += cell) {
+    northings.insert(northings.end(), {y, std::nextafter(y, -1e9), std::nextafter(y, 1e9)});
+  }
+  for (const EastNorth& v : coast.rings[0]) northings.push_back(v.north_m);
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> u(-3000, 3000);
+  int inside = 0;
+  for (double y : northings) {
+    for (int i = 0; i < 8; ++i) {
+      const EastNorth p{u(rng), y};
+      const bool expected = f.SignedDistanceBruteForce(p) <= 0.0;
+      EXPECT_EQ(f.Inside(p), expected) << p.east_m << "," << p.north_m;
+      inside += expected;
+    }
+  }
+  EXPECT_GT(inside, 100);  // both answers exercised
+}
+
 TEST(ObstacleFieldTest, HullTouchesShoreOnlyWhenCloseEnough) {
   ObstacleField f = MakeField();
   // Square's west face at x = 600. Ship heading north (along the face):

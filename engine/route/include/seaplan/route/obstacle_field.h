@@ -117,6 +117,9 @@ class ObstacleField {
   };
 
   bool PointInObstacle(int obstacle, EastNorth p) const;
+  // The same answer for p in grid row `row`, from the obstacle's edges that
+  // can straddle that row (row_edges_).
+  bool PointInObstacleInRow(int obstacle, int row, EastNorth p) const;
   double EdgeDistance2(const Edge& e, EastNorth p) const;
   double ObstacleDistanceBruteForce(int obstacle, EastNorth p) const;  // unsigned
   // Signed distance from p (inside the entry's cell) to the entry's obstacle:
@@ -141,6 +144,12 @@ class ObstacleField {
   std::vector<int32_t> candidates_;
   std::vector<int32_t> hull_candidates_;
   std::vector<int32_t> all_edges_;  // 0..edges-1 (brute-force hull test)
+  // Per grid row and obstacle (index row * obstacles + obstacle, into
+  // row_edges_): the obstacle's edges whose north extent reaches the row
+  // (with 1 m to spare), the only ones a ray east from a point of the row
+  // can cross.
+  std::vector<int32_t> row_edge_begin_;
+  std::vector<int32_t> row_edges_;
   double hull_outer_radius_ = 0.0, hull_inner_radius_ = 0.0;
   double deep_inside_m_ = 0.0;
 };
