@@ -166,7 +166,6 @@ StatusOr<ObstacleField> ObstacleField::Build(std::vector<ObstaclePolygon> obstac
   // range is widened by 1 m against rounding of a point's row.
   {
     const int polygon_count = f.obstacle_count();
-    const size_t keys = static_cast<size_t>(f.ny_) * polygon_count;
     auto rows_of = [&](const Edge& e) {
       const double y0 = std::min(e.a.north_m, e.a.north_m + e.d.north_m) - 1.0;
       const double y1 = std::max(e.a.north_m, e.a.north_m + e.d.north_m) + 1.0;
@@ -175,12 +174,34 @@ StatusOr<ObstacleField> ObstacleField::Build(std::vector<ObstaclePolygon> obstac
       return std::pair<int, int>{static_cast<int>(std::clamp(r0, 0.0, f.ny_ - 1.0)),
                                  static_cast<int>(std::clamp(r1, 0.0, f.ny_ - 1.0))};
     };
+    // Each obstacle's rows run from the lowest to the highest its edges
+    // reach, so the index grows with the obstacles' extents, not with
+    // rows x obstacles (many islets on a large chart).
+    f.obstacle_row_lo_.assign(polygon_count, 0);
+    f.obstacle_row_key_.assign(polygon_count + 1, 0);
+    for (int i = 0; i < polygon_count; ++i) {
+      int lo = f.ny_, hi = -1;
+      for (int k = f.obstacle_edge_begin_[i]; k < f.obstacle_edge_begin_[i + 1]; ++k) {
+        const auto [r0, r1] = rows_of(f.edges_[k]);
+        lo = std::min(lo, r0);
+        hi = std::max(hi, r1);
+      }
+      if (hi < lo) {  // no edges: no rows
+        lo = 0;
+        hi = -1;
+      }
+      f.obstacle_row_lo_[i] = lo;
+      f.obstacle_row_key_[i + 1] = f.obstacle_row_key_[i] + (hi - lo + 1);
+    }
+    const size_t keys = static_cast<size_t>(f.obstacle_row_key_[polygon_count]);
+    auto key_of = [&](int i, int row) {
+      return static_cast<size_t>(f.obstacle_row_key_[i] + row - f.obstacle_row_lo_[i]);
+    };
     f.row_edge_begin_.assign(keys + 1, 0);
     for (int i = 0; i < polygon_count; ++i) {
       for (int k = f.obstacle_edge_begin_[i]; k < f.obstacle_edge_begin_[i + 1]; ++k) {
         const auto [r0, r1] = rows_of(f.edges_[k]);
-        for (int r = r0; r <= r1; ++r)
-          ++f.row_edge_begin_[static_cast<size_t>(r) * polygon_count + i + 1];
+        for (int r = r0; r <= r1; ++r) ++f.row_edge_begin_[key_of(i, r) + 1];
       }
     }
     for (size_t key = 0; key < keys; ++key) f.row_edge_begin_[key + 1] += f.row_edge_begin_[key];
@@ -189,8 +210,7 @@ StatusOr<ObstacleField> ObstacleField::Build(std::vector<ObstaclePolygon> obstac
     for (int i = 0; i < polygon_count; ++i) {
       for (int k = f.obstacle_edge_begin_[i]; k < f.obstacle_edge_begin_[i + 1]; ++k) {
         const auto [r0, r1] = rows_of(f.edges_[k]);
-        for (int r = r0; r <= r1; ++r)
-          f.row_edges_[fill[static_cast<size_t>(r) * polygon_count + i]++] = k;
+        for (int r = r0; r <= r1; ++r) f.row_edges_[fill[key_of(i, r)]++] = k;
       }
     }
   }
@@ -350,7 +370,12 @@ bool ObstacleField::PointInObstacle(int obstacle, EastNorth p) const {
 }
 
 bool ObstacleField::PointInObstacleInRow(int obstacle, int row, EastNorth p) const {
-  const size_t key = static_cast<size_t>(row) * obstacle_count() + obstacle;
+  // Outside the rows the obstacle's edges reach no edge straddles p's
+  // northing: the parity is even.
+  const int offset = row - obstacle_row_lo_[obstacle];
+  if (offset < 0 || offset >= obstacle_row_key_[obstacle + 1] - obstacle_row_key_[obstacle])
+    return false;
+  const size_t key = static_cast<size_t>(obstacle_row_key_[obstacle] + offset);
   bool inside = false;
   for (int32_t j = row_edge_begin_[key]; j < row_edge_begin_[key + 1]; ++j) {
     const Edge& e = edges_[row_edges_[j]];

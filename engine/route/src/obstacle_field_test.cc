@@ -103,14 +103,16 @@ TEST(ObstacleFieldTest, LargeJaggedCoastEqualsBruteForceAndDeepInsideIsInside) {
 TEST(ObstacleFieldTest, InsideIsExactOnGridRowBoundariesAndAtVertexNorthings) {
   // The grid's even-odd test looks only at the edges that reach a point's
   // row: points on the rows' boundaries and at the northing of a vertex
-  // (an edge ending exactly there) give the brute-force answer.
-  ObstaclePolygon coast;
+  // (an edge ending exactly there) give the brute-force answer. An islet
+  // north of the coast has an index of its own few rows beside the coast's.
+  ObstaclePolygon coast, islet;
   coast.rings.emplace_back();
   for (int i = 0; i < 400; ++i) {
     const double a = 2 * M_PI * i / 400, r = 2300 + 300 * std::sin(17 * a) * std::cos(5 * a);
     coast.rings[0].push_back({r * std::cos(a), r * std::sin(a)});
   }
-  auto built = ObstacleField::Build({coast}, {-4000, -4000}, {4000, 4000}, {});
+  islet.rings.push_back({{-150, 3000}, {150, 3000}, {150, 3230}, {-150, 3230}});
+  auto built = ObstacleField::Build({coast, islet}, {-4000, -4000}, {4000, 4000}, {});
   ASSERT_TRUE(built.ok()) << built.status();
   const ObstacleField& f = *built;
   const double origin = f.area_min().north_m - f.options().margin_m, cell = f.options().cell_m;
@@ -119,12 +121,13 @@ TEST(ObstacleFieldTest, InsideIsExactOnGridRowBoundariesAndAtVertexNorthings) {
     northings.insert(northings.end(), {y, std::nextafter(y, -1e9), std::nextafter(y, 1e9)});
   }
   for (const EastNorth& v : coast.rings[0]) northings.push_back(v.north_m);
+  for (const EastNorth& v : islet.rings[0]) northings.push_back(v.north_m);
   std::mt19937 rng(5);
-  std::uniform_real_distribution<double> u(-3000, 3000);
+  std::uniform_real_distribution<double> u(-3000, 3000), near_islet(-300, 300);
   int inside = 0;
   for (double y : northings) {
     for (int i = 0; i < 8; ++i) {
-      const EastNorth p{u(rng), y};
+      const EastNorth p{i % 2 == 0 ? u(rng) : near_islet(rng), y};
       const bool expected = f.SignedDistanceBruteForce(p) <= 0.0;
       EXPECT_EQ(f.Inside(p), expected) << p.east_m << "," << p.north_m;
       inside += expected;

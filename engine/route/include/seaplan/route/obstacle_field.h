@@ -144,10 +144,12 @@ class ObstacleField {
   std::vector<int32_t> candidates_;
   std::vector<int32_t> hull_candidates_;
   std::vector<int32_t> all_edges_;  // 0..edges-1 (brute-force hull test)
-  // Per grid row and obstacle (index row * obstacles + obstacle, into
-  // row_edges_): the obstacle's edges whose north extent reaches the row
-  // (with 1 m to spare), the only ones a ray east from a point of the row
-  // can cross.
+  // Per obstacle and grid row of the rows its edges reach (key
+  // obstacle_row_key_[i] + row - obstacle_row_lo_[i], into row_edges_): the
+  // obstacle's edges whose north extent reaches the row (with 1 m to
+  // spare), the only ones a ray east from a point of the row can cross.
+  std::vector<int32_t> obstacle_row_lo_;   // size obstacles
+  std::vector<int32_t> obstacle_row_key_;  // size obstacles + 1
   std::vector<int32_t> row_edge_begin_;
   std::vector<int32_t> row_edges_;
   double hull_outer_radius_ = 0.0, hull_inner_radius_ = 0.0;
