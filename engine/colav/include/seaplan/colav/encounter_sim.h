@@ -43,8 +43,9 @@ struct EncounterSetup {
   CollisionAvoidanceOptions avoidance;
   AutopilotOptions autopilot;
   // The simulation client's path following (wheel-over for this hull under
-  // the autopilot: a 450 m radius, see clients/sim/core/executor.h).
-  PathFollowerOptions follower{400.0, 60.0, 0.0, 450.0};
+  // the autopilot: a 450 m radius; the course along a 400 m chord of the
+  // path; see clients/sim/core/executor.h).
+  PathFollowerOptions follower{400.0, 60.0, 0.0, 450.0, 400.0};
 };
 
 struct VesselOutcome {
