@@ -13,7 +13,7 @@
 // Usage: route_pairs_bench [shared_dir] [--pairs N] [--seed S] [--chart noaa|trondheim|alesund]
 //                          [--min-depth M] [--turn-radius M] [--no-fillet] [--fillet-radius M]
 //                          [--fillet-min-radius M] [--lookahead M] [--wheel-over-radius M]
-//                          [--chord M] [--no-sail-check] [--verbose]
+//                          [--chord S] [--no-sail-check] [--verbose]
 // --no-sail-check: Level2Options::sail_check off (the planner without step 6,
 // its routes' tracks not sailed); --turn-radius: the route planner's Level2Options::turn_radius_m
 // (0: no turn check, the planner as it was); --no-fillet: Level2Options::fillet_turns off (the
@@ -22,7 +22,7 @@
 // client's path follower; --lookahead and --wheel-over-radius sail the same routes once more with
 // those changed and print a line each
 // (--wheel-over-radius may be repeated, a comparison of followers in one run); --chord: that
-// follower's PathFollowerOptions::chord_m (0: the leg's course; may be repeated too).
+// follower's PathFollowerOptions::chord_s (0: the leg's course; may be repeated too).
 // ROUTE_PAIRS_DUMP=1 prints every sailed route ("R east north") and its executed track ("T east
 // north").
 #include <cstdio>
@@ -201,7 +201,7 @@ int RunCase(const std::string& shared, const ChartCase& c, const route::SweepOpt
     const std::string label =
         "look-ahead " + std::to_string(static_cast<int>(flagged.lookahead_m)) +
         " m, wheel-over radius " + std::to_string(static_cast<int>(flagged.turn_radius_m)) + " m" +
-        ", chord " + std::to_string(static_cast<int>(flagged.chord_m)) + " m";
+        ", chord " + std::to_string(static_cast<int>(flagged.chord_s)) + " s";
     SailAll(*result, c.name, label, flagged, query, verbose);
   }
   const bool pass = result->routed == result->connected && result->within_margin == 0 &&
@@ -227,7 +227,7 @@ int main(int argc, char** argv) {
   // look-ahead and each flagged wheel-over radius.
   double lookahead_m = 0.0;
   std::vector<double> wheel_over_radii_m;
-  std::vector<double> chords_m;
+  std::vector<double> chords_s;
 
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
@@ -254,7 +254,7 @@ int main(int argc, char** argv) {
     } else if (a == "--wheel-over-radius" && i + 1 < argc) {
       wheel_over_radii_m.push_back(std::atof(argv[++i]));
     } else if (a == "--chord" && i + 1 < argc) {
-      chords_m.push_back(std::atof(argv[++i]));
+      chords_s.push_back(std::atof(argv[++i]));
     } else if (a == "--verbose") {
       verbose = true;
     } else if (!a.empty() && a[0] != '-') {
@@ -265,22 +265,22 @@ int main(int argc, char** argv) {
           "usage: route_pairs_bench [shared_dir] [--pairs N] [--seed S] "
           "[--chart noaa|trondheim|alesund] [--min-depth M] [--turn-radius M] [--no-fillet] "
           "[--fillet-radius M] [--fillet-min-radius M] [--lookahead M] [--wheel-over-radius M] "
-          "[--chord M] [--no-sail-check] [--verbose]\n");
+          "[--chord S] [--no-sail-check] [--verbose]\n");
       return 2;
     }
   }
   std::vector<colav::PathFollowerOptions> followers;
   const colav::PathFollowerOptions sim_follower = colav::EncounterSetup{}.follower;
-  if ((lookahead_m > 0 || !chords_m.empty()) && wheel_over_radii_m.empty()) {
+  if ((lookahead_m > 0 || !chords_s.empty()) && wheel_over_radii_m.empty()) {
     wheel_over_radii_m.push_back(sim_follower.turn_radius_m);
   }
   for (double r : wheel_over_radii_m) {
     colav::PathFollowerOptions f = sim_follower;
     if (lookahead_m > 0) f.lookahead_m = lookahead_m;
     f.turn_radius_m = r;
-    if (chords_m.empty()) chords_m.push_back(sim_follower.chord_m);
-    for (double chord : chords_m) {
-      f.chord_m = chord;
+    if (chords_s.empty()) chords_s.push_back(sim_follower.chord_s);
+    for (double chord : chords_s) {
+      f.chord_s = chord;
       followers.push_back(f);
     }
   }

@@ -186,9 +186,9 @@ TEST(EncounterSimTest, TheChordAlongThePathHoldsTheHullCloserToAnArc) {
   EncounterSetup s;
   s.path = FilletedCorner();
   s.max_time_s = 1500;
-  s.follower.chord_m = 0;
+  s.follower.chord_s = 0;
   auto on_leg = SimulateEncounter(s);
-  s.follower.chord_m = 400;
+  s.follower.chord_s = 44;  // 400 m at 9 m/s
   auto along = SimulateEncounter(s);
   ASSERT_TRUE(on_leg.ok() && along.ok());
   EXPECT_TRUE(on_leg->arrived);

@@ -9,11 +9,11 @@ namespace seaplan::colav {
 
 Status PathFollowerOptions::Validate() const {
   if (!(lookahead_m > 0) || !(switch_distance_m >= 0) || !(search_distance_m >= 0) ||
-      !(turn_radius_m >= 0) || !(chord_m >= 0)) {
+      !(turn_radius_m >= 0) || !(chord_s >= 0)) {
     return absl::InvalidArgumentError(
         absl::StrFormat("path follower: lookahead_m (%g) must be > 0, switch_distance_m (%g), "
-                        "search_distance_m (%g), turn_radius_m (%g) and chord_m (%g) >= 0",
-                        lookahead_m, switch_distance_m, search_distance_m, turn_radius_m, chord_m));
+                        "search_distance_m (%g), turn_radius_m (%g) and chord_s (%g) >= 0",
+                        lookahead_m, switch_distance_m, search_distance_m, turn_radius_m, chord_s));
   }
   return absl::OkStatus();
 }
@@ -79,7 +79,7 @@ EastNorth PathFollower::PointAt(double s) const {
   return path_[leg] + d * ((s - start_distance_[leg]) / d.Norm());
 }
 
-double PathFollower::Update(EastNorth here) {
+double PathFollower::Update(EastNorth here, double speed_mps) {
   const int last = static_cast<int>(path_.size()) - 2;
   // Re-choose the leg: the nearest of the legs ahead within the search
   // distance (ties go to the later leg: it is further along).
@@ -116,10 +116,10 @@ double PathFollower::Update(EastNorth here) {
   // Starboard normal of the leg direction (x east, y north): (dy, -dx).
   cross_track_m_ = (here - a).Dot({d.north_m / len, -d.east_m / len});
   leg_remaining_m_ = len - Along(leg_, here);
-  double c = options_.chord_m > 0
-                 ? CourseOf(PointAt(s_abeam + options_.chord_m) - PointAt(s_abeam)) -
-                       std::atan(off_path_m / options_.lookahead_m)
-                 : alpha - std::atan(cross_track_m_ / options_.lookahead_m);
+  const double chord_m = options_.chord_s * std::max(speed_mps, 0.0);
+  double c = chord_m > 0 ? CourseOf(PointAt(s_abeam + chord_m) - PointAt(s_abeam)) -
+                               std::atan(off_path_m / options_.lookahead_m)
+                         : alpha - std::atan(cross_track_m_ / options_.lookahead_m);
   c = std::fmod(c, 2.0 * M_PI);
   return c < 0 ? c + 2.0 * M_PI : c;
 }
