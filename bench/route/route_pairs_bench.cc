@@ -13,7 +13,7 @@
 // Usage: route_pairs_bench [shared_dir] [--pairs N] [--seed S] [--chart noaa|trondheim|alesund]
 //                          [--min-depth M] [--turn-radius M] [--no-fillet] [--fillet-radius M]
 //                          [--fillet-min-radius M] [--lookahead M] [--wheel-over-radius M]
-//                          [--no-sail-check] [--verbose]
+//                          [--chord S] [--no-sail-check] [--verbose]
 // --no-sail-check: Level2Options::sail_check off (the planner without step 6,
 // its routes' tracks not sailed); --turn-radius: the route planner's Level2Options::turn_radius_m
 // (0: no turn check, the planner as it was); --no-fillet: Level2Options::fillet_turns off (the
@@ -21,8 +21,10 @@
 // fillet_min_radius_m (0: the fillet radius only). The routes are sailed with the simulation
 // client's path follower; --lookahead and --wheel-over-radius sail the same routes once more with
 // those changed and print a line each
-// (--wheel-over-radius may be repeated, a comparison of followers in one run). ROUTE_PAIRS_DUMP=1
-// prints every sailed route ("R east north") and its executed track ("T east north").
+// (--wheel-over-radius may be repeated, a comparison of followers in one run); --chord: that
+// follower's PathFollowerOptions::chord_s (0: the leg's course; may be repeated too).
+// ROUTE_PAIRS_DUMP=1 prints every sailed route ("R east north") and its executed track ("T east
+// north").
 #include <cstdio>
 #include <cstdlib>
 #include <limits>
@@ -198,7 +200,8 @@ int RunCase(const std::string& shared, const ChartCase& c, const route::SweepOpt
   for (const colav::PathFollowerOptions& flagged : followers) {
     const std::string label =
         "look-ahead " + std::to_string(static_cast<int>(flagged.lookahead_m)) +
-        " m, wheel-over radius " + std::to_string(static_cast<int>(flagged.turn_radius_m)) + " m";
+        " m, wheel-over radius " + std::to_string(static_cast<int>(flagged.turn_radius_m)) + " m" +
+        ", chord " + std::to_string(static_cast<int>(flagged.chord_s)) + " s";
     SailAll(*result, c.name, label, flagged, query, verbose);
   }
   const bool pass = result->routed == result->connected && result->within_margin == 0 &&
@@ -224,6 +227,8 @@ int main(int argc, char** argv) {
   // look-ahead and each flagged wheel-over radius.
   double lookahead_m = 0.0;
   std::vector<double> wheel_over_radii_m;
+  std::vector<double> chords_s;
+
   for (int i = 1; i < argc; ++i) {
     const std::string a = argv[i];
     if (a == "--pairs" && i + 1 < argc) {
@@ -248,6 +253,8 @@ int main(int argc, char** argv) {
       lookahead_m = std::atof(argv[++i]);
     } else if (a == "--wheel-over-radius" && i + 1 < argc) {
       wheel_over_radii_m.push_back(std::atof(argv[++i]));
+    } else if (a == "--chord" && i + 1 < argc) {
+      chords_s.push_back(std::atof(argv[++i]));
     } else if (a == "--verbose") {
       verbose = true;
     } else if (!a.empty() && a[0] != '-') {
@@ -258,20 +265,24 @@ int main(int argc, char** argv) {
           "usage: route_pairs_bench [shared_dir] [--pairs N] [--seed S] "
           "[--chart noaa|trondheim|alesund] [--min-depth M] [--turn-radius M] [--no-fillet] "
           "[--fillet-radius M] [--fillet-min-radius M] [--lookahead M] [--wheel-over-radius M] "
-          "[--no-sail-check] [--verbose]\n");
+          "[--chord S] [--no-sail-check] [--verbose]\n");
       return 2;
     }
   }
   std::vector<colav::PathFollowerOptions> followers;
   const colav::PathFollowerOptions sim_follower = colav::EncounterSetup{}.follower;
-  if (lookahead_m > 0 && wheel_over_radii_m.empty()) {
+  if ((lookahead_m > 0 || !chords_s.empty()) && wheel_over_radii_m.empty()) {
     wheel_over_radii_m.push_back(sim_follower.turn_radius_m);
   }
   for (double r : wheel_over_radii_m) {
     colav::PathFollowerOptions f = sim_follower;
     if (lookahead_m > 0) f.lookahead_m = lookahead_m;
     f.turn_radius_m = r;
-    followers.push_back(f);
+    if (chords_s.empty()) chords_s.push_back(sim_follower.chord_s);
+    for (double chord : chords_s) {
+      f.chord_s = chord;
+      followers.push_back(f);
+    }
   }
   log::SetLevel(log::Level::kWarn);
   // Drafts: the NOAA call that used to fail (8 m), the same for Trondheim,

@@ -266,7 +266,7 @@ void Executor::StepMove(std::vector<FeedbackOut>* out) {
       return;
     }
   }
-  double psi_d = los_->Update(here);
+  double psi_d = los_->Update(here, s.surge_mps());
   double speed = move_speed_mps_;
   if (to_goal < config_.slow_down_distance_m) {
     speed =

@@ -88,7 +88,10 @@ struct ExecutorConfig {
   // ship overshot 76-88 deg corners by ~340 m and crossed back onto the
   // shallows (route_pairs_bench: tracks aground), see
   // SharpCornerOvershootIsBoundedByTheWheelOver.
-  PathFollowerOptions path{400.0, 60.0, 0.0, 450.0};
+  // chord 44 s (400 m at 9 m/s): the course leads bends (a fillet's polygon is held ~100 m
+  // closer than by following its legs one by one, engine/colav
+  // path_follower.h).
+  PathFollowerOptions path{400.0, 60.0, 0.0, 450.0, 44.0};
   // Heading and speed control (engine/colav's autopilot: the same law the
   // collision avoidance predicts with). SITS' gains (kp 4, kd 90, ki 0.01)
   // make this hull circle under LOS when a leg starts far off its heading.

@@ -238,7 +238,7 @@ CollisionAvoidance::Prediction CollisionAvoidance::Predict(
     const EastNorth before = here;
     if (!arrived) {
       const ship::ShipState& s = model.state();
-      double course = follower.Update(here);
+      double course = follower.Update(here, s.surge_mps());
       const double to_goal = (goal - here).Norm();
       if (to_goal < options_.arrival_radius_m ||
           (follower.on_last_leg() && follower.leg_remaining_m() <= 0)) {

@@ -199,6 +199,35 @@ TEST(CollisionAvoidanceTest, WithTheVesselGoneTheReturnToThePathIsStillWeighedAg
   }
 }
 
+// North for 2 km, a quarter circle of 450 m radius to the east as a
+// fillet's polygon (10 deg per corner), then east for 2 km.
+std::vector<EastNorth> FilletedCorner() {
+  std::vector<EastNorth> path = {{0, -2000}};
+  for (int deg = 0; deg <= 90; deg += 10) {
+    path.push_back({450.0 - 450.0 * std::cos(deg * kDeg), 450.0 * std::sin(deg * kDeg)});
+  }
+  path.push_back({2450, 450});
+  return path;
+}
+
+TEST(EncounterSimTest, TheChordAlongThePathHoldsTheHullCloserToAnArc) {
+  EncounterSetup s;
+  s.path = FilletedCorner();
+  s.max_time_s = 1500;
+  s.follower.chord_s = 0;
+  auto on_leg = SimulateEncounter(s);
+  s.follower.chord_s = 44;  // 400 m at 9 m/s
+  auto along = SimulateEncounter(s);
+  ASSERT_TRUE(on_leg.ok() && along.ok());
+  EXPECT_TRUE(on_leg->arrived);
+  EXPECT_TRUE(along->arrived);
+  // The polygon's legs followed one after the other: the course error that
+  // holds the turn rate comes from ~200 m of cross-track error; the chord
+  // leads the bend and halves it.
+  EXPECT_GT(on_leg->max_path_deviation_m, 180.0);
+  EXPECT_LT(along->max_path_deviation_m, 0.6 * on_leg->max_path_deviation_m);
+}
+
 TEST(CollisionAvoidanceTest, StaysOffTheLandWhenTheStarboardSideIsBlocked) {
   // Head-on in a channel whose east bank lies 250 m to starboard.
   EncounterSetup s;

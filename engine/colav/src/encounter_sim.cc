@@ -123,7 +123,7 @@ StatusOr<EncounterOutcome> SimulateEncounter(const EncounterSetup& setup) {
       out.min_land_clearance_m = std::min(out.min_land_clearance_m, c);
       if (c < 0) out.aground_s += kLandSampleS;
     }
-    const double course = follower.Update(here);
+    const double course = follower.Update(here, s.surge_mps());
     const double to_goal = (goal - here).Norm();
     if (to_goal < o.arrival_radius_m ||
         (follower.on_last_leg() && follower.leg_remaining_m() <= 0 &&

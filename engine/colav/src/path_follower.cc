@@ -9,11 +9,11 @@ namespace seaplan::colav {
 
 Status PathFollowerOptions::Validate() const {
   if (!(lookahead_m > 0) || !(switch_distance_m >= 0) || !(search_distance_m >= 0) ||
-      !(turn_radius_m >= 0)) {
+      !(turn_radius_m >= 0) || !(chord_s >= 0)) {
     return absl::InvalidArgumentError(
         absl::StrFormat("path follower: lookahead_m (%g) must be > 0, switch_distance_m (%g), "
-                        "search_distance_m (%g) and turn_radius_m (%g) >= 0",
-                        lookahead_m, switch_distance_m, search_distance_m, turn_radius_m));
+                        "search_distance_m (%g), turn_radius_m (%g) and chord_s (%g) >= 0",
+                        lookahead_m, switch_distance_m, search_distance_m, turn_radius_m, chord_s));
   }
   return absl::OkStatus();
 }
@@ -69,7 +69,17 @@ double PathFollower::DistanceTo(int leg, EastNorth p) const {
   return (p - (path_[leg] + d * (s / len))).Norm();
 }
 
-double PathFollower::Update(EastNorth here) {
+EastNorth PathFollower::PointAt(double s) const {
+  const int last = static_cast<int>(path_.size()) - 2;
+  const int leg = std::min<int>(
+      last, static_cast<int>(std::upper_bound(start_distance_.begin(), start_distance_.end(), s) -
+                             start_distance_.begin()) -
+                1);
+  const EastNorth d = path_[leg + 1] - path_[leg];
+  return path_[leg] + d * ((s - start_distance_[leg]) / d.Norm());
+}
+
+double PathFollower::Update(EastNorth here, double speed_mps) {
   const int last = static_cast<int>(path_.size()) - 2;
   // Re-choose the leg: the nearest of the legs ahead within the search
   // distance (ties go to the later leg: it is further along).
@@ -84,6 +94,12 @@ double PathFollower::Update(EastNorth here) {
     }
   }
   leg_ = best;
+  // Where the ship is abeam of the path, and how far off it, before the
+  // wheel-over moves on to a leg ahead (the chord leads the corner itself).
+  const double abeam_len = start_distance_[leg_ + 1] - start_distance_[leg_];
+  const double s_abeam = start_distance_[leg_] + std::clamp(Along(leg_, here), 0.0, abeam_len);
+  const EastNorth abeam_dir = (path_[leg_ + 1] - path_[leg_]) * (1.0 / abeam_len);
+  const double off_path_m = (here - path_[leg_]).Dot({abeam_dir.north_m, -abeam_dir.east_m});
   // Past (or nearly past) the leg's end along track: the next leg.
   // The wheel-over distance may exceed a short leg (waypoints every 100 m):
   // measured along the path from where the ship is abeam of its leg.
@@ -100,7 +116,10 @@ double PathFollower::Update(EastNorth here) {
   // Starboard normal of the leg direction (x east, y north): (dy, -dx).
   cross_track_m_ = (here - a).Dot({d.north_m / len, -d.east_m / len});
   leg_remaining_m_ = len - Along(leg_, here);
-  double c = alpha - std::atan(cross_track_m_ / options_.lookahead_m);
+  const double chord_m = options_.chord_s * std::max(speed_mps, 0.0);
+  double c = chord_m > 0 ? CourseOf(PointAt(s_abeam + chord_m) - PointAt(s_abeam)) -
+                               std::atan(off_path_m / options_.lookahead_m)
+                         : alpha - std::atan(cross_track_m_ / options_.lookahead_m);
   c = std::fmod(c, 2.0 * M_PI);
   return c < 0 ? c + 2.0 * M_PI : c;
 }

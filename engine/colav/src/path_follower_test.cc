@@ -87,5 +87,29 @@ TEST(PathFollowerTest, WheelOverStartsTheTurnBeforeTheCorner) {
   EXPECT_FALSE(bad.Validate().ok());
 }
 
+TEST(PathFollowerTest, TheChordAlongThePathLeadsTheCornerAndMatchesOnAStraight) {
+  const std::vector<EastNorth> path = {{0, 0}, {1000, 0}, {1000, 1000}};
+  PathFollowerOptions on_leg;
+  PathFollowerOptions along;
+  along.chord_s = 100;  // 400 m at 4 m/s
+  auto leg = PathFollower::Create(path, on_leg);
+  auto ahead = PathFollower::Create(path, along);
+  ASSERT_TRUE(leg.ok() && ahead.ok());
+  // 50 m north of the first leg, far from the corner: both steer east and
+  // back south by atan(50 / 400).
+  const double straight = M_PI / 2 + std::atan(50.0 / 400.0);
+  EXPECT_NEAR(leg->Update({100, 50}), straight, 1e-9);
+  EXPECT_NEAR(ahead->Update({100, 50}, 4.0), straight, 1e-9);
+  // 200 m before the corner, on the leg: the chord's end is 200 m up the
+  // northbound leg, 45 deg left of the leg's course; on the leg: due east.
+  EXPECT_NEAR(leg->Update({800, 0}), M_PI / 2, 1e-9);
+  EXPECT_NEAR(ahead->Update({800, 0}, 4.0), M_PI / 4, 1e-9);
+  // Slower, a shorter chord: 300 m ends 100 m up the northbound leg.
+  EXPECT_NEAR(ahead->Update({800, 0}, 3.0), std::atan2(200.0, 100.0), 1e-9);
+  EXPECT_NEAR(ahead->Update({800, 0}), M_PI / 2, 1e-9);  // at rest: no chord
+  // Past the path's end the chord runs on along the last leg's line.
+  EXPECT_NEAR(ahead->Update({1000, 1200}, 4.0), 0.0, 1e-9);
+}
+
 }  // namespace
 }  // namespace seaplan::colav

@@ -38,6 +38,22 @@ struct PathFollowerOptions {
   // so its arc meets both legs instead of overshooting the corner outwards
   // by about R (0: only switch_distance_m).
   double turn_radius_m = 0.0;
+  // Leads bends: > 0, the course is the direction of the path's chord
+  // from the ship's abeam point to the point c = chord_s x the ship's
+  // speed further along the path (round the corners), less
+  // atan(e / lookahead_m) for the ship's distance e from the nearest leg
+  // (the wheel-over's switch to the next leg then only decides leg() and
+  // cross_track_m()); 0, the current leg's course less
+  // atan(cross_track_m() / lookahead_m). The same on a straight leg, but
+  // on an arc of radius R the chord leads the tangent by c / (2 R), most of
+  // the course error the yaw-damped autopilot needs to hold the arc's turn
+  // rate (kd V / (kp R): 225 m / R at 9 m/s, in proportion to the speed,
+  // so c = 2 kd V / kp would be all of it), which the leg's course left to
+  // ~200 m of cross-track error; and the turn onto a corner starts c
+  // before it. A longer chord cuts the inside of sharp corners (the same
+  // 200 Ålesund routes sailed at 9 m/s: 500 m put 9 tracks aground, 400 m
+  // 1; bench/route README).
+  double chord_s = 0.0;
   Status Validate() const;
 };
 
@@ -48,8 +64,8 @@ class PathFollower {
                                        const PathFollowerOptions& options = {});
 
   // Chooses the leg for `here` (forward only) and returns the desired
-  // course [rad, clockwise from north].
-  double Update(EastNorth here);
+  // course [rad, clockwise from north]; `speed_mps` sets the chord (0: none).
+  double Update(EastNorth here, double speed_mps = 0.0);
 
   int leg() const { return leg_; }  // index of the leg's first point
   bool on_last_leg() const { return leg_ + 2 == static_cast<int>(path_.size()); }
@@ -62,6 +78,7 @@ class PathFollower {
   PathFollower(std::vector<EastNorth> path, const PathFollowerOptions& o);
   double Along(int leg, EastNorth p) const;       // projection on the leg's line, from its start
   double DistanceTo(int leg, EastNorth p) const;  // to the segment
+  EastNorth PointAt(double s) const;  // at path distance s (past the end: on the last leg's line)
 
   std::vector<EastNorth> path_;
   std::vector<double> start_distance_;  // path distance at each point
