@@ -338,6 +338,7 @@ PlanResult PlannerRun::Run() {
     params.weight = -1;
     params.epsilon_s = options_.epsilon_s;
     params.seed = options_.random_seed;
+    params.type_based_exploration = options_.type_based_exploration;
     if (many_variants) {
       params.max_variants = 64;
       params.bound_dominance = false;

@@ -17,7 +17,10 @@ LazySearch::LazySearch(const SnapTask& task, StateRegistry& registry,
       params_(params),
       rng_(params.seed),
       open_all_(KeyOrder(params)),
-      open_preferred_(KeyOrder(params)) {}
+      open_preferred_(KeyOrder(params)),
+      // Its own stream, so that the successors' shuffle is the same with
+      // and without it.
+      open_typed_(params.seed ^ 0x9e3779b97f4a7c15ULL) {}
 
 TieBreakingOpenList::KeyOrder LazySearch::KeyOrder(const SearchParams& params) {
   // Greedy: (h, makespan so far); weighted A*: (f, h). See Push.
@@ -34,7 +37,8 @@ LazySearch::NodeInfo& LazySearch::Info(StateId id) {
 std::size_t LazySearch::MemoryBytes() const {
   return info_.capacity() * sizeof(NodeInfo) + slack_pool_.capacity() * sizeof(double) +
          pending_.capacity() * sizeof(Pending) + open_all_.MemoryBytes() +
-         open_preferred_.MemoryBytes() + path_.capacity() * sizeof(Event);
+         open_preferred_.MemoryBytes() + open_typed_.MemoryBytes() +
+         depth_.capacity() * sizeof(std::int32_t) + path_.capacity() * sizeof(Event);
 }
 
 void LazySearch::Initialize(const StateData& initial) {
@@ -46,6 +50,7 @@ void LazySearch::Initialize(const StateData& initial) {
   n = NodeInfo{};
   n.status = kOpen;
   initial_ = id.value();
+  if (TypeBased()) Depth(initial_) = 0;
   // The initial state is a pending record without a parent.
   pending_.push_back(Pending{-1, 0, 0.0});
   open_all_.Insert(0, 0, 0);
@@ -100,22 +105,37 @@ void LazySearch::Push(std::int32_t parent, const Event& event, double g_s, doubl
   }
   open_all_.Insert(parent_h, real_key, index);
   if (preferred) open_preferred_.Insert(parent_h, real_key, index);
+  if (TypeBased()) open_typed_.Insert(parent_h, Depth(parent) + 1, index);
+}
+
+std::int32_t& LazySearch::Depth(std::int32_t state) {
+  const auto i = static_cast<std::size_t>(state);
+  if (i >= depth_.size()) depth_.resize(std::max(i + 1, depth_.size() * 3 / 2 + 16), 0);
+  return depth_[i];
 }
 
 bool LazySearch::Pop(std::int32_t* state) {
-  while (!open_all_.empty() || !open_preferred_.empty()) {
-    TieBreakingOpenList* list;
-    if (!open_preferred_.empty() && (open_all_.empty() || priority_preferred_ <= priority_all_)) {
-      list = &open_preferred_;
+  // Round robin by priority (the lowest goes next, ties in the order
+  // preferred, all, typed), as Fast Downward's alternation: a boost lowers
+  // the preferred list's priority, so it then has that many turns in a row.
+  while (!open_all_.empty() || !open_preferred_.empty() || !open_typed_.empty()) {
+    std::int32_t index;
+    const bool preferred_next = !open_preferred_.empty() &&
+                                (open_all_.empty() || priority_preferred_ <= priority_all_) &&
+                                (open_typed_.empty() || priority_preferred_ <= priority_typed_);
+    if (preferred_next) {
+      index = open_preferred_.Pop().state;
       ++priority_preferred_;
-    } else {
-      list = &open_all_;
+    } else if (!open_all_.empty() && (open_typed_.empty() || priority_all_ <= priority_typed_)) {
+      index = open_all_.Pop().state;
       ++priority_all_;
+    } else {
+      index = open_typed_.Pop();
+      ++priority_typed_;
     }
-    const OpenEntry e = list->Pop();
-    const Pending& p = pending_[static_cast<std::size_t>(e.state)];
-    if (OverBound(p.lb_s)) continue;
-    *state = e.state;
+    const Pending& p = pending_[static_cast<std::size_t>(index)];
+    if (p.parent == kConsumed || OverBound(p.lb_s)) continue;
+    *state = index;
     return true;
   }
   return false;
@@ -160,6 +180,7 @@ void LazySearch::AppendToTimelinePath(std::int32_t state) {
 
 std::int32_t LazySearch::Materialize(std::int32_t pending_index) {
   const Pending rec = pending_[static_cast<std::size_t>(pending_index)];
+  pending_[static_cast<std::size_t>(pending_index)].parent = kConsumed;
   if (rec.parent < 0) {
     // The initial state.
     NodeInfo& n = info_[static_cast<std::size_t>(initial_)];
@@ -226,6 +247,10 @@ std::int32_t LazySearch::Materialize(std::int32_t pending_index) {
   // The chosen state's schedule is the parent's plus this event: keep it
   // for the expansion that follows.
   timeline_.Keep(ev);
+  if (TypeBased()) {
+    const std::int32_t depth = Depth(rec.parent) + 1;
+    Depth(chosen) = depth;
+  }
   NodeInfo& n = info_[static_cast<std::size_t>(chosen)];
   AppendToTimelinePath(chosen);
   n.parent = rec.parent;

@@ -10,7 +10,11 @@
 // are not even applied or scheduled at generation: they are pushed with the
 // parent's makespan and bound and checked when popped, which keeps
 // expansions cheap when thousands of starts apply (pairs of objects in TMS)
-// and the search follows helpful events anyway. Ordering:
+// and the search follows helpful events anyway. Optionally a third list,
+// type-based exploration (open_lists/type_based_open_list.h): every
+// successor, bucketed by (parent h, depth), popped at random in turn with
+// the other two, so that a search stuck on a plateau also expands states
+// away from it. Ordering:
 //   - greedy (weight < 0): (parent h, makespan so far), or (parent h,
 //     newest first) with PlateauOrder::kNewestFirst;
 //   - weighted A* (weight >= 0): makespan lower bound + weight * scale * h.
@@ -27,6 +31,7 @@
 #include "heuristics/relaxed_plan_heuristic.h"
 #include "heuristics/temporal_reachability.h"
 #include "open_lists/tie_breaking_open_list.h"
+#include "open_lists/type_based_open_list.h"
 #include "seaplan/common/stop_token.h"
 #include "snap_task.h"
 #include "state_registry.h"
@@ -53,6 +58,9 @@ struct SearchParams {
   // first.
   enum class PlateauOrder { kMakespan, kNewestFirst };
   PlateauOrder plateau_order = PlateauOrder::kMakespan;
+  // Greedy only: a third list in the alternation, type-based exploration
+  // (types (parent h, depth in events), random pops seeded by `seed`).
+  bool type_based_exploration = false;
 };
 
 struct SearchCounters {
@@ -137,20 +145,25 @@ class LazySearch {
   // duration bounds are not stored, Transitions::Apply fixes them again
   // from the parent's state when the record is popped.
   struct Pending {
-    std::int32_t parent;  // -1: the initial state
-    SnapId snap;          // Event::snap
-    double lb_s;          // lower bound on the makespan of any completion
+    // -1: the initial state; kConsumed once popped (the record is in two or
+    // three lists, and a second pop would only find the same state again).
+    std::int32_t parent;
+    SnapId snap;  // Event::snap
+    double lb_s;  // lower bound on the makespan of any completion
   };
   static_assert(sizeof(Pending) == 16);
   // `parent_h` kGoalFirst puts a goal state before everything else.
   void Push(std::int32_t parent, const Event& event, double g_s, double lb_s, bool preferred,
             std::int32_t parent_h);
   static constexpr std::int32_t kGoalFirst = -1'000'000'000;
+  static constexpr std::int32_t kConsumed = -2;
   static TieBreakingOpenList::KeyOrder KeyOrder(const SearchParams& params);
   // Generates and registers the state of a pending record (deferred, as in
   // Fast Downward's lazy search); -1 when it is a dominated duplicate.
   std::int32_t Materialize(std::int32_t pending_index);
   bool Pop(std::int32_t* state);
+  bool TypeBased() const { return params_.type_based_exploration && params_.weight < 0; }
+  std::int32_t& Depth(std::int32_t state);
 
   const SnapTask& task_;
   StateRegistry& registry_;
@@ -162,7 +175,10 @@ class LazySearch {
 
   std::vector<NodeInfo> info_;
   TieBreakingOpenList open_all_, open_preferred_;
-  int priority_all_ = 0, priority_preferred_ = 0;
+  TypeBasedOpenList open_typed_;
+  int priority_all_ = 0, priority_preferred_ = 0, priority_typed_ = 0;
+  // Events on the path of each state (type-based exploration only).
+  std::vector<std::int32_t> depth_;
   int best_h_ = RelaxedPlanHeuristic::kDeadEnd;
   bool stn_pruned_ = false, merged_timed_ = false, merged_any_ = false, unsafe_dead_end_ = false;
   SearchCounters counters_;

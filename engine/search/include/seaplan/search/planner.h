@@ -105,6 +105,11 @@ struct PlannerOptions {
   // second configuration (plateaus searched newest first instead of by
   // makespan); 1 never switches.
   double second_greedy_after_share = 0.5;
+  // The first-plan searches also pop, in turn with their best-first lists,
+  // a random state of a random (h, depth) type (type-based exploration,
+  // Xie, Müller and Holte 2014; random_seed seeds it): greedy search
+  // escapes plateaus where every successor of the best states is worse.
+  bool type_based_exploration = true;
 
   absl::Status Validate() const;
 };
