@@ -178,18 +178,22 @@ TEST(PlannerTest, UnsolvableIsProven) {
   EXPECT_TRUE(r.plan.steps.empty());
 }
 
+// One solvable problem per feature the search must handle: required
+// concurrency, refuelling, a timed window, conditional effects and
+// duration inequalities.
+constexpr std::pair<const char*, const char*> kFeatureProblems[] = {
+    {"match-domain.pddl", "match-problem.pddl"},
+    {"fuel-domain.pddl", "fuel-problem.pddl"},
+    {"til-domain.pddl", "til-problem.pddl"},
+    {"cond-domain.pddl", "cond-problem.pddl"},
+    {"ineq-domain.pddl", "ineq-problem.pddl"}};
+
 // The second first-plan configuration (ties newest first) from the start:
 // it must find valid plans where the first one does, with required
 // concurrency, refuelling, a timed window and conditional effects, and
 // still prove unsolvability by exhaustion.
 TEST(PlannerTest, NewestFirstGreedySolvesWhatTheFirstConfigurationSolves) {
-  const std::pair<const char*, const char*> problems[] = {
-      {"match-domain.pddl", "match-problem.pddl"},
-      {"fuel-domain.pddl", "fuel-problem.pddl"},
-      {"til-domain.pddl", "til-problem.pddl"},
-      {"cond-domain.pddl", "cond-problem.pddl"},
-      {"ineq-domain.pddl", "ineq-problem.pddl"}};
-  for (const auto& [domain, problem] : problems) {
+  for (const auto& [domain, problem] : kFeatureProblems) {
     SCOPED_TRACE(problem);
     auto loaded = Load(domain, problem);
     ASSERT_TRUE(loaded.task);
@@ -213,12 +217,6 @@ TEST(PlannerTest, NewestFirstGreedySolvesWhatTheFirstConfigurationSolves) {
 // unsolvability: a record popped from one list is not taken again from
 // another as if it were a second path to its state.
 TEST(PlannerTest, TypeBasedExplorationOnAndOffSolveAndProve) {
-  const std::pair<const char*, const char*> problems[] = {
-      {"match-domain.pddl", "match-problem.pddl"},
-      {"fuel-domain.pddl", "fuel-problem.pddl"},
-      {"til-domain.pddl", "til-problem.pddl"},
-      {"cond-domain.pddl", "cond-problem.pddl"},
-      {"ineq-domain.pddl", "ineq-problem.pddl"}};
   for (const bool type_based : {false, true}) {
     for (const double share : {0.5, 0.0}) {
       SCOPED_TRACE(::testing::Message() << "type_based " << type_based << " share " << share);
@@ -226,7 +224,7 @@ TEST(PlannerTest, TypeBasedExplorationOnAndOffSolveAndProve) {
       o.anytime = false;
       o.second_greedy_after_share = share;
       o.type_based_exploration = type_based;
-      for (const auto& [domain, problem] : problems) {
+      for (const auto& [domain, problem] : kFeatureProblems) {
         SCOPED_TRACE(problem);
         auto loaded = Load(domain, problem);
         ASSERT_TRUE(loaded.task);
