@@ -196,7 +196,7 @@ int RunCase(const std::string& shared, const ChartCase& c, const route::SweepOpt
   // routes, so the two lines compare the followers alone).
   chart::ObstacleQuery query(*shared_map);
   const SailTotals sim = SailAll(*result, c.name, "the simulation client's follower",
-                                 colav::EncounterSetup{}.follower, query, verbose);
+                                 colav::ShipPathFollowerOptions(), query, verbose);
   for (const colav::PathFollowerOptions& flagged : followers) {
     const std::string label =
         "look-ahead " + std::to_string(static_cast<int>(flagged.lookahead_m)) +
@@ -270,15 +270,15 @@ int main(int argc, char** argv) {
     }
   }
   std::vector<colav::PathFollowerOptions> followers;
-  const colav::PathFollowerOptions sim_follower = colav::EncounterSetup{}.follower;
+  const colav::PathFollowerOptions sim_follower = colav::ShipPathFollowerOptions();
   if ((lookahead_m > 0 || !chords_s.empty()) && wheel_over_radii_m.empty()) {
     wheel_over_radii_m.push_back(sim_follower.turn_radius_m);
   }
+  if (chords_s.empty()) chords_s.push_back(sim_follower.chord_s);
   for (double r : wheel_over_radii_m) {
     colav::PathFollowerOptions f = sim_follower;
     if (lookahead_m > 0) f.lookahead_m = lookahead_m;
     f.turn_radius_m = r;
-    if (chords_s.empty()) chords_s.push_back(sim_follower.chord_s);
     for (double chord : chords_s) {
       f.chord_s = chord;
       followers.push_back(f);

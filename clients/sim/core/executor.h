@@ -82,16 +82,8 @@ struct ExecutorConfig {
   // search 0: legs advance by along-track progress only (a nearer later leg
   // may lie across a headland: jumping to it cut corners over land).
   // turn_radius 450 m: the wheel-over for this hull under its autopilot.
-  // The hull's circle at full rudder is ~240 m, but the autopilot needs
-  // ~46 s (~400 m at 9 m/s) to half complete a 60 deg course change, so
-  // the closed-loop turn is wider than that circle; with 300 m the
-  // ship overshot 76-88 deg corners by ~340 m and crossed back onto the
-  // shallows (route_pairs_bench: tracks aground), see
-  // SharpCornerOvershootIsBoundedByTheWheelOver.
-  // chord 44 s (400 m at 9 m/s): the course leads bends (a fillet's polygon is held ~100 m
-  // closer than by following its legs one by one, engine/colav
-  // path_follower.h).
-  PathFollowerOptions path{400.0, 60.0, 0.0, 450.0, 44.0};
+  // This hull's wheel-over and chord (colav::ShipPathFollowerOptions says why).
+  PathFollowerOptions path = colav::ShipPathFollowerOptions();
   // Heading and speed control (engine/colav's autopilot: the same law the
   // collision avoidance predicts with). SITS' gains (kp 4, kd 90, ki 0.01)
   // make this hull circle under LOS when a leg starts far off its heading.

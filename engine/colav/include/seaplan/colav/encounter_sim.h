@@ -42,10 +42,8 @@ struct EncounterSetup {
   double max_time_s = 3000.0;
   CollisionAvoidanceOptions avoidance;
   AutopilotOptions autopilot;
-  // The simulation client's path following (wheel-over for this hull under
-  // the autopilot: a 450 m radius; the course along a chord of the path
-  // 44 s at the ship's speed, 400 m at 9 m/s; see clients/sim/core/executor.h).
-  PathFollowerOptions follower{400.0, 60.0, 0.0, 450.0, 44.0};
+  // The simulation client's path following for this hull.
+  PathFollowerOptions follower = ShipPathFollowerOptions();
 };
 
 struct VesselOutcome {

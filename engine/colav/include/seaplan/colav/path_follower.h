@@ -57,6 +57,27 @@ struct PathFollowerOptions {
   Status Validate() const;
 };
 
+// The path following this hull sails under the autopilot, read by the
+// simulation client, the collision avoidance's predictions and the route's
+// sail check alike. The hull's circle at full rudder is ~240 m, but the
+// autopilot needs ~46 s (~400 m at 9 m/s) to half complete a 60 deg course
+// change, so the closed-loop turn is wider: with a 300 m wheel-over the ship
+// overshot 76-88 deg corners by ~340 m and crossed back onto the shallows
+// (SharpCornerOvershootIsBoundedByTheWheelOver), hence 450 m. The chord of
+// 44 s (400 m at 9 m/s) leads bends: a fillet's polygon is held ~100 m
+// closer than by following its legs one by one. Legs advance by along-track
+// progress only (search distance 0): a nearer later leg across a headland
+// is not a shortcut the ship may take.
+inline PathFollowerOptions ShipPathFollowerOptions() {
+  PathFollowerOptions o;
+  o.lookahead_m = 400.0;
+  o.switch_distance_m = 60.0;
+  o.search_distance_m = 0.0;
+  o.turn_radius_m = 450.0;
+  o.chord_s = 44.0;
+  return o;
+}
+
 class PathFollower {
  public:
   // `path` has >= 2 points, consecutive points distinct.
