@@ -421,6 +421,22 @@ class Builder {
     return out;
   }
 
+  // Parses the items of `e` after its head with `parse_one` into `children`.
+  // Every item is parsed, so one call reports all the bad ones; false if any was.
+  template <typename Node, typename ParseOne>
+  bool ParseChildren(const SExpr& e, std::vector<Node>& children, ParseOne parse_one) {
+    bool ok = true;
+    for (std::size_t i = 1; i < e.items.size(); ++i) {
+      std::optional<Node> child = parse_one(e.items[i]);
+      if (child) {
+        children.push_back(std::move(*child));
+      } else {
+        ok = false;
+      }
+    }
+    return ok;
+  }
+
   static bool ContainsHashT(const SExpr& e) {
     if (!e.is_list) return e.atom == "#t";
     for (const auto& item : e.items) {
@@ -520,16 +536,11 @@ class Builder {
     }
     if (head == "and" || head == "or") {
       out.kind = head == "and" ? Condition::Kind::kAnd : Condition::Kind::kOr;
-      bool ok = true;
-      for (std::size_t i = 1; i < e.items.size(); ++i) {
-        auto child = ParseCondition(e.items[i], durative, timed);
-        if (child) {
-          out.children.push_back(std::move(*child));
-        } else {
-          ok = false;
-        }
+      if (!ParseChildren(e, out.children, [&](const SExpr& item) {
+            return ParseCondition(item, durative, timed);
+          })) {
+        return std::nullopt;
       }
-      if (!ok) return std::nullopt;
       return out;
     }
     if (head == "not") {
@@ -661,16 +672,10 @@ class Builder {
     }
     if (head == "and") {
       out.kind = Effect::Kind::kAnd;
-      bool ok = true;
-      for (std::size_t i = 1; i < e.items.size(); ++i) {
-        auto child = ParseEffect(e.items[i], durative, timed);
-        if (child) {
-          out.children.push_back(std::move(*child));
-        } else {
-          ok = false;
-        }
+      if (!ParseChildren(e, out.children,
+                         [&](const SExpr& item) { return ParseEffect(item, durative, timed); })) {
+        return std::nullopt;
       }
-      if (!ok) return std::nullopt;
       return out;
     }
     if (head == "not") {
