@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "obstacle_test_fields.h"
 
@@ -90,6 +91,26 @@ TEST(RepairSailedRouteTest, ACornerWhoseTrackGroundsIsBentUntilTheTrackKeepsClea
   }
 }
 
+// The point of `track` farthest from the polyline `route`, and how far.
+std::pair<EastNorth, double> Widest(const std::vector<EastNorth>& route,
+                                    const std::vector<EastNorth>& track) {
+  EastNorth widest;
+  double widest_m = 0.0;
+  for (const EastNorth& p : track) {
+    double d = 1e300;
+    for (size_t k = 1; k < route.size(); ++k) {
+      const EastNorth a = route[k - 1], ab = route[k] - a;
+      const double t = std::clamp((p - a).Dot(ab) / ab.Dot(ab), 0.0, 1.0);
+      d = std::min(d, Distance(p, a + ab * t));
+    }
+    if (d > widest_m) {
+      widest_m = d;
+      widest = p;
+    }
+  }
+  return {widest, widest_m};
+}
+
 TEST(RepairSailedRouteTest, AnSBendWhoseTrackGroundsIsBentUntilTheTrackKeepsClear) {
   // Two opposite 90 deg arcs of 450 m (15 deg chords) with no straight
   // between them. The hull lags the first and comes out of it wide, on the
@@ -107,21 +128,35 @@ TEST(RepairSailedRouteTest, AnSBendWhoseTrackGroundsIsBentUntilTheTrackKeepsClea
   route.push_back({2900, 900});
   auto free = SailRoute(route, 9.0, nullptr);
   ASSERT_TRUE(free.ok()) << free.status();
-  EastNorth widest;
-  double widest_m = 0.0;
-  for (const EastNorth& p : free->track) {
-    double d = 1e300;
-    for (size_t k = 1; k < route.size(); ++k) {
-      const EastNorth a = route[k - 1], ab = route[k] - a;
-      const double t = std::clamp((p - a).Dot(ab) / ab.Dot(ab), 0.0, 1.0);
-      d = std::min(d, Distance(p, a + ab * t));
-    }
-    if (d > widest_m) {
-      widest_m = d;
-      widest = p;
-    }
-  }
+  const auto [widest, widest_m] = Widest(route, free->track);
   ASSERT_GT(widest_m, 60.0);
+  const ObstacleField rock = Field(
+      {Rect(widest.east_m - 15, widest.north_m - 15, widest.east_m + 15, widest.north_m + 15)});
+  for (size_t i = 1; i < route.size(); ++i) ASSERT_FALSE(rock.SegmentHits(route[i - 1], route[i]));
+  auto s = SailRoute(route, 9.0, &rock);
+  ASSERT_TRUE(s.ok()) << s.status();
+  ASSERT_FALSE(s->Clear());
+  auto fix = RepairSailedRoute(rock, route, *s, 9.0, SailRepairOptions{});
+  ASSERT_TRUE(fix.ok()) << fix.status();
+  EXPECT_GE(fix->bends, 1);
+  EXPECT_TRUE(fix->track.Clear()) << fix->track.clearance_m;
+  const std::vector<EastNorth> bent = Line(fix->points);
+  for (size_t i = 1; i < bent.size(); ++i) EXPECT_FALSE(rock.SegmentHits(bent[i - 1], bent[i]));
+  auto again = SailRoute(bent, 9.0, &rock);
+  ASSERT_TRUE(again.ok()) << again.status();
+  EXPECT_TRUE(again->Clear());
+}
+
+TEST(RepairSailedRouteTest, AHairpinWhoseTrackGroundsIsRepairedUntilTheTrackKeepsClear) {
+  // Out and back round a point, the legs 400 m apart at the start: the
+  // hull cannot turn 170 deg on the corner (its circle at full rudder is
+  // ~240 m in radius) and swings far off the route; a rock where it swings
+  // farthest (off the polyline) is hit by the track.
+  const std::vector<EastNorth> route = {{-2500, 200}, {0, 0}, {-2500, -200}};
+  auto free = SailRoute(route, 9.0, nullptr);
+  ASSERT_TRUE(free.ok()) << free.status();
+  const auto [widest, widest_m] = Widest(route, free->track);
+  ASSERT_GT(widest_m, 100.0);
   const ObstacleField rock = Field(
       {Rect(widest.east_m - 15, widest.north_m - 15, widest.east_m + 15, widest.north_m + 15)});
   for (size_t i = 1; i < route.size(); ++i) ASSERT_FALSE(rock.SegmentHits(route[i - 1], route[i]));

@@ -64,12 +64,17 @@ StatusOr<SailedTrack> SailRoute(const std::vector<EastNorth>& route, double spee
 // segments touch an obstacle is tried with half the shift; one that keeps
 // clear is sailed, and kept when its track keeps more clearance. Rounds
 // repeat from the new track's closest point, wider windows and larger
-// shifts when a bend does not help, until the track keeps clear or
-// `max_sails` sailings are spent (the time bound).
+// shifts when a bend does not help. When none does (the water beside the
+// route too narrow, e.g. a hairpin round a shoal's tip whose legs lie
+// closer than the hull's turning circle), the route's vertex nearest the
+// point is pushed outwards along its corner's bisector by 1/4, 1/2 and 1
+// window, the turn made where there may be room. It stops
+// when the track keeps clear, nothing improves it or `max_sails` sailings
+// are spent (the time bound).
 struct SailRepairOptions {
   int max_sails = 12;
   double target_clearance_m = 40.0;
-  double window_m = 600.0;  // ~ the follower's wheel-over radius
+  double window_m = 600.0;  // a little over the follower's 450 m wheel-over radius
 
   absl::Status Validate() const;
 };
