@@ -496,7 +496,25 @@ WaypointTask FixedWaypoint(size_t alt, int k, EastNorth position) {
 
 // The track arrives and never enters the (buffered) obstacles.
 bool SailedClear(const SailedTrack& s) {
-  return s.arrived && !s.touches && s.clearance_m > 0.0;
+  return s.Clear();
+}
+
+// The waypoints of a route derived from `from` (turn_fillet.h's points: a
+// waypoint of `from`, or a new vertex evaluated like the others, not moved);
+// counts the new ones in `inserted`.
+std::vector<WaypointTask> WaypointsOf(size_t alt, const std::vector<WaypointTask>& from,
+                                      const std::vector<FilletPoint>& points, int* inserted) {
+  std::vector<WaypointTask> out;
+  out.reserve(points.size());
+  for (const FilletPoint& p : points) {
+    if (p.source >= 0) {
+      out.push_back(from[p.source]);
+    } else {
+      out.push_back(FixedWaypoint(alt, out.back().k, p.position));
+      ++*inserted;
+    }
+  }
+  return out;
 }
 
 // The Level-1 vertices strictly between arc lengths s0 < s1 of `line`.
@@ -587,6 +605,7 @@ absl::Status Level2Options::Validate() const {
     return absl::InvalidArgumentError(
         absl::StrCat("sail_speed_mps must be in (0, 50), got ", sail_speed_mps));
   }
+  SEAPLAN_RETURN_IF_ERROR(sail_repair.Validate());
   // Checked whether or not the fillets are on (a bad value is an error, not
   // silently unused); radius 0 (fillets off with the turn check) is checked
   // with the default radius.
@@ -741,6 +760,77 @@ StatusOr<Level2Result> OptimizeLevel2(const Level2Problem& problem, const Level2
   // sails them, each with its costs, modes and waypoints, and its polyline.
   std::vector<std::vector<AlternativeResult>> candidates(alt_count);
   std::vector<std::vector<std::vector<EastNorth>>> candidate_lines(alt_count);
+  std::vector<std::vector<std::vector<WaypointTask>>> candidate_tasks(alt_count);
+  // A candidate's costs, modes and waypoint results: the optimised
+  // waypoints' as evaluated, or (`changed`) every waypoint evaluated again.
+  auto evaluate_candidate = [&](size_t a, std::vector<WaypointTask> waypoints, bool changed,
+                                AlternativeResult out) {
+    const size_t base = a * (n + 1);
+    std::vector<RiskSample> route_samples(samples.begin() + base, samples.begin() + base + n + 1);
+    std::vector<CostTerms> route_terms(terms.begin() + base, terms.begin() + base + n + 1);
+    std::vector<int> route_modes(modes.begin() + base, modes.begin() + base + n + 1);
+    if (changed) {
+      // Inserted vertices: neighbours and drift heading along the
+      // candidate. The others keep their references (their cost terms are
+      // defined on them; the fuel term's |w - r_{k+1}| is then the chord).
+      const size_t m = waypoints.size();
+      for (size_t k = 0; k < m; ++k) {
+        Refs& r = waypoints[k].refs;
+        if (!r.movable && k > 0 && k + 1 < m) {
+          r.prev = waypoints[k - 1].position;
+          r.next = waypoints[k + 1].position;
+          const EastNorth d{r.next.east_m - r.prev.east_m, r.next.north_m - r.prev.north_m};
+          r.heading_rad = std::atan2(d.east_m, d.north_m);
+        }
+      }
+      route_samples.assign(m, {});
+      route_terms.assign(m, {});
+      for (size_t k = 0; k < m; ++k) {
+        auto eval = make_evaluator(waypoints[k].refs);
+        eval->Evaluate(waypoints[k].position, &route_samples[k]);
+        ComputeCost(w, waypoints[k].refs, waypoints[k].position, route_samples[k], &route_terms[k]);
+        ++out.evaluations;
+      }
+      std::vector<ModeArray> costs(m - 1);
+      for (size_t k = 0; k + 1 < m; ++k) costs[k] = route_terms[k].mode_cost;
+      route_modes = AssignModes(costs, w.mode_switch_cost);
+      route_modes.push_back(route_modes.back());
+    }
+
+    const size_t m = waypoints.size();
+    for (size_t k = 0; k < m; ++k) {
+      const WaypointTask& t = waypoints[k];
+      WaypointResult wr;
+      wr.position = t.position;
+      wr.reference = t.refs.ref;
+      wr.heading_rad = t.refs.heading_rad;
+      wr.mode = static_cast<MsoMode>(route_modes[k]);
+      wr.ttg_s = route_samples[k].ttg_s;
+      wr.grounding_probability = route_samples[k].p;
+      wr.proximity = route_samples[k].proximity;
+      wr.mode_cost = route_terms[k].mode_cost;
+      wr.path_cost = route_terms[k].path;
+      if (k + 1 < m) {
+        const int mode = route_modes[k];
+        const double ground =
+            w.grounding_cost * (w.mu3 * wr.proximity + w.mu4 * wr.grounding_probability[mode]);
+        out.grounding_cost += ground;
+        out.mso_cost += wr.mode_cost[mode] - ground;
+        if (k > 0 && route_modes[k - 1] != mode) {
+          ++out.mode_switches;
+          out.switching_cost += w.mode_switch_cost;
+        }
+      }
+      out.path_cost += wr.path_cost;
+      if (field.Inside(wr.position)) out.crosses_obstacle = true;
+      if (k > 0 && field.SegmentHits(out.waypoints.back().position, wr.position))
+        out.crosses_obstacle = true;
+      out.waypoints.push_back(wr);
+    }
+    out.expected_cost = out.grounding_cost + out.mso_cost + out.switching_cost;
+    out.objective = out.expected_cost + out.path_cost;
+    return out;
+  };
   for (size_t a = 0; a < alt_count; ++a) {
     const size_t base = a * (n + 1);
     // This alternative's waypoints, samples, costs and modes as optimised.
@@ -820,86 +910,13 @@ StatusOr<Level2Result> OptimizeLevel2(const Level2Problem& problem, const Level2
         out.tightened_turns = filleted.tightened;
         out.unsailable_turns = std::move(filleted.unsailable);
         if (filleted.filleted > 0) {
-          std::vector<WaypointTask> smooth;
-          smooth.reserve(filleted.points.size());
-          for (const FilletPoint& p : filleted.points) {
-            if (p.source >= 0) {
-              smooth.push_back(waypoints[p.source]);
-            } else {  // a vertex of a fillet
-              smooth.push_back(FixedWaypoint(a, smooth.back().k, p.position));
-              ++out.inserted_waypoints;
-            }
-          }
-          waypoints = std::move(smooth);
+          waypoints = WaypointsOf(a, waypoints, filleted.points, &out.inserted_waypoints);
           changed = true;
         }
       }
-      std::vector<RiskSample> route_samples(samples.begin() + base, samples.begin() + base + n + 1);
-      std::vector<CostTerms> route_terms(terms.begin() + base, terms.begin() + base + n + 1);
-      std::vector<int> route_modes(modes.begin() + base, modes.begin() + base + n + 1);
-      if (changed) {
-        // Inserted vertices: neighbours and drift heading along the
-        // candidate. The others keep their references (their cost terms are
-        // defined on them; the fuel term's |w - r_{k+1}| is then the chord).
-        const size_t m = waypoints.size();
-        for (size_t k = 0; k < m; ++k) {
-          Refs& r = waypoints[k].refs;
-          if (!r.movable && k > 0 && k + 1 < m) {
-            r.prev = waypoints[k - 1].position;
-            r.next = waypoints[k + 1].position;
-            const EastNorth d{r.next.east_m - r.prev.east_m, r.next.north_m - r.prev.north_m};
-            r.heading_rad = std::atan2(d.east_m, d.north_m);
-          }
-        }
-        route_samples.assign(m, {});
-        route_terms.assign(m, {});
-        for (size_t k = 0; k < m; ++k) {
-          auto eval = make_evaluator(waypoints[k].refs);
-          eval->Evaluate(waypoints[k].position, &route_samples[k]);
-          ComputeCost(w, waypoints[k].refs, waypoints[k].position, route_samples[k],
-                      &route_terms[k]);
-          ++out.evaluations;
-        }
-        std::vector<ModeArray> costs(m - 1);
-        for (size_t k = 0; k + 1 < m; ++k) costs[k] = route_terms[k].mode_cost;
-        route_modes = AssignModes(costs, w.mode_switch_cost);
-        route_modes.push_back(route_modes.back());
-      }
-
-      const size_t m = waypoints.size();
-      for (size_t k = 0; k < m; ++k) {
-        const WaypointTask& t = waypoints[k];
-        WaypointResult wr;
-        wr.position = t.position;
-        wr.reference = t.refs.ref;
-        wr.heading_rad = t.refs.heading_rad;
-        wr.mode = static_cast<MsoMode>(route_modes[k]);
-        wr.ttg_s = route_samples[k].ttg_s;
-        wr.grounding_probability = route_samples[k].p;
-        wr.proximity = route_samples[k].proximity;
-        wr.mode_cost = route_terms[k].mode_cost;
-        wr.path_cost = route_terms[k].path;
-        if (k + 1 < m) {
-          const int mode = route_modes[k];
-          const double ground =
-              w.grounding_cost * (w.mu3 * wr.proximity + w.mu4 * wr.grounding_probability[mode]);
-          out.grounding_cost += ground;
-          out.mso_cost += wr.mode_cost[mode] - ground;
-          if (k > 0 && route_modes[k - 1] != mode) {
-            ++out.mode_switches;
-            out.switching_cost += w.mode_switch_cost;
-          }
-        }
-        out.path_cost += wr.path_cost;
-        if (field.Inside(wr.position)) out.crosses_obstacle = true;
-        if (k > 0 && field.SegmentHits(out.waypoints.back().position, wr.position))
-          out.crosses_obstacle = true;
-        out.waypoints.push_back(wr);
-      }
-      out.expected_cost = out.grounding_cost + out.mso_cost + out.switching_cost;
-      out.objective = out.expected_cost + out.path_cost;
+      candidate_tasks[a].push_back(waypoints);
       candidate_lines[a].push_back(Positions(waypoints));
-      candidates[a].push_back(std::move(out));
+      candidates[a].push_back(evaluate_candidate(a, std::move(waypoints), changed, std::move(out)));
     }
   }
 
@@ -966,6 +983,46 @@ StatusOr<Level2Result> OptimizeLevel2(const Level2Problem& problem, const Level2
       }
       ++s.next;
       s.done = SailedClear(s.track) || s.next == candidates[next_a].size();
+    }
+    // No candidate of any alternative keeps clear: the kept ones are bent
+    // where their tracks come closest to an obstacle and sailed again
+    // (sail_check.h RepairSailedRoute), cheapest first, until one keeps
+    // clear. The bent route keeps out of the buffered obstacles like the
+    // others (its segments are checked) and is evaluated like them.
+    if (options.sail_repair.max_sails > 0 && clear_choice() < 0) {
+      std::vector<size_t> order;
+      for (size_t a = 0; a < alt_count; ++a) {
+        const Sailing& s = sailing[a];
+        if (s.kept >= 0 && !candidates[a][s.kept].crosses_obstacle) order.push_back(a);
+      }
+      std::stable_sort(order.begin(), order.end(), [&](size_t x, size_t y) {
+        return candidates[x][sailing[x].kept].expected_cost <
+               candidates[y][sailing[y].kept].expected_cost;
+      });
+      for (size_t a : order) {
+        Sailing& s = sailing[a];
+        SEAPLAN_ASSIGN_OR_RETURN(SailRepair fix,
+                                 RepairSailedRoute(field, candidate_lines[a][s.kept], s.track,
+                                                   options.sail_speed_mps, options.sail_repair));
+        if (fix.bends == 0) continue;
+        const AlternativeResult& was = candidates[a][s.kept];
+        AlternativeResult out;
+        out.source = was.source;
+        out.snapped_waypoints = was.snapped_waypoints;
+        out.inserted_waypoints = was.inserted_waypoints;
+        out.filleted_turns = was.filleted_turns;
+        out.tightened_turns = was.tightened_turns;
+        out.unsailable_turns = was.unsailable_turns;
+        out.evaluations = was.evaluations;
+        out.sail_bends = fix.bends;
+        std::vector<WaypointTask> waypoints =
+            WaypointsOf(a, candidate_tasks[a][s.kept], fix.points, &out.inserted_waypoints);
+        out = evaluate_candidate(a, std::move(waypoints), true, std::move(out));
+        if (out.crosses_obstacle) continue;
+        candidates[a][s.kept] = std::move(out);
+        s.track = std::move(fix.track);
+        if (SailedClear(s.track)) break;
+      }
     }
     for (size_t a = 0; a < alt_count; ++a) {
       const Sailing& s = sailing[a];

@@ -288,6 +288,53 @@ TEST(Level2OptimizerTest, SailCheckKeepsACandidateWhoseTrackStaysOutOfTheObstacl
   EXPECT_NEAR(kept->clearance_m, alt.sailed_clearance_m, 1e-6);
 }
 
+TEST(Level2OptimizerTest, SailCheckRepairsARouteNoCandidateOfWhichKeepsClear) {
+  // The corner of the tests above with a shoal east of its southbound leg,
+  // where the hull swings out of the turn whichever candidate it sails
+  // (sharp, on the 450 m fillet or the wider one): no candidate keeps
+  // clear, so step 6 bends the route away from the shoal and sails it again.
+  ObstacleFieldOptions fo;
+  fo.far_cutoff_m = 750;
+  auto field = ObstacleField::Build(
+      {Island(), ObstaclePolygon{{{{960, -1200}, {2400, -1200}, {2400, -500}, {960, -500}}}}},
+      {-2500, -1500}, {2500, 1500}, fo);
+  ASSERT_TRUE(field.ok()) << field.status();
+  auto s = MakeScenario();
+  s->problem.field = &*field;
+  s->problem.alternatives = {{{-2000, 260}, {860, 260}, {860, -1400}}};
+  Level2Options o;
+  o.segments = 2;
+  o.pso.particles = 1;
+  o.pso.iterations = 0;
+  o.polish.max_evaluations = 0;
+  auto polyline = [](const AlternativeResult& alt) {
+    std::vector<EastNorth> line;
+    for (const WaypointResult& w : alt.waypoints) line.push_back(w.position);
+    return line;
+  };
+  o.sail_repair.max_sails = 0;
+  auto unrepaired = OptimizeLevel2(s->problem, o);
+  ASSERT_TRUE(unrepaired.ok()) << unrepaired.status();
+  ASSERT_TRUE(unrepaired->alternatives[0].sail_checked);
+  ASSERT_FALSE(unrepaired->alternatives[0].sailed_clear);
+  EXPECT_EQ(unrepaired->alternatives[0].sail_bends, 0);
+
+  o.sail_repair = SailRepairOptions{};
+  auto r = OptimizeLevel2(s->problem, o);
+  ASSERT_TRUE(r.ok()) << r.status();
+  const AlternativeResult& alt = r->alternatives[0];
+  EXPECT_EQ(r->chosen, 0);
+  EXPECT_FALSE(alt.crosses_obstacle);
+  EXPECT_TRUE(alt.sailed_clear);
+  EXPECT_GE(alt.sail_bends, 1);
+  EXPECT_GT(alt.inserted_waypoints, unrepaired->alternatives[0].inserted_waypoints);
+  for (const WaypointResult& w : alt.waypoints) EXPECT_GT(w.ttg_s, 0.0);  // evaluated
+  auto kept = SailRoute(polyline(alt), o.sail_speed_mps, &*field);
+  ASSERT_TRUE(kept.ok()) << kept.status();
+  EXPECT_TRUE(kept->Clear());
+  EXPECT_NEAR(kept->clearance_m, alt.sailed_clearance_m, 1e-6);
+}
+
 TEST(Level2OptimizerTest, RobustModeOnDownwindShoreSegmentAndSaferAlternativeChosen) {
   auto s = MakeScenario();
   auto r = OptimizeLevel2(s->problem, Level2Options{});

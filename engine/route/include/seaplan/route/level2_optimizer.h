@@ -60,7 +60,12 @@
 //     fillets on a 1.5x wider circle, then the Level-1 polyline the same
 //     three ways; the first clear one is kept, else the one whose track
 //     keeps the most clearance (RouteSource and sailed_* in
-//     AlternativeResult say which and how close).
+//     AlternativeResult say which and how close). When no candidate of any
+//     alternative keeps clear, the kept ones are repaired, cheapest first
+//     until one keeps clear: bent away from the obstacle where the track
+//     comes closest to it, by its depth plus a margin, and sailed again
+//     (sail_check.h RepairSailedRoute, at most sail_repair.max_sails
+//     sailings per alternative; sail_bends says how many bends were kept).
 // The chosen alternative is the obstacle-free one with the lowest expected
 // cost, one whose sailed track keeps clear before any that does not (sum of C_grounding + C_mso +
 // switching; C_path only shapes the route and is not a cost of sailing it, so it is reported but
@@ -92,6 +97,7 @@
 #include "seaplan/common/stop_token.h"
 #include "seaplan/route/grounding_risk.h"
 #include "seaplan/route/obstacle_field.h"
+#include "seaplan/route/sail_check.h"
 #include "seaplan/route/turn_fillet.h"
 #include "seaplan/ship/ship_params.h"
 
@@ -198,6 +204,9 @@ struct Level2Options {
   double fillet_radius_m = 450.0;
   double fillet_clearance_m = 50.0;
   double fillet_min_radius_m = 300.0;
+  // Step 6's repair when no candidate's track keeps clear (sail_check.h
+  // RepairSailedRoute; max_sails 0: off).
+  SailRepairOptions sail_repair;
 
   // The options step 5 passes to FilletTurns: radius fillet_radius_m (0:
   // turn_radius_m), clearance fillet_clearance_m, smallest radius
@@ -273,6 +282,9 @@ struct AlternativeResult {
   bool sailed_arrived = false;
   double sailed_clearance_m = 0.0;
   EastNorth sailed_closest;
+  // Bends step 6's repair put in the kept candidate (0: none; see
+  // RepairSailedRoute in sail_check.h).
+  int sail_bends = 0;
   int64_t evaluations = 0;
 };
 
