@@ -125,6 +125,23 @@ TEST(CliInProcessTest, CpuLimitLimitsTheSearch) {
   EXPECT_NE(word.err.find("got ten"), std::string::npos) << word.err;
 }
 
+// --no-type-based is accepted and plans. Case A's first plan comes before
+// the type-based list's first turn, so the search is the same with it
+// (what the list changes is tested in engine/search's planner_test).
+TEST(CliInProcessTest, NoTypeBasedPlans) {
+  const auto searched = [&](bool type_based) {
+    std::vector<std::string> args = {"plan",         Example("domain.pddl"), Example("case-a.pddl"),
+                                     "--no-anytime", "--time-limit",         "60"};
+    if (!type_based) args.push_back("--no-type-based");
+    auto run = RunSeaplan(args);
+    EXPECT_EQ(run.exit_code, 0) << run.out << run.err;
+    const auto at = run.out.find("; search: ");
+    EXPECT_NE(at, std::string::npos) << run.out;
+    return at == std::string::npos ? std::string() : run.out.substr(at, run.out.find(',', at) - at);
+  };
+  EXPECT_EQ(searched(false), searched(true));
+}
+
 TEST(CliInProcessTest, InvalidPlanExitsOneAndNamesTheFailure) {
   auto result = RunSeaplan(
       {"validate", Example("domain.pddl"), Example("case-a.pddl"), Example("case-a-paper.plan")});

@@ -106,6 +106,7 @@ struct PlanArgs {
   std::uint64_t memory_limit_mb = 0;
   int max_concurrent = 0;
   bool no_anytime = false;
+  bool no_type_based = false;
   bool stream = false;
   std::uint64_t seed = 1;
   double epsilon_s = 0;
@@ -126,6 +127,7 @@ int RunPlan(const GlobalOptions& options, const PlanArgs& args) {
   planner->set_memory_limit_mb(args.memory_limit_mb);
   planner->set_max_concurrent_actions(args.max_concurrent);
   planner->set_anytime(!args.no_anytime);
+  if (args.no_type_based) planner->set_type_based_exploration(false);
   planner->set_random_seed(args.seed);
   planner->set_epsilon_s(args.epsilon_s);
   planner->set_max_expansions(args.max_expansions);
@@ -778,6 +780,8 @@ int RunCli(int argc, char** argv, const CliExecutable& executable) {
           },
           "SECONDS"));
   plan_cmd->add_flag("--no-anytime", plan.no_anytime, "Stop at the first plan");
+  plan_cmd->add_flag("--no-type-based", plan.no_type_based,
+                     "First-plan searches without the type-based exploration list");
   plan_cmd->add_option("--seed", plan.seed, "Random seed")->capture_default_str();
   plan_cmd->add_option("--epsilon", plan.epsilon_s,
                        "Separation of interfering events (s), default 0.001");

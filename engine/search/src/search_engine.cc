@@ -20,7 +20,18 @@ LazySearch::LazySearch(const SnapTask& task, StateRegistry& registry,
       open_preferred_(KeyOrder(params)),
       // Its own stream, so that the successors' shuffle is the same with
       // and without it.
-      open_typed_(params.seed ^ 0x9e3779b97f4a7c15ULL) {}
+      open_typed_(params.seed ^ 0x9e3779b97f4a7c15ULL) {
+  paths_.push_back(SchedulePath{&timeline_, {}, -1});
+  if (TypeBased()) {
+    const auto wanted = static_cast<std::size_t>(
+        std::clamp(params.schedule_paths, 1, static_cast<int>(kMaxSchedulePaths)));
+    while (paths_.size() < wanted) {
+      explore_timelines_.push_back(
+          std::make_unique<Timeline>(task, timeline.epsilon_s(), timeline.bound_concurrency()));
+      paths_.push_back(SchedulePath{explore_timelines_.back().get(), {}, -1});
+    }
+  }
+}
 
 TieBreakingOpenList::KeyOrder LazySearch::KeyOrder(const SearchParams& params) {
   // Greedy: (h, makespan so far); weighted A*: (f, h). See Push.
@@ -38,7 +49,15 @@ std::size_t LazySearch::MemoryBytes() const {
   return info_.capacity() * sizeof(NodeInfo) + slack_pool_.capacity() * sizeof(double) +
          pending_.capacity() * sizeof(Pending) + open_all_.MemoryBytes() +
          open_preferred_.MemoryBytes() + open_typed_.MemoryBytes() +
-         depth_.capacity() * sizeof(std::int32_t) + path_.capacity() * sizeof(Event);
+         depth_.capacity() * sizeof(std::int32_t) + path_.capacity() * sizeof(Event) +
+         ExploreMemoryBytes();
+}
+
+std::size_t LazySearch::ExploreMemoryBytes() const {
+  std::size_t bytes = 0;
+  for (const auto& t : explore_timelines_) bytes += t->MemoryBytes();
+  for (const SchedulePath& p : paths_) bytes += p.states.capacity() * sizeof(std::int32_t);
+  return bytes;
 }
 
 void LazySearch::Initialize(const StateData& initial) {
@@ -141,41 +160,80 @@ bool LazySearch::Pop(std::int32_t* state) {
   return false;
 }
 
+bool LazySearch::OnPath(std::size_t k, std::int32_t state) const {
+  if (k == 0) return info_[static_cast<std::size_t>(state)].path_index >= 0;
+  const std::vector<std::int32_t>& states = paths_[k].states;
+  const auto d = static_cast<std::size_t>(depth_[static_cast<std::size_t>(state)]);
+  return d < states.size() && states[d] == state;
+}
+
+std::size_t LazySearch::PathPosition(std::size_t k, std::int32_t state) const {
+  return static_cast<std::size_t>(k == 0 ? info_[static_cast<std::size_t>(state)].path_index
+                                         : depth_[static_cast<std::size_t>(state)]);
+}
+
 void LazySearch::EnsureTimeline(std::int32_t state) {
-  if (timeline_path_of_ == state) return;  // usually the state just expanded
-  // Up to the deepest state the timeline's path shares with `state`'s (none
-  // before this search's first build: then up past the initial state).
-  // Parents change only in Materialize, for a state that is then appended
-  // to the path, so the path's states keep the parents they were built with.
+  for (std::size_t k = 0; k < paths_.size(); ++k) {
+    if (paths_[k].path_of == state) {  // usually the state just expanded
+      active_ = k;
+      return;
+    }
+  }
+  // Up the tree from `state` to the deepest state each path shares with
+  // its path (none before this search's first build of that path: then up
+  // past the initial state). Parents change only in Materialize, for a
+  // state that is then appended to the active path, so the paths' states
+  // keep the parents they were built with. A path costs the events it
+  // must undo plus those it must add; the walk stops once no path found
+  // further up could cost less.
   branch_.clear();
-  std::int32_t shared = state;
-  while (shared >= 0 && info_[static_cast<std::size_t>(shared)].path_index < 0) {
-    branch_.push_back(shared);
-    shared = info_[static_cast<std::size_t>(shared)].parent;
+  std::array<bool, kMaxSchedulePaths> found{};
+  std::size_t num_found = 0, best = 0, best_keep = 0, best_add = 0;
+  std::size_t best_cost = static_cast<std::size_t>(-1);
+  for (std::int32_t x = state;; x = info_[static_cast<std::size_t>(x)].parent) {
+    for (std::size_t k = 0; k < paths_.size(); ++k) {
+      if (found[k] || (x >= 0 && !OnPath(k, x))) continue;
+      found[k] = true;
+      ++num_found;
+      const std::size_t keep = x >= 0 ? PathPosition(k, x) + 1 : 0;
+      const std::size_t cost = paths_[k].states.size() - keep + branch_.size();
+      if (cost < best_cost) {
+        best = k;
+        best_cost = cost;
+        best_keep = keep;
+        best_add = branch_.size();
+      }
+    }
+    if (x < 0 || num_found == paths_.size() || branch_.size() >= best_cost) break;
+    branch_.push_back(x);
   }
-  const std::size_t keep_states =
-      shared >= 0 ? static_cast<std::size_t>(info_[static_cast<std::size_t>(shared)].path_index) + 1
-                  : 0;
-  for (std::size_t i = keep_states; i < timeline_states_.size(); ++i) {
-    info_[static_cast<std::size_t>(timeline_states_[i])].path_index = -1;
+  schedule_events_rebuilt_ += best_cost;
+  SchedulePath& p = paths_[best];
+  if (best == 0) {
+    for (std::size_t i = best_keep; i < p.states.size(); ++i) {
+      info_[static_cast<std::size_t>(p.states[i])].path_index = -1;
+    }
   }
-  timeline_states_.resize(keep_states);
+  p.states.resize(best_keep);
   path_.clear();
-  for (auto it = branch_.rbegin(); it != branch_.rend(); ++it) {
-    NodeInfo& n = info_[static_cast<std::size_t>(*it)];
+  for (std::size_t i = best_add; i-- > 0;) {
+    NodeInfo& n = info_[static_cast<std::size_t>(branch_[i])];
     if (n.parent >= 0) path_.push_back(n.event);
-    n.path_index = static_cast<std::int32_t>(timeline_states_.size());
-    timeline_states_.push_back(*it);
+    if (best == 0) n.path_index = static_cast<std::int32_t>(p.states.size());
+    p.states.push_back(branch_[i]);
   }
-  timeline_.Build(keep_states > 0 ? keep_states - 1 : 0, path_);
-  timeline_path_of_ = state;
+  p.timeline->Build(best_keep > 0 ? best_keep - 1 : 0, path_);
+  p.path_of = state;
+  active_ = best;
 }
 
 void LazySearch::AppendToTimelinePath(std::int32_t state) {
-  info_[static_cast<std::size_t>(state)].path_index =
-      static_cast<std::int32_t>(timeline_states_.size());
-  timeline_states_.push_back(state);
-  timeline_path_of_ = state;
+  SchedulePath& p = paths_[active_];
+  if (active_ == 0) {
+    info_[static_cast<std::size_t>(state)].path_index = static_cast<std::int32_t>(p.states.size());
+  }
+  p.states.push_back(state);
+  p.path_of = state;
 }
 
 std::int32_t LazySearch::Materialize(std::int32_t pending_index) {
@@ -195,7 +253,7 @@ std::int32_t LazySearch::Materialize(std::int32_t pending_index) {
   EnsureTimeline(rec.parent);
   Timeline::Outcome out;
   const auto reject = [this]() {
-    timeline_.Undo();
+    ActiveTimeline().Undo();
     return std::int32_t{-1};
   };
   // A state dropped for another copy's schedule: with running actions or
@@ -206,7 +264,8 @@ std::int32_t LazySearch::Materialize(std::int32_t pending_index) {
     return reject();
   };
   // Only deferred successors can fail here: theirs was not checked at generation.
-  if (!timeline_.TryAdd(ev, &out)) {
+  Timeline& timeline = ActiveTimeline();
+  if (!timeline.TryAdd(ev, &out)) {
     stn_pruned_ = true;
     return reject();
   }
@@ -214,7 +273,7 @@ std::int32_t LazySearch::Materialize(std::int32_t pending_index) {
   slack_scratch_.clear();
   for (const auto& r : next_.running) {
     if (task_.IsWindowAction(r.action))
-      slack_scratch_.push_back(timeline_.WindowSlack(r.action, out.makespan_s));
+      slack_scratch_.push_back(timeline.WindowSlack(r.action, out.makespan_s));
   }
   const bool greedy = params_.weight < 0;
   // Find the copy of this state to use: an unvisited one, one we improve
@@ -246,7 +305,7 @@ std::int32_t LazySearch::Materialize(std::int32_t pending_index) {
   if (chosen < 0) return reject_merged();
   // The chosen state's schedule is the parent's plus this event: keep it
   // for the expansion that follows.
-  timeline_.Keep(ev);
+  timeline.Keep(ev);
   if (TypeBased()) {
     const std::int32_t depth = Depth(rec.parent) + 1;
     Depth(chosen) = depth;
@@ -280,7 +339,7 @@ LazySearch::Status LazySearch::Step() {
   const bool timed_check = reachability_ != nullptr && reachability_->active();
   if (timed_check) {
     EnsureTimeline(s);
-    if (!reachability_->Evaluate(current_, timeline_)) {
+    if (!reachability_->Evaluate(current_, ActiveTimeline())) {
       // Like an inconsistent schedule, this depends on the path's times.
       stn_pruned_ = true;
       return Status::kInProgress;
@@ -292,7 +351,7 @@ LazySearch::Status LazySearch::Step() {
   int h = heuristic_.Evaluate(current_, &preferred_,
                               std::span<const double>(slack_pool_.data() + cur.slack_begin,
                                                       static_cast<std::size_t>(cur.slack_count)),
-                              usable, &timeline_);
+                              usable, &ActiveTimeline());
   if (timed_check && h < RelaxedPlanHeuristic::kDeadEnd) {
     // The untimed relaxed plan counts a fact of the state as free even when
     // the state got it too late for a window (an image taken after its
@@ -312,6 +371,7 @@ LazySearch::Status LazySearch::Step() {
   }
   ++counters_.expanded;
   EnsureTimeline(s);
+  Timeline& timeline = ActiveTimeline();
 
   candidates_.clear();
   transitions_.Candidates(current_, &candidates_);
@@ -344,8 +404,8 @@ LazySearch::Status LazySearch::Step() {
     }
     if (!transitions_.Apply(current_, &ev, &next_)) continue;
     Timeline::Outcome out;
-    const bool consistent = timeline_.TryAdd(ev, &out);
-    timeline_.Undo();
+    const bool consistent = timeline.TryAdd(ev, &out);
+    timeline.Undo();
     if (!consistent) {
       stn_pruned_ = true;
       continue;

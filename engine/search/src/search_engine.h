@@ -24,7 +24,9 @@
 // borrowed and must outlive the search. Not thread-safe.
 #pragma once
 
+#include <array>
 #include <cstdint>
+#include <memory>
 #include <random>
 #include <vector>
 
@@ -61,6 +63,10 @@ struct SearchParams {
   // Greedy only: a third list in the alternation, type-based exploration
   // (types (parent h, depth in events), random pops seeded by `seed`).
   bool type_based_exploration = false;
+  // With type-based exploration: schedules of this many search paths kept
+  // built at once (1 to 4; 1: the borrowed timeline's only). The same
+  // search either way, only the schedules' rebuilding work differs.
+  int schedule_paths = 2;
 };
 
 struct SearchCounters {
@@ -102,14 +108,18 @@ class LazySearch {
   // duplicate was ever merged (merging ignores the schedule).
   bool exhaustive_without_merges() const { return complete() && !merged_any_; }
   const SearchCounters& counters() const { return counters_; }
+  // States taken off and put on schedule paths to switch them to another
+  // search path (about one event each: the work the extra paths save).
+  std::size_t schedule_events_rebuilt() const { return schedule_events_rebuilt_; }
   std::size_t MemoryBytes() const;
   int best_h() const { return best_h_; }
 
  private:
   struct NodeInfo {
     std::int32_t parent = -1;
-    // Position on the path the timeline holds (number of events before
-    // this state), -1 when not on it. Fills padding: no extra bytes.
+    // Position on the path the borrowed timeline holds (paths_[0]: number
+    // of events before this state), -1 when not on it. Fills padding: no
+    // extra bytes.
     std::int32_t path_index = -1;
     Event event{};
     double g_s = 0;   // makespan of the path's schedule
@@ -128,12 +138,20 @@ class LazySearch {
 
   NodeInfo& Info(StateId id);
   void ExtractPath(std::int32_t state, std::vector<Event>* out) const;
-  // Builds timeline_ for the path to `state` unless it already is: walks up
-  // the search tree only to the nearest state on the timeline's path (their
-  // common ancestor) and rebuilds the schedule from there.
+  // Makes one of the schedule paths (paths_) the path to `state` unless
+  // one already is, and that one the active path: walks up the search tree
+  // to the nearest state each path shares with `state`'s (their common
+  // ancestor) and rebuilds the one that needs the fewest events undone and
+  // added from there.
   void EnsureTimeline(std::int32_t state);
-  // `state`, whose parent is the timeline's last state, becomes its last.
+  // `state`, whose parent is the active path's last state, becomes its last.
   void AppendToTimelinePath(std::int32_t state);
+  // Whether `state` is on path k, and where (its number of events before).
+  bool OnPath(std::size_t k, std::int32_t state) const;
+  std::size_t PathPosition(std::size_t k, std::int32_t state) const;
+  Timeline& ActiveTimeline() { return *paths_[active_].timeline; }
+  // The extra schedule paths' own timelines and every path's state list.
+  std::size_t ExploreMemoryBytes() const;
   // A lower bound that cannot beat the incumbent (anytime bound).
   bool OverBound(double lower_bound_s) const {
     return lower_bound_s >= params_.bound_s - params_.epsilon_s / 2;
@@ -193,16 +211,34 @@ class LazySearch {
   std::vector<double> slack_pool_;
   std::vector<Pending> pending_;
   std::int32_t initial_ = 0;
-  // The state whose path the timeline holds (Build or Keep), -1 for none:
-  // saves rebuilding the schedule of the state about to be expanded and
-  // of the parent of the next popped successor (Materialize). Any change
-  // of a parent pointer happens in Materialize, which then keeps or
-  // rebuilds, so the cached path is never stale.
-  std::int32_t timeline_path_of_ = -1;
-  // The states along the timeline's path (the initial state first), each
-  // with its NodeInfo::path_index; empty until this search first builds
-  // it (the timeline may still hold another search's path).
-  std::vector<std::int32_t> timeline_states_;
+  // Schedules of search paths kept built. paths_[0] is on the borrowed
+  // timeline; with type-based exploration a second one, on a timeline of
+  // this search's own: a random pop's state mostly shares only the first
+  // events with the best-first lists' region, and with one schedule each
+  // such pop rebuilt it twice (there, and back for the next best-first
+  // pop); with two, the random pops mostly rebuild the second one and
+  // the best-first region stays built. Which path holds a state changes
+  // nothing but the work: every path's schedule is exact.
+  struct SchedulePath {
+    Timeline* timeline = nullptr;
+    // The states along the path (the initial state first); on path 0 each
+    // with its NodeInfo::path_index, on the others told by Depth(). Empty
+    // until this search first builds it (the borrowed timeline may still
+    // hold another search's path).
+    std::vector<std::int32_t> states;
+    // The state whose path it holds (Build or Keep), -1 for none: saves
+    // rebuilding the schedule of the state about to be expanded and of the
+    // parent of the next popped successor (Materialize). Any change of a
+    // parent pointer happens in Materialize, which then keeps or rebuilds,
+    // so the cached path is never stale (and in the greedy searches, the
+    // only ones with a second path, a state's parent never changes).
+    std::int32_t path_of = -1;
+  };
+  static constexpr std::size_t kMaxSchedulePaths = 4;
+  std::size_t schedule_events_rebuilt_ = 0;
+  std::vector<std::unique_ptr<Timeline>> explore_timelines_;
+  std::vector<SchedulePath> paths_;
+  std::size_t active_ = 0;            // the path of the state being handled
   std::vector<std::int32_t> branch_;  // scratch of EnsureTimeline
   const StopToken* stop_ = nullptr;
   TemporalReachability* reachability_ = nullptr;

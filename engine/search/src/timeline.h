@@ -76,6 +76,7 @@ class Timeline {
   void Keep(const Event& event);
 
   bool bound_concurrency() const { return bound_concurrency_; }
+  double epsilon_s() const { return epsilon_s_; }
 
   // After Build: time of event i of the path.
   double EventTime(std::size_t i) const { return stn_.time(EventNode(i)); }

@@ -28,7 +28,10 @@ class TypeBasedOpenList {
     const std::uint64_t key = Key(h, depth);
     auto [it, inserted] = bucket_of_.try_emplace(key, static_cast<std::int32_t>(buckets_.size()));
     if (inserted) buckets_.push_back(Bucket{key, {}});
-    buckets_[static_cast<std::size_t>(it->second)].ids.push_back(id);
+    std::vector<std::int32_t>& ids = buckets_[static_cast<std::size_t>(it->second)].ids;
+    const std::size_t capacity = ids.capacity();
+    ids.push_back(id);
+    id_capacity_ += ids.capacity() - capacity;
     ++size_;
   }
   bool empty() const { return size_ == 0; }
@@ -47,6 +50,7 @@ class TypeBasedOpenList {
     --size_;
     if (ids.empty()) {
       // Drop the bucket: the last one takes its place.
+      id_capacity_ -= ids.capacity();
       bucket_of_.erase(buckets_[b].key);
       if (b + 1 != buckets_.size()) {
         buckets_[b] = std::move(buckets_.back());
@@ -57,11 +61,13 @@ class TypeBasedOpenList {
     return id;
   }
 
+  // Constant time (the planner polls it every few expansions, and a search
+  // reaches thousands of types): the buckets' capacities are summed as
+  // they change.
   std::size_t MemoryBytes() const {
-    std::size_t bytes = buckets_.capacity() * sizeof(Bucket) +
-                        bucket_of_.capacity() * (sizeof(std::uint64_t) + sizeof(std::int32_t) + 1);
-    for (const Bucket& b : buckets_) bytes += b.ids.capacity() * sizeof(std::int32_t);
-    return bytes;
+    return buckets_.capacity() * sizeof(Bucket) +
+           bucket_of_.capacity() * (sizeof(std::uint64_t) + sizeof(std::int32_t) + 1) +
+           id_capacity_ * sizeof(std::int32_t);
   }
 
  private:
@@ -82,6 +88,7 @@ class TypeBasedOpenList {
   std::vector<Bucket> buckets_;
   absl::flat_hash_map<std::uint64_t, std::int32_t> bucket_of_;
   std::size_t size_ = 0;
+  std::size_t id_capacity_ = 0;  // sum of the buckets' ids.capacity()
 };
 
 }  // namespace seaplan::search

@@ -76,5 +76,21 @@ TEST(TypeBasedOpenListTest, ChoosesTheTypeUniformlyThenTheEntry) {
   for (const auto& [id, count] : crowd_first) EXPECT_LT(count, 40) << id;
 }
 
+// MemoryBytes keeps a running sum of the buckets' capacities: the ids'
+// bytes are counted while held and given back when their types empty.
+TEST(TypeBasedOpenListTest, MemoryBytesCountsTheIdsHeld) {
+  TypeBasedOpenList list(7);
+  const std::size_t empty_bytes = list.MemoryBytes();
+  for (std::int32_t id = 0; id < 3000; ++id) list.Insert(id % 50, id % 7, id);
+  const std::size_t full_bytes = list.MemoryBytes();
+  EXPECT_GE(full_bytes, empty_bytes + 3000 * sizeof(std::int32_t));
+  PopAll(list);
+  EXPECT_EQ(list.num_types(), 0u);
+  // The bucket table and hash map keep their capacity; the ids' slots go.
+  EXPECT_LE(list.MemoryBytes() + 3000 * sizeof(std::int32_t), full_bytes);
+  for (std::int32_t id = 0; id < 100; ++id) list.Insert(1, 1, id);
+  EXPECT_GE(list.MemoryBytes(), 100 * sizeof(std::int32_t));
+}
+
 }  // namespace
 }  // namespace seaplan::search
