@@ -140,14 +140,10 @@ std::optional<std::vector<FilletPoint>> Bend(const ObstacleField& field,
     const double wgt = weight(cum[i]);
     out.push_back(wgt > 0.0 ? FilletPoint{pts[i].position + shift * wgt, -1} : pts[i]);
   }
-  const EastNorth lo = field.area_min(), hi = field.area_max();
   for (size_t i = 0; i < out.size(); ++i) {
     if (out[i].source >= 0) continue;  // an input point, its segments as they were
     const EastNorth p = out[i].position;
-    if (p.east_m < lo.east_m || p.east_m > hi.east_m || p.north_m < lo.north_m ||
-        p.north_m > hi.north_m || field.Inside(p)) {
-      return std::nullopt;
-    }
+    if (!field.InArea(p) || field.Inside(p)) return std::nullopt;
     if (i > 0 && field.SegmentHits(out[i - 1].position, p)) return std::nullopt;
     if (i + 1 < out.size() && field.SegmentHits(p, out[i + 1].position)) return std::nullopt;
   }
@@ -175,10 +171,7 @@ std::optional<std::vector<FilletPoint>> PushCorner(const ObstacleField& field,
   const EastNorth out = ab * (1.0 / ab.Norm()) - bc * (1.0 / bc.Norm());
   if (!(out.Norm() > 0.1)) return std::nullopt;  // under ~6 deg of turn
   const EastNorth p = b + out * (push_m / out.Norm());
-  const EastNorth lo = field.area_min(), hi = field.area_max();
-  if (p.east_m < lo.east_m || p.east_m > hi.east_m || p.north_m < lo.north_m ||
-      p.north_m > hi.north_m || field.Inside(p) || field.SegmentHits(a, p) ||
-      field.SegmentHits(p, c)) {
+  if (!field.InArea(p) || field.Inside(p) || field.SegmentHits(a, p) || field.SegmentHits(p, c)) {
     return std::nullopt;
   }
   std::vector<FilletPoint> moved = pts;

@@ -111,25 +111,16 @@ std::pair<EastNorth, double> Widest(const std::vector<EastNorth>& route,
   return {widest, widest_m};
 }
 
-TEST(RepairSailedRouteTest, AnSBendWhoseTrackGroundsIsBentUntilTheTrackKeepsClear) {
-  // Two opposite 90 deg arcs of 450 m (15 deg chords) with no straight
-  // between them. The hull lags the first and comes out of it wide, on the
-  // inside of the second: a rock put where the track strays farthest from
-  // the route (off the polyline) is hit by the track.
-  std::vector<EastNorth> route = {{-2000, 0}};
-  for (int k = 0; k <= 6; ++k) {  // left about (0, 450)
-    const double a = -M_PI / 2 + k * M_PI / 12;
-    route.push_back({450 * std::cos(a), 450 + 450 * std::sin(a)});
-  }
-  for (int k = 1; k <= 6; ++k) {  // right about (900, 450)
-    const double a = M_PI - k * M_PI / 12;
-    route.push_back({900 + 450 * std::cos(a), 450 + 450 * std::sin(a)});
-  }
-  route.push_back({2900, 900});
+// A rock put where the track of `route` sailed in open water strays
+// farthest from it (at least `min_swing_m`, off the polyline itself): the
+// track sailed among it grounds, and the repair bends the route, clear of
+// the rock, until its track keeps clear.
+void ExpectRepairClearsARockWhereTheTrackSwings(const std::vector<EastNorth>& route,
+                                                double min_swing_m) {
   auto free = SailRoute(route, 9.0, nullptr);
   ASSERT_TRUE(free.ok()) << free.status();
   const auto [widest, widest_m] = Widest(route, free->track);
-  ASSERT_GT(widest_m, 60.0);
+  ASSERT_GT(widest_m, min_swing_m);
   const ObstacleField rock = Field(
       {Rect(widest.east_m - 15, widest.north_m - 15, widest.east_m + 15, widest.north_m + 15)});
   for (size_t i = 1; i < route.size(); ++i) ASSERT_FALSE(rock.SegmentHits(route[i - 1], route[i]));
@@ -147,31 +138,31 @@ TEST(RepairSailedRouteTest, AnSBendWhoseTrackGroundsIsBentUntilTheTrackKeepsClea
   EXPECT_TRUE(again->Clear());
 }
 
+TEST(RepairSailedRouteTest, AnSBendWhoseTrackGroundsIsBentUntilTheTrackKeepsClear) {
+  // Two opposite 90 deg arcs of 450 m (15 deg chords) with no straight
+  // between them. The hull lags the first and comes out of it wide, on the
+  // inside of the second: a rock put where the track strays farthest from
+  // the route (off the polyline) is hit by the track.
+  std::vector<EastNorth> route = {{-2000, 0}};
+  for (int k = 0; k <= 6; ++k) {  // left about (0, 450)
+    const double a = -M_PI / 2 + k * M_PI / 12;
+    route.push_back({450 * std::cos(a), 450 + 450 * std::sin(a)});
+  }
+  for (int k = 1; k <= 6; ++k) {  // right about (900, 450)
+    const double a = M_PI - k * M_PI / 12;
+    route.push_back({900 + 450 * std::cos(a), 450 + 450 * std::sin(a)});
+  }
+  route.push_back({2900, 900});
+  ExpectRepairClearsARockWhereTheTrackSwings(route, 60.0);
+}
+
 TEST(RepairSailedRouteTest, AHairpinWhoseTrackGroundsIsRepairedUntilTheTrackKeepsClear) {
   // Out and back round a point, the legs 400 m apart at the start: the
   // hull cannot turn 170 deg on the corner (its circle at full rudder is
   // ~240 m in radius) and swings far off the route; a rock where it swings
   // farthest (off the polyline) is hit by the track.
   const std::vector<EastNorth> route = {{-2500, 200}, {0, 0}, {-2500, -200}};
-  auto free = SailRoute(route, 9.0, nullptr);
-  ASSERT_TRUE(free.ok()) << free.status();
-  const auto [widest, widest_m] = Widest(route, free->track);
-  ASSERT_GT(widest_m, 100.0);
-  const ObstacleField rock = Field(
-      {Rect(widest.east_m - 15, widest.north_m - 15, widest.east_m + 15, widest.north_m + 15)});
-  for (size_t i = 1; i < route.size(); ++i) ASSERT_FALSE(rock.SegmentHits(route[i - 1], route[i]));
-  auto s = SailRoute(route, 9.0, &rock);
-  ASSERT_TRUE(s.ok()) << s.status();
-  ASSERT_FALSE(s->Clear());
-  auto fix = RepairSailedRoute(rock, route, *s, 9.0, SailRepairOptions{});
-  ASSERT_TRUE(fix.ok()) << fix.status();
-  EXPECT_GE(fix->bends, 1);
-  EXPECT_TRUE(fix->track.Clear()) << fix->track.clearance_m;
-  const std::vector<EastNorth> bent = Line(fix->points);
-  for (size_t i = 1; i < bent.size(); ++i) EXPECT_FALSE(rock.SegmentHits(bent[i - 1], bent[i]));
-  auto again = SailRoute(bent, 9.0, &rock);
-  ASSERT_TRUE(again.ok()) << again.status();
-  EXPECT_TRUE(again->Clear());
+  ExpectRepairClearsARockWhereTheTrackSwings(route, 100.0);
 }
 
 TEST(RepairSailedRouteTest, RejectsBadOptions) {

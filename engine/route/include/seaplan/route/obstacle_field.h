@@ -69,6 +69,10 @@ class ObstacleField {
   const ObstacleFieldOptions& options() const { return options_; }
   EastNorth area_min() const { return area_min_; }
   EastNorth area_max() const { return area_max_; }
+  bool InArea(EastNorth p) const {
+    return p.east_m >= area_min_.east_m && p.east_m <= area_max_.east_m &&
+           p.north_m >= area_min_.north_m && p.north_m <= area_max_.north_m;
+  }
 
   // Sum over obstacles of exp(-zeta * d_i(p)), d_i the signed distance to
   // obstacle i (negative inside; the exponent is capped at +50). Obstacles
