@@ -72,6 +72,7 @@ absl::StatusOr<search::PlannerOptions> ToEngine(const v1::PlannerOptions& o) {
   p.max_concurrent_actions = o.max_concurrent_actions();
   if (o.has_anytime()) p.anytime = o.anytime();
   if (o.has_type_based_exploration()) p.type_based_exploration = o.type_based_exploration();
+  if (o.has_landmarks()) p.landmarks = o.landmarks();
   if (o.random_seed() != 0) p.random_seed = o.random_seed();
   if (o.epsilon_s() != 0) p.epsilon_s = o.epsilon_s();
   p.max_expansions = o.max_expansions();

@@ -5,8 +5,10 @@
 #include <cmath>
 #include <ctime>
 #include <memory>
+#include <optional>
 
 #include "absl/strings/str_cat.h"
+#include "heuristics/landmarks.h"
 #include "heuristics/relaxed_plan_heuristic.h"
 #include "heuristics/temporal_reachability.h"
 #include "plan_builder.h"
@@ -146,6 +148,7 @@ class PlannerRun {
   SnapTask snap_;
   StateRegistry registry_;
   RelaxedPlanHeuristic heuristic_;
+  std::optional<LandmarkGraph> landmarks_;  // PlannerOptions::landmarks
   TemporalReachability reachability_;
   Transitions transitions_;
   Timeline timeline_;
@@ -332,6 +335,15 @@ PlanResult PlannerRun::Run() {
     if ((steps_ & 255) != 0) return false;
     return Clock::now() >= switch_at;
   };
+  if (options_.landmarks) {
+    const Clock::time_point landmarks_start = Clock::now();
+    landmarks_.emplace(snap_, heuristic_, &stop_);
+    best_.stats.landmark_time_s = Seconds(landmarks_start);
+    best_.stats.landmarks = landmarks_->size();
+    best_.stats.landmark_orderings = landmarks_->num_orderings();
+    log::Debug("planner: {} landmarks, {} orderings in {:.3f} s", landmarks_->size(),
+               landmarks_->num_orderings(), best_.stats.landmark_time_s);
+  }
   bool many_variants = false, newest_first = options_.second_greedy_after_share <= 0;
   while (true) {
     SearchParams params;
@@ -339,6 +351,7 @@ PlanResult PlannerRun::Run() {
     params.epsilon_s = options_.epsilon_s;
     params.seed = options_.random_seed;
     params.type_based_exploration = options_.type_based_exploration;
+    if (landmarks_) params.landmarks = &*landmarks_;
     if (many_variants) {
       params.max_variants = 64;
       params.bound_dominance = false;

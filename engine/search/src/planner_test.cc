@@ -239,6 +239,38 @@ TEST(PlannerTest, TypeBasedExplorationOnAndOffSolveAndProve) {
   }
 }
 
+// With the landmark count in the alternation (its own lists, preferred
+// events from landmarks too), both first-plan configurations still find
+// valid plans and prove unsolvability, and the generation is reported.
+TEST(PlannerTest, LandmarkCountOnAndOffSolvesAndProves) {
+  for (const bool landmarks : {false, true}) {
+    for (const double share : {0.5, 0.0}) {
+      SCOPED_TRACE(::testing::Message() << "landmarks " << landmarks << " share " << share);
+      PlannerOptions o = Quick(5);
+      o.anytime = false;
+      o.second_greedy_after_share = share;
+      o.landmarks = landmarks;
+      for (const auto& [domain, problem] : kFeatureProblems) {
+        SCOPED_TRACE(problem);
+        auto loaded = Load(domain, problem);
+        ASSERT_TRUE(loaded.task);
+        const PlanResult r = SolveTask(*loaded.task, o, StopToken());
+        ASSERT_EQ(r.status, PlanStatus::kSolvedSatisficing) << r.message;
+        ExpectValid(*loaded.task, r);
+        // Every goal fact is a landmark of its own task.
+        if (landmarks) {
+          EXPECT_GE(r.stats.landmarks, static_cast<int>(loaded.task->goal.positive.size()));
+        } else {
+          EXPECT_EQ(r.stats.landmarks, 0);
+        }
+      }
+      auto toggle = Load("toggle-domain.pddl", "toggle-3.pddl");
+      ASSERT_TRUE(toggle.task);
+      EXPECT_EQ(SolveTask(*toggle.task, o, StopToken()).status, PlanStatus::kUnsolvableProven);
+    }
+  }
+}
+
 TEST(PlannerTest, TinyTimeLimitTimesOutQuickly) {
   auto loaded = Load("toggle-domain.pddl", "toggle-22.pddl");
   ASSERT_TRUE(loaded.task);

@@ -20,7 +20,9 @@ LazySearch::LazySearch(const SnapTask& task, StateRegistry& registry,
       open_preferred_(KeyOrder(params)),
       // Its own stream, so that the successors' shuffle is the same with
       // and without it.
-      open_typed_(params.seed ^ 0x9e3779b97f4a7c15ULL) {
+      open_typed_(params.seed ^ 0x9e3779b97f4a7c15ULL),
+      open_landmark_all_(KeyOrder(params)),
+      open_landmark_preferred_(KeyOrder(params)) {
   paths_.push_back(SchedulePath{&timeline_, {}, -1});
   if (TypeBased()) {
     const auto wanted = static_cast<std::size_t>(
@@ -30,6 +32,9 @@ LazySearch::LazySearch(const SnapTask& task, StateRegistry& registry,
           std::make_unique<Timeline>(task, timeline.epsilon_s(), timeline.bound_concurrency()));
       paths_.push_back(SchedulePath{explore_timelines_.back().get(), {}, -1});
     }
+  }
+  if (params.landmarks != nullptr && params.landmarks->size() > 0 && params.weight < 0) {
+    landmark_counter_.emplace(*params.landmarks);
   }
 }
 
@@ -50,7 +55,9 @@ std::size_t LazySearch::MemoryBytes() const {
          pending_.capacity() * sizeof(Pending) + open_all_.MemoryBytes() +
          open_preferred_.MemoryBytes() + open_typed_.MemoryBytes() +
          depth_.capacity() * sizeof(std::int32_t) + path_.capacity() * sizeof(Event) +
-         ExploreMemoryBytes();
+         ExploreMemoryBytes() + open_landmark_all_.MemoryBytes() +
+         open_landmark_preferred_.MemoryBytes() +
+         landmark_accepted_.capacity() * sizeof(std::uint64_t);
 }
 
 std::size_t LazySearch::ExploreMemoryBytes() const {
@@ -111,7 +118,7 @@ bool LazySearch::IsAncestor(std::int32_t maybe_ancestor, std::int32_t state) con
 }
 
 void LazySearch::Push(std::int32_t parent, const Event& event, double g_s, double lb_s,
-                      bool preferred, std::int32_t parent_h) {
+                      bool preferred, std::int32_t parent_h, std::int32_t parent_lm_h) {
   const auto index = static_cast<std::int32_t>(pending_.size());
   pending_.push_back(Pending{parent, event.snap, lb_s});
   // Greedy: parent's h, then the makespan so far (or the newest record
@@ -125,6 +132,10 @@ void LazySearch::Push(std::int32_t parent, const Event& event, double g_s, doubl
   open_all_.Insert(parent_h, real_key, index);
   if (preferred) open_preferred_.Insert(parent_h, real_key, index);
   if (TypeBased()) open_typed_.Insert(parent_h, Depth(parent) + 1, index);
+  if (landmark_counter_) {
+    open_landmark_all_.Insert(parent_lm_h, real_key, index);
+    if (preferred) open_landmark_preferred_.Insert(parent_lm_h, real_key, index);
+  }
 }
 
 std::int32_t& LazySearch::Depth(std::int32_t state) {
@@ -135,29 +146,44 @@ std::int32_t& LazySearch::Depth(std::int32_t state) {
 
 bool LazySearch::Pop(std::int32_t* state) {
   // Round robin by priority (the lowest goes next, ties in the order
-  // preferred, all, typed), as Fast Downward's alternation: a boost lowers
-  // the preferred list's priority, so it then has that many turns in a row.
-  while (!open_all_.empty() || !open_preferred_.empty() || !open_typed_.empty()) {
-    std::int32_t index;
-    const bool preferred_next = !open_preferred_.empty() &&
-                                (open_all_.empty() || priority_preferred_ <= priority_all_) &&
-                                (open_typed_.empty() || priority_preferred_ <= priority_typed_);
-    if (preferred_next) {
-      index = open_preferred_.Pop().state;
-      ++priority_preferred_;
-    } else if (!open_all_.empty() && (open_typed_.empty() || priority_all_ <= priority_typed_)) {
-      index = open_all_.Pop().state;
-      ++priority_all_;
-    } else {
-      index = open_typed_.Pop();
-      ++priority_typed_;
+  // preferred, landmark preferred, all, landmark all, typed), as Fast
+  // Downward's alternation: a boost lowers the preferred lists' priorities,
+  // so they then have that many turns in a row.
+  enum List { kPreferred, kLandmarkPreferred, kAll, kLandmarkAll, kTyped, kLists };
+  int* const priority[kLists] = {&priority_preferred_, &priority_landmark_preferred_,
+                                 &priority_all_, &priority_landmark_all_, &priority_typed_};
+  while (true) {
+    const bool empty[kLists] = {open_preferred_.empty(), open_landmark_preferred_.empty(),
+                                open_all_.empty(), open_landmark_all_.empty(), open_typed_.empty()};
+    int next = -1;
+    for (int l = 0; l < kLists; ++l) {
+      if (!empty[l] && (next < 0 || *priority[l] < *priority[next])) next = l;
     }
+    if (next < 0) return false;
+    std::int32_t index;
+    switch (next) {
+      case kPreferred:
+        index = open_preferred_.Pop().state;
+        break;
+      case kLandmarkPreferred:
+        index = open_landmark_preferred_.Pop().state;
+        break;
+      case kAll:
+        index = open_all_.Pop().state;
+        break;
+      case kLandmarkAll:
+        index = open_landmark_all_.Pop().state;
+        break;
+      default:
+        index = open_typed_.Pop();
+        break;
+    }
+    ++*priority[next];
     const Pending& p = pending_[static_cast<std::size_t>(index)];
     if (p.parent == kConsumed || OverBound(p.lb_s)) continue;
     *state = index;
     return true;
   }
-  return false;
 }
 
 bool LazySearch::OnPath(std::size_t k, std::int32_t state) const {
@@ -365,9 +391,34 @@ LazySearch::Status LazySearch::Step() {
     if (!heuristic_.last_dead_end_proven()) unsafe_dead_end_ = true;
     return Status::kInProgress;
   }
+  std::int32_t landmark_h = 0;
+  if (landmark_counter_) {
+    // Path-dependent: what the parent had accepted, plus what holds now
+    // and had its ordering parents accepted there.
+    const std::int32_t parent = info_[static_cast<std::size_t>(s)].parent;
+    const std::size_t need =
+        (static_cast<std::size_t>(std::max(s, parent)) + 1) * landmark_counter_->words();
+    if (landmark_accepted_.size() < need) {
+      landmark_accepted_.resize(std::max(need, landmark_accepted_.size() * 3 / 2), 0);
+    }
+    landmark_h =
+        landmark_counter_->Update(parent >= 0 ? std::span<const std::uint64_t>(Accepted(parent))
+                                              : std::span<const std::uint64_t>(),
+                                  current_, Accepted(s));
+  }
+  // Progress in either estimate boosts the preferred lists (LAMA).
+  bool progress = false;
   if (h < best_h_) {
     best_h_ = h;
+    progress = true;
+  }
+  if (landmark_counter_ && landmark_h < best_landmark_h_) {
+    best_landmark_h_ = landmark_h;
+    progress = true;
+  }
+  if (progress) {
     priority_preferred_ -= 1000;
+    priority_landmark_preferred_ -= 1000;
   }
   ++counters_.expanded;
   EnsureTimeline(s);
@@ -376,12 +427,18 @@ LazySearch::Status LazySearch::Step() {
   candidates_.clear();
   transitions_.Candidates(current_, &candidates_);
   std::shuffle(candidates_.begin(), candidates_.end(), rng_);
-  // Helpful events first, so FIFO ties favour them.
+  // Helpful events first, so FIFO ties favour them. With landmarks, an
+  // event adding one that could be accepted next is helpful too.
+  std::span<const std::uint64_t> accepted;
+  if (landmark_counter_) accepted = Accepted(s);
   const std::size_t num_helpful = static_cast<std::size_t>(
       std::stable_partition(candidates_.begin(), candidates_.end(),
                             [&](const Event& e) {
-                              return !e.is_til() && std::binary_search(preferred_.begin(),
-                                                                       preferred_.end(), e.snap);
+                              if (e.is_til()) return false;
+                              if (std::binary_search(preferred_.begin(), preferred_.end(), e.snap))
+                                return true;
+                              return landmark_counter_ && landmark_counter_->AddsNextLandmark(
+                                                              accepted, current_, e.snap);
                             }) -
       candidates_.begin());
   std::size_t tried = 0;
@@ -399,7 +456,7 @@ LazySearch::Status LazySearch::Step() {
       // Deferred: applied and scheduled only if popped (Materialize), with
       // the parent's makespan and bound, both valid lower bounds.
       ++counters_.generated;
-      Push(s, ev, parent_g_s, parent_lb_s, false, h);
+      Push(s, ev, parent_g_s, parent_lb_s, false, h, landmark_h);
       continue;
     }
     if (!transitions_.Apply(current_, &ev, &next_)) continue;
@@ -421,10 +478,10 @@ LazySearch::Status LazySearch::Step() {
     // A goal reached is taken at once (best first among goals is the
     // anytime phase's job): put it first in both lists.
     if (transitions_.IsGoal(next_)) {
-      Push(s, ev, out.makespan_s, out.lower_bound_s, true, kGoalFirst);
+      Push(s, ev, out.makespan_s, out.lower_bound_s, true, kGoalFirst, kGoalFirst);
       continue;
     }
-    Push(s, ev, out.makespan_s, out.lower_bound_s, preferred, h);
+    Push(s, ev, out.makespan_s, out.lower_bound_s, preferred, h, landmark_h);
   }
   return Status::kInProgress;
 }

@@ -14,7 +14,10 @@
 // type-based exploration (open_lists/type_based_open_list.h): every
 // successor, bucketed by (parent h, depth), popped at random in turn with
 // the other two, so that a search stuck on a plateau also expands states
-// away from it. Ordering:
+// away from it. Optionally (greedy) LAMA's landmark count
+// (heuristics/landmarks.h) with its own two lists, all successors and
+// preferred ones, keyed by the parent's count; then a preferred event is
+// also one adding a landmark that could be accepted next. Ordering:
 //   - greedy (weight < 0): (parent h, makespan so far), or (parent h,
 //     newest first) with PlateauOrder::kNewestFirst;
 //   - weighted A* (weight >= 0): makespan lower bound + weight * scale * h.
@@ -27,9 +30,12 @@
 #include <array>
 #include <cstdint>
 #include <memory>
+#include <optional>
 #include <random>
+#include <span>
 #include <vector>
 
+#include "heuristics/landmarks.h"
 #include "heuristics/relaxed_plan_heuristic.h"
 #include "heuristics/temporal_reachability.h"
 #include "open_lists/tie_breaking_open_list.h"
@@ -67,6 +73,12 @@ struct SearchParams {
   // built at once (1 to 4; 1: the borrowed timeline's only). The same
   // search either way, only the schedules' rebuilding work differs.
   int schedule_paths = 2;
+  // Greedy only (may be null; borrowed): LAMA's landmark count beside the
+  // relaxed plan. Its own pair of lists (all, preferred) keyed by the
+  // parent's count joins the alternation; progress in either estimate
+  // boosts both preferred lists; a preferred event is also one adding a
+  // landmark that could be accepted next.
+  const LandmarkGraph* landmarks = nullptr;
 };
 
 struct SearchCounters {
@@ -172,7 +184,7 @@ class LazySearch {
   static_assert(sizeof(Pending) == 16);
   // `parent_h` kGoalFirst puts a goal state before everything else.
   void Push(std::int32_t parent, const Event& event, double g_s, double lb_s, bool preferred,
-            std::int32_t parent_h);
+            std::int32_t parent_h, std::int32_t parent_lm_h);
   static constexpr std::int32_t kGoalFirst = -1'000'000'000;
   static constexpr std::int32_t kConsumed = -2;
   static TieBreakingOpenList::KeyOrder KeyOrder(const SearchParams& params);
@@ -182,6 +194,11 @@ class LazySearch {
   bool Pop(std::int32_t* state);
   bool TypeBased() const { return params_.type_based_exploration && params_.weight < 0; }
   std::int32_t& Depth(std::int32_t state);
+  // The landmarks accepted on the path to `state` (landmark count only).
+  std::span<std::uint64_t> Accepted(std::int32_t state) {
+    const std::size_t w = landmark_counter_->words();
+    return {landmark_accepted_.data() + static_cast<std::size_t>(state) * w, w};
+  }
 
   const SnapTask& task_;
   StateRegistry& registry_;
@@ -194,7 +211,14 @@ class LazySearch {
   std::vector<NodeInfo> info_;
   TieBreakingOpenList open_all_, open_preferred_;
   TypeBasedOpenList open_typed_;
+  // Keyed by the landmark count (empty without landmarks).
+  TieBreakingOpenList open_landmark_all_, open_landmark_preferred_;
   int priority_all_ = 0, priority_preferred_ = 0, priority_typed_ = 0;
+  int priority_landmark_all_ = 0, priority_landmark_preferred_ = 0;
+  std::optional<LandmarkCounter> landmark_counter_;
+  // Accepted landmarks, LandmarkCounter::words() words per state id.
+  std::vector<std::uint64_t> landmark_accepted_;
+  int best_landmark_h_ = RelaxedPlanHeuristic::kDeadEnd;
   // Events on the path of each state (type-based exploration only).
   std::vector<std::int32_t> depth_;
   int best_h_ = RelaxedPlanHeuristic::kDeadEnd;

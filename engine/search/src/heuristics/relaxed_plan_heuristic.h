@@ -35,6 +35,13 @@
 
 namespace seaplan::search {
 
+// Row i of a table in compressed rows: values[begin[i], begin[i + 1]).
+inline std::span<const std::int32_t> CsrRow(const std::vector<std::int32_t>& values,
+                                            const std::vector<std::int32_t>& begin, int i) {
+  const auto b = static_cast<std::size_t>(begin[static_cast<std::size_t>(i)]);
+  return {values.data() + b, static_cast<std::size_t>(begin[static_cast<std::size_t>(i) + 1]) - b};
+}
+
 class RelaxedPlanHeuristic {
  public:
   static constexpr int kDeadEnd = 1 << 30;
@@ -69,6 +76,16 @@ class RelaxedPlanHeuristic {
   // Redundant start/end pairs the last evaluation skipped (see pair_check_;
   // a diagnostic for tests and profiling).
   int last_skipped_pairs() const { return skipped_pairs_; }
+
+  // The relaxed operators (SnapId numbering; an end exists only for a
+  // durative action, neither for a pruned one) over the relaxed facts
+  // (the task's facts, then started(a) = num_facts + a): what landmark
+  // generation reads. Numeric and negative conditions are not listed.
+  int num_relaxed_facts() const { return num_facts_ + task_.num_actions(); }
+  int num_relaxed_ops() const { return num_ops_; }
+  bool OpExists(int op) const { return op_exists_[static_cast<std::size_t>(op)]; }
+  std::span<const std::int32_t> Preconditions(int op) const { return CsrRow(pre_, pre_begin_, op); }
+  std::span<const std::int32_t> Adds(int op) const { return CsrRow(add_, add_begin_, op); }
 
  private:
   struct Interval {

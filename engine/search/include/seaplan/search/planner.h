@@ -20,7 +20,9 @@
 //     helpful actions in a second, boosted open list; ties by makespan so
 //     far, and when that finds nothing in half the time (or half the
 //     expansion limit, when there is one), a second greedy
-//     search that takes ties newest first (depth first on plateaus); then, in
+//     search that takes ties newest first (depth first on plateaus); both
+//     with a type-based exploration list and, optionally
+//     (PlannerOptions::landmarks), LAMA's landmark count; then, in
 //     tasks with two or more agents (ships), a greedy search and then
 //     weighted A* (w = 3) whose relaxed plan spreads the work over them,
 //     bounded (by the first plan's makespan and, together, six times the
@@ -110,6 +112,13 @@ struct PlannerOptions {
   // Xie, Müller and Holte 2014; random_seed seeds it): greedy search
   // escapes plateaus where every successor of the best states is worse.
   bool type_based_exploration = true;
+  // The first-plan searches also alternate LAMA's landmark count (Richter
+  // and Westphal 2010): fact landmarks of the delete relaxation with
+  // greedy-necessary orderings, found once per task, counted per path, with
+  // their own open lists beside the relaxed plan's. Off by default: it
+  // solves larger fjord missions but lost sokoban-2011 p03 at 10 CPU s
+  // (engine/search/README.md).
+  bool landmarks = false;
 
   absl::Status Validate() const;
 };
@@ -119,6 +128,9 @@ struct SearchStatistics {
   double search_time_s = 0, first_plan_time_s = -1, best_plan_time_s = -1;
   std::size_t peak_memory_mb = 0;
   int plans_found = 0;
+  // Landmark generation (PlannerOptions::landmarks), once per task.
+  int landmarks = 0, landmark_orderings = 0;
+  double landmark_time_s = 0;
 };
 
 struct PlanResult {

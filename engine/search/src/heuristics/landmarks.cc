@@ -1,0 +1,247 @@
+#include "landmarks.h"
+
+#include <algorithm>
+#include <deque>
+
+namespace seaplan::search {
+namespace {
+
+// `out` = sorted union of the sorted `a` and `b`.
+void Union(const std::vector<std::int32_t>& a, const std::vector<std::int32_t>& b,
+           std::vector<std::int32_t>* out) {
+  out->clear();
+  std::set_union(a.begin(), a.end(), b.begin(), b.end(), std::back_inserter(*out));
+}
+
+// CSR from (key, value) pairs with keys in [0, n).
+void BuildCsr(int n, const std::vector<std::pair<std::int32_t, std::int32_t>>& pairs,
+              std::vector<std::int32_t>* begin, std::vector<std::int32_t>* values) {
+  begin->assign(static_cast<std::size_t>(n) + 1, 0);
+  for (const auto& [k, v] : pairs) ++(*begin)[static_cast<std::size_t>(k) + 1];
+  for (std::size_t i = 1; i < begin->size(); ++i) (*begin)[i] += (*begin)[i - 1];
+  values->resize(pairs.size());
+  std::vector<std::int32_t> fill(begin->begin(), begin->end() - 1);
+  for (const auto& [k, v] : pairs) (*values)[static_cast<std::size_t>(fill[k]++)] = v;
+}
+
+}  // namespace
+
+LandmarkGraph::LandmarkGraph(const SnapTask& task, const RelaxedPlanHeuristic& relaxed,
+                             const StopToken* stop)
+    : num_facts_(task.num_facts()) {
+  const int total = relaxed.num_relaxed_facts();
+  const int num_ops = relaxed.num_relaxed_ops();
+  index_of_.assign(static_cast<std::size_t>(total), -1);
+  // fact -> operators needing it.
+  std::vector<std::pair<std::int32_t, std::int32_t>> pairs;
+  std::vector<std::int32_t> missing(static_cast<std::size_t>(num_ops), 0);
+  for (int op = 0; op < num_ops; ++op) {
+    if (!relaxed.OpExists(op)) continue;
+    for (auto f : relaxed.Preconditions(op)) pairs.emplace_back(f, op);
+    missing[static_cast<std::size_t>(op)] =
+        static_cast<std::int32_t>(relaxed.Preconditions(op).size());
+  }
+  std::vector<std::int32_t> users_begin, users;
+  BuildCsr(total, pairs, &users_begin, &users);
+
+  std::vector<std::vector<std::int32_t>> label(static_cast<std::size_t>(total));
+  std::vector<std::uint8_t> reached(static_cast<std::size_t>(total), 0), fixed(reached);
+  std::vector<std::uint8_t> queued(static_cast<std::size_t>(num_ops), 0);
+  std::deque<std::int32_t> queue;
+  auto enqueue_users = [&](std::int32_t f, bool on_first_reach) {
+    for (auto i = users_begin[static_cast<std::size_t>(f)];
+         i < users_begin[static_cast<std::size_t>(f) + 1]; ++i) {
+      const auto op = static_cast<std::size_t>(users[static_cast<std::size_t>(i)]);
+      if (on_first_reach) --missing[op];
+      if (missing[op] == 0 && !queued[op]) {
+        queued[op] = 1;
+        queue.push_back(static_cast<std::int32_t>(op));
+      }
+    }
+  };
+  auto reach_fixed = [&](std::int32_t f) {
+    const auto fi = static_cast<std::size_t>(f);
+    if (reached[fi]) return;
+    reached[fi] = fixed[fi] = 1;
+    label[fi] = {f};
+    enqueue_users(f, true);
+  };
+  for (auto f : task.task().initial_facts) reach_fixed(f);
+  for (const auto& til : task.tils()) {
+    for (auto f : til.add) reach_fixed(f);
+  }
+  for (int op = 0; op < num_ops; ++op) {
+    if (relaxed.OpExists(op) && missing[static_cast<std::size_t>(op)] == 0 &&
+        !queued[static_cast<std::size_t>(op)]) {
+      queued[static_cast<std::size_t>(op)] = 1;
+      queue.push_back(op);
+    }
+  }
+  // Labels only shrink once set (an operator's union of its preconditions'
+  // labels only shrinks), so intersecting a fact's label with each new
+  // union of one achiever keeps the intersection over all achievers.
+  std::vector<std::int32_t> op_label, with_fact, next;
+  std::size_t steps = 0;
+  while (!queue.empty()) {
+    if (stop != nullptr && (++steps & 1023) == 0 && stop->StopRequested()) return;
+    const std::int32_t op = queue.front();
+    queue.pop_front();
+    queued[static_cast<std::size_t>(op)] = 0;
+    op_label.clear();
+    for (auto p : relaxed.Preconditions(op)) {
+      Union(op_label, label[static_cast<std::size_t>(p)], &next);
+      op_label.swap(next);
+    }
+    for (auto f : relaxed.Adds(op)) {
+      const auto fi = static_cast<std::size_t>(f);
+      if (fixed[fi]) continue;
+      Union(op_label, {f}, &with_fact);
+      if (!reached[fi]) {
+        reached[fi] = 1;
+        label[fi] = with_fact;
+        enqueue_users(f, true);
+        continue;
+      }
+      next.clear();
+      std::set_intersection(label[fi].begin(), label[fi].end(), with_fact.begin(), with_fact.end(),
+                            std::back_inserter(next));
+      if (next.size() == label[fi].size()) continue;
+      label[fi].swap(next);
+      enqueue_users(f, false);
+    }
+  }
+
+  // Landmarks: the goal facts' labels.
+  const auto& goal = task.task().goal.positive;
+  for (auto g : goal) {
+    if (!reached[static_cast<std::size_t>(g)]) return;  // relaxed unsolvable: none
+  }
+  std::vector<std::int32_t> all;
+  for (auto g : goal) {
+    const auto& l = label[static_cast<std::size_t>(g)];
+    all.insert(all.end(), l.begin(), l.end());
+  }
+  std::sort(all.begin(), all.end());
+  all.erase(std::unique(all.begin(), all.end()), all.end());
+  facts_ = all;
+  for (std::size_t i = 0; i < facts_.size(); ++i) {
+    index_of_[static_cast<std::size_t>(facts_[i])] = static_cast<std::int32_t>(i);
+  }
+  is_goal_.assign(facts_.size(), 0);
+  for (auto g : goal)
+    is_goal_[static_cast<std::size_t>(index_of_[static_cast<std::size_t>(g)])] = 1;
+
+  // Achievers of each landmark, and the landmarks each snap adds.
+  std::vector<std::pair<std::int32_t, std::int32_t>> adds;  // (landmark, op)
+  for (int op = 0; op < num_ops; ++op) {
+    if (!relaxed.OpExists(op) || missing[static_cast<std::size_t>(op)] != 0) continue;
+    for (auto f : relaxed.Adds(op)) {
+      const int i = index_of_[static_cast<std::size_t>(f)];
+      if (i >= 0) adds.emplace_back(i, op);
+    }
+  }
+  std::vector<std::int32_t> achiever_begin, achievers;
+  BuildCsr(size(), adds, &achiever_begin, &achievers);
+  std::vector<std::pair<std::int32_t, std::int32_t>> by_snap;
+  by_snap.reserve(adds.size());
+  for (const auto& [i, op] : adds) by_snap.emplace_back(op, i);
+  BuildCsr(num_ops, by_snap, &added_by_begin_, &added_by_);
+
+  // Greedy-necessary orderings: the preconditions shared by every first
+  // achiever (one whose preconditions' labels do not contain the landmark).
+  std::vector<std::pair<std::int32_t, std::int32_t>> orderings;  // (child, parent)
+  std::vector<std::int32_t> shared;
+  for (int i = 0; i < size(); ++i) {
+    const std::int32_t l = facts_[static_cast<std::size_t>(i)];
+    if (fixed[static_cast<std::size_t>(l)]) continue;
+    bool first = true;
+    shared.clear();
+    for (auto k = achiever_begin[static_cast<std::size_t>(i)];
+         k < achiever_begin[static_cast<std::size_t>(i) + 1]; ++k) {
+      const std::int32_t op = achievers[static_cast<std::size_t>(k)];
+      bool needs_l = false;
+      for (auto p : relaxed.Preconditions(op)) {
+        const auto& pl = label[static_cast<std::size_t>(p)];
+        if (std::binary_search(pl.begin(), pl.end(), l)) needs_l = true;
+      }
+      if (needs_l) continue;
+      const auto pre = relaxed.Preconditions(op);
+      if (first) {
+        shared.assign(pre.begin(), pre.end());
+        first = false;
+      } else {
+        next.clear();
+        std::set_intersection(shared.begin(), shared.end(), pre.begin(), pre.end(),
+                              std::back_inserter(next));
+        shared.swap(next);
+      }
+    }
+    for (auto p : shared) {
+      const int j = index_of_[static_cast<std::size_t>(p)];
+      if (j >= 0 && j != i) orderings.emplace_back(i, j);
+    }
+  }
+  BuildCsr(size(), orderings, &parent_begin_, &parents_);
+  for (auto& [child, parent] : orderings) std::swap(child, parent);
+  BuildCsr(size(), orderings, &child_begin_, &children_);
+}
+
+bool LandmarkGraph::Holds(int i, const StateData& state) const {
+  const std::int32_t f = facts_[static_cast<std::size_t>(i)];
+  if (f < num_facts_) return state.Holds(f);
+  const task::ActionId a = f - num_facts_;
+  const auto it =
+      std::lower_bound(state.running.begin(), state.running.end(), a,
+                       [](const RunningAction& r, task::ActionId x) { return r.action < x; });
+  return it != state.running.end() && it->action == a;
+}
+
+LandmarkCounter::LandmarkCounter(const LandmarkGraph& graph)
+    : graph_(graph), words_((static_cast<std::size_t>(graph.size()) + 63) / 64) {}
+
+bool LandmarkCounter::ParentsAccepted(std::span<const std::uint64_t> accepted, int i) const {
+  for (auto p : graph_.parents(i)) {
+    if (!Test(accepted, p)) return false;
+  }
+  return true;
+}
+
+int LandmarkCounter::Update(std::span<const std::uint64_t> parent_accepted, const StateData& state,
+                            std::span<std::uint64_t> accepted) const {
+  const int n = graph_.size();
+  if (parent_accepted.empty()) {
+    std::fill(accepted.begin(), accepted.end(), 0);
+  } else {
+    std::copy(parent_accepted.begin(), parent_accepted.end(), accepted.begin());
+  }
+  for (int i = 0; i < n; ++i) {
+    if (Test(accepted, i) || !graph_.Holds(i, state)) continue;
+    if (!parent_accepted.empty() && !ParentsAccepted(parent_accepted, i)) continue;
+    accepted[static_cast<std::size_t>(i) >> 6] |= std::uint64_t{1} << (i & 63);
+  }
+  int h = 0;
+  for (int i = 0; i < n; ++i) {
+    if (!Test(accepted, i)) {
+      ++h;
+      continue;
+    }
+    if (graph_.Holds(i, state)) continue;
+    bool again = graph_.is_goal(i);
+    for (auto c : graph_.children(i)) {
+      if (again) break;
+      again = !Test(accepted, c);
+    }
+    if (again) ++h;
+  }
+  return h;
+}
+
+bool LandmarkCounter::AddsNextLandmark(std::span<const std::uint64_t> accepted,
+                                       const StateData& state, SnapId snap) const {
+  for (auto i : graph_.added_by(snap)) {
+    if (!Test(accepted, i) && !graph_.Holds(i, state) && ParentsAccepted(accepted, i)) return true;
+  }
+  return false;
+}
+
+}  // namespace seaplan::search
