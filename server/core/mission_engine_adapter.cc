@@ -6,6 +6,7 @@
 #include "absl/strings/str_cat.h"
 #include "seaplan/convert/mission_convert.h"
 #include "server/core/convert.h"
+#include "server/core/planning_handlers.h"
 #include "server/core/route_convert.h"
 #include "server/core/status_details.h"
 
@@ -58,19 +59,9 @@ absl::StatusOr<mission::MissionSpec> SpecFromProto(const v1::MissionSpec& spec) 
     const std::string bytes = m->SerializeAsString();
     absl::StrAppend(&out.routing_key, bytes.size(), ":", bytes, "|");
   }
-  const v1::PlannerOptions& o = spec.planner_options();
-  if (o.has_time_limit()) {
-    SEAPLAN_ASSIGN_OR_RETURN(double s,
-                             DurationSeconds(o.time_limit(), "spec.planner_options.time_limit"));
-    if (s > 0) out.planner.time_limit_s = s;
-  }
-  if (o.memory_limit_mb() > 0) out.planner.memory_limit_mb = o.memory_limit_mb();
-  if (o.max_concurrent_actions() > 0)
-    out.planner.max_concurrent_actions = o.max_concurrent_actions();
-  if (o.has_anytime()) out.planner.anytime = o.anytime();
-  if (o.random_seed() != 0) out.planner.random_seed = o.random_seed();
-  if (o.epsilon_s() > 0) out.planner.epsilon_s = o.epsilon_s();
-  out.planner.max_expansions = o.max_expansions();
+  SEAPLAN_ASSIGN_OR_RETURN(
+      out.planner,
+      PlannerOptionsToEngine(spec.planner_options(), "spec.planner_options", out.planner));
   const v1::ReplanPolicy& r = spec.replan_policy();
   if (r.fuel_threshold_fraction() > 0)
     out.policy.fuel_threshold_fraction = r.fuel_threshold_fraction();

@@ -59,32 +59,6 @@ v1::Diagnostic PlanDiagnostic(const absl::Status& status) {
   return d;
 }
 
-absl::StatusOr<search::PlannerOptions> ToEngine(const v1::PlannerOptions& o) {
-  search::PlannerOptions p;
-  if (o.has_time_limit()) {
-    SEAPLAN_ASSIGN_OR_RETURN(double s, DurationSeconds(o.time_limit(), "options.time_limit"));
-    if (s > 0) p.time_limit_s = s;
-  }
-  if (o.memory_limit_mb() != 0) p.memory_limit_mb = o.memory_limit_mb();
-  if (o.max_concurrent_actions() < 0) {
-    return absl::InvalidArgumentError("options.max_concurrent_actions must not be negative");
-  }
-  p.max_concurrent_actions = o.max_concurrent_actions();
-  if (o.has_anytime()) p.anytime = o.anytime();
-  if (o.has_type_based_exploration()) p.type_based_exploration = o.type_based_exploration();
-  if (o.has_landmarks()) p.landmarks = o.landmarks();
-  if (o.random_seed() != 0) p.random_seed = o.random_seed();
-  if (o.epsilon_s() != 0) p.epsilon_s = o.epsilon_s();
-  p.max_expansions = o.max_expansions();
-  if (o.has_cpu_time_limit()) {
-    SEAPLAN_ASSIGN_OR_RETURN(p.cpu_time_limit_s,
-                             DurationSeconds(o.cpu_time_limit(), "options.cpu_time_limit"));
-  }
-  absl::Status valid = p.Validate();
-  if (!valid.ok()) return absl::InvalidArgumentError(absl::StrCat("options: ", valid.message()));
-  return p;
-}
-
 v1::PlanStatus StatusToProto(search::PlanStatus s) {
   switch (s) {
     case search::PlanStatus::kSolvedSatisficing:
@@ -197,7 +171,7 @@ PlanRun RunPlanner(const v1::PlanRequest& request, const search::PlannerOptions&
 // The request's planner options, within the server's budgets.
 absl::StatusOr<search::PlannerOptions> PlannerOptionsWithin(const v1::PlannerOptions& options,
                                                             const RequestBudgets& budgets) {
-  SEAPLAN_ASSIGN_OR_RETURN(search::PlannerOptions p, ToEngine(options));
+  SEAPLAN_ASSIGN_OR_RETURN(search::PlannerOptions p, PlannerOptionsToEngine(options, "options"));
   if (p.time_limit_s > budgets.max_plan_time_s) {
     return absl::InvalidArgumentError(absl::StrCat("options.time_limit: ", p.time_limit_s,
                                                    " s is more than this server allows (",
@@ -212,6 +186,36 @@ absl::StatusOr<search::PlannerOptions> PlannerOptionsWithin(const v1::PlannerOpt
 }
 
 }  // namespace
+
+absl::StatusOr<search::PlannerOptions> PlannerOptionsToEngine(const v1::PlannerOptions& o,
+                                                              std::string_view field,
+                                                              search::PlannerOptions p) {
+  if (o.has_time_limit()) {
+    SEAPLAN_ASSIGN_OR_RETURN(
+        double s, DurationSeconds(o.time_limit(), absl::StrCat(field, ".time_limit").c_str()));
+    if (s > 0) p.time_limit_s = s;
+  }
+  if (o.memory_limit_mb() != 0) p.memory_limit_mb = o.memory_limit_mb();
+  if (o.max_concurrent_actions() < 0) {
+    return absl::InvalidArgumentError(
+        absl::StrCat(field, ".max_concurrent_actions must not be negative"));
+  }
+  p.max_concurrent_actions = o.max_concurrent_actions();
+  if (o.has_anytime()) p.anytime = o.anytime();
+  if (o.has_type_based_exploration()) p.type_based_exploration = o.type_based_exploration();
+  if (o.has_landmarks()) p.landmarks = o.landmarks();
+  if (o.random_seed() != 0) p.random_seed = o.random_seed();
+  if (o.epsilon_s() != 0) p.epsilon_s = o.epsilon_s();
+  p.max_expansions = o.max_expansions();
+  if (o.has_cpu_time_limit()) {
+    SEAPLAN_ASSIGN_OR_RETURN(
+        p.cpu_time_limit_s,
+        DurationSeconds(o.cpu_time_limit(), absl::StrCat(field, ".cpu_time_limit").c_str()));
+  }
+  absl::Status valid = p.Validate();
+  if (!valid.ok()) return absl::InvalidArgumentError(absl::StrCat(field, ": ", valid.message()));
+  return p;
+}
 
 absl::StatusOr<v1::PlanResponse> PlanningHandlers::Plan(const v1::PlanRequest& request,
                                                         const CallContext& ctx) {

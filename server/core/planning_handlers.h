@@ -7,14 +7,24 @@
 // result statuses.
 #pragma once
 
+#include <string_view>
+
 #include "seaplan/common/status.h"
 #include "seaplan/common/stop_token.h"
+#include "seaplan/search/planner.h"
 #include "seaplan/v1/planning.pb.h"
 #include "server/core/call_context.h"
 #include "server/core/caller_limits.h"
 #include "server/core/work_pool.h"
 
 namespace seaplan::server {
+
+// The planner settings of a request over `base` (fields left unset or 0
+// keep base's). InvalidArgument naming `field` ("options",
+// "spec.planner_options") and the bad value's name within it.
+absl::StatusOr<search::PlannerOptions> PlannerOptionsToEngine(const v1::PlannerOptions& o,
+                                                              std::string_view field,
+                                                              search::PlannerOptions base = {});
 
 class PlanningHandlers {
  public:
