@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cassert>
 #include <chrono>
 #include <cmath>
 #include <exception>
@@ -506,6 +507,7 @@ std::vector<WaypointTask> WaypointsOf(size_t alt, const std::vector<WaypointTask
                                       const std::vector<FilletPoint>& points, int* inserted) {
   std::vector<WaypointTask> out;
   out.reserve(points.size());
+  assert(!points.empty() && points.front().source >= 0);  // a new vertex takes its k from before
   for (const FilletPoint& p : points) {
     if (p.source >= 0) {
       out.push_back(from[p.source]);
@@ -989,7 +991,7 @@ StatusOr<Level2Result> OptimizeLevel2(const Level2Problem& problem, const Level2
     // (sail_check.h RepairSailedRoute), cheapest first, until one keeps
     // clear. The bent route keeps out of the buffered obstacles like the
     // others (its segments are checked) and is evaluated like them.
-    if (options.sail_repair.max_sails > 0 && clear_choice() < 0) {
+    if (options.sail_repair.max_sails > 0 && clear_choice() < 0 && !stop.StopRequested()) {
       std::vector<size_t> order;
       for (size_t a = 0; a < alt_count; ++a) {
         const Sailing& s = sailing[a];
@@ -1000,10 +1002,16 @@ StatusOr<Level2Result> OptimizeLevel2(const Level2Problem& problem, const Level2
                candidates[y][sailing[y].kept].expected_cost;
       });
       for (size_t a : order) {
+        if (stop.StopRequested()) break;
         Sailing& s = sailing[a];
-        SEAPLAN_ASSIGN_OR_RETURN(SailRepair fix,
-                                 RepairSailedRoute(field, candidate_lines[a][s.kept], s.track,
-                                                   options.sail_speed_mps, options.sail_repair));
+        const std::vector<EastNorth>& line = candidate_lines[a][s.kept];
+        StatusOr<SailRepair> repaired = RepairSailedRoute(
+            field, line, s.track, options.sail_speed_mps, options.sail_repair, &stop);
+        if (!repaired.ok()) {  // the candidate stays as it was, with its warning
+          log::Warn("route: repair of alternative {} failed: {}", a, repaired.status().message());
+          continue;
+        }
+        SailRepair& fix = *repaired;
         if (fix.bends == 0) continue;
         const AlternativeResult& was = candidates[a][s.kept];
         AlternativeResult out;
@@ -1012,11 +1020,22 @@ StatusOr<Level2Result> OptimizeLevel2(const Level2Problem& problem, const Level2
         out.inserted_waypoints = was.inserted_waypoints;
         out.filleted_turns = was.filleted_turns;
         out.tightened_turns = was.tightened_turns;
-        out.unsailable_turns = was.unsailable_turns;
+        // The corners the repair moved are no longer the route's.
+        for (const UnsailableTurn& turn : was.unsailable_turns) {
+          if (std::any_of(fix.points.begin(), fix.points.end(), [&](const FilletPoint& p) {
+                return Distance(p.position, turn.corner) < 1.0;
+              })) {
+            out.unsailable_turns.push_back(turn);
+          }
+        }
         out.evaluations = was.evaluations;
         out.sail_bends = fix.bends;
+        // Moved vertices replace their originals; only the added ones are new.
+        int moved_or_added = 0;
         std::vector<WaypointTask> waypoints =
-            WaypointsOf(a, candidate_tasks[a][s.kept], fix.points, &out.inserted_waypoints);
+            WaypointsOf(a, candidate_tasks[a][s.kept], fix.points, &moved_or_added);
+        out.inserted_waypoints +=
+            static_cast<int>(fix.points.size()) - static_cast<int>(line.size());
         out = evaluate_candidate(a, std::move(waypoints), true, std::move(out));
         if (out.crosses_obstacle) continue;
         candidates[a][s.kept] = std::move(out);
@@ -1048,6 +1067,7 @@ StatusOr<Level2Result> OptimizeLevel2(const Level2Problem& problem, const Level2
       result.chosen = static_cast<int>(a);
     }
   }
+  result.stopped = result.stopped || stop.StopRequested();  // also during the sail check
   result.wall_s = std::chrono::duration<double>(std::chrono::steady_clock::now() - t0).count();
   return result;
 }

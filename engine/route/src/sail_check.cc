@@ -127,7 +127,7 @@ std::optional<std::vector<FilletPoint>> Bend(const ObstacleField& field,
   std::vector<FilletPoint> out;
   out.reserve(n + 9);
   auto add_samples = [&](size_t seg, double s0, double s1) {  // in (s0, s1) of segment seg
-    for (int k = 0; k <= 8; ++k) {
+    for (int k = 1; k <= 7; ++k) {  // k = 0 and 8: the window's ends, not bent
       const double s = s_at - window_m + k * window_m / 4.0;
       if (s <= s0 + 1.0 || s >= s1 - 1.0) continue;
       const double t = (s - cum[seg - 1]) / (cum[seg] - cum[seg - 1]);
@@ -184,7 +184,7 @@ std::optional<std::vector<FilletPoint>> PushCorner(const ObstacleField& field,
 StatusOr<SailRepair> RepairSailedRoute(const ObstacleField& field,
                                        const std::vector<EastNorth>& route,
                                        const SailedTrack& sailed, double speed_mps,
-                                       const SailRepairOptions& options) {
+                                       const SailRepairOptions& options, const StopToken* stop) {
   SEAPLAN_RETURN_IF_ERROR(options.Validate());
   SailRepair repair;
   for (size_t i = 0; i < route.size(); ++i) {
@@ -196,7 +196,7 @@ StatusOr<SailRepair> RepairSailedRoute(const ObstacleField& field,
   constexpr double kShiftScale[] = {1.0, 1.0, 2.0, 2.0};
   bool improved = true;
   while (improved && !repair.track.Clear() && repair.track.arrived &&
-         repair.sails < options.max_sails) {
+         repair.sails < options.max_sails && (stop == nullptr || !stop->StopRequested())) {
     improved = false;
     const EastNorth at = repair.track.closest;
     // Away from the obstacle: the signed distance's gradient (central
@@ -214,6 +214,7 @@ StatusOr<SailRepair> RepairSailedRoute(const ObstacleField& field,
     const double shift_m = std::max(0.0, -field.SignedDistance(at)) + options.target_clearance_m;
     // Sails a moved route; kept when its track is better.
     auto sail = [&](std::vector<FilletPoint> moved) -> absl::Status {
+      if (stop != nullptr && stop->StopRequested()) return absl::OkStatus();
       std::vector<EastNorth> line;
       line.reserve(moved.size());
       for (const FilletPoint& p : moved) line.push_back(p.position);

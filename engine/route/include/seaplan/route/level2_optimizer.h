@@ -65,7 +65,7 @@
 //     until one keeps clear: bent away from the obstacle where the track
 //     comes closest to it, by its depth plus a margin, and sailed again
 //     (sail_check.h RepairSailedRoute, at most sail_repair.max_sails
-//     sailings per alternative; sail_bends says how many bends were kept).
+//     sailings per alternative; sail_bends says how many repairs were kept).
 // The chosen alternative is the obstacle-free one with the lowest expected
 // cost, one whose sailed track keeps clear before any that does not (sum of C_grounding + C_mso +
 // switching; C_path only shapes the route and is not a cost of sailing it, so it is reported but
@@ -282,8 +282,8 @@ struct AlternativeResult {
   bool sailed_arrived = false;
   double sailed_clearance_m = 0.0;
   EastNorth sailed_closest;
-  // Bends step 6's repair put in the kept candidate (0: none; see
-  // RepairSailedRoute in sail_check.h).
+  // Repairs (bends or corner pushes) step 6 put in the kept candidate (0:
+  // none; see RepairSailedRoute in sail_check.h).
   int sail_bends = 0;
   int64_t evaluations = 0;
 };

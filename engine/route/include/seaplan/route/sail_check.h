@@ -19,6 +19,7 @@
 #include "seaplan/colav/path_follower.h"
 #include "seaplan/common/east_north.h"
 #include "seaplan/common/status.h"
+#include "seaplan/common/stop_token.h"
 #include "seaplan/route/obstacle_field.h"
 #include "seaplan/route/turn_fillet.h"
 
@@ -85,14 +86,17 @@ struct SailRepair {
   std::vector<FilletPoint> points;
   SailedTrack track;  // its sailed track (the input's when nothing improved)
   int sails = 0;      // sailings spent
-  int bends = 0;      // bends kept
+  int bends = 0;      // repairs kept (bends or corner pushes)
 };
 
 // `route` and `sailed`: the route and its track as SailRoute gave it (sailed
-// over `field`). Errors: those of SailRoute, InvalidArgument for bad options.
+// over `field`). A stop request ends the repair before its next sailing,
+// with the best route so far. Errors: those of SailRoute, InvalidArgument
+// for bad options.
 StatusOr<SailRepair> RepairSailedRoute(const ObstacleField& field,
                                        const std::vector<EastNorth>& route,
                                        const SailedTrack& sailed, double speed_mps,
-                                       const SailRepairOptions& options);
+                                       const SailRepairOptions& options,
+                                       const StopToken* stop = nullptr);
 
 }  // namespace seaplan::route
