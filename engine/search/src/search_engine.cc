@@ -449,7 +449,8 @@ LazySearch::Status LazySearch::Step() {
     Event ev = candidates_[i];
     if (stop_ != nullptr && (++tried & 255) == 0 && stop_->StopRequested())
       return Status::kInProgress;
-    const bool helpful = i < num_helpful;  // a snap of the relaxed plan (never a TIL)
+    const bool helpful =
+        i < num_helpful;  // of the relaxed plan or adding a next landmark (never a TIL)
     // Starts are even SnapIds (snap_task.h); reading the SnapAction would
     // cost a cache miss per candidate.
     if (greedy && !ev.is_til() && (ev.snap & 1) == 0 && !helpful) {

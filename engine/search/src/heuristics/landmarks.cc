@@ -152,6 +152,7 @@ LandmarkGraph::LandmarkGraph(const SnapTask& task, const RelaxedPlanHeuristic& r
   std::vector<std::pair<std::int32_t, std::int32_t>> orderings;  // (child, parent)
   std::vector<std::int32_t> shared;
   for (int i = 0; i < size(); ++i) {
+    if (stop != nullptr && (i & 63) == 0 && stop->StopRequested()) break;  // the search ends too
     const std::int32_t l = facts_[static_cast<std::size_t>(i)];
     if (fixed[static_cast<std::size_t>(l)]) continue;
     bool first = true;
