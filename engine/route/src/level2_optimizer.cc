@@ -1008,7 +1008,7 @@ StatusOr<Level2Result> OptimizeLevel2(const Level2Problem& problem, const Level2
         StatusOr<SailRepair> repaired = RepairSailedRoute(
             field, line, s.track, options.sail_speed_mps, options.sail_repair, &stop);
         if (!repaired.ok()) {  // the candidate stays as it was, with its warning
-          log::Warn("route: repair of alternative {} failed: {}", a, repaired.status().message());
+          log::Warn("route: repair of alternative {} failed: {}", a, repaired.status().ToString());
           continue;
         }
         SailRepair& fix = *repaired;
