@@ -188,7 +188,7 @@ absl::StatusOr<search::PlannerOptions> PlannerOptionsWithin(const v1::PlannerOpt
 }  // namespace
 
 absl::StatusOr<search::PlannerOptions> PlannerOptionsToEngine(const v1::PlannerOptions& o,
-                                                              std::string_view field,
+                                                              const char* field,
                                                               search::PlannerOptions p) {
   if (o.has_time_limit()) {
     SEAPLAN_ASSIGN_OR_RETURN(

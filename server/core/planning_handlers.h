@@ -7,8 +7,6 @@
 // result statuses.
 #pragma once
 
-#include <string_view>
-
 #include "seaplan/common/status.h"
 #include "seaplan/common/stop_token.h"
 #include "seaplan/search/planner.h"
@@ -23,7 +21,7 @@ namespace seaplan::server {
 // keep base's). InvalidArgument naming `field` ("options",
 // "spec.planner_options") and the bad value's name within it.
 absl::StatusOr<search::PlannerOptions> PlannerOptionsToEngine(const v1::PlannerOptions& o,
-                                                              std::string_view field,
+                                                              const char* field,
                                                               search::PlannerOptions base = {});
 
 class PlanningHandlers {
