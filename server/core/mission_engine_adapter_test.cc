@@ -3,6 +3,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 
 #include "server/core/status_details.h"
 
@@ -88,17 +89,31 @@ TEST(MissionAdapterTest, SpecDefaultsAndErrors) {
   spec.mutable_planner_options()->set_anytime(false);
   spec.mutable_planner_options()->mutable_time_limit()->set_seconds(7);
   spec.mutable_planner_options()->set_max_expansions(20000);
+  spec.mutable_planner_options()->set_landmarks(true);
+  spec.mutable_planner_options()->set_type_based_exploration(false);
+  spec.mutable_planner_options()->mutable_cpu_time_limit()->set_seconds(5);
   spec.mutable_ship()->set_service_speed_mps(9);
   auto given = SpecFromProto(spec);
   ASSERT_TRUE(given.ok());
   EXPECT_EQ(given->policy.position_deviation_m, 75);
   EXPECT_FALSE(given->planner.anytime);
+  EXPECT_NE(given->planner.landmarks, defaults.planner.landmarks);
+  EXPECT_TRUE(given->planner.landmarks);
+  EXPECT_FALSE(given->planner.type_based_exploration);
+  EXPECT_EQ(given->planner.cpu_time_limit_s, 5);
   EXPECT_EQ(given->planner.time_limit_s, 7);
   EXPECT_EQ(given->planner.max_expansions, 20000u);
   EXPECT_EQ(given->service_speed_mps, 9);
   EXPECT_NE(given->routing_key, s->routing_key);  // the ship differs
   spec.mutable_planner_options()->mutable_time_limit()->set_seconds(-1);
   EXPECT_TRUE(absl::IsInvalidArgument(SpecFromProto(spec).status()));
+  spec.mutable_planner_options()->mutable_time_limit()->set_seconds(7);
+  spec.mutable_planner_options()->set_max_concurrent_actions(-2);
+  const absl::Status negative = SpecFromProto(spec).status();
+  EXPECT_TRUE(absl::IsInvalidArgument(negative)) << negative;
+  EXPECT_NE(negative.message().find("spec.planner_options.max_concurrent_actions"),
+            std::string::npos)
+      << negative;
 }
 
 TEST(MissionAdapterTest, FeedbackStateIsAFullState) {
