@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "obstacle_test_fields.h"
 #include "seaplan/route/sail_check.h"
 
 namespace seaplan::route {
@@ -243,20 +244,7 @@ TEST(Level2OptimizerTest, SailCheckKeepsACandidateWhoseTrackStaysOutOfTheObstacl
   const std::vector<EastNorth> route = polyline(unchecked->alternatives[0]);
   auto sailed = SailRoute(route, o.sail_speed_mps, nullptr);
   ASSERT_TRUE(sailed.ok()) << sailed.status();
-  EastNorth widest;
-  double widest_m = 0.0;
-  for (const EastNorth& p : sailed->track) {
-    double d = 1e300;
-    for (size_t k = 1; k < route.size(); ++k) {
-      const EastNorth a = route[k - 1], ab = route[k] - a;
-      const double t = std::clamp((p - a).Dot(ab) / ab.Dot(ab), 0.0, 1.0);
-      d = std::min(d, Distance(p, a + ab * t));
-    }
-    if (d > widest_m) {
-      widest_m = d;
-      widest = p;
-    }
-  }
+  const auto [widest, widest_m] = test_fields::WidestSwing(route, sailed->track);
   EXPECT_GT(widest_m, 100.0);  // 284 m
   ObstacleFieldOptions fo;
   fo.far_cutoff_m = 750;

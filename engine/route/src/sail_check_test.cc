@@ -91,26 +91,6 @@ TEST(RepairSailedRouteTest, ACornerWhoseTrackGroundsIsBentUntilTheTrackKeepsClea
   }
 }
 
-// The point of `track` farthest from the polyline `route`, and how far.
-std::pair<EastNorth, double> Widest(const std::vector<EastNorth>& route,
-                                    const std::vector<EastNorth>& track) {
-  EastNorth widest;
-  double widest_m = 0.0;
-  for (const EastNorth& p : track) {
-    double d = 1e300;
-    for (size_t k = 1; k < route.size(); ++k) {
-      const EastNorth a = route[k - 1], ab = route[k] - a;
-      const double t = std::clamp((p - a).Dot(ab) / ab.Dot(ab), 0.0, 1.0);
-      d = std::min(d, Distance(p, a + ab * t));
-    }
-    if (d > widest_m) {
-      widest_m = d;
-      widest = p;
-    }
-  }
-  return {widest, widest_m};
-}
-
 // A rock put where the track of `route` sailed in open water strays
 // farthest from it (at least `min_swing_m`, off the polyline itself): the
 // track sailed among it grounds, and the repair bends the route, clear of
@@ -119,7 +99,7 @@ void ExpectRepairClearsARockWhereTheTrackSwings(const std::vector<EastNorth>& ro
                                                 double min_swing_m) {
   auto free = SailRoute(route, 9.0, nullptr);
   ASSERT_TRUE(free.ok()) << free.status();
-  const auto [widest, widest_m] = Widest(route, free->track);
+  const auto [widest, widest_m] = test_fields::WidestSwing(route, free->track);
   ASSERT_GT(widest_m, min_swing_m);
   const ObstacleField rock = Field(
       {Rect(widest.east_m - 15, widest.north_m - 15, widest.east_m + 15, widest.north_m + 15)});

@@ -5,6 +5,7 @@
 #include <chrono>
 #include <ctime>
 #include <filesystem>
+#include <functional>
 #include <limits>
 #include <thread>
 
@@ -211,6 +212,34 @@ TEST(PlannerTest, NewestFirstGreedySolvesWhatTheFirstConfigurationSolves) {
   EXPECT_EQ(SolveTask(*toggle.task, o, StopToken()).status, PlanStatus::kUnsolvableProven);
 }
 
+// Both first-plan configurations (the second greedy search after half the
+// budget, or newest first from the start) with the options `set` gives:
+// every feature problem solved with a valid plan (`check` looks at each
+// result too) and unsolvability still proven.
+void ExpectFirstPlanSearchesSolveAndProve(
+    const std::function<void(PlannerOptions&)>& set,
+    const std::function<void(const Loaded&, const PlanResult&)>& check) {
+  for (const double share : {0.5, 0.0}) {
+    SCOPED_TRACE(::testing::Message() << "share " << share);
+    PlannerOptions o = Quick(5);
+    o.anytime = false;
+    o.second_greedy_after_share = share;
+    set(o);
+    for (const auto& [domain, problem] : kFeatureProblems) {
+      SCOPED_TRACE(problem);
+      auto loaded = Load(domain, problem);
+      ASSERT_TRUE(loaded.task);
+      const PlanResult r = SolveTask(*loaded.task, o, StopToken());
+      ASSERT_EQ(r.status, PlanStatus::kSolvedSatisficing) << r.message;
+      ExpectValid(*loaded.task, r);
+      check(loaded, r);
+    }
+    auto toggle = Load("toggle-domain.pddl", "toggle-3.pddl");
+    ASSERT_TRUE(toggle.task);
+    EXPECT_EQ(SolveTask(*toggle.task, o, StopToken()).status, PlanStatus::kUnsolvableProven);
+  }
+}
+
 // With and without type-based exploration (its random pops take states in
 // another order, and every successor is then in two or three lists), both
 // first-plan configurations find valid plans and exhaustion still proves
@@ -218,24 +247,10 @@ TEST(PlannerTest, NewestFirstGreedySolvesWhatTheFirstConfigurationSolves) {
 // another as if it were a second path to its state.
 TEST(PlannerTest, TypeBasedExplorationOnAndOffSolveAndProve) {
   for (const bool type_based : {false, true}) {
-    for (const double share : {0.5, 0.0}) {
-      SCOPED_TRACE(::testing::Message() << "type_based " << type_based << " share " << share);
-      PlannerOptions o = Quick(5);
-      o.anytime = false;
-      o.second_greedy_after_share = share;
-      o.type_based_exploration = type_based;
-      for (const auto& [domain, problem] : kFeatureProblems) {
-        SCOPED_TRACE(problem);
-        auto loaded = Load(domain, problem);
-        ASSERT_TRUE(loaded.task);
-        const PlanResult r = SolveTask(*loaded.task, o, StopToken());
-        ASSERT_EQ(r.status, PlanStatus::kSolvedSatisficing) << r.message;
-        ExpectValid(*loaded.task, r);
-      }
-      auto toggle = Load("toggle-domain.pddl", "toggle-3.pddl");
-      ASSERT_TRUE(toggle.task);
-      EXPECT_EQ(SolveTask(*toggle.task, o, StopToken()).status, PlanStatus::kUnsolvableProven);
-    }
+    SCOPED_TRACE(::testing::Message() << "type_based " << type_based);
+    ExpectFirstPlanSearchesSolveAndProve(
+        [&](PlannerOptions& o) { o.type_based_exploration = type_based; },
+        [](const Loaded&, const PlanResult&) {});
   }
 }
 
@@ -244,30 +259,17 @@ TEST(PlannerTest, TypeBasedExplorationOnAndOffSolveAndProve) {
 // valid plans and prove unsolvability, and the generation is reported.
 TEST(PlannerTest, LandmarkCountOnAndOffSolvesAndProves) {
   for (const bool landmarks : {false, true}) {
-    for (const double share : {0.5, 0.0}) {
-      SCOPED_TRACE(::testing::Message() << "landmarks " << landmarks << " share " << share);
-      PlannerOptions o = Quick(5);
-      o.anytime = false;
-      o.second_greedy_after_share = share;
-      o.landmarks = landmarks;
-      for (const auto& [domain, problem] : kFeatureProblems) {
-        SCOPED_TRACE(problem);
-        auto loaded = Load(domain, problem);
-        ASSERT_TRUE(loaded.task);
-        const PlanResult r = SolveTask(*loaded.task, o, StopToken());
-        ASSERT_EQ(r.status, PlanStatus::kSolvedSatisficing) << r.message;
-        ExpectValid(*loaded.task, r);
-        // Every goal fact is a landmark of its own task.
-        if (landmarks) {
-          EXPECT_GE(r.stats.landmarks, static_cast<int>(loaded.task->goal.positive.size()));
-        } else {
-          EXPECT_EQ(r.stats.landmarks, 0);
-        }
-      }
-      auto toggle = Load("toggle-domain.pddl", "toggle-3.pddl");
-      ASSERT_TRUE(toggle.task);
-      EXPECT_EQ(SolveTask(*toggle.task, o, StopToken()).status, PlanStatus::kUnsolvableProven);
-    }
+    SCOPED_TRACE(::testing::Message() << "landmarks " << landmarks);
+    ExpectFirstPlanSearchesSolveAndProve(
+        [&](PlannerOptions& o) { o.landmarks = landmarks; },
+        [&](const Loaded& loaded, const PlanResult& r) {
+          // Every goal fact is a landmark of its own task.
+          if (landmarks) {
+            EXPECT_GE(r.stats.landmarks, static_cast<int>(loaded.task->goal.positive.size()));
+          } else {
+            EXPECT_EQ(r.stats.landmarks, 0);
+          }
+        });
   }
 }
 
