@@ -11,6 +11,7 @@
 #include "heuristics/landmarks.h"
 #include "heuristics/relaxed_plan_heuristic.h"
 #include "heuristics/temporal_reachability.h"
+#include "object_symmetry.h"
 #include "plan_builder.h"
 #include "seaplan/common/log.h"
 #include "seaplan/task/grounder.h"
@@ -149,6 +150,7 @@ class PlannerRun {
   StateRegistry registry_;
   RelaxedPlanHeuristic heuristic_;
   std::optional<LandmarkGraph> landmarks_;  // PlannerOptions::landmarks
+  std::optional<ObjectSymmetry> symmetry_;  // PlannerOptions::symmetry_reduction
   TemporalReachability reachability_;
   Transitions transitions_;
   Timeline timeline_;
@@ -249,6 +251,7 @@ SearchParams PlannerRun::BoundedParams(double weight) const {
   params.bound_s = best_.makespan_s;
   params.epsilon_s = options_.epsilon_s;
   params.seed = options_.random_seed;
+  if (symmetry_) params.symmetry = &*symmetry_;
   return params;
 }
 
@@ -367,6 +370,11 @@ PlanResult PlannerRun::Run() {
     log::Debug("planner: {} landmarks, {} orderings in {:.3f} s", landmarks_->size(),
                landmarks_->num_orderings(), best_.stats.landmark_time_s);
   }
+  if (options_.symmetry_reduction) {
+    symmetry_.emplace(snap_);
+    log::Debug("planner: {} objects in {} classes of interchangeable objects",
+               symmetry_->num_symmetric_objects(), symmetry_->num_classes());
+  }
   bool many_variants = false, newest_first = options_.second_greedy_after_share <= 0;
   while (true) {
     SearchParams params;
@@ -375,6 +383,7 @@ PlanResult PlannerRun::Run() {
     params.seed = options_.random_seed;
     params.type_based_exploration = options_.type_based_exploration;
     if (landmarks_) params.landmarks = &*landmarks_;
+    if (symmetry_) params.symmetry = &*symmetry_;
     if (many_variants) {
       params.max_variants = 64;
       params.bound_dominance = false;

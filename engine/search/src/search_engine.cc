@@ -24,6 +24,10 @@ LazySearch::LazySearch(const SnapTask& task, StateRegistry& registry,
       open_landmark_all_(KeyOrder(params)),
       open_landmark_preferred_(KeyOrder(params)) {
   paths_.push_back(SchedulePath{&timeline_, {}, -1});
+  if (params.symmetry != nullptr && params.symmetry->active()) {
+    canonical_registry_ =
+        std::make_unique<StateRegistry>(registry.num_facts(), registry.num_vars());
+  }
   if (TypeBased()) {
     const auto wanted = static_cast<std::size_t>(
         std::clamp(params.schedule_paths, 1, static_cast<int>(kMaxSchedulePaths)));
@@ -57,7 +61,19 @@ std::size_t LazySearch::MemoryBytes() const {
          depth_.capacity() * sizeof(std::int32_t) + path_.capacity() * sizeof(Event) +
          ExploreMemoryBytes() + open_landmark_all_.MemoryBytes() +
          open_landmark_preferred_.MemoryBytes() +
-         landmark_accepted_.capacity() * sizeof(std::uint64_t);
+         landmark_accepted_.capacity() * sizeof(std::uint64_t) +
+         (canonical_registry_ ? canonical_registry_->MemoryBytes() : 0) +
+         canonical_owner_.capacity() * sizeof(std::int32_t);
+}
+
+std::pair<std::int32_t, std::int32_t> LazySearch::CanonicalOwner(const StateData& state) {
+  if (!canonical_registry_) return {-1, -1};
+  params_.symmetry->Canonicalize(state, &canonical_);
+  canonical_.variant = 0;
+  bool is_new = false;
+  const std::int32_t id = canonical_registry_->Insert(canonical_, &is_new).value();
+  if (is_new) canonical_owner_.push_back(-1);
+  return {id, canonical_owner_[static_cast<std::size_t>(id)]};
 }
 
 std::size_t LazySearch::ExploreMemoryBytes() const {
@@ -271,6 +287,9 @@ std::int32_t LazySearch::Materialize(std::int32_t pending_index) {
     if (n.status == kClosed) return -1;
     n.status = kClosed;
     registry_.Unpack(StateId(initial_), &current_);
+    if (const auto [image, owner] = CanonicalOwner(current_); image >= 0 && owner < 0) {
+      canonical_owner_[static_cast<std::size_t>(image)] = initial_;
+    }
     return initial_;
   }
   registry_.Unpack(StateId(rec.parent), &parent_state_);
@@ -302,6 +321,8 @@ std::int32_t LazySearch::Materialize(std::int32_t pending_index) {
       slack_scratch_.push_back(timeline.WindowSlack(r.action, out.makespan_s));
   }
   const bool greedy = params_.weight < 0;
+  const auto [image, owner] = CanonicalOwner(next_);
+  bool owner_is_copy = false;
   // Find the copy of this state to use: an unvisited one, one we improve
   // on, or a new variant when no visited copy dominates this schedule.
   std::int32_t chosen = -1;
@@ -309,6 +330,7 @@ std::int32_t LazySearch::Materialize(std::int32_t pending_index) {
     next_.variant = v;
     bool is_new = false;
     const StateId id = registry_.Insert(next_, &is_new);
+    if (id.value() == owner) owner_is_copy = true;
     NodeInfo& n = Info(id);
     if (n.status == kNew) {
       chosen = id.value();
@@ -329,6 +351,20 @@ std::int32_t LazySearch::Materialize(std::int32_t pending_index) {
     }
   }
   if (chosen < 0) return reject_merged();
+  if (owner >= 0 && owner != chosen && !owner_is_copy) {
+    // A symmetric state (another permutation of interchangeable objects)
+    // was expanded: its future is this one's, renamed. Dropped like a
+    // dominated copy when its bound is no later (window actions' slack is
+    // not compared, so not with those running).
+    const NodeInfo& o = info_[static_cast<std::size_t>(owner)];
+    const bool bound_ok = params_.bound_dominance ? o.lb_s <= out.lower_bound_s + 1e-9
+                                                  : std::abs(o.lb_s - out.lower_bound_s) <= 1e-9;
+    if (o.status == kClosed && bound_ok && o.slack_count == 0 && slack_scratch_.empty()) {
+      ++symmetric_merges_;
+      return reject_merged();
+    }
+  }
+  if (image >= 0 && owner < 0) canonical_owner_[static_cast<std::size_t>(image)] = chosen;
   // The chosen state's schedule is the parent's plus this event: keep it
   // for the expansion that follows.
   timeline.Keep(ev);

@@ -33,11 +33,13 @@
 #include <optional>
 #include <random>
 #include <span>
+#include <utility>
 #include <vector>
 
 #include "heuristics/landmarks.h"
 #include "heuristics/relaxed_plan_heuristic.h"
 #include "heuristics/temporal_reachability.h"
+#include "object_symmetry.h"
 #include "open_lists/tie_breaking_open_list.h"
 #include "open_lists/type_based_open_list.h"
 #include "seaplan/common/stop_token.h"
@@ -79,6 +81,11 @@ struct SearchParams {
   // boosts both preferred lists; a preferred event is also one adding a
   // landmark that could be accepted next.
   const LandmarkGraph* landmarks = nullptr;
+  // May be null (borrowed): interchangeable objects. A successor whose
+  // image under them (ObjectSymmetry::Canonicalize) is that of another
+  // state already expanded, with a bound no later and no window actions
+  // running, is dropped like a duplicate.
+  const ObjectSymmetry* symmetry = nullptr;
 };
 
 struct SearchCounters {
@@ -125,6 +132,8 @@ class LazySearch {
   std::size_t schedule_events_rebuilt() const { return schedule_events_rebuilt_; }
   std::size_t MemoryBytes() const;
   int best_h() const { return best_h_; }
+  // Successors dropped because a symmetric state was expanded before.
+  std::size_t symmetric_merges() const { return symmetric_merges_; }
 
  private:
   struct NodeInfo {
@@ -267,6 +276,14 @@ class LazySearch {
   const StopToken* stop_ = nullptr;
   TemporalReachability* reachability_ = nullptr;
   StateData parent_state_;
+  // With params_.symmetry: the states' images, and per image the first
+  // expanded state that has it (-1: none yet).
+  std::unique_ptr<StateRegistry> canonical_registry_;
+  std::vector<std::int32_t> canonical_owner_;
+  StateData canonical_;
+  std::size_t symmetric_merges_ = 0;
+  // The image's id in canonical_registry_, and its owner (-1: none).
+  std::pair<std::int32_t, std::int32_t> CanonicalOwner(const StateData& state);
 };
 
 }  // namespace seaplan::search

@@ -1,0 +1,429 @@
+#include "object_symmetry.h"
+
+#include <algorithm>
+#include <map>
+#include <string>
+#include <unordered_map>
+#include <utility>
+
+namespace seaplan::search {
+
+namespace {
+
+// Beyond this many ground actions the detection is skipped: its cost grows
+// with the actions naming each candidate object.
+constexpr std::size_t kMaxActions = 200'000;
+
+std::string Key(const std::string& name, const std::vector<std::string>& args, int variant) {
+  std::string k = name;
+  for (const auto& a : args) {
+    k += '\0';
+    k += a;
+  }
+  k += '#';
+  k += std::to_string(variant);
+  return k;
+}
+
+bool ExprEqual(const task::NumericExpr& a, const task::NumericExpr& b) {
+  if (a.nodes.size() != b.nodes.size()) return false;
+  for (std::size_t i = 0; i < a.nodes.size(); ++i) {
+    const auto &x = a.nodes[i], &y = b.nodes[i];
+    if (x.op != y.op || x.var != y.var || x.lhs != y.lhs || x.rhs != y.rhs) return false;
+    if (x.op == task::NumericExpr::Op::kConstant && x.value != y.value) return false;
+  }
+  return true;
+}
+
+bool NumericConditionsEqual(const std::vector<task::NumericCondition>& a,
+                            const std::vector<task::NumericCondition>& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (a[i].comparator != b[i].comparator || !ExprEqual(a[i].lhs, b[i].lhs) ||
+        !ExprEqual(a[i].rhs, b[i].rhs))
+      return false;
+  }
+  return true;
+}
+
+bool NumericEffectsEqual(const std::vector<task::NumericEffect>& a,
+                         const std::vector<task::NumericEffect>& b) {
+  if (a.size() != b.size()) return false;
+  for (std::size_t i = 0; i < a.size(); ++i) {
+    if (a[i].var != b[i].var || a[i].op != b[i].op || !ExprEqual(a[i].value, b[i].value))
+      return false;
+  }
+  return true;
+}
+
+// The swap of two objects as a map of fact and action ids; built per pair.
+class Swap {
+ public:
+  Swap(const task::GroundTask& task, const std::unordered_map<std::string, task::FactId>& facts,
+       const std::unordered_map<std::string, task::ActionId>& actions, const std::string& x,
+       const std::string& y)
+      : task_(task), facts_(facts), actions_(actions), x_(x), y_(y) {}
+
+  // The image of fact `f`; -1 when it does not exist or names both objects.
+  task::FactId Fact(task::FactId f) const {
+    const auto& fact = task_.facts[static_cast<std::size_t>(f)];
+    std::vector<std::string> args;
+    if (!Swapped(fact.args, &args)) return -1;
+    if (args == fact.args) return f;
+    auto it = facts_.find(Key(fact.predicate, args, 0));
+    return it == facts_.end() ? -1 : it->second;
+  }
+  task::ActionId Action(task::ActionId a) const {
+    const auto& action = task_.actions[static_cast<std::size_t>(a)];
+    std::vector<std::string> args;
+    if (!Swapped(action.args, &args)) return -1;
+    if (args == action.args) return a;
+    auto it = actions_.find(Key(action.name, args, action.variant));
+    return it == actions_.end() ? -1 : it->second;
+  }
+  // True when the image of `from` is `to` (as sets).
+  bool FactsMap(const std::vector<task::FactId>& from, const std::vector<task::FactId>& to) const {
+    if (from.size() != to.size()) return false;
+    std::vector<task::FactId> image, target(to);
+    for (auto f : from) {
+      const task::FactId g = Fact(f);
+      if (g < 0) return false;
+      image.push_back(g);
+    }
+    std::sort(image.begin(), image.end());
+    std::sort(target.begin(), target.end());
+    return image == target;
+  }
+  bool ConditionMaps(const task::Condition& a, const task::Condition& b) const {
+    return FactsMap(a.positive, b.positive) && FactsMap(a.negative, b.negative) &&
+           NumericConditionsEqual(a.numeric, b.numeric);
+  }
+  bool EffectsMap(const task::Effects& a, const task::Effects& b) const {
+    return a.conditional.empty() && b.conditional.empty() && FactsMap(a.add, b.add) &&
+           FactsMap(a.del, b.del) && NumericEffectsEqual(a.numeric, b.numeric);
+  }
+
+ private:
+  // False when both objects are among `args` (a fact relating them).
+  bool Swapped(const std::vector<std::string>& args, std::vector<std::string>* out) const {
+    *out = args;
+    bool seen_x = false, seen_y = false;
+    for (auto& a : *out) {
+      if (a == x_) {
+        a = y_;
+        seen_x = true;
+      } else if (a == y_) {
+        a = x_;
+        seen_y = true;
+      }
+    }
+    return !(seen_x && seen_y);
+  }
+
+  const task::GroundTask& task_;
+  const std::unordered_map<std::string, task::FactId>& facts_;
+  const std::unordered_map<std::string, task::ActionId>& actions_;
+  const std::string& x_;
+  const std::string& y_;
+};
+
+}  // namespace
+
+ObjectSymmetry::ObjectSymmetry(const SnapTask& snap) : task_(snap) {
+  const task::GroundTask& task = snap.task();
+  if (task.actions.size() > kMaxActions) return;
+  std::unordered_map<std::string, int> object_index;
+  std::vector<std::string> objects;
+  auto object = [&](const std::string& name) {
+    auto [it, inserted] = object_index.try_emplace(name, static_cast<int>(objects.size()));
+    if (inserted) objects.push_back(name);
+    return it->second;
+  };
+  // Where each object appears: (predicate or action name, position), and
+  // the facts and actions naming it.
+  std::vector<std::vector<std::string>> occurrences;
+  std::vector<std::vector<task::FactId>> object_facts;
+  std::vector<std::vector<task::ActionId>> object_actions;
+  std::vector<bool> in_numeric;
+  auto grow = [&]() {
+    occurrences.resize(objects.size());
+    object_facts.resize(objects.size());
+    object_actions.resize(objects.size());
+    in_numeric.resize(objects.size(), false);
+  };
+  std::unordered_map<std::string, task::FactId> fact_ids;
+  std::unordered_map<std::string, task::ActionId> action_ids;
+  for (std::size_t f = 0; f < task.facts.size(); ++f) {
+    const auto& fact = task.facts[f];
+    fact_ids.emplace(Key(fact.predicate, fact.args, 0), static_cast<task::FactId>(f));
+    for (std::size_t i = 0; i < fact.args.size(); ++i) {
+      const int o = object(fact.args[i]);
+      grow();
+      occurrences[static_cast<std::size_t>(o)].push_back("f" + fact.predicate + "/" +
+                                                         std::to_string(i));
+      auto& list = object_facts[static_cast<std::size_t>(o)];
+      if (list.empty() || list.back() != static_cast<task::FactId>(f))
+        list.push_back(static_cast<task::FactId>(f));
+    }
+  }
+  for (std::size_t a = 0; a < task.actions.size(); ++a) {
+    const auto& action = task.actions[a];
+    action_ids.emplace(Key(action.name, action.args, action.variant),
+                       static_cast<task::ActionId>(a));
+    for (std::size_t i = 0; i < action.args.size(); ++i) {
+      const int o = object(action.args[i]);
+      grow();
+      occurrences[static_cast<std::size_t>(o)].push_back("a" + action.name + "/" +
+                                                         std::to_string(i));
+      auto& list = object_actions[static_cast<std::size_t>(o)];
+      if (list.empty() || list.back() != static_cast<task::ActionId>(a))
+        list.push_back(static_cast<task::ActionId>(a));
+    }
+  }
+  for (const auto& var : task.numeric_vars) {
+    for (const auto& arg : var.args) {
+      const int o = object(arg);
+      grow();
+      in_numeric[static_cast<std::size_t>(o)] = true;
+    }
+  }
+  grow();
+  std::vector<std::vector<task::ActionId>> fact_users(task.facts.size());
+  for (std::size_t a = 0; a < task.actions.size(); ++a) {
+    const auto& action = task.actions[a];
+    auto use = [&](const std::vector<task::FactId>& list) {
+      for (auto f : list) {
+        auto& u = fact_users[static_cast<std::size_t>(f)];
+        if (u.empty() || u.back() != static_cast<task::ActionId>(a))
+          u.push_back(static_cast<task::ActionId>(a));
+      }
+    };
+    for (const auto* c : {&action.at_start, &action.over_all, &action.at_end}) {
+      use(c->positive);
+      use(c->negative);
+    }
+    for (const auto* e : {&action.start_effects, &action.end_effects}) {
+      use(e->add);
+      use(e->del);
+      for (const auto& ce : e->conditional) {
+        use(ce.condition.positive);
+        use(ce.condition.negative);
+        use(ce.add);
+        use(ce.del);
+      }
+    }
+  }
+
+  auto swap_holds = [&](int x, int y) {
+    const Swap swap(task, fact_ids, action_ids, objects[static_cast<std::size_t>(x)],
+                    objects[static_cast<std::size_t>(y)]);
+    for (int o : {x, y}) {
+      for (auto f : object_facts[static_cast<std::size_t>(o)]) {
+        if (swap.Fact(f) < 0) return false;
+      }
+      // Actions naming the object, and those reading or writing its facts
+      // (an action of domain constants may name none of them).
+      std::vector<task::ActionId> check = object_actions[static_cast<std::size_t>(o)];
+      for (auto f : object_facts[static_cast<std::size_t>(o)]) {
+        const auto& u = fact_users[static_cast<std::size_t>(f)];
+        check.insert(check.end(), u.begin(), u.end());
+      }
+      std::sort(check.begin(), check.end());
+      check.erase(std::unique(check.begin(), check.end()), check.end());
+      for (auto a : check) {
+        const task::ActionId b = swap.Action(a);
+        if (b < 0) return false;
+        const auto& p = task.actions[static_cast<std::size_t>(a)];
+        const auto& q = task.actions[static_cast<std::size_t>(b)];
+        if (p.is_durative != q.is_durative || snap.Pruned(a) != snap.Pruned(b)) return false;
+        if (p.duration.size() != q.duration.size()) return false;
+        for (std::size_t i = 0; i < p.duration.size(); ++i) {
+          if (p.duration[i].comparator != q.duration[i].comparator ||
+              !ExprEqual(p.duration[i].value, q.duration[i].value))
+            return false;
+        }
+        if (!swap.ConditionMaps(p.at_start, q.at_start) ||
+            !swap.ConditionMaps(p.over_all, q.over_all) ||
+            !swap.ConditionMaps(p.at_end, q.at_end) ||
+            !swap.EffectsMap(p.start_effects, q.start_effects) ||
+            !swap.EffectsMap(p.end_effects, q.end_effects))
+          return false;
+      }
+    }
+    if (!swap.ConditionMaps(task.goal, task.goal)) return false;
+    for (const auto& til : task.timed_literals) {
+      const task::FactId g = swap.Fact(til.fact);
+      if (g < 0) return false;
+      if (g == til.fact) continue;
+      const bool found =
+          std::any_of(task.timed_literals.begin(), task.timed_literals.end(),
+                      [&](const task::TimedInitialLiteral& t) {
+                        return t.fact == g && t.value == til.value && t.time_s == til.time_s;
+                      });
+      if (!found) return false;
+    }
+    return true;
+  };
+
+  // Candidates: objects appearing in the same places the same number of
+  // times, never in a numeric variable.
+  std::map<std::vector<std::string>, std::vector<int>> groups;
+  for (std::size_t o = 0; o < objects.size(); ++o) {
+    if (in_numeric[o]) continue;
+    std::sort(occurrences[o].begin(), occurrences[o].end());
+    groups[occurrences[o]].push_back(static_cast<int>(o));
+  }
+  std::vector<std::vector<int>> found;
+  for (const auto& [where, members] : groups) {
+    if (members.size() < 2) continue;
+    std::vector<std::vector<int>> classes;
+    for (int o : members) {
+      bool placed = false;
+      for (auto& c : classes) {
+        if (swap_holds(c.front(), o)) {
+          c.push_back(o);
+          placed = true;
+          break;
+        }
+      }
+      if (!placed) classes.push_back({o});
+    }
+    for (auto& c : classes) {
+      if (c.size() >= 2) found.push_back(std::move(c));
+    }
+  }
+
+  for (const auto& members : found) {
+    Class c;
+    c.objects = members;
+    const int rep = members.front();
+    c.rep_fact_pos.assign(task.facts.size(), -1);
+    c.rep_action_pos.assign(task.actions.size(), -1);
+    const auto& rep_facts = object_facts[static_cast<std::size_t>(rep)];
+    const auto& rep_actions = object_actions[static_cast<std::size_t>(rep)];
+    for (std::size_t j = 0; j < rep_facts.size(); ++j)
+      c.rep_fact_pos[static_cast<std::size_t>(rep_facts[j])] = static_cast<std::int32_t>(j);
+    for (std::size_t j = 0; j < rep_actions.size(); ++j)
+      c.rep_action_pos[static_cast<std::size_t>(rep_actions[j])] = static_cast<std::int32_t>(j);
+    bool ok = true;
+    for (int o : members) {
+      const Swap swap(task, fact_ids, action_ids, objects[static_cast<std::size_t>(o)],
+                      objects[static_cast<std::size_t>(rep)]);
+      const auto& facts = object_facts[static_cast<std::size_t>(o)];
+      const auto& actions = object_actions[static_cast<std::size_t>(o)];
+      std::vector<task::FactId> to_rep, from_rep(rep_facts.size(), -1);
+      std::vector<task::ActionId> act_to_rep, act_from_rep(rep_actions.size(), -1);
+      for (auto f : facts) {
+        const task::FactId r = swap.Fact(f);
+        const std::int32_t pos = r < 0 ? -1 : c.rep_fact_pos[static_cast<std::size_t>(r)];
+        if (pos < 0) {
+          ok = false;
+          break;
+        }
+        to_rep.push_back(r);
+        from_rep[static_cast<std::size_t>(pos)] = f;
+      }
+      for (auto a : actions) {
+        if (!ok) break;
+        const task::ActionId r = swap.Action(a);
+        const std::int32_t pos = r < 0 ? -1 : c.rep_action_pos[static_cast<std::size_t>(r)];
+        if (pos < 0) {
+          ok = false;
+          break;
+        }
+        act_to_rep.push_back(r);
+        act_from_rep[static_cast<std::size_t>(pos)] = a;
+      }
+      if (!ok || facts.size() != rep_facts.size() || actions.size() != rep_actions.size()) {
+        ok = false;
+        break;
+      }
+      c.facts.push_back(facts);
+      c.fact_to_rep.push_back(std::move(to_rep));
+      c.fact_from_rep.push_back(std::move(from_rep));
+      c.actions.push_back(actions);
+      c.action_to_rep.push_back(std::move(act_to_rep));
+      c.action_from_rep.push_back(std::move(act_from_rep));
+    }
+    if (ok) classes_.push_back(std::move(c));
+  }
+}
+
+int ObjectSymmetry::num_symmetric_objects() const {
+  int n = 0;
+  for (const auto& c : classes_) n += static_cast<int>(c.objects.size());
+  return n;
+}
+
+void ObjectSymmetry::Canonicalize(const StateData& state, StateData* out) const {
+  *out = state;
+  for (const Class& c : classes_) {
+    const std::size_t n = c.objects.size();
+    signature_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+      auto& sig = signature_[i];
+      sig.clear();
+      for (std::size_t j = 0; j < c.facts[i].size(); ++j) {
+        if (out->Holds(c.facts[i][j]))
+          sig.push_back(c.rep_fact_pos[static_cast<std::size_t>(c.fact_to_rep[i][j])]);
+      }
+      std::sort(sig.begin(), sig.end());
+      sig.push_back(-1);
+      const std::size_t mark = sig.size();
+      for (const auto& r : out->running) {
+        const auto& acts = c.actions[i];
+        auto it = std::lower_bound(acts.begin(), acts.end(), r.action);
+        if (it != acts.end() && *it == r.action) {
+          const auto j = static_cast<std::size_t>(it - acts.begin());
+          sig.push_back(c.rep_action_pos[static_cast<std::size_t>(c.action_to_rep[i][j])]);
+        }
+      }
+      std::sort(sig.begin() + static_cast<std::ptrdiff_t>(mark), sig.end());
+    }
+    order_.resize(n);
+    for (std::size_t i = 0; i < n; ++i) order_[i] = static_cast<int>(i);
+    std::stable_sort(order_.begin(), order_.end(), [&](int a, int b) {
+      return signature_[static_cast<std::size_t>(a)] < signature_[static_cast<std::size_t>(b)];
+    });
+    bool identity = true;
+    for (std::size_t i = 0; i < n; ++i) identity = identity && order_[i] == static_cast<int>(i);
+    if (identity) continue;
+    // Member order_[k] becomes member k: its facts and running actions are
+    // renamed through the representative's.
+    scratch_ = *out;
+    for (std::size_t i = 0; i < n; ++i) {
+      for (auto f : c.facts[i]) scratch_.Clear(f);
+    }
+    scratch_.running.clear();
+    for (const auto& r : out->running) {
+      bool named = false;
+      for (std::size_t i = 0; i < n && !named; ++i) {
+        named = std::binary_search(c.actions[i].begin(), c.actions[i].end(), r.action);
+      }
+      if (!named) scratch_.running.push_back(r);
+    }
+    for (std::size_t k = 0; k < n; ++k) {
+      const auto m = static_cast<std::size_t>(order_[k]);
+      for (std::size_t j = 0; j < c.facts[m].size(); ++j) {
+        if (!out->Holds(c.facts[m][j])) continue;
+        const auto pos = c.rep_fact_pos[static_cast<std::size_t>(c.fact_to_rep[m][j])];
+        scratch_.Set(c.fact_from_rep[k][static_cast<std::size_t>(pos)]);
+      }
+      for (const auto& r : out->running) {
+        const auto& acts = c.actions[m];
+        auto it = std::lower_bound(acts.begin(), acts.end(), r.action);
+        if (it == acts.end() || *it != r.action) continue;
+        const auto j = static_cast<std::size_t>(it - acts.begin());
+        const auto pos = c.rep_action_pos[static_cast<std::size_t>(c.action_to_rep[m][j])];
+        RunningAction moved = r;
+        moved.action = c.action_from_rep[k][static_cast<std::size_t>(pos)];
+        scratch_.running.push_back(moved);
+      }
+    }
+    std::sort(scratch_.running.begin(), scratch_.running.end(),
+              [](const RunningAction& a, const RunningAction& b) { return a.action < b.action; });
+    std::swap(*out, scratch_);
+  }
+}
+
+}  // namespace seaplan::search
