@@ -214,9 +214,36 @@ ObjectSymmetry::ObjectSymmetry(const SnapTask& snap) : task_(snap) {
     }
   }
 
+  // The pairs tried cost up to k^2 / 2 swaps per group of k candidates, each
+  // checking every action near the two objects: past a budget of a few
+  // times the task's size the remaining candidates stay alone (fewer
+  // classes, never a wrong one), so that detection stays a small part of
+  // the planner's start on large tasks.
+  std::size_t work_left = 8 * (task.facts.size() + task.actions.size()) + 1'000'000;
   auto swap_holds = [&](int x, int y) {
+    const std::size_t goal_cost =
+        task.goal.positive.size() + task.goal.negative.size() + task.timed_literals.size() + 1;
+    if (goal_cost >= work_left) {
+      work_left = 0;
+      return false;
+    }
+    work_left -= goal_cost;
     const Swap swap(task, fact_ids, action_ids, objects[static_cast<std::size_t>(x)],
                     objects[static_cast<std::size_t>(y)]);
+    // The goal and the timed literals first: they are what usually tells
+    // two objects apart, and they are cheap to check.
+    if (!swap.ConditionMaps(task.goal, task.goal)) return false;
+    for (const auto& til : task.timed_literals) {
+      const task::FactId g = swap.Fact(til.fact);
+      if (g < 0) return false;
+      if (g == til.fact) continue;
+      const bool found =
+          std::any_of(task.timed_literals.begin(), task.timed_literals.end(),
+                      [&](const task::TimedInitialLiteral& t) {
+                        return t.fact == g && t.value == til.value && t.time_s == til.time_s;
+                      });
+      if (!found) return false;
+    }
     for (int o : {x, y}) {
       for (auto f : object_facts[static_cast<std::size_t>(o)]) {
         if (swap.Fact(f) < 0) return false;
@@ -230,6 +257,12 @@ ObjectSymmetry::ObjectSymmetry(const SnapTask& snap) : task_(snap) {
       }
       std::sort(check.begin(), check.end());
       check.erase(std::unique(check.begin(), check.end()), check.end());
+      const std::size_t cost = check.size() + object_facts[static_cast<std::size_t>(o)].size();
+      if (cost > work_left) {
+        work_left = 0;
+        return false;
+      }
+      work_left -= cost;
       for (auto a : check) {
         const task::ActionId b = swap.Action(a);
         if (b < 0) return false;
@@ -249,18 +282,6 @@ ObjectSymmetry::ObjectSymmetry(const SnapTask& snap) : task_(snap) {
             !swap.EffectsMap(p.end_effects, q.end_effects))
           return false;
       }
-    }
-    if (!swap.ConditionMaps(task.goal, task.goal)) return false;
-    for (const auto& til : task.timed_literals) {
-      const task::FactId g = swap.Fact(til.fact);
-      if (g < 0) return false;
-      if (g == til.fact) continue;
-      const bool found =
-          std::any_of(task.timed_literals.begin(), task.timed_literals.end(),
-                      [&](const task::TimedInitialLiteral& t) {
-                        return t.fact == g && t.value == til.value && t.time_s == til.time_s;
-                      });
-      if (!found) return false;
     }
     return true;
   };
@@ -293,6 +314,15 @@ ObjectSymmetry::ObjectSymmetry(const SnapTask& snap) : task_(snap) {
     }
   }
 
+  // Each class keeps a position table over all facts and actions: past a
+  // memory budget (32 M entries, 128 MB) only the largest classes are kept.
+  const std::size_t per_class = std::max<std::size_t>(1, task.facts.size() + task.actions.size());
+  const std::size_t max_classes = std::max<std::size_t>(1, (std::size_t{32} << 20) / per_class);
+  if (found.size() > max_classes) {
+    std::stable_sort(found.begin(), found.end(),
+                     [](const auto& a, const auto& b) { return a.size() > b.size(); });
+    found.resize(max_classes);
+  }
   for (const auto& members : found) {
     Class c;
     c.objects = members;
