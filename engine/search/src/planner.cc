@@ -251,7 +251,10 @@ SearchParams PlannerRun::BoundedParams(double weight) const {
   params.bound_s = best_.makespan_s;
   params.epsilon_s = options_.epsilon_s;
   params.seed = options_.random_seed;
-  if (symmetry_) params.symmetry = &*symmetry_;
+  // No symmetry reduction here: these searches look for a shorter makespan,
+  // and a symmetric state is dropped on its makespan bound alone, not its
+  // schedule (fjord 3x12x12 seed 1 returned 15,073.8 s with it, 12,988.7 s
+  // without).
   return params;
 }
 

@@ -119,7 +119,7 @@ struct PlannerOptions {
   // solves larger fjord missions but lost sokoban-2011 p03 at 10 CPU s
   // (engine/search/README.md).
   bool landmarks = false;
-  // Every search drops a successor whose image under the task's
+  // The first-plan searches drop a successor whose image under the task's
   // interchangeable objects (objects whose names can be swapped without
   // changing the ground task: crates the goal treats alike) is that of a
   // state already expanded (engine/search/README.md, "Interchangeable
