@@ -314,54 +314,48 @@ ObjectSymmetry::ObjectSymmetry(const SnapTask& snap) : task_(snap) {
     }
   }
 
-  // Each class keeps a position table over all facts and actions: past a
-  // memory budget (32 M entries, 128 MB) only the largest classes are kept.
-  const std::size_t per_class = std::max<std::size_t>(1, task.facts.size() + task.actions.size());
-  const std::size_t max_classes = std::max<std::size_t>(1, (std::size_t{32} << 20) / per_class);
-  if (found.size() > max_classes) {
-    std::stable_sort(found.begin(), found.end(),
-                     [](const auto& a, const auto& b) { return a.size() > b.size(); });
-    found.resize(max_classes);
-  }
+  // Positions in the representative's lists, one table reused by every
+  // class (entries of the previous class are reset after it).
+  std::vector<std::int32_t> rep_fact_pos(task.facts.size(), -1);
+  std::vector<std::int32_t> rep_action_pos(task.actions.size(), -1);
   for (const auto& members : found) {
     Class c;
     c.objects = members;
     const int rep = members.front();
-    c.rep_fact_pos.assign(task.facts.size(), -1);
-    c.rep_action_pos.assign(task.actions.size(), -1);
     const auto& rep_facts = object_facts[static_cast<std::size_t>(rep)];
     const auto& rep_actions = object_actions[static_cast<std::size_t>(rep)];
     for (std::size_t j = 0; j < rep_facts.size(); ++j)
-      c.rep_fact_pos[static_cast<std::size_t>(rep_facts[j])] = static_cast<std::int32_t>(j);
+      rep_fact_pos[static_cast<std::size_t>(rep_facts[j])] = static_cast<std::int32_t>(j);
     for (std::size_t j = 0; j < rep_actions.size(); ++j)
-      c.rep_action_pos[static_cast<std::size_t>(rep_actions[j])] = static_cast<std::int32_t>(j);
+      rep_action_pos[static_cast<std::size_t>(rep_actions[j])] = static_cast<std::int32_t>(j);
     bool ok = true;
     for (int o : members) {
       const Swap swap(task, fact_ids, action_ids, objects[static_cast<std::size_t>(o)],
                       objects[static_cast<std::size_t>(rep)]);
       const auto& facts = object_facts[static_cast<std::size_t>(o)];
       const auto& actions = object_actions[static_cast<std::size_t>(o)];
-      std::vector<task::FactId> to_rep, from_rep(rep_facts.size(), -1);
-      std::vector<task::ActionId> act_to_rep, act_from_rep(rep_actions.size(), -1);
+      std::vector<std::int32_t> to_rep, act_to_rep;
+      std::vector<task::FactId> from_rep(rep_facts.size(), -1);
+      std::vector<task::ActionId> act_from_rep(rep_actions.size(), -1);
       for (auto f : facts) {
         const task::FactId r = swap.Fact(f);
-        const std::int32_t pos = r < 0 ? -1 : c.rep_fact_pos[static_cast<std::size_t>(r)];
+        const std::int32_t pos = r < 0 ? -1 : rep_fact_pos[static_cast<std::size_t>(r)];
         if (pos < 0) {
           ok = false;
           break;
         }
-        to_rep.push_back(r);
+        to_rep.push_back(pos);
         from_rep[static_cast<std::size_t>(pos)] = f;
       }
       for (auto a : actions) {
         if (!ok) break;
         const task::ActionId r = swap.Action(a);
-        const std::int32_t pos = r < 0 ? -1 : c.rep_action_pos[static_cast<std::size_t>(r)];
+        const std::int32_t pos = r < 0 ? -1 : rep_action_pos[static_cast<std::size_t>(r)];
         if (pos < 0) {
           ok = false;
           break;
         }
-        act_to_rep.push_back(r);
+        act_to_rep.push_back(pos);
         act_from_rep[static_cast<std::size_t>(pos)] = a;
       }
       if (!ok || facts.size() != rep_facts.size() || actions.size() != rep_actions.size()) {
@@ -369,12 +363,14 @@ ObjectSymmetry::ObjectSymmetry(const SnapTask& snap) : task_(snap) {
         break;
       }
       c.facts.push_back(facts);
-      c.fact_to_rep.push_back(std::move(to_rep));
+      c.fact_rep_pos.push_back(std::move(to_rep));
       c.fact_from_rep.push_back(std::move(from_rep));
       c.actions.push_back(actions);
-      c.action_to_rep.push_back(std::move(act_to_rep));
+      c.action_rep_pos.push_back(std::move(act_to_rep));
       c.action_from_rep.push_back(std::move(act_from_rep));
     }
+    for (auto f : rep_facts) rep_fact_pos[static_cast<std::size_t>(f)] = -1;
+    for (auto a : rep_actions) rep_action_pos[static_cast<std::size_t>(a)] = -1;
     if (ok) classes_.push_back(std::move(c));
   }
 }
@@ -394,8 +390,7 @@ void ObjectSymmetry::Canonicalize(const StateData& state, StateData* out) const 
       auto& sig = signature_[i];
       sig.clear();
       for (std::size_t j = 0; j < c.facts[i].size(); ++j) {
-        if (out->Holds(c.facts[i][j]))
-          sig.push_back(c.rep_fact_pos[static_cast<std::size_t>(c.fact_to_rep[i][j])]);
+        if (out->Holds(c.facts[i][j])) sig.push_back(c.fact_rep_pos[i][j]);
       }
       std::sort(sig.begin(), sig.end());
       sig.push_back(-1);
@@ -405,7 +400,7 @@ void ObjectSymmetry::Canonicalize(const StateData& state, StateData* out) const 
         auto it = std::lower_bound(acts.begin(), acts.end(), r.action);
         if (it != acts.end() && *it == r.action) {
           const auto j = static_cast<std::size_t>(it - acts.begin());
-          sig.push_back(c.rep_action_pos[static_cast<std::size_t>(c.action_to_rep[i][j])]);
+          sig.push_back(c.action_rep_pos[i][j]);
         }
       }
       std::sort(sig.begin() + static_cast<std::ptrdiff_t>(mark), sig.end());
@@ -436,7 +431,7 @@ void ObjectSymmetry::Canonicalize(const StateData& state, StateData* out) const 
       const auto m = static_cast<std::size_t>(order_[k]);
       for (std::size_t j = 0; j < c.facts[m].size(); ++j) {
         if (!out->Holds(c.facts[m][j])) continue;
-        const auto pos = c.rep_fact_pos[static_cast<std::size_t>(c.fact_to_rep[m][j])];
+        const auto pos = c.fact_rep_pos[m][j];
         scratch_.Set(c.fact_from_rep[k][static_cast<std::size_t>(pos)]);
       }
       for (const auto& r : out->running) {
@@ -444,7 +439,7 @@ void ObjectSymmetry::Canonicalize(const StateData& state, StateData* out) const 
         auto it = std::lower_bound(acts.begin(), acts.end(), r.action);
         if (it == acts.end() || *it != r.action) continue;
         const auto j = static_cast<std::size_t>(it - acts.begin());
-        const auto pos = c.rep_action_pos[static_cast<std::size_t>(c.action_to_rep[m][j])];
+        const auto pos = c.action_rep_pos[m][j];
         RunningAction moved = r;
         moved.action = c.action_from_rep[k][static_cast<std::size_t>(pos)];
         scratch_.running.push_back(moved);

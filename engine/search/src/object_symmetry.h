@@ -49,16 +49,15 @@ class ObjectSymmetry {
   struct Class {
     // Members; member 0 is the representative.
     std::vector<int> objects;
-    // Per member i: the facts / actions naming it, and their images under
-    // the swap of member i with member 0 (the same for member 0).
+    // Per member i: the facts / actions naming it, and the position of
+    // each one's image under the swap of member i with member 0 in member
+    // 0's lists (the identity for member 0).
     std::vector<std::vector<task::FactId>> facts;
-    std::vector<std::vector<task::FactId>> fact_to_rep;
+    std::vector<std::vector<std::int32_t>> fact_rep_pos;
     std::vector<std::vector<task::FactId>> fact_from_rep;  // per member, indexed like rep's facts
     std::vector<std::vector<task::ActionId>> actions;
-    std::vector<std::vector<task::ActionId>> action_to_rep;
+    std::vector<std::vector<std::int32_t>> action_rep_pos;
     std::vector<std::vector<task::ActionId>> action_from_rep;
-    // Position of each representative fact / action in the rep's lists.
-    std::vector<std::int32_t> rep_fact_pos, rep_action_pos;
   };
 
   const SnapTask& task_;
