@@ -90,6 +90,9 @@ void StatsToProto(const search::SearchStatistics& s, v1::SearchStatistics* out) 
   out->set_best_plan_time_s(s.best_plan_time_s);
   out->set_peak_memory_mb(s.peak_memory_mb);
   out->set_plans_found(s.plans_found);
+  out->set_symmetric_objects(static_cast<std::uint32_t>(s.symmetric_objects));
+  out->set_symmetry_classes(static_cast<std::uint32_t>(s.symmetry_classes));
+  out->set_symmetric_drops(s.symmetric_drops);
 }
 
 void FillPlan(const search::PlanResult& r, v1::PlanResponse* out) {
@@ -204,6 +207,7 @@ absl::StatusOr<search::PlannerOptions> PlannerOptionsToEngine(const v1::PlannerO
   if (o.has_anytime()) p.anytime = o.anytime();
   if (o.has_type_based_exploration()) p.type_based_exploration = o.type_based_exploration();
   if (o.has_landmarks()) p.landmarks = o.landmarks();
+  if (o.has_symmetry_reduction()) p.symmetry_reduction = o.symmetry_reduction();
   if (o.random_seed() != 0) p.random_seed = o.random_seed();
   if (o.epsilon_s() != 0) p.epsilon_s = o.epsilon_s();
   p.max_expansions = o.max_expansions();

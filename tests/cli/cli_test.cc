@@ -161,6 +161,44 @@ TEST(CliInProcessTest, LandmarksFlagTurnsOnTheLandmarkCount) {
   EXPECT_EQ(without.err.find(" landmarks, "), std::string::npos) << without.err;
 }
 
+// The symmetry reduction is on by default and --no-symmetry turns it off:
+// on a task whose goal treats two crates alike, the statistics name the
+// interchangeable objects only without the flag.
+TEST(CliInProcessTest, NoSymmetryFlagTurnsOffTheSymmetryReduction) {
+  const auto domain = WriteScratch("crates-domain.pddl", R"(
+(define (domain crates)
+  (:requirements :typing :durative-actions)
+  (:types crate slot)
+  (:predicates (on ?c - crate ?s - slot) (holding ?c - crate) (free) (done ?c - crate))
+  (:durative-action lift
+    :parameters (?c - crate ?s - slot)
+    :duration (= ?duration 2)
+    :condition (and (at start (on ?c ?s)) (at start (free)))
+    :effect (and (at start (not (on ?c ?s))) (at start (not (free))) (at end (holding ?c))))
+  (:durative-action drop
+    :parameters (?c - crate ?s - slot)
+    :duration (= ?duration 1)
+    :condition (at start (holding ?c))
+    :effect (and (at start (not (holding ?c))) (at end (free)) (at end (on ?c ?s))
+                 (at end (done ?c)))))
+)");
+  const auto problem = WriteScratch("crates-problem.pddl", R"(
+(define (problem two)
+  (:domain crates)
+  (:objects a b - crate s1 s2 - slot)
+  (:init (on a s1) (on b s2) (free))
+  (:goal (and (done a) (done b))))
+)");
+  const auto with = RunSeaplan({"plan", domain, problem, "--no-anytime", "--time-limit", "30"});
+  EXPECT_EQ(with.exit_code, 0) << with.out << with.err;
+  EXPECT_NE(with.out.find("; symmetry: 4 interchangeable objects in 2 classes"), std::string::npos)
+      << with.out;
+  const auto without =
+      RunSeaplan({"plan", domain, problem, "--no-anytime", "--time-limit", "30", "--no-symmetry"});
+  EXPECT_EQ(without.exit_code, 0) << without.out << without.err;
+  EXPECT_EQ(without.out.find("; symmetry:"), std::string::npos) << without.out;
+}
+
 TEST(CliInProcessTest, InvalidPlanExitsOneAndNamesTheFailure) {
   auto result = RunSeaplan(
       {"validate", Example("domain.pddl"), Example("case-a.pddl"), Example("case-a-paper.plan")});

@@ -108,6 +108,7 @@ struct PlanArgs {
   bool no_anytime = false;
   bool no_type_based = false;
   bool landmarks = false;
+  bool no_symmetry = false;
   bool stream = false;
   std::uint64_t seed = 1;
   double epsilon_s = 0;
@@ -130,6 +131,7 @@ int RunPlan(const GlobalOptions& options, const PlanArgs& args) {
   planner->set_anytime(!args.no_anytime);
   if (args.no_type_based) planner->set_type_based_exploration(false);
   if (args.landmarks) planner->set_landmarks(true);
+  if (args.no_symmetry) planner->set_symmetry_reduction(false);
   planner->set_random_seed(args.seed);
   planner->set_epsilon_s(args.epsilon_s);
   planner->set_max_expansions(args.max_expansions);
@@ -786,6 +788,8 @@ int RunCli(int argc, char** argv, const CliExecutable& executable) {
                      "First-plan searches without the type-based exploration list");
   plan_cmd->add_flag("--landmarks", plan.landmarks,
                      "First-plan searches also ordered by LAMA's landmark count");
+  plan_cmd->add_flag("--no-symmetry", plan.no_symmetry,
+                     "First-plan searches keep states that only permute interchangeable objects");
   plan_cmd->add_option("--seed", plan.seed, "Random seed")->capture_default_str();
   plan_cmd->add_option("--epsilon", plan.epsilon_s,
                        "Separation of interfering events (s), default 0.001");

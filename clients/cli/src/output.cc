@@ -72,6 +72,11 @@ void PrintPlanResponse(std::ostream& out, const v1::PlanResponse& response) {
     out << ", first plan " << Seconds(stats.first_plan_time_s()) << " s";
   if (stats.peak_memory_mb() > 0) out << ", peak " << stats.peak_memory_mb() << " MB";
   out << "\n";
+  if (stats.symmetric_objects() > 0) {
+    out << "; symmetry: " << stats.symmetric_objects() << " interchangeable objects in "
+        << stats.symmetry_classes() << " classes, " << stats.symmetric_drops()
+        << " states dropped\n";
+  }
   for (const auto& d : response.diagnostics()) {
     out << "; " << d.file() << ":" << d.line() << ":" << d.column() << ": " << d.message() << "\n";
   }

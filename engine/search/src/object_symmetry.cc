@@ -6,6 +6,8 @@
 #include <unordered_map>
 #include <utility>
 
+#include "seaplan/task/grounder.h"
+
 namespace seaplan::search {
 
 namespace {
@@ -13,17 +15,6 @@ namespace {
 // Beyond this many ground actions the detection is skipped: its cost grows
 // with the actions naming each candidate object.
 constexpr std::size_t kMaxActions = 200'000;
-
-std::string Key(const std::string& name, const std::vector<std::string>& args, int variant) {
-  std::string k = name;
-  for (const auto& a : args) {
-    k += '\0';
-    k += a;
-  }
-  k += '#';
-  k += std::to_string(variant);
-  return k;
-}
 
 bool ExprEqual(const task::NumericExpr& a, const task::NumericExpr& b) {
   if (a.nodes.size() != b.nodes.size()) return false;
@@ -59,9 +50,8 @@ bool NumericEffectsEqual(const std::vector<task::NumericEffect>& a,
 // The swap of two objects as a map of fact and action ids; built per pair.
 class Swap {
  public:
-  Swap(const task::GroundTask& task, const std::unordered_map<std::string, task::FactId>& facts,
-       const std::unordered_map<std::string, task::ActionId>& actions, const std::string& x,
-       const std::string& y)
+  Swap(const task::GroundTask& task, const task::FactIndex& facts, const task::ActionIndex& actions,
+       const std::string& x, const std::string& y)
       : task_(task), facts_(facts), actions_(actions), x_(x), y_(y) {}
 
   // The image of fact `f`; -1 when it does not exist or names both objects.
@@ -70,16 +60,17 @@ class Swap {
     std::vector<std::string> args;
     if (!Swapped(fact.args, &args)) return -1;
     if (args == fact.args) return f;
-    auto it = facts_.find(Key(fact.predicate, args, 0));
-    return it == facts_.end() ? -1 : it->second;
+    return facts_.Find(fact.predicate, args);
   }
   task::ActionId Action(task::ActionId a) const {
     const auto& action = task_.actions[static_cast<std::size_t>(a)];
     std::vector<std::string> args;
     if (!Swapped(action.args, &args)) return -1;
     if (args == action.args) return a;
-    auto it = actions_.find(Key(action.name, args, action.variant));
-    return it == actions_.end() ? -1 : it->second;
+    for (task::ActionId b : actions_.Find(action.name, args)) {
+      if (task_.actions[static_cast<std::size_t>(b)].variant == action.variant) return b;
+    }
+    return -1;
   }
   // True when the image of `from` is `to` (as sets).
   bool FactsMap(const std::vector<task::FactId>& from, const std::vector<task::FactId>& to) const {
@@ -121,8 +112,8 @@ class Swap {
   }
 
   const task::GroundTask& task_;
-  const std::unordered_map<std::string, task::FactId>& facts_;
-  const std::unordered_map<std::string, task::ActionId>& actions_;
+  const task::FactIndex& facts_;
+  const task::ActionIndex& actions_;
   const std::string& x_;
   const std::string& y_;
 };
@@ -151,11 +142,10 @@ ObjectSymmetry::ObjectSymmetry(const SnapTask& snap) : task_(snap) {
     object_actions.resize(objects.size());
     in_numeric.resize(objects.size(), false);
   };
-  std::unordered_map<std::string, task::FactId> fact_ids;
-  std::unordered_map<std::string, task::ActionId> action_ids;
+  const task::FactIndex fact_ids(task);
+  const task::ActionIndex action_ids(task);
   for (std::size_t f = 0; f < task.facts.size(); ++f) {
     const auto& fact = task.facts[f];
-    fact_ids.emplace(Key(fact.predicate, fact.args, 0), static_cast<task::FactId>(f));
     for (std::size_t i = 0; i < fact.args.size(); ++i) {
       const int o = object(fact.args[i]);
       grow();
@@ -168,8 +158,6 @@ ObjectSymmetry::ObjectSymmetry(const SnapTask& snap) : task_(snap) {
   }
   for (std::size_t a = 0; a < task.actions.size(); ++a) {
     const auto& action = task.actions[a];
-    action_ids.emplace(Key(action.name, action.args, action.variant),
-                       static_cast<task::ActionId>(a));
     for (std::size_t i = 0; i < action.args.size(); ++i) {
       const int o = object(action.args[i]);
       grow();
@@ -386,6 +374,7 @@ void ObjectSymmetry::Canonicalize(const StateData& state, StateData* out) const 
   for (const Class& c : classes_) {
     const std::size_t n = c.objects.size();
     signature_.resize(n);
+    running_of_member_.resize(n);
     for (std::size_t i = 0; i < n; ++i) {
       auto& sig = signature_[i];
       sig.clear();
@@ -395,12 +384,15 @@ void ObjectSymmetry::Canonicalize(const StateData& state, StateData* out) const 
       std::sort(sig.begin(), sig.end());
       sig.push_back(-1);
       const std::size_t mark = sig.size();
-      for (const auto& r : out->running) {
-        const auto& acts = c.actions[i];
-        auto it = std::lower_bound(acts.begin(), acts.end(), r.action);
-        if (it != acts.end() && *it == r.action) {
-          const auto j = static_cast<std::size_t>(it - acts.begin());
-          sig.push_back(c.action_rep_pos[i][j]);
+      auto& running = running_of_member_[i];
+      running.clear();
+      const auto& acts = c.actions[i];
+      for (std::size_t r = 0; r < out->running.size(); ++r) {
+        auto it = std::lower_bound(acts.begin(), acts.end(), out->running[r].action);
+        if (it != acts.end() && *it == out->running[r].action) {
+          const auto pos = c.action_rep_pos[i][static_cast<std::size_t>(it - acts.begin())];
+          running.emplace_back(static_cast<std::int32_t>(r), pos);
+          sig.push_back(pos);
         }
       }
       std::sort(sig.begin() + static_cast<std::ptrdiff_t>(mark), sig.end());
@@ -420,12 +412,12 @@ void ObjectSymmetry::Canonicalize(const StateData& state, StateData* out) const 
       for (auto f : c.facts[i]) scratch_.Clear(f);
     }
     scratch_.running.clear();
-    for (const auto& r : out->running) {
-      bool named = false;
-      for (std::size_t i = 0; i < n && !named; ++i) {
-        named = std::binary_search(c.actions[i].begin(), c.actions[i].end(), r.action);
-      }
-      if (!named) scratch_.running.push_back(r);
+    named_.assign(out->running.size(), 0);
+    for (std::size_t i = 0; i < n; ++i) {
+      for (const auto& [r, pos] : running_of_member_[i]) named_[static_cast<std::size_t>(r)] = 1;
+    }
+    for (std::size_t r = 0; r < out->running.size(); ++r) {
+      if (named_[r] == 0) scratch_.running.push_back(out->running[r]);
     }
     for (std::size_t k = 0; k < n; ++k) {
       const auto m = static_cast<std::size_t>(order_[k]);
@@ -434,13 +426,8 @@ void ObjectSymmetry::Canonicalize(const StateData& state, StateData* out) const 
         const auto pos = c.fact_rep_pos[m][j];
         scratch_.Set(c.fact_from_rep[k][static_cast<std::size_t>(pos)]);
       }
-      for (const auto& r : out->running) {
-        const auto& acts = c.actions[m];
-        auto it = std::lower_bound(acts.begin(), acts.end(), r.action);
-        if (it == acts.end() || *it != r.action) continue;
-        const auto j = static_cast<std::size_t>(it - acts.begin());
-        const auto pos = c.action_rep_pos[m][j];
-        RunningAction moved = r;
+      for (const auto& [r, pos] : running_of_member_[m]) {
+        RunningAction moved = out->running[static_cast<std::size_t>(r)];
         moved.action = c.action_from_rep[k][static_cast<std::size_t>(pos)];
         scratch_.running.push_back(moved);
       }

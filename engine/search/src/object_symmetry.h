@@ -21,6 +21,7 @@
 #pragma once
 
 #include <cstdint>
+#include <utility>
 #include <vector>
 
 #include "snap_task.h"
@@ -64,6 +65,10 @@ class ObjectSymmetry {
   std::vector<Class> classes_;
   // Scratch.
   mutable std::vector<std::vector<std::int32_t>> signature_;
+  // Per member: (index in the state's running actions, position of its
+  // image in the representative's actions) of the running actions naming it.
+  mutable std::vector<std::vector<std::pair<std::int32_t, std::int32_t>>> running_of_member_;
+  mutable std::vector<char> named_;
   mutable std::vector<int> order_;
   mutable StateData scratch_;
 };

@@ -112,7 +112,8 @@ TEST(ObjectSymmetryTest, StatesThatSwapInterchangeableCratesShareTheirImage) {
 }
 
 // The planner solves the task with the reduction on and off (every plan it
-// returns has passed the validator).
+// returns has passed the validator); its statistics name the classes only
+// when the reduction is on.
 TEST(ObjectSymmetryTest, PlannerSolvesWithAndWithoutTheReduction) {
   for (const bool on : {true, false}) {
     PlannerOptions options;
@@ -122,7 +123,40 @@ TEST(ObjectSymmetryTest, PlannerSolvesWithAndWithoutTheReduction) {
     const PlanResult result = Solve(kDomain, kProblem, options, StopToken());
     EXPECT_EQ(result.status, PlanStatus::kSolvedSatisficing) << "reduction " << on;
     EXPECT_FALSE(result.plan.steps.empty());
+    EXPECT_EQ(result.stats.symmetric_objects, on ? 5 : 0);
+    EXPECT_EQ(result.stats.symmetry_classes, on ? 2 : 0);
+    if (!on) {
+      EXPECT_EQ(result.stats.symmetric_drops, 0u);
+    }
   }
+}
+
+// One hoist cannot hold two crates, so this goal is unreachable, though
+// the relaxed plan (which never loses `free`) reaches it: the search must
+// exhaust every arrangement of the crates. Crates a and b, crates c and d,
+// and the slots are classes; with the reduction every permutation of an
+// expanded arrangement is dropped (counted), the space shrinks, and the
+// result is still a proof.
+TEST(ObjectSymmetryTest, PermutedStatesAreDroppedAndTheProofStands) {
+  constexpr std::string_view kTwoInHand = R"(
+(define (problem two-in-hand)
+  (:domain slots)
+  (:objects a b c d - crate s1 s2 s3 s4 s5 - slot)
+  (:init (on a s1) (on b s2) (on c s3) (on d s4) (clear s5) (free))
+  (:goal (and (holding a) (holding b))))
+)";
+  PlannerOptions options;
+  options.time_limit_s = 30;
+  options.anytime = false;
+  const PlanResult with = Solve(kDomain, kTwoInHand, options, StopToken());
+  options.symmetry_reduction = false;
+  const PlanResult without = Solve(kDomain, kTwoInHand, options, StopToken());
+  ASSERT_EQ(with.status, PlanStatus::kUnsolvableProven) << with.message;
+  ASSERT_EQ(without.status, PlanStatus::kUnsolvableProven) << without.message;
+  EXPECT_EQ(with.stats.symmetry_classes, 3);
+  EXPECT_GT(with.stats.symmetric_drops, 0u);
+  EXPECT_EQ(without.stats.symmetric_drops, 0u);
+  EXPECT_LT(2 * with.stats.expanded, without.stats.expanded);
 }
 
 }  // namespace

@@ -86,13 +86,15 @@ double Seconds(Clock::time_point since) {
 }
 
 SearchCounters Sum(const SearchCounters& a, const SearchCounters& b) {
-  return {a.expanded + b.expanded, a.generated + b.generated, a.evaluated + b.evaluated};
+  return {a.expanded + b.expanded, a.generated + b.generated, a.evaluated + b.evaluated,
+          a.symmetric_drops + b.symmetric_drops};
 }
 
 void SetCounters(const SearchCounters& counters, SearchStatistics& stats) {
   stats.expanded = counters.expanded;
   stats.generated = counters.generated;
   stats.evaluated = counters.evaluated;
+  stats.symmetric_drops = counters.symmetric_drops;
 }
 
 // Drives the phases (greedy first plan, then weighted A* with a bound) and
@@ -375,6 +377,8 @@ PlanResult PlannerRun::Run() {
   }
   if (options_.symmetry_reduction) {
     symmetry_.emplace(snap_);
+    best_.stats.symmetric_objects = symmetry_->num_symmetric_objects();
+    best_.stats.symmetry_classes = symmetry_->num_classes();
     log::Debug("planner: {} objects in {} classes of interchangeable objects",
                symmetry_->num_symmetric_objects(), symmetry_->num_classes());
   }

@@ -360,7 +360,7 @@ std::int32_t LazySearch::Materialize(std::int32_t pending_index) {
     const bool bound_ok = params_.bound_dominance ? o.lb_s <= out.lower_bound_s + 1e-9
                                                   : std::abs(o.lb_s - out.lower_bound_s) <= 1e-9;
     if (o.status == kClosed && bound_ok && o.slack_count == 0 && slack_scratch_.empty()) {
-      ++symmetric_merges_;
+      ++counters_.symmetric_drops;
       merged_any_ = true;  // the schedules were not compared: no proof of optimality
       return reject_merged();
     }

@@ -90,6 +90,8 @@ struct SearchParams {
 
 struct SearchCounters {
   std::size_t expanded = 0, generated = 0, evaluated = 0;
+  // Successors dropped because a symmetric state was expanded before.
+  std::size_t symmetric_drops = 0;
 };
 
 class LazySearch {
@@ -132,8 +134,6 @@ class LazySearch {
   std::size_t schedule_events_rebuilt() const { return schedule_events_rebuilt_; }
   std::size_t MemoryBytes() const;
   int best_h() const { return best_h_; }
-  // Successors dropped because a symmetric state was expanded before.
-  std::size_t symmetric_merges() const { return symmetric_merges_; }
 
  private:
   struct NodeInfo {
@@ -281,7 +281,6 @@ class LazySearch {
   std::unique_ptr<StateRegistry> canonical_registry_;
   std::vector<std::int32_t> canonical_owner_;
   StateData canonical_;
-  std::size_t symmetric_merges_ = 0;
   // The image's id in canonical_registry_, and its owner (-1: none).
   std::pair<std::int32_t, std::int32_t> CanonicalOwner(const StateData& state);
 };

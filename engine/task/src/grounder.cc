@@ -200,15 +200,6 @@ LoadResult LoadTaskFromFiles(const std::string& domain_path, const std::string& 
   return LoadTask(domain_text, problem_text, options, domain_path, problem_path);
 }
 
-ActionIndex::ActionIndex(const GroundTask& task) : task_(&task) {
-  by_hash_.reserve(task.actions.size());
-  for (std::size_t i = 0; i < task.actions.size(); ++i) {
-    by_hash_.emplace_back(Hash(task.actions[i].name, task.actions[i].args),
-                          static_cast<ActionId>(i));
-  }
-  std::sort(by_hash_.begin(), by_hash_.end());
-}
-
 namespace {
 
 char AsciiLower(char c) {
@@ -223,10 +214,8 @@ bool EqualsLowered(std::string_view query, std::string_view lower) {
   return true;
 }
 
-}  // namespace
-
-std::uint64_t ActionIndex::Hash(std::string_view name, std::span<const std::string> args) {
-  // FNV-1a over the lower-cased "name arg1 arg2 ...".
+// FNV-1a over the lower-cased "name arg1 arg2 ...".
+std::uint64_t NameArgsHash(std::string_view name, std::span<const std::string> args) {
   std::uint64_t h = 1469598103934665603ull;
   auto add = [&h](char c) {
     h ^= static_cast<unsigned char>(AsciiLower(c));
@@ -240,20 +229,63 @@ std::uint64_t ActionIndex::Hash(std::string_view name, std::span<const std::stri
   return h;
 }
 
+// (hash, id) of every item of `items` (ground actions or facts, whose name
+// `name_of` reads), sorted.
+template <typename Id, typename Item, typename NameOf>
+std::vector<std::pair<std::uint64_t, Id>> HashNames(const std::vector<Item>& items,
+                                                    NameOf name_of) {
+  std::vector<std::pair<std::uint64_t, Id>> by_hash;
+  by_hash.reserve(items.size());
+  for (std::size_t i = 0; i < items.size(); ++i)
+    by_hash.emplace_back(NameArgsHash(name_of(items[i]), items[i].args), static_cast<Id>(i));
+  std::sort(by_hash.begin(), by_hash.end());
+  return by_hash;
+}
+
+// Calls `found(id)` for every item of `by_hash` named (name args).
+template <typename Id, typename Item, typename NameOf, typename Found>
+void FindByName(const std::vector<std::pair<std::uint64_t, Id>>& by_hash,
+                const std::vector<Item>& items, NameOf name_of, std::string_view name,
+                std::span<const std::string> args, Found found) {
+  const std::uint64_t h = NameArgsHash(name, args);
+  auto it = std::lower_bound(by_hash.begin(), by_hash.end(), std::make_pair(h, Id{0}),
+                             [](const auto& x, const auto& y) { return x.first < y.first; });
+  for (; it != by_hash.end() && it->first == h; ++it) {
+    const Item& item = items[static_cast<std::size_t>(it->second)];
+    if (item.args.size() != args.size() || !EqualsLowered(name, name_of(item))) continue;
+    bool same = true;
+    for (std::size_t k = 0; k < args.size() && same; ++k)
+      same = EqualsLowered(args[k], item.args[k]);
+    if (same) found(it->second);
+  }
+}
+
+const std::string& ActionName(const Action& action) {
+  return action.name;
+}
+const std::string& FactPredicate(const Fact& fact) {
+  return fact.predicate;
+}
+
+}  // namespace
+
+ActionIndex::ActionIndex(const GroundTask& task)
+    : task_(&task), by_hash_(HashNames<ActionId>(task.actions, ActionName)) {}
+
 std::vector<ActionId> ActionIndex::Find(std::string_view name,
                                         std::span<const std::string> args) const {
   std::vector<ActionId> out;
-  const std::uint64_t h = Hash(name, args);
-  auto it = std::lower_bound(by_hash_.begin(), by_hash_.end(), std::make_pair(h, ActionId{0}),
-                             [](const auto& x, const auto& y) { return x.first < y.first; });
-  for (; it != by_hash_.end() && it->first == h; ++it) {
-    const Action& action = task_->actions[static_cast<std::size_t>(it->second)];
-    if (action.args.size() != args.size() || !EqualsLowered(name, action.name)) continue;
-    bool same = true;
-    for (std::size_t k = 0; k < args.size() && same; ++k)
-      same = EqualsLowered(args[k], action.args[k]);
-    if (same) out.push_back(it->second);
-  }
+  FindByName(by_hash_, task_->actions, ActionName, name, args,
+             [&out](ActionId a) { out.push_back(a); });
+  return out;
+}
+
+FactIndex::FactIndex(const GroundTask& task)
+    : task_(&task), by_hash_(HashNames<FactId>(task.facts, FactPredicate)) {}
+
+FactId FactIndex::Find(std::string_view predicate, std::span<const std::string> args) const {
+  FactId out = -1;
+  FindByName(by_hash_, task_->facts, FactPredicate, predicate, args, [&out](FactId f) { out = f; });
   return out;
 }
 

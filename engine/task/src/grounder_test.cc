@@ -387,7 +387,7 @@ TEST(GrounderTest, StatisticsTimeEveryStage) {
   EXPECT_EQ(r.stats.reachable_atoms, 1u + 60u * 60u);
 }
 
-TEST(GrounderTest, ActionIndexAndExplainMissingAction) {
+TEST(GrounderTest, ActionAndFactIndexAndExplainMissingAction) {
   auto r = MustLoad(kNav, R"(
 (define (problem p) (:domain nav)
  (:objects p1 p2 p3 p4 - place r1 - robot)
@@ -413,6 +413,18 @@ TEST(GrounderTest, ActionIndexAndExplainMissingAction) {
     EXPECT_NE(std::find(found.begin(), found.end(), static_cast<ActionId>(a)), found.end())
         << action.DisplayName();
   }
+
+  // Facts the same way: every fact is found under its own name, a static
+  // atom (road) or an unreachable one is not a fact.
+  FactIndex facts(*r.task);
+  for (std::size_t f = 0; f < r.task->facts.size(); ++f) {
+    const auto& fact = r.task->facts[f];
+    EXPECT_EQ(facts.Find(fact.predicate, fact.args), static_cast<FactId>(f));
+  }
+  EXPECT_GE(facts.Find("AT", std::vector<std::string>{"R1", "p2"}), 0);
+  EXPECT_EQ(facts.Find("road", std::vector<std::string>{"p1", "p2"}), -1);
+  EXPECT_EQ(facts.Find("at", std::vector<std::string>{"r1", "p4"}), -1);
+  EXPECT_EQ(facts.Find("at", std::vector<std::string>{"r1"}), -1);
 
   auto explain = [&](const std::string& name, std::vector<std::string> a) {
     return ExplainMissingAction(*r.domain, *r.problem, name, a, r.task.get());

@@ -137,6 +137,11 @@ struct SearchStatistics {
   // Landmark generation (PlannerOptions::landmarks), once per task.
   int landmarks = 0, landmark_orderings = 0;
   double landmark_time_s = 0;
+  // Interchangeable objects (PlannerOptions::symmetry_reduction): objects in
+  // classes of two or more, the classes, and the successors dropped because
+  // a symmetric state had been expanded.
+  int symmetric_objects = 0, symmetry_classes = 0;
+  std::size_t symmetric_drops = 0;
 };
 
 struct PlanResult {

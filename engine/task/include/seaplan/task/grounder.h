@@ -144,9 +144,22 @@ class ActionIndex {
   std::vector<ActionId> Find(std::string_view name, std::span<const std::string> args) const;
 
  private:
-  static std::uint64_t Hash(std::string_view name, std::span<const std::string> args);
   const GroundTask* task_;
   std::vector<std::pair<std::uint64_t, ActionId>> by_hash_;  // sorted
+};
+
+// Finds ground facts by (predicate, args), as ActionIndex finds actions.
+class FactIndex {
+ public:
+  explicit FactIndex(const GroundTask& task);
+
+  // The fact with this predicate and these arguments; -1 when the task has
+  // none (static and unreachable atoms are not facts). Case-insensitive.
+  FactId Find(std::string_view predicate, std::span<const std::string> args) const;
+
+ private:
+  const GroundTask* task_;
+  std::vector<std::pair<std::uint64_t, FactId>> by_hash_;  // sorted
 };
 
 // Why (name args) is not an action of the ground task, in one sentence for a
