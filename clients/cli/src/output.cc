@@ -74,8 +74,8 @@ void PrintPlanResponse(std::ostream& out, const v1::PlanResponse& response) {
   out << "\n";
   if (stats.symmetric_objects() > 0) {
     out << "; symmetry: " << stats.symmetric_objects() << " interchangeable objects in "
-        << stats.symmetry_classes() << " classes, " << stats.symmetric_drops()
-        << " states dropped\n";
+        << stats.symmetry_classes() << (stats.symmetry_classes() == 1 ? " class, " : " classes, ")
+        << stats.symmetric_drops() << " states dropped\n";
   }
   for (const auto& d : response.diagnostics()) {
     out << "; " << d.file() << ":" << d.line() << ":" << d.column() << ": " << d.message() << "\n";

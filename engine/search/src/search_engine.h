@@ -276,8 +276,9 @@ class LazySearch {
   const StopToken* stop_ = nullptr;
   TemporalReachability* reachability_ = nullptr;
   StateData parent_state_;
-  // With params_.symmetry: the states' images, and per image the first
-  // expanded state that has it (-1: none yet).
+  // With params_.symmetry: the states' images, and per image its owner,
+  // the expanded state that has it with no window slack and the earliest
+  // makespan bound so far (else the first one; -1: none yet).
   std::unique_ptr<StateRegistry> canonical_registry_;
   std::vector<std::int32_t> canonical_owner_;
   StateData canonical_;
