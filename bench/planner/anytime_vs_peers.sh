@@ -68,14 +68,7 @@ for p in "${problems[@]}"; do
   wall=$(echo "$(date +%s.%N) - $start" | bc)
   status=$(sed -n 's/^; status: //p' "$work/out" | head -1)
   makespan=$(sed -n 's/^; makespan: \([0-9.e+]*\) s.*/\1/p' "$work/out" | head -1)
-  valid=-
-  if [[ -s $work/plan ]]; then
-    if "$exe" validate "$domain" "$dir/$name.pddl" "$work/plan" >/dev/null 2>&1; then
-      valid=yes
-    else
-      valid=NO
-    fi
-  fi
+  valid=$(plan_validity "$exe" "$domain" "$dir/$name.pddl")
   if [[ $valid == yes && -n $makespan ]]; then
     makespan=$(printf '%.3f' "$makespan")
   else

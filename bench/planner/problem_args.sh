@@ -1,4 +1,4 @@
-# Sourced by state_memory.sh and run_problems.sh: reads the options both
+# Sourced by state_memory.sh, run_problems.sh and anytime_vs_peers.sh: reads the options they
 # take (--time-limit S, --memory-limit MB, --bench DIR, --cpu-limit S;
 # defaults set by the caller in time_s, memory_mb, bench, cpu_s) and the
 # problems (domain/pNN) into `problems`, and makes the scratch folder `work`
@@ -27,5 +27,18 @@ domain_of() {
     echo "$dir/domain-$k.pddl"
   else
     echo "$dir/domain.pddl"
+  fi
+}
+
+# "yes" when $work/plan holds a plan that `EXE validate` accepts for DOMAIN
+# and PROBLEM, "NO" when it rejects it, "-" when there is no plan.
+plan_validity() {
+  local exe=$1 domain=$2 problem=$3
+  if [[ ! -s $work/plan ]]; then
+    echo -
+  elif "$exe" validate "$domain" "$problem" "$work/plan" >/dev/null 2>&1; then
+    echo yes
+  else
+    echo NO
   fi
 }

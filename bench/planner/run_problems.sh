@@ -64,14 +64,8 @@ for p in "${problems[@]}"; do
   read -r expanded generated < <(sed -n 's/^; search: \([0-9]*\) expanded, \([0-9]*\) generated.*/\1 \2/p' \
     "$work/out" | head -1) || true
   read -r wall_s rss_kb user_s system_s < <(tail -1 "$work/time")
-  valid=-
-  if [[ -s $work/plan ]]; then
-    if "$exe" validate "$domain" "$dir/$name.pddl" "$work/plan" >/dev/null 2>&1; then
-      valid=yes solved=$((solved + 1))
-    else
-      valid=NO
-    fi
-  fi
+  valid=$(plan_validity "$exe" "$domain" "$dir/$name.pddl")
+  [[ $valid != yes ]] || solved=$((solved + 1))
   printf '%-24s %-22s %8s %8.2f %8d %10s %10s %s\n' "$p" "${status:-none}" "$wall_s" \
     "$(echo "$user_s + $system_s" | bc)" $((rss_kb / 1024)) "${expanded:--}" "${generated:--}" "$valid"
 done

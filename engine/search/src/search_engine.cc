@@ -367,12 +367,12 @@ std::int32_t LazySearch::Materialize(std::int32_t pending_index) {
   }
   // The image's owner is the expanded state that drops the most: one with
   // no window slack (the drop compares no slack) and the earliest bound.
-  if (image >= 0 && slack_scratch_.empty()) {
-    const bool replace = owner < 0 || info_[static_cast<std::size_t>(owner)].slack_count != 0 ||
-                         out.lower_bound_s < info_[static_cast<std::size_t>(owner)].lb_s - 1e-9;
+  if (image >= 0) {
+    const auto o = static_cast<std::size_t>(owner);
+    const bool replace =
+        owner < 0 || (slack_scratch_.empty() &&
+                      (info_[o].slack_count != 0 || out.lower_bound_s < info_[o].lb_s - 1e-9));
     if (replace) canonical_owner_[static_cast<std::size_t>(image)] = chosen;
-  } else if (image >= 0 && owner < 0) {
-    canonical_owner_[static_cast<std::size_t>(image)] = chosen;
   }
   // The chosen state's schedule is the parent's plus this event: keep it
   // for the expansion that follows.
