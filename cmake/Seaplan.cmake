@@ -36,6 +36,43 @@ function(seaplan_library name)
   seaplan_warnings(${name})
 endfunction()
 
+# How test sources compile. Test files are more than half of a build's compile
+# time, nearly all of it GoogleTest's and GoogleMock's headers and the code
+# their macros expand to, while the code they test sits in the libraries,
+# which keep the build type's flags. engine/validate/src/validator_test.cc, in
+# CPU-s: 25.0 at -O2 -g1, 19.1 with the shared header below, 13.0 at -O1 with
+# it; under ASan+UBSan 45.7 at -O1, 20.2 at -O0.
+#  - SEAPLAN_TEST_OPTIMIZATION: the optimisation of the test sources
+#    themselves in optimised builds (Debug keeps its own -O0); the sanitizer
+#    builds set -O0 (scripts/sanitize.sh).
+#  - One precompiled header for every test binary (GoogleTest, GoogleMock and
+#    the standard headers most tests include), built once in seaplan_test_pch
+#    and reused; each test file still includes what it uses.
+set(SEAPLAN_TEST_OPTIMIZATION "-O1" CACHE STRING
+    "Optimisation flag of test sources in optimised builds (the code under test keeps the build type's)")
+function(seaplan_test_compile_options target)
+  # -pthread everywhere: the gRPC suites get it (with its _REENTRANT) from
+  # gRPC's flags, and a precompiled header serves only identical macros.
+  target_compile_options(${target} PRIVATE $<$<NOT:$<CONFIG:Debug>>:${SEAPLAN_TEST_OPTIMIZATION}>
+                                           -pthread)
+endfunction()
+function(seaplan_test_pch_target)
+  add_library(seaplan_test_pch OBJECT ${PROJECT_SOURCE_DIR}/tests/support/src/test_pch.cc)
+  target_link_libraries(seaplan_test_pch PRIVATE GTest::gtest GTest::gmock)
+  seaplan_warnings(seaplan_test_pch)  # -Wpedantic changes predefined macros
+  seaplan_test_compile_options(seaplan_test_pch)
+  target_precompile_headers(seaplan_test_pch PRIVATE <gmock/gmock.h> <gtest/gtest.h>
+    <algorithm> <chrono> <cmath> <cstdint> <filesystem> <fstream> <functional> <map>
+    <memory> <optional> <set> <sstream> <string> <string_view> <thread> <unordered_map>
+    <utility> <vector>)
+endfunction()
+# seaplan_test_sources(target): test flags and the shared precompiled header,
+# for test binaries made without seaplan_test.
+function(seaplan_test_sources target)
+  seaplan_test_compile_options(${target})
+  target_precompile_headers(${target} REUSE_FROM seaplan_test_pch)
+endfunction()
+
 # seaplan_test(name SOURCES a_test.cc ... DEPS lib ...): one GoogleTest binary,
 # each TEST registered with ctest. Labels let `ctest -L unit` pick fast ones.
 function(seaplan_test name)
@@ -50,6 +87,7 @@ function(seaplan_test name)
   target_link_libraries(${name} PRIVATE ${ARG_DEPS} seaplan_testing GTest::gtest GTest::gmock GTest::gtest_main)
   set_target_properties(${name} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR}/tests)
   seaplan_warnings(${name})
+  seaplan_test_sources(${name})
   gtest_discover_tests(${name}
     DISCOVERY_TIMEOUT 60
     PROPERTIES LABELS ${ARG_LABEL} TIMEOUT 600)

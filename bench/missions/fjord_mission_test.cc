@@ -1,6 +1,6 @@
 #include "fjord_mission.h"
 
-#include <fstream>
+#include <filesystem>
 #include <map>
 #include <set>
 #include <sstream>
@@ -11,15 +11,13 @@
 #include "absl/strings/str_split.h"
 #include "gtest/gtest.h"
 #include "seaplan/task/grounder.h"
+#include "seaplan/testing/shared_data.h"
 
 namespace seaplan::bench {
 namespace {
 
 std::string ReadExample(const std::string& name) {
-  std::ifstream in(std::string(SEAPLAN_FJORD_EXAMPLES_DIR) + "/" + name, std::ios::binary);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
+  return seaplan::testing::ReadFile(std::filesystem::path(SEAPLAN_FJORD_EXAMPLES_DIR) / name);
 }
 
 // The (name a b) facts of the problem's text, as pairs.

@@ -2,20 +2,17 @@
 // problem and plan, and positions that make straight-line times easy to check.
 #pragma once
 
-#include <fstream>
-#include <sstream>
+#include <filesystem>
 #include <string>
 
 #include "seaplan/mission/types.h"
+#include "seaplan/testing/shared_data.h"
 #include "seaplan/validate/plan.h"
 
 namespace seaplan::mission::testing {
 
 inline std::string ReadTestData(const std::string& name) {
-  std::ifstream in(std::string(SEAPLAN_MISSION_TESTDATA) + "/" + name);
-  std::stringstream ss;
-  ss << in.rdbuf();
-  return ss.str();
+  return seaplan::testing::ReadFile(std::filesystem::path(SEAPLAN_MISSION_TESTDATA) / name);
 }
 
 // A-B 1000 m, B-C 1500 m, C-D 500 m, D-E 2000 m.
