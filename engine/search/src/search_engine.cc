@@ -337,9 +337,8 @@ std::int32_t LazySearch::Materialize(std::int32_t pending_index) {
       break;
     }
     merged_any_ = true;
-    const bool bound_ok = params_.bound_dominance ? n.lb_s <= out.lower_bound_s + 1e-9
-                                                  : std::abs(n.lb_s - out.lower_bound_s) <= 1e-9;
-    if (bound_ok && SlackAtLeast(n, slack_scratch_)) return reject_merged();  // dominated
+    if (BoundCovers(n, out.lower_bound_s) && SlackAtLeast(n, slack_scratch_))
+      return reject_merged();  // dominated
     const bool new_dominates = out.lower_bound_s <= n.lb_s + 1e-9 && SlackAtMost(n, slack_scratch_);
     if (new_dominates) {
       if (greedy && n.status == kClosed) return reject_merged();  // the better schedule is dropped
@@ -357,9 +356,8 @@ std::int32_t LazySearch::Materialize(std::int32_t pending_index) {
     // dominated copy when its bound is no later (window actions' slack is
     // not compared, so not with those running).
     const NodeInfo& o = info_[static_cast<std::size_t>(owner)];
-    const bool bound_ok = params_.bound_dominance ? o.lb_s <= out.lower_bound_s + 1e-9
-                                                  : std::abs(o.lb_s - out.lower_bound_s) <= 1e-9;
-    if (o.status == kClosed && bound_ok && o.slack_count == 0 && slack_scratch_.empty()) {
+    if (o.status == kClosed && BoundCovers(o, out.lower_bound_s) && o.slack_count == 0 &&
+        slack_scratch_.empty()) {
       ++counters_.symmetric_drops;
       merged_any_ = true;  // the schedules were not compared: no proof of optimality
       return reject_merged();

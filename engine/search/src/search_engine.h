@@ -28,6 +28,7 @@
 #pragma once
 
 #include <array>
+#include <cmath>
 #include <cstdint>
 #include <memory>
 #include <optional>
@@ -176,6 +177,12 @@ class LazySearch {
   // A lower bound that cannot beat the incumbent (anytime bound).
   bool OverBound(double lower_bound_s) const {
     return lower_bound_s >= params_.bound_s - params_.epsilon_s / 2;
+  }
+  // Whether an expanded state's bound lets it stand for a new state with
+  // bound `new_lb_s`: no later with bound dominance, else the same.
+  bool BoundCovers(const NodeInfo& n, double new_lb_s) const {
+    return params_.bound_dominance ? n.lb_s <= new_lb_s + 1e-9
+                                   : std::abs(n.lb_s - new_lb_s) <= 1e-9;
   }
   bool SlackAtLeast(const NodeInfo& n, const std::vector<double>& slack) const;
   bool SlackAtMost(const NodeInfo& n, const std::vector<double>& slack) const;
