@@ -66,9 +66,12 @@ function(seaplan_test_pch_target)
     <memory> <optional> <set> <sstream> <string> <string_view> <thread> <unordered_map>
     <utility> <vector>)
 endfunction()
-# seaplan_test_sources(target): test flags and the shared precompiled header,
-# for test binaries made without seaplan_test.
-function(seaplan_test_sources target)
+# seaplan_test_target(target): what every test binary gets (output folder,
+# warnings, test flags, the shared precompiled header); seaplan_test calls it,
+# and so do test binaries made by hand.
+function(seaplan_test_target target)
+  set_target_properties(${target} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR}/tests)
+  seaplan_warnings(${target})
   seaplan_test_compile_options(${target})
   target_precompile_headers(${target} REUSE_FROM seaplan_test_pch)
 endfunction()
@@ -85,9 +88,7 @@ function(seaplan_test name)
   endif()
   add_executable(${name} ${ARG_SOURCES})
   target_link_libraries(${name} PRIVATE ${ARG_DEPS} seaplan_testing GTest::gtest GTest::gmock GTest::gtest_main)
-  set_target_properties(${name} PROPERTIES RUNTIME_OUTPUT_DIRECTORY ${CMAKE_BINARY_DIR}/tests)
-  seaplan_warnings(${name})
-  seaplan_test_sources(${name})
+  seaplan_test_target(${name})
   gtest_discover_tests(${name}
     DISCOVERY_TIMEOUT 60
     PROPERTIES LABELS ${ARG_LABEL} TIMEOUT 600)

@@ -34,9 +34,9 @@
 # themselves compile at -O0 (SEAPLAN_TEST_OPTIMIZATION, cmake/Seaplan.cmake):
 # instrumented GoogleTest bodies are most of an instrumented build's time
 # (validator_test.cc: 45.7 CPU-s at -O1, 20.2 at -O0), and the code under test
-# keeps -O1. The code's own
-# wall-clock budgets are stretched by SEAPLAN_WALL_CLOCK_SCALE (CMakeLists.txt)
-# so that the slower builds' searches find the same plans.
+# keeps -O1. The code's own wall-clock budgets are stretched by
+# SEAPLAN_WALL_CLOCK_SCALE (CMakeLists.txt) so that the slower builds'
+# searches find the same plans.
 # Suppressions (third-party false positives only, one reason per entry):
 # scripts/sanitizers/*.supp.
 set -euo pipefail
