@@ -48,6 +48,8 @@ bool NumericEffectsEqual(const std::vector<task::NumericEffect>& a,
 }
 
 // The swap of two objects as a map of fact and action ids; built per pair.
+// Lookups reuse the swap's scratch lists, so that checking a pair allocates
+// once, not per fact and action it maps.
 class Swap {
  public:
   Swap(const task::GroundTask& task, const task::FactIndex& facts, const task::ActionIndex& actions,
@@ -57,33 +59,41 @@ class Swap {
   // The image of fact `f`; -1 when it does not exist or names both objects.
   task::FactId Fact(task::FactId f) const {
     const auto& fact = task_.facts[static_cast<std::size_t>(f)];
-    std::vector<std::string> args;
-    if (!Swapped(fact.args, &args)) return -1;
-    if (args == fact.args) return f;
-    return facts_.Find(fact.predicate, args);
+    switch (Image(fact.args)) {
+      case Named::kBoth:
+        return -1;
+      case Named::kNeither:
+        return f;
+      case Named::kOne:
+        break;
+    }
+    return facts_.Find(fact.predicate, image_);
   }
   task::ActionId Action(task::ActionId a) const {
     const auto& action = task_.actions[static_cast<std::size_t>(a)];
-    std::vector<std::string> args;
-    if (!Swapped(action.args, &args)) return -1;
-    if (args == action.args) return a;
-    for (task::ActionId b : actions_.Find(action.name, args)) {
-      if (task_.actions[static_cast<std::size_t>(b)].variant == action.variant) return b;
+    switch (Image(action.args)) {
+      case Named::kBoth:
+        return -1;
+      case Named::kNeither:
+        return a;
+      case Named::kOne:
+        break;
     }
-    return -1;
+    return actions_.Find(action.name, image_, action.variant);
   }
   // True when the image of `from` is `to` (as sets).
   bool FactsMap(const std::vector<task::FactId>& from, const std::vector<task::FactId>& to) const {
     if (from.size() != to.size()) return false;
-    std::vector<task::FactId> image, target(to);
+    from_image_.clear();
     for (auto f : from) {
       const task::FactId g = Fact(f);
       if (g < 0) return false;
-      image.push_back(g);
+      from_image_.push_back(g);
     }
-    std::sort(image.begin(), image.end());
-    std::sort(target.begin(), target.end());
-    return image == target;
+    to_sorted_.assign(to.begin(), to.end());
+    std::sort(from_image_.begin(), from_image_.end());
+    std::sort(to_sorted_.begin(), to_sorted_.end());
+    return from_image_ == to_sorted_;
   }
   bool ConditionMaps(const task::Condition& a, const task::Condition& b) const {
     return FactsMap(a.positive, b.positive) && FactsMap(a.negative, b.negative) &&
@@ -95,20 +105,31 @@ class Swap {
   }
 
  private:
-  // False when both objects are among `args` (a fact relating them).
-  bool Swapped(const std::vector<std::string>& args, std::vector<std::string>* out) const {
-    *out = args;
+  // Which of the two objects `args` names (one, when they are the same
+  // object: the swap of an object with itself is the identity).
+  enum class Named { kNeither, kOne, kBoth };
+
+  // `image_` becomes `args` with the two objects swapped (when kOne).
+  Named Image(const std::vector<std::string>& args) const {
     bool seen_x = false, seen_y = false;
-    for (auto& a : *out) {
+    for (const auto& a : args) {
       if (a == x_) {
-        a = y_;
         seen_x = true;
       } else if (a == y_) {
-        a = x_;
         seen_y = true;
       }
     }
-    return !(seen_x && seen_y);
+    if (seen_x && seen_y) return Named::kBoth;
+    if (!seen_x && !seen_y) return Named::kNeither;
+    image_ = args;  // element-wise: reuses the scratch strings' buffers
+    for (auto& a : image_) {
+      if (a == x_) {
+        a = y_;
+      } else if (a == y_) {
+        a = x_;
+      }
+    }
+    return Named::kOne;
   }
 
   const task::GroundTask& task_;
@@ -116,6 +137,9 @@ class Swap {
   const task::ActionIndex& actions_;
   const std::string& x_;
   const std::string& y_;
+  // Scratch.
+  mutable std::vector<std::string> image_;
+  mutable std::vector<task::FactId> from_image_, to_sorted_;
 };
 
 }  // namespace

@@ -280,6 +280,15 @@ std::vector<ActionId> ActionIndex::Find(std::string_view name,
   return out;
 }
 
+ActionId ActionIndex::Find(std::string_view name, std::span<const std::string> args,
+                           int variant) const {
+  ActionId out = -1;
+  FindByName(by_hash_, task_->actions, ActionName, name, args, [&](ActionId a) {
+    if (out < 0 && task_->actions[static_cast<std::size_t>(a)].variant == variant) out = a;
+  });
+  return out;
+}
+
 FactIndex::FactIndex(const GroundTask& task)
     : task_(&task), by_hash_(HashNames<FactId>(task.facts, FactPredicate)) {}
 

@@ -141,6 +141,18 @@ TEST(GrounderTest, DisjunctionsBecomeVariantsAndEqualityIsFolded) {
   EXPECT_EQ(a_o1, 2);
   EXPECT_EQ(variants, (std::set<int>{0, 1}));
   EXPECT_EQ(t.actions.size(), 9u) << Names(t);
+  // The index finds each variant on its own.
+  const ActionIndex index(t);
+  const std::vector<std::string> o1{"o1"};
+  for (int v : {0, 1}) {
+    const ActionId found = index.Find("A", o1, v);
+    ASSERT_GE(found, 0);
+    EXPECT_EQ(t.actions[static_cast<std::size_t>(found)].DisplayName(), "(a o1)");
+    EXPECT_EQ(t.actions[static_cast<std::size_t>(found)].variant, v);
+  }
+  EXPECT_EQ(index.Find("a", o1, 2), -1);
+  EXPECT_EQ(index.Find("a", std::vector<std::string>{"o2"}, 1), -1);
+  EXPECT_EQ(index.Find("a", std::vector<std::string>{"o3"}, 0), -1);
   EXPECT_EQ(FindAction(t, "(b o1 o1)"), nullptr);
   EXPECT_EQ(FindAction(t, "(a o3)"), nullptr);
 }

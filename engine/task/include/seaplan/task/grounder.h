@@ -142,6 +142,9 @@ class ActionIndex {
   // Every ground action (all DNF variants) with this name and these
   // arguments, in ascending order; empty when none. Case-insensitive.
   std::vector<ActionId> Find(std::string_view name, std::span<const std::string> args) const;
+  // The one with this name, these arguments and this DNF variant
+  // (Action::variant); -1 when none. Allocates nothing.
+  ActionId Find(std::string_view name, std::span<const std::string> args, int variant) const;
 
  private:
   const GroundTask* task_;
