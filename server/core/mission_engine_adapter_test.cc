@@ -89,7 +89,7 @@ TEST(MissionAdapterTest, SpecDefaultsAndErrors) {
   spec.mutable_planner_options()->set_anytime(false);
   spec.mutable_planner_options()->mutable_time_limit()->set_seconds(7);
   spec.mutable_planner_options()->set_max_expansions(20000);
-  spec.mutable_planner_options()->set_landmarks(true);
+  spec.mutable_planner_options()->set_landmarks(false);
   spec.mutable_planner_options()->set_type_based_exploration(false);
   spec.mutable_planner_options()->set_symmetry_reduction(false);
   spec.mutable_planner_options()->mutable_cpu_time_limit()->set_seconds(5);
@@ -99,7 +99,7 @@ TEST(MissionAdapterTest, SpecDefaultsAndErrors) {
   EXPECT_EQ(given->policy.position_deviation_m, 75);
   EXPECT_FALSE(given->planner.anytime);
   EXPECT_NE(given->planner.landmarks, defaults.planner.landmarks);
-  EXPECT_TRUE(given->planner.landmarks);
+  EXPECT_FALSE(given->planner.landmarks);
   EXPECT_FALSE(given->planner.type_based_exploration);
   EXPECT_TRUE(defaults.planner.symmetry_reduction);
   EXPECT_FALSE(given->planner.symmetry_reduction);

@@ -142,21 +142,25 @@ TEST(CliInProcessTest, NoTypeBasedPlans) {
   EXPECT_EQ(searched(false), searched(true));
 }
 
-// --landmarks reaches the planner: it finds the task's landmarks (the
-// debug log says how many), and without the flag it does not look for them.
-TEST(CliInProcessTest, LandmarksFlagTurnsOnTheLandmarkCount) {
-  const auto run = [&](bool landmarks) {
+// The landmark count is on by default (and with --landmarks): the planner
+// finds the task's landmarks (the debug log says how many); --no-landmarks
+// reaches the planner, which then does not look for them.
+TEST(CliInProcessTest, NoLandmarksFlagTurnsOffTheLandmarkCount) {
+  const auto run = [&](const char* flag) {
     std::vector<std::string> args = {
         "--log-level",          "debug",        "plan",         Example("domain.pddl"),
         Example("case-a.pddl"), "--no-anytime", "--time-limit", "60"};
-    if (landmarks) args.push_back("--landmarks");
+    if (flag != nullptr) args.push_back(flag);
     return RunSeaplan(args);
   };
-  const auto with = run(true);
-  EXPECT_EQ(with.exit_code, 0) << with.out << with.err;
-  EXPECT_NE(with.err.find(" landmarks, "), std::string::npos) << with.err;
-  EXPECT_EQ(with.err.find("planner: 0 landmarks"), std::string::npos) << with.err;
-  const auto without = run(false);
+  for (const char* flag : {static_cast<const char*>(nullptr), "--landmarks"}) {
+    SCOPED_TRACE(flag == nullptr ? "default" : flag);
+    const auto with = run(flag);
+    EXPECT_EQ(with.exit_code, 0) << with.out << with.err;
+    EXPECT_NE(with.err.find(" landmarks, "), std::string::npos) << with.err;
+    EXPECT_EQ(with.err.find("planner: 0 landmarks"), std::string::npos) << with.err;
+  }
+  const auto without = run("--no-landmarks");
   EXPECT_EQ(without.exit_code, 0) << without.out << without.err;
   EXPECT_EQ(without.err.find(" landmarks, "), std::string::npos) << without.err;
 }

@@ -107,7 +107,7 @@ struct PlanArgs {
   int max_concurrent = 0;
   bool no_anytime = false;
   bool no_type_based = false;
-  bool landmarks = false;
+  bool landmarks = true;
   bool no_symmetry = false;
   bool stream = false;
   std::uint64_t seed = 1;
@@ -130,7 +130,7 @@ int RunPlan(const GlobalOptions& options, const PlanArgs& args) {
   planner->set_max_concurrent_actions(args.max_concurrent);
   planner->set_anytime(!args.no_anytime);
   if (args.no_type_based) planner->set_type_based_exploration(false);
-  if (args.landmarks) planner->set_landmarks(true);
+  planner->set_landmarks(args.landmarks);
   if (args.no_symmetry) planner->set_symmetry_reduction(false);
   planner->set_random_seed(args.seed);
   planner->set_epsilon_s(args.epsilon_s);
@@ -786,8 +786,9 @@ int RunCli(int argc, char** argv, const CliExecutable& executable) {
   plan_cmd->add_flag("--no-anytime", plan.no_anytime, "Stop at the first plan");
   plan_cmd->add_flag("--no-type-based", plan.no_type_based,
                      "First-plan searches without the type-based exploration list");
-  plan_cmd->add_flag("--landmarks", plan.landmarks,
-                     "First-plan searches also ordered by LAMA's landmark count");
+  plan_cmd->add_flag("--landmarks,!--no-landmarks", plan.landmarks,
+                     "First-plan searches also ordered by LAMA's landmark count (default; "
+                     "--no-landmarks: without it)");
   plan_cmd->add_flag("--no-symmetry", plan.no_symmetry,
                      "First-plan searches keep states that only permute interchangeable objects");
   plan_cmd->add_option("--seed", plan.seed, "Random seed")->capture_default_str();

@@ -276,13 +276,13 @@ TEST(PlannerTest, LandmarkCountOnAndOffSolvesAndProves) {
 // With the landmark count, the bounded searches after the first plan end
 // with a greedy pass that counts landmarks too (planner.cc, SpreadWork). On
 // this generated mission (`seaplan-mission-gen --domain fjord --ships 3
-// --ports 8 --containers 8 --seed 1`) the passes before it return a plan of
-// 14,664.5 s, that pass one of 13,932.5 s. Their budgets are expansions, so
+// --ports 8 --containers 8 --seed 8`) the passes before it return a plan of
+// 7,160.8 s, that pass one of 5,200.8 s. Their budgets are expansions, so
 // the wall-clock limit is only a safety net.
 TEST(PlannerTest, LandmarkCountAlsoGuidesTheSearchesAfterTheFirstPlan) {
   auto loaded =
       task::LoadTask(testing::ReadFile(testing::SourceDir() / "examples/fjord/domain.pddl"),
-                     testing::ReadFile(TestData("fjord-s3-p8-c8-seed1.pddl")));
+                     testing::ReadFile(TestData("fjord-s3-p8-c8-seed8.pddl")));
   ASSERT_TRUE(loaded.ok()) << loaded.ErrorText();
   PlannerOptions o = Quick(300);
   o.anytime = false;
@@ -291,7 +291,7 @@ TEST(PlannerTest, LandmarkCountAlsoGuidesTheSearchesAfterTheFirstPlan) {
   ASSERT_EQ(r.status, PlanStatus::kSolvedSatisficing) << r.message;
   ExpectValid(*loaded.task, r);
   EXPECT_GE(r.stats.plans_found, 2);
-  EXPECT_LT(r.makespan_s, 14300.0) << validate::FormatPlan(r.plan);
+  EXPECT_LT(r.makespan_s, 6000.0) << validate::FormatPlan(r.plan);
 }
 
 TEST(PlannerTest, TinyTimeLimitTimesOutQuickly) {

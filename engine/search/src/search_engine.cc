@@ -168,6 +168,8 @@ bool LazySearch::Pop(std::int32_t* state) {
   enum List { kPreferred, kLandmarkPreferred, kAll, kLandmarkAll, kTyped, kLists };
   int* const priority[kLists] = {&priority_preferred_, &priority_landmark_preferred_,
                                  &priority_all_, &priority_landmark_all_, &priority_typed_};
+  const int lm = params_.landmark_pop_cost;
+  const int pop_cost[kLists] = {1, lm, 1, lm, 1};
   while (true) {
     const bool empty[kLists] = {open_preferred_.empty(), open_landmark_preferred_.empty(),
                                 open_all_.empty(), open_landmark_all_.empty(), open_typed_.empty()};
@@ -194,7 +196,7 @@ bool LazySearch::Pop(std::int32_t* state) {
         index = open_typed_.Pop();
         break;
     }
-    ++*priority[next];
+    *priority[next] += pop_cost[next];
     const Pending& p = pending_[static_cast<std::size_t>(index)];
     if (p.parent == kConsumed || OverBound(p.lb_s)) continue;
     *state = index;

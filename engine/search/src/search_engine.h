@@ -82,6 +82,13 @@ struct SearchParams {
   // boosts both preferred lists; a preferred event is also one adding a
   // landmark that could be accepted next.
   const LandmarkGraph* landmarks = nullptr;
+  // Turns a landmark list gives up per pop, against 1 for the others: with
+  // 2 each landmark list is popped half as often as each of the relaxed
+  // plan's. With equal turns their ties by makespan on a count of a few
+  // goal landmarks reach states all over the tree, each a schedule to
+  // rebuild: sokoban-2011 p03 lost its plan within 10 CPU s
+  // (bench/planner/README.md, "Landmark count").
+  int landmark_pop_cost = 2;
   // May be null (borrowed): interchangeable objects. A successor whose
   // image under them (ObjectSymmetry::Canonicalize) is that of another
   // state already expanded, with a bound no later and no window actions
