@@ -13,6 +13,7 @@
 #include "heuristics/temporal_reachability.h"
 #include "object_symmetry.h"
 #include "plan_builder.h"
+#include "plan_elimination.h"
 #include "seaplan/common/log.h"
 #include "seaplan/task/grounder.h"
 #include "search_engine.h"
@@ -224,6 +225,24 @@ bool PlannerRun::Offer(const LazySearch& search) {
   if (!built) {
     log::Error("planner: dropping a plan that fails validation (planner bug): {}", error);
     return false;
+  }
+  // Without the steps no goal needs (plan_elimination.h), kept when it
+  // validates and is not longer.
+  const Clock::time_point eliminate_start = Clock::now();
+  const std::vector<Event> needed =
+      EliminateRedundantSteps(transitions_, InitialState(), search.plan());
+  log::Debug("planner: redundant steps looked for in {:.3f} s", Seconds(eliminate_start));
+  if (needed.size() < search.plan().size()) {
+    std::string needed_error;
+    auto shorter = BuildValidatedPlan(snap_, needed, plan_timeline_, validator_, &needed_error);
+    if (!shorter) {
+      log::Debug("planner: plan without redundant steps rejected: {}", needed_error);
+    } else if (shorter->makespan_s <= built->makespan_s) {
+      log::Debug("planner: {} of {} events redundant, makespan {} -> {}",
+                 search.plan().size() - needed.size(), search.plan().size(), built->makespan_s,
+                 shorter->makespan_s);
+      built = std::move(shorter);
+    }
   }
   if (has_plan_ && built->makespan_s >= best_.makespan_s - options_.epsilon_s / 2) return false;
   const double now = Seconds(start_);
