@@ -59,27 +59,12 @@ class Swap {
   // The image of fact `f`; -1 when it does not exist or names both objects.
   task::FactId Fact(task::FactId f) const {
     const auto& fact = task_.facts[static_cast<std::size_t>(f)];
-    switch (Image(fact.args)) {
-      case Named::kBoth:
-        return -1;
-      case Named::kNeither:
-        return f;
-      case Named::kOne:
-        break;
-    }
-    return facts_.Find(fact.predicate, image_);
+    return ImageOf(f, fact.args, [&] { return facts_.Find(fact.predicate, image_); });
   }
   task::ActionId Action(task::ActionId a) const {
     const auto& action = task_.actions[static_cast<std::size_t>(a)];
-    switch (Image(action.args)) {
-      case Named::kBoth:
-        return -1;
-      case Named::kNeither:
-        return a;
-      case Named::kOne:
-        break;
-    }
-    return actions_.Find(action.name, image_, action.variant);
+    return ImageOf(a, action.args,
+                   [&] { return actions_.Find(action.name, image_, action.variant); });
   }
   // True when the image of `from` is `to` (as sets).
   bool FactsMap(const std::vector<task::FactId>& from, const std::vector<task::FactId>& to) const {
@@ -108,6 +93,22 @@ class Swap {
   // Which of the two objects `args` names (one, when they are the same
   // object: the swap of an object with itself is the identity).
   enum class Named { kNeither, kOne, kBoth };
+
+  // The image of the fact or action `id` named with `args`: itself when it
+  // names neither object, -1 when it names both, else what `find` returns
+  // for the swapped arguments (`image_`).
+  template <typename Find>
+  std::int32_t ImageOf(std::int32_t id, const std::vector<std::string>& args, Find find) const {
+    switch (Image(args)) {
+      case Named::kBoth:
+        return -1;
+      case Named::kNeither:
+        return id;
+      case Named::kOne:
+        break;
+    }
+    return find();
+  }
 
   // `image_` becomes `args` with the two objects swapped (when kOne).
   Named Image(const std::vector<std::string>& args) const {
