@@ -19,7 +19,8 @@ std::vector<Event> EliminateRedundantSteps(const Transitions& transitions, const
     }
     return true;
   };
-  if (!replay_all()) return kept;  // not a plan from `initial`: leave it as it is
+  // Not a plan from `initial`: left as it is.
+  if (!replay_all() || !transitions.IsGoal(states.back())) return kept;
 
   std::vector<char> dropped;
   std::vector<task::ActionId> open_drops;  // dropped starts whose end is still ahead

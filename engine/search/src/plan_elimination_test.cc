@@ -114,6 +114,11 @@ TEST(PlanEliminationTest, WorkBoundAndNonPlansLeaveTheEventsAsTheyAre) {
   // Not a plan from the initial state (the ship is not at b): unchanged.
   const auto broken = f.Steps({"(sail b a)", "(load a)", "(sail a c)", "(unload c)"});
   EXPECT_EQ(f.Names(EliminateRedundantSteps(f.transitions, f.initial, broken)), f.Names(broken));
+  // Nor is a sequence that does not end in the goal (the box taken on
+  // board again), though without its last step it would.
+  const auto unfinished = f.Steps({"(load a)", "(sail a c)", "(unload c)", "(load c)"});
+  EXPECT_EQ(f.Names(EliminateRedundantSteps(f.transitions, f.initial, unfinished)),
+            f.Names(unfinished));
 }
 
 }  // namespace
