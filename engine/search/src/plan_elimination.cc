@@ -11,16 +11,17 @@ std::vector<Event> EliminateRedundantSteps(const Transitions& transitions, const
   std::vector<Event> kept(events.begin(), events.end());
   // states[k]: the state before kept[k] (states[kept.size()] the last one).
   std::vector<StateData> states(kept.size() + 1);
-  auto replay_all = [&]() {
+  // Replays kept[from...] from states[from] (the states before it stand).
+  auto replay_from = [&](std::size_t from) {
     states.resize(kept.size() + 1);
-    states[0] = initial;
-    for (std::size_t k = 0; k < kept.size(); ++k) {
+    for (std::size_t k = from; k < kept.size(); ++k) {
       if (!transitions.Apply(states[k], &kept[k], &states[k + 1])) return false;
     }
     return true;
   };
   // Not a plan from `initial`: left as it is.
-  if (!replay_all() || !transitions.IsGoal(states.back())) return kept;
+  states[0] = initial;
+  if (!replay_from(0) || !transitions.IsGoal(states.back())) return kept;
 
   std::vector<char> dropped;
   std::vector<task::ActionId> open_drops;  // dropped starts whose end is still ahead
@@ -74,10 +75,10 @@ std::vector<Event> EliminateRedundantSteps(const Transitions& transitions, const
       if (dropped[k] == 0) kept[out++] = kept[k];
     }
     kept.resize(out);
-    // The states from i on changed, and so may the duration bounds of the
-    // starts after it: replay them (it cannot fail, the try just did it).
+    // The states after i changed, and so may the duration bounds of the
+    // starts after it: replay from i (it cannot fail, the try just did it).
     // The event now at i is tried next.
-    replay_all();
+    replay_from(i);
   }
   return kept;
 }
