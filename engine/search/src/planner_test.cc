@@ -294,6 +294,23 @@ TEST(PlannerTest, LandmarkCountAlsoGuidesTheSearchesAfterTheFirstPlan) {
   EXPECT_LT(r.makespan_s, 6000.0) << validate::FormatPlan(r.plan);
 }
 
+// The weighted A* pass after the first plan keeps searching under each plan
+// it finds (within its budget): case C numeric's greedy plan lets a ship
+// wait for one that could have gone ahead; stopping at the pass's first
+// plan returned 6,594 s.
+TEST(PlannerTest, WeightedAStarAfterTheFirstPlanGoesOnUnderItsPlans) {
+  const std::string domain =
+      testing::ReadFile(testing::SourceDir() / "examples/fjord/domain-numeric.pddl");
+  const std::string problem =
+      testing::ReadFile(testing::SourceDir() / "examples/fjord/case-c-numeric.pddl");
+  PlannerOptions o = Quick(120);
+  o.anytime = false;
+  const PlanResult r = Solve(domain, problem, o, StopToken());
+  ASSERT_EQ(r.status, PlanStatus::kSolvedSatisficing) << r.message;
+  EXPECT_GE(r.stats.plans_found, 3);
+  EXPECT_LT(r.makespan_s, 6000.0) << validate::FormatPlan(r.plan);
+}
+
 TEST(PlannerTest, TinyTimeLimitTimesOutQuickly) {
   auto loaded = Load("toggle-domain.pddl", "toggle-22.pddl");
   ASSERT_TRUE(loaded.task);
