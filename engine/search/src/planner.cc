@@ -116,7 +116,8 @@ class PlannerRun {
         transitions_(snap_, options.max_concurrent_actions, options.epsilon_s),
         timeline_(snap_, options.epsilon_s, options.max_concurrent_actions > 0),
         plan_timeline_(snap_, options.epsilon_s, options.max_concurrent_actions > 0),
-        validator_(task, options.epsilon_s) {}
+        validator_(task, options.epsilon_s),
+        initial_(InitialState()) {}
 
   PlanResult Run();
 
@@ -132,15 +133,16 @@ class PlannerRun {
   void AddCounters(const LazySearch& search);
   // Builds and validates; true when it is a new incumbent.
   bool Offer(const LazySearch& search);
+  // The task's initial state (built once, for initial_).
   StateData InitialState() const;
   // After the first plan: bounded searches with the makespan-aware relaxed
   // plan (agents' work spread, relaxed_plan_heuristic.h).
-  void SpreadWork(const StateData& initial);
+  void SpreadWork();
   // A search pruned by the incumbent (weight < 0: greedy, else weighted A*
   // with the incumbent's seconds per event as the heuristic's unit).
   SearchParams BoundedParams(double weight) const;
   // Stop token, timed-literal reachability and the initial state.
-  void Start(LazySearch& search, const StateData& initial);
+  void Start(LazySearch& search);
 
   const task::GroundTask& task_;
   PlannerOptions options_;
@@ -159,6 +161,7 @@ class PlannerRun {
   Timeline timeline_;
   Timeline plan_timeline_;
   PlanValidator validator_;
+  const StateData initial_;
   PlanResult best_;
   bool has_plan_ = false;
   std::size_t plan_events_ = 0;
@@ -230,7 +233,7 @@ bool PlannerRun::Offer(const LazySearch& search) {
   // validates and is not longer.
   const Clock::time_point eliminate_start = Clock::now();
   const std::vector<Event> needed =
-      EliminateRedundantSteps(transitions_, InitialState(), search.plan());
+      EliminateRedundantSteps(transitions_, initial_, search.plan());
   log::Debug("planner: redundant steps looked for in {:.3f} s", Seconds(eliminate_start));
   if (needed.size() < search.plan().size()) {
     std::string needed_error;
@@ -279,13 +282,13 @@ SearchParams PlannerRun::BoundedParams(double weight) const {
   return params;
 }
 
-void PlannerRun::Start(LazySearch& search, const StateData& initial) {
+void PlannerRun::Start(LazySearch& search) {
   search.SetStopToken(&stop_);
   search.SetTemporalReachability(&reachability_);
-  search.Initialize(initial);
+  search.Initialize(initial_);
 }
 
-void PlannerRun::SpreadWork(const StateData& initial) {
+void PlannerRun::SpreadWork() {
   heuristic_.SetMakespanAware(true);
   if (!heuristic_.makespan_aware() || !has_plan_) return;
   // Pruned by the incumbent and given, in all, at most six times the first
@@ -327,7 +330,7 @@ void PlannerRun::SpreadWork(const StateData& initial) {
     SearchParams params = BoundedParams(pass.weight);
     if (pass.landmarks) params.landmarks = &*landmarks_;
     LazySearch search(snap_, registry_, heuristic_, transitions_, timeline_, params);
-    Start(search, initial);
+    Start(search);
     bool stop = false;
     while (search.counters().expanded <= budget) {
       if (Poll(search) != Outcome::kContinue) {
@@ -354,7 +357,6 @@ void PlannerRun::SpreadWork(const StateData& initial) {
 }
 
 PlanResult PlannerRun::Run() {
-  const StateData initial = InitialState();
   best_.status = PlanStatus::kTimeout;
   auto finish = [&](PlanStatus status_if_no_plan, std::string message) {
     SetCounters(done_counters_, best_.stats);
@@ -424,7 +426,7 @@ PlanResult PlannerRun::Run() {
     }
     if (newest_first) params.plateau_order = SearchParams::PlateauOrder::kNewestFirst;
     LazySearch search(snap_, registry_, heuristic_, transitions_, timeline_, params);
-    Start(search, initial);
+    Start(search);
     bool switch_now = false;
     while (true) {
       if (!newest_first && options_.second_greedy_after_share < 1 && switch_due(search)) {
@@ -478,7 +480,7 @@ PlanResult PlannerRun::Run() {
       newest_first = true;
     }
   }
-  SpreadWork(initial);
+  SpreadWork();
   heuristic_.SetMakespanAware(false);  // the anytime phases: FF's (see below)
   if (!options_.anytime) return finish(PlanStatus::kSolvedSatisficing, "");
 
@@ -490,7 +492,7 @@ PlanResult PlannerRun::Run() {
   const double weights[] = {3, 2, 1.5, 1.2, 1};
   for (double w : weights) {
     LazySearch search(snap_, registry_, heuristic_, transitions_, timeline_, BoundedParams(w));
-    Start(search, initial);
+    Start(search);
     bool stop = false;
     while (true) {
       if (Poll(search) != Outcome::kContinue) {
