@@ -232,8 +232,7 @@ bool PlannerRun::Offer(const LazySearch& search) {
   // Without the steps no goal needs (plan_elimination.h), kept when it
   // validates and is not longer.
   const Clock::time_point eliminate_start = Clock::now();
-  const std::vector<Event> needed =
-      EliminateRedundantSteps(transitions_, initial_, search.plan());
+  const std::vector<Event> needed = EliminateRedundantSteps(transitions_, initial_, search.plan());
   log::Debug("planner: redundant steps looked for in {:.3f} s", Seconds(eliminate_start));
   if (needed.size() < search.plan().size()) {
     std::string needed_error;
