@@ -301,7 +301,8 @@ void PlannerRun::SpreadWork() {
   // stops at its plan: going on under that plan's bound spent case C
   // numeric's whole budget without a shorter one), then, with what is left,
   // weighted A* (w = 3) on makespan (small ones: the greedy search's
-  // detours), which spends what is left of the budget.
+  // detours), which goes on until the budget is spent or its space
+  // exhausted.
   //
   // With the landmark count (PlannerOptions::landmarks), a third pass: a
   // greedy search that also counts landmarks, on a budget of its own (twice
@@ -341,9 +342,8 @@ void PlannerRun::SpreadWork() {
         const bool improved = Offer(search);
         if (pass.weight < 0) break;
         // Weighted A* goes on under the new bound, as the anytime phases
-        // do: its next plans are the greedy plan's detours taken out one
-        // after another (case C numeric: 6,594 s returned when it stopped
-        // at its first plan, 5,703 s now).
+        // do (case C numeric: 6,594 s returned when it stopped at its
+        // first plan, 5,703 s now).
         if (improved) search.SetBound(best_.makespan_s);
         continue;
       }
