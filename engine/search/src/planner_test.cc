@@ -21,6 +21,11 @@ std::filesystem::path TestData(const std::string& name) {
   return testing::SourceDir() / "engine/search/testdata" / name;
 }
 
+// The text of one of the fjord examples (examples/fjord).
+std::string FjordExample(const std::string& name) {
+  return testing::ReadFile(testing::SourceDir() / "examples/fjord" / name);
+}
+
 struct Loaded {
   std::shared_ptr<const task::GroundTask> task;
 };
@@ -280,9 +285,8 @@ TEST(PlannerTest, LandmarkCountOnAndOffSolvesAndProves) {
 // 7,160.8 s, that pass one of 5,200.8 s. Their budgets are expansions, so
 // the wall-clock limit is only a safety net.
 TEST(PlannerTest, LandmarkCountAlsoGuidesTheSearchesAfterTheFirstPlan) {
-  auto loaded =
-      task::LoadTask(testing::ReadFile(testing::SourceDir() / "examples/fjord/domain.pddl"),
-                     testing::ReadFile(TestData("fjord-s3-p8-c8-seed8.pddl")));
+  auto loaded = task::LoadTask(FjordExample("domain.pddl"),
+                               testing::ReadFile(TestData("fjord-s3-p8-c8-seed8.pddl")));
   ASSERT_TRUE(loaded.ok()) << loaded.ErrorText();
   PlannerOptions o = Quick(300);
   o.anytime = false;
@@ -299,10 +303,8 @@ TEST(PlannerTest, LandmarkCountAlsoGuidesTheSearchesAfterTheFirstPlan) {
 // wait for one that could have gone ahead; stopping at the pass's first
 // plan returned 6,594 s.
 TEST(PlannerTest, WeightedAStarAfterTheFirstPlanGoesOnUnderItsPlans) {
-  const std::string domain =
-      testing::ReadFile(testing::SourceDir() / "examples/fjord/domain-numeric.pddl");
-  const std::string problem =
-      testing::ReadFile(testing::SourceDir() / "examples/fjord/case-c-numeric.pddl");
+  const std::string domain = FjordExample("domain-numeric.pddl");
+  const std::string problem = FjordExample("case-c-numeric.pddl");
   PlannerOptions o = Quick(120);
   o.anytime = false;
   const PlanResult r = Solve(domain, problem, o, StopToken());
@@ -364,9 +366,8 @@ TEST(PlannerTest, ExpansionLimitEndsTheSearch) {
   EXPECT_EQ(none.message, "expansion limit (300) reached before a plan was found");
   EXPECT_EQ(none.stats.expanded, 300u);
 
-  const std::string domain = testing::ReadFile(testing::SourceDir() / "examples/fjord/domain.pddl");
-  const std::string problem =
-      testing::ReadFile(testing::SourceDir() / "examples/fjord/case-c.pddl");
+  const std::string domain = FjordExample("domain.pddl");
+  const std::string problem = FjordExample("case-c.pddl");
   o.max_expansions = 2000;
   const PlanResult r = Solve(domain, problem, o, StopToken());
   ASSERT_EQ(r.status, PlanStatus::kSolvedSatisficing) << r.message;
@@ -400,10 +401,8 @@ TEST(PlannerTest, CpuTimeLimitEndsTheSearch) {
 // second run is slowed down (its observer sleeps at every plan found); with
 // the same limit both end with the same plan after the same expansions.
 TEST(PlannerTest, ExpansionLimitGivesTheSamePlanAtAnySpeed) {
-  const std::string domain =
-      testing::ReadFile(testing::SourceDir() / "examples/fjord/domain-numeric.pddl");
-  const std::string problem =
-      testing::ReadFile(testing::SourceDir() / "examples/fjord/case-c-numeric.pddl");
+  const std::string domain = FjordExample("domain-numeric.pddl");
+  const std::string problem = FjordExample("case-c-numeric.pddl");
   PlannerOptions o = Quick(120);
   o.max_expansions = 3000;
   const PlanResult fast = Solve(domain, problem, o, StopToken());
