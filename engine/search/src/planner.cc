@@ -4,6 +4,7 @@
 #include <chrono>
 #include <cmath>
 #include <ctime>
+#include <limits>
 #include <memory>
 #include <optional>
 
@@ -143,6 +144,11 @@ class PlannerRun {
   SearchParams BoundedParams(double weight) const;
   // Stop token, timed-literal reachability and the initial state.
   void Start(LazySearch& search);
+  // Steps a search pruned by the incumbent until it is exhausted or has
+  // expanded more than `max_expanded`. A plan found is offered; unless
+  // `stop_at_plan`, the search goes on under the tightened bound. True when
+  // Poll stopped it (time, limits, memory, cancellation).
+  bool RunBounded(LazySearch& search, std::size_t max_expanded, bool stop_at_plan);
 
   const task::GroundTask& task_;
   PlannerOptions options_;
@@ -287,6 +293,21 @@ void PlannerRun::Start(LazySearch& search) {
   search.Initialize(initial_);
 }
 
+bool PlannerRun::RunBounded(LazySearch& search, std::size_t max_expanded, bool stop_at_plan) {
+  while (search.counters().expanded <= max_expanded) {
+    if (Poll(search) != Outcome::kContinue) return true;
+    const LazySearch::Status status = search.Step();
+    if (status == LazySearch::Status::kSolved) {
+      const bool improved = Offer(search);
+      if (stop_at_plan) break;
+      if (improved) search.SetBound(best_.makespan_s);
+      continue;
+    }
+    if (status == LazySearch::Status::kExhausted) break;
+  }
+  return false;
+}
+
 void PlannerRun::SpreadWork() {
   heuristic_.SetMakespanAware(true);
   if (!heuristic_.makespan_aware() || !has_plan_) return;
@@ -331,24 +352,10 @@ void PlannerRun::SpreadWork() {
     if (pass.landmarks) params.landmarks = &*landmarks_;
     LazySearch search(snap_, registry_, heuristic_, transitions_, timeline_, params);
     Start(search);
-    bool stop = false;
-    while (search.counters().expanded <= budget) {
-      if (Poll(search) != Outcome::kContinue) {
-        stop = true;
-        break;
-      }
-      const LazySearch::Status status = search.Step();
-      if (status == LazySearch::Status::kSolved) {
-        const bool improved = Offer(search);
-        if (pass.weight < 0) break;
-        // Weighted A* goes on under the new bound, as the anytime phases
-        // do (case C numeric: 6,594 s returned when it stopped at its
-        // first plan, 5,703 s now).
-        if (improved) search.SetBound(best_.makespan_s);
-        continue;
-      }
-      if (status == LazySearch::Status::kExhausted) break;
-    }
+    // The greedy passes stop at their plan; weighted A* goes on under the
+    // new bound, as the anytime phases do (case C numeric: 6,594 s returned
+    // when it stopped at its first plan, 5,703 s now).
+    const bool stop = RunBounded(search, budget, pass.weight < 0);
     AddCounters(search);
     budget -= std::min(budget, search.counters().expanded);
     if (stop) return;
@@ -492,19 +499,7 @@ PlanResult PlannerRun::Run() {
   for (double w : weights) {
     LazySearch search(snap_, registry_, heuristic_, transitions_, timeline_, BoundedParams(w));
     Start(search);
-    bool stop = false;
-    while (true) {
-      if (Poll(search) != Outcome::kContinue) {
-        stop = true;
-        break;
-      }
-      const LazySearch::Status status = search.Step();
-      if (status == LazySearch::Status::kSolved) {
-        if (Offer(search)) search.SetBound(best_.makespan_s);
-        continue;
-      }
-      if (status == LazySearch::Status::kExhausted) break;
-    }
+    const bool stop = RunBounded(search, std::numeric_limits<std::size_t>::max(), false);
     AddCounters(search);
     if (stop) break;
     if (search.exhaustive_without_merges()) {

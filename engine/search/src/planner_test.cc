@@ -299,9 +299,8 @@ TEST(PlannerTest, LandmarkCountAlsoGuidesTheSearchesAfterTheFirstPlan) {
 }
 
 // The weighted A* pass after the first plan keeps searching under each plan
-// it finds (within its budget): case C numeric's greedy plan lets a ship
-// wait for one that could have gone ahead; stopping at the pass's first
-// plan returned 6,594 s.
+// it finds (within its budget): on case C numeric, stopping at the pass's
+// first plan returned 6,594 s.
 TEST(PlannerTest, WeightedAStarAfterTheFirstPlanGoesOnUnderItsPlans) {
   const std::string domain = FjordExample("domain-numeric.pddl");
   const std::string problem = FjordExample("case-c-numeric.pddl");
