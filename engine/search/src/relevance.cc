@@ -77,4 +77,54 @@ std::vector<bool> RelevantActions(const task::GroundTask& task) {
   return relevant;
 }
 
+std::vector<bool> GoalBreakingActions(const task::GroundTask& task,
+                                      const std::vector<bool>& excluded) {
+  const std::size_t num_facts = task.facts.size();
+  std::vector<bool> goal_true(num_facts, false), goal_false(num_facts, false);
+  for (auto f : task.goal.positive) goal_true[static_cast<std::size_t>(f)] = true;
+  for (auto f : task.goal.negative) goal_false[static_cast<std::size_t>(f)] = true;
+  // Whether a timed literal makes each fact true or false at some point.
+  std::vector<bool> til_adds(num_facts, false), til_dels(num_facts, false);
+  for (const auto& til : task.timed_literals) {
+    (til.value ? til_adds : til_dels)[static_cast<std::size_t>(til.fact)] = true;
+  }
+  std::vector<bool> breaks(task.actions.size(), false);
+  auto out = [&](std::size_t a) { return breaks[a] || (!excluded.empty() && excluded[a]); };
+  for (bool changed = true; changed;) {
+    changed = false;
+    // Adders and deleters among the actions still in, any effect kind.
+    std::vector<bool> added = til_adds, deleted = til_dels;
+    for (std::size_t a = 0; a < task.actions.size(); ++a) {
+      if (out(a)) continue;
+      for (const task::Effects* e : {&task.actions[a].start_effects, &task.actions[a].end_effects}) {
+        for (auto f : e->add) added[static_cast<std::size_t>(f)] = true;
+        for (auto f : e->del) deleted[static_cast<std::size_t>(f)] = true;
+        for (const auto& ce : e->conditional) {
+          for (auto f : ce.add) added[static_cast<std::size_t>(f)] = true;
+          for (auto f : ce.del) deleted[static_cast<std::size_t>(f)] = true;
+        }
+      }
+    }
+    for (std::size_t a = 0; a < task.actions.size(); ++a) {
+      if (out(a)) continue;
+      bool broken = false;
+      for (const task::Effects* e : {&task.actions[a].start_effects, &task.actions[a].end_effects}) {
+        for (auto f : e->del) {
+          const auto i = static_cast<std::size_t>(f);
+          if (goal_true[i] && !added[i]) broken = true;
+        }
+        for (auto f : e->add) {
+          const auto i = static_cast<std::size_t>(f);
+          if (goal_false[i] && !deleted[i]) broken = true;
+        }
+      }
+      if (broken) {
+        breaks[a] = true;
+        changed = true;
+      }
+    }
+  }
+  return breaks;
+}
+
 }  // namespace seaplan::search

@@ -22,4 +22,17 @@ namespace seaplan::search {
 // Per action: true when relevant.
 std::vector<bool> RelevantActions(const task::GroundTask& task);
 
+// Per action: true when no plan can contain it because it breaks the goal
+// for good: it deletes (unconditionally, at start or at end) a goal fact
+// that no other action left and no timed literal adds, or adds a fact the
+// goal needs false that nothing deletes. `excluded` (empty: none) holds the
+// actions already known not to occur (irrelevant ones); they count as
+// neither adders nor deleters. To a fixpoint: a fact whose only adders are
+// excluded here has none left. Parcprinter: a sheet whose front must stay
+// free of colour (a goal fact nothing re-adds) may never enter the colour
+// engine's print, so a sheet already sent there is a dead end the relaxed
+// plan sees instead of a plateau of every other sheet's moves.
+std::vector<bool> GoalBreakingActions(const task::GroundTask& task,
+                                      const std::vector<bool>& excluded);
+
 }  // namespace seaplan::search

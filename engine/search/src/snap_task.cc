@@ -146,6 +146,12 @@ SnapTask::SnapTask(const task::GroundTask& task) : task_(task), envelopes_(task)
   for (std::size_t a = 0; a < n; ++a) {
     pruned_[a] = !pruned_[a] || envelopes_.Unschedulable(static_cast<task::ActionId>(a));
   }
+  const std::vector<bool> breaks_goal = GoalBreakingActions(task, pruned_);
+  for (std::size_t a = 0; a < n; ++a) {
+    if (!breaks_goal[a]) continue;
+    pruned_[a] = true;
+    ++num_goal_breaking_;
+  }
   goal_fact_mask_.assign(task.facts.size(), false);
   for (auto f : task.goal.positive) goal_fact_mask_[f] = true;
   for (auto f : task.goal.negative) goal_fact_mask_[f] = true;

@@ -74,8 +74,12 @@ class SnapTask {
   // unschedulable are never started by the search nor used by heuristics.
   const InvariantEnvelopes& envelopes() const { return envelopes_; }
   // True for actions no plan needs (unschedulable, or irrelevant to the
-  // goal: relevance.h): never started by the search nor used by heuristics.
+  // goal: relevance.h) or can contain (they delete a goal fact nothing adds
+  // back: GoalBreakingActions): never started by the search nor used by
+  // heuristics.
   bool Pruned(task::ActionId a) const { return pruned_[static_cast<std::size_t>(a)]; }
+  // How many of the pruned actions break the goal for good.
+  int num_goal_breaking() const { return num_goal_breaking_; }
 
  private:
   const task::GroundTask& task_;
@@ -88,6 +92,7 @@ class SnapTask {
   std::vector<bool> window_action_;
   InvariantEnvelopes envelopes_;
   std::vector<bool> pruned_;
+  int num_goal_breaking_ = 0;
 };
 
 }  // namespace seaplan::search

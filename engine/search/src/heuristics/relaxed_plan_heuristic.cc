@@ -113,6 +113,7 @@ RelaxedPlanHeuristic::RelaxedPlanHeuristic(const SnapTask& task, double epsilon_
     for (int i = pre_begin_[op]; i < pre_begin_[op + 1]; ++i) fact_ops_[fill[pre_[i]]++] = op;
   }
   fact_layer_.resize(static_cast<std::size_t>(total_facts));
+  undoes_goal_.resize(static_cast<std::size_t>(total_facts));
   fact_achiever_.resize(static_cast<std::size_t>(total_facts));
   fact_marked_.resize(static_cast<std::size_t>(total_facts));
   op_layer_.resize(static_cast<std::size_t>(num_ops_));
@@ -156,7 +157,7 @@ RelaxedPlanHeuristic::RelaxedPlanHeuristic(const SnapTask& task, double epsilon_
       ++num_goal_facts_;
     }
   }
-  if (agents_.active()) {
+  {
     std::vector<std::int32_t> adders(static_cast<std::size_t>(num_facts_) + 1, 0);
     for (auto f : add_) {
       if (f < num_facts_) ++adders[f + 1];
@@ -169,6 +170,18 @@ RelaxedPlanHeuristic::RelaxedPlanHeuristic(const SnapTask& task, double epsilon_
         if (add_[i] < num_facts_) adder_[adders[add_[i]]++] = op;
       }
     }
+  }
+  goal_del_begin_.push_back(0);
+  for (int op = 0; op < num_ops_; ++op) {
+    if (op_exists_[op]) {
+      const task::Action& action = actions[static_cast<std::size_t>(op / 2)];
+      for (auto f : (op % 2 == 1 ? action.end_effects : action.start_effects).del) {
+        if (goal_fact_[f]) goal_del_.push_back(f);
+      }
+    }
+    goal_del_begin_.push_back(static_cast<std::int32_t>(goal_del_.size()));
+  }
+  if (agents_.active()) {
     op_stamp_.assign(static_cast<std::size_t>(num_ops_), 0);
     op_time_s_.assign(static_cast<std::size_t>(num_ops_), 0.0);
     fact_time_s_.assign(static_cast<std::size_t>(total_facts), 0.0);
@@ -315,6 +328,14 @@ void RelaxedPlanHeuristic::MarkFact(int fact, int need_layer) {
   MarkOp(makespan_aware_ ? ChooseAchiever(fact, need_layer) : fact_achiever_[fact]);
 }
 
+bool RelaxedPlanHeuristic::DeletesHeldGoal(int op) const {
+  for (int i = goal_del_begin_[op]; i < goal_del_begin_[op + 1]; ++i) {
+    if (fact_layer_[goal_del_[i]] == 0) return true;
+  }
+  return false;
+}
+
+
 double RelaxedPlanHeuristic::FinishEstimate(int op) const {
   const int a = op / 2;
   // A running action's end: its agents' work is already in their ready times.
@@ -452,11 +473,21 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
     agents_.ReadyTimes(state, schedule, &ready_s_);
   }
   // `time_s`: when the fact holds at the earliest (read only with makespan_aware_).
-  auto reach = [&](int f, int layer, int achiever, double time_s) {
-    if (fact_layer_[f] >= 0) return;
+  const bool keep_held_goals = keep_held_goals_ && !goal_del_.empty() && !makespan_aware_;
+  auto reach = [&](int f, int layer, int achiever, double time_s, bool undoes_goal = false) {
+    if (fact_layer_[f] >= 0) {
+      // Reached earlier in this layer only through an operator that undoes
+      // a goal the state holds: this one, in the same layer, keeps them.
+      if (keep_held_goals && !undoes_goal && fact_layer_[f] == layer && undoes_goal_[f]) {
+        fact_achiever_[f] = achiever;
+        undoes_goal_[f] = 0;
+      }
+      return;
+    }
     if (!suppressed_list_.empty() && f < num_facts_ && suppressed_[f]) PayBackExemptEnds(f);
     fact_layer_[f] = layer;
     fact_achiever_[f] = achiever;
+    if (keep_held_goals) undoes_goal_[f] = undoes_goal;
     if (makespan_aware_) fact_time_s_[f] = time_s;
     goals_left -= goal_fact_[f];
     new_facts_.push_back(f);
@@ -599,11 +630,20 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
         op_stamp_[op] = stamp_;
         started_s = time_s + agents_.DurationOf(op / 2);
       }
+      bool undoes_goal = false;
+      if (keep_held_goals) {
+        undoes_goal = DeletesHeldGoal(op);
+        for (int i = pre_begin_[op]; i < pre_begin_[op + 1] && !undoes_goal; ++i) {
+          undoes_goal = undoes_goal_[pre_[i]] != 0;
+        }
+      }
       for (int i = add_begin_[op]; i < add_begin_[op + 1]; ++i) {
-        reach(add_[i], layer + 1, op, add_[i] < num_facts_ ? time_s : started_s);
+        reach(add_[i], layer + 1, op, add_[i] < num_facts_ ? time_s : started_s, undoes_goal);
       }
       if (has_num_eff_[op]) numeric_ops.push_back(op);
-      if (goals_left == 0 && stop_at_last_goal) break;
+      // Keeping held goals, the rest of the layer may still reach a goal
+      // fact without undoing one.
+      if (goals_left == 0 && stop_at_last_goal && !keep_held_goals) break;
     }
     if (goals_left == 0 && stop_at_last_goal) {
       goal_layer = layer + 1;

@@ -54,6 +54,13 @@ class RelaxedPlanHeuristic {
   // where the order of work matters more (floortile, depots).
   void SetMakespanAware(bool on);
   bool makespan_aware() const { return makespan_aware_; }
+  // Off by default. On: where FF's first achiever of a fact gets there by
+  // undoing a goal the evaluated state holds (a sheet turned face down on
+  // its way out, a truck driven off its goal) and another operator of the
+  // same layer does not, the relaxed plan takes the latter. The delete
+  // relaxation cannot tell such a detour from the way on. Ignored in the
+  // makespan-aware mode. The planner's second first-plan search uses it.
+  void SetKeepHeldGoals(bool on) { keep_held_goals_ = on; }
 
   // Returns the estimate (kDeadEnd when the goal is relaxed-unreachable).
   // `preferred` (may be null) receives the helpful snaps (SnapIds).
@@ -110,6 +117,8 @@ class RelaxedPlanHeuristic {
   // layer for goals); with agents, any achiever applicable before it may
   // be chosen (ChooseAchiever).
   void MarkFact(int fact, int need_layer);
+  // True when `op` deletes a goal fact the evaluated state holds.
+  bool DeletesHeldGoal(int op) const;
   int ChooseAchiever(int fact, int need_layer) const;
   // Earliest time `op`'s effects happen in the exploration, delayed by the
   // durations already charged to its action's agents.
@@ -171,19 +180,27 @@ class RelaxedPlanHeuristic {
   std::vector<PairCheck> pair_check_;
   std::vector<std::int32_t> pair_facts_;
 
-  // Makespan-aware extraction (see the class comment); the tables below
-  // exist only when the task has at least two agents.
+  // Makespan-aware extraction (see the class comment); the tables from here
+  // to the adders exist only when the task has at least two agents.
   AgentLoads agents_;
   bool makespan_aware_ = false;
-  std::vector<std::int32_t> adder_begin_, adder_;  // CSR: real fact -> operators adding it
   std::uint32_t stamp_ = 0;
   std::vector<std::uint32_t> op_stamp_;  // == stamp_: applicable in this evaluation
   std::vector<double> op_time_s_;        // when its effects happen (start: start time)
   std::vector<double> fact_time_s_;
   std::vector<double> ready_s_, load_s_;  // per agent: free at, and with charged work
 
+  std::vector<std::int32_t> adder_begin_, adder_;  // CSR: real fact -> operators adding it
+  // CSR: operator -> the goal facts it deletes (SetKeepHeldGoals).
+  std::vector<std::int32_t> goal_del_begin_, goal_del_;
+  bool keep_held_goals_ = false;
+
   // Scratch per evaluation.
   std::vector<std::int32_t> fact_layer_, fact_achiever_;
+  // Per fact reached: its achiever or one of the operators it needed
+  // deletes a goal fact the state holds (set only when some operator
+  // deletes a goal fact and not in the makespan-aware mode).
+  std::vector<std::uint8_t> undoes_goal_;
   std::vector<std::int32_t> op_layer_, op_missing_;
   std::vector<Interval> interval_, next_interval_;
   std::vector<std::int32_t> raiser_, raise_layer_, lowerer_, lower_layer_;

@@ -120,5 +120,57 @@ TEST_F(RelaxedPlanHeuristicTest, PairWithAnUnreachedAddIsKept) {
   EXPECT_TRUE(std::find(preferred.begin(), preferred.end(), 2 * calibrate) != preferred.end());
 }
 
+// Two ways out of the press, equally long for the delete relaxation: the
+// first (in declaration order, so FF's first achiever) turns the sheet
+// face down, undoing a goal the state holds.
+constexpr char kExitDomain[] = R"((define (domain exit)
+  (:requirements :durative-actions)
+  (:predicates (at-exit) (face-up) (turned) (half) (out))
+  (:durative-action turn-over :parameters () :duration (= ?duration 1)
+    :condition (at start (at-exit))
+    :effect (and (at start (not (at-exit))) (at start (not (face-up))) (at end (turned))))
+  (:durative-action leave-turned :parameters () :duration (= ?duration 1)
+    :condition (at start (turned))
+    :effect (and (at end (out)) (at end (face-up))))
+  (:durative-action slide :parameters () :duration (= ?duration 1)
+    :condition (at start (at-exit))
+    :effect (and (at start (not (at-exit))) (at end (half))))
+  (:durative-action leave-straight :parameters () :duration (= ?duration 1)
+    :condition (at start (half))
+    :effect (at end (out)))))";
+
+constexpr char kExitProblem[] = R"((define (problem exit-1) (:domain exit)
+  (:init (at-exit) (face-up))
+  (:goal (and (out) (face-up)))))";
+
+TEST(RelaxedPlanHeuristicGoalTest, OnTiesTheRelaxedPlanKeepsTheGoalsTheStateHolds) {
+  auto loaded = task::LoadTask(kExitDomain, kExitProblem);
+  ASSERT_TRUE(loaded.ok()) << loaded.ErrorText();
+  const task::GroundTask& task = *loaded.task;
+  SnapTask snap(task);
+  StateRegistry registry(snap.num_facts(), snap.num_vars());
+  RelaxedPlanHeuristic heuristic(snap, 0.001);
+  StateData state = registry.MakeEmpty();
+  state.Set(testing::FactIdOf(task, "(at-exit)"));
+  state.Set(testing::FactIdOf(task, "(face-up)"));
+  const std::vector<SnapId> slide = {2 * testing::ActionIdOf(task, "(slide)")};
+  const std::vector<SnapId> turn_over = {2 * testing::ActionIdOf(task, "(turn-over)")};
+  std::vector<SnapId> preferred;
+  // Either way is two actions (four snaps). FF's first achiever (the
+  // default) turns the sheet over.
+  EXPECT_EQ(heuristic.Evaluate(state, &preferred), 4);
+  EXPECT_EQ(preferred, turn_over);
+  // Keeping held goals, the plan slides out: the helpful event is slide's
+  // start.
+  heuristic.SetKeepHeldGoals(true);
+  EXPECT_EQ(heuristic.Evaluate(state, &preferred), 4);
+  EXPECT_EQ(preferred, slide);
+  // Once the sheet is face down, turning it is no detour: the first way
+  // found is kept (neither undoes anything the state holds).
+  state.Clear(testing::FactIdOf(task, "(face-up)"));
+  EXPECT_EQ(heuristic.Evaluate(state, &preferred), 4);
+  EXPECT_EQ(preferred, turn_over);
+}
+
 }  // namespace
 }  // namespace seaplan::search
