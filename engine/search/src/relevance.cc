@@ -96,7 +96,8 @@ std::vector<bool> GoalBreakingActions(const task::GroundTask& task,
     std::vector<bool> added = til_adds, deleted = til_dels;
     for (std::size_t a = 0; a < task.actions.size(); ++a) {
       if (out(a)) continue;
-      for (const task::Effects* e : {&task.actions[a].start_effects, &task.actions[a].end_effects}) {
+      for (const task::Effects* e :
+           {&task.actions[a].start_effects, &task.actions[a].end_effects}) {
         for (auto f : e->add) added[static_cast<std::size_t>(f)] = true;
         for (auto f : e->del) deleted[static_cast<std::size_t>(f)] = true;
         for (const auto& ce : e->conditional) {
@@ -108,7 +109,8 @@ std::vector<bool> GoalBreakingActions(const task::GroundTask& task,
     for (std::size_t a = 0; a < task.actions.size(); ++a) {
       if (out(a)) continue;
       bool broken = false;
-      for (const task::Effects* e : {&task.actions[a].start_effects, &task.actions[a].end_effects}) {
+      for (const task::Effects* e :
+           {&task.actions[a].start_effects, &task.actions[a].end_effects}) {
         for (auto f : e->del) {
           const auto i = static_cast<std::size_t>(f);
           if (goal_true[i] && !added[i]) broken = true;

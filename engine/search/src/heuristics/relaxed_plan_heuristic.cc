@@ -335,7 +335,6 @@ bool RelaxedPlanHeuristic::DeletesHeldGoal(int op) const {
   return false;
 }
 
-
 double RelaxedPlanHeuristic::FinishEstimate(int op) const {
   const int a = op / 2;
   // A running action's end: its agents' work is already in their ready times.
