@@ -45,9 +45,10 @@ constexpr char kProblem[] = R"(
   (:goal (packed a)))
 )";
 
-bool Relevant(const task::GroundTask& task, const std::vector<bool>& relevant,
-              const std::string& name) {
-  return relevant[static_cast<std::size_t>(testing::ActionIdOf(task, name))];
+// The entry of a per-action flag vector for the action named `name`.
+bool ActionFlag(const task::GroundTask& task, const std::vector<bool>& flags,
+                const std::string& name) {
+  return flags[static_cast<std::size_t>(testing::ActionIdOf(task, name))];
 }
 
 TEST(RelevanceTest, KeepsWhatTheGoalNeedsThroughFactsNegationsAndNumbers) {
@@ -55,18 +56,18 @@ TEST(RelevanceTest, KeepsWhatTheGoalNeedsThroughFactsNegationsAndNumbers) {
   ASSERT_TRUE(loaded.ok()) << loaded.ErrorText();
   const task::GroundTask& task = *loaded.task;
   const std::vector<bool> relevant = RelevantActions(task);
-  EXPECT_TRUE(Relevant(task, relevant, "(pack a)"));
-  EXPECT_TRUE(Relevant(task, relevant, "(make a)"));
+  EXPECT_TRUE(ActionFlag(task, relevant, "(pack a)"));
+  EXPECT_TRUE(ActionFlag(task, relevant, "(make a)"));
   // Nothing needs (packed b) or (made b).
-  EXPECT_FALSE(Relevant(task, relevant, "(pack b)"));
-  EXPECT_FALSE(Relevant(task, relevant, "(make b)"));
+  EXPECT_FALSE(ActionFlag(task, relevant, "(pack b)"));
+  EXPECT_FALSE(ActionFlag(task, relevant, "(make b)"));
   // make needs (not (blocked)): its deleter is relevant, and the condition
   // of that deleter too; adding (blocked) only hurts, so block is not.
-  EXPECT_TRUE(Relevant(task, relevant, "(unblock)"));
-  EXPECT_TRUE(Relevant(task, relevant, "(light)"));
-  EXPECT_FALSE(Relevant(task, relevant, "(block)"));
+  EXPECT_TRUE(ActionFlag(task, relevant, "(unblock)"));
+  EXPECT_TRUE(ActionFlag(task, relevant, "(light)"));
+  EXPECT_FALSE(ActionFlag(task, relevant, "(block)"));
   // make reads (fuel).
-  EXPECT_TRUE(Relevant(task, relevant, "(refuel)"));
+  EXPECT_TRUE(ActionFlag(task, relevant, "(refuel)"));
 }
 
 // Sheets go through a press; the goal keeps some faces unprinted, and
@@ -115,39 +116,34 @@ constexpr char kPressProblem[] = R"(
               (ready a))))
 )";
 
-bool Breaks(const task::GroundTask& task, const std::vector<bool>& breaks,
-            const std::string& name) {
-  return breaks[static_cast<std::size_t>(testing::ActionIdOf(task, name))];
-}
-
 TEST(RelevanceTest, GoalBreakingActionsDeleteAGoalFactNothingAddsBack) {
   auto loaded = task::LoadTask(kPressDomain, kPressProblem);
   ASSERT_TRUE(loaded.ok()) << loaded.ErrorText();
   const task::GroundTask& task = *loaded.task;
   const std::vector<bool> breaks = GoalBreakingActions(task, {});
   // (clean-back a) is a goal and nothing adds it.
-  EXPECT_TRUE(Breaks(task, breaks, "(print-back a)"));
+  EXPECT_TRUE(ActionFlag(task, breaks, "(print-back a)"));
   // (clean-back b) and (clean-front ...) are not goals.
-  EXPECT_FALSE(Breaks(task, breaks, "(print-back b)"));
-  EXPECT_FALSE(Breaks(task, breaks, "(print-front a)"));
+  EXPECT_FALSE(ActionFlag(task, breaks, "(print-back b)"));
+  EXPECT_FALSE(ActionFlag(task, breaks, "(print-front a)"));
   // (washed a): a goal nothing adds; (washed b): a timed literal adds it.
-  EXPECT_TRUE(Breaks(task, breaks, "(varnish a)"));
+  EXPECT_TRUE(ActionFlag(task, breaks, "(varnish a)"));
   // varnish b adds (glossy b), which the goal needs false and nothing deletes.
-  EXPECT_TRUE(Breaks(task, breaks, "(varnish b)"));
+  EXPECT_TRUE(ActionFlag(task, breaks, "(varnish b)"));
   // A conditional delete may never happen.
-  EXPECT_FALSE(Breaks(task, breaks, "(rinse a)"));
+  EXPECT_FALSE(ActionFlag(task, breaks, "(rinse a)"));
   // (ready a) is a goal added only by prepare a: stamp a and unprepare a
   // delete it, but prepare a can add it back.
-  EXPECT_FALSE(Breaks(task, breaks, "(stamp a)"));
-  EXPECT_FALSE(Breaks(task, breaks, "(unprepare a)"));
+  EXPECT_FALSE(ActionFlag(task, breaks, "(stamp a)"));
+  EXPECT_FALSE(ActionFlag(task, breaks, "(unprepare a)"));
   // With prepare a excluded (as an irrelevant action would be), nothing
   // adds (ready a) any more.
   std::vector<bool> excluded(task.actions.size(), false);
   excluded[static_cast<std::size_t>(testing::ActionIdOf(task, "(prepare a)"))] = true;
   const std::vector<bool> without_prepare = GoalBreakingActions(task, excluded);
-  EXPECT_TRUE(Breaks(task, without_prepare, "(stamp a)"));
-  EXPECT_TRUE(Breaks(task, without_prepare, "(unprepare a)"));
-  EXPECT_FALSE(Breaks(task, without_prepare, "(prepare a)"));  // excluded, not breaking
+  EXPECT_TRUE(ActionFlag(task, without_prepare, "(stamp a)"));
+  EXPECT_TRUE(ActionFlag(task, without_prepare, "(unprepare a)"));
+  EXPECT_FALSE(ActionFlag(task, without_prepare, "(prepare a)"));  // excluded, not breaking
 }
 
 TEST(RelevanceTest, GoalBreakingActionsReachAFixpoint) {
@@ -170,8 +166,8 @@ TEST(RelevanceTest, GoalBreakingActionsReachAFixpoint) {
   ASSERT_TRUE(loaded.ok()) << loaded.ErrorText();
   const task::GroundTask& task = *loaded.task;
   const std::vector<bool> breaks = GoalBreakingActions(task, {});
-  EXPECT_TRUE(Breaks(task, breaks, "(finish)"));
-  EXPECT_TRUE(Breaks(task, breaks, "(reset)"));
+  EXPECT_TRUE(ActionFlag(task, breaks, "(finish)"));
+  EXPECT_TRUE(ActionFlag(task, breaks, "(reset)"));
 }
 
 }  // namespace
