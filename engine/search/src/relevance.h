@@ -30,8 +30,8 @@ std::vector<bool> RelevantActions(const task::GroundTask& task);
 // neither adders nor deleters. To a fixpoint: a fact whose only adders are
 // excluded here has none left. Parcprinter: a sheet whose front must stay
 // free of colour (a goal fact nothing re-adds) may never enter the colour
-// engine's print, so a sheet already sent there is a dead end the relaxed
-// plan sees instead of a plateau of every other sheet's moves.
+// engine's print, so a sheet sent there is a dead end the relaxed plan now
+// sees (a state on a plateau of parcprinter-2011 p04 held one).
 std::vector<bool> GoalBreakingActions(const task::GroundTask& task,
                                       const std::vector<bool>& excluded);
 
