@@ -28,10 +28,9 @@ std::vector<bool> RelevantActions(const task::GroundTask& task);
 // goal needs false that nothing deletes. `excluded` (empty: none) holds the
 // actions already known not to occur (irrelevant ones); they count as
 // neither adders nor deleters. To a fixpoint: a fact whose only adders are
-// excluded here has none left. Parcprinter: a sheet whose front must stay
-// free of colour (a goal fact nothing re-adds) may never enter the colour
-// engine's print, so a sheet sent there is a dead end the relaxed plan now
-// sees (a state on a plateau of parcprinter-2011 p04 held one).
+// excluded here has none left. Parcprinter: printing colour on a face the
+// goal keeps free of colour (a goal fact nothing re-adds), 172 of the 505
+// actions of parcprinter-2011 p01.
 std::vector<bool> GoalBreakingActions(const task::GroundTask& task,
                                       const std::vector<bool>& excluded);
 
