@@ -139,7 +139,7 @@ class PlannerRun {
   // After the first plan: bounded searches with the makespan-aware relaxed
   // plan (agents' work spread, relaxed_plan_heuristic.h); with fewer than
   // two agents, weighted A* alone with FF's.
-  void SpreadWork();
+  void ShortenFirstPlan();
   // A search pruned by the incumbent (weight < 0: greedy, else weighted A*
   // with the incumbent's seconds per event as the heuristic's unit).
   SearchParams BoundedParams(double weight) const;
@@ -309,7 +309,7 @@ bool PlannerRun::RunBounded(LazySearch& search, std::size_t max_expanded, bool s
   return false;
 }
 
-void PlannerRun::SpreadWork() {
+void PlannerRun::ShortenFirstPlan() {
   heuristic_.SetMakespanAware(true);
   if (!has_plan_) return;
   // With fewer than two agents there is no work to spread, but the greedy
@@ -347,8 +347,7 @@ void PlannerRun::SpreadWork() {
   // With one agent, once the first search's expansions: the pass costs
   // more per state where schedules branch (matchcellar p05: 3.5 s more with
   // six times, for no shorter plan).
-  std::size_t left =
-      std::max<std::size_t>(1000, (spread ? budget_factor : 1) * first_expanded);
+  std::size_t left = std::max<std::size_t>(1000, (spread ? budget_factor : 1) * first_expanded);
   std::size_t landmark_left = std::max<std::size_t>(1000, 2 * first_expanded);
   struct Pass {
     double weight;
@@ -509,7 +508,7 @@ PlanResult PlannerRun::Run() {
     }
   }
   heuristic_.SetKeepHeldGoals(false);  // the searches for shorter plans: FF's ties
-  SpreadWork();
+  ShortenFirstPlan();
   heuristic_.SetMakespanAware(false);  // the anytime phases: FF's (see below)
   if (!options_.anytime) return finish(PlanStatus::kSolvedSatisficing, "");
 

@@ -11,19 +11,19 @@
 namespace seaplan::search {
 namespace {
 
-PlanResult SolveFiles(const std::filesystem::path& domain, const std::filesystem::path& problem,
-                      double seconds, std::shared_ptr<const task::GroundTask>* task,
-                      PlannerOptions o = {}) {
+// Solves the files under the options and `seconds` of wall time into `r`;
+// a task that does not load or a result without a plan is a fatal failure
+// (callers wrap the call in ASSERT_NO_FATAL_FAILURE), an invalid plan a
+// failure.
+void SolveToValidPlan(const std::filesystem::path& domain, const std::filesystem::path& problem,
+                      double seconds, PlanResult* r, PlannerOptions o = {}) {
   auto loaded = task::LoadTask(testing::ReadFile(domain), testing::ReadFile(problem));
-  EXPECT_TRUE(loaded.ok()) << loaded.ErrorText();
-  *task = loaded.task;
-  if (!loaded.ok()) return {};
+  ASSERT_TRUE(loaded.ok()) << loaded.ErrorText();
   o.time_limit_s = seconds;
-  return SolveTask(*loaded.task, o, StopToken());
-}
-
-void ExpectValid(const task::GroundTask& task, const PlanResult& r) {
-  const auto v = validate::ValidatePlan(task, *validate::ParsePlan(validate::FormatPlan(r.plan)));
+  *r = SolveTask(*loaded.task, o, StopToken());
+  ASSERT_FALSE(r->plan.steps.empty()) << ToString(r->status) << ": " << r->message;
+  const auto v =
+      validate::ValidatePlan(*loaded.task, *validate::ParsePlan(validate::FormatPlan(r->plan)));
   EXPECT_TRUE(v.valid) << v.ToString();
 }
 
@@ -31,10 +31,8 @@ TEST(PlannerDataTest, FjordCaseA) {
   const auto dir = testing::SourceDir() / "examples/fjord";
   if (!std::filesystem::exists(dir / "case-a.pddl"))
     GTEST_SKIP() << "examples/fjord/case-a.pddl absent";
-  std::shared_ptr<const task::GroundTask> task;
-  const PlanResult r = SolveFiles(dir / "domain.pddl", dir / "case-a.pddl", 5, &task);
-  ASSERT_FALSE(r.plan.steps.empty()) << ToString(r.status) << ": " << r.message;
-  ExpectValid(*task, r);
+  PlanResult r;
+  ASSERT_NO_FATAL_FAILURE(SolveToValidPlan(dir / "domain.pddl", dir / "case-a.pddl", 5, &r));
   // 348/0.18 s of moves + 470 s of port work = 2403.333 s, all forced into
   // sequence, plus 4 forced 0.001 s separations where snap actions truly
   // interfere (see examples/fjord/case-a-repaired.plan; over-all conditions
@@ -47,11 +45,9 @@ TEST(PlannerDataTest, FjordCaseCNumericRefuels) {
   const auto dir = testing::SourceDir() / "examples/fjord";
   if (!std::filesystem::exists(dir / "case-c-numeric.pddl"))
     GTEST_SKIP() << "case-c-numeric absent";
-  std::shared_ptr<const task::GroundTask> task;
-  const PlanResult r =
-      SolveFiles(dir / "domain-numeric.pddl", dir / "case-c-numeric.pddl", 10, &task);
-  ASSERT_FALSE(r.plan.steps.empty()) << ToString(r.status) << ": " << r.message;
-  ExpectValid(*task, r);
+  PlanResult r;
+  ASSERT_NO_FATAL_FAILURE(
+      SolveToValidPlan(dir / "domain-numeric.pddl", dir / "case-c-numeric.pddl", 10, &r));
   int refuels = 0;
   for (const auto& s : r.plan.steps) refuels += s.name.find("fuel") != std::string::npos;
   EXPECT_GE(refuels, 1);
@@ -59,10 +55,8 @@ TEST(PlannerDataTest, FjordCaseCNumericRefuels) {
 
 TEST(PlannerDataTest, SharedMatchCellarP01) {
   SEAPLAN_REQUIRE_SHARED(dir, "bench/matchcellar-2011");
-  std::shared_ptr<const task::GroundTask> task;
-  const PlanResult r = SolveFiles(dir / "domain.pddl", dir / "p01.pddl", 10, &task);
-  ASSERT_FALSE(r.plan.steps.empty()) << ToString(r.status) << ": " << r.message;
-  ExpectValid(*task, r);
+  PlanResult r;
+  ASSERT_NO_FATAL_FAILURE(SolveToValidPlan(dir / "domain.pddl", dir / "p01.pddl", 10, &r));
 }
 
 // The second first-plan search keeps the goals the state holds: a sheet
@@ -74,10 +68,8 @@ TEST(PlannerDataTest, SharedParcprinterP04SecondSearchKeepsHeldGoals) {
   PlannerOptions o;
   o.anytime = false;
   o.max_expansions = 8000;
-  std::shared_ptr<const task::GroundTask> task;
-  const PlanResult r = SolveFiles(dir / "domain-4.pddl", dir / "p04.pddl", 60, &task, o);
-  ASSERT_FALSE(r.plan.steps.empty()) << ToString(r.status) << ": " << r.message;
-  ExpectValid(*task, r);
+  PlanResult r;
+  ASSERT_NO_FATAL_FAILURE(SolveToValidPlan(dir / "domain-4.pddl", dir / "p04.pddl", 60, &r, o));
 }
 
 // One satellite: nothing to spread, but the greedy plan turns to a target
@@ -87,10 +79,8 @@ TEST(PlannerDataTest, SharedSatelliteTimeP01FirstPlanLosesItsDetour) {
   SEAPLAN_REQUIRE_SHARED(dir, "bench/satellite-time");
   PlannerOptions o;
   o.anytime = false;
-  std::shared_ptr<const task::GroundTask> task;
-  const PlanResult r = SolveFiles(dir / "domain.pddl", dir / "p01.pddl", 60, &task, o);
-  ASSERT_FALSE(r.plan.steps.empty()) << ToString(r.status) << ": " << r.message;
-  ExpectValid(*task, r);
+  PlanResult r;
+  ASSERT_NO_FATAL_FAILURE(SolveToValidPlan(dir / "domain.pddl", dir / "p01.pddl", 60, &r, o));
   EXPECT_LT(r.makespan_s, 150.0);
 }
 

@@ -279,7 +279,7 @@ TEST(PlannerTest, LandmarkCountOnAndOffSolvesAndProves) {
 }
 
 // With the landmark count, the bounded searches after the first plan end
-// with a greedy pass that counts landmarks too (planner.cc, SpreadWork). On
+// with a greedy pass that counts landmarks too (planner.cc, ShortenFirstPlan). On
 // this generated mission (`seaplan-mission-gen --domain fjord --ships 3
 // --ports 8 --containers 8 --seed 8`) the passes before it return a plan of
 // 7,160.8 s, that pass one of 5,200.8 s. Their budgets are expansions, so

@@ -52,9 +52,9 @@ bool ActionFlag(const task::GroundTask& task, const std::vector<bool>& flags,
 }
 
 TEST(RelevanceTest, KeepsWhatTheGoalNeedsThroughFactsNegationsAndNumbers) {
-  auto loaded = task::LoadTask(kDomain, kProblem);
-  ASSERT_TRUE(loaded.ok()) << loaded.ErrorText();
-  const task::GroundTask& task = *loaded.task;
+  const auto loaded = testing::LoadTaskOrFail(kDomain, kProblem);
+  ASSERT_NE(loaded, nullptr);
+  const task::GroundTask& task = *loaded;
   const std::vector<bool> relevant = RelevantActions(task);
   EXPECT_TRUE(ActionFlag(task, relevant, "(pack a)"));
   EXPECT_TRUE(ActionFlag(task, relevant, "(make a)"));
@@ -117,9 +117,9 @@ constexpr char kPressProblem[] = R"(
 )";
 
 TEST(RelevanceTest, GoalBreakingActionsDeleteAGoalFactNothingAddsBack) {
-  auto loaded = task::LoadTask(kPressDomain, kPressProblem);
-  ASSERT_TRUE(loaded.ok()) << loaded.ErrorText();
-  const task::GroundTask& task = *loaded.task;
+  const auto loaded = testing::LoadTaskOrFail(kPressDomain, kPressProblem);
+  ASSERT_NE(loaded, nullptr);
+  const task::GroundTask& task = *loaded;
   const std::vector<bool> breaks = GoalBreakingActions(task, {});
   // (clean-back a) is a goal and nothing adds it.
   EXPECT_TRUE(ActionFlag(task, breaks, "(print-back a)"));
@@ -162,9 +162,9 @@ TEST(RelevanceTest, GoalBreakingActionsReachAFixpoint) {
   constexpr char kProblem2[] = R"(
 (define (problem p) (:domain chain) (:init (kept) (done)) (:goal (and (kept) (done))))
 )";
-  auto loaded = task::LoadTask(kDomain2, kProblem2);
-  ASSERT_TRUE(loaded.ok()) << loaded.ErrorText();
-  const task::GroundTask& task = *loaded.task;
+  const auto loaded = testing::LoadTaskOrFail(kDomain2, kProblem2);
+  ASSERT_NE(loaded, nullptr);
+  const task::GroundTask& task = *loaded;
   const std::vector<bool> breaks = GoalBreakingActions(task, {});
   EXPECT_TRUE(ActionFlag(task, breaks, "(finish)"));
   EXPECT_TRUE(ActionFlag(task, breaks, "(reset)"));

@@ -157,7 +157,17 @@ RelaxedPlanHeuristic::RelaxedPlanHeuristic(const SnapTask& task, double epsilon_
       ++num_goal_facts_;
     }
   }
-  {
+  goal_del_begin_.push_back(0);
+  for (int op = 0; op < num_ops_; ++op) {
+    if (op_exists_[op]) {
+      const task::Action& action = actions[static_cast<std::size_t>(op / 2)];
+      for (auto f : (op % 2 == 1 ? action.end_effects : action.start_effects).del) {
+        if (goal_fact_[f]) goal_del_.push_back(f);
+      }
+    }
+    goal_del_begin_.push_back(static_cast<std::int32_t>(goal_del_.size()));
+  }
+  if (agents_.active()) {
     std::vector<std::int32_t> adders(static_cast<std::size_t>(num_facts_) + 1, 0);
     for (auto f : add_) {
       if (f < num_facts_) ++adders[f + 1];
@@ -170,18 +180,6 @@ RelaxedPlanHeuristic::RelaxedPlanHeuristic(const SnapTask& task, double epsilon_
         if (add_[i] < num_facts_) adder_[adders[add_[i]]++] = op;
       }
     }
-  }
-  goal_del_begin_.push_back(0);
-  for (int op = 0; op < num_ops_; ++op) {
-    if (op_exists_[op]) {
-      const task::Action& action = actions[static_cast<std::size_t>(op / 2)];
-      for (auto f : (op % 2 == 1 ? action.end_effects : action.start_effects).del) {
-        if (goal_fact_[f]) goal_del_.push_back(f);
-      }
-    }
-    goal_del_begin_.push_back(static_cast<std::int32_t>(goal_del_.size()));
-  }
-  if (agents_.active()) {
     op_stamp_.assign(static_cast<std::size_t>(num_ops_), 0);
     op_time_s_.assign(static_cast<std::size_t>(num_ops_), 0.0);
     fact_time_s_.assign(static_cast<std::size_t>(total_facts), 0.0);

@@ -180,17 +180,17 @@ class RelaxedPlanHeuristic {
   std::vector<PairCheck> pair_check_;
   std::vector<std::int32_t> pair_facts_;
 
-  // Makespan-aware extraction (see the class comment); the tables from here
-  // to the adders exist only when the task has at least two agents.
+  // Makespan-aware extraction (see the class comment); the tables below
+  // exist only when the task has at least two agents.
   AgentLoads agents_;
   bool makespan_aware_ = false;
+  std::vector<std::int32_t> adder_begin_, adder_;  // CSR: real fact -> operators adding it
   std::uint32_t stamp_ = 0;
   std::vector<std::uint32_t> op_stamp_;  // == stamp_: applicable in this evaluation
   std::vector<double> op_time_s_;        // when its effects happen (start: start time)
   std::vector<double> fact_time_s_;
   std::vector<double> ready_s_, load_s_;  // per agent: free at, and with charged work
 
-  std::vector<std::int32_t> adder_begin_, adder_;  // CSR: real fact -> operators adding it
   // CSR: operator -> the goal facts it deletes (SetKeepHeldGoals).
   std::vector<std::int32_t> goal_del_begin_, goal_del_;
   bool keep_held_goals_ = false;

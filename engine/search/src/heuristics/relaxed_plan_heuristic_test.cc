@@ -144,15 +144,12 @@ constexpr char kExitProblem[] = R"((define (problem exit-1) (:domain exit)
   (:goal (and (out) (face-up)))))";
 
 TEST(RelaxedPlanHeuristicGoalTest, OnTiesTheRelaxedPlanKeepsTheGoalsTheStateHolds) {
-  auto loaded = task::LoadTask(kExitDomain, kExitProblem);
-  ASSERT_TRUE(loaded.ok()) << loaded.ErrorText();
-  const task::GroundTask& task = *loaded.task;
+  const auto loaded = testing::LoadTaskOrFail(kExitDomain, kExitProblem);
+  ASSERT_NE(loaded, nullptr);
+  const task::GroundTask& task = *loaded;
   SnapTask snap(task);
-  StateRegistry registry(snap.num_facts(), snap.num_vars());
   RelaxedPlanHeuristic heuristic(snap, 0.001);
-  StateData state = registry.MakeEmpty();
-  state.Set(testing::FactIdOf(task, "(at-exit)"));
-  state.Set(testing::FactIdOf(task, "(face-up)"));
+  StateData state = testing::InitialState(task, snap);  // (at-exit), (face-up)
   const std::vector<SnapId> slide = {2 * testing::ActionIdOf(task, "(slide)")};
   const std::vector<SnapId> turn_over = {2 * testing::ActionIdOf(task, "(turn-over)")};
   std::vector<SnapId> preferred;
