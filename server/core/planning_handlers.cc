@@ -93,6 +93,7 @@ void StatsToProto(const search::SearchStatistics& s, v1::SearchStatistics* out) 
   out->set_symmetric_objects(static_cast<std::uint32_t>(s.symmetric_objects));
   out->set_symmetry_classes(static_cast<std::uint32_t>(s.symmetry_classes));
   out->set_symmetric_drops(s.symmetric_drops);
+  out->set_eager_ends(s.eager_ends);
 }
 
 void FillPlan(const search::PlanResult& r, v1::PlanResponse* out) {
@@ -208,6 +209,7 @@ absl::StatusOr<search::PlannerOptions> PlannerOptionsToEngine(const v1::PlannerO
   if (o.has_type_based_exploration()) p.type_based_exploration = o.type_based_exploration();
   if (o.has_landmarks()) p.landmarks = o.landmarks();
   if (o.has_symmetry_reduction()) p.symmetry_reduction = o.symmetry_reduction();
+  if (o.has_eager_ends()) p.eager_ends = o.eager_ends();
   if (o.random_seed() != 0) p.random_seed = o.random_seed();
   if (o.epsilon_s() != 0) p.epsilon_s = o.epsilon_s();
   p.max_expansions = o.max_expansions();

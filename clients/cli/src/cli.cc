@@ -109,6 +109,7 @@ struct PlanArgs {
   bool no_type_based = false;
   bool landmarks = true;
   bool no_symmetry = false;
+  bool no_eager_ends = false;
   bool stream = false;
   std::uint64_t seed = 1;
   double epsilon_s = 0;
@@ -132,6 +133,7 @@ int RunPlan(const GlobalOptions& options, const PlanArgs& args) {
   if (args.no_type_based) planner->set_type_based_exploration(false);
   planner->set_landmarks(args.landmarks);
   if (args.no_symmetry) planner->set_symmetry_reduction(false);
+  if (args.no_eager_ends) planner->set_eager_ends(false);
   planner->set_random_seed(args.seed);
   planner->set_epsilon_s(args.epsilon_s);
   planner->set_max_expansions(args.max_expansions);
@@ -791,6 +793,9 @@ int RunCli(int argc, char** argv, const CliExecutable& executable) {
                      "--no-landmarks: without it)");
   plan_cmd->add_flag("--no-symmetry", plan.no_symmetry,
                      "First-plan searches keep states that only permute interchangeable objects");
+  plan_cmd->add_flag("--no-eager-ends", plan.no_eager_ends,
+                     "First-plan searches also try the orders in which an end that only adds "
+                     "facts happens later");
   plan_cmd->add_option("--seed", plan.seed, "Random seed")->capture_default_str();
   plan_cmd->add_option("--epsilon", plan.epsilon_s,
                        "Separation of interfering events (s), default 0.001");

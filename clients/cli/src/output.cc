@@ -77,6 +77,10 @@ void PrintPlanResponse(std::ostream& out, const v1::PlanResponse& response) {
         << stats.symmetry_classes() << (stats.symmetry_classes() == 1 ? " class, " : " classes, ")
         << stats.symmetric_drops() << " states dropped\n";
   }
+  if (stats.eager_ends() > 0) {
+    out << "; eager ends: " << stats.eager_ends()
+        << " states with an end that only adds facts took it as their only successor\n";
+  }
   for (const auto& d : response.diagnostics()) {
     out << "; " << d.file() << ":" << d.line() << ":" << d.column() << ": " << d.message() << "\n";
   }

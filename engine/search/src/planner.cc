@@ -89,7 +89,7 @@ double Seconds(Clock::time_point since) {
 
 SearchCounters Sum(const SearchCounters& a, const SearchCounters& b) {
   return {a.expanded + b.expanded, a.generated + b.generated, a.evaluated + b.evaluated,
-          a.symmetric_drops + b.symmetric_drops};
+          a.symmetric_drops + b.symmetric_drops, a.eager_ends + b.eager_ends};
 }
 
 void SetCounters(const SearchCounters& counters, SearchStatistics& stats) {
@@ -97,6 +97,7 @@ void SetCounters(const SearchCounters& counters, SearchStatistics& stats) {
   stats.generated = counters.generated;
   stats.evaluated = counters.evaluated;
   stats.symmetric_drops = counters.symmetric_drops;
+  stats.eager_ends = counters.eager_ends;
 }
 
 // Drives the phases (greedy first plan, then weighted A* with a bound) and
@@ -143,6 +144,8 @@ class PlannerRun {
   // A search pruned by the incumbent (weight < 0: greedy, else weighted A*
   // with the incumbent's seconds per event as the heuristic's unit).
   SearchParams BoundedParams(double weight) const;
+  // PlannerOptions::eager_ends, unless the schedule bounds concurrency.
+  bool EagerEnds() const { return options_.eager_ends && options_.max_concurrent_actions == 0; }
   // Stop token, timed-literal reachability and the initial state.
   void Start(LazySearch& search);
   // Steps a search pruned by the incumbent until it is exhausted or has
@@ -285,6 +288,7 @@ SearchParams PlannerRun::BoundedParams(double weight) const {
   // and a symmetric state is dropped on its makespan bound alone, not its
   // schedule (fjord 3x12x12 seed 1 returned 15,073.8 s with it, 12,988.7 s
   // without).
+  params.eager_ends = EagerEnds();
   return params;
 }
 
@@ -432,6 +436,7 @@ PlanResult PlannerRun::Run() {
                symmetry_->num_symmetric_objects(), symmetry_->num_classes());
   }
   bool many_variants = false, newest_first = options_.second_greedy_after_share <= 0;
+  bool eager_ends = EagerEnds();
   while (true) {
     SearchParams params;
     params.weight = -1;
@@ -440,6 +445,7 @@ PlanResult PlannerRun::Run() {
     params.type_based_exploration = options_.type_based_exploration;
     if (landmarks_) params.landmarks = &*landmarks_;
     if (symmetry_) params.symmetry = &*symmetry_;
+    params.eager_ends = eager_ends;
     if (many_variants) {
       params.max_variants = 64;
       params.bound_dominance = false;
@@ -488,6 +494,11 @@ PlanResult PlannerRun::Run() {
         AddCounters(search);
         if (search.complete()) {
           return finish(PlanStatus::kUnsolvableProven, "search space exhausted: no plan exists");
+        }
+        if (search.counters().eager_ends > 0) {
+          // The orders eager ends left out may hold the plan: search them too.
+          eager_ends = false;
+          break;
         }
         if (!many_variants) {
           many_variants = true;

@@ -283,7 +283,8 @@ TEST(PlannerTest, LandmarkCountOnAndOffSolvesAndProves) {
 // this generated mission (`seaplan-mission-gen --domain fjord --ships 3
 // --ports 8 --containers 8 --seed 8`) the passes before it return a plan of
 // 7,160.8 s, that pass one of 5,200.8 s. Their budgets are expansions, so
-// the wall-clock limit is only a safety net.
+// the wall-clock limit is only a safety net. Without eager ends: with them
+// the first search finds 5,132.9 s at once and no pass improves on it.
 TEST(PlannerTest, LandmarkCountAlsoGuidesTheSearchesAfterTheFirstPlan) {
   auto loaded = task::LoadTask(FjordExample("domain.pddl"),
                                testing::ReadFile(TestData("fjord-s3-p8-c8-seed8.pddl")));
@@ -291,6 +292,7 @@ TEST(PlannerTest, LandmarkCountAlsoGuidesTheSearchesAfterTheFirstPlan) {
   PlannerOptions o = Quick(300);
   o.anytime = false;
   o.landmarks = true;
+  o.eager_ends = false;
   const PlanResult r = SolveTask(*loaded.task, o, StopToken());
   ASSERT_EQ(r.status, PlanStatus::kSolvedSatisficing) << r.message;
   ExpectValid(*loaded.task, r);

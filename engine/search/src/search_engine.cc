@@ -395,6 +395,24 @@ std::int32_t LazySearch::Materialize(std::int32_t pending_index) {
   return chosen;
 }
 
+bool LazySearch::TakeEagerEnd(Timeline& timeline) {
+  for (const Event& candidate : candidates_) {
+    if (candidate.is_til() || (candidate.snap & 1) == 0 ||
+        !task_.EagerEnd(task_.snap(candidate.snap).action))
+      continue;
+    Event ev = candidate;
+    if (!transitions_.Apply(current_, &ev, &next_)) continue;
+    Timeline::Outcome out;
+    const bool consistent = timeline.TryAdd(ev, &out);
+    timeline.Undo();
+    if (!consistent) continue;
+    candidates_.assign(1, candidate);
+    ++counters_.eager_ends;
+    return true;
+  }
+  return false;
+}
+
 LazySearch::Status LazySearch::Step() {
   std::int32_t pending_index;
   if (!Pop(&pending_index)) return Status::kExhausted;
@@ -417,20 +435,32 @@ LazySearch::Status LazySearch::Step() {
     }
     usable = reachability_->usable_snaps();
   }
-  // The heuristic reads when each agent is free on the path's schedule.
   EnsureTimeline(s);
-  int h = heuristic_.Evaluate(current_, &preferred_,
-                              std::span<const double>(slack_pool_.data() + cur.slack_begin,
-                                                      static_cast<std::size_t>(cur.slack_count)),
-                              usable, &ActiveTimeline());
-  if (timed_check && h < RelaxedPlanHeuristic::kDeadEnd) {
-    // The untimed relaxed plan counts a fact of the state as free even when
-    // the state got it too late for a window (an image taken after its
-    // antenna's window closed); the plan along the earliest achievers takes
-    // it again. The longer of the two estimates guides the search.
-    h = std::max(h, reachability_->RelaxedPlanLength(current_, nullptr));
+  candidates_.clear();
+  transitions_.Candidates(current_, &candidates_);
+  const std::int32_t parent = info_[static_cast<std::size_t>(s)].parent;
+  // A state whose only successor is an eager end is not evaluated: its
+  // successor goes on with the parent's h, as this state did.
+  const bool eager =
+      params_.eager_ends && parent >= 0 && candidates_.size() > 1 && TakeEagerEnd(ActiveTimeline());
+  int h = 0;
+  if (eager) {
+    h = info_[static_cast<std::size_t>(parent)].h;
+  } else {
+    // The heuristic reads when each agent is free on the path's schedule.
+    h = heuristic_.Evaluate(current_, &preferred_,
+                            std::span<const double>(slack_pool_.data() + cur.slack_begin,
+                                                    static_cast<std::size_t>(cur.slack_count)),
+                            usable, &ActiveTimeline());
+    if (timed_check && h < RelaxedPlanHeuristic::kDeadEnd) {
+      // The untimed relaxed plan counts a fact of the state as free even
+      // when the state got it too late for a window (an image taken after
+      // its antenna's window closed); the plan along the earliest achievers
+      // takes it again. The longer of the two estimates guides the search.
+      h = std::max(h, reachability_->RelaxedPlanLength(current_, nullptr));
+    }
+    ++counters_.evaluated;
   }
-  ++counters_.evaluated;
   info_[static_cast<std::size_t>(s)].h = h;
   if (h >= RelaxedPlanHeuristic::kDeadEnd) {
     if (!heuristic_.last_dead_end_proven()) unsafe_dead_end_ = true;
@@ -440,7 +470,6 @@ LazySearch::Status LazySearch::Step() {
   if (landmark_counter_) {
     // Path-dependent: what the parent had accepted, plus what holds now
     // and had its ordering parents accepted there.
-    const std::int32_t parent = info_[static_cast<std::size_t>(s)].parent;
     const std::size_t need =
         (static_cast<std::size_t>(std::max(s, parent)) + 1) * landmark_counter_->words();
     if (landmark_accepted_.size() < need) {
@@ -466,26 +495,28 @@ LazySearch::Status LazySearch::Step() {
     priority_landmark_preferred_ -= 1000;
   }
   ++counters_.expanded;
-  EnsureTimeline(s);
   Timeline& timeline = ActiveTimeline();
-
-  candidates_.clear();
-  transitions_.Candidates(current_, &candidates_);
   std::shuffle(candidates_.begin(), candidates_.end(), rng_);
   // Helpful events first, so FIFO ties favour them. With landmarks, an
   // event adding one that could be accepted next is helpful too.
   std::span<const std::uint64_t> accepted;
   if (landmark_counter_) accepted = Accepted(s);
-  const std::size_t num_helpful = static_cast<std::size_t>(
-      std::stable_partition(candidates_.begin(), candidates_.end(),
-                            [&](const Event& e) {
-                              if (e.is_til()) return false;
-                              if (std::binary_search(preferred_.begin(), preferred_.end(), e.snap))
-                                return true;
-                              return landmark_counter_ && landmark_counter_->AddsNextLandmark(
-                                                              accepted, current_, e.snap);
-                            }) -
-      candidates_.begin());
+  // An eager end, the only successor, counts as helpful: the relaxed plan
+  // rarely names it (its facts often hold in the relaxation already), and
+  // left to the lists of all successors it would stall the preferred ones.
+  const std::size_t num_helpful =
+      eager ? 1
+            : static_cast<std::size_t>(
+                  std::stable_partition(
+                      candidates_.begin(), candidates_.end(),
+                      [&](const Event& e) {
+                        if (e.is_til()) return false;
+                        if (std::binary_search(preferred_.begin(), preferred_.end(), e.snap))
+                          return true;
+                        return landmark_counter_ &&
+                               landmark_counter_->AddsNextLandmark(accepted, current_, e.snap);
+                      }) -
+                  candidates_.begin());
   std::size_t tried = 0;
   const bool greedy = params_.weight < 0;
   const double parent_g_s = info_[static_cast<std::size_t>(s)].g_s;

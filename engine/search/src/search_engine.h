@@ -94,12 +94,23 @@ struct SearchParams {
   // state already expanded, with a bound no later and no window actions
   // running, is dropped like a duplicate.
   const ObjectSymmetry* symmetry = nullptr;
+  // A state in which the end of a running action with SnapTask::EagerEnd
+  // can happen gets that end as its only successor: the other orders of
+  // the same events are not searched (a lift's end left pending while the
+  // hoist lifts and drops other crates multiplied the states of
+  // storage-2011 about ninefold). Complete only where no other event adds
+  // the end's facts while the action runs, which is not checked: an
+  // exhausted search that pruned so is no proof (complete()).
+  bool eager_ends = false;
 };
 
 struct SearchCounters {
   std::size_t expanded = 0, generated = 0, evaluated = 0;
   // Successors dropped because a symmetric state was expanded before.
   std::size_t symmetric_drops = 0;
+  // States whose only successor was an eager end (SearchParams::eager_ends)
+  // while other events could happen.
+  std::size_t eager_ends = 0;
 };
 
 class LazySearch {
@@ -132,7 +143,9 @@ class LazySearch {
   // explored states are the whole untimed reachable set: either no schedule
   // was ever inconsistent, or no two paths with timing-sensitive states
   // (running actions, timed literals) were merged.
-  bool complete() const { return !unsafe_dead_end_ && !(stn_pruned_ && merged_timed_); }
+  bool complete() const {
+    return !unsafe_dead_end_ && !(stn_pruned_ && merged_timed_) && counters_.eager_ends == 0;
+  }
   // Exhaustion under a bound proves the incumbent optimal only when no
   // duplicate was ever merged (merging ignores the schedule).
   bool exhaustive_without_merges() const { return complete() && !merged_any_; }
@@ -206,6 +219,9 @@ class LazySearch {
   };
   static_assert(sizeof(Pending) == 16);
   // `parent_h` kGoalFirst puts a goal state before everything else.
+  // Eager ends (SearchParams::eager_ends): makes the first applicable
+  // one, if any, the only candidate; false when there is none.
+  bool TakeEagerEnd(Timeline& timeline);
   void Push(std::int32_t parent, const Event& event, double g_s, double lb_s, bool preferred,
             std::int32_t parent_h, std::int32_t parent_lm_h);
   static constexpr std::int32_t kGoalFirst = -1'000'000'000;

@@ -59,6 +59,46 @@ bool AnyEffectReadsDuration(const task::Effects& e) {
   return false;
 }
 
+// See SnapTask::EagerEnd.
+std::vector<bool> EagerEndActions(const task::GroundTask& task,
+                                  const std::vector<bool>& window_action) {
+  // Facts some condition asks false, a timed literal writes, or an event
+  // deletes without asking for them: an end adding one of them may matter
+  // for when it happens.
+  std::vector<bool> order_matters(task.facts.size(), false);
+  auto negated = [&](const task::Condition& c) {
+    for (auto f : c.negative) order_matters[f] = true;
+  };
+  auto deleted = [&](const task::Effects& e, const task::Condition& c) {
+    for (auto f : e.del) {
+      if (std::find(c.positive.begin(), c.positive.end(), f) == c.positive.end())
+        order_matters[f] = true;
+    }
+    for (const auto& ce : e.conditional) {
+      negated(ce.condition);
+      for (auto f : ce.del) order_matters[f] = true;
+    }
+  };
+  negated(task.goal);
+  for (const auto& action : task.actions) {
+    for (const auto* c : {&action.at_start, &action.over_all, &action.at_end}) negated(*c);
+    deleted(action.start_effects, action.at_start);
+    deleted(action.end_effects, action.at_end);
+  }
+  for (const auto& til : task.timed_literals) order_matters[til.fact] = true;
+  std::vector<bool> eager(task.actions.size(), false);
+  for (std::size_t a = 0; a < task.actions.size(); ++a) {
+    const task::Action& action = task.actions[a];
+    const task::Effects& e = action.end_effects;
+    if (!action.is_durative || window_action[a] || !action.at_end.empty() || !e.del.empty() ||
+        !e.numeric.empty() || !e.conditional.empty())
+      continue;
+    eager[a] =
+        std::none_of(e.add.begin(), e.add.end(), [&](task::FactId f) { return order_matters[f]; });
+  }
+  return eager;
+}
+
 }  // namespace
 
 SnapTask::SnapTask(const task::GroundTask& task) : task_(task), envelopes_(task) {
@@ -152,6 +192,7 @@ SnapTask::SnapTask(const task::GroundTask& task) : task_(task), envelopes_(task)
     pruned_[a] = true;
     ++num_goal_breaking_;
   }
+  eager_end_ = EagerEndActions(task, window_action_);
   goal_fact_mask_.assign(task.facts.size(), false);
   for (auto f : task.goal.positive) goal_fact_mask_[f] = true;
   for (auto f : task.goal.negative) goal_fact_mask_[f] = true;

@@ -78,6 +78,17 @@ class SnapTask {
   // back: GoalBreakingActions): never started by the search nor used by
   // heuristics.
   bool Pruned(task::ActionId a) const { return pruned_[static_cast<std::size_t>(a)]; }
+  // True for durative actions whose end only adds facts, has no at-end
+  // condition, and adds nothing that a condition asks false, a timed
+  // literal writes or an event deletes without requiring it (a hoist's
+  // lift, whose end frees the area it lifted from). Applying such an end as
+  // soon as it can happen loses no plan when, besides, no other event adds
+  // those facts while the action runs (then no event can delete them
+  // before the end either): the search may apply it at once and branch on
+  // nothing else (SearchParams::eager_ends). The schedule orders events
+  // by what they read and write, not by their place in the path, so the
+  // end's place costs no concurrency.
+  bool EagerEnd(task::ActionId a) const { return eager_end_[static_cast<std::size_t>(a)]; }
   // How many of the pruned actions break the goal for good.
   int num_goal_breaking() const { return num_goal_breaking_; }
 
@@ -92,6 +103,7 @@ class SnapTask {
   std::vector<bool> window_action_;
   InvariantEnvelopes envelopes_;
   std::vector<bool> pruned_;
+  std::vector<bool> eager_end_;
   int num_goal_breaking_ = 0;
 };
 

@@ -126,6 +126,13 @@ struct PlannerOptions {
   // state already expanded (engine/search/README.md, "Interchangeable
   // objects").
   bool symmetry_reduction = true;
+  // The first-plan searches apply the end of an action that only adds
+  // facts no condition asks false and no event deletes unasked as soon as
+  // it can happen, and try no other order of it (SearchParams::eager_ends;
+  // engine/search/README.md, "Eager ends"). Off with
+  // max_concurrent_actions, whose schedule orders every start after the
+  // ends before it.
+  bool eager_ends = true;
 
   absl::Status Validate() const;
 };
@@ -143,6 +150,8 @@ struct SearchStatistics {
   // a symmetric state had been expanded.
   int symmetric_objects = 0, symmetry_classes = 0;
   std::size_t symmetric_drops = 0;
+  // States whose only successor was an eager end (PlannerOptions::eager_ends).
+  std::size_t eager_ends = 0;
 };
 
 struct PlanResult {
