@@ -114,18 +114,14 @@ struct SearchRun {
 };
 
 SearchRun Greedy(const task::GroundTask& task, bool eager_ends, int max_steps) {
-  const double epsilon_s = 0.001;
-  SnapTask snap(task);
-  StateRegistry registry(snap.num_facts(), snap.num_vars());
-  RelaxedPlanHeuristic heuristic(snap, epsilon_s);
-  Transitions transitions(snap, 0, epsilon_s);
-  Timeline timeline(snap, epsilon_s);
+  testing::SearchParts parts(task);
   SearchParams params;
   params.weight = -1;
-  params.epsilon_s = epsilon_s;
+  params.epsilon_s = parts.kEpsilonS;
   params.eager_ends = eager_ends;
-  LazySearch search(snap, registry, heuristic, transitions, timeline, params);
-  search.Initialize(testing::InitialState(task, snap));
+  LazySearch search(parts.snap, parts.registry, parts.heuristic, parts.transitions, parts.timeline,
+                    params);
+  search.Initialize(testing::InitialState(task, parts.snap));
   SearchRun run;
   for (int i = 0; i < max_steps && run.status == LazySearch::Status::kInProgress; ++i)
     run.status = search.Step();

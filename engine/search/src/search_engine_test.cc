@@ -28,19 +28,15 @@ Trace RunGreedy(const std::string& domain, const std::string& problem, int sched
                               seaplan::testing::ReadFile(seaplan::testing::SourceDir() / problem));
   Trace trace;
   if (!task) return trace;
-  const double epsilon_s = 0.001;
-  SnapTask snap(*task);
-  StateRegistry registry(snap.num_facts(), snap.num_vars());
-  RelaxedPlanHeuristic heuristic(snap, epsilon_s);
-  Transitions transitions(snap, 0, epsilon_s);
-  Timeline timeline(snap, epsilon_s);
+  testing::SearchParts parts(*task);
   SearchParams params;
   params.weight = -1;
-  params.epsilon_s = epsilon_s;
+  params.epsilon_s = parts.kEpsilonS;
   params.type_based_exploration = true;
   params.schedule_paths = schedule_paths;
-  LazySearch search(snap, registry, heuristic, transitions, timeline, params);
-  search.Initialize(testing::InitialState(*task, snap));
+  LazySearch search(parts.snap, parts.registry, parts.heuristic, parts.transitions, parts.timeline,
+                    params);
+  search.Initialize(testing::InitialState(*task, parts.snap));
   for (int i = 0; i < steps; ++i) {
     const LazySearch::Status status = search.Step();
     trace.statuses.push_back(static_cast<int>(status));

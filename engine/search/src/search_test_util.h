@@ -11,10 +11,13 @@
 #include <memory>
 #include <string_view>
 
+#include "heuristics/relaxed_plan_heuristic.h"
 #include "seaplan/task/ground_task.h"
 #include "seaplan/task/grounder.h"
 #include "snap_task.h"
 #include "state_registry.h"
+#include "timeline.h"
+#include "transitions.h"
 
 namespace seaplan::search::testing {
 
@@ -51,5 +54,22 @@ inline StateData InitialState(const task::GroundTask& task, const SnapTask& snap
   for (std::size_t v = 0; v < state.values.size(); ++v) state.values[v] = task.initial_values[v];
   return state;
 }
+
+// What a LazySearch borrows, built for `task` with the planner's default
+// epsilon and no concurrency bound.
+struct SearchParts {
+  static constexpr double kEpsilonS = 0.001;
+  explicit SearchParts(const task::GroundTask& task)
+      : snap(task),
+        registry(snap.num_facts(), snap.num_vars()),
+        heuristic(snap, kEpsilonS),
+        transitions(snap, 0, kEpsilonS),
+        timeline(snap, kEpsilonS) {}
+  SnapTask snap;
+  StateRegistry registry;
+  RelaxedPlanHeuristic heuristic;
+  Transitions transitions;
+  Timeline timeline;
+};
 
 }  // namespace seaplan::search::testing

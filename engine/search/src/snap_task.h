@@ -86,8 +86,9 @@ class SnapTask {
   // those facts while the action runs (then no event can delete them
   // before the end either): the search may apply it at once and branch on
   // nothing else (SearchParams::eager_ends). The schedule orders events
-  // by what they read and write, not by their place in the path, so the
-  // end's place costs no concurrency.
+  // by what they read and write, not by their place in the path: the early
+  // end orders after it only the later events touching what it adds,
+  // which had to wait for it anyway where those facts were false before.
   bool EagerEnd(task::ActionId a) const { return eager_end_[static_cast<std::size_t>(a)]; }
   // How many of the pruned actions break the goal for good.
   int num_goal_breaking() const { return num_goal_breaking_; }
