@@ -203,6 +203,21 @@ TEST(CliInProcessTest, NoSymmetryFlagTurnsOffTheSymmetryReduction) {
   EXPECT_EQ(without.out.find("; symmetry:"), std::string::npos) << without.out;
 }
 
+// Eager ends are on by default and --no-eager-ends turns them off: on case
+// A, where a ship's arrival is such an end, the statistics count the
+// states they cut only without the flag.
+TEST(CliInProcessTest, NoEagerEndsFlagTurnsOffEagerEnds) {
+  const auto domain = Example("domain.pddl");
+  const auto problem = Example("case-a.pddl");
+  const auto with = RunSeaplan({"plan", domain, problem, "--no-anytime", "--time-limit", "30"});
+  EXPECT_EQ(with.exit_code, 0) << with.out << with.err;
+  EXPECT_NE(with.out.find("; eager ends: "), std::string::npos) << with.out;
+  const auto without = RunSeaplan(
+      {"plan", domain, problem, "--no-anytime", "--time-limit", "30", "--no-eager-ends"});
+  EXPECT_EQ(without.exit_code, 0) << without.out << without.err;
+  EXPECT_EQ(without.out.find("; eager ends:"), std::string::npos) << without.out;
+}
+
 TEST(CliInProcessTest, InvalidPlanExitsOneAndNamesTheFailure) {
   auto result = RunSeaplan(
       {"validate", Example("domain.pddl"), Example("case-a.pddl"), Example("case-a-paper.plan")});
