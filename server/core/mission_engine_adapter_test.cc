@@ -92,6 +92,7 @@ TEST(MissionAdapterTest, SpecDefaultsAndErrors) {
   spec.mutable_planner_options()->set_landmarks(false);
   spec.mutable_planner_options()->set_type_based_exploration(false);
   spec.mutable_planner_options()->set_symmetry_reduction(false);
+  spec.mutable_planner_options()->set_eager_ends(false);
   spec.mutable_planner_options()->mutable_cpu_time_limit()->set_seconds(5);
   spec.mutable_ship()->set_service_speed_mps(9);
   auto given = SpecFromProto(spec);
@@ -103,6 +104,8 @@ TEST(MissionAdapterTest, SpecDefaultsAndErrors) {
   EXPECT_FALSE(given->planner.type_based_exploration);
   EXPECT_TRUE(defaults.planner.symmetry_reduction);
   EXPECT_FALSE(given->planner.symmetry_reduction);
+  EXPECT_TRUE(defaults.planner.eager_ends);
+  EXPECT_FALSE(given->planner.eager_ends);
   EXPECT_EQ(given->planner.cpu_time_limit_s, 5);
   EXPECT_EQ(given->planner.time_limit_s, 7);
   EXPECT_EQ(given->planner.max_expansions, 20000u);
