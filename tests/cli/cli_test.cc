@@ -204,8 +204,8 @@ TEST(CliInProcessTest, NoSymmetryFlagTurnsOffTheSymmetryReduction) {
 }
 
 // Eager ends are on by default and --no-eager-ends turns them off: on case
-// A, where a ship's arrival is such an end, the statistics count the
-// states they cut only without the flag.
+// A, where a ship's arrival is such an end, the output has the line that
+// counts the states they cut only when the flag is not given.
 TEST(CliInProcessTest, NoEagerEndsFlagTurnsOffEagerEnds) {
   const auto domain = Example("domain.pddl");
   const auto problem = Example("case-a.pddl");

@@ -794,8 +794,8 @@ int RunCli(int argc, char** argv, const CliExecutable& executable) {
   plan_cmd->add_flag("--no-symmetry", plan.no_symmetry,
                      "First-plan searches keep states that only permute interchangeable objects");
   plan_cmd->add_flag("--no-eager-ends", plan.no_eager_ends,
-                     "First-plan searches also try the orders in which an end that only adds "
-                     "facts happens later");
+                     "Searches also try the orders in which an end that only adds facts "
+                     "happens later");
   plan_cmd->add_option("--seed", plan.seed, "Random seed")->capture_default_str();
   plan_cmd->add_option("--epsilon", plan.epsilon_s,
                        "Separation of interfering events (s), default 0.001");

@@ -150,8 +150,8 @@ TEST(EagerEndTest, TheSearchTakesEagerEndsAndExpandsFewerStates) {
 // The only plan needs the end of `charge` after `spend`: `spend` consumes
 // the fact a one-off `spark` and charge's end both add, and `use` needs it
 // again afterwards. Charge's end qualifies (it only adds `power`, which
-// its deleter asks for), but nothing else can add power while charge runs
-// is false here, so taking the end at once loses the plan.
+// its deleter asks for), but `power` does not stay false while charge
+// runs (spark adds it), so taking the end at once loses the plan.
 const char* kLateEndDomain = R"(
 (define (domain late-end)
   (:requirements :durative-actions)
@@ -191,6 +191,22 @@ TEST(EagerEndTest, ThePlannerSearchesAgainWithoutEagerEndsWhenTheyRanOut) {
   EXPECT_EQ(r.status, PlanStatus::kSolvedSatisficing) << r.message;
   EXPECT_FALSE(r.plan.steps.empty());
   EXPECT_GT(r.stats.eager_ends, 0u);
+}
+
+// A concurrency bound orders every start after the ends before it in the
+// schedule, so an early end would cost concurrency: none is taken.
+TEST(EagerEndTest, AConcurrencyBoundTurnsThemOff) {
+  auto task = testing::LoadTaskOrFail(HoistDomain(), kHoistProblem);
+  ASSERT_NE(task, nullptr);
+  PlannerOptions options;
+  options.anytime = false;
+  options.time_limit_s = 10;
+  options.max_concurrent_actions = 2;
+  const PlanResult r = SolveTask(*task, options, StopToken());
+  EXPECT_EQ(r.status, PlanStatus::kSolvedSatisficing) << r.message;
+  EXPECT_EQ(r.stats.eager_ends, 0u);
+  options.max_concurrent_actions = 0;
+  EXPECT_GT(SolveTask(*task, options, StopToken()).stats.eager_ends, 0u);
 }
 
 }  // namespace

@@ -530,7 +530,11 @@ PlanResult PlannerRun::Run() {
   bool proven = false;
   const double weights[] = {3, 2, 1.5, 1.2, 1};
   for (double w : weights) {
-    LazySearch search(snap_, registry_, heuristic_, transitions_, timeline_, BoundedParams(w));
+    SearchParams params = BoundedParams(w);
+    // The last pass proves the incumbent optimal when it runs out of
+    // states; with eager ends that would be no proof.
+    if (w == 1) params.eager_ends = false;
+    LazySearch search(snap_, registry_, heuristic_, transitions_, timeline_, params);
     Start(search);
     const bool stop = RunBounded(search, std::numeric_limits<std::size_t>::max(), false);
     AddCounters(search);

@@ -462,7 +462,9 @@ LazySearch::Status LazySearch::Step() {
     ++counters_.evaluated;
   }
   info_[static_cast<std::size_t>(s)].h = h;
-  if (h >= RelaxedPlanHeuristic::kDeadEnd) {
+  // (Not for an eager end's state: its parent's h may have been
+  // overwritten since, by a re-expansion in weighted A*.)
+  if (!eager && h >= RelaxedPlanHeuristic::kDeadEnd) {
     if (!heuristic_.last_dead_end_proven()) unsafe_dead_end_ = true;
     return Status::kInProgress;
   }

@@ -98,9 +98,9 @@ struct SearchParams {
   // can happen gets that end as its only successor: the other orders of
   // the same events are not searched (a lift's end left pending while the
   // hoist lifts and drops other crates multiplied the states of
-  // storage-2011 about ninefold). Complete only where no other event adds
-  // the end's facts while the action runs, which is not checked: an
-  // exhausted search that pruned so is no proof (complete()).
+  // storage-2011 about ninefold). Complete where the end's facts are false
+  // from the action's start to its end, which is not checked: an exhausted
+  // search that pruned so is no proof (complete()).
   bool eager_ends = false;
 };
 
@@ -218,10 +218,11 @@ class LazySearch {
     double lb_s;  // lower bound on the makespan of any completion
   };
   static_assert(sizeof(Pending) == 16);
-  // `parent_h` kGoalFirst puts a goal state before everything else.
-  // Eager ends (SearchParams::eager_ends): makes the first applicable
-  // one, if any, the only candidate; false when there is none.
+  // Eager ends (SearchParams::eager_ends): makes the first one that applies
+  // and keeps the schedule consistent, if any, the only candidate; false
+  // when there is none.
   bool TakeEagerEnd(Timeline& timeline);
+  // `parent_h` kGoalFirst puts a goal state before everything else.
   void Push(std::int32_t parent, const Event& event, double g_s, double lb_s, bool preferred,
             std::int32_t parent_h, std::int32_t parent_lm_h);
   static constexpr std::int32_t kGoalFirst = -1'000'000'000;

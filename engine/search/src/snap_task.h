@@ -82,13 +82,13 @@ class SnapTask {
   // condition, and adds nothing that a condition asks false, a timed
   // literal writes or an event deletes without requiring it (a hoist's
   // lift, whose end frees the area it lifted from). Applying such an end as
-  // soon as it can happen loses no plan when, besides, no other event adds
-  // those facts while the action runs (then no event can delete them
-  // before the end either): the search may apply it at once and branch on
+  // soon as it can happen loses no plan when, besides, its facts are false
+  // from the action's start to its end (no event can then need or delete
+  // them in between): the search may apply it at once and branch on
   // nothing else (SearchParams::eager_ends). The schedule orders events
   // by what they read and write, not by their place in the path: the early
   // end orders after it only the later events touching what it adds,
-  // which had to wait for it anyway where those facts were false before.
+  // which under that condition had to wait for it anyway.
   bool EagerEnd(task::ActionId a) const { return eager_end_[static_cast<std::size_t>(a)]; }
   // How many of the pruned actions break the goal for good.
   int num_goal_breaking() const { return num_goal_breaking_; }

@@ -126,10 +126,11 @@ struct PlannerOptions {
   // state already expanded (engine/search/README.md, "Interchangeable
   // objects").
   bool symmetry_reduction = true;
-  // The first-plan searches apply the end of an action that only adds
-  // facts no condition asks false and no event deletes unasked as soon as
-  // it can happen, and try no other order of it (SearchParams::eager_ends;
-  // engine/search/README.md, "Eager ends"). Off with
+  // The searches apply the end of an action that only adds facts no
+  // condition asks false and no event deletes unasked as soon as it can
+  // happen, and try no other order of it (SearchParams::eager_ends;
+  // engine/search/README.md, "Eager ends"); not the last anytime pass,
+  // whose exhaustion proves a plan optimal. Off with
   // max_concurrent_actions, whose schedule orders every start after the
   // ends before it.
   bool eager_ends = true;
