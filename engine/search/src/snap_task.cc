@@ -60,8 +60,7 @@ bool AnyEffectReadsDuration(const task::Effects& e) {
 }
 
 // See SnapTask::EagerEnd.
-std::vector<bool> EagerEndActions(const task::GroundTask& task,
-                                  const std::vector<bool>& window_action) {
+std::vector<bool> EagerEndActions(const task::GroundTask& task) {
   // Facts some condition asks false, a timed literal writes, or an event
   // deletes without asking for them: an end adding one of them may matter
   // for when it happens.
@@ -90,8 +89,9 @@ std::vector<bool> EagerEndActions(const task::GroundTask& task,
   for (std::size_t a = 0; a < task.actions.size(); ++a) {
     const task::Action& action = task.actions[a];
     const task::Effects& e = action.end_effects;
-    if (!action.is_durative || window_action[a] || !action.at_end.empty() || !e.del.empty() ||
-        !e.numeric.empty() || !e.conditional.empty())
+    // No at-end condition and no delete: never a window action either.
+    if (!action.is_durative || !action.at_end.empty() || !e.del.empty() || !e.numeric.empty() ||
+        !e.conditional.empty())
       continue;
     eager[a] =
         std::none_of(e.add.begin(), e.add.end(), [&](task::FactId f) { return order_matters[f]; });
@@ -192,7 +192,7 @@ SnapTask::SnapTask(const task::GroundTask& task) : task_(task), envelopes_(task)
     pruned_[a] = true;
     ++num_goal_breaking_;
   }
-  eager_end_ = EagerEndActions(task, window_action_);
+  eager_end_ = EagerEndActions(task);
   goal_fact_mask_.assign(task.facts.size(), false);
   for (auto f : task.goal.positive) goal_fact_mask_[f] = true;
   for (auto f : task.goal.negative) goal_fact_mask_[f] = true;
