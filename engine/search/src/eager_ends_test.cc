@@ -209,31 +209,5 @@ TEST(EagerEndTest, AConcurrencyBoundTurnsThemOff) {
   EXPECT_GT(SolveTask(*task, options, StopToken()).stats.eager_ends, 0u);
 }
 
-// The second first-plan search (newest first) searches without them: the
-// orders they leave out are the other search's to try (depots-time p05 has
-// its plan there within 60 CPU s, none with them).
-TEST(EagerEndTest, TheSecondFirstPlanSearchRunsWithoutThem) {
-  auto task = testing::LoadTaskOrFail(HoistDomain(), kHoistProblem);
-  ASSERT_NE(task, nullptr);
-  const auto eager_ends_at_first_plan = [&](double second_greedy_after_share) {
-    PlannerOptions options;
-    options.anytime = false;
-    options.time_limit_s = 10;
-    options.second_greedy_after_share = second_greedy_after_share;
-    std::size_t eager_ends = 0;
-    int plans = 0;
-    PlanObserver observer;
-    observer.on_plan = [&](const PlanResult& r) {
-      if (plans++ == 0) eager_ends = r.stats.eager_ends;
-    };
-    const PlanResult r = SolveTask(*task, options, StopToken(), &observer);
-    EXPECT_EQ(r.status, PlanStatus::kSolvedSatisficing) << r.message;
-    EXPECT_GT(plans, 0);
-    return eager_ends;
-  };
-  EXPECT_GT(eager_ends_at_first_plan(1), 0u);  // the first search alone
-  EXPECT_EQ(eager_ends_at_first_plan(0), 0u);  // the second from the start
-}
-
 }  // namespace
 }  // namespace seaplan::search

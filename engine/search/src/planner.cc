@@ -445,10 +445,7 @@ PlanResult PlannerRun::Run() {
     params.type_based_exploration = options_.type_based_exploration;
     if (landmarks_) params.landmarks = &*landmarks_;
     if (symmetry_) params.symmetry = &*symmetry_;
-    // The second search also runs without eager ends: the orders they leave
-    // out are where the first one may have missed its plan (depots-time
-    // p05: a plan within 60 CPU s only this way).
-    params.eager_ends = eager_ends && !newest_first;
+    params.eager_ends = eager_ends;
     if (many_variants) {
       params.max_variants = 64;
       params.bound_dominance = false;

@@ -105,8 +105,7 @@ struct PlannerOptions {
   // Share of time_limit_s (of max_expansions, else cpu_time_limit_s, when set; in [0, 1])
   // after which a first-plan search that has found nothing restarts with its
   // second configuration (plateaus searched newest first instead of by
-  // makespan, goals the state holds kept in the relaxed plan, no eager
-  // ends); 1 never switches.
+  // makespan); 1 never switches.
   double second_greedy_after_share = 0.5;
   // The first-plan searches also pop, in turn with their best-first lists,
   // a random state of a random (h, depth) type (type-based exploration,
@@ -130,9 +129,8 @@ struct PlannerOptions {
   // The searches apply the end of an action that only adds facts no
   // condition asks false and no event deletes unasked as soon as it can
   // happen, and try no other order of it (SearchParams::eager_ends;
-  // engine/search/README.md, "Eager ends"); not the second first-plan
-  // search (second_greedy_after_share), which tries the orders they leave
-  // out, nor the last anytime pass, whose exhaustion proves a plan optimal. Off with
+  // engine/search/README.md, "Eager ends"); not the last anytime pass,
+  // whose exhaustion proves a plan optimal. Off with
   // max_concurrent_actions, whose schedule orders every start after the
   // ends before it.
   bool eager_ends = true;
