@@ -23,6 +23,7 @@ build_packages=(
   clang libclang-rt-14-dev clang-format curl libexpat1-dev
   chromium fonts-dejavu-core
   jq  # bench/colav/scenario_seeds.sh reads the sim reports
+  python3  # bench/planner/scaled_problems.py writes larger benchmark instances
 )
 
 packages=("${build_packages[@]}")

@@ -1,0 +1,130 @@
+#!/usr/bin/env python3
+"""Problems larger than the shared benchmark's p01-p05, for two of its domains.
+
+The shared set holds only the first five problems of each domain; the
+larger ones a planner is judged on are not here. This writes random
+instances of the same domains at sizes past p05, so that how the planner
+scales can be measured (bench/planner/README.md, "Larger generated
+instances"):
+
+  floortile ROWS COLS ROBOTS SEED  floortile-2011's domain: a grid of
+      ROWS painted rows above a free row 0, COLS columns, checkered goal,
+      robots on random tiles (its p01-p05: 3 x 3, 2 robots).
+  driverlog DRIVERS TRUCKS PACKAGES SEED  driverlog-2014's domain:
+      3 * DRIVERS - 1 road locations on a random connected road map and a
+      walking map of path locations, random positions and goals (its p05:
+      9 drivers, 9 trucks, 22 packages).
+
+The problem goes to standard output; the domain is the shared one, e.g.
+  bench/planner/scaled_problems.py floortile 4 4 2 1 > /tmp/ft-4x4.pddl
+  seaplan plan ../shared/bench/floortile-2011/domain.pddl /tmp/ft-4x4.pddl
+
+The same arguments give the same problem (Python's seeded generator).
+"""
+import argparse
+import random
+import sys
+
+
+def floortile(rows, cols, robots, rng):
+    def tile(r, c):
+        return f"tile_{r}-{c}"
+
+    tiles = [tile(r, c) for r in range(rows + 1) for c in range(1, cols + 1)]
+    names = [f"robot{i + 1}" for i in range(robots)]
+    start = rng.sample(tiles, robots)
+    out = [f"(define (problem floortile-{rows}x{cols}-{robots})", " (:domain floor-tile)",
+           " (:objects " + " ".join(tiles) + " - tile",
+           "   " + " ".join(names) + " - robot", "   white black - color)", " (:init"]
+    for i, robot in enumerate(names):
+        out.append(f"   (robot-at {robot} {start[i]})")
+        out.append(f"   (robot-has {robot} {'white' if i % 2 == 0 else 'black'})")
+    out += ["   (available-color white)", "   (available-color black)"]
+    out += [f"   (clear {t})" for t in tiles if t not in start]
+    for r in range(1, rows + 1):
+        for c in range(1, cols + 1):
+            out.append(f"   (up {tile(r, c)} {tile(r - 1, c)})")
+            out.append(f"   (down {tile(r - 1, c)} {tile(r, c)})")
+    for r in range(rows + 1):
+        for c in range(2, cols + 1):
+            out.append(f"   (right {tile(r, c)} {tile(r, c - 1)})")
+            out.append(f"   (left {tile(r, c - 1)} {tile(r, c)})")
+    out += [" )", " (:goal (and"]
+    for r in range(1, rows + 1):
+        for c in range(1, cols + 1):
+            out.append(f"    (painted {tile(r, c)} {'white' if (r + c) % 2 == 0 else 'black'})")
+    out += [" ))", " (:metric minimize (total-time)))"]
+    return out
+
+
+def connected_map(nodes, extra_edges, rng):
+    """A random spanning tree over `nodes` plus `extra_edges` more edges."""
+    order = nodes[:]
+    rng.shuffle(order)
+    edges = set()
+    for i in range(1, len(order)):
+        edges.add(tuple(sorted((order[i], rng.choice(order[:i])))))
+    while len(edges) < len(nodes) - 1 + extra_edges:
+        edges.add(tuple(sorted(rng.sample(nodes, 2))))
+    return sorted(edges)
+
+
+def driverlog(drivers, trucks, packages, rng):
+    # The shared p05's proportions: 26 road locations for 9 drivers, about
+    # 3.3 roads and 2 walking paths per location.
+    sites = [f"s{i}" for i in range(3 * drivers - 1)]
+    roads = connected_map(sites, int(len(sites) * 2.3), rng)
+    walks = connected_map(sites, int(len(sites) * 1.1), rng)
+    driver = [f"driver{i + 1}" for i in range(drivers)]
+    truck = [f"truck{i + 1}" for i in range(trucks)]
+    package = [f"package{i + 1}" for i in range(packages)]
+    path_site = [f"p{a[1:]}-{b[1:]}" for a, b in walks]
+    out = [f"(define (problem DLOG-{drivers}-{trucks}-{packages})", "(:domain driverlog)",
+           "(:objects"]
+    out += [f" {x} - driver" for x in driver] + [f" {x} - truck" for x in truck]
+    out += [f" {x} - obj" for x in package] + [f" {x} - location" for x in sites + path_site]
+    out += [")", "(:init"]
+    out += [f" (at {x} {rng.choice(sites)})" for x in driver]
+    for x in truck:
+        out += [f" (at {x} {rng.choice(sites)})", f" (empty {x})"]
+    out += [f" (at {x} {rng.choice(sites)})" for x in package]
+    for a, b in roads:
+        out += [f" (link {a} {b})", f" (link {b} {a})"]
+    for (a, b), p in zip(walks, path_site):
+        out += [f" (path {a} {p})", f" (path {p} {a})", f" (path {b} {p})", f" (path {p} {b})"]
+    out += [")", "(:goal (and"]
+    out += [f" (at {x} {rng.choice(sites)})" for x in rng.sample(driver, drivers * 3 // 4)]
+    out += [f" (at {x} {rng.choice(sites)})" for x in rng.sample(truck, trucks * 3 // 4)]
+    out += [f" (at {x} {rng.choice(sites)})" for x in package]
+    out += ["))", "(:metric minimize (total-time)))"]
+    return out
+
+
+def main():
+    parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
+    sub = parser.add_subparsers(dest="domain", required=True)
+    ft = sub.add_parser("floortile", help="floortile-2011's domain")
+    ft.add_argument("rows", type=int)
+    ft.add_argument("cols", type=int)
+    ft.add_argument("robots", type=int)
+    ft.add_argument("seed", type=int)
+    dl = sub.add_parser("driverlog", help="driverlog-2014's domain")
+    dl.add_argument("drivers", type=int)
+    dl.add_argument("trucks", type=int)
+    dl.add_argument("packages", type=int)
+    dl.add_argument("seed", type=int)
+    args = parser.parse_args()
+    rng = random.Random(args.seed)
+    if args.domain == "floortile":
+        if args.rows < 1 or args.cols < 1 or not 1 <= args.robots <= (args.rows + 1) * args.cols:
+            parser.error("floortile: rows, cols >= 1 and 1 <= robots <= tiles")
+        lines = floortile(args.rows, args.cols, args.robots, rng)
+    else:
+        if min(args.drivers, args.trucks, args.packages) < 1:
+            parser.error("driverlog: drivers, trucks and packages >= 1")
+        lines = driverlog(args.drivers, args.trucks, args.packages, rng)
+    sys.stdout.write("\n".join(lines) + "\n")
+
+
+if __name__ == "__main__":
+    main()
