@@ -64,7 +64,8 @@ def connected_map(nodes, extra_edges, rng):
     edges = set()
     for i in range(1, len(order)):
         edges.add(tuple(sorted((order[i], rng.choice(order[:i])))))
-    while len(edges) < len(nodes) - 1 + extra_edges:
+    most = len(nodes) * (len(nodes) - 1) // 2  # a road between every two
+    while len(edges) < min(len(nodes) - 1 + extra_edges, most):
         edges.add(tuple(sorted(rng.sample(nodes, 2))))
     return sorted(edges)
 
@@ -116,8 +117,9 @@ def main():
     args = parser.parse_args()
     rng = random.Random(args.seed)
     if args.domain == "floortile":
-        if args.rows < 1 or args.cols < 1 or not 1 <= args.robots <= (args.rows + 1) * args.cols:
-            parser.error("floortile: rows, cols >= 1 and 1 <= robots <= tiles")
+        # One tile at least must be clear, or no robot can move.
+        if args.rows < 1 or args.cols < 1 or not 1 <= args.robots < (args.rows + 1) * args.cols:
+            parser.error("floortile: rows, cols >= 1 and 1 <= robots < tiles ((rows + 1) * cols)")
         lines = floortile(args.rows, args.cols, args.robots, rng)
     else:
         if min(args.drivers, args.trucks, args.packages) < 1:

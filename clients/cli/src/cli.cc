@@ -785,7 +785,9 @@ int RunCli(int argc, char** argv, const CliExecutable& executable) {
                        : "expected a number of seconds >= 0, got " + v;
           },
           "SECONDS"));
-  plan_cmd->add_flag("--no-anytime", plan.no_anytime, "Stop at the first plan");
+  plan_cmd->add_flag(
+      "--no-anytime", plan.no_anytime,
+      "No anytime phases: stop after the first plan and the bounded searches that shorten it");
   plan_cmd->add_flag("--no-type-based", plan.no_type_based,
                      "First-plan searches without the type-based exploration list");
   plan_cmd->add_flag("--landmarks,!--no-landmarks", plan.landmarks,
