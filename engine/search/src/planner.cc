@@ -9,9 +9,11 @@
 #include <optional>
 
 #include "absl/strings/str_cat.h"
+#include "goal_order.h"
 #include "heuristics/landmarks.h"
 #include "heuristics/relaxed_plan_heuristic.h"
 #include "heuristics/temporal_reachability.h"
+#include "mutex_groups.h"
 #include "object_symmetry.h"
 #include "plan_builder.h"
 #include "plan_elimination.h"
@@ -164,8 +166,9 @@ class PlannerRun {
   SnapTask snap_;
   StateRegistry registry_;
   RelaxedPlanHeuristic heuristic_;
-  std::optional<LandmarkGraph> landmarks_;  // PlannerOptions::landmarks
-  std::optional<ObjectSymmetry> symmetry_;  // PlannerOptions::symmetry_reduction
+  std::optional<LandmarkGraph> landmarks_;       // PlannerOptions::landmarks
+  std::optional<ObjectSymmetry> symmetry_;       // PlannerOptions::symmetry_reduction
+  std::optional<GoalOrderDeadEnds> goal_order_;  // null when no pair of goals can order
   TemporalReachability reachability_;
   Transitions transitions_;
   Timeline timeline_;
@@ -289,6 +292,7 @@ SearchParams PlannerRun::BoundedParams(double weight) const {
   // schedule (fjord 3x12x12 seed 1 returned 15,073.8 s with it, 12,988.7 s
   // without).
   params.eager_ends = EagerEnds();
+  if (goal_order_) params.goal_order = &*goal_order_;
   return params;
 }
 
@@ -428,6 +432,16 @@ PlanResult PlannerRun::Run() {
     log::Debug("planner: {} landmarks, {} orderings in {:.3f} s", landmarks_->size(),
                landmarks_->num_orderings(), best_.stats.landmark_time_s);
   }
+  {
+    // Mutex groups and the dead ends the order of goals shows (goal_order.h).
+    const Clock::time_point mutex_start = Clock::now();
+    const MutexGroups mutex(snap_.task());
+    goal_order_.emplace(snap_.task(), mutex);
+    log::Debug("planner: {} mutex groups, {} goals watched for their order ({}), in {:.3f} s",
+               mutex.groups().size(), goal_order_->num_goals(),
+               goal_order_->active() ? "active" : "inactive", Seconds(mutex_start));
+    if (!goal_order_->active()) goal_order_.reset();
+  }
   if (options_.symmetry_reduction) {
     symmetry_.emplace(snap_);
     best_.stats.symmetric_objects = symmetry_->num_symmetric_objects();
@@ -445,6 +459,7 @@ PlanResult PlannerRun::Run() {
     params.type_based_exploration = options_.type_based_exploration;
     if (landmarks_) params.landmarks = &*landmarks_;
     if (symmetry_) params.symmetry = &*symmetry_;
+    if (goal_order_) params.goal_order = &*goal_order_;
     params.eager_ends = eager_ends;
     if (many_variants) {
       params.max_variants = 64;

@@ -460,6 +460,12 @@ LazySearch::Status LazySearch::Step() {
       h = std::max(h, reachability_->RelaxedPlanLength(current_, nullptr));
     }
     ++counters_.evaluated;
+    if (h < RelaxedPlanHeuristic::kDeadEnd && params_.goal_order != nullptr &&
+        params_.goal_order->DeadEnd(current_)) {
+      ++counters_.goal_order_dead_ends;
+      info_[static_cast<std::size_t>(s)].h = RelaxedPlanHeuristic::kDeadEnd;
+      return Status::kInProgress;  // proven: not an unsafe dead end
+    }
   }
   info_[static_cast<std::size_t>(s)].h = h;
   // (Not for an eager end's state: its parent's h may have been

@@ -37,6 +37,7 @@
 #include <utility>
 #include <vector>
 
+#include "goal_order.h"
 #include "heuristics/landmarks.h"
 #include "heuristics/relaxed_plan_heuristic.h"
 #include "heuristics/temporal_reachability.h"
@@ -94,6 +95,9 @@ struct SearchParams {
   // state already expanded, with a bound no later and no window actions
   // running, is dropped like a duplicate.
   const ObjectSymmetry* symmetry = nullptr;
+  // May be null (borrowed): states that can reach the goal in neither
+  // order of two goals nothing deletes (goal_order.h) are dead ends.
+  const GoalOrderDeadEnds* goal_order = nullptr;
   // A state in which the end of a running action with SnapTask::EagerEnd
   // can happen gets that end as its only successor: the other orders of
   // the same events are not searched (a lift's end left pending while the
@@ -111,6 +115,8 @@ struct SearchCounters {
   // States whose only successor was an eager end (SearchParams::eager_ends)
   // while other events could happen.
   std::size_t eager_ends = 0;
+  // States found dead ends by the order of their goals (SearchParams::goal_order).
+  std::size_t goal_order_dead_ends = 0;
 };
 
 class LazySearch {

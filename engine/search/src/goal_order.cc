@@ -1,0 +1,173 @@
+#include "goal_order.h"
+
+#include <algorithm>
+
+namespace seaplan::search {
+namespace {
+
+// What an action needs true at its start.
+std::vector<task::FactId> StartNeeds(const task::Action& a) {
+  std::vector<task::FactId> out = a.at_start.positive;
+  out.insert(out.end(), a.over_all.positive.begin(), a.over_all.positive.end());
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+bool AnyMutex(const MutexGroups& mutex, const std::vector<task::FactId>& needs, GroupMember m) {
+  for (auto f : needs) {
+    if (mutex.Mutex(f, m)) return true;
+  }
+  return false;
+}
+
+bool Contains(const std::vector<task::FactId>& v, task::FactId f) {
+  return std::find(v.begin(), v.end(), f) != v.end();
+}
+
+}  // namespace
+
+GoalOrderDeadEnds::GoalOrderDeadEnds(const task::GroundTask& task, const MutexGroups& mutex) {
+  if (mutex.groups().empty()) return;
+  // Facts nothing deletes; goals something else than an action's plain
+  // effect adds are left out.
+  std::vector<std::uint8_t> deleted(task.facts.size(), 0), unsafe(task.facts.size(), 0);
+  for (const auto& a : task.actions) {
+    for (const task::Effects* e : {&a.start_effects, &a.end_effects}) {
+      for (auto f : e->del) deleted[static_cast<std::size_t>(f)] = 1;
+      for (const auto& c : e->conditional) {
+        for (auto f : c.del) deleted[static_cast<std::size_t>(f)] = 1;
+        for (auto f : c.add) unsafe[static_cast<std::size_t>(f)] = 1;
+      }
+    }
+  }
+  for (const auto& til : task.timed_literals) {
+    (til.value ? unsafe : deleted)[static_cast<std::size_t>(til.fact)] = 1;
+  }
+  const auto permanent = [&](task::FactId f) { return !deleted[static_cast<std::size_t>(f)]; };
+  std::vector<std::vector<task::FactId>> needs;
+  std::vector<std::uint8_t> adds_at_end;
+  for (auto g : task.goal.positive) {
+    if (!permanent(g) || unsafe[static_cast<std::size_t>(g)]) continue;
+    Goal goal;
+    goal.fact = g;
+    for (task::ActionId a = 0; a < static_cast<task::ActionId>(task.actions.size()); ++a) {
+      const task::Action& action = task.actions[static_cast<std::size_t>(a)];
+      const bool at_start = Contains(action.start_effects.add, g);
+      const bool at_end = Contains(action.end_effects.add, g);
+      if (!at_start && !at_end) continue;
+      Achiever achiever;
+      achiever.action = a;
+      std::vector<task::FactId> need = StartNeeds(action);
+      for (auto r : need) {
+        for (auto group : mutex.GroupsOf(r)) {
+          for (GroupMember m : mutex.groups()[static_cast<std::size_t>(group)]) {
+            if (!IsRunningMember(m) && m != r && permanent(m)) achiever.killers.push_back(m);
+          }
+        }
+      }
+      std::sort(achiever.killers.begin(), achiever.killers.end());
+      achiever.killers.erase(std::unique(achiever.killers.begin(), achiever.killers.end()),
+                             achiever.killers.end());
+      goal.achievers.push_back(static_cast<std::int32_t>(achievers_.size()));
+      achievers_.push_back(std::move(achiever));
+      needs.push_back(std::move(need));
+      adds_at_end.push_back(at_end && !at_start && action.is_durative);
+    }
+    goals_.push_back(std::move(goal));
+  }
+  if (achievers_.size() * goals_.size() > kMaxPairChecks) {
+    goals_.clear();
+    achievers_.clear();
+    return;
+  }
+  // a must start before goal j is started: what a needs at its start is
+  // ruled out by j's fact and, while an achiever of j runs, by its running.
+  for (std::size_t a = 0; a < achievers_.size(); ++a) {
+    for (std::size_t j = 0; j < goals_.size(); ++j) {
+      const Goal& g = goals_[j];
+      if (std::find(g.achievers.begin(), g.achievers.end(), static_cast<std::int32_t>(a)) !=
+          g.achievers.end())
+        continue;  // its own goal
+      if (!AnyMutex(mutex, needs[a], g.fact)) continue;
+      bool shut = true;
+      for (auto b : g.achievers) {
+        if (adds_at_end[static_cast<std::size_t>(b)] &&
+            !AnyMutex(mutex, needs[a],
+                      RunningMember(achievers_[static_cast<std::size_t>(b)].action))) {
+          shut = false;
+          break;
+        }
+      }
+      if (!shut) continue;
+      achievers_[a].before.push_back(static_cast<std::int32_t>(j));
+      active_ = true;
+    }
+  }
+  pending_.assign(goals_.size(), 0);
+}
+
+bool GoalOrderDeadEnds::Running(const StateData& state, task::ActionId a) {
+  const auto it =
+      std::lower_bound(state.running.begin(), state.running.end(), a,
+                       [](const RunningAction& r, task::ActionId id) { return r.action < id; });
+  return it != state.running.end() && it->action == a;
+}
+
+bool GoalOrderDeadEnds::Live(const Achiever& a, const StateData& state) const {
+  for (auto k : a.killers) {
+    if (state.Holds(k)) return false;
+  }
+  return true;
+}
+
+bool GoalOrderDeadEnds::DeadEnd(const StateData& state) const {
+  // Pending: false, with no achiever running (one running is on its way).
+  const auto pending = [&](std::size_t j) {
+    if (pending_[j] == 0) {
+      bool p = !state.Holds(goals_[j].fact);
+      for (auto a : goals_[j].achievers) {
+        if (!p) break;
+        if (Running(state, achievers_[static_cast<std::size_t>(a)].action)) p = false;
+      }
+      pending_[j] = p ? 1 : 2;
+    }
+    return pending_[j] == 1;
+  };
+  // Goal j must precede goal g: every achiever of j that can still start
+  // must start before g.
+  const auto must_precede = [&](std::size_t j, std::int32_t g) {
+    for (auto a : goals_[j].achievers) {
+      const Achiever& achiever = achievers_[static_cast<std::size_t>(a)];
+      if (!Live(achiever, state)) continue;
+      if (std::find(achiever.before.begin(), achiever.before.end(), g) == achiever.before.end())
+        return false;
+    }
+    return true;
+  };
+  std::fill(pending_.begin(), pending_.end(), 0);
+  for (std::size_t g = 0; g < goals_.size(); ++g) {
+    if (!pending(g)) continue;
+    bool stuck = true;  // every live achiever must start before a goal preceding g
+    for (auto a : goals_[g].achievers) {
+      const Achiever& achiever = achievers_[static_cast<std::size_t>(a)];
+      if (!Live(achiever, state)) continue;
+      bool blocked = false;
+      for (auto j : achiever.before) {
+        if (pending(static_cast<std::size_t>(j)) &&
+            must_precede(static_cast<std::size_t>(j), static_cast<std::int32_t>(g))) {
+          blocked = true;
+          break;
+        }
+      }
+      if (!blocked) {
+        stuck = false;
+        break;
+      }
+    }
+    if (stuck) return true;
+  }
+  return false;
+}
+
+}  // namespace seaplan::search

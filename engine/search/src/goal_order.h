@@ -1,0 +1,61 @@
+// Dead ends that only the order of goals shows. A goal fact nothing deletes
+// stays true once reached, and the facts in a mutex group with it
+// (mutex_groups.h) stay false from then on. An achiever of goal g that needs,
+// at its start, a fact goal g' rules out (and, while an achiever of g' runs,
+// one that its running rules out) must start before g' is started: g' is in
+// its `before` set. Goal g' must precede g when every achiever of g' that can
+// still start has g in its `before` set. A state is a dead end when some
+// pending goal g has no achiever that can still start, or every such
+// achiever must start before a goal that must precede g: whichever starts
+// first breaks the other (floortile: two or three tiles of a column left,
+// each paintable only from another of them). The delete relaxation does not
+// see these dead ends.
+//
+// Sound for the search's model of states (events one at a time, the running
+// actions part of the state): a state it calls a dead end has no path to the
+// goal. Goals a timed literal or a conditional effect adds are left out.
+#pragma once
+
+#include <cstdint>
+#include <vector>
+
+#include "mutex_groups.h"
+#include "state_registry.h"
+
+namespace seaplan::search {
+
+class GoalOrderDeadEnds {
+ public:
+  // Above this many (achiever, goal) checks at construction, it stays off.
+  static constexpr std::size_t kMaxPairChecks = 5'000'000;
+
+  GoalOrderDeadEnds(const task::GroundTask& task, const MutexGroups& mutex);
+
+  // False when no achiever has a `before` goal: nothing to check.
+  bool active() const { return active_; }
+  // Goals watched (nothing deletes them, only actions add them).
+  std::size_t num_goals() const { return goals_.size(); }
+  bool DeadEnd(const StateData& state) const;
+
+ private:
+  struct Achiever {
+    task::ActionId action = -1;
+    std::vector<task::FactId> killers;  // permanent facts ruling out its start
+    std::vector<std::int32_t> before;   // goals (indices) it must start before
+  };
+  struct Goal {
+    task::FactId fact = -1;
+    std::vector<std::int32_t> achievers;  // indices into achievers_
+  };
+
+  bool Live(const Achiever& a, const StateData& state) const;
+  static bool Running(const StateData& state, task::ActionId a);
+
+  std::vector<Achiever> achievers_;
+  std::vector<Goal> goals_;
+  bool active_ = false;
+  // Scratch for DeadEnd (per goal: 0 unknown, 1 pending, 2 not pending).
+  mutable std::vector<std::uint8_t> pending_;
+};
+
+}  // namespace seaplan::search

@@ -1,0 +1,151 @@
+// Mutex groups found by invariant synthesis on the ground task, and the
+// dead ends the order of goals shows (goal_order.h).
+#include "mutex_groups.h"
+
+#include <gtest/gtest.h>
+
+#include "goal_order.h"
+#include "seaplan/search/planner.h"
+#include "search_test_util.h"
+#include "snap_task.h"
+
+namespace seaplan::search {
+namespace {
+
+// Robots on a row of tiles paint them; a painted tile is never clear again
+// and no robot can stand on it (floortile's shape, written for this test).
+const char* kPaintDomain = R"(
+(define (domain paint-row)
+  (:requirements :typing :durative-actions)
+  (:types robot tile color)
+  (:predicates (robot-at ?r - robot ?t - tile) (clear ?t - tile) (next ?a ?b - tile)
+               (painted ?t - tile ?c - color) (has ?r - robot ?c - color))
+  (:durative-action move
+    :parameters (?r - robot ?from ?to - tile)
+    :duration (= ?duration 1)
+    :condition (and (at start (robot-at ?r ?from)) (at start (clear ?to))
+                    (over all (next ?from ?to)))
+    :effect (and (at start (not (robot-at ?r ?from))) (at start (not (clear ?to)))
+                 (at end (clear ?from)) (at end (robot-at ?r ?to))))
+  (:durative-action paint
+    :parameters (?r - robot ?t ?from - tile ?c - color)
+    :duration (= ?duration 2)
+    :condition (and (over all (has ?r ?c)) (at start (robot-at ?r ?from))
+                    (over all (next ?from ?t)) (at start (clear ?t)))
+    :effect (and (at start (not (clear ?t))) (at end (painted ?t ?c))))
+))";
+const char* kPaintProblem = R"(
+(define (problem paint-row-3) (:domain paint-row)
+  (:objects r1 r2 - robot t0 t1 t2 t3 - tile black - color)
+  (:init (robot-at r1 t0) (robot-at r2 t3) (clear t1) (clear t2) (has r1 black) (has r2 black)
+         (next t0 t1) (next t1 t0) (next t1 t2) (next t2 t1) (next t2 t3) (next t3 t2))
+  (:goal (and (painted t1 black) (painted t2 black))))
+)";
+
+TEST(MutexGroupsTest, ATileIsClearOrOccupiedOrPaintedOrBeingEntered) {
+  auto task = testing::LoadTaskOrFail(kPaintDomain, kPaintProblem);
+  ASSERT_NE(task, nullptr);
+  const MutexGroups mutex(*task);
+  const auto fact = [&](const char* name) { return testing::FactIdOf(*task, name); };
+  EXPECT_TRUE(mutex.Mutex(fact("(clear t1)"), fact("(painted t1 black)")));
+  EXPECT_TRUE(mutex.Mutex(fact("(robot-at r1 t1)"), fact("(painted t1 black)")));
+  EXPECT_TRUE(mutex.Mutex(fact("(robot-at r1 t1)"), fact("(robot-at r2 t1)")));
+  EXPECT_TRUE(mutex.Mutex(fact("(clear t2)"), fact("(robot-at r2 t2)")));
+  // A robot is on one tile at a time.
+  EXPECT_TRUE(mutex.Mutex(fact("(robot-at r1 t1)"), fact("(robot-at r1 t2)")));
+  // A move into t2 holds t2 from its start to its end.
+  EXPECT_TRUE(mutex.Mutex(RunningMember(testing::ActionIdOf(*task, "(move r1 t1 t2)")),
+                          fact("(clear t2)")));
+  // Not mutex: two tiles, a tile and another tile's paint.
+  EXPECT_FALSE(mutex.Mutex(fact("(clear t1)"), fact("(clear t2)")));
+  EXPECT_FALSE(mutex.Mutex(fact("(robot-at r1 t1)"), fact("(painted t2 black)")));
+  EXPECT_FALSE(mutex.Mutex(fact("(clear t1)"), fact("(clear t1)")));
+}
+
+// A fact added without taking anything is in no group.
+TEST(MutexGroupsTest, AnAddWithoutADeleteBreaksTheInvariant) {
+  std::string domain = kPaintDomain;
+  domain.erase(domain.rfind(')'));  // the domain's closing parenthesis
+  domain += R"(
+  (:action drop-in :parameters (?r - robot ?t - tile) :precondition (clear ?t)
+    :effect (robot-at ?r ?t))))";
+  auto task = testing::LoadTaskOrFail(domain, kPaintProblem);
+  ASSERT_NE(task, nullptr);
+  const MutexGroups mutex(*task);
+  const auto fact = [&](const char* name) { return testing::FactIdOf(*task, name); };
+  EXPECT_FALSE(mutex.Mutex(fact("(clear t1)"), fact("(robot-at r1 t1)")));
+  EXPECT_FALSE(mutex.Mutex(fact("(robot-at r1 t1)"), fact("(robot-at r1 t2)")));
+}
+
+// One robot; tiles t0 - t1 - t2 - t3; t1 and t2 to be painted.
+const char* kOneRobotProblem = R"(
+(define (problem paint-row-1) (:domain paint-row)
+  (:objects r1 - robot t0 t1 t2 t3 - tile black - color)
+  (:init (robot-at r1 t1) (clear t0) (clear t2) (clear t3) (has r1 black)
+         (next t0 t1) (next t1 t0) (next t1 t2) (next t2 t1) (next t2 t3) (next t3 t2))
+  (:goal (and (painted t1 black) (painted t2 black))))
+)";
+
+TEST(GoalOrderTest, TwoTilesEachPaintableOnlyFromTheOtherAreADeadEnd) {
+  auto task = testing::LoadTaskOrFail(kPaintDomain, kOneRobotProblem);
+  ASSERT_NE(task, nullptr);
+  const MutexGroups mutex(*task);
+  const GoalOrderDeadEnds goal_order(*task, mutex);
+  ASSERT_TRUE(goal_order.active());
+  const SnapTask snap(*task);
+  const auto fact = [&](const char* name) { return testing::FactIdOf(*task, name); };
+  StateData state = testing::InitialState(*task, snap);
+  EXPECT_FALSE(goal_order.DeadEnd(state));
+  // t3 painted: t2 can still be painted from t1 and t1 from t0, in that order.
+  state.Clear(fact("(clear t3)"));
+  state.Set(fact("(painted t3 black)"));
+  EXPECT_FALSE(goal_order.DeadEnd(state));
+  // t0 painted too: whichever of t1 and t2 is painted first leaves the other
+  // without a tile to be painted from.
+  state.Clear(fact("(clear t0)"));
+  state.Set(fact("(painted t0 black)"));
+  EXPECT_TRUE(goal_order.DeadEnd(state));
+  // A paint of t2 already running: not a dead end by this rule.
+  state.Clear(fact("(clear t2)"));
+  state.running.push_back({testing::ActionIdOf(*task, "(paint r1 t2 t1 black)"), 2, 2});
+  EXPECT_FALSE(goal_order.DeadEnd(state));
+}
+
+// Tiles t0 - t1 - t2 - t3 - t4, t1 to t3 to be painted, t0 and t4 painted:
+// t1 and t3 need t2 unpainted, t2 needs t1 or t3 unpainted.
+TEST(GoalOrderTest, AChainOfThreeTilesWithBothEndsPaintedIsADeadEnd) {
+  const char* problem = R"(
+(define (problem paint-row-5) (:domain paint-row)
+  (:objects r1 - robot t0 t1 t2 t3 t4 - tile black - color)
+  (:init (robot-at r1 t2) (clear t0) (clear t1) (clear t3) (clear t4) (has r1 black)
+         (next t0 t1) (next t1 t0) (next t1 t2) (next t2 t1) (next t2 t3) (next t3 t2)
+         (next t3 t4) (next t4 t3))
+  (:goal (and (painted t1 black) (painted t2 black) (painted t3 black))))
+)";
+  auto task = testing::LoadTaskOrFail(kPaintDomain, problem);
+  ASSERT_NE(task, nullptr);
+  const MutexGroups mutex(*task);
+  const GoalOrderDeadEnds goal_order(*task, mutex);
+  const SnapTask snap(*task);
+  const auto fact = [&](const char* name) { return testing::FactIdOf(*task, name); };
+  StateData state = testing::InitialState(*task, snap);
+  state.Clear(fact("(clear t4)"));
+  state.Set(fact("(painted t4 black)"));
+  EXPECT_FALSE(goal_order.DeadEnd(state));  // t3, t2, t1 from the left, in that order
+  state.Clear(fact("(clear t0)"));
+  state.Set(fact("(painted t0 black)"));
+  EXPECT_TRUE(goal_order.DeadEnd(state));
+}
+
+TEST(GoalOrderTest, ThePlannerSolvesTheRowWithTheCheckOn) {
+  auto task = testing::LoadTaskOrFail(kPaintDomain, kOneRobotProblem);
+  ASSERT_NE(task, nullptr);
+  PlannerOptions options;
+  options.anytime = false;
+  options.time_limit_s = 10;
+  const PlanResult r = SolveTask(*task, options, StopToken());
+  EXPECT_EQ(r.status, PlanStatus::kSolvedSatisficing) << r.message;
+}
+
+}  // namespace
+}  // namespace seaplan::search
