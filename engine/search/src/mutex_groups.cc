@@ -88,7 +88,8 @@ class Synthesis {
       queue.push_back(std::move(c));
     }
     std::set<std::vector<GroupMember>> groups;
-    while (!queue.empty() && *checked < MutexGroups::kMaxCandidates) {
+    while (!queue.empty() && *checked < MutexGroups::kMaxCandidates &&
+           static_cast<std::size_t>(*checked) * snaps_.size() < MutexGroups::kMaxSnapChecks) {
       Candidate c = std::move(queue.front());
       queue.pop_front();
       ++*checked;

@@ -12,7 +12,8 @@
 // instance also deletes one it requires (the end of an action requires and
 // deletes its own running marker). Candidates grow from one pair by adding,
 // for a snap that breaks them, a pair of a fact it requires and deletes; the
-// search over candidates is bounded (kMaxPairs, kMaxCandidates).
+// search over candidates is bounded (kMaxPairs, kMaxCandidates,
+// kMaxSnapChecks).
 //
 // On floortile: for each tile x, at most one of (clear x), (robot-at ?r x),
 // (painted x ?c) and a move into x or a paint of x running.
@@ -43,6 +44,8 @@ class MutexGroups {
  public:
   static constexpr int kMaxPairs = 16;
   static constexpr int kMaxCandidates = 2000;
+  // Candidates times snaps checked, at most (about 0.2 s on a large task).
+  static constexpr std::size_t kMaxSnapChecks = 20'000'000;
 
   explicit MutexGroups(const task::GroundTask& task);
 
