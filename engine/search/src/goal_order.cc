@@ -86,9 +86,12 @@ GoalOrderDeadEnds::GoalOrderDeadEnds(const task::GroundTask& task, const MutexGr
   for (std::size_t a = 0; a < achievers_.size(); ++a) {
     for (std::size_t j = 0; j < goals_.size(); ++j) {
       const Goal& g = goals_[j];
-      if (std::find(g.achievers.begin(), g.achievers.end(), static_cast<std::int32_t>(a)) !=
-          g.achievers.end())
-        continue;  // its own goal
+      // An action that also achieves j starts both goals at once: no order.
+      const task::ActionId action = achievers_[a].action;
+      if (std::any_of(g.achievers.begin(), g.achievers.end(), [&](std::int32_t b) {
+            return achievers_[static_cast<std::size_t>(b)].action == action;
+          }))
+        continue;
       if (!AnyMutex(mutex, needs[a], g.fact)) continue;
       bool shut = true;
       for (auto b : g.achievers) {
@@ -105,6 +108,7 @@ GoalOrderDeadEnds::GoalOrderDeadEnds(const task::GroundTask& task, const MutexGr
     }
   }
   pending_.assign(goals_.size(), 0);
+  live_.assign(achievers_.size(), 0);
 }
 
 bool GoalOrderDeadEnds::Running(const StateData& state, task::ActionId a) {
@@ -134,24 +138,30 @@ bool GoalOrderDeadEnds::DeadEnd(const StateData& state) const {
     }
     return pending_[j] == 1;
   };
+  const auto live = [&](std::int32_t a) {
+    auto& known = live_[static_cast<std::size_t>(a)];
+    if (known == 0) known = Live(achievers_[static_cast<std::size_t>(a)], state) ? 1 : 2;
+    return known == 1;
+  };
   // Goal j must precede goal g: every achiever of j that can still start
   // must start before g.
   const auto must_precede = [&](std::size_t j, std::int32_t g) {
     for (auto a : goals_[j].achievers) {
       const Achiever& achiever = achievers_[static_cast<std::size_t>(a)];
-      if (!Live(achiever, state)) continue;
+      if (!live(a)) continue;
       if (std::find(achiever.before.begin(), achiever.before.end(), g) == achiever.before.end())
         return false;
     }
     return true;
   };
   std::fill(pending_.begin(), pending_.end(), 0);
+  std::fill(live_.begin(), live_.end(), 0);
   for (std::size_t g = 0; g < goals_.size(); ++g) {
     if (!pending(g)) continue;
     bool stuck = true;  // every live achiever must start before a goal preceding g
     for (auto a : goals_[g].achievers) {
+      if (!live(a)) continue;
       const Achiever& achiever = achievers_[static_cast<std::size_t>(a)];
-      if (!Live(achiever, state)) continue;
       bool blocked = false;
       for (auto j : achiever.before) {
         if (pending(static_cast<std::size_t>(j)) &&

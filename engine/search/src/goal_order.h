@@ -54,8 +54,9 @@ class GoalOrderDeadEnds {
   std::vector<Achiever> achievers_;
   std::vector<Goal> goals_;
   bool active_ = false;
-  // Scratch for DeadEnd (per goal: 0 unknown, 1 pending, 2 not pending).
-  mutable std::vector<std::uint8_t> pending_;
+  // Scratch for DeadEnd, so one object serves one search at a time: per
+  // goal 0 unknown, 1 pending, 2 not; per achiever 0 unknown, 1 live, 2 not.
+  mutable std::vector<std::uint8_t> pending_, live_;
 };
 
 }  // namespace seaplan::search

@@ -65,10 +65,14 @@ class Synthesis {
       snaps_.push_back(std::move(end));
     }
     for (auto& s : snaps_) {
-      std::sort(s.pre.begin(), s.pre.end());
       std::sort(s.add.begin(), s.add.end());
       s.add.erase(std::unique(s.add.begin(), s.add.end()), s.add.end());
-      std::sort(s.del.begin(), s.del.end());
+      // Each member once: a delete listed twice (a ground action whose two
+      // arguments are one object) removes one member, not two.
+      for (auto* v : {&s.pre, &s.del}) {
+        std::sort(v->begin(), v->end());
+        v->erase(std::unique(v->begin(), v->end()), v->end());
+      }
     }
   }
 

@@ -77,6 +77,51 @@ TEST(MutexGroupsTest, AnAddWithoutADeleteBreaksTheInvariant) {
   EXPECT_FALSE(mutex.Mutex(fact("(robot-at r1 t1)"), fact("(robot-at r1 t2)")));
 }
 
+// grab(x, x) requires (free x) once, deletes it once (listed twice) and
+// adds both (h1 x) and (h2 x): {free, h1, h2} is no group.
+TEST(MutexGroupsTest, ADeleteListedTwiceRemovesOneMember) {
+  const char* domain = R"(
+(define (domain grab)
+  (:predicates (free ?a) (h1 ?a) (h2 ?a))
+  (:action grab :parameters (?a ?b) :precondition (and (free ?a) (free ?b))
+    :effect (and (not (free ?a)) (not (free ?b)) (h1 ?a) (h2 ?b)))
+  (:action swap12 :parameters (?a) :precondition (h1 ?a) :effect (and (not (h1 ?a)) (h2 ?a)))
+  (:action swap21 :parameters (?a) :precondition (h2 ?a) :effect (and (not (h2 ?a)) (h1 ?a))))
+)";
+  const char* problem = R"(
+(define (problem grab-1) (:domain grab) (:objects x y) (:init (free x) (free y))
+  (:goal (and (h1 x) (h2 x)))))";
+  auto task = testing::LoadTaskOrFail(domain, problem);
+  ASSERT_NE(task, nullptr);
+  const MutexGroups mutex(*task);
+  EXPECT_FALSE(mutex.Mutex(testing::FactIdOf(*task, "(h1 x)"), testing::FactIdOf(*task, "(h2 x)")));
+}
+
+// One action reaches both goals at once: neither has to come first.
+TEST(GoalOrderTest, OneActionReachingTwoGoalsOrdersNeither) {
+  const char* domain = R"(
+(define (domain finish)
+  (:predicates (free1 ?a) (free2 ?a) (g1 ?a) (g2 ?a))
+  (:action finish :parameters (?a ?b) :precondition (and (free1 ?a) (free2 ?b))
+    :effect (and (not (free1 ?a)) (not (free2 ?b)) (g1 ?a) (g2 ?b))))
+)";
+  const char* problem = R"(
+(define (problem finish-1) (:domain finish) (:objects a b) (:init (free1 a) (free2 b))
+  (:goal (and (g1 a) (g2 b)))))";
+  auto task = testing::LoadTaskOrFail(domain, problem);
+  ASSERT_NE(task, nullptr);
+  const MutexGroups mutex(*task);
+  ASSERT_TRUE(
+      mutex.Mutex(testing::FactIdOf(*task, "(free1 a)"), testing::FactIdOf(*task, "(g1 a)")));
+  const GoalOrderDeadEnds goal_order(*task, mutex);
+  const SnapTask snap(*task);
+  EXPECT_FALSE(goal_order.DeadEnd(testing::InitialState(*task, snap)));
+  PlannerOptions options;
+  options.anytime = false;
+  options.time_limit_s = 10;
+  EXPECT_EQ(SolveTask(*task, options, StopToken()).status, PlanStatus::kSolvedSatisficing);
+}
+
 // One robot; tiles t0 - t1 - t2 - t3; t1 and t2 to be painted.
 const char* kOneRobotProblem = R"(
 (define (problem paint-row-1) (:domain paint-row)
