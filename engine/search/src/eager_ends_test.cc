@@ -184,10 +184,7 @@ TEST(EagerEndTest, ASearchThatRanOutOfStatesWithEagerEndsIsNoProof) {
 TEST(EagerEndTest, ThePlannerSearchesAgainWithoutEagerEndsWhenTheyRanOut) {
   auto task = testing::LoadTaskOrFail(kLateEndDomain, kLateEndProblem);
   ASSERT_NE(task, nullptr);
-  PlannerOptions options;
-  options.anytime = false;
-  options.time_limit_s = 10;
-  const PlanResult r = SolveTask(*task, options, StopToken());
+  const PlanResult r = testing::SolveFirstPlan(*task);
   EXPECT_EQ(r.status, PlanStatus::kSolvedSatisficing) << r.message;
   EXPECT_FALSE(r.plan.steps.empty());
   EXPECT_GT(r.stats.eager_ends, 0u);

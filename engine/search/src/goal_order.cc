@@ -111,13 +111,6 @@ GoalOrderDeadEnds::GoalOrderDeadEnds(const task::GroundTask& task, const MutexGr
   live_.assign(achievers_.size(), 0);
 }
 
-bool GoalOrderDeadEnds::Running(const StateData& state, task::ActionId a) {
-  const auto it =
-      std::lower_bound(state.running.begin(), state.running.end(), a,
-                       [](const RunningAction& r, task::ActionId id) { return r.action < id; });
-  return it != state.running.end() && it->action == a;
-}
-
 bool GoalOrderDeadEnds::Live(const Achiever& a, const StateData& state) const {
   for (auto k : a.killers) {
     if (state.Holds(k)) return false;
@@ -132,7 +125,7 @@ bool GoalOrderDeadEnds::DeadEnd(const StateData& state) const {
       bool p = !state.Holds(goals_[j].fact);
       for (auto a : goals_[j].achievers) {
         if (!p) break;
-        if (Running(state, achievers_[static_cast<std::size_t>(a)].action)) p = false;
+        if (state.IsRunning(achievers_[static_cast<std::size_t>(a)].action)) p = false;
       }
       pending_[j] = p ? 1 : 2;
     }

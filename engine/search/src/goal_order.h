@@ -49,7 +49,6 @@ class GoalOrderDeadEnds {
   };
 
   bool Live(const Achiever& a, const StateData& state) const;
-  static bool Running(const StateData& state, task::ActionId a);
 
   std::vector<Achiever> achievers_;
   std::vector<Goal> goals_;

@@ -116,10 +116,7 @@ TEST(GoalOrderTest, OneActionReachingTwoGoalsOrdersNeither) {
   const GoalOrderDeadEnds goal_order(*task, mutex);
   const SnapTask snap(*task);
   EXPECT_FALSE(goal_order.DeadEnd(testing::InitialState(*task, snap)));
-  PlannerOptions options;
-  options.anytime = false;
-  options.time_limit_s = 10;
-  EXPECT_EQ(SolveTask(*task, options, StopToken()).status, PlanStatus::kSolvedSatisficing);
+  EXPECT_EQ(testing::SolveFirstPlan(*task).status, PlanStatus::kSolvedSatisficing);
 }
 
 // One robot; tiles t0 - t1 - t2 - t3; t1 and t2 to be painted.
@@ -185,10 +182,7 @@ TEST(GoalOrderTest, AChainOfThreeTilesWithBothEndsPaintedIsADeadEnd) {
 TEST(GoalOrderTest, ThePlannerSolvesTheRowWithTheCheckOn) {
   auto task = testing::LoadTaskOrFail(kPaintDomain, kOneRobotProblem);
   ASSERT_NE(task, nullptr);
-  PlannerOptions options;
-  options.anytime = false;
-  options.time_limit_s = 10;
-  const PlanResult r = SolveTask(*task, options, StopToken());
+  const PlanResult r = testing::SolveFirstPlan(*task);
   EXPECT_EQ(r.status, PlanStatus::kSolvedSatisficing) << r.message;
 }
 

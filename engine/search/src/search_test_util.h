@@ -12,6 +12,7 @@
 #include <string_view>
 
 #include "heuristics/relaxed_plan_heuristic.h"
+#include "seaplan/search/planner.h"
 #include "seaplan/task/ground_task.h"
 #include "seaplan/task/grounder.h"
 #include "snap_task.h"
@@ -53,6 +54,15 @@ inline StateData InitialState(const task::GroundTask& task, const SnapTask& snap
   for (auto f : task.initial_facts) state.Set(f);
   for (std::size_t v = 0; v < state.values.size(); ++v) state.values[v] = task.initial_values[v];
   return state;
+}
+
+// The planner on `task` up to its first plan and the bounded searches
+// after it (no anytime phases), within 10 s.
+inline PlanResult SolveFirstPlan(const task::GroundTask& task) {
+  PlannerOptions options;
+  options.anytime = false;
+  options.time_limit_s = 10;
+  return SolveTask(task, options, StopToken());
 }
 
 // What a LazySearch borrows, built for `task` with the planner's default

@@ -13,6 +13,7 @@
 // Thread-safety: none; one registry per search.
 #pragma once
 
+#include <algorithm>
 #include <cstdint>
 #include <vector>
 
@@ -50,6 +51,16 @@ struct StateData {
   std::int32_t variant = 0;
 
   bool Holds(task::FactId f) const { return (facts[f >> 6] >> (f & 63)) & 1u; }
+  // Where action `a` is, or would go, in `running` (sorted by action).
+  std::vector<RunningAction>::const_iterator FindRunning(task::ActionId a) const {
+    return std::lower_bound(
+        running.begin(), running.end(), a,
+        [](const RunningAction& r, task::ActionId id) { return r.action < id; });
+  }
+  bool IsRunning(task::ActionId a) const {
+    const auto it = FindRunning(a);
+    return it != running.end() && it->action == a;
+  }
   void Set(task::FactId f) { facts[f >> 6] |= std::uint64_t{1} << (f & 63); }
   void Clear(task::FactId f) { facts[f >> 6] &= ~(std::uint64_t{1} << (f & 63)); }
 };

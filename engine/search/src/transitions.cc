@@ -193,9 +193,7 @@ bool Transitions::Apply(const StateData& state, Event* event, StateData* next) c
   const SnapAction& snap = task_.snap(event->snap);
   const task::ActionId a = snap.action;
   const auto& action = task_.task().actions[a];
-  auto running_it =
-      std::lower_bound(state.running.begin(), state.running.end(), a,
-                       [](const RunningAction& r, task::ActionId id) { return r.action < id; });
+  const auto running_it = state.FindRunning(a);
   const bool is_running = running_it != state.running.end() && running_it->action == a;
   if (!snap.is_end) {
     if (is_running) return false;  // no self-overlap
