@@ -68,6 +68,10 @@ absl::Status PlannerOptions::Validate() const {
     return absl::InvalidArgumentError(absl::StrCat(
         "second_greedy_after_share must be in [0, 1], got ", second_greedy_after_share));
   }
+  if (!(second_greedy_turn_share >= 0) || !(second_greedy_turn_share < 1)) {
+    return absl::InvalidArgumentError(
+        absl::StrCat("second_greedy_turn_share must be in [0, 1), got ", second_greedy_turn_share));
+  }
   if (!(epsilon_s > 0) || !(epsilon_s < 1)) {
     return absl::InvalidArgumentError(
         absl::StrCat("epsilon_s must be in (0, 1) seconds, got ", epsilon_s));
@@ -127,13 +131,13 @@ class PlannerRun {
 
  private:
   enum class Outcome { kContinue, kStop, kMemout };
-  // Polls stop/expansion limit/memory/progress; called once per search step.
-  Outcome Poll(const LazySearch& search);
-  // Counters so far, finished phases and `search` together.
-  SearchCounters TotalCounters(const LazySearch& search) const {
-    return Sum(done_counters_, search.counters());
-  }
-  std::size_t Expanded(const LazySearch& search) const { return TotalCounters(search).expanded; }
+  // Polls stop/expansion limit/memory/progress for the searches running
+  // now; called once per search step.
+  Outcome Poll();
+  // Counters so far: finished searches and those running now.
+  SearchCounters TotalCounters() const;
+  std::size_t Expanded() const { return TotalCounters().expanded; }
+  // A search ends: its counters join done_counters_ (Start began it).
   void AddCounters(const LazySearch& search);
   // Builds and validates; true when it is a new incumbent.
   bool Offer(const LazySearch& search);
@@ -148,7 +152,8 @@ class PlannerRun {
   SearchParams BoundedParams(double weight) const;
   // PlannerOptions::eager_ends, unless the schedule bounds concurrency.
   bool EagerEnds() const { return options_.eager_ends && options_.max_concurrent_actions == 0; }
-  // Stop token, timed-literal reachability and the initial state.
+  // Stop token, timed-literal reachability and the initial state; the
+  // search counts as running (Poll, TotalCounters) until AddCounters.
   void Start(LazySearch& search);
   // Steps a search pruned by the incumbent until it is exhausted or has
   // expanded more than `max_expanded`. A plan found is offered; unless
@@ -178,7 +183,14 @@ class PlannerRun {
   PlanResult best_;
   bool has_plan_ = false;
   std::size_t plan_events_ = 0;
-  SearchCounters done_counters_;  // of finished phases
+  SearchCounters done_counters_;            // of finished searches
+  std::vector<const LazySearch*> running_;  // started, not yet in done_counters_
+  std::size_t first_plan_expanded_ = 0;     // by the first-plan searches, all together
+  // The second first-plan search's own states and schedule (Run): searches
+  // in turn on one timeline would each find the other's path built where
+  // they left theirs. Freed when the first plan is found.
+  std::optional<StateRegistry> second_registry_;
+  std::optional<Timeline> second_timeline_;
   std::size_t steps_ = 0;
   bool expansion_limit_reached_ = false;
   bool cpu_limit_reached_ = false;
@@ -197,14 +209,21 @@ StateData PlannerRun::InitialState() const {
   return s;
 }
 
-void PlannerRun::AddCounters(const LazySearch& search) {
-  done_counters_ = TotalCounters(search);
+SearchCounters PlannerRun::TotalCounters() const {
+  SearchCounters total = done_counters_;
+  for (const LazySearch* search : running_) total = Sum(total, search->counters());
+  return total;
 }
 
-PlannerRun::Outcome PlannerRun::Poll(const LazySearch& search) {
+void PlannerRun::AddCounters(const LazySearch& search) {
+  done_counters_ = Sum(done_counters_, search.counters());
+  std::erase(running_, &search);
+}
+
+PlannerRun::Outcome PlannerRun::Poll() {
   ++steps_;
   if (stop_.StopRequested()) return Outcome::kStop;
-  if (options_.max_expansions > 0 && Expanded(search) >= options_.max_expansions) {
+  if (options_.max_expansions > 0 && Expanded() >= options_.max_expansions) {
     expansion_limit_reached_ = true;
     return Outcome::kStop;
   }
@@ -218,8 +237,11 @@ PlannerRun::Outcome PlannerRun::Poll(const LazySearch& search) {
     }
   }
   if ((steps_ & 15) == 0) {
-    const std::size_t bytes = registry_.MemoryBytes() + search.MemoryBytes() +
-                              timeline_.MemoryBytes() + plan_timeline_.MemoryBytes();
+    std::size_t bytes =
+        registry_.MemoryBytes() + timeline_.MemoryBytes() + plan_timeline_.MemoryBytes();
+    for (const LazySearch* search : running_) bytes += search->MemoryBytes();
+    if (second_registry_) bytes += second_registry_->MemoryBytes();
+    if (second_timeline_) bytes += second_timeline_->MemoryBytes();
     const std::size_t mb = bytes >> 20;
     best_.stats.peak_memory_mb = std::max(best_.stats.peak_memory_mb, mb);
     if (mb >= options_.memory_limit_mb) return Outcome::kMemout;
@@ -227,7 +249,7 @@ PlannerRun::Outcome PlannerRun::Poll(const LazySearch& search) {
         std::chrono::duration<double>(Clock::now() - last_progress_).count() >= 0.5) {
       last_progress_ = Clock::now();
       SearchStatistics stats = best_.stats;
-      SetCounters(TotalCounters(search), stats);
+      SetCounters(TotalCounters(), stats);
       stats.search_time_s = Seconds(start_);
       observer_->on_progress(stats);
     }
@@ -272,7 +294,7 @@ bool PlannerRun::Offer(const LazySearch& search) {
   best_.stats.best_plan_time_s = now;
   if (observer_ && observer_->on_plan) {
     PlanResult copy = best_;
-    SetCounters(TotalCounters(search), copy.stats);
+    SetCounters(TotalCounters(), copy.stats);
     copy.stats.search_time_s = now;
     copy.message = absl::StrCat("plan ", best_.stats.plans_found, ", makespan ", best_.makespan_s);
     observer_->on_plan(copy);
@@ -300,11 +322,12 @@ void PlannerRun::Start(LazySearch& search) {
   search.SetStopToken(&stop_);
   search.SetTemporalReachability(&reachability_);
   search.Initialize(initial_);
+  running_.push_back(&search);
 }
 
 bool PlannerRun::RunBounded(LazySearch& search, std::size_t max_expanded, bool stop_at_plan) {
   while (search.counters().expanded <= max_expanded) {
-    if (Poll(search) != Outcome::kContinue) return true;
+    if (Poll() != Outcome::kContinue) return true;
     const LazySearch::Status status = search.Step();
     if (status == LazySearch::Status::kSolved) {
       const bool improved = Offer(search);
@@ -350,7 +373,7 @@ void PlannerRun::ShortenFirstPlan() {
   // as they do without it (the registry's state ids, which break ties, and
   // their bound): placed first, its plan's bound sent them elsewhere (seed
   // 2: 19,712 s returned instead of 15,752 s).
-  const std::size_t first_expanded = done_counters_.expanded;
+  const std::size_t first_expanded = first_plan_expanded_;
   const std::size_t budget_factor = options_.anytime ? 2 : 6;
   // With one agent, once the first search's expansions: the pass costs
   // more per state where schedules branch (matchcellar p05: 3.5 s more with
@@ -398,27 +421,6 @@ PlanResult PlannerRun::Run() {
     return stop_.Reason() == StopReason::kCancelled ? PlanStatus::kCancelled : PlanStatus::kTimeout;
   };
 
-  // Phase 1: greedy best-first search for a first plan. If it exhausts the
-  // space without a proof (merged states whose schedules differ), retry
-  // once keeping many more schedule variants apart. If it has found nothing
-  // when its share of the time is up, the rest goes to a greedy search that
-  // breaks ties newest first: the makespan order searches a plateau breadth
-  // first, which is what leaves sokoban and rtam instances unsolved. Under an
-  // expansion limit the share is of that limit, so that the clock decides
-  // nothing but the time limit; under a CPU budget, of that budget.
-  const Clock::time_point switch_at =
-      start_ + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(
-                   options_.time_limit_s * options_.second_greedy_after_share));
-  const auto switch_after_expansions = static_cast<std::size_t>(
-      static_cast<double>(options_.max_expansions) * options_.second_greedy_after_share);
-  auto switch_due = [&](const LazySearch& search) {
-    if (options_.max_expansions > 0) return Expanded(search) >= switch_after_expansions;
-    if (options_.cpu_time_limit_s > 0) {
-      return cpu_seconds_ >= options_.cpu_time_limit_s * options_.second_greedy_after_share;
-    }
-    if ((steps_ & 255) != 0) return false;
-    return Clock::now() >= switch_at;
-  };
   if (snap_.num_goal_breaking() > 0) {
     log::Debug("planner: {} actions left out: each deletes a goal fact nothing adds back",
                snap_.num_goal_breaking());
@@ -449,9 +451,66 @@ PlanResult PlannerRun::Run() {
     log::Debug("planner: {} objects in {} classes of interchangeable objects",
                symmetry_->num_symmetric_objects(), symmetry_->num_classes());
   }
-  bool many_variants = false, newest_first = options_.second_greedy_after_share <= 0;
-  bool eager_ends = EagerEnds();
-  while (true) {
+  // Phase 1: two greedy best-first searches for a first plan. The first
+  // breaks ties by makespan so far. The second breaks them newest first
+  // (the makespan order searches a plateau breadth first, which is what
+  // left sokoban and rtam instances unsolved), and its relaxed plan keeps
+  // the goals the state holds (RelaxedPlanHeuristic::SetKeepHeldGoals: in
+  // the first it made 17 of 154 first plans of the shared benchmark longer,
+  // and lost elevators-2011 p05 at 10 CPU s). It takes
+  // second_greedy_turn_share of the steps, in turn with the first: it is
+  // the much faster one on some domains (parcprinter-2011 p04: 0.021 s
+  // against 2.6 s), but its plans are often longer, and with half the
+  // steps the fjord missions' first plans came later or longer
+  // (bench/planner/README.md, "The two first-plan searches in turn"). If
+  // nothing is found in second_greedy_after_share of the time, the first
+  // stops and the second goes on alone. Under an expansion limit that
+  // share is of the limit, so that the clock decides nothing but the time
+  // limit; under a CPU budget, of that budget. The second search has its own
+  // states and schedule: two searches in turn on one timeline would each
+  // find the other's path built where they left theirs. A search that
+  // exhausts its space without a proof starts again, first without eager
+  // ends, then keeping many more schedule variants apart.
+  const Clock::time_point switch_at =
+      start_ + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(
+                   options_.time_limit_s * options_.second_greedy_after_share));
+  const auto switch_after_expansions = static_cast<std::size_t>(
+      static_cast<double>(options_.max_expansions) * options_.second_greedy_after_share);
+  auto switch_due = [&]() {
+    if (options_.max_expansions > 0) return Expanded() >= switch_after_expansions;
+    if (options_.cpu_time_limit_s > 0) {
+      return cpu_seconds_ >= options_.cpu_time_limit_s * options_.second_greedy_after_share;
+    }
+    if ((steps_ & 255) != 0) return false;
+    return Clock::now() >= switch_at;
+  };
+  struct FirstPlanSearch {
+    bool newest_first = false;
+    double share = 0.5;  // of the steps
+    StateRegistry* registry = nullptr;
+    Timeline* timeline = nullptr;
+    bool eager_ends = true;
+    bool many_variants = false;
+    std::unique_ptr<LazySearch> search;  // null: not run, or out of fallbacks
+    std::size_t steps = 0;
+  };
+  FirstPlanSearch searches[2];
+  const bool switched_at_start = options_.second_greedy_after_share <= 0;
+  searches[0].share = switched_at_start ? 0 : 1 - options_.second_greedy_turn_share;
+  searches[1].share = switched_at_start ? 1 : options_.second_greedy_turn_share;
+  searches[1].newest_first = true;
+  for (FirstPlanSearch& s : searches) {
+    s.registry = &registry_;
+    s.timeline = &timeline_;
+    s.eager_ends = EagerEnds();
+  }
+  if (searches[0].share > 0 && searches[1].share > 0) {
+    second_registry_.emplace(snap_.num_facts(), snap_.num_vars());
+    second_timeline_.emplace(snap_, options_.epsilon_s, options_.max_concurrent_actions > 0);
+    searches[1].registry = &*second_registry_;
+    searches[1].timeline = &*second_timeline_;
+  }
+  auto begin_search = [&](FirstPlanSearch& s) {
     SearchParams params;
     params.weight = -1;
     params.epsilon_s = options_.epsilon_s;
@@ -460,79 +519,117 @@ PlanResult PlannerRun::Run() {
     if (landmarks_) params.landmarks = &*landmarks_;
     if (symmetry_) params.symmetry = &*symmetry_;
     if (goal_order_) params.goal_order = &*goal_order_;
-    params.eager_ends = eager_ends;
-    if (many_variants) {
+    params.eager_ends = s.eager_ends;
+    if (s.many_variants) {
       params.max_variants = 64;
       params.bound_dominance = false;
     }
-    if (newest_first) params.plateau_order = SearchParams::PlateauOrder::kNewestFirst;
-    // The second search also differs in its relaxed plan: on ties it keeps
-    // the goals the state holds (RelaxedPlanHeuristic::SetKeepHeldGoals).
-    // Only there: in the first it made 17 of 154 first plans of the shared
-    // benchmark longer (driverlog-2014 p03 360 -> 449) and lost
-    // elevators-2011 p05 at 10 CPU s; as the second it solves parcprinter
-    // p04 and p05 and driverlog-2014 p05 there, which the first misses.
-    heuristic_.SetKeepHeldGoals(newest_first);
-    LazySearch search(snap_, registry_, heuristic_, transitions_, timeline_, params);
-    Start(search);
-    bool switch_now = false;
-    while (true) {
-      if (!newest_first && options_.second_greedy_after_share < 1 && switch_due(search)) {
-        switch_now = true;
-        break;
-      }
-      const Outcome poll = Poll(search);
-      if (poll != Outcome::kContinue) {
-        AddCounters(search);
-        if (poll == Outcome::kMemout)
-          return finish(PlanStatus::kMemout, "memory limit reached before a plan");
-        if (expansion_limit_reached_) {
-          return finish(PlanStatus::kTimeout,
-                        absl::StrCat("expansion limit (", options_.max_expansions,
-                                     ") reached before a plan was found"));
-        }
-        if (cpu_limit_reached_) {
-          return finish(PlanStatus::kTimeout,
-                        absl::StrCat("CPU time limit (", options_.cpu_time_limit_s,
-                                     " s) reached before a plan was found"));
-        }
-        return finish(stopped_status(), stop_.Reason() == StopReason::kCancelled
-                                            ? "cancelled before a plan was found"
-                                            : "time limit reached before a plan was found");
-      }
-      const LazySearch::Status status = search.Step();
-      if (status == LazySearch::Status::kSolved) {
-        if (Offer(search)) break;
-        continue;  // invalid plan: logged, keep searching
-      }
-      if (status == LazySearch::Status::kExhausted) {
-        AddCounters(search);
-        if (search.complete()) {
-          return finish(PlanStatus::kUnsolvableProven, "search space exhausted: no plan exists");
-        }
-        if (search.counters().eager_ends > 0) {
-          // The orders eager ends left out may hold the plan: search them too.
-          eager_ends = false;
-          break;
-        }
-        if (!many_variants) {
-          many_variants = true;
-          break;
-        }
-        return finish(PlanStatus::kError,
-                      "search space exhausted without a plan, but duplicate states with running "
-                      "actions or timed literals were merged, so this is no proof");
-      }
-    }
-    if (has_plan_) {
-      AddCounters(search);
-      break;
-    }
-    if (switch_now) {
-      AddCounters(search);
-      newest_first = true;
-    }
+    if (s.newest_first) params.plateau_order = SearchParams::PlateauOrder::kNewestFirst;
+    s.search = std::make_unique<LazySearch>(snap_, *s.registry, heuristic_, transitions_,
+                                            *s.timeline, params);
+    Start(*s.search);
+  };
+  for (FirstPlanSearch& s : searches) {
+    if (s.share > 0) begin_search(s);
   }
+  auto end_all = [&]() {
+    for (FirstPlanSearch& s : searches) {
+      if (s.search) AddCounters(*s.search);
+      s.search.reset();
+    }
+  };
+  bool no_proof = false;  // a search ran out of fallbacks
+  const FirstPlanSearch* found_by = nullptr;
+  while (!has_plan_) {
+    // The search furthest behind its share of the steps.
+    FirstPlanSearch* next = nullptr;
+    for (FirstPlanSearch& s : searches) {
+      if (!s.search) continue;
+      if (next == nullptr ||
+          static_cast<double>(s.steps) * next->share < static_cast<double>(next->steps) * s.share) {
+        next = &s;
+      }
+    }
+    if (next == nullptr) {
+      end_all();
+      return finish(PlanStatus::kError,
+                    no_proof ? "search space exhausted without a plan, but duplicate states with "
+                               "running actions or timed literals were merged, so this is no proof"
+                             : "no first-plan search to run");
+    }
+    if (searches[0].share > 0 && options_.second_greedy_after_share < 1 && switch_due()) {
+      if (searches[0].search) AddCounters(*searches[0].search);
+      searches[0].search.reset();
+      searches[0].share = 0;
+      searches[1].share = 1;
+      if (!searches[1].search) begin_search(searches[1]);
+      continue;
+    }
+    const Outcome poll = Poll();
+    if (poll != Outcome::kContinue) {
+      end_all();
+      if (poll == Outcome::kMemout)
+        return finish(PlanStatus::kMemout, "memory limit reached before a plan");
+      if (expansion_limit_reached_) {
+        return finish(PlanStatus::kTimeout,
+                      absl::StrCat("expansion limit (", options_.max_expansions,
+                                   ") reached before a plan was found"));
+      }
+      if (cpu_limit_reached_) {
+        return finish(PlanStatus::kTimeout,
+                      absl::StrCat("CPU time limit (", options_.cpu_time_limit_s,
+                                   " s) reached before a plan was found"));
+      }
+      return finish(stopped_status(), stop_.Reason() == StopReason::kCancelled
+                                          ? "cancelled before a plan was found"
+                                          : "time limit reached before a plan was found");
+    }
+    heuristic_.SetKeepHeldGoals(next->newest_first);
+    LazySearch& search = *next->search;
+    ++next->steps;
+    const LazySearch::Status status = search.Step();
+    if (status == LazySearch::Status::kSolved) {
+      // An invalid plan is logged, and the search goes on.
+      if (Offer(search)) found_by = next;
+      continue;
+    }
+    if (status != LazySearch::Status::kExhausted) continue;
+    if (search.complete()) {
+      end_all();
+      return finish(PlanStatus::kUnsolvableProven, "search space exhausted: no plan exists");
+    }
+    const bool had_eager_ends = search.counters().eager_ends > 0;
+    AddCounters(search);
+    next->search.reset();
+    if (had_eager_ends) {
+      // The orders eager ends left out may hold the plan: search them too.
+      next->eager_ends = false;
+    } else if (!next->many_variants) {
+      next->many_variants = true;
+    } else {
+      no_proof = true;
+      continue;
+    }
+    begin_search(*next);
+  }
+  first_plan_expanded_ = Expanded();
+  // A first plan from the second search (newest first) is often much longer
+  // than the first search's would have been: the first goes on, pruned by
+  // it, until its own plan or six times the expansions so far. Going on
+  // until the switch instead (the budget the first search had without the
+  // second) made 6 first plans of the shared benchmark shorter and 3 longer
+  // at 10 CPU s, and the processes 1.3 times as long (bench/planner/README.md,
+  // "The two first-plan searches in turn").
+  if (found_by == &searches[1] && searches[0].search) {
+    constexpr std::size_t kFirstSearchGoesOn = 6;
+    LazySearch& first = *searches[0].search;
+    heuristic_.SetKeepHeldGoals(false);
+    first.SetBound(best_.makespan_s);
+    RunBounded(first, first.counters().expanded + kFirstSearchGoesOn * first_plan_expanded_, true);
+  }
+  end_all();
+  second_registry_.reset();
+  second_timeline_.reset();
   heuristic_.SetKeepHeldGoals(false);  // the searches for shorter plans: FF's ties
   ShortenFirstPlan();
   heuristic_.SetMakespanAware(false);  // the anytime phases: FF's (see below)

@@ -79,6 +79,11 @@ TEST(PlannerTest, OptionsAreValidated) {
   o.second_greedy_after_share = -0.1;
   EXPECT_FALSE(o.Validate().ok());
   o = {};
+  o.second_greedy_turn_share = 1;  // the first search would never step
+  EXPECT_FALSE(o.Validate().ok());
+  o.second_greedy_turn_share = -0.5;
+  EXPECT_FALSE(o.Validate().ok());
+  o = {};
   o.cpu_time_limit_s = -1;
   EXPECT_FALSE(o.Validate().ok());
   o.cpu_time_limit_s = std::numeric_limits<double>::infinity();
@@ -217,18 +222,22 @@ TEST(PlannerTest, NewestFirstGreedySolvesWhatTheFirstConfigurationSolves) {
   EXPECT_EQ(SolveTask(*toggle.task, o, StopToken()).status, PlanStatus::kUnsolvableProven);
 }
 
-// Both first-plan configurations (the second greedy search after half the
-// budget, or newest first from the start) with the options `set` gives:
-// every feature problem solved with a valid plan (`check` looks at each
-// result too) and unsolvability still proven.
+// The first-plan configurations (the first alone, the two in turn with
+// half the steps each, and the second alone from the start) with the
+// options `set` gives: every feature problem solved with a valid plan
+// (`check` looks at each result too) and unsolvability still proven.
 void ExpectFirstPlanSearchesSolveAndProve(
     const std::function<void(PlannerOptions&)>& set,
     const std::function<void(const Loaded&, const PlanResult&)>& check) {
-  for (const double share : {0.5, 0.0}) {
-    SCOPED_TRACE(::testing::Message() << "share " << share);
+  struct Shares {
+    double after, turn;
+  };
+  for (const Shares shares : {Shares{1, 0}, Shares{1, 0.5}, Shares{0, 0}}) {
+    SCOPED_TRACE(::testing::Message() << "shares " << shares.after << " " << shares.turn);
     PlannerOptions o = Quick(5);
     o.anytime = false;
-    o.second_greedy_after_share = share;
+    o.second_greedy_after_share = shares.after;
+    o.second_greedy_turn_share = shares.turn;
     set(o);
     for (const auto& [domain, problem] : kFeatureProblems) {
       SCOPED_TRACE(problem);

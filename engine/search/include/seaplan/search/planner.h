@@ -18,9 +18,10 @@
 //   - first plan: lazy greedy best-first search with an FF relaxed-plan
 //     heuristic on the snap actions (numeric fluents as intervals) and
 //     helpful actions in a second, boosted open list; ties by makespan so
-//     far, and when that finds nothing in half the time (or half the
-//     expansion limit, when there is one), a second greedy
-//     search that takes ties newest first (depth first on plateaus); both
+//     far, and, an eighth of the steps in turn with it, a second greedy
+//     search that takes ties newest first (depth first on plateaus), alone
+//     when the first finds nothing in half the time (or half the
+//     expansion limit, when there is one); both
 //     with a type-based exploration list and, optionally
 //     (PlannerOptions::landmarks), LAMA's landmark count; then, in
 //     tasks with two or more agents (ships), a greedy search and then
@@ -105,8 +106,13 @@ struct PlannerOptions {
   // Share of time_limit_s (of max_expansions, else cpu_time_limit_s, when set; in [0, 1])
   // after which a first-plan search that has found nothing restarts with its
   // second configuration (plateaus searched newest first instead of by
-  // makespan); 1 never switches.
+  // makespan); 1 never switches. It stops the first search there; the
+  // second goes on from where it is.
   double second_greedy_after_share = 0.5;
+  // Until then, the share of the search steps (in [0, 1)) the second
+  // configuration takes, a step in turn with the first; 0: it waits for
+  // the switch.
+  double second_greedy_turn_share = 0.125;
   // The first-plan searches also pop, in turn with their best-first lists,
   // a random state of a random (h, depth) type (type-based exploration,
   // Xie, Müller and Holte 2014; random_seed seeds it): greedy search
