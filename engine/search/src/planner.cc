@@ -1,6 +1,7 @@
 #include "seaplan/search/planner.h"
 
 #include <algorithm>
+#include <cassert>
 #include <chrono>
 #include <cmath>
 #include <ctime>
@@ -222,7 +223,8 @@ void PlannerRun::AddCounters(const LazySearch& search) {
 
 PlannerRun::Outcome PlannerRun::Poll() {
   ++steps_;
-  if (stop_.StopRequested()) return Outcome::kStop;
+  // Once reached, a limit stops every later phase at its first poll.
+  if (cpu_limit_reached_ || stop_.StopRequested()) return Outcome::kStop;
   if (options_.max_expansions > 0 && Expanded() >= options_.max_expansions) {
     expansion_limit_reached_ = true;
     return Outcome::kStop;
@@ -492,6 +494,7 @@ PlanResult PlannerRun::Run() {
     bool eager_ends = true;
     bool many_variants = false;
     std::unique_ptr<LazySearch> search;  // null: not run, or out of fallbacks
+    bool out_of_fallbacks = false;       // exhausted without a proof, every way
     std::size_t steps = 0;
   };
   FirstPlanSearch searches[2];
@@ -525,6 +528,7 @@ PlanResult PlannerRun::Run() {
       params.bound_dominance = false;
     }
     if (s.newest_first) params.plateau_order = SearchParams::PlateauOrder::kNewestFirst;
+    assert(!s.search);  // a running search must go through AddCounters first
     s.search = std::make_unique<LazySearch>(snap_, *s.registry, heuristic_, transitions_,
                                             *s.timeline, params);
     Start(*s.search);
@@ -550,6 +554,13 @@ PlanResult PlannerRun::Run() {
         next = &s;
       }
     }
+    if (next == nullptr && searches[1].steps == 0 && !searches[1].out_of_fallbacks) {
+      // The first ran out of fallbacks before the second took a step
+      // (second_greedy_turn_share 0): the second now, alone.
+      searches[1].share = 1;
+      begin_search(searches[1]);
+      continue;
+    }
     if (next == nullptr) {
       end_all();
       return finish(PlanStatus::kError,
@@ -557,7 +568,9 @@ PlanResult PlannerRun::Run() {
                                "running actions or timed literals were merged, so this is no proof"
                              : "no first-plan search to run");
     }
-    if (searches[0].share > 0 && options_.second_greedy_after_share < 1 && switch_due()) {
+    // The switch; not to a second search already out of fallbacks.
+    if (searches[0].share > 0 && !searches[1].out_of_fallbacks &&
+        options_.second_greedy_after_share < 1 && switch_due()) {
       if (searches[0].search) AddCounters(*searches[0].search);
       searches[0].search.reset();
       searches[0].share = 0;
@@ -608,6 +621,7 @@ PlanResult PlannerRun::Run() {
       next->many_variants = true;
     } else {
       no_proof = true;
+      next->out_of_fallbacks = true;
       continue;
     }
     begin_search(*next);

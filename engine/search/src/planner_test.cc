@@ -364,7 +364,8 @@ TEST(PlannerTest, SameSeedSamePlan) {
 }
 
 // The expansion limit ends every phase: before a plan (both first-plan
-// configurations: half the limit each) with kTimeout naming the limit, and
+// configurations: in turn until half the limit, then the second alone)
+// with kTimeout naming the limit, and
 // the anytime search after one.
 TEST(PlannerTest, ExpansionLimitEndsTheSearch) {
   auto hard = Load("toggle-domain.pddl", "toggle-22.pddl");

@@ -27,7 +27,7 @@
 //     tasks with two or more agents (ships), a greedy search and then
 //     weighted A* (w = 3) whose relaxed plan spreads the work over them,
 //     bounded (by the first plan's makespan and, together, six times the
-//     first search's expansions without anytime, twice with it), whose plans
+//     first-plan searches' expansions without anytime, twice with it), whose plans
 //     replace the first when shorter; that is the plan returned without
 //     anytime;
 //   - anytime: restarting weighted A* on makespan, pruned by the incumbent,
@@ -104,10 +104,11 @@ struct PlannerOptions {
   // Separation of interfering events, seconds (> 0, the validator's epsilon).
   double epsilon_s = 0.001;
   // Share of time_limit_s (of max_expansions, else cpu_time_limit_s, when set; in [0, 1])
-  // after which a first-plan search that has found nothing restarts with its
-  // second configuration (plateaus searched newest first instead of by
-  // makespan); 1 never switches. It stops the first search there; the
-  // second goes on from where it is.
+  // after which, with no plan found, the first-plan searches switch to the
+  // second configuration alone (plateaus searched newest first instead of
+  // by makespan): the first stops, the second goes on from where it is (or
+  // starts, with no turn share); 0: the second alone from the start; 1
+  // never switches.
   double second_greedy_after_share = 0.5;
   // Until then, the share of the search steps (in [0, 1)) the second
   // configuration takes, a step in turn with the first; 0: it waits for
