@@ -25,30 +25,59 @@ bool Contains(const std::vector<task::FactId>& v, task::FactId f) {
   return std::find(v.begin(), v.end(), f) != v.end();
 }
 
-}  // namespace
+// Per fact: `deleted` when an action, a conditional effect or a timed
+// literal deletes it; `unsafe` when something else than an action's plain
+// effect adds it (a timed literal, a conditional effect). A goal is watched
+// only when neither.
+struct FactChanges {
+  std::vector<std::uint8_t> deleted, unsafe;
+};
 
-GoalOrderDeadEnds::GoalOrderDeadEnds(const task::GroundTask& task, const MutexGroups& mutex) {
-  if (mutex.groups().empty()) return;
-  // Facts nothing deletes; goals something else than an action's plain
-  // effect adds are left out.
-  std::vector<std::uint8_t> deleted(task.facts.size(), 0), unsafe(task.facts.size(), 0);
+FactChanges ChangesOf(const task::GroundTask& task) {
+  FactChanges c;
+  c.deleted.assign(task.facts.size(), 0);
+  c.unsafe.assign(task.facts.size(), 0);
   for (const auto& a : task.actions) {
     for (const task::Effects* e : {&a.start_effects, &a.end_effects}) {
-      for (auto f : e->del) deleted[static_cast<std::size_t>(f)] = 1;
-      for (const auto& c : e->conditional) {
-        for (auto f : c.del) deleted[static_cast<std::size_t>(f)] = 1;
-        for (auto f : c.add) unsafe[static_cast<std::size_t>(f)] = 1;
+      for (auto f : e->del) c.deleted[static_cast<std::size_t>(f)] = 1;
+      for (const auto& ce : e->conditional) {
+        for (auto f : ce.del) c.deleted[static_cast<std::size_t>(f)] = 1;
+        for (auto f : ce.add) c.unsafe[static_cast<std::size_t>(f)] = 1;
       }
     }
   }
   for (const auto& til : task.timed_literals) {
-    (til.value ? unsafe : deleted)[static_cast<std::size_t>(til.fact)] = 1;
+    (til.value ? c.unsafe : c.deleted)[static_cast<std::size_t>(til.fact)] = 1;
   }
-  const auto permanent = [&](task::FactId f) { return !deleted[static_cast<std::size_t>(f)]; };
+  return c;
+}
+
+bool Watchable(const FactChanges& c, task::FactId g) {
+  return !c.deleted[static_cast<std::size_t>(g)] && !c.unsafe[static_cast<std::size_t>(g)];
+}
+
+}  // namespace
+
+std::size_t GoalOrderDeadEnds::NumWatchableGoals(const task::GroundTask& task) {
+  const FactChanges changes = ChangesOf(task);
+  std::vector<task::FactId> goals;
+  for (auto g : task.goal.positive) {
+    if (Watchable(changes, g)) goals.push_back(g);
+  }
+  std::sort(goals.begin(), goals.end());
+  return static_cast<std::size_t>(std::unique(goals.begin(), goals.end()) - goals.begin());
+}
+
+GoalOrderDeadEnds::GoalOrderDeadEnds(const task::GroundTask& task, const MutexGroups& mutex) {
+  if (mutex.groups().empty()) return;
+  const FactChanges changes = ChangesOf(task);
+  const auto permanent = [&](task::FactId f) {
+    return !changes.deleted[static_cast<std::size_t>(f)];
+  };
   std::vector<std::vector<task::FactId>> needs;
   std::vector<std::uint8_t> adds_at_end;
   for (auto g : task.goal.positive) {
-    if (!permanent(g) || unsafe[static_cast<std::size_t>(g)]) continue;
+    if (!Watchable(changes, g)) continue;
     Goal goal;
     goal.fact = g;
     for (task::ActionId a = 0; a < static_cast<task::ActionId>(task.actions.size()); ++a) {

@@ -186,5 +186,27 @@ TEST(GoalOrderTest, ThePlannerSolvesTheRowWithTheCheckOn) {
   EXPECT_EQ(r.status, PlanStatus::kSolvedSatisficing) << r.message;
 }
 
+// The goals the check would watch, counted without mutex groups: the
+// paint goals nothing deletes; not a goal an action deletes (a robot's
+// place), nor one a timed literal adds; each goal once.
+TEST(GoalOrderTest, WatchableGoalsAreThoseNothingDeletesAndOnlyActionsAdd) {
+  auto task = testing::LoadTaskOrFail(kPaintDomain, kPaintProblem);
+  ASSERT_NE(task, nullptr);
+  EXPECT_EQ(GoalOrderDeadEnds::NumWatchableGoals(*task), 2u);
+
+  auto moved = testing::LoadTaskOrFail(kPaintDomain, R"(
+(define (problem paint-row-moved) (:domain paint-row)
+  (:objects r1 r2 - robot t0 t1 t2 t3 - tile black - color)
+  (:init (robot-at r1 t0) (robot-at r2 t3) (clear t1) (clear t2) (has r1 black) (has r2 black)
+         (next t0 t1) (next t1 t0) (next t1 t2) (next t2 t1) (next t2 t3) (next t3 t2)
+         (at 50 (painted t2 black)))
+  (:goal (and (painted t1 black) (painted t1 black) (painted t2 black) (robot-at r1 t1))))
+)");
+  ASSERT_NE(moved, nullptr);
+  // (painted t1 black) once; (painted t2 black) a literal adds; a robot's
+  // place a move deletes.
+  EXPECT_EQ(GoalOrderDeadEnds::NumWatchableGoals(*moved), 1u);
+}
+
 }  // namespace
 }  // namespace seaplan::search

@@ -436,7 +436,9 @@ PlanResult PlannerRun::Run() {
     log::Debug("planner: {} landmarks, {} orderings in {:.3f} s", landmarks_->size(),
                landmarks_->num_orderings(), best_.stats.landmark_time_s);
   }
-  {
+  if (GoalOrderDeadEnds::NumWatchableGoals(snap_.task()) < 2) {
+    log::Debug("planner: fewer than two goals nothing deletes: no goal order to watch");
+  } else {
     // Mutex groups and the dead ends the order of goals shows (goal_order.h).
     const Clock::time_point mutex_start = Clock::now();
     const MutexGroups mutex(snap_.task());
