@@ -4,6 +4,9 @@
 
 #include <gtest/gtest.h>
 
+#include <string>
+#include <string_view>
+
 #include "goal_order.h"
 #include "seaplan/search/planner.h"
 #include "search_test_util.h"
@@ -34,13 +37,29 @@ const char* kPaintDomain = R"(
                     (over all (next ?from ?t)) (at start (clear ?t)))
     :effect (and (at start (not (clear ?t))) (at end (painted ?t ?c))))
 ))";
-const char* kPaintProblem = R"(
-(define (problem paint-row-3) (:domain paint-row)
-  (:objects r1 r2 - robot t0 t1 t2 t3 - tile black - color)
-  (:init (robot-at r1 t0) (robot-at r2 t3) (clear t1) (clear t2) (has r1 black) (has r2 black)
-         (next t0 t1) (next t1 t0) (next t1 t2) (next t2 t1) (next t2 t3) (next t3 t2))
-  (:goal (and (painted t1 black) (painted t2 black))))
-)";
+// A problem of paint-row: tiles t0 ... t(n-1) in a row, black paint, the
+// robots, the rest of the initial state and the goal as given.
+std::string PaintRowProblem(int tiles, std::string_view robots, std::string_view init,
+                            std::string_view goal) {
+  std::string objects, next;
+  for (int i = 0; i < tiles; ++i) {
+    objects += " t" + std::to_string(i);
+    if (i + 1 < tiles) {
+      const std::string a = "t" + std::to_string(i), b = "t" + std::to_string(i + 1);
+      next += " (next " + a + " " + b + ") (next " + b + " " + a + ")";
+    }
+  }
+  return "(define (problem paint-row) (:domain paint-row)\n  (:objects " + std::string(robots) +
+         " - robot" + objects + " - tile black - color)\n  (:init " + std::string(init) + next +
+         ")\n  (:goal (and " + std::string(goal) + ")))";
+}
+
+// Two robots at the ends of t0 - t1 - t2 - t3; t1 and t2 to be painted.
+const std::string kPaintProblem =
+    PaintRowProblem(4, "r1 r2",
+                    "(robot-at r1 t0) (robot-at r2 t3) (clear t1) (clear t2) (has r1 black) "
+                    "(has r2 black)",
+                    "(painted t1 black) (painted t2 black)");
 
 TEST(MutexGroupsTest, ATileIsClearOrOccupiedOrPaintedOrBeingEntered) {
   auto task = testing::LoadTaskOrFail(kPaintDomain, kPaintProblem);
@@ -120,13 +139,9 @@ TEST(GoalOrderTest, OneActionReachingTwoGoalsOrdersNeither) {
 }
 
 // One robot; tiles t0 - t1 - t2 - t3; t1 and t2 to be painted.
-const char* kOneRobotProblem = R"(
-(define (problem paint-row-1) (:domain paint-row)
-  (:objects r1 - robot t0 t1 t2 t3 - tile black - color)
-  (:init (robot-at r1 t1) (clear t0) (clear t2) (clear t3) (has r1 black)
-         (next t0 t1) (next t1 t0) (next t1 t2) (next t2 t1) (next t2 t3) (next t3 t2))
-  (:goal (and (painted t1 black) (painted t2 black))))
-)";
+const std::string kOneRobotProblem =
+    PaintRowProblem(4, "r1", "(robot-at r1 t1) (clear t0) (clear t2) (clear t3) (has r1 black)",
+                    "(painted t1 black) (painted t2 black)");
 
 TEST(GoalOrderTest, TwoTilesEachPaintableOnlyFromTheOtherAreADeadEnd) {
   auto task = testing::LoadTaskOrFail(kPaintDomain, kOneRobotProblem);
@@ -156,14 +171,9 @@ TEST(GoalOrderTest, TwoTilesEachPaintableOnlyFromTheOtherAreADeadEnd) {
 // Tiles t0 - t1 - t2 - t3 - t4, t1 to t3 to be painted, t0 and t4 painted:
 // t1 and t3 need t2 unpainted, t2 needs t1 or t3 unpainted.
 TEST(GoalOrderTest, AChainOfThreeTilesWithBothEndsPaintedIsADeadEnd) {
-  const char* problem = R"(
-(define (problem paint-row-5) (:domain paint-row)
-  (:objects r1 - robot t0 t1 t2 t3 t4 - tile black - color)
-  (:init (robot-at r1 t2) (clear t0) (clear t1) (clear t3) (clear t4) (has r1 black)
-         (next t0 t1) (next t1 t0) (next t1 t2) (next t2 t1) (next t2 t3) (next t3 t2)
-         (next t3 t4) (next t4 t3))
-  (:goal (and (painted t1 black) (painted t2 black) (painted t3 black))))
-)";
+  const std::string problem = PaintRowProblem(
+      5, "r1", "(robot-at r1 t2) (clear t0) (clear t1) (clear t3) (clear t4) (has r1 black)",
+      "(painted t1 black) (painted t2 black) (painted t3 black)");
   auto task = testing::LoadTaskOrFail(kPaintDomain, problem);
   ASSERT_NE(task, nullptr);
   const MutexGroups mutex(*task);
@@ -194,14 +204,12 @@ TEST(GoalOrderTest, WatchableGoalsAreThoseNothingDeletesAndOnlyActionsAdd) {
   ASSERT_NE(task, nullptr);
   EXPECT_EQ(GoalOrderDeadEnds::NumWatchableGoals(*task), 2u);
 
-  auto moved = testing::LoadTaskOrFail(kPaintDomain, R"(
-(define (problem paint-row-moved) (:domain paint-row)
-  (:objects r1 r2 - robot t0 t1 t2 t3 - tile black - color)
-  (:init (robot-at r1 t0) (robot-at r2 t3) (clear t1) (clear t2) (has r1 black) (has r2 black)
-         (next t0 t1) (next t1 t0) (next t1 t2) (next t2 t1) (next t2 t3) (next t3 t2)
-         (at 50 (painted t2 black)))
-  (:goal (and (painted t1 black) (painted t1 black) (painted t2 black) (robot-at r1 t1))))
-)");
+  auto moved = testing::LoadTaskOrFail(
+      kPaintDomain,
+      PaintRowProblem(4, "r1 r2",
+                      "(robot-at r1 t0) (robot-at r2 t3) (clear t1) (clear t2) (has r1 black) "
+                      "(has r2 black) (at 50 (painted t2 black))",
+                      "(painted t1 black) (painted t1 black) (painted t2 black) (robot-at r1 t1)"));
   ASSERT_NE(moved, nullptr);
   // (painted t1 black) once; (painted t2 black) a literal adds; a robot's
   // place a move deletes.

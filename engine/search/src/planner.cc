@@ -146,8 +146,9 @@ class PlannerRun {
   StateData InitialState() const;
   // After the first plan: bounded searches with the makespan-aware relaxed
   // plan (agents' work spread, relaxed_plan_heuristic.h); with fewer than
-  // two agents, weighted A* alone with FF's.
-  void ShortenFirstPlan();
+  // two agents, weighted A* alone with FF's. Their budgets are multiples of
+  // `first_expanded`, the first-plan searches' expansions together.
+  void ShortenFirstPlan(std::size_t first_expanded);
   // A search pruned by the incumbent (weight < 0: greedy, else weighted A*
   // with the incumbent's seconds per event as the heuristic's unit).
   SearchParams BoundedParams(double weight) const;
@@ -186,7 +187,6 @@ class PlannerRun {
   std::size_t plan_events_ = 0;
   SearchCounters done_counters_;            // of finished searches
   std::vector<const LazySearch*> running_;  // started, not yet in done_counters_
-  std::size_t first_plan_expanded_ = 0;     // by the first-plan searches, all together
   // The second first-plan search's own states and schedule (Run): searches
   // in turn on one timeline would each find the other's path built where
   // they left theirs. Freed when the first plan is found.
@@ -342,7 +342,7 @@ bool PlannerRun::RunBounded(LazySearch& search, std::size_t max_expanded, bool s
   return false;
 }
 
-void PlannerRun::ShortenFirstPlan() {
+void PlannerRun::ShortenFirstPlan(std::size_t first_expanded) {
   heuristic_.SetMakespanAware(true);
   if (!has_plan_) return;
   // With fewer than two agents there is no work to spread, but the greedy
@@ -375,7 +375,6 @@ void PlannerRun::ShortenFirstPlan() {
   // as they do without it (the registry's state ids, which break ties, and
   // their bound): placed first, its plan's bound sent them elsewhere (seed
   // 2: 19,712 s returned instead of 15,752 s).
-  const std::size_t first_expanded = first_plan_expanded_;
   const std::size_t budget_factor = options_.anytime ? 2 : 6;
   // With one agent, once the first search's expansions: the pass costs
   // more per state where schedules branch (matchcellar p05: 3.5 s more with
@@ -490,7 +489,7 @@ PlanResult PlannerRun::Run() {
   };
   struct FirstPlanSearch {
     bool newest_first = false;
-    double share = 0.5;  // of the steps
+    double share = 0;  // of the steps
     StateRegistry* registry = nullptr;
     Timeline* timeline = nullptr;
     bool eager_ends = true;
@@ -544,7 +543,6 @@ PlanResult PlannerRun::Run() {
       s.search.reset();
     }
   };
-  bool no_proof = false;  // a search ran out of fallbacks
   const FirstPlanSearch* found_by = nullptr;
   while (!has_plan_) {
     // The search furthest behind its share of the steps.
@@ -566,9 +564,10 @@ PlanResult PlannerRun::Run() {
     if (next == nullptr) {
       end_all();
       return finish(PlanStatus::kError,
-                    no_proof ? "search space exhausted without a plan, but duplicate states with "
-                               "running actions or timed literals were merged, so this is no proof"
-                             : "no first-plan search to run");
+                    searches[0].out_of_fallbacks || searches[1].out_of_fallbacks
+                        ? "search space exhausted without a plan, but duplicate states with "
+                          "running actions or timed literals were merged, so this is no proof"
+                        : "no first-plan search to run");
     }
     // The switch; not to a second search already out of fallbacks.
     if (searches[0].share > 0 && !searches[1].out_of_fallbacks &&
@@ -622,13 +621,12 @@ PlanResult PlannerRun::Run() {
     } else if (!next->many_variants) {
       next->many_variants = true;
     } else {
-      no_proof = true;
       next->out_of_fallbacks = true;
       continue;
     }
     begin_search(*next);
   }
-  first_plan_expanded_ = Expanded();
+  const std::size_t first_plan_expanded = Expanded();
   // A first plan from the second search (newest first) is often much longer
   // than the first search's would have been: the first goes on, pruned by
   // it, until its own plan or twelve times the expansions so far. With six
@@ -642,13 +640,13 @@ PlanResult PlannerRun::Run() {
     LazySearch& first = *searches[0].search;
     heuristic_.SetKeepHeldGoals(false);
     first.SetBound(best_.makespan_s);
-    RunBounded(first, first.counters().expanded + kFirstSearchGoesOn * first_plan_expanded_, true);
+    RunBounded(first, first.counters().expanded + kFirstSearchGoesOn * first_plan_expanded, true);
   }
   end_all();
   second_registry_.reset();
   second_timeline_.reset();
   heuristic_.SetKeepHeldGoals(false);  // the searches for shorter plans: FF's ties
-  ShortenFirstPlan();
+  ShortenFirstPlan(first_plan_expanded);
   heuristic_.SetMakespanAware(false);  // the anytime phases: FF's (see below)
   if (!options_.anytime) return finish(PlanStatus::kSolvedSatisficing, "");
 
