@@ -102,18 +102,36 @@ RelaxedPlanHeuristic::RelaxedPlanHeuristic(const SnapTask& task, double epsilon_
       min_invariant_duration_[f] = std::min(min_invariant_duration_[f], d);
     }
   }
-  // fact -> ops needing it.
+  // fact -> ops it triggers (see fact_ops_): an end's over-all conditions
+  // are left out.
+  std::vector<std::vector<std::int32_t>> triggers(static_cast<std::size_t>(num_ops_));
+  for (int op = 0; op < num_ops_; ++op) {
+    auto& list = triggers[static_cast<std::size_t>(op)];
+    const task::Action& action = actions[static_cast<std::size_t>(op / 2)];
+    if (op % 2 == 0 || !op_exists_[op]) {
+      const auto row = CsrRow(pre_, pre_begin_, op);
+      list.assign(row.begin(), row.end());
+      continue;
+    }
+    AddConditionFacts(action.at_end, list);
+    list.push_back(num_facts_ + op / 2);
+    std::sort(list.begin(), list.end());
+    list.erase(std::unique(list.begin(), list.end()), list.end());
+  }
   std::vector<std::int32_t> count(static_cast<std::size_t>(total_facts) + 1, 0);
-  for (auto f : pre_) ++count[f + 1];
+  for (const auto& list : triggers) {
+    for (auto f : list) ++count[f + 1];
+  }
   for (std::size_t i = 1; i < count.size(); ++i) count[i] += count[i - 1];
   fact_ops_begin_ = count;
-  fact_ops_.resize(pre_.size());
+  fact_ops_.resize(static_cast<std::size_t>(count.back()));
   std::vector<std::int32_t> fill(count.begin(), count.end() - 1);
   for (int op = 0; op < num_ops_; ++op) {
-    for (int i = pre_begin_[op]; i < pre_begin_[op + 1]; ++i) fact_ops_[fill[pre_[i]]++] = op;
+    for (auto f : triggers[static_cast<std::size_t>(op)]) fact_ops_[fill[f]++] = op;
   }
   fact_layer_.resize(static_cast<std::size_t>(total_facts));
   undoes_goal_.resize(static_cast<std::size_t>(total_facts));
+  goal_undone_.resize(static_cast<std::size_t>(total_facts));
   fact_achiever_.resize(static_cast<std::size_t>(total_facts));
   fact_marked_.resize(static_cast<std::size_t>(total_facts));
   op_layer_.resize(static_cast<std::size_t>(num_ops_));
@@ -128,7 +146,9 @@ RelaxedPlanHeuristic::RelaxedPlanHeuristic(const SnapTask& task, double epsilon_
   til_fact_.resize(static_cast<std::size_t>(num_facts_));
   op_missing_init_.resize(static_cast<std::size_t>(num_ops_));
   for (int op = 0; op < num_ops_; ++op) {
-    op_missing_init_[op] = op_exists_[op] ? pre_begin_[op + 1] - pre_begin_[op] : (1 << 30);
+    op_missing_init_[op] =
+        op_exists_[op] ? static_cast<std::int32_t>(triggers[static_cast<std::size_t>(op)].size())
+                       : (1 << 30);
   }
   pair_check_.assign(static_cast<std::size_t>(num_ops_), PairCheck{});
   for (int op = 0; op < num_ops_; op += 2) {
@@ -333,6 +353,24 @@ bool RelaxedPlanHeuristic::DeletesHeldGoal(int op) const {
   return false;
 }
 
+int RelaxedPlanHeuristic::CountUndoneGoals() {
+  int undone = 0;
+  for (auto op : marked_ops_) {
+    for (int i = goal_del_begin_[op]; i < goal_del_begin_[op + 1]; ++i) {
+      const int g = goal_del_[i];
+      if (fact_layer_[g] == 0 && !goal_undone_[g]) {
+        goal_undone_[g] = 1;
+        ++undone;
+      }
+    }
+  }
+  for (auto op : marked_ops_) {
+    for (int i = goal_del_begin_[op]; i < goal_del_begin_[op + 1]; ++i)
+      goal_undone_[goal_del_[i]] = 0;
+  }
+  return undone;
+}
+
 double RelaxedPlanHeuristic::FinishEstimate(int op) const {
   const int a = op / 2;
   // A running action's end: its agents' work is already in their ready times.
@@ -402,28 +440,19 @@ void RelaxedPlanHeuristic::MarkNumeric(const task::NumericCondition& c, int laye
 void RelaxedPlanHeuristic::ExemptRunningEnds(const StateData& state) {
   // A suppressed fact only keeps new actions from counting on a window too
   // short for them; running actions already fit (the schedule holds them
-  // inside their envelopes), so their ends do not wait for it. Counted as
-  // reached for those ends now; reach() undoes that if the fact is reached
-  // later, so the counters stay exact.
+  // inside their envelopes), so the relaxed plan does not re-achieve it for
+  // their ends. The exploration needs no exemption: an end never waits for
+  // its over-all conditions (fact_ops_).
   for (const auto& r : state.running) {
     const task::Action& action = task_.task().actions[static_cast<std::size_t>(r.action)];
-    const int end_op = 2 * r.action + 1;
     for (auto f : action.over_all.positive) {
       if (!suppressed_[f]) continue;
       if (std::find(action.at_end.positive.begin(), action.at_end.positive.end(), f) !=
           action.at_end.positive.end()) {
         continue;
       }
-      --op_missing_[end_op];  // started(a) is still missing, so never 0 here
-      exempt_ends_.push_back({f, end_op});
+      exempt_ends_.push_back({f, 2 * r.action + 1});
     }
-  }
-}
-
-void RelaxedPlanHeuristic::PayBackExemptEnds(int fact) {
-  for (const auto& [f, op] : exempt_ends_) {
-    // An end already enabled stays enabled (its counter goes below 0).
-    if (f == fact && op_missing_[op] > 0) ++op_missing_[op];
   }
 }
 
@@ -457,8 +486,8 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
   applicable_.clear();
   numeric_waiting_.clear();
   new_facts_.clear();
-  // Previous evaluation's suppressed facts (kept set until now so reach()
-  // can pay back the running ends exempted from them).
+  // Previous evaluation's suppressed facts (kept set until now: its
+  // extraction read them).
   for (auto f : suppressed_list_) suppressed_[f] = 0;
   suppressed_list_.clear();
   exempt_ends_.clear();
@@ -481,7 +510,6 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
       }
       return;
     }
-    if (!suppressed_list_.empty() && f < num_facts_ && suppressed_[f]) PayBackExemptEnds(f);
     fact_layer_[f] = layer;
     fact_achiever_[f] = achiever;
     if (keep_held_goals) undoes_goal_[f] = undoes_goal;
@@ -775,6 +803,7 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
   }
   extract_needs();
   int h = static_cast<int>(marked_ops_.size());
+  if (keep_held_goals) h += kUndoneGoalCost * CountUndoneGoals();
   for (const auto& r : state.running) {
     if (!op_marked_[2 * r.action + 1]) ++h;
   }

@@ -169,5 +169,46 @@ TEST(RelaxedPlanHeuristicGoalTest, OnTiesTheRelaxedPlanKeepsTheGoalsTheStateHold
   EXPECT_EQ(preferred, turn_over);
 }
 
+// A courier who must end at home and make a delivery: leaving home undoes
+// a goal the start state holds, which the relaxation does not see.
+constexpr char kCourierDomain[] = R"((define (domain courier)
+  (:requirements :durative-actions)
+  (:predicates (home) (out) (delivered))
+  (:durative-action go-out :parameters () :duration (= ?duration 1)
+    :condition (at start (home))
+    :effect (and (at start (not (home))) (at end (out))))
+  (:durative-action deliver :parameters () :duration (= ?duration 1)
+    :condition (at start (out))
+    :effect (at end (delivered)))
+  (:durative-action come-back :parameters () :duration (= ?duration 1)
+    :condition (at start (out))
+    :effect (and (at start (not (out))) (at end (home))))))";
+
+constexpr char kCourierProblem[] = R"((define (problem courier-1) (:domain courier)
+  (:init (home))
+  (:goal (and (home) (delivered)))))";
+
+TEST(RelaxedPlanHeuristicGoalTest, KeepingHeldGoalsChargesTheGoalsTheRelaxedPlanUndoes) {
+  const auto loaded = testing::LoadTaskOrFail(kCourierDomain, kCourierProblem);
+  ASSERT_NE(loaded, nullptr);
+  const task::GroundTask& task = *loaded;
+  SnapTask snap(task);
+  RelaxedPlanHeuristic heuristic(snap, 0.001);
+  StateData at_home = testing::InitialState(task, snap);
+  StateData out = at_home;
+  out.Clear(testing::FactIdOf(task, "(home)"));
+  out.Set(testing::FactIdOf(task, "(out)"));
+  // The relaxed plan from home: go-out, deliver (four snaps); the real one
+  // must also come back.
+  EXPECT_EQ(heuristic.Evaluate(at_home, nullptr), 4);
+  heuristic.SetKeepHeldGoals(true);
+  EXPECT_EQ(heuristic.Evaluate(at_home, nullptr), 4 + RelaxedPlanHeuristic::kUndoneGoalCost);
+  // Out, nothing the state holds is undone: deliver, come-back.
+  EXPECT_EQ(heuristic.Evaluate(out, nullptr), 4);
+  // Delivered and home: the goal, nothing to charge.
+  at_home.Set(testing::FactIdOf(task, "(delivered)"));
+  EXPECT_EQ(heuristic.Evaluate(at_home, nullptr), 0);
+}
+
 }  // namespace
 }  // namespace seaplan::search
