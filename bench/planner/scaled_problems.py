@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Problems larger than the shared benchmark's p01-p05, for two of its domains.
+"""Problems larger than the shared benchmark's p01-p05, for three of its domains.
 
 The shared set holds only the first five problems of each domain; the
 larger ones a planner is judged on are not here. This writes random
@@ -14,6 +14,12 @@ instances"):
       3 * DRIVERS - 1 road locations on a random connected road map and a
       walking map of path locations, random positions and goals (its p05:
       9 drivers, 9 trucks, 22 packages).
+
+  elevators FLOORS PASSENGERS SEED  elevators-2011's domain: FLOORS + 1
+      floors (FLOORS a multiple of 8), two fast elevators stopping every
+      fourth floor and one slow elevator per block of eight floors (as in
+      its p01-p05: 16-24 floors, 15-26 passengers), random start and
+      destination floors.
 
 The problem goes to standard output; the domain is the shared one, e.g.
   bench/planner/scaled_problems.py floortile 4 4 2 1 > /tmp/ft-4x4.pddl
@@ -101,6 +107,45 @@ def driverlog(drivers, trucks, packages, rng):
     return out
 
 
+def elevators(floors, passengers, rng):
+    # The shared instances' figures: a slow elevator takes 4 + 8 s per
+    # floor and holds 4, a fast one holds 6 and takes 13, 17, 20, 22, 24, 26
+    # s for 4, 8, ... 24 floors (2 s more per further four).
+    def fast_s(floors_apart):
+        stops = floors_apart // 4
+        return [13, 17, 20][stops - 1] if stops <= 3 else 20 + 2 * (stops - 3)
+
+    n = [f"n{i}" for i in range(floors + 1)]
+    person = [f"p{i}" for i in range(passengers)]
+    fast = ["fast0", "fast1"]
+    slow = [f"slow{b}-0" for b in range(floors // 8)]
+    out = [f"(define (problem elevators-time-p{floors}_{passengers})", "(:domain elevators-time)",
+           "(:objects", " " + " ".join(n) + " - count", " " + " ".join(person) + " - passenger",
+           " " + " ".join(fast) + " - fast-elevator", " " + " ".join(slow) + " - slow-elevator", ")",
+           "(:init"]
+    out += [f" (next {n[i]} {n[i + 1]})" for i in range(floors)]
+    out += [f" (above {n[i]} {n[j]})" for i in range(floors + 1) for j in range(i + 1, floors + 1)]
+    stops = {lift: list(range(0, floors + 1, 4)) for lift in fast}
+    stops.update({lift: list(range(8 * b, 8 * b + 9)) for b, lift in enumerate(slow)})
+    for lift, floors_served in stops.items():
+        capacity = 6 if lift in fast else 4
+        out += [f" (lift-at {lift} {n[rng.choice(floors_served)]})", f" (passengers {lift} n0)"]
+        out += [f" (can-hold {lift} {n[c]})" for c in range(1, capacity + 1)]
+        out += [f" (reachable-floor {lift} {n[f]})" for f in floors_served]
+    starts = [rng.randrange(floors + 1) for _ in person]
+    ends = [rng.choice([f for f in range(floors + 1) if f != a]) for a in starts]
+    out += [f" (passenger-at {p} {n[a]})" for p, a in zip(person, starts)]
+    for b in range(floors // 8):
+        for i in range(8 * b, 8 * b + 9):
+            out += [f" (= (travel-slow {n[i]} {n[j]}) {4 + 8 * (j - i)})" for j in range(i + 1, 8 * b + 9)]
+    for i in range(0, floors + 1, 4):
+        out += [f" (= (travel-fast {n[i]} {n[j]}) {fast_s(j - i)})" for j in range(i + 4, floors + 1, 4)]
+    out += [")", "(:goal (and"]
+    out += [f" (passenger-at {p} {n[b]})" for p, b in zip(person, ends)]
+    out += ["))", "(:metric minimize (total-time)))"]
+    return out
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     sub = parser.add_subparsers(dest="domain", required=True)
@@ -114,6 +159,10 @@ def main():
     dl.add_argument("trucks", type=int)
     dl.add_argument("packages", type=int)
     dl.add_argument("seed", type=int)
+    el = sub.add_parser("elevators", help="elevators-2011's domain")
+    el.add_argument("floors", type=int)
+    el.add_argument("passengers", type=int)
+    el.add_argument("seed", type=int)
     args = parser.parse_args()
     rng = random.Random(args.seed)
     if args.domain == "floortile":
@@ -121,6 +170,10 @@ def main():
         if args.rows < 1 or args.cols < 1 or not 1 <= args.robots < (args.rows + 1) * args.cols:
             parser.error("floortile: rows, cols >= 1 and 1 <= robots < tiles ((rows + 1) * cols)")
         lines = floortile(args.rows, args.cols, args.robots, rng)
+    elif args.domain == "elevators":
+        if args.floors < 8 or args.floors % 8 != 0 or args.passengers < 1:
+            parser.error("elevators: floors a positive multiple of 8, passengers >= 1")
+        lines = elevators(args.floors, args.passengers, rng)
     else:
         if min(args.drivers, args.trucks, args.packages) < 1:
             parser.error("driverlog: drivers, trucks and packages >= 1")
