@@ -108,9 +108,10 @@ def driverlog(drivers, trucks, packages, rng):
 
 
 def elevators(floors, passengers, rng):
-    # The shared instances' figures: a slow elevator takes 4 + 8 s per
-    # floor and holds 4, a fast one holds 6 and takes 13, 17, 20, 22, 24, 26
-    # s for 4, 8, ... 24 floors (2 s more per further four).
+    # The shared p02-p05's figures (p01's elevators hold fewer): a slow
+    # elevator takes 4 + 8 s x floors and holds 4, a fast one holds 6 and
+    # takes 13, 17, 20, 22, 24, 26 s for 4, 8, ... 24 floors (2 s more per
+    # further four).
     def fast_s(floors_apart):
         stops = floors_apart // 4
         return [13, 17, 20][stops - 1] if stops <= 3 else 20 + 2 * (stops - 3)

@@ -353,15 +353,18 @@ bool RelaxedPlanHeuristic::DeletesHeldGoal(int op) const {
   return false;
 }
 
-int RelaxedPlanHeuristic::CountUndoneGoals() {
+int RelaxedPlanHeuristic::CountUndoneGoals(const StateData& state) {
   int undone = 0;
   for (auto op : marked_ops_) {
     for (int i = goal_del_begin_[op]; i < goal_del_begin_[op + 1]; ++i) {
       const int g = goal_del_[i];
-      if (fact_layer_[g] == 0 && !goal_undone_[g]) {
-        goal_undone_[g] = 1;
-        ++undone;
+      if (!state.Holds(g) || goal_undone_[g]) continue;
+      if ((op & 1) == 0) {
+        const auto end_adds = Adds(op + 1);
+        if (std::find(end_adds.begin(), end_adds.end(), g) != end_adds.end()) continue;
       }
+      goal_undone_[g] = 1;
+      ++undone;
     }
   }
   for (auto op : marked_ops_) {
@@ -486,8 +489,8 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
   applicable_.clear();
   numeric_waiting_.clear();
   new_facts_.clear();
-  // Previous evaluation's suppressed facts (kept set until now: its
-  // extraction read them).
+  // Previous evaluation's suppressed facts (cleared here, not at its end:
+  // one place for both).
   for (auto f : suppressed_list_) suppressed_[f] = 0;
   suppressed_list_.clear();
   exempt_ends_.clear();
@@ -803,7 +806,7 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
   }
   extract_needs();
   int h = static_cast<int>(marked_ops_.size());
-  if (keep_held_goals) h += kUndoneGoalCost * CountUndoneGoals();
+  if (keep_held_goals) h += kUndoneGoalCost * CountUndoneGoals(state);
   for (const auto& r : state.running) {
     if (!op_marked_[2 * r.action + 1]) ++h;
   }

@@ -3,7 +3,9 @@
 //
 // Relaxed operators: start(a) needs a's at-start and over-all conditions and
 // adds its start effects plus a virtual fact started(a); end(a) needs
-// started(a), a's at-end and over-all conditions and adds its end effects.
+// started(a), a's at-end and over-all conditions and adds its end effects
+// (the exploration waits only for started(a) and the at-end conditions:
+// see fact_ops_).
 // Running actions have started(a) at layer 0, facts of future timed literals
 // are free. Deletes and negative conditions are ignored; numeric variables
 // become intervals that only widen (each applicable operator widens once per
@@ -67,7 +69,8 @@ class RelaxedPlanHeuristic {
   // h = 4). Ignored in the makespan-aware mode. The planner's second
   // first-plan search uses it.
   void SetKeepHeldGoals(bool on) { keep_held_goals_ = on; }
-  // At least one action, a start and an end, achieves an undone goal again.
+  // At least one more action achieves an undone goal again: a start and an
+  // end for a durative one (one snap would do for an instantaneous one).
   static constexpr int kUndoneGoalCost = 2;
 
   // Returns the estimate (kDeadEnd when the goal is relaxed-unreachable).
@@ -127,9 +130,10 @@ class RelaxedPlanHeuristic {
   void MarkFact(int fact, int need_layer);
   // True when `op` deletes a goal fact the evaluated state holds.
   bool DeletesHeldGoal(int op) const;
-  // The goal facts the evaluated state holds that the extracted relaxed
-  // plan's operators delete (each once).
-  int CountUndoneGoals();
+  // The goal facts `state` holds that the extracted relaxed plan's
+  // operators delete (each once; not a start's delete its own end adds
+  // back, as TMS's bake does).
+  int CountUndoneGoals(const StateData& state);
   int ChooseAchiever(int fact, int need_layer) const;
   // Earliest time `op`'s effects happen in the exploration, delayed by the
   // durations already charged to its action's agents.
@@ -150,11 +154,12 @@ class RelaxedPlanHeuristic {
   std::vector<std::int32_t> add_begin_, add_;
   // fact -> the operators whose "missing" counter it lowers: pre_ but for
   // an end's over-all conditions. Those are its start's conditions too, so
-  // in the relaxation started(a) implies them (a running action holds them
-  // in the state); leaving them out changes no layer and halves the
-  // counter updates where over-all conditions are many (driverlog: every
-  // load, board and drive). At-end conditions stay: an at-start condition
-  // may be gone by a running action's end.
+  // in the relaxation started(a) implies them; a running action's are in
+  // the state (Transitions keeps running invariants true), or suppressed
+  // and exempt for its end (ExemptRunningEnds). Leaving them out changes no
+  // layer and saves counter updates where over-all conditions are many
+  // (driverlog: every load, board and drive). At-end conditions stay: they
+  // are not start conditions, so started(a) does not imply them.
   std::vector<std::int32_t> fact_ops_begin_, fact_ops_;
   std::vector<std::vector<const task::NumericCondition*>> num_pre_;
   std::vector<std::vector<const task::NumericEffect*>> num_eff_;
@@ -172,7 +177,7 @@ class RelaxedPlanHeuristic {
   bool IsExemptEnd(int fact, int op) const;
   std::vector<bool> til_fact_;  // scratch: facts added by pending literals
   // Static per-task tables hoisted out of Evaluate: the initial "missing
-  // preconditions" counter of every operator (copied in one pass) and a
+  // triggers" counter of every operator (fact_ops_) (copied in one pass) and a
   // goal flag per fact, so reaching the goal is a counter, not a scan of
   // the goal per layer.
   std::vector<std::int32_t> op_missing_init_;
