@@ -71,6 +71,7 @@ TEST(PlannerDataTest, SharedParcprinterP04SecondSearchInTurnKeepsHeldGoals) {
   o.anytime = false;
   o.max_expansions = 8000;
   o.second_greedy_after_share = 1;
+  o.second_greedy_turn_share = 0.125;  // an eighth (the default is a quarter)
   PlanResult r;
   ASSERT_NO_FATAL_FAILURE(SolveToValidPlan(dir / "domain-4.pddl", dir / "p04.pddl", 60, &r, o));
 
