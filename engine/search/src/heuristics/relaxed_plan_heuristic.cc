@@ -102,32 +102,33 @@ RelaxedPlanHeuristic::RelaxedPlanHeuristic(const SnapTask& task, double epsilon_
       min_invariant_duration_[f] = std::min(min_invariant_duration_[f], d);
     }
   }
-  // fact -> ops it triggers (see fact_ops_): an end's over-all conditions
-  // are left out.
-  std::vector<std::vector<std::int32_t>> triggers(static_cast<std::size_t>(num_ops_));
-  for (int op = 0; op < num_ops_; ++op) {
-    auto& list = triggers[static_cast<std::size_t>(op)];
-    const task::Action& action = actions[static_cast<std::size_t>(op / 2)];
-    if (op % 2 == 0 || !op_exists_[op]) {
-      const auto row = CsrRow(pre_, pre_begin_, op);
-      list.assign(row.begin(), row.end());
-      continue;
-    }
-    AddConditionFacts(action.at_end, list);
-    list.push_back(num_facts_ + op / 2);
-    std::sort(list.begin(), list.end());
-    list.erase(std::unique(list.begin(), list.end()), list.end());
-  }
+  // fact -> ops it triggers (see fact_ops_): pre_ without an end's
+  // over-all conditions, so an end keeps started(a) and its at-end ones.
+  auto triggers = [&](int op, std::int32_t f) {
+    if (op % 2 == 0 || f >= num_facts_) return true;
+    const auto& at_end = actions[static_cast<std::size_t>(op / 2)].at_end.positive;
+    return std::find(at_end.begin(), at_end.end(), f) != at_end.end();
+  };
   std::vector<std::int32_t> count(static_cast<std::size_t>(total_facts) + 1, 0);
-  for (const auto& list : triggers) {
-    for (auto f : list) ++count[f + 1];
+  op_missing_init_.assign(static_cast<std::size_t>(num_ops_), 1 << 30);
+  for (int op = 0; op < num_ops_; ++op) {
+    if (!op_exists_[op]) continue;
+    std::int32_t n = 0;
+    for (auto f : CsrRow(pre_, pre_begin_, op)) {
+      if (!triggers(op, f)) continue;
+      ++count[f + 1];
+      ++n;
+    }
+    op_missing_init_[op] = n;
   }
   for (std::size_t i = 1; i < count.size(); ++i) count[i] += count[i - 1];
   fact_ops_begin_ = count;
   fact_ops_.resize(static_cast<std::size_t>(count.back()));
   std::vector<std::int32_t> fill(count.begin(), count.end() - 1);
   for (int op = 0; op < num_ops_; ++op) {
-    for (auto f : triggers[static_cast<std::size_t>(op)]) fact_ops_[fill[f]++] = op;
+    for (auto f : CsrRow(pre_, pre_begin_, op)) {
+      if (triggers(op, f)) fact_ops_[fill[f]++] = op;
+    }
   }
   fact_layer_.resize(static_cast<std::size_t>(total_facts));
   undoes_goal_.resize(static_cast<std::size_t>(total_facts));
@@ -144,12 +145,6 @@ RelaxedPlanHeuristic::RelaxedPlanHeuristic(const SnapTask& task, double epsilon_
   lowerer_.resize(static_cast<std::size_t>(task.num_vars()));
   lower_layer_.resize(static_cast<std::size_t>(task.num_vars()));
   til_fact_.resize(static_cast<std::size_t>(num_facts_));
-  op_missing_init_.resize(static_cast<std::size_t>(num_ops_));
-  for (int op = 0; op < num_ops_; ++op) {
-    op_missing_init_[op] =
-        op_exists_[op] ? static_cast<std::int32_t>(triggers[static_cast<std::size_t>(op)].size())
-                       : (1 << 30);
-  }
   pair_check_.assign(static_cast<std::size_t>(num_ops_), PairCheck{});
   for (int op = 0; op < num_ops_; op += 2) {
     const int end = op + 1;
@@ -354,7 +349,6 @@ bool RelaxedPlanHeuristic::DeletesHeldGoal(int op) const {
 }
 
 int RelaxedPlanHeuristic::CountUndoneGoals(const StateData& state) {
-  int undone = 0;
   for (auto op : marked_ops_) {
     for (int i = goal_del_begin_[op]; i < goal_del_begin_[op + 1]; ++i) {
       const int g = goal_del_[i];
@@ -364,13 +358,12 @@ int RelaxedPlanHeuristic::CountUndoneGoals(const StateData& state) {
         if (std::find(end_adds.begin(), end_adds.end(), g) != end_adds.end()) continue;
       }
       goal_undone_[g] = 1;
-      ++undone;
+      undone_goals_.push_back(g);
     }
   }
-  for (auto op : marked_ops_) {
-    for (int i = goal_del_begin_[op]; i < goal_del_begin_[op + 1]; ++i)
-      goal_undone_[goal_del_[i]] = 0;
-  }
+  const int undone = static_cast<int>(undone_goals_.size());
+  for (auto g : undone_goals_) goal_undone_[g] = 0;
+  undone_goals_.clear();
   return undone;
 }
 

@@ -223,7 +223,10 @@ class RelaxedPlanHeuristic {
   // deletes a goal fact the state holds (set only when some operator
   // deletes a goal fact and not in the makespan-aware mode).
   std::vector<std::uint8_t> undoes_goal_;
-  std::vector<std::uint8_t> goal_undone_;  // scratch of CountUndoneGoals, all 0 between calls
+  // Scratch of CountUndoneGoals: a flag per fact (all 0 between calls) and
+  // the goals flagged.
+  std::vector<std::uint8_t> goal_undone_;
+  std::vector<std::int32_t> undone_goals_;
   std::vector<std::int32_t> op_layer_, op_missing_;
   std::vector<Interval> interval_, next_interval_;
   std::vector<std::int32_t> raiser_, raise_layer_, lowerer_, lower_layer_;

@@ -5,6 +5,7 @@
 #include <algorithm>
 #include <memory>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "../search_test_util.h"
@@ -143,13 +144,28 @@ constexpr char kExitProblem[] = R"((define (problem exit-1) (:domain exit)
   (:init (at-exit) (face-up))
   (:goal (and (out) (face-up)))))";
 
+// A task loaded from text with its snap compilation and a heuristic on it
+// (all null when the task does not load: LoadTaskOrFail has failed the test).
+struct HeuristicOnTask {
+  HeuristicOnTask(std::string_view domain, std::string_view problem)
+      : task(testing::LoadTaskOrFail(domain, problem)) {
+    if (task == nullptr) return;
+    snap = std::make_unique<SnapTask>(*task);
+    heuristic = std::make_unique<RelaxedPlanHeuristic>(*snap, 0.001);
+  }
+  StateData Initial() const { return testing::InitialState(*task, *snap); }
+
+  std::shared_ptr<const task::GroundTask> task;
+  std::unique_ptr<SnapTask> snap;
+  std::unique_ptr<RelaxedPlanHeuristic> heuristic;
+};
+
 TEST(RelaxedPlanHeuristicGoalTest, OnTiesTheRelaxedPlanKeepsTheGoalsTheStateHolds) {
-  const auto loaded = testing::LoadTaskOrFail(kExitDomain, kExitProblem);
-  ASSERT_NE(loaded, nullptr);
-  const task::GroundTask& task = *loaded;
-  SnapTask snap(task);
-  RelaxedPlanHeuristic heuristic(snap, 0.001);
-  StateData state = testing::InitialState(task, snap);  // (at-exit), (face-up)
+  const HeuristicOnTask loaded(kExitDomain, kExitProblem);
+  ASSERT_NE(loaded.task, nullptr);
+  const task::GroundTask& task = *loaded.task;
+  RelaxedPlanHeuristic& heuristic = *loaded.heuristic;
+  StateData state = loaded.Initial();  // (at-exit), (face-up)
   const std::vector<SnapId> slide = {2 * testing::ActionIdOf(task, "(slide)")};
   const std::vector<SnapId> turn_over = {2 * testing::ActionIdOf(task, "(turn-over)")};
   std::vector<SnapId> preferred;
@@ -191,12 +207,11 @@ constexpr char kCourierProblem[] = R"((define (problem courier-1) (:domain couri
   (:goal (and (home) (van-home) (delivered)))))";
 
 TEST(RelaxedPlanHeuristicGoalTest, KeepingHeldGoalsChargesTheGoalsTheRelaxedPlanUndoes) {
-  const auto loaded = testing::LoadTaskOrFail(kCourierDomain, kCourierProblem);
-  ASSERT_NE(loaded, nullptr);
-  const task::GroundTask& task = *loaded;
-  SnapTask snap(task);
-  RelaxedPlanHeuristic heuristic(snap, 0.001);
-  StateData at_home = testing::InitialState(task, snap);
+  const HeuristicOnTask loaded(kCourierDomain, kCourierProblem);
+  ASSERT_NE(loaded.task, nullptr);
+  const task::GroundTask& task = *loaded.task;
+  RelaxedPlanHeuristic& heuristic = *loaded.heuristic;
+  StateData at_home = loaded.Initial();
   StateData out = at_home;
   out.Clear(testing::FactIdOf(task, "(home)"));
   out.Clear(testing::FactIdOf(task, "(van-home)"));
