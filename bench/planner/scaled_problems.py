@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Problems larger than the shared benchmark's p01-p05, for three of its domains.
+"""Problems larger than the shared benchmark's p01-p05, for four of its domains.
 
 The shared set holds only the first five problems of each domain; the
 larger ones a planner is judged on are not here. This writes random
@@ -20,6 +20,10 @@ instances"):
       fourth floor and one slow elevator per block of eight floors (as in
       its p01-p05: 16-24 floors, 15-26 passengers), random start and
       destination floors.
+  trucks TRUCKS LOCATIONS PACKAGES AREAS SEED  trucks-time-til's
+      domain: a complete road map, about half the packages with a
+      delivery deadline (a timed literal) that a witness plan meets (its
+      p01-p05: 1 truck, 3 locations, 3-7 packages, 2 areas).
 
 The problem goes to standard output; the domain is the shared one, e.g.
   bench/planner/scaled_problems.py floortile 4 4 2 1 > /tmp/ft-4x4.pddl
@@ -147,6 +151,55 @@ def elevators(floors, passengers, rng):
     return out
 
 
+def trucks(trucks_n, locations, packages, areas, rng):
+    # The shared p01-p05's shape: a complete road map with drive times of
+    # 200-310 s, packages between distinct locations, about half of them
+    # with a delivery deadline. Each deadline is the time a plain witness
+    # plan delivers the package (its truck carries one package at a time,
+    # the deadline packages first) stretched by up to 30 %, so every
+    # instance is solvable and the deadlines bind.
+    loc = [f"l{i + 1}" for i in range(locations)]
+    truck = [f"truck{i + 1}" for i in range(trucks_n)]
+    package = [f"package{i + 1}" for i in range(packages)]
+    area = [f"a{i + 1}" for i in range(areas)]
+    point = [(rng.uniform(0, 220), rng.uniform(0, 220)) for _ in loc]
+    drive = {(a, b): round(200 + ((point[a][0] - point[b][0]) ** 2 + (point[a][1] - point[b][1]) ** 2) ** 0.5 / 2.9, 1)
+             for a in range(locations) for b in range(locations) if a != b}
+    truck_at = [rng.randrange(locations) for _ in truck]
+    origin = [rng.randrange(locations) for _ in package]
+    dest = [rng.choice([b for b in range(locations) if b != a]) for a in origin]
+    timed = set(rng.sample(range(packages), (packages + 1) // 2))
+    deadline = {}
+    for t in range(trucks_n):
+        mine = [p for p in range(packages) if p % trucks_n == t]
+        mine.sort(key=lambda p: p not in timed)
+        clock, here = 0.0, truck_at[t]
+        for p in mine:
+            if here != origin[p]:
+                clock += drive[here, origin[p]] + 0.1
+            clock += 1.1 + drive[origin[p], dest[p]] + 0.1 + 1.1 + 1.0  # load, drive, unload, deliver
+            here = dest[p]
+            if p in timed:
+                deadline[p] = round(clock * rng.uniform(1.0, 1.3) + 0.5, 1)
+    out = [f"(define (problem trucks-{trucks_n}-{locations}-{packages}-{areas})", "(:domain Trucks-TimeTIL)",
+           "(:objects"]
+    out += [f" {x} - truck" for x in truck] + [f" {x} - package" for x in package]
+    out += [f" {x} - location" for x in loc] + [f" {x} - truckarea" for x in area]
+    out += [")", "(:init"]
+    for x, at in zip(truck, truck_at):
+        out += [f" (at {x} {loc[at]})"] + [f" (free {a} {x})" for a in area]
+    out += [f" (closer {area[i]} {area[j]})" for i in range(areas) for j in range(i + 1, areas)]
+    out += [f" (at {x} {loc[a]})" for x, a in zip(package, origin)]
+    out += [f" (connected {loc[a]} {loc[b]})" for a, b in drive]
+    out += [f" (deliverable {package[p]} {loc[dest[p]]})" for p in sorted(deadline)]
+    out += [f" (at {deadline[p]} (not (deliverable {package[p]} {loc[dest[p]]})))" for p in sorted(deadline)]
+    out += [f" (= (drive-time {loc[a]} {loc[b]}) {d})" for (a, b), d in drive.items()]
+    out += [")", "(:goal (and"]
+    out += [f" ({'delivered' if p in deadline else 'at-destination'} {package[p]} {loc[dest[p]]})" for p in range(packages)]
+    out += ["))", "(:metric minimize (total-time)))"]
+    return out
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     sub = parser.add_subparsers(dest="domain", required=True)
@@ -164,6 +217,12 @@ def main():
     el.add_argument("floors", type=int)
     el.add_argument("passengers", type=int)
     el.add_argument("seed", type=int)
+    tr = sub.add_parser("trucks", help="trucks-time-til's domain")
+    tr.add_argument("trucks", type=int)
+    tr.add_argument("locations", type=int)
+    tr.add_argument("packages", type=int)
+    tr.add_argument("areas", type=int)
+    tr.add_argument("seed", type=int)
     args = parser.parse_args()
     rng = random.Random(args.seed)
     if args.domain == "floortile":
@@ -175,6 +234,10 @@ def main():
         if args.floors < 8 or args.floors % 8 != 0 or args.passengers < 1:
             parser.error("elevators: floors a positive multiple of 8, passengers >= 1")
         lines = elevators(args.floors, args.passengers, rng)
+    elif args.domain == "trucks":
+        if args.trucks < 1 or args.locations < 2 or args.packages < 1 or args.areas < 1:
+            parser.error("trucks: trucks, packages, areas >= 1 and locations >= 2")
+        lines = trucks(args.trucks, args.locations, args.packages, args.areas, rng)
     else:
         if min(args.drivers, args.trucks, args.packages) < 1:
             parser.error("driverlog: drivers, trucks and packages >= 1")

@@ -435,17 +435,29 @@ PlanResult PlannerRun::Run() {
     log::Debug("planner: {} landmarks, {} orderings in {:.3f} s", landmarks_->size(),
                landmarks_->num_orderings(), best_.stats.landmark_time_s);
   }
-  if (GoalOrderDeadEnds::NumWatchableGoals(snap_.task()) < 2) {
+  // Mutex groups (mutex_groups.h): the dead ends the order of goals shows
+  // (goal_order.h) and the pairs of facts a deadline's reachability waits
+  // for (temporal_reachability.h).
+  const bool watch_goals = GoalOrderDeadEnds::NumWatchableGoals(snap_.task()) >= 2;
+  if (!watch_goals) {
     log::Debug("planner: fewer than two goals nothing deletes: no goal order to watch");
-  } else {
-    // Mutex groups and the dead ends the order of goals shows (goal_order.h).
+  }
+  if (watch_goals || reachability_.active()) {
     const Clock::time_point mutex_start = Clock::now();
     const MutexGroups mutex(snap_.task());
-    goal_order_.emplace(snap_.task(), mutex);
-    log::Debug("planner: {} mutex groups, {} goals watched for their order ({}), in {:.3f} s",
-               mutex.groups().size(), goal_order_->num_goals(),
-               goal_order_->active() ? "active" : "inactive", Seconds(mutex_start));
-    if (!goal_order_->active()) goal_order_.reset();
+    if (watch_goals) {
+      goal_order_.emplace(snap_.task(), mutex);
+      log::Debug("planner: {} mutex groups, {} goals watched for their order ({}), in {:.3f} s",
+                 mutex.groups().size(), goal_order_->num_goals(),
+                 goal_order_->active() ? "active" : "inactive", Seconds(mutex_start));
+      if (!goal_order_->active()) goal_order_.reset();
+    }
+    if (reachability_.active()) {
+      const Clock::time_point pairs_start = Clock::now();
+      reachability_.UseMutexGroups(mutex);
+      log::Debug("planner: deadline reachability waits for {} pairs of facts, found in {:.3f} s",
+                 reachability_.num_pair_facts(), Seconds(pairs_start));
+    }
   }
   if (options_.symmetry_reduction) {
     symmetry_.emplace(snap_);

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <functional>
+#include <map>
 
 namespace seaplan::search {
 namespace {
@@ -161,10 +162,24 @@ TemporalReachability::TemporalReachability(const SnapTask& task)
   for (int f = 0; f < num_facts_; ++f) {
     if (needed_window[f]) window_facts_.push_back(f);
   }
+  pair_base_ = num_facts_ + task.num_actions();
+  fact_pairs_begin_.assign(static_cast<std::size_t>(num_facts_) + 1, 0);
+  op_pairs_begin_.assign(static_cast<std::size_t>(num_ops_) + 1, 0);
+  IndexConditions(pair_base_);
+  windows_.resize(static_cast<std::size_t>(num_facts_));
+  open_since_.assign(static_cast<std::size_t>(num_facts_), kInfinity);
+  op_marked_.assign(static_cast<std::size_t>(num_ops_), 0);
+  missing_.resize(static_cast<std::size_t>(num_ops_));
+  usable_.resize(static_cast<std::size_t>(num_ops_));
+  min_d_ = static_min_d_;
+  max_d_ = static_max_d_;
+  running_.assign(num_actions, 0);
+}
+
+void TemporalReachability::IndexConditions(int total_facts) {
   // fact -> snaps needing it.
-  const int total_facts = num_facts_ + task.num_actions();
   std::vector<std::int32_t> count(static_cast<std::size_t>(total_facts) + 1, 0);
-  for (auto f : pre_) ++count[f + 1];
+  for (auto f : pre_) ++count[static_cast<std::size_t>(f) + 1];
   for (std::size_t i = 1; i < count.size(); ++i) count[i] += count[i - 1];
   fact_ops_begin_ = count;
   fact_ops_.resize(pre_.size());
@@ -172,18 +187,198 @@ TemporalReachability::TemporalReachability(const SnapTask& task)
   for (int op = 0; op < num_ops_; ++op) {
     for (int i = pre_begin_[op]; i < pre_begin_[op + 1]; ++i) fact_ops_[fill[pre_[i]]++] = op;
   }
-
-  windows_.resize(static_cast<std::size_t>(num_facts_));
-  open_since_.assign(static_cast<std::size_t>(num_facts_), kInfinity);
   earliest_.resize(static_cast<std::size_t>(total_facts));
   achiever_.resize(static_cast<std::size_t>(total_facts));
   fact_marked_.assign(static_cast<std::size_t>(total_facts), 0);
-  op_marked_.assign(static_cast<std::size_t>(num_ops_), 0);
-  missing_.resize(static_cast<std::size_t>(num_ops_));
-  usable_.resize(static_cast<std::size_t>(num_ops_));
-  min_d_ = static_min_d_;
-  max_d_ = static_max_d_;
-  running_.assign(num_actions, 0);
+}
+
+void TemporalReachability::UseMutexGroups(const MutexGroups& mutex) {
+  if (!active_ || num_pair_facts() > 0) return;
+  const auto& actions = task_.task().actions;
+  const auto& groups = mutex.groups();
+  std::size_t members = 0;
+  for (const auto& g : groups) members += g.size();
+  if (groups.empty() || members > kMaxGroupMembers) return;
+
+  // The facts a snap needs when it happens (sources of its group
+  // transitions and the context it adds facts in) and what it adds.
+  auto needs = [&](int op, std::vector<GroupMember>* out) {
+    out->clear();
+    const task::Action& action = actions[static_cast<std::size_t>(op / 2)];
+    const bool is_end = op % 2 == 1;
+    if (!is_end) {
+      out->insert(out->end(), action.at_start.positive.begin(), action.at_start.positive.end());
+    } else {
+      out->insert(out->end(), action.over_all.positive.begin(), action.over_all.positive.end());
+      out->insert(out->end(), action.at_end.positive.begin(), action.at_end.positive.end());
+    }
+    const task::Effects& eff = is_end ? action.end_effects : action.start_effects;
+    for (const auto& ce : eff.conditional) {
+      out->insert(out->end(), ce.condition.positive.begin(), ce.condition.positive.end());
+    }
+  };
+  // Transitions of each group: a snap moves its token from a member it
+  // needs to a member it adds (the invariant: every snap adding a member
+  // deletes one it requires). Leaving a running marker takes the action's
+  // minimum duration; every other step takes no time.
+  struct Edge {
+    std::int32_t from, to;  // indices into the group
+    double s;
+  };
+  std::vector<std::vector<Edge>> edges(groups.size());
+  auto index_in = [&](std::size_t g, GroupMember m) {
+    const auto& members_of = groups[g];
+    return static_cast<std::int32_t>(std::lower_bound(members_of.begin(), members_of.end(), m) -
+                                     members_of.begin());
+  };
+  std::vector<GroupMember> from, to;
+  for (int op = 0; op < num_ops_; ++op) {
+    if (missing_init_[op] >= (1 << 30)) continue;  // an instantaneous action's end
+    const auto a = static_cast<task::ActionId>(op / 2);
+    const bool is_end = op % 2 == 1;
+    needs(op, &from);
+    if (is_end) from.push_back(RunningMember(a));
+    to.assign(add_.begin() + add_begin_[op], add_.begin() + add_begin_[op + 1]);
+    for (auto& m : to) {
+      if (m >= num_facts_) m = RunningMember(m - num_facts_);  // started(a)
+    }
+    for (GroupMember f : from) {
+      for (auto g : mutex.GroupsOf(f)) {
+        for (GroupMember t : to) {
+          if (t == f) continue;
+          const auto in = mutex.GroupsOf(t);
+          if (std::find(in.begin(), in.end(), g) == in.end()) continue;
+          const double s = is_end && f == RunningMember(a) ? static_min_d_[a] : 0.0;
+          edges[g].push_back({index_in(g, f), index_in(g, t), s});
+        }
+      }
+    }
+  }
+  // Edges by source member (CSR per group).
+  std::vector<std::vector<std::int32_t>> edges_begin(groups.size());
+  for (std::size_t g = 0; g < groups.size(); ++g) {
+    auto& list = edges[g];
+    std::sort(list.begin(), list.end(),
+              [](const Edge& x, const Edge& y) { return x.from < y.from; });
+    auto& begin = edges_begin[g];
+    begin.assign(groups[g].size() + 1, 0);
+    for (const Edge& e : list) ++begin[static_cast<std::size_t>(e.from) + 1];
+    for (std::size_t i = 1; i < begin.size(); ++i) begin[i] += begin[i - 1];
+  }
+  // Shortest times from one member of a group to the others (a small
+  // Dijkstra per source, cached).
+  std::vector<std::vector<std::vector<double>>> from_member(groups.size());
+  auto shortest = [&](std::size_t g, GroupMember source, GroupMember target) {
+    auto& rows = from_member[g];
+    if (rows.empty()) rows.resize(groups[g].size());
+    auto& row = rows[static_cast<std::size_t>(index_in(g, source))];
+    if (row.empty()) {
+      row.assign(groups[g].size(), kInfinity);
+      std::vector<std::uint8_t> done(groups[g].size(), 0);
+      row[static_cast<std::size_t>(index_in(g, source))] = 0.0;
+      for (;;) {
+        std::size_t best = row.size();
+        for (std::size_t i = 0; i < row.size(); ++i) {
+          if (!done[i] && row[i] < kInfinity && (best == row.size() || row[i] < row[best]))
+            best = i;
+        }
+        if (best == row.size()) break;
+        done[best] = 1;
+        for (auto e = edges_begin[g][best]; e < edges_begin[g][best + 1]; ++e) {
+          const Edge& edge = edges[g][static_cast<std::size_t>(e)];
+          auto& d = row[static_cast<std::size_t>(edge.to)];
+          d = std::min(d, row[best] + edge.s);
+        }
+      }
+    }
+    return row[static_cast<std::size_t>(index_in(g, target))];
+  };
+
+  // The snaps adding each fact.
+  std::vector<std::vector<std::int32_t>> adders(static_cast<std::size_t>(num_facts_));
+  for (int op = 0; op < num_ops_; ++op) {
+    for (int i = add_begin_[op]; i < add_begin_[op + 1]; ++i) {
+      if (add_[i] < num_facts_) adders[static_cast<std::size_t>(add_[i])].push_back(op);
+    }
+  }
+  // How long after `op` adds a fact the member q can hold: the longest of
+  // the ways from the members of q's groups that op needs (0 when none; an
+  // unreachable q is left to the rest of the exploration).
+  auto delay = [&](int op, task::FactId q) {
+    needs(op, &from);
+    double longest = 0.0;
+    for (GroupMember m : from) {
+      if (m == q) continue;
+      for (auto g : mutex.GroupsOf(m)) {
+        const auto in = mutex.GroupsOf(q);
+        if (std::find(in.begin(), in.end(), g) == in.end()) continue;
+        const double d = shortest(static_cast<std::size_t>(g), m, q);
+        if (d < kInfinity) longest = std::max(longest, d);
+      }
+    }
+    return longest;
+  };
+
+  // Pair facts for the starts' conditions.
+  std::map<std::pair<task::FactId, task::FactId>, std::int32_t> pair_of;
+  std::vector<std::vector<std::int32_t>> extra_pre(static_cast<std::size_t>(num_ops_));
+  std::vector<std::vector<std::pair<std::int32_t, double>>> reached_by(
+      static_cast<std::size_t>(num_ops_));
+  std::vector<std::vector<std::int32_t>> pairs_of_fact(static_cast<std::size_t>(num_facts_));
+  int next_pair = pair_base_;
+  for (int op = 0; op < num_ops_; op += 2) {
+    for (int i = pre_begin_[op]; i < pre_begin_[op + 1]; ++i) {
+      const task::FactId q = pre_[i];
+      if (q >= num_facts_ || mutex.GroupsOf(q).empty()) continue;
+      for (int j = pre_begin_[op]; j < pre_begin_[op + 1]; ++j) {
+        const task::FactId p = pre_[j];
+        if (p == q || p >= num_facts_ || mutex.Mutex(p, q)) continue;
+        auto [it, fresh] = pair_of.try_emplace({p, q}, -1);
+        if (fresh) {
+          std::vector<std::pair<std::int32_t, double>> delays;
+          bool later = false;
+          for (auto adder : adders[static_cast<std::size_t>(p)]) {
+            delays.emplace_back(adder, delay(adder, q));
+            later = later || delays.back().second > 0.0;
+          }
+          if (!later) continue;  // it->second stays -1: nothing to wait for
+          it->second = next_pair++;
+          for (const auto& [adder, d] : delays) {
+            reached_by[static_cast<std::size_t>(adder)].emplace_back(it->second, d);
+          }
+          pairs_of_fact[static_cast<std::size_t>(p)].push_back(it->second);
+        }
+        if (it->second >= 0) extra_pre[static_cast<std::size_t>(op)].push_back(it->second);
+      }
+    }
+  }
+  if (next_pair == pair_base_) return;
+
+  // Rebuild the condition table with the pairs (a start keeps p and q too).
+  std::vector<std::int32_t> pre_begin{0}, pre;
+  for (int op = 0; op < num_ops_; ++op) {
+    pre.insert(pre.end(), pre_.begin() + pre_begin_[op], pre_.begin() + pre_begin_[op + 1]);
+    const auto& extra = extra_pre[static_cast<std::size_t>(op)];
+    pre.insert(pre.end(), extra.begin(), extra.end());
+    if (missing_init_[op] < (1 << 30)) missing_init_[op] += static_cast<std::int32_t>(extra.size());
+    pre_begin.push_back(static_cast<std::int32_t>(pre.size()));
+  }
+  pre_ = std::move(pre);
+  pre_begin_ = std::move(pre_begin);
+  op_pairs_begin_.assign(1, 0);
+  for (int op = 0; op < num_ops_; ++op) {
+    for (const auto& [pair, d] : reached_by[static_cast<std::size_t>(op)]) {
+      op_pairs_.push_back(pair);
+      op_pair_delay_s_.push_back(d);
+    }
+    op_pairs_begin_.push_back(static_cast<std::int32_t>(op_pairs_.size()));
+  }
+  fact_pairs_begin_.assign(1, 0);
+  for (const auto& pairs : pairs_of_fact) {
+    fact_pairs_.insert(fact_pairs_.end(), pairs.begin(), pairs.end());
+    fact_pairs_begin_.push_back(static_cast<std::int32_t>(fact_pairs_.size()));
+  }
+  IndexConditions(next_pair);
 }
 
 double TemporalReachability::NextAllowed(const WindowCondition& c, double t,
@@ -256,6 +451,13 @@ double TemporalReachability::ScheduleBound(int op, const Timeline& timeline) con
   return t;
 }
 
+void TemporalReachability::ReachFromState(int fact, double time_s) {
+  Reach(fact, time_s, -1);
+  for (int i = fact_pairs_begin_[fact]; i < fact_pairs_begin_[fact + 1]; ++i) {
+    Reach(fact_pairs_[i], time_s, -1);
+  }
+}
+
 void TemporalReachability::Reach(int fact, double time_s, int achiever) {
   if (!(time_s < earliest_[fact])) return;
   earliest_[fact] = time_s;
@@ -295,12 +497,12 @@ bool TemporalReachability::Evaluate(const StateData& state, const Timeline& time
     while (bits) {
       const int f = static_cast<int>(w * 64) + __builtin_ctzll(bits);
       bits &= bits - 1;
-      if (!window_fact_[f]) Reach(f, timeline.FactWrittenAt(f), -1);
+      if (!window_fact_[f]) ReachFromState(f, timeline.FactWrittenAt(f));
     }
   }
   for (std::size_t k = static_cast<std::size_t>(state.next_til); k < tils.size(); ++k) {
     for (auto f : tils[k].add) {
-      if (!window_fact_[f]) Reach(f, tils[k].time_s, -1);
+      if (!window_fact_[f]) ReachFromState(f, tils[k].time_s);
     }
   }
   for (const auto& r : state.running) {
@@ -314,6 +516,9 @@ bool TemporalReachability::Evaluate(const StateData& state, const Timeline& time
     if (!(t < kInfinity)) return;
     usable_[op] = 1;
     for (int i = add_begin_[op]; i < add_begin_[op + 1]; ++i) Reach(add_[i], t, op);
+    for (int i = op_pairs_begin_[op]; i < op_pairs_begin_[op + 1]; ++i) {
+      Reach(op_pairs_[i], t + op_pair_delay_s_[i], op);
+    }
   };
   for (auto op : no_pre_ops_) fire(op, 0.0);
   while (!heap_.empty()) {
@@ -364,7 +569,9 @@ int TemporalReachability::RelaxedPlanLength(const StateData& state,
   while (!stack_.empty()) {
     const int op = stack_.back();
     stack_.pop_back();
-    for (int i = pre_begin_[op]; i < pre_begin_[op + 1]; ++i) mark_fact(pre_[i]);
+    for (int i = pre_begin_[op]; i < pre_begin_[op + 1]; ++i) {
+      if (pre_[i] < pair_base_) mark_fact(pre_[i]);
+    }
   }
   int h = static_cast<int>(marked_ops_.size());
   for (const auto& r : state.running) {
@@ -375,7 +582,7 @@ int TemporalReachability::RelaxedPlanLength(const StateData& state,
     for (auto op : marked_ops_) {
       bool from_state = true;
       for (int i = pre_begin_[op]; i < pre_begin_[op + 1] && from_state; ++i) {
-        from_state = achiever_[pre_[i]] < 0;
+        from_state = pre_[i] >= pair_base_ || achiever_[pre_[i]] < 0;
       }
       if (from_state) preferred->push_back(op);
     }

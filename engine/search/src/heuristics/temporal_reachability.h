@@ -29,6 +29,15 @@
 // has no finite time. Durations read at their minimum from static fluents
 // only (0 when they depend on fluents that change).
 //
+// With mutex groups (UseMutexGroups), a start that needs a fact p together
+// with a member q of a group also waits for p and q to hold together: p's
+// achiever may need another member m of q's group when it adds p (a truck
+// loads a package at l1; the package is in the truck, the truck at l1),
+// and q then holds no earlier than the shortest way from m to q in the
+// group's transitions (the drive from l1 to l3). Without it a truck that is
+// at l3 now could unload at l3 what it loads at l1 later, and a deadline it
+// cannot meet any more would not show.
+//
 // Not thread-safe: one instance per planner run; scratch is reused, so an
 // evaluation allocates nothing once warmed up.
 #pragma once
@@ -38,6 +47,7 @@
 #include <utility>
 #include <vector>
 
+#include "../mutex_groups.h"
 #include "../snap_task.h"
 #include "../state_registry.h"
 #include "../timeline.h"
@@ -47,6 +57,12 @@ namespace seaplan::search {
 class TemporalReachability {
  public:
   explicit TemporalReachability(const SnapTask& task);
+
+  // Adds the pair facts "p while q" described above, for the groups of
+  // `mutex` (computed for the same task). A no-op when not active().
+  void UseMutexGroups(const MutexGroups& mutex);
+  // Pair facts UseMutexGroups added (for the statistics and the tests).
+  int num_pair_facts() const { return static_cast<int>(earliest_.size()) - pair_base_; }
 
   // False when no literal ever deletes a window fact: then no window closes
   // and Evaluate would prune nothing the untimed relaxation does not.
@@ -71,6 +87,9 @@ class TemporalReachability {
   int RelaxedPlanLength(const StateData& state, std::vector<SnapId>* preferred);
 
  private:
+  // UseMutexGroups leaves tasks with more group members than this alone.
+  static constexpr std::size_t kMaxGroupMembers = 200'000;
+
   enum class Kind : std::uint8_t { kAt, kSpan, kRange };
   struct WindowCondition {
     task::FactId fact;
@@ -83,6 +102,11 @@ class TemporalReachability {
   double NextAllowed(const WindowCondition& c, double t, task::ActionId a) const;
   double OpTime(int op, double t0) const;
   void Reach(int fact, double time_s, int achiever);
+  // fact_ops_ from pre_, and the per-fact scratch for `total_facts`.
+  void IndexConditions(int total_facts);
+  // A fact of the state or of a pending literal: the fact and its pair
+  // facts, from `time_s`.
+  void ReachFromState(int fact, double time_s);
   // Earliest time the schedule of the path allows a new `op`: after the
   // last writer of what it reads or writes, after the readers of what it
   // writes.
@@ -104,6 +128,14 @@ class TemporalReachability {
   std::vector<std::int32_t> missing_init_;
   std::vector<std::int32_t> no_pre_ops_;
   std::vector<double> static_min_d_, static_max_d_;  // per action
+  // Pair facts (UseMutexGroups) are numbered from pair_base_ (facts, then
+  // started(a), then pairs); the relaxed plan extraction skips them. Per
+  // fact p, its pairs (CSR); per snap, the pairs it reaches and how long
+  // after it happens (CSR).
+  int pair_base_ = 0;
+  std::vector<std::int32_t> fact_pairs_begin_, fact_pairs_;
+  std::vector<std::int32_t> op_pairs_begin_, op_pairs_;
+  std::vector<double> op_pair_delay_s_;
 
   // Scratch per evaluation.
   std::vector<std::vector<Interval>> windows_;  // per fact (window facts only)

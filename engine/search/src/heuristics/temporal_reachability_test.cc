@@ -5,6 +5,7 @@
 #include <memory>
 #include <string>
 
+#include "../mutex_groups.h"
 #include "../search_test_util.h"
 #include "../state_registry.h"
 #include "../timeline.h"
@@ -60,6 +61,46 @@ std::string CourierProblem(const std::string& goal, double deadline_a_s, double 
          goal + "))";
 }
 
+// The courier with its van an object: the van's places and drives are a
+// mutex group (mutex_groups.h finds groups per object).
+constexpr char kVanDomain[] = R"(
+(define (domain van-courier)
+  (:requirements :typing :durative-actions :fluents :timed-initial-literals)
+  (:types place parcel van)
+  (:predicates (van-at ?v - van ?p - place) (at ?x - parcel ?p - place) (in ?x - parcel ?v - van)
+               (deliverable ?x - parcel ?p - place) (delivered ?x - parcel) (road ?a ?b - place))
+  (:functions (drive-time ?a ?b - place))
+  (:durative-action drive
+    :parameters (?v - van ?a ?b - place)
+    :duration (= ?duration (drive-time ?a ?b))
+    :condition (and (at start (van-at ?v ?a)) (over all (road ?a ?b)))
+    :effect (and (at start (not (van-at ?v ?a))) (at end (van-at ?v ?b))))
+  (:durative-action load
+    :parameters (?x - parcel ?v - van ?p - place)
+    :duration (= ?duration 1)
+    :condition (and (at start (at ?x ?p)) (over all (van-at ?v ?p)))
+    :effect (and (at start (not (at ?x ?p))) (at end (in ?x ?v))))
+  (:durative-action deliver
+    :parameters (?x - parcel ?v - van ?p - place)
+    :duration (= ?duration 1)
+    :condition (and (at start (in ?x ?v)) (over all (van-at ?v ?p)) (at end (deliverable ?x ?p)))
+    :effect (and (at start (not (in ?x ?v))) (at end (delivered ?x)))))
+)";
+
+// One van at the depot, pa there, due at a by `deadline_s`.
+std::string VanProblem(double deadline_s) {
+  return R"(
+(define (problem van-1) (:domain van-courier)
+  (:objects depot a b - place pa - parcel v - van)
+  (:init (van-at v depot) (at pa depot)
+         (road depot a) (road a depot) (road depot b) (road b depot)
+         (= (drive-time depot a) 5) (= (drive-time a depot) 5)
+         (= (drive-time depot b) 5) (= (drive-time b depot) 5)
+         (deliverable pa a) (at )" +
+         std::to_string(deadline_s) + R"( (not (deliverable pa a))))
+  (:goal (delivered pa))))";
+}
+
 // A gate opens at 10 s, closes at `close_s` (never when negative) and
 // reopens at `reopen_s` (never when negative); passing it takes 5 s with the
 // gate open over all, after a preparation of `prep_s`.
@@ -89,7 +130,9 @@ std::string GateProblem(double close_s, double reopen_s = -1, double prep_s = 1)
 
 class Fixture {
  public:
-  Fixture(const std::string& domain, const std::string& problem) {
+  // With `mutex_groups`, the reachability waits for pairs of facts
+  // (UseMutexGroups).
+  Fixture(const std::string& domain, const std::string& problem, bool mutex_groups = false) {
     auto loaded = task::LoadTask(domain, problem);
     EXPECT_TRUE(loaded.ok()) << loaded.ErrorText();
     task_ = loaded.task;
@@ -97,6 +140,7 @@ class Fixture {
     transitions_ = std::make_unique<Transitions>(*snap_, 0, kEpsilon);
     timeline_ = std::make_unique<Timeline>(*snap_, kEpsilon);
     reachability_ = std::make_unique<TemporalReachability>(*snap_);
+    if (mutex_groups) reachability_->UseMutexGroups(MutexGroups(*task_));
     state_ = testing::InitialState(*task_, *snap_);
   }
 
@@ -181,6 +225,43 @@ TEST(TemporalReachabilityTest, RelaxedPlanFollowsTheEarliestAchievers) {
   std::vector<SnapId> preferred;
   EXPECT_EQ(fx.reachability().RelaxedPlanLength(fx.state(), &preferred), 4);
   EXPECT_EQ(preferred, std::vector<SnapId>{fx.Start("(drive depot a)")});
+}
+
+TEST(TemporalReachabilityTest, ParcelLoadedElsewhereWaitsForTheVanToDriveBack) {
+  // The van drives to a (0-5) without pa; pa's deadline at a is 16.5 s. The
+  // van could drive back (5-10), load pa (10-11) and return (11-16): pa is
+  // delivered at 17 at the earliest, too late. Without pairs the van is at
+  // a from 5 s while it loads pa at the depot, and pa seems delivered at 12.
+  for (const bool pairs : {false, true}) {
+    SCOPED_TRACE(pairs ? "with pairs" : "without pairs");
+    Fixture fx(kVanDomain, VanProblem(16.5), pairs);
+    ASSERT_TRUE(fx.ok());
+    EXPECT_EQ(fx.reachability().num_pair_facts() > 0, pairs);
+    fx.Apply(fx.Start("(drive v depot a)"));
+    fx.Apply(fx.End("(drive v depot a)"));
+    EXPECT_EQ(fx.Evaluate(), !pairs);
+  }
+  // With a deadline of 17.5 s both stay alive, and the pair puts the
+  // delivery at 17 s.
+  Fixture fx(kVanDomain, VanProblem(17.5), true);
+  ASSERT_TRUE(fx.ok());
+  fx.Apply(fx.Start("(drive v depot a)"));
+  fx.Apply(fx.End("(drive v depot a)"));
+  ASSERT_TRUE(fx.Evaluate());
+  EXPECT_NEAR(fx.reachability().EarliestTime(fx.Fact("(delivered pa)")), 17.0, 1e-6);
+}
+
+TEST(TemporalReachabilityTest, ParcelAlreadyInTheVanNeedsNoPairWait) {
+  // pa was loaded at the depot (0-1) and the van drove to a (1-6): the pair
+  // (in pa v) with (van-at v a) holds from the state, delivery at 7 s.
+  Fixture fx(kVanDomain, VanProblem(7.5), true);
+  ASSERT_TRUE(fx.ok());
+  fx.Apply(fx.Start("(load pa v depot)"));
+  fx.Apply(fx.End("(load pa v depot)"));
+  fx.Apply(fx.Start("(drive v depot a)"));
+  fx.Apply(fx.End("(drive v depot a)"));
+  ASSERT_TRUE(fx.Evaluate());
+  EXPECT_NEAR(fx.reachability().EarliestTime(fx.Fact("(delivered pa)")), 7.0, 1e-6);
 }
 
 TEST(TemporalReachabilityTest, SnapsThatMissedTheirDeadlineAreUnusable) {
