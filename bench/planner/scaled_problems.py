@@ -155,9 +155,9 @@ def trucks(trucks_n, locations, packages, areas, rng):
     # The shared p01-p05's shape: a complete road map with drive times of
     # 200-310 s, packages between distinct locations, about half of them
     # with a delivery deadline. Each deadline is the time a plain witness
-    # plan delivers the package (its truck carries one package at a time,
-    # the deadline packages first) stretched by up to 30 %, so every
-    # instance is solvable and the deadlines bind.
+    # plan delivers the package (each truck carries its share of the
+    # packages one at a time, in random order) stretched by up to 30 %, so
+    # every instance is solvable and the first deadlines bind.
     loc = [f"l{i + 1}" for i in range(locations)]
     truck = [f"truck{i + 1}" for i in range(trucks_n)]
     package = [f"package{i + 1}" for i in range(packages)]
@@ -172,7 +172,7 @@ def trucks(trucks_n, locations, packages, areas, rng):
     deadline = {}
     for t in range(trucks_n):
         mine = [p for p in range(packages) if p % trucks_n == t]
-        mine.sort(key=lambda p: p not in timed)
+        rng.shuffle(mine)
         clock, here = 0.0, truck_at[t]
         for p in mine:
             if here != origin[p]:

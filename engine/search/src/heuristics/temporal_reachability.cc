@@ -462,8 +462,35 @@ void TemporalReachability::Reach(int fact, double time_s, int achiever) {
   if (!(time_s < earliest_[fact])) return;
   earliest_[fact] = time_s;
   achiever_[fact] = achiever;
-  heap_.emplace_back(time_s, fact);
-  std::push_heap(heap_.begin(), heap_.end(), std::greater<>());
+  if (time_s <= now_s_) {
+    now_.push_back({time_s, fact});  // a snap at the time being popped
+  } else if (now_s_ == -kInfinity) {
+    initial_.push_back({time_s, fact});  // sorted once the state is in
+  } else {
+    heap_.push_back({time_s, fact});
+    std::push_heap(heap_.begin(), heap_.end(), Later());
+  }
+}
+
+bool TemporalReachability::PopEarliest(Entry* next) {
+  if (next_now_ < now_.size()) {
+    *next = now_[next_now_++];
+    return true;
+  }
+  now_.clear();
+  next_now_ = 0;
+  const bool initial_left = next_initial_ < initial_.size();
+  if (!heap_.empty() && (!initial_left || heap_.front().time_s < initial_[next_initial_].time_s)) {
+    std::pop_heap(heap_.begin(), heap_.end(), Later());
+    *next = heap_.back();
+    heap_.pop_back();
+  } else if (initial_left) {
+    *next = initial_[next_initial_++];
+  } else {
+    return false;
+  }
+  now_s_ = next->time_s;
+  return true;
 }
 
 bool TemporalReachability::Evaluate(const StateData& state, const Timeline& timeline) {
@@ -492,6 +519,10 @@ bool TemporalReachability::Evaluate(const StateData& state, const Timeline& time
   std::copy(missing_init_.begin(), missing_init_.end(), missing_.begin());
   std::fill(usable_.begin(), usable_.end(), 0);
   heap_.clear();
+  initial_.clear();
+  now_.clear();
+  next_initial_ = next_now_ = 0;
+  now_s_ = -kInfinity;  // Reach collects the state's facts in initial_
   for (std::size_t w = 0; w < state.facts.size(); ++w) {
     std::uint64_t bits = state.facts[w];
     while (bits) {
@@ -521,10 +552,12 @@ bool TemporalReachability::Evaluate(const StateData& state, const Timeline& time
     }
   };
   for (auto op : no_pre_ops_) fire(op, 0.0);
-  while (!heap_.empty()) {
-    std::pop_heap(heap_.begin(), heap_.end(), std::greater<>());
-    const auto [t, f] = heap_.back();
-    heap_.pop_back();
+  std::sort(initial_.begin(), initial_.end(),
+            [](const Entry& x, const Entry& y) { return x.time_s < y.time_s; });
+  Entry next;
+  while (PopEarliest(&next)) {
+    const double t = next.time_s;
+    const int f = next.fact;
     if (t > earliest_[f]) continue;  // stale entry
     for (int i = fact_ops_begin_[f]; i < fact_ops_begin_[f + 1]; ++i) {
       const int op = fact_ops_[i];

@@ -148,7 +148,21 @@ class TemporalReachability {
   std::vector<std::uint8_t> usable_;
   std::vector<double> min_d_, max_d_;  // per action; running ones from their record
   std::vector<std::uint8_t> running_;  // per action
-  std::vector<std::pair<double, std::int32_t>> heap_;
+  // Facts waiting to be popped in time order: the state's (sorted once),
+  // those reached at the time being popped (first in, first out) and the
+  // others (a binary heap). Most snaps happen when their last condition
+  // pops, so the heap stays small.
+  struct Entry {
+    double time_s;
+    std::int32_t fact;
+  };
+  struct Later {
+    bool operator()(const Entry& x, const Entry& y) const { return x.time_s > y.time_s; }
+  };
+  bool PopEarliest(Entry* next);
+  std::vector<Entry> initial_, now_, heap_;
+  std::size_t next_initial_ = 0, next_now_ = 0;
+  double now_s_ = 0.0;  // time of the last pop; -infinity while the state goes in
 };
 
 }  // namespace seaplan::search
