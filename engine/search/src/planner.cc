@@ -455,8 +455,10 @@ PlanResult PlannerRun::Run() {
     if (reachability_.active()) {
       const Clock::time_point pairs_start = Clock::now();
       reachability_.UseMutexGroups(mutex);
-      log::Debug("planner: deadline reachability waits for {} pairs of facts, found in {:.3f} s",
-                 reachability_.num_pair_facts(), Seconds(pairs_start));
+      log::Debug(
+          "planner: deadline reachability waits for {} pairs of facts ({} reached per "
+          "evaluation at most), found in {:.3f} s",
+          reachability_.num_pair_facts(), reachability_.num_pair_reaches(), Seconds(pairs_start));
     }
   }
   if (options_.symmetry_reduction) {

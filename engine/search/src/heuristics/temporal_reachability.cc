@@ -200,9 +200,11 @@ void TemporalReachability::UseMutexGroups(const MutexGroups& mutex) {
   for (const auto& g : groups) members += g.size();
   if (groups.empty() || members > kMaxGroupMembers) return;
 
-  // The facts a snap needs when it happens (sources of its group
-  // transitions and the context it adds facts in) and what it adds.
-  auto needs = [&](int op, std::vector<GroupMember>* out) {
+  // The facts a snap needs when it happens: the context it adds facts in.
+  // With `conditions`, also its conditional effects' conditions, which may
+  // be false: sources of group transitions only (an extra edge can only
+  // shorten a way), never a context.
+  auto needs = [&](int op, bool conditions, std::vector<GroupMember>* out) {
     out->clear();
     const task::Action& action = actions[static_cast<std::size_t>(op / 2)];
     const bool is_end = op % 2 == 1;
@@ -212,6 +214,7 @@ void TemporalReachability::UseMutexGroups(const MutexGroups& mutex) {
       out->insert(out->end(), action.over_all.positive.begin(), action.over_all.positive.end());
       out->insert(out->end(), action.at_end.positive.begin(), action.at_end.positive.end());
     }
+    if (!conditions) return;
     const task::Effects& eff = is_end ? action.end_effects : action.start_effects;
     for (const auto& ce : eff.conditional) {
       out->insert(out->end(), ce.condition.positive.begin(), ce.condition.positive.end());
@@ -236,7 +239,7 @@ void TemporalReachability::UseMutexGroups(const MutexGroups& mutex) {
     if (missing_init_[op] >= (1 << 30)) continue;  // an instantaneous action's end
     const auto a = static_cast<task::ActionId>(op / 2);
     const bool is_end = op % 2 == 1;
-    needs(op, &from);
+    needs(op, true, &from);
     if (is_end) from.push_back(RunningMember(a));
     to.assign(add_.begin() + add_begin_[op], add_.begin() + add_begin_[op + 1]);
     for (auto& m : to) {
@@ -265,29 +268,36 @@ void TemporalReachability::UseMutexGroups(const MutexGroups& mutex) {
     for (const Edge& e : list) ++begin[static_cast<std::size_t>(e.from) + 1];
     for (std::size_t i = 1; i < begin.size(); ++i) begin[i] += begin[i - 1];
   }
-  // Shortest times from one member of a group to the others (a small
-  // Dijkstra per source, cached).
+  // Shortest times from one member of a group to the others (a Dijkstra
+  // per source, cached). Past a budget of edges relaxed, a way counts as
+  // taking no time: a lower bound still.
   std::vector<std::vector<std::vector<double>>> from_member(groups.size());
+  std::size_t edges_relaxed = 0;
+  std::vector<std::pair<double, std::int32_t>> queue;
   auto shortest = [&](std::size_t g, GroupMember source, GroupMember target) {
     auto& rows = from_member[g];
     if (rows.empty()) rows.resize(groups[g].size());
     auto& row = rows[static_cast<std::size_t>(index_in(g, source))];
     if (row.empty()) {
+      if (edges_relaxed > kMaxEdgesRelaxed) return 0.0;
       row.assign(groups[g].size(), kInfinity);
-      std::vector<std::uint8_t> done(groups[g].size(), 0);
       row[static_cast<std::size_t>(index_in(g, source))] = 0.0;
-      for (;;) {
-        std::size_t best = row.size();
-        for (std::size_t i = 0; i < row.size(); ++i) {
-          if (!done[i] && row[i] < kInfinity && (best == row.size() || row[i] < row[best]))
-            best = i;
-        }
-        if (best == row.size()) break;
-        done[best] = 1;
-        for (auto e = edges_begin[g][best]; e < edges_begin[g][best + 1]; ++e) {
+      queue.assign(1, {0.0, index_in(g, source)});
+      while (!queue.empty()) {
+        std::pop_heap(queue.begin(), queue.end(), std::greater<>());
+        const auto [d, at] = queue.back();
+        queue.pop_back();
+        if (d > row[static_cast<std::size_t>(at)]) continue;
+        for (auto e = edges_begin[g][static_cast<std::size_t>(at)];
+             e < edges_begin[g][static_cast<std::size_t>(at) + 1]; ++e) {
           const Edge& edge = edges[g][static_cast<std::size_t>(e)];
-          auto& d = row[static_cast<std::size_t>(edge.to)];
-          d = std::min(d, row[best] + edge.s);
+          ++edges_relaxed;
+          auto& best = row[static_cast<std::size_t>(edge.to)];
+          if (d + edge.s < best) {
+            best = d + edge.s;
+            queue.emplace_back(best, edge.to);
+            std::push_heap(queue.begin(), queue.end(), std::greater<>());
+          }
         }
       }
     }
@@ -305,7 +315,7 @@ void TemporalReachability::UseMutexGroups(const MutexGroups& mutex) {
   // the ways from the members of q's groups that op needs (0 when none; an
   // unreachable q is left to the rest of the exploration).
   auto delay = [&](int op, task::FactId q) {
-    needs(op, &from);
+    needs(op, false, &from);
     double longest = 0.0;
     for (GroupMember m : from) {
       if (m == q) continue;
@@ -326,6 +336,8 @@ void TemporalReachability::UseMutexGroups(const MutexGroups& mutex) {
       static_cast<std::size_t>(num_ops_));
   std::vector<std::vector<std::int32_t>> pairs_of_fact(static_cast<std::size_t>(num_facts_));
   int next_pair = pair_base_;
+  std::size_t pair_reaches = 0;
+  const std::size_t max_pair_reaches = kPairReachesPerSnap * static_cast<std::size_t>(num_ops_);
   for (int op = 0; op < num_ops_; op += 2) {
     for (int i = pre_begin_[op]; i < pre_begin_[op + 1]; ++i) {
       const task::FactId q = pre_[i];
@@ -334,14 +346,19 @@ void TemporalReachability::UseMutexGroups(const MutexGroups& mutex) {
         const task::FactId p = pre_[j];
         if (p == q || p >= num_facts_ || mutex.Mutex(p, q)) continue;
         auto [it, fresh] = pair_of.try_emplace({p, q}, -1);
-        if (fresh) {
+        const auto& achievers = adders[static_cast<std::size_t>(p)];
+        if (fresh && pair_reaches + achievers.size() <= max_pair_reaches) {
           std::vector<std::pair<std::int32_t, double>> delays;
           bool later = false;
-          for (auto adder : adders[static_cast<std::size_t>(p)]) {
+          for (auto adder : achievers) {
             delays.emplace_back(adder, delay(adder, q));
             later = later || delays.back().second > 0.0;
           }
-          if (!later) continue;  // it->second stays -1: nothing to wait for
+          // it->second stays -1 when there is nothing to wait for, or when
+          // the pair would add more work per evaluation than the budget
+          // (any subset of the pairs keeps the bound).
+          if (!later) continue;
+          pair_reaches += delays.size();
           it->second = next_pair++;
           for (const auto& [adder, d] : delays) {
             reached_by[static_cast<std::size_t>(adder)].emplace_back(it->second, d);

@@ -63,6 +63,8 @@ class TemporalReachability {
   void UseMutexGroups(const MutexGroups& mutex);
   // Pair facts UseMutexGroups added (for the statistics and the tests).
   int num_pair_facts() const { return static_cast<int>(earliest_.size()) - pair_base_; }
+  // How often snaps reach them in one evaluation, at most.
+  std::size_t num_pair_reaches() const { return op_pairs_.size(); }
 
   // False when no literal ever deletes a window fact: then no window closes
   // and Evaluate would prune nothing the untimed relaxation does not.
@@ -89,6 +91,11 @@ class TemporalReachability {
  private:
   // UseMutexGroups leaves tasks with more group members than this alone.
   static constexpr std::size_t kMaxGroupMembers = 200'000;
+  // ... and stops looking for the shortest ways in a group past this many
+  // edges relaxed, and adds pairs only while their achievers reach at most
+  // this many per snap of the task (each is one more Reach per evaluation).
+  static constexpr std::size_t kMaxEdgesRelaxed = 20'000'000;
+  static constexpr std::size_t kPairReachesPerSnap = 3;
 
   enum class Kind : std::uint8_t { kAt, kSpan, kRange };
   struct WindowCondition {

@@ -87,6 +87,34 @@ constexpr char kVanDomain[] = R"(
     :effect (and (at start (not (in ?x ?v))) (at end (delivered ?x)))))
 )";
 
+// The van courier where a load at the depot also registers the parcel: a
+// conditional effect whose condition is a place of the van.
+constexpr char kRegisteringVanDomain[] = R"(
+(define (domain registering-van)
+  (:requirements :typing :durative-actions :fluents :timed-initial-literals :conditional-effects)
+  (:types place parcel van)
+  (:constants depot - place)
+  (:predicates (van-at ?v - van ?p - place) (at ?x - parcel ?p - place) (in ?x - parcel ?v - van)
+               (deliverable ?x - parcel ?p - place) (delivered ?x - parcel) (registered ?x - parcel))
+  (:functions (drive-time ?a ?b - place))
+  (:durative-action drive
+    :parameters (?v - van ?a ?b - place)
+    :duration (= ?duration (drive-time ?a ?b))
+    :condition (at start (van-at ?v ?a))
+    :effect (and (at start (not (van-at ?v ?a))) (at end (van-at ?v ?b))))
+  (:durative-action load
+    :parameters (?x - parcel ?v - van ?p - place)
+    :duration (= ?duration 1)
+    :condition (and (at start (at ?x ?p)) (over all (van-at ?v ?p)))
+    :effect (and (at start (not (at ?x ?p))) (at end (in ?x ?v))
+                 (when (at start (van-at ?v depot)) (at end (registered ?x)))))
+  (:durative-action deliver
+    :parameters (?x - parcel ?v - van ?p - place)
+    :duration (= ?duration 1)
+    :condition (and (at start (in ?x ?v)) (over all (van-at ?v ?p)) (at end (deliverable ?x ?p)))
+    :effect (and (at start (not (in ?x ?v))) (at end (delivered ?x)))))
+)";
+
 // One van at the depot, pa there, due at a by `deadline_s`.
 std::string VanProblem(double deadline_s) {
   return R"(
@@ -264,6 +292,22 @@ TEST(TemporalReachabilityTest, ParcelAlreadyInTheVanNeedsNoPairWait) {
   EXPECT_NEAR(fx.reachability().EarliestTime(fx.Fact("(delivered pa)")), 7.0, 1e-6);
 }
 
+TEST(TemporalReachabilityTest, ConditionalEffectConditionIsNoPlaceTheVanMustBeIn) {
+  // pa waits at a, due there by 7.5 s: drive (0-5), load at a (5-6),
+  // deliver (6-7). The load's conditional effect asks for the van at the
+  // depot, but need not hold: the parcel is in the van at a with no wait.
+  Fixture fx(kRegisteringVanDomain, R"(
+(define (problem registering-1) (:domain registering-van)
+  (:objects a - place pa - parcel v - van)
+  (:init (van-at v depot) (at pa a) (= (drive-time depot a) 5) (= (drive-time a depot) 5)
+         (deliverable pa a) (at 7.5 (not (deliverable pa a))))
+  (:goal (delivered pa))))",
+             true);
+  ASSERT_TRUE(fx.ok());
+  ASSERT_TRUE(fx.Evaluate());
+  EXPECT_NEAR(fx.reachability().EarliestTime(fx.Fact("(delivered pa)")), 7.0, 1e-6);
+}
+
 TEST(TemporalReachabilityTest, SnapsThatMissedTheirDeadlineAreUnusable) {
   // Only pb is a goal: driving to b first is fine, but delivering pa no
   // longer can happen, and the relaxed plan heuristic is told so.
@@ -340,6 +384,34 @@ TEST(TemporalReachabilityTest, PlannerDeliversBeforeDeadlines) {
     }
   }
   EXPECT_TRUE(delivered_pa);
+}
+
+// Two vans, each with one parcel to deliver within half a second of the
+// earliest it can: the pairs must not prune the only way (both vans load,
+// drive and deliver at once).
+TEST(TemporalReachabilityTest, PlannerMeetsTightDeadlinesWithTwoVans) {
+  auto loaded = task::LoadTask(kVanDomain, R"(
+(define (problem two-vans) (:domain van-courier)
+  (:objects depot a b - place pa pb - parcel v w - van)
+  (:init (van-at v depot) (van-at w b) (at pa depot) (at pb b)
+         (road depot a) (road a depot) (road depot b) (road b depot)
+         (= (drive-time depot a) 5) (= (drive-time a depot) 5)
+         (= (drive-time depot b) 5) (= (drive-time b depot) 5)
+         (deliverable pa a) (deliverable pb depot)
+         (at 7.5 (not (deliverable pa a))) (at 7.5 (not (deliverable pb depot))))
+  (:goal (and (delivered pa) (delivered pb))))
+)");
+  ASSERT_TRUE(loaded.ok()) << loaded.ErrorText();
+  PlannerOptions options;
+  options.time_limit_s = 2;
+  const PlanResult r = SolveTask(*loaded.task, options, StopToken());
+  ASSERT_TRUE(r.status == PlanStatus::kSolvedSatisficing ||
+              r.status == PlanStatus::kSolvedOptimally)
+      << ToString(r.status) << ": " << r.message;
+  auto parsed = validate::ParsePlan(validate::FormatPlan(r.plan));
+  ASSERT_TRUE(parsed.ok()) << parsed.status();
+  const auto v = validate::ValidatePlan(*loaded.task, *parsed);
+  EXPECT_TRUE(v.valid) << v.ToString() << "\n" << validate::FormatPlan(r.plan);
 }
 
 // A deadline even the relaxation cannot meet (the van reaches a at 5 s,
