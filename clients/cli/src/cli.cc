@@ -794,7 +794,8 @@ int RunCli(int argc, char** argv, const CliExecutable& executable) {
                      "First-plan searches also ordered by LAMA's landmark count (default; "
                      "--no-landmarks: without it)");
   plan_cmd->add_flag("--no-symmetry", plan.no_symmetry,
-                     "First-plan searches keep states that only permute interchangeable objects");
+                     "First-plan searches keep states that only permute interchangeable objects "
+                     "(they always do when timed literals close deadlines)");
   plan_cmd->add_flag("--no-eager-ends", plan.no_eager_ends,
                      "Searches also try the orders in which an end that only adds facts "
                      "happens later");

@@ -461,7 +461,12 @@ PlanResult PlannerRun::Run() {
           reachability_.num_pair_facts(), reachability_.num_pair_reaches(), Seconds(pairs_start));
     }
   }
-  if (options_.symmetry_reduction) {
+  // With deadlines, when each object is free matters, and a symmetric
+  // state is dropped on its makespan bound alone: generated trucks-time-til
+  // instances with three trucks lost their only timely states.
+  if (options_.symmetry_reduction && reachability_.active()) {
+    log::Debug("planner: no symmetry reduction: timed literals close deadlines");
+  } else if (options_.symmetry_reduction) {
     symmetry_.emplace(snap_);
     best_.stats.symmetric_objects = symmetry_->num_symmetric_objects();
     best_.stats.symmetry_classes = symmetry_->num_classes();

@@ -383,17 +383,25 @@ TEST(TemporalReachabilityTest, PlannerDeliversBeforeDeadlines) {
 // earliest it can: the pairs must not prune the only way (both vans load,
 // drive and deliver at once).
 TEST(TemporalReachabilityTest, PlannerMeetsTightDeadlinesWithTwoVans) {
-  PlanAndValidate(VanDomain(), R"(
+  auto problem = [](const std::string& deadlines) {
+    return R"(
 (define (problem two-vans) (:domain van-courier)
   (:objects depot a b - place pa pb - parcel v w - van)
   (:init (van-at v depot) (van-at w b) (at pa depot) (at pb b)
          (road depot a) (road a depot) (road depot b) (road b depot)
          (= (drive-time depot a) 5) (= (drive-time a depot) 5)
          (= (drive-time depot b) 5) (= (drive-time b depot) 5)
-         (deliverable pa a) (deliverable pb depot)
-         (at 7.5 (not (deliverable pa a))) (at 7.5 (not (deliverable pb depot))))
-  (:goal (and (delivered pa) (delivered pb))))
-)");
+         (deliverable pa a) (deliverable pb depot) )" +
+           deadlines + R"()
+  (:goal (and (delivered pa) (delivered pb)))))";
+  };
+  const PlanResult r = PlanAndValidate(
+      VanDomain(),
+      problem("(at 7.5 (not (deliverable pa a))) (at 7.5 (not (deliverable pb depot)))"));
+  // The vans are interchangeable, but with deadlines no state is dropped
+  // as a permutation of another: when each van is free matters.
+  EXPECT_EQ(r.stats.symmetric_objects, 0);
+  EXPECT_EQ(PlanAndValidate(VanDomain(), problem("")).stats.symmetric_objects, 2);
 }
 
 // A deadline even the relaxation cannot meet (the van reaches a at 5 s,

@@ -133,7 +133,7 @@ struct PlannerOptions {
   // interchangeable objects (objects whose names can be swapped without
   // changing the ground task: crates the goal treats alike) is that of a
   // state already expanded (engine/search/README.md, "Interchangeable
-  // objects").
+  // objects"). Not used when timed literals close deadlines.
   bool symmetry_reduction = true;
   // The searches apply the end of an action that only adds facts no
   // condition asks false and no event deletes unasked as soon as it can
