@@ -203,26 +203,15 @@ def trucks(trucks_n, locations, packages, areas, rng):
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     sub = parser.add_subparsers(dest="domain", required=True)
-    ft = sub.add_parser("floortile", help="floortile-2011's domain")
-    ft.add_argument("rows", type=int)
-    ft.add_argument("cols", type=int)
-    ft.add_argument("robots", type=int)
-    ft.add_argument("seed", type=int)
-    dl = sub.add_parser("driverlog", help="driverlog-2014's domain")
-    dl.add_argument("drivers", type=int)
-    dl.add_argument("trucks", type=int)
-    dl.add_argument("packages", type=int)
-    dl.add_argument("seed", type=int)
-    el = sub.add_parser("elevators", help="elevators-2011's domain")
-    el.add_argument("floors", type=int)
-    el.add_argument("passengers", type=int)
-    el.add_argument("seed", type=int)
-    tr = sub.add_parser("trucks", help="trucks-time-til's domain")
-    tr.add_argument("trucks", type=int)
-    tr.add_argument("locations", type=int)
-    tr.add_argument("packages", type=int)
-    tr.add_argument("areas", type=int)
-    tr.add_argument("seed", type=int)
+    for name, (domain, params) in {
+        "floortile": ("floortile-2011's domain", ["rows", "cols", "robots"]),
+        "driverlog": ("driverlog-2014's domain", ["drivers", "trucks", "packages"]),
+        "elevators": ("elevators-2011's domain", ["floors", "passengers"]),
+        "trucks": ("trucks-time-til's domain", ["trucks", "locations", "packages", "areas"]),
+    }.items():
+        command = sub.add_parser(name, help=domain)
+        for param in params + ["seed"]:
+            command.add_argument(param, type=int)
     args = parser.parse_args()
     rng = random.Random(args.seed)
     if args.domain == "floortile":
