@@ -234,6 +234,13 @@ void TemporalReachability::UseMutexGroups(const MutexGroups& mutex) {
     return static_cast<std::int32_t>(std::lower_bound(members_of.begin(), members_of.end(), m) -
                                      members_of.begin());
   };
+  // Calls visit(g) for each group `a` and `b` are both in.
+  auto for_each_shared_group = [&](GroupMember a, GroupMember b, auto&& visit) {
+    const auto of_b = mutex.GroupsOf(b);
+    for (auto g : mutex.GroupsOf(a)) {
+      if (std::find(of_b.begin(), of_b.end(), g) != of_b.end()) visit(static_cast<std::size_t>(g));
+    }
+  };
   std::vector<GroupMember> from, to;
   for (int op = 0; op < num_ops_; ++op) {
     if (missing_init_[op] >= (1 << 30)) continue;  // an instantaneous action's end
@@ -246,28 +253,18 @@ void TemporalReachability::UseMutexGroups(const MutexGroups& mutex) {
       if (m >= num_facts_) m = RunningMember(m - num_facts_);  // started(a)
     }
     for (GroupMember f : from) {
-      for (auto g : mutex.GroupsOf(f)) {
-        for (GroupMember t : to) {
-          if (t == f) continue;
-          const auto in = mutex.GroupsOf(t);
-          if (std::find(in.begin(), in.end(), g) == in.end()) continue;
-          const double s = is_end && f == RunningMember(a) ? static_min_d_[a] : 0.0;
+      for (GroupMember t : to) {
+        if (t == f) continue;
+        const double s = is_end && f == RunningMember(a) ? static_min_d_[a] : 0.0;
+        for_each_shared_group(f, t, [&](std::size_t g) {
           edges[g].push_back({index_in(g, f), index_in(g, t), s});
-        }
+        });
       }
     }
   }
-  // Edges by source member (CSR per group).
-  std::vector<std::vector<std::int32_t>> edges_begin(groups.size());
-  for (std::size_t g = 0; g < groups.size(); ++g) {
-    auto& list = edges[g];
-    std::sort(list.begin(), list.end(),
-              [](const Edge& x, const Edge& y) { return x.from < y.from; });
-    auto& begin = edges_begin[g];
-    begin.assign(groups[g].size() + 1, 0);
-    for (const Edge& e : list) ++begin[static_cast<std::size_t>(e.from) + 1];
-    for (std::size_t i = 1; i < begin.size(); ++i) begin[i] += begin[i - 1];
-  }
+  // Each group's edges by source member, found by binary search.
+  auto by_from = [](const Edge& x, const Edge& y) { return x.from < y.from; };
+  for (auto& list : edges) std::sort(list.begin(), list.end(), by_from);
   // Shortest times from one member of a group to the others (a Dijkstra
   // per source, cached). Past a budget of edges relaxed, a way counts as
   // taking no time: a lower bound still.
@@ -288,14 +285,14 @@ void TemporalReachability::UseMutexGroups(const MutexGroups& mutex) {
         const auto [d, at] = queue.back();
         queue.pop_back();
         if (d > row[static_cast<std::size_t>(at)]) continue;
-        for (auto e = edges_begin[g][static_cast<std::size_t>(at)];
-             e < edges_begin[g][static_cast<std::size_t>(at) + 1]; ++e) {
-          const Edge& edge = edges[g][static_cast<std::size_t>(e)];
+        const auto [first, last] =
+            std::equal_range(edges[g].begin(), edges[g].end(), Edge{at, 0, 0.0}, by_from);
+        for (auto edge = first; edge != last; ++edge) {
           ++edges_relaxed;
-          auto& best = row[static_cast<std::size_t>(edge.to)];
-          if (d + edge.s < best) {
-            best = d + edge.s;
-            queue.emplace_back(best, edge.to);
+          auto& best = row[static_cast<std::size_t>(edge->to)];
+          if (d + edge->s < best) {
+            best = d + edge->s;
+            queue.emplace_back(best, edge->to);
             std::push_heap(queue.begin(), queue.end(), std::greater<>());
           }
         }
@@ -319,12 +316,10 @@ void TemporalReachability::UseMutexGroups(const MutexGroups& mutex) {
     double longest = 0.0;
     for (GroupMember m : from) {
       if (m == q) continue;
-      for (auto g : mutex.GroupsOf(m)) {
-        const auto in = mutex.GroupsOf(q);
-        if (std::find(in.begin(), in.end(), g) == in.end()) continue;
-        const double d = shortest(static_cast<std::size_t>(g), m, q);
+      for_each_shared_group(m, q, [&](std::size_t g) {
+        const double d = shortest(g, m, q);
         if (d < kInfinity) longest = std::max(longest, d);
-      }
+      });
     }
     return longest;
   };
