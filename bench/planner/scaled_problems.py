@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Problems larger than the shared benchmark's p01-p05, for four of its domains.
+"""Problems larger than the shared benchmark's p01-p05, for five of its domains.
 
 The shared set holds only the first five problems of each domain; the
 larger ones a planner is judged on are not here. This writes random
@@ -24,6 +24,12 @@ instances"):
       domain: a complete road map, about half the packages with a
       delivery deadline (a timed literal) that a witness plan meets (its
       p01-p05: 1 truck, 3 locations, 3-7 packages, 2 areas).
+  satellite-tw SATELLITES DIRECTIONS IMAGES ANTENNAS SEED
+      satellite-tw-til's domain: 1-3 instruments per satellite, 3 modes,
+      a quarter of the directions ground stations (calibration targets),
+      images to take and send, and one visibility window per antenna that
+      a witness plan meets (its p01-p05: 1-3 satellites, 7-10 directions,
+      3-7 images, 1-2 antennas).
 
 The problem goes to standard output; the domain is the shared one, e.g.
   bench/planner/scaled_problems.py floortile 4 4 2 1 > /tmp/ft-4x4.pddl
@@ -200,6 +206,104 @@ def trucks(trucks_n, locations, packages, areas, rng):
     return out
 
 
+def satellite_tw_stations(directions):
+    return max(1, directions // 4)
+
+
+def satellite_tw(satellites, directions, images, antennas, rng):
+    # satellite-tw-til's shape (its p01-p05: 1-3 satellites, 1-3
+    # instruments each, 3 modes, 7-10 directions, 3-7 images, 1-2
+    # antennas): symmetric slew times of 5-62 s, calibration 20-90 s, send
+    # times 5-20 s, and one visibility window per antenna that opens for
+    # some of the satellites at once. Each window is placed on a witness
+    # plan (each satellite takes its images one instrument after another,
+    # each antenna sends its share in the order they are taken) and
+    # stretched by up to 30 %, so every instance is solvable.
+    modes = ["thermograph0", "image1", "spectrograph2"]
+    stations = satellite_tw_stations(directions)
+    direction = [f"GroundStation{i}" for i in range(stations)]
+    direction += [f"Star{i}" for i in range(stations, directions)]
+    slew = {}
+    for a in range(directions):
+        for b in range(a + 1, directions):
+            slew[a, b] = slew[b, a] = round(rng.uniform(5, 62), 2)
+    sat = [f"satellite{i}" for i in range(satellites)]
+    on_board, supports, target, cal_time = [], {}, {}, {}
+    for s in range(satellites):
+        for _ in range(rng.randint(1, 3)):
+            i = len(on_board)
+            on_board.append(s)
+            supports[i] = sorted(rng.sample(range(3), rng.randint(1, 3)))
+            target[i] = rng.randrange(stations)
+            cal_time[i] = round(rng.uniform(20, 90), 1)
+    for m in range(3):  # every mode on some instrument
+        if not any(m in supports[i] for i in supports):
+            supports[rng.randrange(len(on_board))].append(m)
+    pointing = [rng.randrange(directions) for _ in sat]
+    goal = rng.sample([(d, m) for d in range(stations, directions) for m in range(3)], images)
+    send_time = {g: round(rng.uniform(5, 20), 2) for g in goal}
+    # The witness: each image goes to a random instrument that supports its
+    # mode; a satellite's instruments work one after another (they share
+    # its power).
+    taken = {}
+    for s in range(satellites):
+        clock, at = 0.0, pointing[s]
+        for i in [i for i in supports if on_board[i] == s]:
+            mine = [g for g in goal if g not in taken and g[1] in supports[i]
+                    and rng.random() < 0.7]
+            if not mine:
+                continue
+            clock += 2.0 + slew.get((at, target[i]), 0.0) + cal_time[i]
+            at = target[i]
+            for g in mine:
+                clock += slew.get((at, g[0]), 0.0) + 7.0
+                at = g[0]
+                taken[g] = (s, clock)
+            clock += 1.0
+    missing = [g for g in goal if g not in taken]
+    for g in missing:  # no instrument drew it: one more pass
+        i = rng.choice([i for i in supports if g[1] in supports[i]])
+        s = on_board[i]
+        last = max([t for (owner, t) in taken.values() if owner == s], default=0.0)
+        taken[g] = (s, last + 2.0 + 62.0 + cal_time[i] + 62.0 + 7.0 + 1.0)
+    ant = [f"antenna{i}" for i in range(antennas)]
+    share = {a: [] for a in range(antennas)}
+    for g in goal:
+        share[rng.randrange(antennas)].append(g)
+    window = {}
+    for a in range(antennas):
+        seen = sorted({taken[g][0] for g in share[a]} | {rng.randrange(satellites)})
+        order = sorted(share[a], key=lambda g: taken[g][1])
+        opens = round(min([taken[g][1] for g in order], default=60.0) * rng.uniform(0.5, 1.0), 2)
+        clock = opens
+        for g in order:
+            clock = max(clock, taken[g][1]) + send_time[g]
+        closes = round(opens + (clock - opens) * rng.uniform(1.0, 1.3) + 0.04, 2)
+        window[a] = (seen, opens, closes)
+    out = [f"(define (problem satellite-tw-{satellites}-{directions}-{images}-{antennas})",
+           "(:domain satellite)", "(:objects"]
+    out += [f" {x} - satellite" for x in sat] + [f" instrument{i} - instrument" for i in supports]
+    out += [f" {x} - mode" for x in modes] + [f" {x} - direction" for x in direction]
+    out += [f" {x} - antenna" for x in ant] + [")", "(:init"]
+    for i in supports:
+        out += [f" (supports instrument{i} {modes[m]})" for m in supports[i]]
+        out += [f" (calibration_target instrument{i} {direction[target[i]]})",
+                f" (= (calibration_time instrument{i} {direction[target[i]]}) {cal_time[i]})",
+                f" (on_board instrument{i} {sat[on_board[i]]})"]
+    for s, x in enumerate(sat):
+        out += [f" (power_avail {x})", f" (pointing {x} {direction[pointing[s]]})"]
+    out += [f" (= (slew_time {direction[a]} {direction[b]}) {t})" for (a, b), t in sorted(slew.items())]
+    out += [f" (= (send_time {direction[d]} {modes[m]}) {send_time[d, m]})" for d, m in goal]
+    for a, (seen, opens, closes) in window.items():
+        for s in seen:
+            out += [f" (at {opens} (visible {ant[a]} {sat[s]}))", f" (at {closes} (not (visible {ant[a]} {sat[s]})))"]
+        out.append(f" (available {ant[a]})")
+    out += [")", "(:goal (and"]
+    out += [f" (sent_image {direction[d]} {modes[m]})" for d, m in goal]
+    out += ["))", "(:metric minimize (total-time)))"]
+    return out
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     sub = parser.add_subparsers(dest="domain", required=True)
@@ -208,6 +312,7 @@ def main():
         "driverlog": ("driverlog-2014's domain", ["drivers", "trucks", "packages"]),
         "elevators": ("elevators-2011's domain", ["floors", "passengers"]),
         "trucks": ("trucks-time-til's domain", ["trucks", "locations", "packages", "areas"]),
+        "satellite-tw": ("satellite-tw-til's domain", ["satellites", "directions", "images", "antennas"]),
     }.items():
         command = sub.add_parser(name, help=domain)
         for param in params + ["seed"]:
@@ -227,6 +332,12 @@ def main():
         if args.trucks < 1 or args.locations < 2 or args.packages < 1 or args.areas < 1:
             parser.error("trucks: trucks, packages, areas >= 1 and locations >= 2")
         lines = trucks(args.trucks, args.locations, args.packages, args.areas, rng)
+    elif args.domain == "satellite-tw":
+        if args.satellites < 1 or args.directions < 2 or args.antennas < 1 or not \
+                1 <= args.images <= 3 * (args.directions - satellite_tw_stations(args.directions)):
+            parser.error("satellite-tw: satellites, antennas >= 1, directions >= 2 and 1 <= images <= "
+                         "3 x the directions that are not ground stations (a quarter are)")
+        lines = satellite_tw(args.satellites, args.directions, args.images, args.antennas, rng)
     else:
         if min(args.drivers, args.trucks, args.packages) < 1:
             parser.error("driverlog: drivers, trucks and packages >= 1")
