@@ -457,7 +457,12 @@ LazySearch::Status LazySearch::Step() {
       // when the state got it too late for a window (an image taken after
       // its antenna's window closed); the plan along the earliest achievers
       // takes it again. The longer of the two estimates guides the search.
-      h = std::max(h, reachability_->RelaxedPlanLength(current_, nullptr));
+      // Its helpful events replace the untimed plan's: FF's first achievers
+      // give every image to the first satellite, which then works alone
+      // past the windows; the earliest achievers spread the work the way
+      // deadlines need it (bench/planner/README.md, "Helpful events on
+      // time").
+      h = std::max(h, reachability_->RelaxedPlanLength(current_, &preferred_));
     }
     ++counters_.evaluated;
     if (h < RelaxedPlanHeuristic::kDeadEnd && params_.goal_order != nullptr &&

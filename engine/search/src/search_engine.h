@@ -132,8 +132,9 @@ class LazySearch {
   void SetStopToken(const StopToken* stop) { stop_ = stop; }
   // Optional (may be null; borrowed): prunes states whose timed-literal
   // deadlines can no longer be met, hides snaps that missed theirs from
-  // the heuristic and raises h to its time-aware relaxed plan length when
-  // longer. Only used when active().
+  // the heuristic, raises h to its time-aware relaxed plan length when
+  // longer and takes the helpful events from that plan (the earliest
+  // achievers') instead of FF's. Only used when active().
   void SetTemporalReachability(TemporalReachability* reachability) { reachability_ = reachability; }
   void Initialize(const StateData& initial);
   Status Step();

@@ -238,6 +238,31 @@ TEST(TemporalReachabilityTest, RelaxedPlanFollowsTheEarliestAchievers) {
   EXPECT_EQ(preferred, std::vector<SnapId>{fx.Start("(drive depot a)")});
 }
 
+// Two vans the same number of steps from the parcel, one 5 s and one 2 s
+// away: the plan along the earliest achievers sends the near one, so its
+// helpful snaps (the search's, when deadlines apply) start that van. FF's
+// relaxed plan counts steps, not seconds: to it the two vans are equal.
+TEST(TemporalReachabilityTest, HelpfulSnapsStartTheVanThatArrivesFirst) {
+  const std::string problem = R"(
+(define (problem near-van) (:domain van-courier)
+  (:objects depot a b c - place pa - parcel v w - van)
+  (:init (van-at v b) (van-at w c) (at pa depot)
+         (road b depot) (road c depot) (road depot a)
+         (= (drive-time b depot) 5) (= (drive-time c depot) 2) (= (drive-time depot a) 5)
+         (deliverable pa a) (at 30 (not (deliverable pa a))))
+  (:goal (delivered pa))))";
+  Fixture fx(VanDomain(), problem);
+  ASSERT_TRUE(fx.ok());
+  ASSERT_TRUE(fx.Evaluate());
+  // w: drive c-depot (0-2), load (2-3); relaxed, it leaves for a at 2
+  // (without the mutex groups nothing keeps it at the depot while it
+  // loads) and arrives at 7: delivered at 8.
+  EXPECT_NEAR(fx.reachability().EarliestTime(fx.Fact("(delivered pa)")), 8.0, 1e-6);
+  std::vector<SnapId> preferred;
+  EXPECT_EQ(fx.reachability().RelaxedPlanLength(fx.state(), &preferred), 8);
+  EXPECT_EQ(preferred, std::vector<SnapId>{fx.Start("(drive w c depot)")});
+}
+
 TEST(TemporalReachabilityTest, ParcelLoadedElsewhereWaitsForTheVanToDriveBack) {
   // The van drives to a (0-5) without pa; pa's deadline at a is 16.5 s. The
   // van could drive back (5-10), load pa (10-11) and return (11-16): pa is
