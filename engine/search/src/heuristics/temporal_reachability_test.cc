@@ -238,12 +238,10 @@ TEST(TemporalReachabilityTest, RelaxedPlanFollowsTheEarliestAchievers) {
   EXPECT_EQ(preferred, std::vector<SnapId>{fx.Start("(drive depot a)")});
 }
 
-// Two vans the same number of steps from the parcel, one 5 s and one 2 s
-// away: the plan along the earliest achievers sends the near one, so its
-// helpful snaps (the search's, when deadlines apply) start that van. FF's
-// relaxed plan counts steps, not seconds: to it the two vans are equal.
-TEST(TemporalReachabilityTest, HelpfulSnapsStartTheVanThatArrivesFirst) {
-  const std::string problem = R"(
+// Vans v and w the same number of steps from pa, 5 s and 2 s from the
+// depot; pa due at a by 30 s.
+std::string NearVanProblem() {
+  return R"(
 (define (problem near-van) (:domain van-courier)
   (:objects depot a b c - place pa - parcel v w - van)
   (:init (van-at v b) (van-at w c) (at pa depot)
@@ -251,7 +249,13 @@ TEST(TemporalReachabilityTest, HelpfulSnapsStartTheVanThatArrivesFirst) {
          (= (drive-time b depot) 5) (= (drive-time c depot) 2) (= (drive-time depot a) 5)
          (deliverable pa a) (at 30 (not (deliverable pa a))))
   (:goal (delivered pa))))";
-  Fixture fx(VanDomain(), problem);
+}
+
+// The plan along the earliest achievers sends the near van, so its helpful
+// snaps (the search's, when deadlines apply) start that van. FF's relaxed
+// plan counts steps, not seconds: to it the two vans are equal.
+TEST(TemporalReachabilityTest, HelpfulSnapsStartTheVanThatArrivesFirst) {
+  Fixture fx(VanDomain(), NearVanProblem());
   ASSERT_TRUE(fx.ok());
   ASSERT_TRUE(fx.Evaluate());
   // w: drive c-depot (0-2), load (2-3); relaxed, it leaves for a at 2
@@ -261,6 +265,24 @@ TEST(TemporalReachabilityTest, HelpfulSnapsStartTheVanThatArrivesFirst) {
   std::vector<SnapId> preferred;
   EXPECT_EQ(fx.reachability().RelaxedPlanLength(fx.state(), &preferred), 8);
   EXPECT_EQ(preferred, std::vector<SnapId>{fx.Start("(drive w c depot)")});
+}
+
+// The search follows those helpful snaps: its first plan sends w (9 s).
+// With FF's, whose relaxed plan cannot tell the vans apart, the first plan
+// sent v (12 s) and a later search found w's.
+TEST(TemporalReachabilityTest, PlannerFirstSendsTheVanThatArrivesFirst) {
+  auto loaded = task::LoadTask(VanDomain(), NearVanProblem());
+  ASSERT_TRUE(loaded.ok()) << loaded.ErrorText();
+  PlannerOptions options;
+  options.time_limit_s = 10;
+  options.anytime = false;
+  std::vector<double> makespans;
+  PlanObserver observer;
+  observer.on_plan = [&](const PlanResult& plan) { makespans.push_back(plan.makespan_s); };
+  const PlanResult r = SolveTask(*loaded.task, options, StopToken(), &observer);
+  ASSERT_EQ(r.status, PlanStatus::kSolvedSatisficing) << r.message;
+  ASSERT_FALSE(makespans.empty());
+  EXPECT_NEAR(makespans.front(), 9.0, 1e-2);
 }
 
 TEST(TemporalReachabilityTest, ParcelLoadedElsewhereWaitsForTheVanToDriveBack) {
