@@ -244,7 +244,9 @@ def satellite_tw(satellites, directions, images, antennas, rng):
     send_time = {g: round(rng.uniform(5, 20), 2) for g in goal}
     # The witness: each image goes to a random instrument that supports its
     # mode; a satellite's instruments work one after another (they share
-    # its power).
+    # its power). Its steps are not epsilon apart, but a plan may turn to
+    # the first image while calibrating (images are never ground stations),
+    # which brings every image at least 5 s earlier than here.
     taken = {}
     for s in range(satellites):
         clock, at = 0.0, pointing[s]
@@ -276,8 +278,8 @@ def satellite_tw(satellites, directions, images, antennas, rng):
         order = sorted(share[a], key=lambda g: taken[g][1])
         opens = round(min([taken[g][1] for g in order], default=60.0) * rng.uniform(0.5, 1.0), 2)
         clock = opens
-        for g in order:
-            clock = max(clock, taken[g][1]) + send_time[g]
+        for g in order:  # 0.01 s apart from what comes before it (planners' epsilon)
+            clock = max(clock, taken[g][1]) + 0.01 + send_time[g]
         closes = round(opens + (clock - opens) * rng.uniform(1.0, 1.3) + 0.04, 2)
         window[a] = (seen, opens, closes)
     out = [f"(define (problem satellite-tw-{satellites}-{directions}-{images}-{antennas})",
@@ -295,8 +297,10 @@ def satellite_tw(satellites, directions, images, antennas, rng):
     out += [f" (= (slew_time {direction[a]} {direction[b]}) {t})" for (a, b), t in sorted(slew.items())]
     out += [f" (= (send_time {direction[d]} {modes[m]}) {send_time[d, m]})" for d, m in goal]
     for a, (seen, opens, closes) in window.items():
-        for s in seen:
-            out += [f" (at {opens} (visible {ant[a]} {sat[s]}))", f" (at {closes} (not (visible {ant[a]} {sat[s]})))"]
+        if share[a]:  # an antenna with nothing to send gets no window
+            for s in seen:
+                out += [f" (at {opens} (visible {ant[a]} {sat[s]}))",
+                        f" (at {closes} (not (visible {ant[a]} {sat[s]})))"]
         out.append(f" (available {ant[a]})")
     out += [")", "(:goal (and"]
     out += [f" (sent_image {direction[d]} {modes[m]})" for d, m in goal]

@@ -59,7 +59,8 @@ generate "$work/seed2.pddl" satellite-tw 2 6 4 2 2
 cmp -s "$work/seed1.pddl" "$work/seed2.pddl" && fail "satellite-tw: seeds 1 and 2 give the same problem"
 for bad in "floortile 0 3 2 1" "floortile 1 1 2 1" "driverlog 3 0 5 1" "elevators 12 3 1" \
   "elevators 16 0 1" "trucks 1 1 3 2 1" "trucks 0 3 3 2 1" \
-  "satellite-tw 0 6 4 2 1" "satellite-tw 2 1 4 2 1" "satellite-tw 2 6 4 0 1"; do
+  "satellite-tw 0 6 4 2 1" "satellite-tw 2 1 4 2 1" "satellite-tw 2 6 4 0 1" \
+  "satellite-tw 2 6 16 2 1"; do
   # shellcheck disable=SC2086  # the arguments split on purpose
   if "$python" "$gen" $bad >/dev/null 2>&1; then fail "accepted: $bad"; fi
 done

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
+#include <iterator>
 
 namespace seaplan::search {
 
@@ -24,6 +25,12 @@ LazySearch::LazySearch(const SnapTask& task, StateRegistry& registry,
       open_landmark_all_(KeyOrder(params)),
       open_landmark_preferred_(KeyOrder(params)) {
   paths_.push_back(SchedulePath{&timeline_, {}, -1});
+  const task::GroundTask& ground = task.task();
+  numeric_conditions_ = !ground.goal.numeric.empty();
+  for (const task::Action& a : ground.actions) {
+    numeric_conditions_ = numeric_conditions_ || !a.at_start.numeric.empty() ||
+                          !a.over_all.numeric.empty() || !a.at_end.numeric.empty();
+  }
   if (params.symmetry != nullptr && params.symmetry->active()) {
     canonical_registry_ =
         std::make_unique<StateRegistry>(registry.num_facts(), registry.num_vars());
@@ -461,8 +468,17 @@ LazySearch::Status LazySearch::Step() {
       // give every image to the first satellite, which then works alone
       // past the windows; the earliest achievers spread the work the way
       // deadlines need it (bench/planner/README.md, "Helpful events on
-      // time").
-      h = std::max(h, reachability_->RelaxedPlanLength(current_, &preferred_));
+      // time"). That plan leaves numbers out: with numeric conditions,
+      // FF's events (a refuel) stay helpful too.
+      h = std::max(h, reachability_->RelaxedPlanLength(current_, &timed_preferred_));
+      if (numeric_conditions_) {
+        merged_preferred_.clear();
+        std::set_union(preferred_.begin(), preferred_.end(), timed_preferred_.begin(),
+                       timed_preferred_.end(), std::back_inserter(merged_preferred_));
+        preferred_.swap(merged_preferred_);
+      } else {
+        preferred_.swap(timed_preferred_);
+      }
     }
     ++counters_.evaluated;
     if (h < RelaxedPlanHeuristic::kDeadEnd && params_.goal_order != nullptr &&

@@ -134,7 +134,8 @@ class LazySearch {
   // deadlines can no longer be met, hides snaps that missed theirs from
   // the heuristic, raises h to its time-aware relaxed plan length when
   // longer and takes the helpful events from that plan (the earliest
-  // achievers') instead of FF's. Only used when active().
+  // achievers') instead of FF's (as well as FF's when a condition compares
+  // numbers, which that plan leaves out). Only used when active().
   void SetTemporalReachability(TemporalReachability* reachability) { reachability_ = reachability; }
   void Initialize(const StateData& initial);
   Status Step();
@@ -273,11 +274,14 @@ class LazySearch {
   SearchCounters counters_;
   std::vector<Event> plan_;
   double plan_makespan_s_ = 0;
+  // Some condition or goal compares numbers: the deadline reachability
+  // does not see their changers, FF's relaxed plan does.
+  bool numeric_conditions_ = false;
 
   // Scratch reused by every expansion.
   StateData current_, next_;
   std::vector<Event> path_, candidates_;
-  std::vector<SnapId> preferred_;
+  std::vector<SnapId> preferred_, timed_preferred_, merged_preferred_;
   std::vector<double> slack_scratch_;
   std::vector<double> slack_pool_;
   std::vector<Pending> pending_;

@@ -85,7 +85,8 @@ class TemporalReachability {
   // the state holds counts as free only when no snap reaches it earlier, so
   // an image taken too late for its window is taken again), plus the ends
   // of running actions it leaves out. `preferred` (may be null) receives
-  // the plan's snaps whose conditions the state provides.
+  // the plan's snaps whose conditions the state or a pending timed literal
+  // provides (sorted).
   int RelaxedPlanLength(const StateData& state, std::vector<SnapId>* preferred);
 
  private:
