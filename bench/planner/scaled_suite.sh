@@ -1,0 +1,82 @@
+#!/usr/bin/env bash
+# The generated instances of bench/planner/README.md's sections "Larger
+# generated instances: satellite-tw-til" and "Helpful events on time", run
+# with one executable: for each, `seaplan plan` (first plan, --no-anytime)
+# as a whole process under a CPU limit, then `seaplan validate` of the same
+# executable on the plan. One line per instance, then how many were solved
+# with a valid plan. To compare two executables like for like, run the
+# script for each at the same time, one per core.
+#
+# usage: scaled_suite.sh SEAPLAN SUITE [--cpu-limit 20] [--quick]
+#   SUITE: satellite-tw (26 instances of satellite-tw-til's domain),
+#          satellite-tw-large (6, 10-12 satellites), trucks (18 of
+#          trucks-time-til's domain)
+#   --quick: the suite's first two instances only, and exit 1 unless both
+#            get a valid plan (the smoke test)
+#   The shared domains are read from $SEAPLAN_SHARED/bench (default
+#   ../shared/bench beside the repository).
+set -euo pipefail
+here=$(cd "$(dirname "$0")" && pwd)
+usage() {
+  sed -n '10,17p' "$0" | sed 's/^# \{0,1\}//' >&2
+  exit 2
+}
+[[ $# -ge 2 ]] || usage
+seaplan=$1 suite=$2
+shift 2
+cpu=20 quick=0
+while [[ $# -gt 0 ]]; do
+  case $1 in
+    --cpu-limit) cpu=${2:?--cpu-limit needs seconds}; shift 2 ;;
+    --quick) quick=1; shift ;;
+    *) echo "scaled_suite: unknown argument $1" >&2; usage ;;
+  esac
+done
+[[ -x $seaplan ]] || { echo "scaled_suite: $seaplan is not an executable" >&2; exit 2; }
+bench=${SEAPLAN_SHARED:-$here/../../../shared}/bench
+# Each entry: generator arguments without the seed, then the seeds.
+case $suite in
+  satellite-tw)
+    domain=satellite-tw-til
+    sets=("3 10 7 2|1 2" "4 12 8 2|3 4 5 6" "4 14 10 2|1 2" "5 16 12 3|1 2 3 4 5 6"
+      "6 20 16 3|1 2 3 4 5 6" "8 25 20 4|1 2 3 4 5 6") ;;
+  satellite-tw-large)
+    domain=satellite-tw-til
+    sets=("10 32 28 5|1 2 3" "12 40 36 6|1 2 3") ;;
+  trucks)
+    domain=trucks-time-til
+    sets=("2 4 8 3|1 2 3" "2 4 10 3|1 2 3" "2 5 12 3|1 2 3" "2 6 14 3|1 2" "3 4 12 3|1 2 3"
+      "3 5 15 3|1 2 3" "3 6 20 3|1") ;;
+  *) echo "scaled_suite: unknown suite $suite" >&2; usage ;;
+esac
+generator=${suite%-large}
+[[ -f $bench/$domain/domain.pddl ]] || { echo "scaled_suite: no $bench/$domain/domain.pddl (set SEAPLAN_SHARED)" >&2; exit 2; }
+work=$(mktemp -d)
+trap 'rm -rf "$work"' EXIT
+solved=0 total=0
+printf '%-28s %-22s %12s %s\n' instance status first_plan_s valid
+for set in "${sets[@]}"; do
+  for seed in ${set#*|}; do
+    if [[ $quick == 1 && $total -ge 2 ]]; then break 2; fi
+    name="$generator ${set%|*} $seed"
+    # shellcheck disable=SC2086  # the sizes split on purpose
+    python3 "$here/scaled_problems.py" "$generator" ${set%|*} "$seed" >"$work/p.pddl"
+    rm -f "$work/plan"
+    "$seaplan" plan "$bench/$domain/domain.pddl" "$work/p.pddl" --no-anytime --cpu-limit "$cpu" \
+      --memory-limit 2048 -o "$work/plan" >"$work/out" 2>&1 || true
+    status=$(sed -n 's/^; status: //p' "$work/out" | head -1)
+    first=$(sed -n 's/.*first plan \([0-9.]*\) s.*/\1/p' "$work/out" | head -1)
+    valid=-
+    if [[ -s $work/plan && $status == SOLVED* ]]; then
+      if "$seaplan" validate "$bench/$domain/domain.pddl" "$work/p.pddl" "$work/plan" >/dev/null 2>&1; then
+        valid=yes solved=$((solved + 1))
+      else
+        valid=NO
+      fi
+    fi
+    total=$((total + 1))
+    printf '%-28s %-22s %12s %s\n' "$name" "${status:-none}" "${first:--}" "$valid"
+  done
+done
+echo "scaled_suite $suite: $solved/$total with a valid first plan within $cpu CPU s"
+if [[ $quick == 1 && $solved -lt $total ]]; then exit 1; fi
