@@ -25,12 +25,6 @@ LazySearch::LazySearch(const SnapTask& task, StateRegistry& registry,
       open_landmark_all_(KeyOrder(params)),
       open_landmark_preferred_(KeyOrder(params)) {
   paths_.push_back(SchedulePath{&timeline_, {}, -1});
-  const task::GroundTask& ground = task.task();
-  numeric_conditions_ = !ground.goal.numeric.empty();
-  for (const task::Action& a : ground.actions) {
-    numeric_conditions_ = numeric_conditions_ || !a.at_start.numeric.empty() ||
-                          !a.over_all.numeric.empty() || !a.at_end.numeric.empty();
-  }
   if (params.symmetry != nullptr && params.symmetry->active()) {
     canonical_registry_ =
         std::make_unique<StateRegistry>(registry.num_facts(), registry.num_vars());
@@ -455,7 +449,10 @@ LazySearch::Status LazySearch::Step() {
     h = info_[static_cast<std::size_t>(parent)].h;
   } else {
     // The heuristic reads when each agent is free on the path's schedule.
-    h = heuristic_.Evaluate(current_, &preferred_,
+    // With deadlines its helpful events are only wanted beside the timed
+    // plan's when that plan leaves numbers out (below).
+    const bool timed_helpful_only = timed_check && !reachability_->leaves_out_numbers();
+    h = heuristic_.Evaluate(current_, timed_helpful_only ? nullptr : &preferred_,
                             std::span<const double>(slack_pool_.data() + cur.slack_begin,
                                                     static_cast<std::size_t>(cur.slack_count)),
                             usable, &ActiveTimeline());
@@ -470,14 +467,14 @@ LazySearch::Status LazySearch::Step() {
       // deadlines need it (bench/planner/README.md, "Helpful events on
       // time"). That plan leaves numbers out: with numeric conditions,
       // FF's events (a refuel) stay helpful too.
-      h = std::max(h, reachability_->RelaxedPlanLength(current_, &timed_preferred_));
-      if (numeric_conditions_) {
+      if (timed_helpful_only) {
+        h = std::max(h, reachability_->RelaxedPlanLength(current_, &preferred_));
+      } else {
+        h = std::max(h, reachability_->RelaxedPlanLength(current_, &timed_preferred_));
         merged_preferred_.clear();
         std::set_union(preferred_.begin(), preferred_.end(), timed_preferred_.begin(),
                        timed_preferred_.end(), std::back_inserter(merged_preferred_));
         preferred_.swap(merged_preferred_);
-      } else {
-        preferred_.swap(timed_preferred_);
       }
     }
     ++counters_.evaluated;

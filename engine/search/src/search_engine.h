@@ -274,9 +274,6 @@ class LazySearch {
   SearchCounters counters_;
   std::vector<Event> plan_;
   double plan_makespan_s_ = 0;
-  // Some condition or goal compares numbers: the deadline reachability
-  // does not see their changers, FF's relaxed plan does.
-  bool numeric_conditions_ = false;
 
   // Scratch reused by every expansion.
   StateData current_, next_;

@@ -45,7 +45,10 @@ TemporalReachability::TemporalReachability(const SnapTask& task)
   const std::size_t num_actions = actions.size();
   std::vector<std::uint8_t> added(static_cast<std::size_t>(num_facts_), 0);
   std::vector<std::uint8_t> written(static_cast<std::size_t>(task.num_vars()), 0);
+  leaves_out_numbers_ = !gt.goal.numeric.empty();
   for (const auto& a : actions) {
+    leaves_out_numbers_ = leaves_out_numbers_ || !a.at_start.numeric.empty() ||
+                          !a.over_all.numeric.empty() || !a.at_end.numeric.empty();
     AddEffectAdds(a.start_effects, added);
     AddEffectAdds(a.end_effects, added);
     AddWrittenVars(a.start_effects, written);

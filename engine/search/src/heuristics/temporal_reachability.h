@@ -69,6 +69,10 @@ class TemporalReachability {
   // False when no literal ever deletes a window fact: then no window closes
   // and Evaluate would prune nothing the untimed relaxation does not.
   bool active() const { return active_; }
+  // True when some condition or goal compares numbers: the relaxation
+  // leaves them out, so RelaxedPlanLength's plan has none of their
+  // changers (a refuel).
+  bool leaves_out_numbers() const { return leaves_out_numbers_; }
 
   // `timeline` must be built for the path that reached `state`. Returns
   // false when the state is a dead end (usable_snaps() is then unspecified).
@@ -122,6 +126,7 @@ class TemporalReachability {
 
   const SnapTask& task_;
   bool active_ = false;
+  bool leaves_out_numbers_ = false;
   int num_facts_ = 0;
   int num_ops_ = 0;
   std::vector<std::uint8_t> window_fact_;
