@@ -1,6 +1,7 @@
 #!/usr/bin/env bash
 # The generated instances of bench/planner/README.md's sections "Larger
-# generated instances: satellite-tw-til" and "Helpful events on time", run
+# generated instances: satellite-tw-til", "Helpful events on time" and "A
+# run of goals ordered to the end: floortile", run
 # with one executable: for each, `seaplan plan` (first plan, --no-anytime)
 # as a whole process under a CPU limit, then `seaplan validate` of the same
 # executable on the plan. One line per instance, then how many were solved
@@ -10,7 +11,8 @@
 # usage: scaled_suite.sh SEAPLAN SUITE [--cpu-limit 20] [--quick]
 #   SUITE: satellite-tw (26 instances of satellite-tw-til's domain),
 #          satellite-tw-large (6, 10-12 satellites), trucks (18 of
-#          trucks-time-til's domain)
+#          trucks-time-til's domain), floortile (22 of floortile-2011's,
+#          4 x 3 to 8 x 8 tiles, 2-4 robots)
 #   --quick: the suite's first two instances only, and exit 1 unless both
 #            get a valid plan (the smoke test)
 #   The shared domains are read from $SEAPLAN_SHARED/bench (default
@@ -18,7 +20,7 @@
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 usage() {
-  sed -n '10,17p' "$0" | sed 's/^# \{0,1\}//' >&2
+  sed -n '11,19p' "$0" | sed 's/^# \{0,1\}//' >&2
   exit 2
 }
 [[ $# -ge 2 ]] || usage
@@ -47,6 +49,10 @@ case $suite in
     domain=trucks-time-til
     sets=("2 4 8 3|1 2 3" "2 4 10 3|1 2 3" "2 5 12 3|1 2 3" "2 6 14 3|1 2" "3 4 12 3|1 2 3"
       "3 5 15 3|1 2 3" "3 6 20 3|1") ;;
+  floortile)
+    domain=floortile-2011
+    sets=("4 3 2|1 2" "4 4 2|1 2 3" "5 3 2|1 2" "5 4 2|1 2 3" "5 5 2|1 2 3" "6 4 2|1 2"
+      "6 5 3|1 2" "6 6 3|1 2" "7 5 3|1" "7 7 3|1" "8 8 4|1") ;;
   *) echo "scaled_suite: unknown suite $suite" >&2; usage ;;
 esac
 generator=${suite%-large}

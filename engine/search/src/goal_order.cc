@@ -178,26 +178,33 @@ bool GoalOrderDeadEnds::DeadEnd(const StateData& state) const {
   };
   std::fill(pending_.begin(), pending_.end(), 0);
   std::fill(live_.begin(), live_.end(), 0);
-  for (std::size_t g = 0; g < goals_.size(); ++g) {
-    if (!pending(g)) continue;
-    bool stuck = true;  // every live achiever must start before a goal preceding g
-    for (auto a : goals_[g].achievers) {
-      if (!live(a)) continue;
-      const Achiever& achiever = achievers_[static_cast<std::size_t>(a)];
-      bool blocked = false;
-      for (auto j : achiever.before) {
-        if (pending(static_cast<std::size_t>(j)) &&
-            must_precede(static_cast<std::size_t>(j), static_cast<std::int32_t>(g))) {
-          blocked = true;
-          break;
+  // An achiever that must start before a goal that must precede its own
+  // can never be the first to reach its goal. Dropping it may make more
+  // goals precede others (fewer achievers left to order), so repeat until
+  // nothing changes: a run of four or more tiles shows itself only then.
+  bool dropped = true;
+  while (dropped) {
+    dropped = false;
+    for (std::size_t g = 0; g < goals_.size(); ++g) {
+      if (!pending(g)) continue;
+      bool reachable = false;
+      for (auto a : goals_[g].achievers) {
+        if (!live(a)) continue;
+        const Achiever& achiever = achievers_[static_cast<std::size_t>(a)];
+        const bool blocked =
+            std::any_of(achiever.before.begin(), achiever.before.end(), [&](std::int32_t j) {
+              return pending(static_cast<std::size_t>(j)) &&
+                     must_precede(static_cast<std::size_t>(j), static_cast<std::int32_t>(g));
+            });
+        if (blocked) {
+          live_[static_cast<std::size_t>(a)] = 2;
+          dropped = true;
+        } else {
+          reachable = true;
         }
       }
-      if (!blocked) {
-        stuck = false;
-        break;
-      }
+      if (!reachable) return true;
     }
-    if (stuck) return true;
   }
   return false;
 }

@@ -4,12 +4,13 @@
 // at its start, a fact goal g' rules out (and, while an achiever of g' runs,
 // one that its running rules out) must start before g' is started: g' is in
 // its `before` set. Goal g' must precede g when every achiever of g' that can
-// still start has g in its `before` set. A state is a dead end when some
-// pending goal g has no achiever that can still start, or every such
-// achiever must start before a goal that must precede g: whichever starts
-// first breaks the other (floortile: two or three tiles of a column left,
-// each paintable only from another of them). The delete relaxation does not
-// see these dead ends.
+// still start has g in its `before` set. An achiever that must start
+// before a goal that must precede its own can never be the first to reach
+// its goal, so it is dropped, and the orders are found again among the
+// achievers left, until nothing changes. A state is a dead end when some
+// pending goal g has no achiever left (floortile: a run of tiles in a
+// column, each paintable only from another of them or from the tile
+// painted at its end). The delete relaxation does not see these dead ends.
 //
 // Sound for the search's model of states (events one at a time, the running
 // actions part of the state): a state it calls a dead end has no path to the

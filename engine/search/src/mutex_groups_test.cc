@@ -189,6 +189,31 @@ TEST(GoalOrderTest, AChainOfThreeTilesWithBothEndsPaintedIsADeadEnd) {
   EXPECT_TRUE(goal_order.DeadEnd(state));
 }
 
+// Tiles t0 - ... - t5, t1 to t4 to be painted. With t5 painted, t4 must
+// go first (from t3), then t3, t2 and t1 from the left. With t0 painted as
+// well, t1 must be painted from t2 and t4 from t3, so t2 and t3 each have
+// one achiever left, each needing the other unpainted: a dead end that
+// shows only once those achievers are dropped and the orders found again.
+TEST(GoalOrderTest, ARunOfFourTilesWithBothEndsPaintedIsADeadEnd) {
+  const std::string problem = PaintRowProblem(
+      6, "r1",
+      "(robot-at r1 t2) (clear t0) (clear t1) (clear t3) (clear t4) (clear t5) (has r1 black)",
+      "(painted t1 black) (painted t2 black) (painted t3 black) (painted t4 black)");
+  auto task = testing::LoadTaskOrFail(kPaintDomain, problem);
+  ASSERT_NE(task, nullptr);
+  const MutexGroups mutex(*task);
+  const GoalOrderDeadEnds goal_order(*task, mutex);
+  const SnapTask snap(*task);
+  const auto fact = [&](const char* name) { return testing::FactIdOf(*task, name); };
+  StateData state = testing::InitialState(*task, snap);
+  state.Clear(fact("(clear t5)"));
+  state.Set(fact("(painted t5 black)"));
+  EXPECT_FALSE(goal_order.DeadEnd(state));
+  state.Clear(fact("(clear t0)"));
+  state.Set(fact("(painted t0 black)"));
+  EXPECT_TRUE(goal_order.DeadEnd(state));
+}
+
 TEST(GoalOrderTest, ThePlannerSolvesTheRowWithTheCheckOn) {
   auto task = testing::LoadTaskOrFail(kPaintDomain, kOneRobotProblem);
   ASSERT_NE(task, nullptr);
