@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Problems larger than the shared benchmark's p01-p05, for five of its domains.
+"""Problems larger than the shared benchmark's p01-p05, for six of its domains.
 
 The shared set holds only the first five problems of each domain; the
 larger ones a planner is judged on are not here. This writes random
@@ -30,6 +30,12 @@ instances"):
       images to take and send, and one visibility window per antenna that
       a witness plan meets (its p01-p05: 1-3 satellites, 7-10 directions,
       3-7 images, 1-2 antennas).
+  depots DEPOTS DISTRIBUTORS TRUCKS PALLETS HOISTS CRATES SEED
+      depots-time's domain: a pallet and a hoist at every place and the
+      rest at random places, crates stacked on random pallets, a goal
+      stack for every crate, random distances, speeds, weights and powers
+      (its p01-p05: 1 depot, 2 distributors, 2 trucks, 3 pallets, 3 hoists,
+      2-10 crates).
 
 The problem goes to standard output; the domain is the shared one, e.g.
   bench/planner/scaled_problems.py floortile 4 4 2 1 > /tmp/ft-4x4.pddl
@@ -308,6 +314,51 @@ def satellite_tw(satellites, directions, images, antennas, rng):
     return out
 
 
+def depots(depots_n, distributors, trucks_n, pallets, hoists, crates, rng):
+    places = [f"depot{i}" for i in range(depots_n)] + [f"distributor{i}" for i in range(distributors)]
+    pallet_at = places + [rng.choice(places) for _ in range(pallets - len(places))]
+    hoist_at = places + [rng.choice(places) for _ in range(hoists - len(places))]
+    pallet_names = [f"pallet{i}" for i in range(pallets)]
+    crate_names = [f"crate{i}" for i in range(crates)]
+    truck_names = [f"truck{i}" for i in range(trucks_n)]
+    hoist_names = [f"hoist{i}" for i in range(hoists)]
+    out = [f"(define (problem depots-{depots_n}-{distributors}-{trucks_n}-{pallets}-{hoists}-{crates})",
+           " (:domain Depot)",
+           " (:objects " + " ".join(places[:depots_n]) + " - Depot",
+           "   " + " ".join(places[depots_n:]) + " - Distributor",
+           "   " + " ".join(truck_names) + " - Truck",
+           "   " + " ".join(pallet_names) + " - Pallet",
+           "   " + " ".join(crate_names) + " - Crate",
+           "   " + " ".join(hoist_names) + " - Hoist)", " (:init"]
+    top = {p: p for p in pallet_names}  # what lies on top of each pallet's stack
+    for crate in crate_names:
+        pallet = rng.choice(pallet_names)
+        place = pallet_at[pallet_names.index(pallet)]
+        out.append(f"   (at {crate} {place}) (on {crate} {top[pallet]})")
+        top[pallet] = crate
+    out += [f"   (clear {t})" for t in top.values()]
+    out += [f"   (at {p} {pallet_at[i]})" for i, p in enumerate(pallet_names)]
+    for i, h in enumerate(hoist_names):
+        out.append(f"   (at {h} {hoist_at[i]}) (available {h}) (= (power {h}) {rng.randint(1, 10)})")
+    for t in truck_names:
+        out.append(f"   (at {t} {rng.choice(places)}) (= (speed {t}) {rng.randint(1, 10)})")
+    for a in places:
+        for b in places:
+            out.append(f"   (= (distance {a} {b}) {0 if a == b else rng.randint(1, 10)})")
+    out += [f"   (= (weight {c}) {rng.randint(1, 100)})" for c in crate_names]
+    out += [" )", " (:goal (and"]
+    # Every crate on a random pallet's new stack, in a random order.
+    goal_top = {p: p for p in pallet_names}
+    order = crate_names[:]
+    rng.shuffle(order)
+    for crate in order:
+        pallet = rng.choice(pallet_names)
+        out.append(f"    (on {crate} {goal_top[pallet]})")
+        goal_top[pallet] = crate
+    out += [" ))", " (:metric minimize (total-time)))"]
+    return out
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     sub = parser.add_subparsers(dest="domain", required=True)
@@ -317,6 +368,8 @@ def main():
         "elevators": ("elevators-2011's domain", ["floors", "passengers"]),
         "trucks": ("trucks-time-til's domain", ["trucks", "locations", "packages", "areas"]),
         "satellite-tw": ("satellite-tw-til's domain", ["satellites", "directions", "images", "antennas"]),
+        "depots": ("depots-time's domain", ["depots", "distributors", "trucks", "pallets", "hoists",
+                                            "crates"]),
     }.items():
         command = sub.add_parser(name, help=domain)
         for param in params + ["seed"]:
@@ -342,6 +395,14 @@ def main():
             parser.error("satellite-tw: satellites, antennas >= 1, directions >= 2 and 1 <= images <= "
                          "3 x the directions that are not ground stations (a quarter are)")
         lines = satellite_tw(args.satellites, args.directions, args.images, args.antennas, rng)
+    elif args.domain == "depots":
+        places = args.depots + args.distributors
+        if args.depots < 1 or args.trucks < 1 or args.crates < 1 or args.distributors < 0 or \
+                args.pallets < places or args.hoists < places:
+            parser.error("depots: depots, trucks, crates >= 1, distributors >= 0, and pallets and "
+                         "hoists >= depots + distributors (one of each at every place)")
+        lines = depots(args.depots, args.distributors, args.trucks, args.pallets, args.hoists,
+                       args.crates, rng)
     else:
         if min(args.drivers, args.trucks, args.packages) < 1:
             parser.error("driverlog: drivers, trucks and packages >= 1")

@@ -12,7 +12,8 @@
 #   SUITE: satellite-tw (26 instances of satellite-tw-til's domain),
 #          satellite-tw-large (6, 10-12 satellites), trucks (18 of
 #          trucks-time-til's domain), floortile (22 of floortile-2011's,
-#          4 x 3 to 8 x 8 tiles, 2-4 robots)
+#          4 x 3 to 8 x 8 tiles, 2-4 robots), depots (18 of depots-time's,
+#          10-20 crates)
 #   --quick: the suite's first two instances only, and exit 1 unless both
 #            get a valid plan (the smoke test)
 #   The shared domains are read from $SEAPLAN_SHARED/bench (default
@@ -20,7 +21,7 @@
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 usage() {
-  sed -n '11,19p' "$0" | sed 's/^# \{0,1\}//' >&2
+  sed -n '11,20p' "$0" | sed 's/^# \{0,1\}//' >&2
   exit 2
 }
 [[ $# -ge 2 ]] || usage
@@ -53,6 +54,10 @@ case $suite in
     domain=floortile-2011
     sets=("4 3 2|1 2" "4 4 2|1 2 3" "5 3 2|1 2" "5 4 2|1 2 3" "5 5 2|1 2 3" "6 4 2|1 2"
       "6 5 3|1 2" "6 6 3|1 2" "7 5 3|1" "7 7 3|1" "8 8 4|1") ;;
+  depots)
+    domain=depots-time
+    sets=("1 2 2 3 3 10|1 2 3 4" "1 2 2 3 3 15|1 2 3" "2 2 2 4 4 10|1 2 3" "2 2 2 4 4 15|1 2 3"
+      "3 3 3 6 6 15|1 2" "3 3 3 6 6 20|1 2 3") ;;
   *) echo "scaled_suite: unknown suite $suite" >&2; usage ;;
 esac
 generator=${suite%-large}

@@ -54,7 +54,12 @@ class Synthesis {
       Snap end;
       end.action = a;
       end.is_end = true;
+      // The search applies an end only where the action's over-all
+      // conditions still hold (Transitions::Apply), so the end requires them
+      // too: a drop that ends on a surface it keeps clear over all.
       end.pre = action.at_end.positive;
+      end.pre.insert(end.pre.end(), action.over_all.positive.begin(),
+                     action.over_all.positive.end());
       end.pre.push_back(RunningMember(a));
       end.add = action.end_effects.add;
       for (const auto& c : action.end_effects.conditional) {

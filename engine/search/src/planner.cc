@@ -4,6 +4,7 @@
 #include <cassert>
 #include <chrono>
 #include <cmath>
+#include <cstdlib>
 #include <ctime>
 #include <limits>
 #include <memory>
@@ -442,9 +443,16 @@ PlanResult PlannerRun::Run() {
   if (!watch_goals) {
     log::Debug("planner: fewer than two goals nothing deletes: no goal order to watch");
   }
-  if (watch_goals || reachability_.active()) {
+  if (watch_goals || reachability_.active() || landmarks_) {
     const Clock::time_point mutex_start = Clock::now();
     const MutexGroups mutex(snap_.task());
+    log::Debug("planner: {} mutex groups in {:.3f} s", mutex.groups().size(), Seconds(mutex_start));
+    if (landmarks_) {
+      const Clock::time_point orderings_start = Clock::now();
+      const int added = landmarks_->AddReasonableOrderings(heuristic_, mutex, &stop_);
+      log::Debug("planner: {} reasonable orderings of landmarks in {:.3f} s", added,
+                 Seconds(orderings_start));
+    }
     if (watch_goals) {
       goal_order_.emplace(snap_.task(), mutex);
       log::Debug("planner: {} mutex groups, {} goals watched for their order ({}), in {:.3f} s",

@@ -140,8 +140,9 @@ LandmarkGraph::LandmarkGraph(const SnapTask& task, const RelaxedPlanHeuristic& r
       if (i >= 0) adds.emplace_back(i, op);
     }
   }
-  std::vector<std::int32_t> achiever_begin, achievers;
-  BuildCsr(size(), adds, &achiever_begin, &achievers);
+  BuildCsr(size(), adds, &achiever_begin_, &achievers_);
+  const auto& achiever_begin = achiever_begin_;
+  const auto& achievers = achievers_;
   std::vector<std::pair<std::int32_t, std::int32_t>> by_snap;
   by_snap.reserve(adds.size());
   for (const auto& [i, op] : adds) by_snap.emplace_back(op, i);
@@ -185,6 +186,99 @@ LandmarkGraph::LandmarkGraph(const SnapTask& task, const RelaxedPlanHeuristic& r
   BuildCsr(size(), orderings, &parent_begin_, &parents_);
   for (auto& [child, parent] : orderings) std::swap(child, parent);
   BuildCsr(size(), orderings, &child_begin_, &children_);
+}
+
+int LandmarkGraph::AddReasonableOrderings(const RelaxedPlanHeuristic& relaxed,
+                                          const MutexGroups& mutex, const StopToken* stop) {
+  const int n = size();
+  if (n == 0 || mutex.groups().empty()) return 0;
+  const auto is_fact = [&](int i) { return facts_[static_cast<std::size_t>(i)] < num_facts_; };
+  // Per fact landmark a: the facts every achiever of a adds besides a, and
+  // a's greedy-necessary parents that are facts: what must hold when a is
+  // first reached.
+  std::vector<std::vector<std::int32_t>> with(static_cast<std::size_t>(n));
+  std::vector<std::int32_t> shared, adds, next;
+  for (int a = 0; a < n; ++a) {
+    if (!is_fact(a)) continue;
+    const std::int32_t fa = facts_[static_cast<std::size_t>(a)];
+    bool first = true;
+    shared.clear();
+    for (auto k = achiever_begin_[static_cast<std::size_t>(a)];
+         k < achiever_begin_[static_cast<std::size_t>(a) + 1]; ++k) {
+      const auto op_adds = relaxed.Adds(achievers_[static_cast<std::size_t>(k)]);
+      adds.assign(op_adds.begin(), op_adds.end());
+      std::sort(adds.begin(), adds.end());
+      if (first) {
+        shared = adds;
+        first = false;
+      } else {
+        next.clear();
+        std::set_intersection(shared.begin(), shared.end(), adds.begin(), adds.end(),
+                              std::back_inserter(next));
+        shared.swap(next);
+      }
+    }
+    auto& w = with[static_cast<std::size_t>(a)];
+    for (auto f : shared) {
+      if (f != fa && f < num_facts_) w.push_back(f);
+    }
+    for (auto p : parents(a)) {
+      if (is_fact(p)) w.push_back(facts_[static_cast<std::size_t>(p)]);
+    }
+    w.push_back(fa);
+  }
+  // Children lists of every ordering so far, grown as orderings are added,
+  // to refuse one that closes a cycle.
+  std::vector<std::vector<std::int32_t>> out(static_cast<std::size_t>(n));
+  for (int i = 0; i < n; ++i) {
+    for (auto p : parents(i)) out[static_cast<std::size_t>(p)].push_back(i);
+  }
+  std::vector<std::uint8_t> seen(static_cast<std::size_t>(n));
+  std::vector<std::int32_t> stack;
+  const auto reaches = [&](int from, int to) {
+    std::fill(seen.begin(), seen.end(), 0);
+    stack.assign(1, from);
+    seen[static_cast<std::size_t>(from)] = 1;
+    while (!stack.empty()) {
+      const int x = stack.back();
+      stack.pop_back();
+      if (x == to) return true;
+      for (auto c : out[static_cast<std::size_t>(x)]) {
+        if (!seen[static_cast<std::size_t>(c)]) {
+          seen[static_cast<std::size_t>(c)] = 1;
+          stack.push_back(c);
+        }
+      }
+    }
+    return false;
+  };
+  std::vector<std::pair<std::int32_t, std::int32_t>> orderings;  // (child, parent)
+  for (int i = 0; i < n; ++i) {
+    for (auto p : parents(i)) orderings.emplace_back(i, p);
+  }
+  int added = 0;
+  std::size_t checks = 0;
+  for (int b = 0; b < n; ++b) {
+    if (!is_goal(b) || !is_fact(b)) continue;
+    if (stop != nullptr && stop->StopRequested()) break;
+    const std::int32_t fb = facts_[static_cast<std::size_t>(b)];
+    for (int a = 0; a < n; ++a) {
+      if (a == b || !is_fact(a)) continue;
+      const auto& w = with[static_cast<std::size_t>(a)];
+      checks += w.size();
+      if (!std::any_of(w.begin(), w.end(), [&](std::int32_t f) { return mutex.Mutex(f, fb); }))
+        continue;
+      const auto ps = parents(b);
+      if (std::find(ps.begin(), ps.end(), a) != ps.end()) continue;
+      if (reaches(b, a)) continue;  // b is already before a
+      out[static_cast<std::size_t>(a)].push_back(b);
+      orderings.emplace_back(b, a);
+      ++added;
+    }
+    if (checks > kMaxReasonableChecks) break;
+  }
+  if (added > 0) BuildCsr(n, orderings, &parent_begin_, &parents_);
+  return added;
 }
 
 bool LandmarkGraph::Holds(int i, const StateData& state) const {

@@ -12,6 +12,8 @@
 // so fewer landmarks: still sound). Greedy-necessary orderings p -> l: p is
 // a precondition of every first achiever of l, i.e. of every achiever whose
 // own label does not contain l (one that could add l before l is true).
+// Reasonable orderings into goals, from mutex groups, are added after
+// construction (AddReasonableOrderings).
 //
 // Counting (LandmarkCounter): the landmarks accepted on a path are the
 // parent's accepted ones plus those true in the state whose ordering parents
@@ -25,6 +27,7 @@
 #include <span>
 #include <vector>
 
+#include "../mutex_groups.h"
 #include "../snap_task.h"
 #include "../state_registry.h"
 #include "relaxed_plan_heuristic.h"
@@ -34,10 +37,25 @@ namespace seaplan::search {
 
 class LandmarkGraph {
  public:
+  // AddReasonableOrderings stops after about this many mutex lookups.
+  static constexpr std::size_t kMaxReasonableChecks = 5'000'000;
+
   // `stop` (may be null) is polled during the propagation; stopped, the
   // graph is empty.
   LandmarkGraph(const SnapTask& task, const RelaxedPlanHeuristic& relaxed,
                 const StopToken* stop = nullptr);
+
+  // Reasonable orderings into goal landmarks (Hoffmann, Porteous and
+  // Sebastia 2004, as LAMA uses them): landmark a before goal b when
+  // reaching a once b holds would make b false again, because every
+  // achiever of a adds a fact `mutex` says cannot hold with b, or a
+  // greedy-necessary parent of a cannot. Depots: a crate goes on its
+  // target before another crate goes on it. Only orderings that close no
+  // cycle are kept. They join the parents a landmark needs accepted; the
+  // children that make an accepted landmark required again stay the
+  // greedy-necessary ones. Returns how many were added.
+  int AddReasonableOrderings(const RelaxedPlanHeuristic& relaxed, const MutexGroups& mutex,
+                             const StopToken* stop = nullptr);
 
   int size() const { return static_cast<int>(facts_.size()); }
   int num_orderings() const { return static_cast<int>(parents_.size()); }
@@ -48,8 +66,8 @@ class LandmarkGraph {
     return index_of_[static_cast<std::size_t>(relaxed_fact)];
   }
   bool is_goal(int i) const { return is_goal_[static_cast<std::size_t>(i)] != 0; }
-  // Greedy-necessary parents (must be true right before l is first added)
-  // and children of landmark i.
+  // Parents of landmark i (greedy-necessary: must be true right before l is
+  // first added; and reasonable ones) and its greedy-necessary children.
   std::span<const std::int32_t> parents(int i) const { return CsrRow(parents_, parent_begin_, i); }
   std::span<const std::int32_t> children(int i) const { return CsrRow(children_, child_begin_, i); }
   // Landmarks a snap adds (SnapId order, the relaxed operators' numbering).
@@ -65,6 +83,7 @@ class LandmarkGraph {
   std::vector<std::uint8_t> is_goal_;
   std::vector<std::int32_t> parent_begin_, parents_, child_begin_, children_;
   std::vector<std::int32_t> added_by_begin_, added_by_;
+  std::vector<std::int32_t> achiever_begin_, achievers_;  // relaxed ops adding landmark i
 };
 
 // Accepted sets and counts for one search (scratch reused: not thread-safe).

@@ -6,6 +6,7 @@
 #include <string>
 #include <vector>
 
+#include "../mutex_groups.h"
 #include "../search_test_util.h"
 
 namespace seaplan::search {
@@ -141,6 +142,84 @@ TEST(LandmarksTest, CountsLandmarksNotAcceptedAndThoseRequiredAgain) {
   std::vector<std::uint64_t> all(1, (std::uint64_t{1} << h.graph->size()) - 1);
   // Only (inside) counts: the others are false but their children accepted.
   EXPECT_EQ(counter.Update(all, initial, next), 1);
+}
+
+// Crates stacked by one hoist (depots' lift and drop without places): a,
+// b and c each on its own pallet, to be stacked a on b on c. A drop keeps
+// its target clear over all and ends by making it not clear.
+constexpr char kStackDomain[] = R"(
+(define (domain stack)
+  (:requirements :typing :durative-actions)
+  (:types hoist surface - object crate pallet - surface)
+  (:predicates (on ?c - crate ?s - surface) (clear ?s - surface) (available ?h - hoist)
+               (lifting ?h - hoist ?c - crate))
+  (:durative-action lift :parameters (?h - hoist ?c - crate ?s - surface)
+    :duration (= ?duration 1)
+    :condition (and (at start (available ?h)) (at start (on ?c ?s)) (at start (clear ?c)))
+    :effect (and (at start (not (available ?h))) (at start (lifting ?h ?c))
+                 (at start (not (clear ?c))) (at start (clear ?s)) (at start (not (on ?c ?s)))))
+  (:durative-action drop :parameters (?h - hoist ?c - crate ?s - surface)
+    :duration (= ?duration 1)
+    :condition (and (over all (clear ?s)) (over all (lifting ?h ?c)))
+    :effect (and (at end (available ?h)) (at end (not (lifting ?h ?c)))
+                 (at end (not (clear ?s))) (at end (clear ?c)) (at end (on ?c ?s))))
+))";
+
+constexpr char kStackProblem[] = R"(
+(define (problem abc) (:domain stack)
+  (:objects h - hoist a b c - crate p1 p2 p3 - pallet)
+  (:init (available h) (on a p1) (on b p2) (on c p3) (clear a) (clear b) (clear c))
+  (:goal (and (on a b) (on b c))))
+)";
+
+// b goes on c before a goes on b: every drop of b adds (clear b), which
+// cannot hold with a on b. Seeing that needs the drop's over-all (clear ?s)
+// as what its end requires, or (clear b) and (on a b) share no group.
+TEST(LandmarksTest, ACrateGoesOnItsTargetBeforeAnotherGoesOnIt) {
+  auto task = testing::LoadTaskOrFail(kStackDomain, kStackProblem);
+  ASSERT_NE(task, nullptr);
+  const SnapTask snap(*task);
+  const RelaxedPlanHeuristic relaxed(snap, 0.001);
+  LandmarkGraph graph(snap, relaxed);
+  const auto fact = [&](const char* name) { return testing::FactIdOf(*task, name); };
+  const MutexGroups mutex(*task);
+  EXPECT_TRUE(mutex.Mutex(fact("(clear b)"), fact("(on a b)")));
+  const int a_on_b = graph.IndexOf(fact("(on a b)")), b_on_c = graph.IndexOf(fact("(on b c)"));
+  ASSERT_GE(a_on_b, 0);
+  ASSERT_GE(b_on_c, 0);
+  const auto has_parent = [&](int i, int parent) {
+    const auto p = graph.parents(i);
+    return std::find(p.begin(), p.end(), parent) != p.end();
+  };
+  EXPECT_FALSE(has_parent(a_on_b, b_on_c));
+  const LandmarkGraph plain(snap, relaxed);  // without them
+  EXPECT_GE(graph.AddReasonableOrderings(relaxed, mutex), 1);
+  EXPECT_TRUE(has_parent(a_on_b, b_on_c));
+  EXPECT_FALSE(has_parent(b_on_c, a_on_b));  // not the other way round: no cycle
+
+  // Every landmark but the two accepted; then a on b: with the ordering it
+  // is not accepted before b is on c, without it it is.
+  const auto accepted_after = [&](const LandmarkGraph& g, const StateData& state, int i) {
+    LandmarkCounter counter(g);
+    std::vector<std::uint64_t> most(counter.words(), ~std::uint64_t{0}), acc(counter.words());
+    for (int x : {a_on_b, b_on_c})
+      most[static_cast<std::size_t>(x) >> 6] &= ~(std::uint64_t{1} << (x & 63));
+    counter.Update(most, state, acc);
+    return ((acc[static_cast<std::size_t>(i) >> 6] >> (i & 63)) & 1u) != 0;
+  };
+  StateData wrong = testing::InitialState(*task, snap);
+  wrong.Clear(fact("(on a p1)"));
+  wrong.Clear(fact("(clear b)"));
+  wrong.Set(fact("(on a b)"));
+  wrong.Set(fact("(clear p1)"));
+  EXPECT_FALSE(accepted_after(graph, wrong, a_on_b));
+  EXPECT_TRUE(accepted_after(plain, wrong, a_on_b));
+  StateData right = testing::InitialState(*task, snap);
+  right.Clear(fact("(on b p2)"));
+  right.Clear(fact("(clear c)"));
+  right.Set(fact("(on b c)"));
+  right.Set(fact("(clear p2)"));
+  EXPECT_TRUE(accepted_after(graph, right, b_on_c));
 }
 
 }  // namespace
