@@ -324,12 +324,13 @@ def depots(depots_n, distributors, trucks_n, pallets, hoists, crates, rng):
     hoist_names = [f"hoist{i}" for i in range(hoists)]
     out = [f"(define (problem depots-{depots_n}-{distributors}-{trucks_n}-{pallets}-{hoists}-{crates})",
            " (:domain Depot)",
-           " (:objects " + " ".join(places[:depots_n]) + " - Depot",
-           "   " + " ".join(places[depots_n:]) + " - Distributor",
-           "   " + " ".join(truck_names) + " - Truck",
-           "   " + " ".join(pallet_names) + " - Pallet",
-           "   " + " ".join(crate_names) + " - Crate",
-           "   " + " ".join(hoist_names) + " - Hoist)", " (:init"]
+           " (:objects " + " ".join(places[:depots_n]) + " - Depot"]
+    if distributors > 0:
+        out.append("   " + " ".join(places[depots_n:]) + " - Distributor")
+    out += ["   " + " ".join(truck_names) + " - Truck",
+            "   " + " ".join(pallet_names) + " - Pallet",
+            "   " + " ".join(crate_names) + " - Crate",
+            "   " + " ".join(hoist_names) + " - Hoist)", " (:init"]
     top = {p: p for p in pallet_names}  # what lies on top of each pallet's stack
     for crate in crate_names:
         pallet = rng.choice(pallet_names)

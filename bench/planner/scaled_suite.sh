@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # The generated instances of bench/planner/README.md's sections "Larger
-# generated instances: satellite-tw-til", "Helpful events on time" and "A
-# run of goals ordered to the end: floortile", run
+# generated instances: satellite-tw-til", "Helpful events on time", "A run
+# of goals ordered to the end: floortile" and "Stacks from the right end:
+# depots", run
 # with one executable: for each, `seaplan plan` (first plan, --no-anytime)
 # as a whole process under a CPU limit, then `seaplan validate` of the same
 # executable on the plan. One line per instance, then how many were solved
@@ -21,7 +22,7 @@
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 usage() {
-  sed -n '11,20p' "$0" | sed 's/^# \{0,1\}//' >&2
+  sed -n '12,21p' "$0" | sed 's/^# \{0,1\}//' >&2
   exit 2
 }
 [[ $# -ge 2 ]] || usage

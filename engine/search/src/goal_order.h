@@ -34,8 +34,7 @@ class GoalOrderDeadEnds {
 
   // The distinct goals it would watch (nothing deletes them, only actions
   // add them), without the mutex groups: with fewer than two there is no
-  // order to find, and the planner skips the groups' synthesis (up to 0.1 s
-  // on tms-fixed-upf).
+  // order to find, and the planner does not build the check.
   static std::size_t NumWatchableGoals(const task::GroundTask& task);
 
   // False when no achiever has a `before` goal: nothing to check.

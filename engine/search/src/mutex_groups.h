@@ -9,11 +9,11 @@
 // into tile x holds x's token from its start to its end). The candidate is
 // an invariant when at most one member of each instance is true initially,
 // no timed literal adds a member, and every snap that adds a member of an
-// instance also deletes one it requires (the end of an action requires and
-// deletes its own running marker). Candidates grow from one pair by adding,
-// for a snap that breaks them, a pair of a fact it requires and deletes; the
-// search over candidates is bounded (kMaxPairs, kMaxCandidates,
-// kMaxSnapChecks).
+// instance also deletes one it requires (the end of an action requires its
+// at-end and over-all conditions, which the search checks before it
+// applies the end, and requires and deletes its own running marker). Candidates grow from one pair
+// by adding, for a snap that breaks them, a pair of a fact it requires and deletes; the search over
+// candidates is bounded (kMaxPairs, kMaxCandidates, kMaxSnapChecks).
 //
 // On floortile: for each tile x, at most one of (clear x), (robot-at ?r x),
 // (painted x ?c) and a move into x or a paint of x running.

@@ -4,7 +4,6 @@
 #include <cassert>
 #include <chrono>
 #include <cmath>
-#include <cstdlib>
 #include <ctime>
 #include <limits>
 #include <memory>
@@ -437,27 +436,32 @@ PlanResult PlannerRun::Run() {
                landmarks_->num_orderings(), best_.stats.landmark_time_s);
   }
   // Mutex groups (mutex_groups.h): the dead ends the order of goals shows
-  // (goal_order.h) and the pairs of facts a deadline's reachability waits
+  // (goal_order.h), the landmark count's reasonable orderings
+  // (landmarks.h) and the pairs of facts a deadline's reachability waits
   // for (temporal_reachability.h).
   const bool watch_goals = GoalOrderDeadEnds::NumWatchableGoals(snap_.task()) >= 2;
   if (!watch_goals) {
     log::Debug("planner: fewer than two goals nothing deletes: no goal order to watch");
   }
-  if (watch_goals || reachability_.active() || landmarks_) {
+  const bool order_landmarks = landmarks_ && landmarks_->size() > 0;
+  if (watch_goals || reachability_.active() || order_landmarks) {
     const Clock::time_point mutex_start = Clock::now();
     const MutexGroups mutex(snap_.task());
     log::Debug("planner: {} mutex groups in {:.3f} s", mutex.groups().size(), Seconds(mutex_start));
-    if (landmarks_) {
+    if (order_landmarks) {
       const Clock::time_point orderings_start = Clock::now();
       const int added = landmarks_->AddReasonableOrderings(heuristic_, mutex, &stop_);
+      best_.stats.landmark_time_s += Seconds(orderings_start);
+      best_.stats.landmark_orderings = landmarks_->num_orderings();
       log::Debug("planner: {} reasonable orderings of landmarks in {:.3f} s", added,
                  Seconds(orderings_start));
     }
     if (watch_goals) {
+      const Clock::time_point goals_start = Clock::now();
       goal_order_.emplace(snap_.task(), mutex);
-      log::Debug("planner: {} mutex groups, {} goals watched for their order ({}), in {:.3f} s",
-                 mutex.groups().size(), goal_order_->num_goals(),
-                 goal_order_->active() ? "active" : "inactive", Seconds(mutex_start));
+      log::Debug("planner: {} goals watched for their order ({}), in {:.3f} s",
+                 goal_order_->num_goals(), goal_order_->active() ? "active" : "inactive",
+                 Seconds(goals_start));
       if (!goal_order_->active()) goal_order_.reset();
     }
     if (reachability_.active()) {

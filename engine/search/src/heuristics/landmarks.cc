@@ -228,54 +228,51 @@ int LandmarkGraph::AddReasonableOrderings(const RelaxedPlanHeuristic& relaxed,
     w.push_back(fa);
   }
   // Children lists of every ordering so far, grown as orderings are added,
-  // to refuse one that closes a cycle.
+  // to refuse one that closes a cycle: a -> b does when b already comes
+  // before a. Adding a -> b gives b no new descendant (a is none of them),
+  // so b's descendants are found once, before its orderings are added.
   std::vector<std::vector<std::int32_t>> out(static_cast<std::size_t>(n));
   for (int i = 0; i < n; ++i) {
     for (auto p : parents(i)) out[static_cast<std::size_t>(p)].push_back(i);
   }
-  std::vector<std::uint8_t> seen(static_cast<std::size_t>(n));
+  std::vector<std::uint8_t> after_b(static_cast<std::size_t>(n));
   std::vector<std::int32_t> stack;
-  const auto reaches = [&](int from, int to) {
-    std::fill(seen.begin(), seen.end(), 0);
-    stack.assign(1, from);
-    seen[static_cast<std::size_t>(from)] = 1;
-    while (!stack.empty()) {
-      const int x = stack.back();
-      stack.pop_back();
-      if (x == to) return true;
-      for (auto c : out[static_cast<std::size_t>(x)]) {
-        if (!seen[static_cast<std::size_t>(c)]) {
-          seen[static_cast<std::size_t>(c)] = 1;
-          stack.push_back(c);
-        }
-      }
-    }
-    return false;
-  };
   std::vector<std::pair<std::int32_t, std::int32_t>> orderings;  // (child, parent)
   for (int i = 0; i < n; ++i) {
     for (auto p : parents(i)) orderings.emplace_back(i, p);
   }
   int added = 0;
   std::size_t checks = 0;
-  for (int b = 0; b < n; ++b) {
+  for (int b = 0; b < n && checks <= kMaxReasonableChecks; ++b) {
     if (!is_goal(b) || !is_fact(b)) continue;
     if (stop != nullptr && stop->StopRequested()) break;
+    std::fill(after_b.begin(), after_b.end(), 0);
+    stack.assign(1, b);
+    after_b[static_cast<std::size_t>(b)] = 1;
+    while (!stack.empty()) {
+      const int x = stack.back();
+      stack.pop_back();
+      for (auto c : out[static_cast<std::size_t>(x)]) {
+        if (!after_b[static_cast<std::size_t>(c)]) {
+          after_b[static_cast<std::size_t>(c)] = 1;
+          stack.push_back(c);
+        }
+      }
+    }
+    checks += static_cast<std::size_t>(n);
     const std::int32_t fb = facts_[static_cast<std::size_t>(b)];
+    const auto ps = parents(b);
     for (int a = 0; a < n; ++a) {
-      if (a == b || !is_fact(a)) continue;
+      if (after_b[static_cast<std::size_t>(a)] || !is_fact(a)) continue;
       const auto& w = with[static_cast<std::size_t>(a)];
       checks += w.size();
       if (!std::any_of(w.begin(), w.end(), [&](std::int32_t f) { return mutex.Mutex(f, fb); }))
         continue;
-      const auto ps = parents(b);
       if (std::find(ps.begin(), ps.end(), a) != ps.end()) continue;
-      if (reaches(b, a)) continue;  // b is already before a
       out[static_cast<std::size_t>(a)].push_back(b);
       orderings.emplace_back(b, a);
       ++added;
     }
-    if (checks > kMaxReasonableChecks) break;
   }
   if (added > 0) BuildCsr(n, orderings, &parent_begin_, &parents_);
   return added;

@@ -47,9 +47,9 @@ class LandmarkGraph {
 
   // Reasonable orderings into goal landmarks (Hoffmann, Porteous and
   // Sebastia 2004, as LAMA uses them): landmark a before goal b when
-  // reaching a once b holds would make b false again, because every
-  // achiever of a adds a fact `mutex` says cannot hold with b, or a
-  // greedy-necessary parent of a cannot. Depots: a crate goes on its
+  // reaching a once b holds would make b false again, because a itself,
+  // a fact every achiever of a adds, or a greedy-necessary parent of a
+  // cannot hold with b (`mutex`). Depots: a crate goes on its
   // target before another crate goes on it. Only orderings that close no
   // cycle are kept. They join the parents a landmark needs accepted; the
   // children that make an accepted landmark required again stay the

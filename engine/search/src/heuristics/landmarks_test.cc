@@ -195,7 +195,9 @@ TEST(LandmarksTest, ACrateGoesOnItsTargetBeforeAnotherGoesOnIt) {
   const LandmarkGraph plain(snap, relaxed);  // without them
   EXPECT_GE(graph.AddReasonableOrderings(relaxed, mutex), 1);
   EXPECT_TRUE(has_parent(a_on_b, b_on_c));
-  EXPECT_FALSE(has_parent(b_on_c, a_on_b));  // not the other way round: no cycle
+  // Not the other way round: a drop of a adds (clear a), which can hold
+  // with b on c.
+  EXPECT_FALSE(has_parent(b_on_c, a_on_b));
 
   // Every landmark but the two accepted; then a on b: with the ordering it
   // is not accepted before b is on c, without it it is.
@@ -220,6 +222,35 @@ TEST(LandmarksTest, ACrateGoesOnItsTargetBeforeAnotherGoesOnIt) {
   right.Set(fact("(on b c)"));
   right.Set(fact("(clear p2)"));
   EXPECT_TRUE(accepted_after(graph, right, b_on_c));
+}
+
+// a on b and b on a (no plan reaches both, but the relaxation does): each
+// drop uncovers the crate it drops, so each goal would be ordered before
+// the other. Only one of the two orderings is kept: a cycle would leave
+// neither goal ever accepted.
+TEST(LandmarksTest, ReasonableOrderingsCloseNoCycle) {
+  const std::string problem = R"(
+(define (problem ab) (:domain stack)
+  (:objects h - hoist a b - crate p1 p2 - pallet)
+  (:init (available h) (on a p1) (on b p2) (clear a) (clear b))
+  (:goal (and (on a b) (on b a))))
+)";
+  auto task = testing::LoadTaskOrFail(kStackDomain, problem);
+  ASSERT_NE(task, nullptr);
+  const SnapTask snap(*task);
+  const RelaxedPlanHeuristic relaxed(snap, 0.001);
+  LandmarkGraph graph(snap, relaxed);
+  const MutexGroups mutex(*task);
+  const int a_on_b = graph.IndexOf(testing::FactIdOf(*task, "(on a b)"));
+  const int b_on_a = graph.IndexOf(testing::FactIdOf(*task, "(on b a)"));
+  ASSERT_GE(a_on_b, 0);
+  ASSERT_GE(b_on_a, 0);
+  EXPECT_GE(graph.AddReasonableOrderings(relaxed, mutex), 1);
+  const auto has_parent = [&](int i, int parent) {
+    const auto p = graph.parents(i);
+    return std::find(p.begin(), p.end(), parent) != p.end();
+  };
+  EXPECT_NE(has_parent(a_on_b, b_on_a), has_parent(b_on_a, a_on_b));
 }
 
 }  // namespace
