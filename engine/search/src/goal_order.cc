@@ -136,6 +136,25 @@ GoalOrderDeadEnds::GoalOrderDeadEnds(const task::GroundTask& task, const MutexGr
       active_ = true;
     }
   }
+  // One achiever of each class is enough for the check (it reads their
+  // killers and `before` goals only); the actions stay, for `pending`.
+  std::vector<Achiever> classes;
+  for (Goal& goal : goals_) {
+    std::vector<std::int32_t> kept;
+    for (auto a : goal.achievers) {
+      Achiever& achiever = achievers_[static_cast<std::size_t>(a)];
+      goal.actions.push_back(achiever.action);
+      const bool seen = std::any_of(kept.begin(), kept.end(), [&](std::int32_t k) {
+        const Achiever& other = classes[static_cast<std::size_t>(k)];
+        return other.killers == achiever.killers && other.before == achiever.before;
+      });
+      if (seen) continue;
+      kept.push_back(static_cast<std::int32_t>(classes.size()));
+      classes.push_back(std::move(achiever));
+    }
+    goal.achievers = std::move(kept);
+  }
+  achievers_ = std::move(classes);
   pending_.assign(goals_.size(), 0);
   live_.assign(achievers_.size(), 0);
 }
@@ -152,9 +171,9 @@ bool GoalOrderDeadEnds::DeadEnd(const StateData& state) const {
   const auto pending = [&](std::size_t j) {
     if (pending_[j] == 0) {
       bool p = !state.Holds(goals_[j].fact);
-      for (auto a : goals_[j].achievers) {
+      for (auto a : goals_[j].actions) {
         if (!p) break;
-        if (state.IsRunning(achievers_[static_cast<std::size_t>(a)].action)) p = false;
+        if (state.IsRunning(a)) p = false;
       }
       pending_[j] = p ? 1 : 2;
     }

@@ -51,7 +51,11 @@ class GoalOrderDeadEnds {
   };
   struct Goal {
     task::FactId fact = -1;
-    std::vector<std::int32_t> achievers;  // indices into achievers_
+    // Indices into achievers_: one per class of achievers with the same
+    // killers and `before` goals (floortile: a paint by any robot in any
+    // colour), which the check cannot tell apart.
+    std::vector<std::int32_t> achievers;
+    std::vector<task::ActionId> actions;  // every achiever: one running, the goal is on its way
   };
 
   bool Live(const Achiever& a, const StateData& state) const;
