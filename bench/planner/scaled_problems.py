@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Problems larger than the shared benchmark's p01-p05, for six of its domains.
+"""Problems larger than the shared benchmark's p01-p05, for seven of its domains.
 
 The shared set holds only the first five problems of each domain; the
 larger ones a planner is judged on are not here. This writes random
@@ -36,6 +36,13 @@ instances"):
       stack for every crate, random distances, speeds, weights and powers
       (its p01-p05: 1 depot, 2 distributors, 2 trucks, 3 pallets, 3 hoists,
       2-10 crates).
+  driverlogshift DRIVERS TRUCKS PACKAGES LOCATIONS SEED
+      driverlogshift-upf's domain (drivers drive and walk only within a
+      102 s shift): sites linked by roads, a walking path between
+      neighbours, everything to the last site; seed 1 starts the drivers
+      there and the trucks and packages at the first, as its p01-p05 do
+      (2-4 drivers, 2-3 trucks and packages, 2-3 sites), other seeds at
+      random sites.
 
 The problem goes to standard output; the domain is the shared one, e.g.
   bench/planner/scaled_problems.py floortile 4 4 2 1 > /tmp/ft-4x4.pddl
@@ -360,6 +367,36 @@ def depots(depots_n, distributors, trucks_n, pallets, hoists, crates, rng):
     return out
 
 
+def driverlogshift(drivers, trucks_n, packages, locations, rng, seed):
+    sites = [f"l{i}" for i in range(locations)]
+    paths = [f"p{i}-{i + 1}" for i in range(locations - 1)]
+    last = sites[-1]
+    # Seed 1 is the shared instances' layout (drivers at the last site,
+    # trucks and packages at the first); other seeds place them at random.
+    def place(default):
+        return default if seed == 1 else rng.choice(sites)
+    driver_at = [place(last) for _ in range(drivers)]
+    truck_at = [place(sites[0]) for _ in range(trucks_n)]
+    package_at = [place(sites[0]) for _ in range(packages)]
+    names = {"driver": [f"d{i}" for i in range(drivers)], "truck": [f"t{i}" for i in range(trucks_n)],
+             "obj": [f"p{i}" for i in range(packages)]}
+    out = [f"(define (problem dlogshift-{drivers}-{trucks_n}-{packages}-{locations}-{seed})",
+           " (:domain driverlogshift)",
+           " (:objects " + " ".join(names["driver"]) + " - driver " + " ".join(names["truck"]) +
+           " - truck " + " ".join(names["obj"]) + " - obj " + " ".join(sites + paths) + " - location)",
+           " (:init"]
+    out += [f"   (at {d} {driver_at[i]}) (rested {d})" for i, d in enumerate(names["driver"])]
+    out += [f"   (at {t} {truck_at[i]}) (empty {t})" for i, t in enumerate(names["truck"])]
+    out += [f"   (at {p} {package_at[i]})" for i, p in enumerate(names["obj"])]
+    out += [f"   (link {a} {b})" for a in sites for b in sites if a != b]
+    for i, p in enumerate(paths):
+        for a in (sites[i], sites[i + 1]):
+            out.append(f"   (path {a} {p}) (path {p} {a})")
+    goal = [f"(at {x} {last})" for kind in ("driver", "truck", "obj") for x in names[kind]]
+    out += [" )", " (:goal (and " + " ".join(goal) + "))", " (:metric minimize (total-time)))"]
+    return out
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     sub = parser.add_subparsers(dest="domain", required=True)
@@ -371,6 +408,8 @@ def main():
         "satellite-tw": ("satellite-tw-til's domain", ["satellites", "directions", "images", "antennas"]),
         "depots": ("depots-time's domain", ["depots", "distributors", "trucks", "pallets", "hoists",
                                             "crates"]),
+        "driverlogshift": ("driverlogshift-upf's domain", ["drivers", "trucks", "packages",
+                                                           "locations"]),
     }.items():
         command = sub.add_parser(name, help=domain)
         for param in params + ["seed"]:
@@ -396,6 +435,11 @@ def main():
             parser.error("satellite-tw: satellites, antennas >= 1, directions >= 2 and 1 <= images <= "
                          "3 x the directions that are not ground stations (a quarter are)")
         lines = satellite_tw(args.satellites, args.directions, args.images, args.antennas, rng)
+    elif args.domain == "driverlogshift":
+        if min(args.drivers, args.trucks, args.packages) < 1 or args.locations < 2:
+            parser.error("driverlogshift: drivers, trucks, packages >= 1 and locations >= 2")
+        lines = driverlogshift(args.drivers, args.trucks, args.packages, args.locations, rng,
+                               args.seed)
     elif args.domain == "depots":
         places = args.depots + args.distributors
         if args.depots < 1 or args.trucks < 1 or args.crates < 1 or args.distributors < 0 or \

@@ -44,6 +44,7 @@ solve trucks-time-til trucks 2 3 6 2 2
 solve satellite-tw-til satellite-tw 2 6 4 2 1
 solve depots-time depots 1 1 1 2 2 3 1
 solve depots-time depots 1 0 1 2 1 3 1  # no distributor: one place
+solve driverlogshift-upf driverlogshift 2 2 2 2 1
 generate "$work/seed1.pddl" floortile 2 3 2 1
 generate "$work/seed2.pddl" floortile 2 3 2 2
 cmp -s "$work/seed1.pddl" "$work/seed2.pddl" && fail "floortile: seeds 1 and 2 give the same problem"
@@ -62,11 +63,15 @@ cmp -s "$work/seed1.pddl" "$work/seed2.pddl" && fail "satellite-tw: seeds 1 and 
 generate "$work/seed1.pddl" depots 1 1 1 2 2 3 1
 generate "$work/seed2.pddl" depots 1 1 1 2 2 3 2
 cmp -s "$work/seed1.pddl" "$work/seed2.pddl" && fail "depots: seeds 1 and 2 give the same problem"
+generate "$work/seed1.pddl" driverlogshift 3 2 3 3 1
+generate "$work/seed2.pddl" driverlogshift 3 2 3 3 2
+cmp -s "$work/seed1.pddl" "$work/seed2.pddl" && fail "driverlogshift: seeds 1 and 2 give the same problem"
 for bad in "floortile 0 3 2 1" "floortile 1 1 2 1" "driverlog 3 0 5 1" "elevators 12 3 1" \
   "elevators 16 0 1" "trucks 1 1 3 2 1" "trucks 0 3 3 2 1" \
   "satellite-tw 0 6 4 2 1" "satellite-tw 2 1 4 2 1" "satellite-tw 2 6 4 0 1" \
   "satellite-tw 2 6 16 2 1" "depots 0 1 1 2 2 3 1" "depots 1 1 1 1 2 3 1" \
-  "depots 1 1 0 2 2 3 1" "depots 1 1 1 2 1 3 1"; do
+  "depots 1 1 0 2 2 3 1" "depots 1 1 1 2 1 3 1" "driverlogshift 2 2 2 1 1" \
+  "driverlogshift 0 2 2 2 1"; do
   # shellcheck disable=SC2086  # the arguments split on purpose
   if "$python" "$gen" $bad >/dev/null 2>&1; then fail "accepted: $bad"; fi
 done

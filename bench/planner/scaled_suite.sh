@@ -1,8 +1,8 @@
 #!/usr/bin/env bash
 # The generated instances of bench/planner/README.md's sections "Larger
 # generated instances: satellite-tw-til", "Helpful events on time", "A run
-# of goals ordered to the end: floortile" and "Stacks from the right end:
-# depots", run
+# of goals ordered to the end: floortile", "Stacks from the right end:
+# depots" and "driverlogshift past p05", run
 # with one executable: for each, `seaplan plan` (first plan, --no-anytime)
 # as a whole process under a CPU limit, then `seaplan validate` of the same
 # executable on the plan. One line per instance, then how many were solved
@@ -14,7 +14,8 @@
 #          satellite-tw-large (6, 10-12 satellites), trucks (18 of
 #          trucks-time-til's domain), floortile (22 of floortile-2011's,
 #          4 x 3 to 8 x 8 tiles, 2-4 robots), depots (18 of depots-time's,
-#          10-20 crates)
+#          10-20 crates), driverlogshift (8 of driverlogshift-upf's, 4-6
+#          drivers, 3-5 sites)
 #   --quick: the suite's first two instances only, and exit 1 unless both
 #            get a valid plan (the smoke test)
 #   The shared domains are read from $SEAPLAN_SHARED/bench (default
@@ -22,7 +23,7 @@
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 usage() {
-  sed -n '12,21p' "$0" | sed 's/^# \{0,1\}//' >&2
+  sed -n '12,22p' "$0" | sed 's/^# \{0,1\}//' >&2
   exit 2
 }
 [[ $# -ge 2 ]] || usage
@@ -59,6 +60,9 @@ case $suite in
     domain=depots-time
     sets=("1 2 2 3 3 10|1 2 3 4" "1 2 2 3 3 15|1 2 3" "2 2 2 4 4 10|1 2 3" "2 2 2 4 4 15|1 2 3"
       "3 3 3 6 6 15|1 2" "3 3 3 6 6 20|1 2 3") ;;
+  driverlogshift)
+    domain=driverlogshift-upf
+    sets=("4 3 3 3|1 2 3" "5 3 4 4|1 2" "5 4 4 4|1" "6 4 5 4|1" "6 5 6 5|1") ;;
   *) echo "scaled_suite: unknown suite $suite" >&2; usage ;;
 esac
 generator=${suite%-large}
