@@ -6,6 +6,7 @@
 
 #include <string>
 #include <string_view>
+#include <utility>
 
 #include "goal_order.h"
 #include "seaplan/search/planner.h"
@@ -168,25 +169,35 @@ TEST(GoalOrderTest, TwoTilesEachPaintableOnlyFromTheOtherAreADeadEnd) {
   EXPECT_FALSE(goal_order.DeadEnd(state));
 }
 
-// Tiles t0 - t1 - t2 - t3 - t4, t1 to t3 to be painted, t0 and t4 painted:
-// t1 and t3 need t2 unpainted, t2 needs t1 or t3 unpainted.
-TEST(GoalOrderTest, AChainOfThreeTilesWithBothEndsPaintedIsADeadEnd) {
-  const std::string problem = PaintRowProblem(
-      5, "r1", "(robot-at r1 t2) (clear t0) (clear t1) (clear t3) (clear t4) (has r1 black)",
-      "(painted t1 black) (painted t2 black) (painted t3 black)");
-  auto task = testing::LoadTaskOrFail(kPaintDomain, problem);
-  ASSERT_NE(task, nullptr);
+// A row of `tiles` tiles with one robot (initial state and goals given),
+// the last tile painted: is it a dead end? And with the first painted too?
+std::pair<bool, bool> DeadEndsAsTheEndsArePainted(int tiles, std::string_view init,
+                                                  std::string_view goal) {
+  auto task = testing::LoadTaskOrFail(kPaintDomain, PaintRowProblem(tiles, "r1", init, goal));
+  if (task == nullptr) return {false, false};
   const MutexGroups mutex(*task);
   const GoalOrderDeadEnds goal_order(*task, mutex);
   const SnapTask snap(*task);
-  const auto fact = [&](const char* name) { return testing::FactIdOf(*task, name); };
   StateData state = testing::InitialState(*task, snap);
-  state.Clear(fact("(clear t4)"));
-  state.Set(fact("(painted t4 black)"));
-  EXPECT_FALSE(goal_order.DeadEnd(state));  // t3, t2, t1 from the left, in that order
-  state.Clear(fact("(clear t0)"));
-  state.Set(fact("(painted t0 black)"));
-  EXPECT_TRUE(goal_order.DeadEnd(state));
+  const auto paint = [&](int tile) {
+    const std::string t = "t" + std::to_string(tile);
+    state.Clear(testing::FactIdOf(*task, "(clear " + t + ")"));
+    state.Set(testing::FactIdOf(*task, "(painted " + t + " black)"));
+  };
+  paint(tiles - 1);
+  const bool last = goal_order.DeadEnd(state);
+  paint(0);
+  return {last, goal_order.DeadEnd(state)};
+}
+
+// Tiles t0 - t1 - t2 - t3 - t4, t1 to t3 to be painted: with t4 painted,
+// t3, t2, t1 from the left, in that order; with t0 painted too, t1 and t3
+// need t2 unpainted, t2 needs t1 or t3 unpainted.
+TEST(GoalOrderTest, AChainOfThreeTilesWithBothEndsPaintedIsADeadEnd) {
+  EXPECT_EQ(DeadEndsAsTheEndsArePainted(
+                5, "(robot-at r1 t2) (clear t0) (clear t1) (clear t3) (clear t4) (has r1 black)",
+                "(painted t1 black) (painted t2 black) (painted t3 black)"),
+            std::make_pair(false, true));
 }
 
 // Tiles t0 - ... - t5, t1 to t4 to be painted. With t5 painted, t4 must
@@ -195,23 +206,12 @@ TEST(GoalOrderTest, AChainOfThreeTilesWithBothEndsPaintedIsADeadEnd) {
 // one achiever left, each needing the other unpainted: a dead end that
 // shows only once those achievers are dropped and the orders found again.
 TEST(GoalOrderTest, ARunOfFourTilesWithBothEndsPaintedIsADeadEnd) {
-  const std::string problem = PaintRowProblem(
-      6, "r1",
-      "(robot-at r1 t2) (clear t0) (clear t1) (clear t3) (clear t4) (clear t5) (has r1 black)",
-      "(painted t1 black) (painted t2 black) (painted t3 black) (painted t4 black)");
-  auto task = testing::LoadTaskOrFail(kPaintDomain, problem);
-  ASSERT_NE(task, nullptr);
-  const MutexGroups mutex(*task);
-  const GoalOrderDeadEnds goal_order(*task, mutex);
-  const SnapTask snap(*task);
-  const auto fact = [&](const char* name) { return testing::FactIdOf(*task, name); };
-  StateData state = testing::InitialState(*task, snap);
-  state.Clear(fact("(clear t5)"));
-  state.Set(fact("(painted t5 black)"));
-  EXPECT_FALSE(goal_order.DeadEnd(state));
-  state.Clear(fact("(clear t0)"));
-  state.Set(fact("(painted t0 black)"));
-  EXPECT_TRUE(goal_order.DeadEnd(state));
+  EXPECT_EQ(
+      DeadEndsAsTheEndsArePainted(
+          6,
+          "(robot-at r1 t2) (clear t0) (clear t1) (clear t3) (clear t4) (clear t5) (has r1 black)",
+          "(painted t1 black) (painted t2 black) (painted t3 black) (painted t4 black)"),
+      std::make_pair(false, true));
 }
 
 TEST(GoalOrderTest, ThePlannerSolvesTheRowWithTheCheckOn) {

@@ -209,19 +209,19 @@ TEST(LandmarksTest, ACrateGoesOnItsTargetBeforeAnotherGoesOnIt) {
     counter.Update(most, state, acc);
     return ((acc[static_cast<std::size_t>(i) >> 6] >> (i & 63)) & 1u) != 0;
   };
-  StateData wrong = testing::InitialState(*task, snap);
-  wrong.Clear(fact("(on a p1)"));
-  wrong.Clear(fact("(clear b)"));
-  wrong.Set(fact("(on a b)"));
-  wrong.Set(fact("(clear p1)"));
+  // The initial state with `crate` moved from `from` onto `to`.
+  const auto moved = [&](const std::string& crate, const std::string& from, const std::string& to) {
+    StateData state = testing::InitialState(*task, snap);
+    state.Clear(testing::FactIdOf(*task, "(on " + crate + " " + from + ")"));
+    state.Clear(testing::FactIdOf(*task, "(clear " + to + ")"));
+    state.Set(testing::FactIdOf(*task, "(on " + crate + " " + to + ")"));
+    state.Set(testing::FactIdOf(*task, "(clear " + from + ")"));
+    return state;
+  };
+  const StateData wrong = moved("a", "p1", "b");
   EXPECT_FALSE(accepted_after(graph, wrong, a_on_b));
   EXPECT_TRUE(accepted_after(plain, wrong, a_on_b));
-  StateData right = testing::InitialState(*task, snap);
-  right.Clear(fact("(on b p2)"));
-  right.Clear(fact("(clear c)"));
-  right.Set(fact("(on b c)"));
-  right.Set(fact("(clear p2)"));
-  EXPECT_TRUE(accepted_after(graph, right, b_on_c));
+  EXPECT_TRUE(accepted_after(graph, moved("b", "p2", "c"), b_on_c));
 }
 
 // a on b and b on a (no plan reaches both, but the relaxation does): each
