@@ -321,6 +321,18 @@ def satellite_tw(satellites, directions, images, antennas, rng):
     return out
 
 
+def random_stacks(crates, pallets, rng):
+    """Each crate in turn on top of a random pallet's stack: the (crate,
+    pallet, what it lies on) triples, and what ends on top of each pallet."""
+    top = {p: p for p in pallets}
+    stacked = []
+    for crate in crates:
+        pallet = rng.choice(pallets)
+        stacked.append((crate, pallet, top[pallet]))
+        top[pallet] = crate
+    return stacked, top
+
+
 def depots(depots_n, distributors, trucks_n, pallets, hoists, crates, rng):
     places = [f"depot{i}" for i in range(depots_n)] + [f"distributor{i}" for i in range(distributors)]
     pallet_at = places + [rng.choice(places) for _ in range(pallets - len(places))]
@@ -338,12 +350,9 @@ def depots(depots_n, distributors, trucks_n, pallets, hoists, crates, rng):
             "   " + " ".join(pallet_names) + " - Pallet",
             "   " + " ".join(crate_names) + " - Crate",
             "   " + " ".join(hoist_names) + " - Hoist)", " (:init"]
-    top = {p: p for p in pallet_names}  # what lies on top of each pallet's stack
-    for crate in crate_names:
-        pallet = rng.choice(pallet_names)
-        place = pallet_at[pallet_names.index(pallet)]
-        out.append(f"   (at {crate} {place}) (on {crate} {top[pallet]})")
-        top[pallet] = crate
+    stacked, top = random_stacks(crate_names, pallet_names, rng)
+    place_of = dict(zip(pallet_names, pallet_at))
+    out += [f"   (at {crate} {place_of[pallet]}) (on {crate} {below})" for crate, pallet, below in stacked]
     out += [f"   (clear {t})" for t in top.values()]
     out += [f"   (at {p} {pallet_at[i]})" for i, p in enumerate(pallet_names)]
     for i, h in enumerate(hoist_names):
@@ -356,13 +365,9 @@ def depots(depots_n, distributors, trucks_n, pallets, hoists, crates, rng):
     out += [f"   (= (weight {c}) {rng.randint(1, 100)})" for c in crate_names]
     out += [" )", " (:goal (and"]
     # Every crate on a random pallet's new stack, in a random order.
-    goal_top = {p: p for p in pallet_names}
     order = crate_names[:]
     rng.shuffle(order)
-    for crate in order:
-        pallet = rng.choice(pallet_names)
-        out.append(f"    (on {crate} {goal_top[pallet]})")
-        goal_top[pallet] = crate
+    out += [f"    (on {crate} {below})" for crate, _, below in random_stacks(order, pallet_names, rng)[0]]
     out += [" ))", " (:metric minimize (total-time)))"]
     return out
 

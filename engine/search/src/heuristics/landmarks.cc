@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <deque>
+#include <span>
 
 namespace seaplan::search {
 namespace {
@@ -22,6 +23,21 @@ void BuildCsr(int n, const std::vector<std::pair<std::int32_t, std::int32_t>>& p
   values->resize(pairs.size());
   std::vector<std::int32_t> fill(begin->begin(), begin->end() - 1);
   for (const auto& [k, v] : pairs) (*values)[static_cast<std::size_t>(fill[k]++)] = v;
+}
+
+// Narrows `shared` to its intersection with the sorted `set`, or takes
+// `set` whole when it is the first (`*first`). `scratch` is reused.
+void IntersectInto(std::span<const std::int32_t> set, bool* first,
+                   std::vector<std::int32_t>* shared, std::vector<std::int32_t>* scratch) {
+  if (*first) {
+    shared->assign(set.begin(), set.end());
+    *first = false;
+    return;
+  }
+  scratch->clear();
+  std::set_intersection(shared->begin(), shared->end(), set.begin(), set.end(),
+                        std::back_inserter(*scratch));
+  shared->swap(*scratch);
 }
 
 }  // namespace
@@ -141,8 +157,6 @@ LandmarkGraph::LandmarkGraph(const SnapTask& task, const RelaxedPlanHeuristic& r
     }
   }
   BuildCsr(size(), adds, &achiever_begin_, &achievers_);
-  const auto& achiever_begin = achiever_begin_;
-  const auto& achievers = achievers_;
   std::vector<std::pair<std::int32_t, std::int32_t>> by_snap;
   by_snap.reserve(adds.size());
   for (const auto& [i, op] : adds) by_snap.emplace_back(op, i);
@@ -158,25 +172,16 @@ LandmarkGraph::LandmarkGraph(const SnapTask& task, const RelaxedPlanHeuristic& r
     if (fixed[static_cast<std::size_t>(l)]) continue;
     bool first = true;
     shared.clear();
-    for (auto k = achiever_begin[static_cast<std::size_t>(i)];
-         k < achiever_begin[static_cast<std::size_t>(i) + 1]; ++k) {
-      const std::int32_t op = achievers[static_cast<std::size_t>(k)];
+    for (auto k = achiever_begin_[static_cast<std::size_t>(i)];
+         k < achiever_begin_[static_cast<std::size_t>(i) + 1]; ++k) {
+      const std::int32_t op = achievers_[static_cast<std::size_t>(k)];
       bool needs_l = false;
       for (auto p : relaxed.Preconditions(op)) {
         const auto& pl = label[static_cast<std::size_t>(p)];
         if (std::binary_search(pl.begin(), pl.end(), l)) needs_l = true;
       }
       if (needs_l) continue;
-      const auto pre = relaxed.Preconditions(op);
-      if (first) {
-        shared.assign(pre.begin(), pre.end());
-        first = false;
-      } else {
-        next.clear();
-        std::set_intersection(shared.begin(), shared.end(), pre.begin(), pre.end(),
-                              std::back_inserter(next));
-        shared.swap(next);
-      }
+      IntersectInto(relaxed.Preconditions(op), &first, &shared, &next);
     }
     for (auto p : shared) {
       const int j = index_of_[static_cast<std::size_t>(p)];
@@ -208,15 +213,7 @@ int LandmarkGraph::AddReasonableOrderings(const RelaxedPlanHeuristic& relaxed,
       const auto op_adds = relaxed.Adds(achievers_[static_cast<std::size_t>(k)]);
       adds.assign(op_adds.begin(), op_adds.end());
       std::sort(adds.begin(), adds.end());
-      if (first) {
-        shared = adds;
-        first = false;
-      } else {
-        next.clear();
-        std::set_intersection(shared.begin(), shared.end(), adds.begin(), adds.end(),
-                              std::back_inserter(next));
-        shared.swap(next);
-      }
+      IntersectInto(adds, &first, &shared, &next);
     }
     auto& w = with[static_cast<std::size_t>(a)];
     for (auto f : shared) {
