@@ -498,7 +498,14 @@ PlanResult PlannerRun::Run() {
   // steps the fjord missions' first plans came later or longer
   // (bench/planner/README.md, "The two first-plan searches in turn"). If
   // nothing is found in second_greedy_after_share of the time, the first
-  // stops and the second goes on alone. Under an expansion limit that
+  // gives way to a third, in turn with the second, half the steps each: the
+  // second's configuration, but an operator that undoes a held goal comes
+  // kGoalUndoerDelayLayers layers late in its relaxed plans
+  // (RelaxedPlanHeuristic::SetDelayGoalUndoers). From the start, in the
+  // second search, it found generated driverlogshift instances that need
+  // three drivers to walk within 0.2 s, where none was found in 60 s, but
+  // made first plans of larger fjord missions up to 19 times as long
+  // (bench/planner/README.md, "Held goals undone last"). Under an expansion limit that
   // share is of the limit, so that the clock decides nothing but the time
   // limit; under a CPU budget, of that budget. The second search has its own
   // states and schedule: two searches in turn on one timeline would each
@@ -520,7 +527,9 @@ PlanResult PlannerRun::Run() {
   };
   struct FirstPlanSearch {
     bool newest_first = false;
-    double share = 0;  // of the steps
+    bool keep_held_goals = false;     // RelaxedPlanHeuristic::SetKeepHeldGoals
+    bool delay_goal_undoers = false;  // RelaxedPlanHeuristic::SetDelayGoalUndoers
+    double share = 0;                 // of the steps
     StateRegistry* registry = nullptr;
     Timeline* timeline = nullptr;
     bool eager_ends = true;
@@ -534,6 +543,7 @@ PlanResult PlannerRun::Run() {
   searches[0].share = switched_at_start ? 0 : 1 - options_.second_greedy_turn_share;
   searches[1].share = switched_at_start ? 1 : options_.second_greedy_turn_share;
   searches[1].newest_first = true;
+  searches[1].keep_held_goals = true;
   for (FirstPlanSearch& s : searches) {
     s.registry = &registry_;
     s.timeline = &timeline_;
@@ -600,13 +610,22 @@ PlanResult PlannerRun::Run() {
                           "running actions or timed literals were merged, so this is no proof"
                         : "no first-plan search to run");
     }
-    // The switch; not to a second search already out of fallbacks.
-    if (searches[0].share > 0 && !searches[1].out_of_fallbacks &&
+    // The switch; not to a second search already out of fallbacks. The
+    // first search's place goes to the third, which starts as many steps
+    // behind as the second has taken, so that the two alternate.
+    if (!switched_at_start && !searches[0].delay_goal_undoers && !searches[1].out_of_fallbacks &&
         options_.second_greedy_after_share < 1 && switch_due()) {
       if (searches[0].search) AddCounters(*searches[0].search);
       searches[0].search.reset();
-      searches[0].share = 0;
-      searches[1].share = 1;
+      searches[0] = FirstPlanSearch{};
+      searches[0].newest_first = searches[0].keep_held_goals = true;
+      searches[0].delay_goal_undoers = true;
+      searches[0].share = searches[1].share = 0.5;
+      searches[0].registry = &registry_;
+      searches[0].timeline = &timeline_;
+      searches[0].eager_ends = EagerEnds();
+      searches[0].steps = searches[1].steps;
+      begin_search(searches[0]);
       if (!searches[1].search) begin_search(searches[1]);
       continue;
     }
@@ -629,7 +648,8 @@ PlanResult PlannerRun::Run() {
                                           ? "cancelled before a plan was found"
                                           : "time limit reached before a plan was found");
     }
-    heuristic_.SetKeepHeldGoals(next->newest_first);
+    heuristic_.SetKeepHeldGoals(next->keep_held_goals);
+    heuristic_.SetDelayGoalUndoers(next->delay_goal_undoers);
     LazySearch& search = *next->search;
     ++next->steps;
     const LazySearch::Status status = search.Step();
@@ -666,7 +686,7 @@ PlanResult PlannerRun::Run() {
   // benchmark; going on until the switch (the budget the first search had
   // without the second) took 1.3 times as long as six times
   // (bench/planner/README.md, "The two first-plan searches in turn").
-  if (found_by == &searches[1] && searches[0].search) {
+  if (found_by == &searches[1] && searches[0].search && !searches[0].delay_goal_undoers) {
     constexpr std::size_t kFirstSearchGoesOn = 12;
     LazySearch& first = *searches[0].search;
     heuristic_.SetKeepHeldGoals(false);
@@ -677,6 +697,7 @@ PlanResult PlannerRun::Run() {
   second_registry_.reset();
   second_timeline_.reset();
   heuristic_.SetKeepHeldGoals(false);  // the searches for shorter plans: FF's ties
+  heuristic_.SetDelayGoalUndoers(false);
   ShortenFirstPlan(first_plan_expanded);
   heuristic_.SetMakespanAware(false);  // the anytime phases: FF's (see below)
   if (!options_.anytime) return finish(PlanStatus::kSolvedSatisficing, "");

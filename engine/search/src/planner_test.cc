@@ -222,6 +222,29 @@ TEST(PlannerTest, NewestFirstGreedySolvesWhatTheFirstConfigurationSolves) {
   EXPECT_EQ(SolveTask(*toggle.task, o, StopToken()).status, PlanStatus::kUnsolvableProven);
 }
 
+// The third first-plan configuration (goal undoers delayed), which takes
+// the first one's place when the switch comes: with the switch after the
+// first expansion, every feature problem gets a valid plan and
+// unsolvability is still proven (its delays hold operators back, they do
+// not leave them out).
+TEST(PlannerTest, TheThirdSearchAfterTheSwitchSolvesAndProves) {
+  PlannerOptions o = Quick(5);
+  o.anytime = false;
+  o.max_expansions = 1'000'000;
+  o.second_greedy_after_share = 1e-6;  // the switch after the first expansion
+  for (const auto& [domain, problem] : kFeatureProblems) {
+    SCOPED_TRACE(problem);
+    auto loaded = Load(domain, problem);
+    ASSERT_TRUE(loaded.task);
+    const PlanResult r = SolveTask(*loaded.task, o, StopToken());
+    ASSERT_EQ(r.status, PlanStatus::kSolvedSatisficing) << r.message;
+    ExpectValid(*loaded.task, r);
+  }
+  auto toggle = Load("toggle-domain.pddl", "toggle-3.pddl");
+  ASSERT_TRUE(toggle.task);
+  EXPECT_EQ(SolveTask(*toggle.task, o, StopToken()).status, PlanStatus::kUnsolvableProven);
+}
+
 // The first-plan configurations (the first alone, the two in turn with
 // half the steps each, and the second alone from the start) with the
 // options `set` gives: every feature problem solved with a valid plan

@@ -496,6 +496,7 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
   }
   // `time_s`: when the fact holds at the earliest (read only with makespan_aware_).
   const bool keep_held_goals = keep_held_goals_ && !goal_del_.empty() && !makespan_aware_;
+  const bool delay_undoers = delay_goal_undoers_ && !goal_del_.empty() && !makespan_aware_;
   auto reach = [&](int f, int layer, int achiever, double time_s, bool undoes_goal = false) {
     if (fact_layer_[f] >= 0) {
       // Reached earlier in this layer only through an operator that undoes
@@ -577,6 +578,8 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
   // goal facts' achievers from the goal layer: once the last goal fact is
   // reached, the rest of that layer's operators change nothing it reads.
   const bool stop_at_last_goal = goal.numeric.empty() && !makespan_aware_;
+  delayed_.clear();
+  std::size_t next_delayed = 0;
   while (true) {
     // Every goal fact reached by the previous layer: the operators these
     // facts would enable are never part of the relaxed plan (its operators
@@ -607,12 +610,21 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
           } else if (PairRedundant(pairs[op], fact_layer, pair_facts)) {
             skipped_pair = true;
             ++skipped;
+          } else if (delay_undoers && DeletesHeldGoal(op)) {
+            // Its layer stays the one its conditions hold in: one the
+            // state enables is still helpful.
+            op_layer_[op] = layer;
+            delayed_.push_back({layer + kGoalUndoerDelayLayers, op});
           } else {
             op_layer_[op] = layer;
             applicable_.push_back(op);
           }
         }
       }
+    }
+    for (; next_delayed < delayed_.size() && delayed_[next_delayed].layer <= layer;
+         ++next_delayed) {
+      applicable_.push_back(delayed_[next_delayed].op);
     }
     for (std::size_t i = 0; i < numeric_waiting_.size();) {
       const int op = numeric_waiting_[i];
@@ -742,7 +754,8 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
       }
       interval_.swap(next_interval_);
     }
-    if (new_facts_.empty() && !new_ops && !skipped_pair && !skipped_before) {
+    if (new_facts_.empty() && !new_ops && !skipped_pair && !skipped_before &&
+        next_delayed == delayed_.size()) {
       if (!widened || (numeric_waiting_.empty() && goal.numeric.empty())) {
         dead_end_proven_ = true;
         skipped_pairs_ = skipped;

@@ -69,6 +69,16 @@ class RelaxedPlanHeuristic {
   // h = 4). Ignored in the makespan-aware mode. The planner's second
   // first-plan search uses it.
   void SetKeepHeldGoals(bool on) { keep_held_goals_ = on; }
+  // Off by default. On: an operator that undoes a goal the evaluated state
+  // holds becomes applicable kGoalUndoerDelayLayers layers after its
+  // conditions, so a way that undoes fewer held goals is taken even when it
+  // is longer. With generated driverlogshift instances (three trucks to
+  // fetch, 120 s of walking), FF's plan drives a truck off its goal to fetch
+  // the next one, the next driver never walks, and the search stays on that
+  // plateau. An operator the state enables stays helpful. Ignored in the
+  // makespan-aware mode. The planner's third first-plan search uses it.
+  void SetDelayGoalUndoers(bool on) { delay_goal_undoers_ = on; }
+  static constexpr int kGoalUndoerDelayLayers = 16;
   // At least one more action achieves an undone goal again: a start and an
   // end for a durative one (one snap would do for an instantaneous one).
   static constexpr int kUndoneGoalCost = 2;
@@ -216,6 +226,7 @@ class RelaxedPlanHeuristic {
   // CSR: operator -> the goal facts it deletes (SetKeepHeldGoals).
   std::vector<std::int32_t> goal_del_begin_, goal_del_;
   bool keep_held_goals_ = false;
+  bool delay_goal_undoers_ = false;
 
   // Scratch per evaluation.
   std::vector<std::int32_t> fact_layer_, fact_achiever_;
@@ -231,6 +242,12 @@ class RelaxedPlanHeuristic {
   std::vector<Interval> interval_, next_interval_;
   std::vector<std::int32_t> raiser_, raise_layer_, lowerer_, lower_layer_;
   std::vector<std::int32_t> applicable_, numeric_waiting_, new_facts_, layer_ops_;
+  // With delay_goal_undoers_: operators that undo a held goal, with the
+  // layer they become applicable in, in that order.
+  struct DelayedOp {
+    std::int32_t layer, op;
+  };
+  std::vector<DelayedOp> delayed_;
   std::vector<std::uint8_t> op_marked_, fact_marked_;
   std::vector<std::int32_t> marked_ops_, marked_facts_, stack_;
   std::vector<Interval> eval_stack_;

@@ -233,5 +233,69 @@ TEST(RelaxedPlanHeuristicGoalTest, KeepingHeldGoalsChargesTheGoalsTheRelaxedPlan
   EXPECT_EQ(heuristic.Evaluate(at_home, nullptr), 0);
 }
 
+// A driver must reach the depot while the van stays parked at home, its
+// goal: riding the van there is one action but takes the van off home (it
+// can ride back); walking takes three.
+constexpr char kDepotDomain[] = R"((define (domain depot)
+  (:requirements :typing :durative-actions)
+  (:types place)
+  (:constants depot - place)
+  (:predicates (driver-at ?p - place) (van-at ?p - place) (road ?a ?b - place)
+               (path ?a ?b - place) (checked-in))
+  (:durative-action ride :parameters (?a ?b - place) :duration (= ?duration 1)
+    :condition (and (at start (road ?a ?b)) (at start (driver-at ?a)) (at start (van-at ?a)))
+    :effect (and (at start (not (driver-at ?a))) (at start (not (van-at ?a)))
+                 (at end (driver-at ?b)) (at end (van-at ?b))))
+  (:durative-action walk :parameters (?a ?b - place) :duration (= ?duration 1)
+    :condition (and (at start (path ?a ?b)) (at start (driver-at ?a)))
+    :effect (and (at start (not (driver-at ?a))) (at end (driver-at ?b))))
+  (:durative-action check-in :parameters () :duration (= ?duration 1)
+    :condition (at start (driver-at depot))
+    :effect (at end (checked-in)))))";
+
+std::string DepotProblem(bool paths) {
+  return std::string(R"((define (problem depot-1) (:domain depot)
+  (:objects home m1 m2 - place)
+  (:init (driver-at home) (van-at home) (road home depot) (road depot home))") +
+         (paths ? "(path home m1) (path m1 m2) (path m2 depot)" : "") + R"()
+  (:goal (and (van-at home) (checked-in)))))";
+}
+
+TEST(RelaxedPlanHeuristicGoalTest, DelayedGoalUndoersTakeTheWayThatKeepsHeldGoals) {
+  const HeuristicOnTask loaded(kDepotDomain, DepotProblem(true));
+  ASSERT_NE(loaded.task, nullptr);
+  const task::GroundTask& task = *loaded.task;
+  RelaxedPlanHeuristic& heuristic = *loaded.heuristic;
+  const StateData state = loaded.Initial();
+  const std::vector<SnapId> ride = {2 * testing::ActionIdOf(task, "(ride home depot)")};
+  const std::vector<SnapId> walk = {2 * testing::ActionIdOf(task, "(walk home m1)")};
+  std::vector<SnapId> preferred;
+  // FF rides: ride, check-in (four snaps). Keeping held goals charges the
+  // van's goal, but the ride is still the first achiever.
+  EXPECT_EQ(heuristic.Evaluate(state, &preferred), 4);
+  EXPECT_EQ(preferred, ride);
+  heuristic.SetKeepHeldGoals(true);
+  EXPECT_EQ(heuristic.Evaluate(state, &preferred), 4 + RelaxedPlanHeuristic::kUndoneGoalCost);
+  EXPECT_EQ(preferred, ride);
+  // With the undoer delayed, the walks come first: three walks and the
+  // check-in, eight snaps, nothing undone.
+  heuristic.SetDelayGoalUndoers(true);
+  EXPECT_EQ(heuristic.Evaluate(state, &preferred), 8);
+  EXPECT_EQ(preferred, walk);
+}
+
+TEST(RelaxedPlanHeuristicGoalTest, ADelayedGoalUndoerIsStillTakenWhenItIsTheOnlyWay) {
+  const HeuristicOnTask loaded(kDepotDomain, DepotProblem(false));
+  ASSERT_NE(loaded.task, nullptr);
+  RelaxedPlanHeuristic& heuristic = *loaded.heuristic;
+  heuristic.SetKeepHeldGoals(true);
+  heuristic.SetDelayGoalUndoers(true);
+  std::vector<SnapId> preferred;
+  EXPECT_EQ(heuristic.Evaluate(loaded.Initial(), &preferred),
+            4 + RelaxedPlanHeuristic::kUndoneGoalCost);
+  EXPECT_EQ(preferred,
+            std::vector<SnapId>{2 * testing::ActionIdOf(*loaded.task, "(ride home depot)")});
+}
+
 }  // namespace
 }  // namespace seaplan::search

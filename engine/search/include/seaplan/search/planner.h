@@ -104,10 +104,12 @@ struct PlannerOptions {
   // Separation of interfering events, seconds (> 0, the validator's epsilon).
   double epsilon_s = 0.001;
   // Share of time_limit_s (of max_expansions, else cpu_time_limit_s, when set; in [0, 1])
-  // after which, with no plan found, the first-plan searches switch to the
-  // second configuration alone (plateaus searched newest first instead of
-  // by makespan): the first stops, the second goes on from where it is (or
-  // starts, with no turn share); 0: the second alone from the start; 1
+  // after which, with no plan found, the first of the two first-plan
+  // searches gives way to a third configuration (the second's, with
+  // operators that undo held goals delayed in its relaxed plans), in turn
+  // with the second (plateaus searched newest first instead of by
+  // makespan), which goes on from where it is (or starts, with no turn
+  // share), half the steps each; 0: the second alone from the start; 1
   // never switches.
   double second_greedy_after_share = 0.5;
   // Until then, the share of the search steps (in [0, 1)) the second
