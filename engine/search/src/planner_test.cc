@@ -222,45 +222,28 @@ TEST(PlannerTest, NewestFirstGreedySolvesWhatTheFirstConfigurationSolves) {
   EXPECT_EQ(SolveTask(*toggle.task, o, StopToken()).status, PlanStatus::kUnsolvableProven);
 }
 
-// The third first-plan configuration (goal undoers delayed), which takes
-// the first one's place when the switch comes: with the switch after the
-// first expansion, every feature problem gets a valid plan and
-// unsolvability is still proven (its delays hold operators back, they do
-// not leave them out).
-TEST(PlannerTest, TheThirdSearchAfterTheSwitchSolvesAndProves) {
-  PlannerOptions o = Quick(5);
-  o.anytime = false;
-  o.max_expansions = 1'000'000;
-  o.second_greedy_after_share = 1e-6;  // the switch after the first expansion
-  for (const auto& [domain, problem] : kFeatureProblems) {
-    SCOPED_TRACE(problem);
-    auto loaded = Load(domain, problem);
-    ASSERT_TRUE(loaded.task);
-    const PlanResult r = SolveTask(*loaded.task, o, StopToken());
-    ASSERT_EQ(r.status, PlanStatus::kSolvedSatisficing) << r.message;
-    ExpectValid(*loaded.task, r);
-  }
-  auto toggle = Load("toggle-domain.pddl", "toggle-3.pddl");
-  ASSERT_TRUE(toggle.task);
-  EXPECT_EQ(SolveTask(*toggle.task, o, StopToken()).status, PlanStatus::kUnsolvableProven);
-}
-
 // The first-plan configurations (the first alone, the two in turn with
-// half the steps each, and the second alone from the start) with the
-// options `set` gives: every feature problem solved with a valid plan
-// (`check` looks at each result too) and unsolvability still proven.
+// half the steps each, the second alone from the start, and the second in
+// turn with the third, goal undoers delayed, from a switch after the first
+// expansion) with the options `set` gives: every feature problem solved
+// with a valid plan (`check` looks at each result too) and unsolvability
+// still proven (the third's delays hold operators back, they do not leave
+// them out).
 void ExpectFirstPlanSearchesSolveAndProve(
     const std::function<void(PlannerOptions&)>& set,
     const std::function<void(const Loaded&, const PlanResult&)>& check) {
   struct Shares {
     double after, turn;
+    std::uint64_t max_expansions = 0;  // the switch counts expansions when set
   };
-  for (const Shares shares : {Shares{1, 0}, Shares{1, 0.5}, Shares{0, 0}}) {
+  for (const Shares shares :
+       {Shares{1, 0}, Shares{1, 0.5}, Shares{0, 0}, Shares{1e-6, 0.25, 1'000'000}}) {
     SCOPED_TRACE(::testing::Message() << "shares " << shares.after << " " << shares.turn);
     PlannerOptions o = Quick(5);
     o.anytime = false;
     o.second_greedy_after_share = shares.after;
     o.second_greedy_turn_share = shares.turn;
+    o.max_expansions = shares.max_expansions;
     set(o);
     for (const auto& [domain, problem] : kFeatureProblems) {
       SCOPED_TRACE(problem);
