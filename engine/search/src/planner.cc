@@ -610,10 +610,12 @@ PlanResult PlannerRun::Run() {
                           "running actions or timed literals were merged, so this is no proof"
                         : "no first-plan search to run");
     }
-    // The switch; not to a second search already out of fallbacks. The
-    // first search's place goes to the third, which starts as many steps
-    // behind as the second has taken, so that the two alternate.
-    if (!switched_at_start && !searches[0].delay_goal_undoers && !searches[1].out_of_fallbacks &&
+    // The switch. The first search's place goes to the third, which starts
+    // as many steps behind as the second has taken, so that the two
+    // alternate (the second goes on, or starts, unless it is out of
+    // fallbacks). Each has states and a schedule of its own: with no turn
+    // share the second has been using the first's.
+    if (!switched_at_start && !searches[0].delay_goal_undoers &&
         options_.second_greedy_after_share < 1 && switch_due()) {
       if (searches[0].search) AddCounters(*searches[0].search);
       searches[0].search.reset();
@@ -623,10 +625,16 @@ PlanResult PlannerRun::Run() {
       searches[0].share = searches[1].share = 0.5;
       searches[0].registry = &registry_;
       searches[0].timeline = &timeline_;
+      if (searches[1].registry == &registry_) {
+        second_registry_.emplace(snap_.num_facts(), snap_.num_vars());
+        second_timeline_.emplace(snap_, options_.epsilon_s, options_.max_concurrent_actions > 0);
+        searches[0].registry = &*second_registry_;
+        searches[0].timeline = &*second_timeline_;
+      }
       searches[0].eager_ends = EagerEnds();
       searches[0].steps = searches[1].steps;
       begin_search(searches[0]);
-      if (!searches[1].search) begin_search(searches[1]);
+      if (!searches[1].search && !searches[1].out_of_fallbacks) begin_search(searches[1]);
       continue;
     }
     const Outcome poll = Poll();

@@ -225,7 +225,8 @@ TEST(PlannerTest, NewestFirstGreedySolvesWhatTheFirstConfigurationSolves) {
 // The first-plan configurations (the first alone, the two in turn with
 // half the steps each, the second alone from the start, and the second in
 // turn with the third, goal undoers delayed, from a switch after the first
-// expansion) with the options `set` gives: every feature problem solved
+// expansion, with and without a turn share before it, the latter giving
+// the third states of its own) with the options `set` gives: every feature problem solved
 // with a valid plan (`check` looks at each result too) and unsolvability
 // still proven (the third's delays hold operators back, they do not leave
 // them out).
@@ -236,9 +237,10 @@ void ExpectFirstPlanSearchesSolveAndProve(
     double after, turn;
     std::uint64_t max_expansions = 0;  // the switch counts expansions when set
   };
-  for (const Shares shares :
-       {Shares{1, 0}, Shares{1, 0.5}, Shares{0, 0}, Shares{1e-6, 0.25, 1'000'000}}) {
-    SCOPED_TRACE(::testing::Message() << "shares " << shares.after << " " << shares.turn);
+  for (const Shares shares : {Shares{1, 0}, Shares{1, 0.5}, Shares{0, 0},
+                              Shares{1e-6, 0.25, 1'000'000}, Shares{1e-6, 0, 1'000'000}}) {
+    SCOPED_TRACE(::testing::Message() << "shares " << shares.after << " " << shares.turn
+                                      << " max_expansions " << shares.max_expansions);
     PlannerOptions o = Quick(5);
     o.anytime = false;
     o.second_greedy_after_share = shares.after;

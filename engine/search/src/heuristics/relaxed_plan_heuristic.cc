@@ -496,7 +496,6 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
   }
   // `time_s`: when the fact holds at the earliest (read only with makespan_aware_).
   const bool keep_held_goals = keep_held_goals_ && !goal_del_.empty() && !makespan_aware_;
-  const bool delay_undoers = delay_goal_undoers_ && !goal_del_.empty() && !makespan_aware_;
   auto reach = [&](int f, int layer, int achiever, double time_s, bool undoes_goal = false) {
     if (fact_layer_[f] >= 0) {
       // Reached earlier in this layer only through an operator that undoes
@@ -547,11 +546,25 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
     reach(num_facts_ + r.action, 0, -1, started_s + r.min_duration_s);
   }
   // Operators without fact preconditions are enabled from the start.
+  // An operator whose conditions hold at `layer` is applied there, or, when
+  // it undoes a held goal with delay_undoers, kGoalUndoerDelayLayers later;
+  // its layer stays the one its conditions hold in, so one the state
+  // enables is still helpful.
+  const bool delay_undoers = delay_goal_undoers_ && !goal_del_.empty() && !makespan_aware_;
+  delayed_.clear();
+  std::size_t next_delayed = 0;
+  auto make_applicable = [&](int op, int layer) {
+    op_layer_[op] = layer;
+    if (delay_undoers && DeletesHeldGoal(op)) {
+      delayed_.push_back({layer + kGoalUndoerDelayLayers, op});
+    } else {
+      applicable_.push_back(op);
+    }
+  };
   for (auto op : no_pre_ops_) {
     if (!usable.empty() && !usable[op]) continue;
     if (num_pre_[op].empty()) {
-      op_layer_[op] = 0;
-      applicable_.push_back(op);
+      make_applicable(op, 0);
     } else {
       numeric_waiting_.push_back(op);
     }
@@ -578,8 +591,6 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
   // goal facts' achievers from the goal layer: once the last goal fact is
   // reached, the rest of that layer's operators change nothing it reads.
   const bool stop_at_last_goal = goal.numeric.empty() && !makespan_aware_;
-  delayed_.clear();
-  std::size_t next_delayed = 0;
   while (true) {
     // Every goal fact reached by the previous layer: the operators these
     // facts would enable are never part of the relaxed plan (its operators
@@ -610,14 +621,8 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
           } else if (PairRedundant(pairs[op], fact_layer, pair_facts)) {
             skipped_pair = true;
             ++skipped;
-          } else if (delay_undoers && DeletesHeldGoal(op)) {
-            // Its layer stays the one its conditions hold in: one the
-            // state enables is still helpful.
-            op_layer_[op] = layer;
-            delayed_.push_back({layer + kGoalUndoerDelayLayers, op});
           } else {
-            op_layer_[op] = layer;
-            applicable_.push_back(op);
+            make_applicable(op, layer);
           }
         }
       }
@@ -636,8 +641,7 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
         }
       }
       if (ok) {
-        op_layer_[op] = layer;
-        applicable_.push_back(op);
+        make_applicable(op, layer);
         numeric_waiting_[i] = numeric_waiting_.back();
         numeric_waiting_.pop_back();
       } else {

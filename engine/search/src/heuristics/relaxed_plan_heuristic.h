@@ -66,13 +66,13 @@ class RelaxedPlanHeuristic {
   // relaxed plan that drives a truck off with a driver standing on his
   // goal looks one action from the goal, and the search stays on that
   // plateau (a generated driverlog, 11 drivers: 58,000 expansions at
-  // h = 4). Ignored in the makespan-aware mode. The planner's second
-  // first-plan search uses it.
+  // h = 4). Ignored in the makespan-aware mode. The planner's second and
+  // third first-plan searches use it.
   void SetKeepHeldGoals(bool on) { keep_held_goals_ = on; }
   // Off by default. On: an operator that undoes a goal the evaluated state
-  // holds becomes applicable kGoalUndoerDelayLayers layers after its
-  // conditions, so a way that undoes fewer held goals is taken even when it
-  // is longer. With generated driverlogshift instances (three trucks to
+  // holds (however many) becomes applicable kGoalUndoerDelayLayers layers
+  // after its conditions, so a way through fewer such operators is taken
+  // even when it is longer. With generated driverlogshift instances (three trucks to
   // fetch, 120 s of walking), FF's plan drives a truck off its goal to fetch
   // the next one, the next driver never walks, and the search stays on that
   // plateau. An operator the state enables stays helpful. Ignored in the

@@ -253,12 +253,14 @@ constexpr char kDepotDomain[] = R"((define (domain depot)
     :condition (at start (driver-at depot))
     :effect (at end (checked-in)))))";
 
-std::string DepotProblem(bool paths) {
+// With `paths`, the walk home-m1-m2-depot; `goal` is added to the goal.
+std::string DepotProblem(bool paths, const std::string& goal = "") {
   return std::string(R"((define (problem depot-1) (:domain depot)
   (:objects home m1 m2 - place)
   (:init (driver-at home) (van-at home) (road home depot) (road depot home))") +
          (paths ? "(path home m1) (path m1 m2) (path m2 depot)" : "") + R"()
-  (:goal (and (van-at home) (checked-in)))))";
+  (:goal (and (van-at home) (checked-in) )" +
+         goal + ")))";
 }
 
 TEST(RelaxedPlanHeuristicGoalTest, DelayedGoalUndoersTakeTheWayThatKeepsHeldGoals) {
@@ -282,6 +284,50 @@ TEST(RelaxedPlanHeuristicGoalTest, DelayedGoalUndoersTakeTheWayThatKeepsHeldGoal
   heuristic.SetDelayGoalUndoers(true);
   EXPECT_EQ(heuristic.Evaluate(state, &preferred), 8);
   EXPECT_EQ(preferred, walk);
+  // Nothing is left over for the next state: two walks done, one left.
+  StateData at_m2 = state;
+  at_m2.Clear(testing::FactIdOf(task, "(driver-at home)"));
+  at_m2.Set(testing::FactIdOf(task, "(driver-at m2)"));
+  EXPECT_EQ(heuristic.Evaluate(at_m2, &preferred), 4);
+  EXPECT_EQ(preferred, std::vector<SnapId>{2 * testing::ActionIdOf(task, "(walk m2 depot)")});
+}
+
+// The ride also needs fuel: an operator with a numeric condition waits in
+// another list of the exploration, and is delayed all the same.
+TEST(RelaxedPlanHeuristicGoalTest, AGoalUndoerWithANumericConditionIsDelayedToo) {
+  std::string domain = kDepotDomain;
+  const std::string ride_condition = "(at start (van-at ?a)))";
+  domain.replace(domain.find(ride_condition), ride_condition.size(),
+                 "(at start (van-at ?a)) (at start (>= (fuel) 1)))");
+  domain.replace(domain.find(":durative-actions)"), 18, ":durative-actions :fluents)");
+  domain.replace(domain.find("(checked-in))"), 13, "(checked-in)) (:functions (fuel))");
+  std::string problem = DepotProblem(true);
+  problem.replace(problem.find("(road home depot)"), 17, "(road home depot) (= (fuel) 5)");
+  const HeuristicOnTask loaded(domain, problem);
+  ASSERT_NE(loaded.task, nullptr);
+  RelaxedPlanHeuristic& heuristic = *loaded.heuristic;
+  std::vector<SnapId> preferred;
+  EXPECT_EQ(heuristic.Evaluate(loaded.Initial(), &preferred), 4);
+  EXPECT_EQ(preferred,
+            std::vector<SnapId>{2 * testing::ActionIdOf(*loaded.task, "(ride home depot)")});
+  heuristic.SetDelayGoalUndoers(true);
+  EXPECT_EQ(heuristic.Evaluate(loaded.Initial(), &preferred), 8);
+  EXPECT_EQ(preferred,
+            std::vector<SnapId>{2 * testing::ActionIdOf(*loaded.task, "(walk home m1)")});
+}
+
+// A goal no operator reaches: the exploration still applies the delayed
+// operators before it gives up, and the dead end stays proven.
+TEST(RelaxedPlanHeuristicGoalTest, WithDelayedGoalUndoersADeadEndIsStillProven) {
+  std::string domain = kDepotDomain;
+  domain.replace(domain.find("(checked-in))"), 13, "(checked-in) (never))");
+  const HeuristicOnTask loaded(domain, DepotProblem(true, "(never)"));
+  ASSERT_NE(loaded.task, nullptr);
+  RelaxedPlanHeuristic& heuristic = *loaded.heuristic;
+  heuristic.SetKeepHeldGoals(true);
+  heuristic.SetDelayGoalUndoers(true);
+  EXPECT_EQ(heuristic.Evaluate(loaded.Initial(), nullptr), RelaxedPlanHeuristic::kDeadEnd);
+  EXPECT_TRUE(heuristic.last_dead_end_proven());
 }
 
 TEST(RelaxedPlanHeuristicGoalTest, ADelayedGoalUndoerIsStillTakenWhenItIsTheOnlyWay) {
