@@ -545,7 +545,6 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
     const double started_s = schedule != nullptr ? schedule->StartedAt(r.action) : 0.0;
     reach(num_facts_ + r.action, 0, -1, started_s + r.min_duration_s);
   }
-  // Operators without fact preconditions are enabled from the start.
   // An operator whose conditions hold at `layer` is applied there, or, when
   // it undoes a held goal with delay_undoers, kGoalUndoerDelayLayers later;
   // its layer stays the one its conditions hold in, so one the state
@@ -561,6 +560,7 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
       applicable_.push_back(op);
     }
   };
+  // Operators without fact preconditions are enabled from the start.
   for (auto op : no_pre_ops_) {
     if (!usable.empty() && !usable[op]) continue;
     if (num_pre_[op].empty()) {
