@@ -549,12 +549,15 @@ PlanResult PlannerRun::Run() {
     s.timeline = &timeline_;
     s.eager_ends = EagerEnds();
   }
-  if (searches[0].share > 0 && searches[1].share > 0) {
+  // States and a schedule apart from the first search's (freed at the
+  // first plan), for a search that runs in turn with one on those.
+  auto use_second_states = [&](FirstPlanSearch& s) {
     second_registry_.emplace(snap_.num_facts(), snap_.num_vars());
     second_timeline_.emplace(snap_, options_.epsilon_s, options_.max_concurrent_actions > 0);
-    searches[1].registry = &*second_registry_;
-    searches[1].timeline = &*second_timeline_;
-  }
+    s.registry = &*second_registry_;
+    s.timeline = &*second_timeline_;
+  };
+  if (searches[0].share > 0 && searches[1].share > 0) use_second_states(searches[1]);
   auto begin_search = [&](FirstPlanSearch& s) {
     SearchParams params;
     params.weight = -1;
@@ -625,12 +628,7 @@ PlanResult PlannerRun::Run() {
       searches[0].share = searches[1].share = 0.5;
       searches[0].registry = &registry_;
       searches[0].timeline = &timeline_;
-      if (searches[1].registry == &registry_) {
-        second_registry_.emplace(snap_.num_facts(), snap_.num_vars());
-        second_timeline_.emplace(snap_, options_.epsilon_s, options_.max_concurrent_actions > 0);
-        searches[0].registry = &*second_registry_;
-        searches[0].timeline = &*second_timeline_;
-      }
+      if (searches[1].registry == &registry_) use_second_states(searches[0]);
       searches[0].eager_ends = EagerEnds();
       searches[0].steps = searches[1].steps;
       begin_search(searches[0]);
