@@ -90,6 +90,9 @@ absl::StatusOr<std::unique_ptr<Server>> Server::Start(
   grpc::reflection::InitProtoReflectionServerBuilderPlugin();
   grpc::ServerBuilder builder;
   builder.AddListeningPort(options.grpc_address, credentials, &server->grpc_port_);
+  // gRPC binds with SO_REUSEPORT by default: a second server on a taken port
+  // would start and silently take a share of the first one's connections.
+  builder.AddChannelArgument(GRPC_ARG_ALLOW_REUSEPORT, 0);
   builder.SetMaxReceiveMessageSize(static_cast<int>(options.max_request_bytes));
   grpc::ResourceQuota quota("seaplan-server");
   // Streams hold a thread each in the sync server; leave room beyond the

@@ -6,6 +6,7 @@
 #include <openssl/err.h>
 #include <openssl/ssl.h>
 #include <openssl/x509.h>
+#include <sys/socket.h>
 
 #include <charconv>
 #include <condition_variable>
@@ -259,6 +260,13 @@ HttpGateway::HttpGateway(ServiceCore& core, const Options& options)
   server_ = std::make_unique<GuardedHttpServer>(limits, tls);
   if (tls != nullptr) SSL_CTX_free(tls);  // the server holds its own reference
   server_->set_payload_max_length(options_.max_body_bytes);
+  // httplib binds with SO_REUSEPORT by default: a second server on a taken
+  // port would start and take a share of the first one's connections.
+  // SO_REUSEADDR alone still lets a restart bind while old connections linger.
+  server_->set_socket_options([](socket_t sock) {
+    const int yes = 1;
+    setsockopt(sock, SOL_SOCKET, SO_REUSEADDR, &yes, sizeof(yes));
+  });
   server_->set_keep_alive_timeout(
       std::chrono::duration_cast<std::chrono::seconds>(limits.idle_timeout).count());
   server_->set_keep_alive_max_count(static_cast<std::size_t>(limits.max_requests_per_connection));

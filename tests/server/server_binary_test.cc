@@ -8,6 +8,7 @@
 // libgrpc++_reflection carries its own copy of the reflection protos, which
 // would clash with the client stubs of seaplan_grpc_std_protos.
 #include <arpa/inet.h>
+#include <fcntl.h>
 #include <grpcpp/grpcpp.h>
 #include <gtest/gtest.h>
 #include <httplib.h>
@@ -28,6 +29,7 @@
 #include <functional>
 #include <memory>
 #include <set>
+#include <sstream>
 #include <thread>
 #include <vector>
 
@@ -74,12 +76,21 @@ void SetDeadline(grpc::ClientContext* ctx, int ms) {
 // A child process that is killed (SIGKILL) in the destructor if still running.
 class Child {
  public:
-  explicit Child(const std::vector<std::string>& argv) {
+  // `output`: when not empty, the file that gets the child's stdout and stderr.
+  explicit Child(const std::vector<std::string>& argv, const std::filesystem::path& output = {}) {
     std::vector<char*> args;
     args.reserve(argv.size() + 1);
     for (const auto& a : argv) args.push_back(const_cast<char*>(a.c_str()));
     args.push_back(nullptr);
-    EXPECT_EQ(posix_spawn(&pid_, args[0], nullptr, nullptr, args.data(), environ), 0) << argv[0];
+    posix_spawn_file_actions_t actions;
+    posix_spawn_file_actions_init(&actions);
+    if (!output.empty()) {
+      posix_spawn_file_actions_addopen(&actions, 1, output.c_str(), O_WRONLY | O_CREAT | O_TRUNC,
+                                       0644);
+      posix_spawn_file_actions_adddup2(&actions, 1, 2);
+    }
+    EXPECT_EQ(posix_spawn(&pid_, args[0], &actions, nullptr, args.data(), environ), 0) << argv[0];
+    posix_spawn_file_actions_destroy(&actions);
   }
   ~Child() {
     if (pid_ > 0) {
@@ -227,6 +238,58 @@ TEST(ServerBinaryTest, ServesBothTransportsAndShutsDownCleanlyOnSigterm) {
   ASSERT_TRUE(store.ok()) << store.status();
   EXPECT_TRUE((*store)->CheckIntegrity().ok());
   EXPECT_EQ(*(*store)->SchemaVersion(), storage::LatestSchemaVersion());
+}
+
+// A second server on a port of a running one refuses to start, with an
+// error that names the address, instead of taking a share of the first
+// one's connections (gRPC and httplib bind with SO_REUSEPORT unless told
+// not to).
+TEST(ServerBinaryTest, ASecondServerOnATakenPortExitsWithAnError) {
+  const std::filesystem::path binary = seaplan::testing::BinDir() / "seaplan-server";
+  if (!std::filesystem::exists(binary)) GTEST_SKIP() << binary << " not built";
+  TempDir dir;
+  const auto port_file = dir.path() / "ports";
+  Child first({binary.string(), "--grpc-addr", "127.0.0.1:0", "--http-addr", "127.0.0.1:0",
+               "--data-dir", (dir.path() / "data-1").string(), "--port-file", port_file.string(),
+               "--log-level", "warn", "--planning-threads", "1"});
+  int grpc_port = 0, http_port = 0;
+  ASSERT_NO_FATAL_FAILURE(WaitForPorts(first, port_file, &grpc_port, &http_port));
+  ASSERT_GT(grpc_port, 0) << "no port file";
+
+  const std::string taken = "127.0.0.1:" + std::to_string(grpc_port);
+  const std::string taken_http = "127.0.0.1:" + std::to_string(http_port);
+  // Starts a second server on these addresses; returns what it printed.
+  auto second_fails = [&](const std::string& grpc_addr, const std::string& http_addr) {
+    const auto output = dir.path() / "second.log";
+    Child second(
+        {binary.string(), "--grpc-addr", grpc_addr, "--http-addr", http_addr, "--data-dir",
+         (dir.path() / "data-2").string(), "--log-level", "warn", "--planning-threads", "1"},
+        output);
+    const int status = second.Wait(std::chrono::seconds(20));
+    EXPECT_NE(status, -1) << "the second server on " << grpc_addr << " and " << http_addr
+                          << " is still running";
+    EXPECT_TRUE(status != -1 && WIFEXITED(status) && WEXITSTATUS(status) != 0) << status;
+    std::stringstream log;
+    log << std::ifstream(output).rdbuf();
+    return log.str();
+  };
+  std::string log = second_fails(taken, "127.0.0.1:0");
+  EXPECT_NE(log.find("gRPC: cannot listen on " + taken), std::string::npos) << log;
+  log = second_fails("127.0.0.1:0", taken_http);
+  EXPECT_NE(log.find("HTTP: cannot bind " + taken_http), std::string::npos) << log;
+
+  // The first server still answers on its port.
+  auto channel = grpc::CreateChannel(taken, grpc::InsecureChannelCredentials());
+  grpc::ClientContext ctx;
+  SetDeadline(&ctx, 5000);
+  grpc::health::v1::HealthCheckRequest req;
+  grpc::health::v1::HealthCheckResponse resp;
+  ASSERT_TRUE(grpc::health::v1::Health::NewStub(channel)->Check(&ctx, req, &resp).ok());
+  EXPECT_EQ(resp.status(), grpc::health::v1::HealthCheckResponse::SERVING);
+  httplib::Client http("127.0.0.1", http_port);
+  auto res = http.Get("/healthz");
+  ASSERT_TRUE(res);
+  EXPECT_EQ(res->status, 200);
 }
 
 // Servers started at once on one database, `rounds` times on a fresh one:
