@@ -73,55 +73,6 @@ Transitions::Transitions(const SnapTask& task, int max_concurrent_actions, doubl
       by_first_fact_[key].push_back(a);
     }
   }
-  const auto num_actions = static_cast<std::size_t>(task.num_actions());
-  end_clears_.resize(num_actions);
-  end_sets_.resize(num_actions);
-  invariant_true_.resize(num_actions);
-  invariant_false_.resize(num_actions);
-  auto sorted = [](std::vector<task::FactId> v) {
-    std::sort(v.begin(), v.end());
-    v.erase(std::unique(v.begin(), v.end()), v.end());
-    return v;
-  };
-  for (std::size_t a = 0; a < num_actions; ++a) {
-    const auto& action = task.task().actions[a];
-    if (!action.is_durative) continue;
-    end_sets_[a] = sorted(action.end_effects.add);
-    // A fact some effect may add back (adds come after deletes) is not
-    // certainly false after the end.
-    std::vector<task::FactId> may_add = action.end_effects.add;
-    for (const auto& ce : action.end_effects.conditional)
-      may_add.insert(may_add.end(), ce.add.begin(), ce.add.end());
-    may_add = sorted(std::move(may_add));
-    for (auto f : sorted(action.end_effects.del)) {
-      if (!std::binary_search(may_add.begin(), may_add.end(), f)) end_clears_[a].push_back(f);
-    }
-    invariant_true_[a] = sorted(action.over_all.positive);
-    invariant_false_[a] = sorted(action.over_all.negative);
-  }
-}
-
-namespace {
-bool SortedIntersect(const std::vector<task::FactId>& a, const std::vector<task::FactId>& b) {
-  auto i = a.begin();
-  auto j = b.begin();
-  while (i != a.end() && j != b.end()) {
-    if (*i < *j) {
-      ++i;
-    } else if (*j < *i) {
-      ++j;
-    } else {
-      return true;
-    }
-  }
-  return false;
-}
-}  // namespace
-
-bool Transitions::EndBreaksInvariant(task::ActionId x, task::ActionId y) const {
-  const auto xi = static_cast<std::size_t>(x), yi = static_cast<std::size_t>(y);
-  return SortedIntersect(end_clears_[xi], invariant_true_[yi]) ||
-         SortedIntersect(end_sets_[xi], invariant_false_[yi]);
 }
 
 void Transitions::Candidates(const StateData& state, std::vector<Event>* out) const {
@@ -256,8 +207,12 @@ bool Transitions::Apply(const StateData& state, Event* event, StateData* next) c
     ApplyEffects(action.start_effects, state, min_d, next);
     if (action.is_durative) {
       if (!ConditionHolds(action.over_all, *next, min_d)) return false;
-      for (const auto& r : state.running) {
-        if (EndBreaksInvariant(a, r.action) && EndBreaksInvariant(r.action, a)) return false;
+      const InvariantEnvelopes& envelopes = task_.envelopes();
+      if (envelopes.IsEnvelope(a)) {
+        for (const auto& r : state.running) {
+          if (envelopes.MustEndWithin(r.action, a) && envelopes.MustEndWithin(a, r.action))
+            return false;
+        }
       }
       const auto offset = running_it - state.running.begin();
       next->running.insert(next->running.begin() + offset, RunningAction{a, min_d, max_d});

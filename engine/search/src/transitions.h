@@ -10,10 +10,11 @@
 // Effects of one event read the state before it (deletes, then adds).
 //
 // A start is also refused when it would run beside an action whose end and
-// its own end each break an invariant of the other (a hoist's crate dropped
-// and loaded at once: either end deletes the lifting the other needs over
-// all). Neither could ever end first, so every state below is a dead end
-// the delete relaxation does not see; no valid plan holds such a pair.
+// its own end each surely delete a fact the other needs over all (a hoist's
+// crate dropped and loaded at once: either end deletes the lifting the
+// other needs; InvariantEnvelopes::MustEndWithin both ways). Neither could
+// ever end first, so every state below is a dead end the delete relaxation
+// does not see; no valid plan holds such a pair.
 #pragma once
 
 #include <vector>
@@ -45,19 +46,12 @@ class Transitions {
   void ApplyEffects(const task::Effects& effects, const StateData& before, double duration,
                     StateData* next) const;
   bool RunningInvariantsHold(const StateData& state) const;
-  // True when the end of `x` makes an over-all condition of `y` false
-  // (unconditionally), so that `x` cannot end while `y` runs.
-  bool EndBreaksInvariant(task::ActionId x, task::ActionId y) const;
 
   const SnapTask& task_;
   int max_concurrent_;
   double epsilon_s_;
   std::vector<std::vector<task::ActionId>> by_first_fact_;
   std::vector<task::ActionId> without_fact_pre_;
-  // Per action, sorted: the facts its end makes false (deleted, not added
-  // back) and true, and its positive and negative over-all conditions.
-  std::vector<std::vector<task::FactId>> end_clears_, end_sets_;
-  std::vector<std::vector<task::FactId>> invariant_true_, invariant_false_;
   mutable std::vector<double> scratch_values_;
 };
 
