@@ -14,7 +14,8 @@
 // crate dropped and loaded at once: either end deletes the lifting the
 // other needs; InvariantEnvelopes::MustEndWithin both ways). Neither could
 // ever end first, so every state below is a dead end the delete relaxation
-// does not see; no valid plan holds such a pair.
+// does not see. No plan this search can build holds such a pair (its events
+// are apart, so the two ends cannot happen at one instant).
 #pragma once
 
 #include <vector>
