@@ -86,6 +86,21 @@ TEST(CliInProcessTest, PlanPrintsAValidIpcPlan) {
   EXPECT_NE(check.out.find("Plan valid"), std::string::npos);
 }
 
+// A task whose goal holds at the start has the empty plan: -o writes it,
+// over whatever the file held, and the validator accepts it.
+TEST(CliInProcessTest, AnEmptyPlanIsWrittenOverAnOldFile) {
+  const auto plan_file = WriteScratch("empty.plan", "0.000: (move-ship ship0 port-a port-b) [1]\n");
+  const auto problem = WriteScratch("at-goal.pddl", R"((define (problem at-goal) (:domain fjord)
+  (:objects ship0 - ship port-a - port)
+  (:init (at ship0 port-a))
+  (:goal (at ship0 port-a))))");
+  auto plan = RunSeaplan({"plan", Example("domain.pddl"), problem, "-o", plan_file});
+  ASSERT_EQ(plan.exit_code, 0) << plan.out << plan.err;
+  EXPECT_EQ(ReadFile(plan_file).find("move-ship"), std::string::npos) << ReadFile(plan_file);
+  auto check = RunSeaplan({"validate", Example("domain.pddl"), problem, plan_file});
+  EXPECT_EQ(check.exit_code, 0) << check.out << check.err;
+}
+
 // --max-expansions reaches the planner: 5 expansions find no plan for case
 // A (the search needs more), and the status names the limit.
 TEST(CliInProcessTest, MaxExpansionsLimitsTheSearch) {

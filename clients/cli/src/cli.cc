@@ -166,7 +166,11 @@ int RunPlan(const GlobalOptions& options, const PlanArgs& args) {
   if (!args.stream || !options.json) {
     PrintJsonOr(options, response, [&] { PrintPlanResponse(std::cout, response); });
   }
-  if (!args.output.empty() && response.plan_size() > 0) {
+  // A solved task's plan is written even when empty (its goal holds at the
+  // start): an old file left in its place would be taken for it.
+  const bool solved =
+      response.status() == v1::SOLVED_SATISFICING || response.status() == v1::SOLVED_OPTIMALLY;
+  if (!args.output.empty() && solved) {
     if (auto s = WriteFile(args.output, FormatPlanText(response)); !s.ok())
       return ReportError(std::cerr, s);
   }
