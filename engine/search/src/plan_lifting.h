@@ -21,6 +21,7 @@
 // schedule. The caller validates it and keeps it only if valid and not longer.
 #pragma once
 
+#include <cstddef>
 #include <optional>
 #include <span>
 #include <vector>
@@ -30,13 +31,16 @@
 
 namespace seaplan::search {
 
+// Pairs of events looked at over a whole plan (only pairs that share a fact
+// or a variable are), beyond which lifting gives up: about a second.
+inline constexpr std::size_t kMaxLiftPairs = 20'000'000;
+
 // `times[i]` is the scheduled time of `events[i]` (a valid schedule).
 // Returns the rescheduled times (same indexing), or nullopt when the network
-// is inconsistent (it cannot be for a valid input; the caller keeps `times`).
-std::optional<std::vector<double>> LiftAndReschedule(const SnapTask& task,
-                                                     std::span<const Event> events,
-                                                     std::span<const double> times,
-                                                     double epsilon_s,
-                                                     bool bound_concurrency = false);
+// is inconsistent (it cannot be for a valid input) or the plan needs more
+// than `max_pairs` pairs looked at; the caller then keeps `times`.
+std::optional<std::vector<double>> LiftAndReschedule(
+    const SnapTask& task, std::span<const Event> events, std::span<const double> times,
+    double epsilon_s, bool bound_concurrency = false, std::size_t max_pairs = kMaxLiftPairs);
 
 }  // namespace seaplan::search

@@ -71,6 +71,13 @@ validate::Plan ToPlan(const task::GroundTask& task, const std::vector<Event>& ev
   return plan;
 }
 
+// a from 0 to 10, then b, then c, each epsilon after the last one's end.
+void SequencedSteps(const Fixture& f, std::vector<Event>& events, std::vector<double>& times) {
+  AddStep(f.Action("work-a"), 0, 10, events, times);
+  AddStep(f.Action("work-b"), 10.001, 5, events, times);
+  AddStep(f.Action("work-c"), 15.002, 3, events, times);
+}
+
 TEST(PlanLiftingTest, SequencedIndependentActionsRunInParallel) {
   const Fixture f = Load();
   ASSERT_TRUE(f.task);
@@ -78,9 +85,7 @@ TEST(PlanLiftingTest, SequencedIndependentActionsRunInParallel) {
   std::vector<Event> events;
   std::vector<double> times;
   // As a total-order schedule would have them: a, then b and c after it.
-  AddStep(f.Action("work-a"), 0, 10, events, times);
-  AddStep(f.Action("work-b"), 10.001, 5, events, times);
-  AddStep(f.Action("work-c"), 15.002, 3, events, times);
+  SequencedSteps(f, events, times);
   const PlanValidator validator(*f.task, 0.001);
   const auto before = validator.Validate(ToPlan(*f.task, events, times));
   ASSERT_TRUE(before.valid) << before.ToString();
@@ -116,6 +121,31 @@ TEST(PlanLiftingTest, TightPlanStaysValidAndNoLonger) {
   EXPECT_LE(after.makespan_s, before.makespan_s + 1e-9);
   // c still needs a's result: never moved before a's end + epsilon.
   EXPECT_GE((*lifted)[2], (*lifted)[1] + 0.001 - 1e-9);
+}
+
+TEST(PlanLiftingTest, WithTheConcurrencyBoundEveryStartStaysAfterTheEndsBeforeIt) {
+  const Fixture f = Load();
+  ASSERT_TRUE(f.task);
+  const SnapTask snap(*f.task);
+  std::vector<Event> events;
+  std::vector<double> times;
+  SequencedSteps(f, events, times);
+  const auto lifted = LiftAndReschedule(snap, events, times, 0.001, /*bound_concurrency=*/true);
+  ASSERT_TRUE(lifted.has_value());
+  // b shares nothing with a, but starts after a's end, and c after b's.
+  EXPECT_NEAR((*lifted)[2], (*lifted)[1] + 0.001, 1e-9);
+  EXPECT_NEAR((*lifted)[4], (*lifted)[3] + 0.001, 1e-9);
+}
+
+TEST(PlanLiftingTest, APlanNeedingMorePairsThanTheBoundIsLeftAsFound) {
+  const Fixture f = Load();
+  ASSERT_TRUE(f.task);
+  const SnapTask snap(*f.task);
+  std::vector<Event> events;
+  std::vector<double> times;
+  SequencedSteps(f, events, times);
+  EXPECT_FALSE(LiftAndReschedule(snap, events, times, 0.001, false, /*max_pairs=*/1).has_value());
+  EXPECT_TRUE(LiftAndReschedule(snap, events, times, 0.001, false, /*max_pairs=*/100).has_value());
 }
 
 }  // namespace
