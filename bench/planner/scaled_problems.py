@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Problems larger than the shared benchmark's p01-p05, for seven of its domains.
+"""Problems larger than the shared benchmark's p01-p05, for eight of its domains.
 
 The shared set holds only the first five problems of each domain; the
 larger ones a planner is judged on are not here. This writes random
@@ -43,6 +43,11 @@ instances"):
       there and the trucks and packages at the first, as its p01-p05 do
       (2-4 drivers, 2-3 trucks and packages, 2-3 sites), other seeds at
       random sites.
+  turnandopen ROBOTS ROOMS BALLS SEED  turnandopen-2011's domain: ROOMS
+      rooms in a row, a closed door between neighbours (a robot turns the
+      knob with one gripper while it opens the door with the other),
+      robots with two grippers in random rooms, balls in random rooms to
+      carry to random rooms (its p01-p05: 2 robots, 8-9 rooms, 10-18 balls).
 
 The problem goes to standard output; the domain is the shared one, e.g.
   bench/planner/scaled_problems.py floortile 4 4 2 1 > /tmp/ft-4x4.pddl
@@ -402,6 +407,32 @@ def driverlogshift(drivers, trucks_n, packages, locations, rng, seed):
     return out
 
 
+def turnandopen(robots, rooms, balls, rng):
+    room = [f"room{i + 1}" for i in range(rooms)]
+    door = [f"door{i + 1}" for i in range(rooms - 1)]
+    robot = [f"robot{i + 1}" for i in range(robots)]
+    ball = [f"ball{i + 1}" for i in range(balls)]
+    grippers = [g for i in range(robots) for g in (f"rgripper{i + 1}", f"lgripper{i + 1}")]
+    out = [f"(define (problem turnandopen-{robots}-{rooms}-{balls})",
+           " (:domain turnandopen-strips)",
+           " (:objects " + " ".join(robot) + " - robot",
+           "   " + " ".join(grippers) + " - gripper",
+           "   " + " ".join(room) + " - room"]
+    if door:
+        out.append("   " + " ".join(door) + " - door")
+    out += ["   " + " ".join(ball) + " - object)", " (:init"]
+    out += [f"   (closed {d})" for d in door]
+    for i, d in enumerate(door):
+        out.append(f"   (connected {room[i]} {room[i + 1]} {d}) (connected {room[i + 1]} {room[i]} {d})")
+    for i, r in enumerate(robot):
+        out.append(f"   (at-robby {r} {rng.choice(room)}) (free {r} rgripper{i + 1}) "
+                   f"(free {r} lgripper{i + 1})")
+    out += [f"   (at {b} {rng.choice(room)})" for b in ball]
+    out += [" )", " (:goal (and " + " ".join(f"(at {b} {rng.choice(room)})" for b in ball) + "))",
+            " (:metric minimize (total-time)))"]
+    return out
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     sub = parser.add_subparsers(dest="domain", required=True)
@@ -415,6 +446,7 @@ def main():
                                             "crates"]),
         "driverlogshift": ("driverlogshift-upf's domain", ["drivers", "trucks", "packages",
                                                            "locations"]),
+        "turnandopen": ("turnandopen-2011's domain", ["robots", "rooms", "balls"]),
     }.items():
         command = sub.add_parser(name, help=domain)
         for param in params + ["seed"]:
@@ -445,6 +477,10 @@ def main():
             parser.error("driverlogshift: drivers, trucks, packages >= 1 and locations >= 2")
         lines = driverlogshift(args.drivers, args.trucks, args.packages, args.locations, rng,
                                args.seed)
+    elif args.domain == "turnandopen":
+        if min(args.robots, args.rooms, args.balls) < 1:
+            parser.error("turnandopen: robots, rooms and balls >= 1")
+        lines = turnandopen(args.robots, args.rooms, args.balls, rng)
     elif args.domain == "depots":
         places = args.depots + args.distributors
         if args.depots < 1 or args.trucks < 1 or args.crates < 1 or args.distributors < 0 or \

@@ -45,6 +45,8 @@ solve satellite-tw-til satellite-tw 2 6 4 2 1
 solve depots-time depots 1 1 1 2 2 3 1
 solve depots-time depots 1 0 1 2 1 3 1  # no distributor: one place
 solve driverlogshift-upf driverlogshift 2 2 2 2 1
+solve turnandopen-2011 turnandopen 1 3 3 1
+solve turnandopen-2011 turnandopen 2 1 2 1  # one room: no door
 generate "$work/seed1.pddl" floortile 2 3 2 1
 generate "$work/seed2.pddl" floortile 2 3 2 2
 cmp -s "$work/seed1.pddl" "$work/seed2.pddl" && fail "floortile: seeds 1 and 2 give the same problem"

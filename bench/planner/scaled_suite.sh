@@ -2,7 +2,7 @@
 # The generated instances of bench/planner/README.md's sections "Larger
 # generated instances: satellite-tw-til", "Helpful events on time", "A run
 # of goals ordered to the end: floortile", "Stacks from the right end:
-# depots" and "driverlogshift past p05", run
+# depots", "driverlogshift past p05" and "Long plans: turnandopen", run
 # with one executable: for each, `seaplan plan` (first plan, --no-anytime)
 # as a whole process under a CPU limit, then `seaplan validate` of the same
 # executable on the plan. One line per instance, then how many were solved
@@ -15,7 +15,8 @@
 #          trucks-time-til's domain), floortile (22 of floortile-2011's,
 #          4 x 3 to 8 x 8 tiles, 2-4 robots), depots (18 of depots-time's,
 #          10-20 crates), driverlogshift (8 of driverlogshift-upf's, 4-6
-#          drivers, 3-5 sites)
+#          drivers, 3-5 sites), turnandopen (12 of turnandopen-2011's,
+#          2 robots, 9-12 rooms, 20-30 balls)
 #   --quick: the suite's first two instances only, and exit 1 unless both
 #            get a valid plan (the smoke test)
 #   The shared domains are read from $SEAPLAN_SHARED/bench (default
@@ -23,7 +24,7 @@
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 usage() {
-  sed -n '12,22p' "$0" | sed 's/^# \{0,1\}//' >&2
+  sed -n '12,23p' "$0" | sed 's/^# \{0,1\}//' >&2
   exit 2
 }
 [[ $# -ge 2 ]] || usage
@@ -63,6 +64,9 @@ case $suite in
   driverlogshift)
     domain=driverlogshift-upf
     sets=("4 3 3 3|1 2 3" "5 3 4 4|1 2" "5 4 4 4|1" "6 4 5 4|1" "6 5 6 5|1") ;;
+  turnandopen)
+    domain=turnandopen-2011
+    sets=("2 9 20|1 2 3" "2 10 22|1 2" "2 10 24|1 2" "2 11 26|1 2" "2 11 28|1 2" "2 12 30|1") ;;
   *) echo "scaled_suite: unknown suite $suite" >&2; usage ;;
 esac
 generator=${suite%-large}
