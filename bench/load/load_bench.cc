@@ -88,7 +88,9 @@ class Recorder {
       ++t.exhausted;
     } else {
       ++t.errors;
-      ++t.error_kinds[std::to_string(st.error_code()) + " " + st.error_message().substr(0, 80)];
+      // 200 characters: a connection failure names its cause at the end
+      // ("failed to connect to all addresses; last error: ...").
+      ++t.error_kinds[std::to_string(st.error_code()) + " " + st.error_message().substr(0, 200)];
     }
   }
   std::map<std::string, Tally> Take() {

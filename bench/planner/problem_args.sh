@@ -31,10 +31,11 @@ domain_of() {
 }
 
 # "yes" when $work/plan holds a plan that `EXE validate` accepts for DOMAIN
-# and PROBLEM, "NO" when it rejects it, "-" when there is no plan.
+# and PROBLEM, "NO" when it rejects it, "-" when there is no plan (the
+# callers remove the file first; an empty file is the empty plan).
 plan_validity() {
   local exe=$1 domain=$2 problem=$3
-  if [[ ! -s $work/plan ]]; then
+  if [[ ! -f $work/plan ]]; then
     echo -
   elif "$exe" validate "$domain" "$problem" "$work/plan" >/dev/null 2>&1; then
     echo yes

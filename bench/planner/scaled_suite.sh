@@ -87,7 +87,7 @@ for set in "${sets[@]}"; do
     status=$(sed -n 's/^; status: //p' "$work/out" | head -1)
     first=$(sed -n 's/.*first plan \([0-9.]*\) s.*/\1/p' "$work/out" | head -1)
     valid=-
-    if [[ -s $work/plan && $status == SOLVED* ]]; then
+    if [[ -f $work/plan && $status == SOLVED* ]]; then  # empty: the empty plan
       if "$seaplan" validate "$bench/$domain/domain.pddl" "$work/p.pddl" "$work/plan" >/dev/null 2>&1; then
         valid=yes solved=$((solved + 1))
       else
