@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <memory>
 #include <string>
 
 #include "plan_builder.h"
@@ -71,26 +72,30 @@ validate::Plan ToPlan(const task::GroundTask& task, const std::vector<Event>& ev
   return plan;
 }
 
-// a from 0 to 10, then b, then c, each epsilon after the last one's end.
-void SequencedSteps(const Fixture& f, std::vector<Event>& events, std::vector<double>& times) {
-  AddStep(f.Action("work-a"), 0, 10, events, times);
-  AddStep(f.Action("work-b"), 10.001, 5, events, times);
-  AddStep(f.Action("work-c"), 15.002, 3, events, times);
-}
-
-TEST(PlanLiftingTest, SequencedIndependentActionsRunInParallel) {
-  const Fixture f = Load();
-  ASSERT_TRUE(f.task);
-  const SnapTask snap(*f.task);
+// a from 0 to 10, then b, then c, each epsilon after the last one's end,
+// as a total-order schedule would have them.
+class SequencedStepsTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    f = Load();
+    ASSERT_TRUE(f.task);
+    snap = std::make_unique<SnapTask>(*f.task);
+    AddStep(f.Action("work-a"), 0, 10, events, times);
+    AddStep(f.Action("work-b"), 10.001, 5, events, times);
+    AddStep(f.Action("work-c"), 15.002, 3, events, times);
+  }
+  Fixture f;
+  std::unique_ptr<SnapTask> snap;
   std::vector<Event> events;
   std::vector<double> times;
-  // As a total-order schedule would have them: a, then b and c after it.
-  SequencedSteps(f, events, times);
+};
+
+TEST_F(SequencedStepsTest, IndependentActionsRunInParallel) {
   const PlanValidator validator(*f.task, 0.001);
   const auto before = validator.Validate(ToPlan(*f.task, events, times));
   ASSERT_TRUE(before.valid) << before.ToString();
 
-  const auto lifted = LiftAndReschedule(snap, events, times, 0.001);
+  const auto lifted = LiftAndReschedule(*snap, events, times, 0.001);
   ASSERT_TRUE(lifted.has_value());
   // b shares nothing with a but what both only read or both add: it starts at 0.
   EXPECT_DOUBLE_EQ((*lifted)[2], 0.0);
@@ -123,29 +128,17 @@ TEST(PlanLiftingTest, TightPlanStaysValidAndNoLonger) {
   EXPECT_GE((*lifted)[2], (*lifted)[1] + 0.001 - 1e-9);
 }
 
-TEST(PlanLiftingTest, WithTheConcurrencyBoundEveryStartStaysAfterTheEndsBeforeIt) {
-  const Fixture f = Load();
-  ASSERT_TRUE(f.task);
-  const SnapTask snap(*f.task);
-  std::vector<Event> events;
-  std::vector<double> times;
-  SequencedSteps(f, events, times);
-  const auto lifted = LiftAndReschedule(snap, events, times, 0.001, /*bound_concurrency=*/true);
+TEST_F(SequencedStepsTest, WithTheConcurrencyBoundEveryStartStaysAfterTheEndsBeforeIt) {
+  const auto lifted = LiftAndReschedule(*snap, events, times, 0.001, /*bound_concurrency=*/true);
   ASSERT_TRUE(lifted.has_value());
   // b shares nothing with a, but starts after a's end, and c after b's.
   EXPECT_NEAR((*lifted)[2], (*lifted)[1] + 0.001, 1e-9);
   EXPECT_NEAR((*lifted)[4], (*lifted)[3] + 0.001, 1e-9);
 }
 
-TEST(PlanLiftingTest, APlanNeedingMorePairsThanTheBoundIsLeftAsFound) {
-  const Fixture f = Load();
-  ASSERT_TRUE(f.task);
-  const SnapTask snap(*f.task);
-  std::vector<Event> events;
-  std::vector<double> times;
-  SequencedSteps(f, events, times);
-  EXPECT_FALSE(LiftAndReschedule(snap, events, times, 0.001, false, /*max_pairs=*/1).has_value());
-  EXPECT_TRUE(LiftAndReschedule(snap, events, times, 0.001, false, /*max_pairs=*/100).has_value());
+TEST_F(SequencedStepsTest, APlanNeedingMorePairsThanTheBoundIsLeftAsFound) {
+  EXPECT_FALSE(LiftAndReschedule(*snap, events, times, 0.001, false, /*max_pairs=*/1).has_value());
+  EXPECT_TRUE(LiftAndReschedule(*snap, events, times, 0.001, false, /*max_pairs=*/100).has_value());
 }
 
 }  // namespace
