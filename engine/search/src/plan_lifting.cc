@@ -58,6 +58,18 @@ Footprint MakeFootprint(const SnapTask& task, const Event& event) {
   return fp;
 }
 
+// Calls on_fact(f) for every fact and on_var(v) for every variable the
+// event touches, in any role (repeats possible).
+template <typename OnFact, typename OnVar>
+void ForEachTouched(const Footprint& fp, OnFact&& on_fact, OnVar&& on_var) {
+  for (const auto* facts : {&fp.adds, &fp.dels, &fp.reads, &fp.inv}) {
+    for (auto f : *facts) on_fact(static_cast<std::size_t>(f));
+  }
+  for (const auto* vars : {&fp.num_reads, &fp.num_commute, &fp.num_set, &fp.num_inv}) {
+    for (auto v : *vars) on_var(static_cast<std::size_t>(v));
+  }
+}
+
 bool Meets(const std::vector<std::int32_t>& a, const std::vector<std::int32_t>& b) {
   auto i = a.begin();
   auto j = b.begin();
@@ -121,15 +133,10 @@ std::optional<std::vector<double>> LiftAndReschedule(const SnapTask& task,
   std::vector<std::vector<std::int32_t>> by_fact(static_cast<std::size_t>(task.num_facts()));
   std::vector<std::vector<std::int32_t>> by_var(static_cast<std::size_t>(task.num_vars()));
   auto index = [&](std::size_t i) {
-    const Footprint& f = fp[i];
-    for (const auto* facts : {&f.adds, &f.dels, &f.reads, &f.inv}) {
-      for (auto x : *facts)
-        by_fact[static_cast<std::size_t>(x)].push_back(static_cast<std::int32_t>(i));
-    }
-    for (const auto* vars : {&f.num_reads, &f.num_commute, &f.num_set, &f.num_inv}) {
-      for (auto x : *vars)
-        by_var[static_cast<std::size_t>(x)].push_back(static_cast<std::int32_t>(i));
-    }
+    const auto id = static_cast<std::int32_t>(i);
+    ForEachTouched(
+        fp[i], [&](std::size_t f) { by_fact[f].push_back(id); },
+        [&](std::size_t v) { by_var[v].push_back(id); });
   };
   for (std::size_t i = 0; i < n; ++i) {
     if (events[i].is_til()) {
@@ -159,12 +166,8 @@ std::optional<std::vector<double>> LiftAndReschedule(const SnapTask& task,
         candidates.push_back(hi);
       }
     };
-    for (const auto* facts : {&b.adds, &b.dels, &b.reads, &b.inv}) {
-      for (auto x : *facts) collect(by_fact[static_cast<std::size_t>(x)]);
-    }
-    for (const auto* vars : {&b.num_reads, &b.num_commute, &b.num_set, &b.num_inv}) {
-      for (auto x : *vars) collect(by_var[static_cast<std::size_t>(x)]);
-    }
+    ForEachTouched(
+        b, [&](std::size_t f) { collect(by_fact[f]); }, [&](std::size_t v) { collect(by_var[v]); });
     const bool is_end = task.snap(events[j].snap).is_end;
     if (bound_concurrency && !is_end) {
       for (auto h : placed_ends) {

@@ -197,6 +197,14 @@ bool Transitions::Apply(const StateData& state, Event* event, StateData* next) c
   const bool is_running = running_it != state.running.end() && running_it->action == a;
   if (!snap.is_end) {
     if (is_running) return false;  // no self-overlap
+    // Refused before the state is copied: it depends on the running set only.
+    const InvariantEnvelopes& envelopes = task_.envelopes();
+    if (envelopes.IsEnvelope(a)) {
+      for (const auto& r : state.running) {
+        if (envelopes.MustEndWithin(r.action, a) && envelopes.MustEndWithin(a, r.action))
+          return false;
+      }
+    }
     if (!ConditionHolds(action.at_start, state)) return false;
     double min_d = 0.0, max_d = 0.0;
     if (action.is_durative && !DurationWindow(a, state, &min_d, &max_d)) return false;
@@ -207,13 +215,6 @@ bool Transitions::Apply(const StateData& state, Event* event, StateData* next) c
     ApplyEffects(action.start_effects, state, min_d, next);
     if (action.is_durative) {
       if (!ConditionHolds(action.over_all, *next, min_d)) return false;
-      const InvariantEnvelopes& envelopes = task_.envelopes();
-      if (envelopes.IsEnvelope(a)) {
-        for (const auto& r : state.running) {
-          if (envelopes.MustEndWithin(r.action, a) && envelopes.MustEndWithin(a, r.action))
-            return false;
-        }
-      }
       const auto offset = running_it - state.running.begin();
       next->running.insert(next->running.begin() + offset, RunningAction{a, min_d, max_d});
     }
