@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Problems larger than the shared benchmark's p01-p05, for eight of its domains.
+"""Problems larger than the shared benchmark's p01-p05, for nine of its domains.
 
 The shared set holds only the first five problems of each domain; the
 larger ones a planner is judged on are not here. This writes random
@@ -48,6 +48,12 @@ instances"):
       knob with one gripper while it opens the door with the other),
       robots with two grippers in random rooms, balls in random rooms to
       carry to random rooms (its p01-p05: 2 robots, 8-9 rooms, 10-18 balls).
+  parcprinter PRINTER SHEETS SEED  parcprinter-2011's domains: a print
+      job of SHEETS one-sided Letter sheets, each with its own image, black
+      or colour at random, to stack in order in the output tray. PRINTER
+      is the domain the problem names: upp (the printer of its p01-p03,
+      domain-1.pddl, 8-10 sheets) or eTipp (the larger printer of p04-p05,
+      domain-4.pddl, 6-7 sheets).
 
 The problem goes to standard output; the domain is the shared one, e.g.
   bench/planner/scaled_problems.py floortile 4 4 2 1 > /tmp/ft-4x4.pddl
@@ -433,6 +439,33 @@ def turnandopen(robots, rooms, balls, rng):
     return out
 
 
+def parcprinter(printer, sheets, rng):
+    sheet = [f"sheet{i + 1}" for i in range(sheets)]
+    image = [f"image-{i + 1}" for i in range(sheets)]
+    color = [rng.choice(("Black", "Color")) for _ in range(sheets)]
+    tray = "Finisher1_Tray" if printer == "upp" else "sys_OutputTray"
+    out = [f"(define (problem PrintJob-{sheets})", f" (:domain {printer})",
+           " (:objects dummy-sheet " + " ".join(sheet) + " - sheet_t",
+           "   " + " ".join(image) + " - image_t)",
+           " (:init (Uninitialized) (Oppositeside Front Back) (Oppositeside Back Front)",
+           "   (Location dummy-sheet Some_Finisher_Tray)"]
+    for i, s in enumerate(sheet):
+        below = sheet[i - 1] if i > 0 else "dummy-sheet"
+        out.append(f"   (Prevsheet {s} {below}) (Sheetsize {s} Letter) "
+                   f"(Location {s} Some_Feeder_Tray) (Imagecolor {image[i]} {color[i]})")
+        out.append("   " + " ".join(f"(Notprintedwith {s} {side} {c})" for side in ("Front", "Back")
+                                    for c in ("Black", "Color")))
+    out += [" )", " (:goal (and"]
+    for i, s in enumerate(sheet):
+        # The front is printed with the image's own colour only; the back stays blank.
+        other = "Color" if color[i] == "Black" else "Black"
+        out.append(f"   (Hasimage {s} Front {image[i]}) (Notprintedwith {s} Front {other}) "
+                   f"(Notprintedwith {s} Back Black) (Notprintedwith {s} Back Color) "
+                   f"(Sideup {s} Front) (Stackedin {s} {tray})")
+    out += [" ))", " (:metric minimize (total-time)))"]
+    return out
+
+
 def main():
     parser = argparse.ArgumentParser(description=__doc__.splitlines()[0])
     sub = parser.add_subparsers(dest="domain", required=True)
@@ -447,8 +480,11 @@ def main():
         "driverlogshift": ("driverlogshift-upf's domain", ["drivers", "trucks", "packages",
                                                            "locations"]),
         "turnandopen": ("turnandopen-2011's domain", ["robots", "rooms", "balls"]),
+        "parcprinter": ("parcprinter-2011's domains", ["sheets"]),
     }.items():
         command = sub.add_parser(name, help=domain)
+        if name == "parcprinter":
+            command.add_argument("printer", choices=["upp", "eTipp"])
         for param in params + ["seed"]:
             command.add_argument(param, type=int)
     args = parser.parse_args()
@@ -481,6 +517,10 @@ def main():
         if min(args.robots, args.rooms, args.balls) < 1:
             parser.error("turnandopen: robots, rooms and balls >= 1")
         lines = turnandopen(args.robots, args.rooms, args.balls, rng)
+    elif args.domain == "parcprinter":
+        if args.sheets < 1:
+            parser.error("parcprinter: sheets >= 1")
+        lines = parcprinter(args.printer, args.sheets, rng)
     elif args.domain == "depots":
         places = args.depots + args.distributors
         if args.depots < 1 or args.trucks < 1 or args.crates < 1 or args.distributors < 0 or \

@@ -23,8 +23,9 @@ generate() {  # generate FILE ARGS...
   shift
   "$python" "$gen" "$@" >"$out" || fail "$*: the generator failed"
 }
-solve() {  # solve SHARED_DOMAIN_FOLDER GENERATOR_ARGS...
+solve() {  # solve SHARED_DOMAIN_FOLDER[/FILE.pddl] GENERATOR_ARGS...
   local domain=$bench/$1/domain.pddl
+  [[ $1 == *.pddl ]] && domain=$bench/$1
   shift
   generate "$work/p.pddl" "$@"
   generate "$work/again.pddl" "$@"
@@ -47,6 +48,8 @@ solve depots-time depots 1 0 1 2 1 3 1  # no distributor: one place
 solve driverlogshift-upf driverlogshift 2 2 2 2 1
 solve turnandopen-2011 turnandopen 1 3 3 1
 solve turnandopen-2011 turnandopen 2 1 2 1  # one room: no door
+solve parcprinter-2011/domain-1.pddl parcprinter upp 3 1
+solve parcprinter-2011/domain-4.pddl parcprinter eTipp 2 2
 generate "$work/seed1.pddl" floortile 2 3 2 1
 generate "$work/seed2.pddl" floortile 2 3 2 2
 cmp -s "$work/seed1.pddl" "$work/seed2.pddl" && fail "floortile: seeds 1 and 2 give the same problem"
@@ -68,12 +71,15 @@ cmp -s "$work/seed1.pddl" "$work/seed2.pddl" && fail "depots: seeds 1 and 2 give
 generate "$work/seed1.pddl" driverlogshift 3 2 3 3 1
 generate "$work/seed2.pddl" driverlogshift 3 2 3 3 2
 cmp -s "$work/seed1.pddl" "$work/seed2.pddl" && fail "driverlogshift: seeds 1 and 2 give the same problem"
+generate "$work/seed1.pddl" parcprinter upp 6 1
+generate "$work/seed2.pddl" parcprinter upp 6 2
+cmp -s "$work/seed1.pddl" "$work/seed2.pddl" && fail "parcprinter: seeds 1 and 2 give the same problem"
 for bad in "floortile 0 3 2 1" "floortile 1 1 2 1" "driverlog 3 0 5 1" "elevators 12 3 1" \
   "elevators 16 0 1" "trucks 1 1 3 2 1" "trucks 0 3 3 2 1" \
   "satellite-tw 0 6 4 2 1" "satellite-tw 2 1 4 2 1" "satellite-tw 2 6 4 0 1" \
   "satellite-tw 2 6 16 2 1" "depots 0 1 1 2 2 3 1" "depots 1 1 1 1 2 3 1" \
   "depots 1 1 0 2 2 3 1" "depots 1 1 1 2 1 3 1" "driverlogshift 2 2 2 1 1" \
-  "driverlogshift 0 2 2 2 1"; do
+  "driverlogshift 0 2 2 2 1" "turnandopen 0 3 3 1" "parcprinter upp 0 1" "parcprinter ipp 3 1"; do
   # shellcheck disable=SC2086  # the arguments split on purpose
   if "$python" "$gen" $bad >/dev/null 2>&1; then fail "accepted: $bad"; fi
 done

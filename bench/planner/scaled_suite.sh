@@ -16,7 +16,9 @@
 #          4 x 3 to 8 x 8 tiles, 2-4 robots), depots (18 of depots-time's,
 #          10-20 crates), driverlogshift (8 of driverlogshift-upf's, 4-6
 #          drivers, 3-5 sites), turnandopen (12 of turnandopen-2011's,
-#          2 robots, 9-12 rooms, 20-30 balls)
+#          2 robots, 9-12 rooms, 20-30 balls), parcprinter (14 of
+#          parcprinter-2011's two printers: 12-20 sheets on the printer of
+#          its p01-p03, 9-14 on the larger one of p04-p05)
 #   --quick: the suite's first two instances only, and exit 1 unless both
 #            get a valid plan (the smoke test)
 #   The shared domains are read from $SEAPLAN_SHARED/bench (default
@@ -24,7 +26,7 @@
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 usage() {
-  sed -n '12,23p' "$0" | sed 's/^# \{0,1\}//' >&2
+  sed -n '12,25p' "$0" | sed 's/^# \{0,1\}//' >&2
   exit 2
 }
 [[ $# -ge 2 ]] || usage
@@ -67,10 +69,26 @@ case $suite in
   turnandopen)
     domain=turnandopen-2011
     sets=("2 9 20|1 2 3" "2 10 22|1 2" "2 10 24|1 2" "2 11 26|1 2" "2 11 28|1 2" "2 12 30|1") ;;
+  parcprinter)
+    # A domain per printer: the generator's first argument names it.
+    domain=parcprinter-2011
+    sets=("upp 12|1 2" "upp 14|1 2" "upp 16|1 2" "upp 20|1" "eTipp 9|1 2" "eTipp 10|1 2"
+      "eTipp 12|1 2" "eTipp 14|1") ;;
   *) echo "scaled_suite: unknown suite $suite" >&2; usage ;;
 esac
 generator=${suite%-large}
-[[ -f $bench/$domain/domain.pddl ]] || { echo "scaled_suite: no $bench/$domain/domain.pddl (set SEAPLAN_SHARED)" >&2; exit 2; }
+domain_file() {  # domain_file GENERATOR_ARGS: the shared domain the instance is for
+  case $1 in
+    upp) echo "$bench/$domain/domain-1.pddl" ;;
+    eTipp) echo "$bench/$domain/domain-4.pddl" ;;
+    *) echo "$bench/$domain/domain.pddl" ;;
+  esac
+}
+for set in "${sets[@]}"; do
+  # shellcheck disable=SC2086  # the sizes split on purpose
+  file=$(domain_file ${set%|*})
+  [[ -f $file ]] || { echo "scaled_suite: no $file (set SEAPLAN_SHARED)" >&2; exit 2; }
+done
 work=$(mktemp -d)
 trap 'rm -rf "$work"' EXIT
 solved=0 total=0
@@ -82,13 +100,15 @@ for set in "${sets[@]}"; do
     # shellcheck disable=SC2086  # the sizes split on purpose
     python3 "$here/scaled_problems.py" "$generator" ${set%|*} "$seed" >"$work/p.pddl"
     rm -f "$work/plan"
-    "$seaplan" plan "$bench/$domain/domain.pddl" "$work/p.pddl" --no-anytime --cpu-limit "$cpu" \
+    # shellcheck disable=SC2086
+    file=$(domain_file ${set%|*})
+    "$seaplan" plan "$file" "$work/p.pddl" --no-anytime --cpu-limit "$cpu" \
       --memory-limit 2048 -o "$work/plan" >"$work/out" 2>&1 || true
     status=$(sed -n 's/^; status: //p' "$work/out" | head -1)
     first=$(sed -n 's/.*first plan \([0-9.]*\) s.*/\1/p' "$work/out" | head -1)
     valid=-
     if [[ -f $work/plan && $status == SOLVED* ]]; then  # empty: the empty plan
-      if "$seaplan" validate "$bench/$domain/domain.pddl" "$work/p.pddl" "$work/plan" >/dev/null 2>&1; then
+      if "$seaplan" validate "$file" "$work/p.pddl" "$work/plan" >/dev/null 2>&1; then
         valid=yes solved=$((solved + 1))
       else
         valid=NO
