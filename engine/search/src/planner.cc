@@ -426,6 +426,10 @@ PlanResult PlannerRun::Run() {
     log::Debug("planner: {} actions left out: each deletes a goal fact nothing adds back",
                snap_.num_goal_breaking());
   }
+  if (heuristic_.num_operator_groups() > 0) {
+    log::Debug("planner: {} groups of actions that differ in one condition only, explored as one",
+               heuristic_.num_operator_groups());
+  }
   if (options_.landmarks) {
     const Clock::time_point landmarks_start = Clock::now();
     landmarks_.emplace(snap_, heuristic_, &stop_);

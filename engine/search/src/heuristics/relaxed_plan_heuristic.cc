@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstring>
+#include <map>
 
 namespace seaplan::search {
 namespace {
@@ -32,7 +33,7 @@ RelaxedPlanHeuristic::RelaxedPlanHeuristic(const SnapTask& task, double epsilon_
       agents_(task) {
   const int total_facts = num_facts_ + task.num_actions();
   const auto& actions = task.task().actions;
-  pre_begin_.push_back(0);
+  std::vector<std::int32_t> pre_begin{0}, pre;
   add_begin_.push_back(0);
   num_pre_.resize(static_cast<std::size_t>(num_ops_));
   num_eff_.resize(static_cast<std::size_t>(num_ops_));
@@ -51,8 +52,8 @@ RelaxedPlanHeuristic::RelaxedPlanHeuristic(const SnapTask& task, double epsilon_
       std::sort(tmp.begin(), tmp.end());
       tmp.erase(std::unique(tmp.begin(), tmp.end()), tmp.end());
     }
-    pre_.insert(pre_.end(), tmp.begin(), tmp.end());
-    pre_begin_.push_back(static_cast<std::int32_t>(pre_.size()));
+    pre.insert(pre.end(), tmp.begin(), tmp.end());
+    pre_begin.push_back(static_cast<std::int32_t>(pre.size()));
     tmp.clear();
     if (op_exists_[op]) {
       const task::Effects& eff = is_end ? action.end_effects : action.start_effects;
@@ -73,9 +74,6 @@ RelaxedPlanHeuristic::RelaxedPlanHeuristic(const SnapTask& task, double epsilon_
     }
     add_.insert(add_.end(), tmp.begin(), tmp.end());
     add_begin_.push_back(static_cast<std::int32_t>(add_.size()));
-  }
-  for (int op = 0; op < num_ops_; ++op) {
-    if (op_exists_[op] && pre_begin_[op + 1] == pre_begin_[op]) no_pre_ops_.push_back(op);
   }
   has_num_pre_.resize(static_cast<std::size_t>(num_ops_));
   has_num_eff_.resize(static_cast<std::size_t>(num_ops_));
@@ -102,34 +100,7 @@ RelaxedPlanHeuristic::RelaxedPlanHeuristic(const SnapTask& task, double epsilon_
       min_invariant_duration_[f] = std::min(min_invariant_duration_[f], d);
     }
   }
-  // fact -> ops it triggers (see fact_ops_): pre_ without an end's
-  // over-all conditions, so an end keeps started(a) and its at-end ones.
-  auto triggers = [&](int op, std::int32_t f) {
-    if (op % 2 == 0 || f >= num_facts_) return true;
-    const auto& at_end = actions[static_cast<std::size_t>(op / 2)].at_end.positive;
-    return std::find(at_end.begin(), at_end.end(), f) != at_end.end();
-  };
-  std::vector<std::int32_t> count(static_cast<std::size_t>(total_facts) + 1, 0);
-  op_missing_init_.assign(static_cast<std::size_t>(num_ops_), 1 << 30);
-  for (int op = 0; op < num_ops_; ++op) {
-    if (!op_exists_[op]) continue;
-    std::int32_t n = 0;
-    for (auto f : CsrRow(pre_, pre_begin_, op)) {
-      if (!triggers(op, f)) continue;
-      ++count[f + 1];
-      ++n;
-    }
-    op_missing_init_[op] = n;
-  }
-  for (std::size_t i = 1; i < count.size(); ++i) count[i] += count[i - 1];
-  fact_ops_begin_ = count;
-  fact_ops_.resize(static_cast<std::size_t>(count.back()));
-  std::vector<std::int32_t> fill(count.begin(), count.end() - 1);
-  for (int op = 0; op < num_ops_; ++op) {
-    for (auto f : CsrRow(pre_, pre_begin_, op)) {
-      if (triggers(op, f)) fact_ops_[fill[f]++] = op;
-    }
-  }
+  exact_ = BuildExploration(std::move(pre_begin), std::move(pre), op_exists_);
   fact_layer_.resize(static_cast<std::size_t>(total_facts));
   undoes_goal_.resize(static_cast<std::size_t>(total_facts));
   goal_undone_.resize(static_cast<std::size_t>(total_facts));
@@ -145,26 +116,6 @@ RelaxedPlanHeuristic::RelaxedPlanHeuristic(const SnapTask& task, double epsilon_
   lowerer_.resize(static_cast<std::size_t>(task.num_vars()));
   lower_layer_.resize(static_cast<std::size_t>(task.num_vars()));
   til_fact_.resize(static_cast<std::size_t>(num_facts_));
-  pair_check_.assign(static_cast<std::size_t>(num_ops_), PairCheck{});
-  for (int op = 0; op < num_ops_; op += 2) {
-    const int end = op + 1;
-    if (!op_exists_[op] || !actions[static_cast<std::size_t>(op / 2)].is_durative ||
-        has_num_eff_[op] || has_num_eff_[end] || has_num_pre_[end]) {
-      continue;
-    }
-    PairCheck& c = pair_check_[static_cast<std::size_t>(op)];
-    c.begin = static_cast<std::int32_t>(pair_facts_.size());
-    c.started = num_facts_ + op / 2;
-    for (int i = add_begin_[op]; i < add_begin_[op + 1]; ++i) {
-      if (add_[i] < num_facts_) pair_facts_.push_back(add_[i]);
-    }
-    pair_facts_.insert(pair_facts_.end(), add_.begin() + add_begin_[end],
-                       add_.begin() + add_begin_[end + 1]);
-    for (int i = pre_begin_[end]; i < pre_begin_[end + 1]; ++i) {
-      if (pre_[i] != num_facts_ + op / 2) pair_facts_.push_back(pre_[i]);
-    }
-    c.end = static_cast<std::int32_t>(pair_facts_.size());
-  }
   goal_fact_.assign(static_cast<std::size_t>(total_facts), 0);
   for (auto f : task.task().goal.positive) {
     if (!goal_fact_[f]) {
@@ -199,6 +150,286 @@ RelaxedPlanHeuristic::RelaxedPlanHeuristic(const SnapTask& task, double epsilon_
     op_time_s_.assign(static_cast<std::size_t>(num_ops_), 0.0);
     fact_time_s_.assign(static_cast<std::size_t>(total_facts), 0.0);
   }
+  GroupOperators();
+}
+
+RelaxedPlanHeuristic::Exploration RelaxedPlanHeuristic::BuildExploration(
+    std::vector<std::int32_t> pre_begin, std::vector<std::int32_t> pre,
+    const std::vector<bool>& exists) const {
+  const auto& actions = task_.task().actions;
+  const int started_end = num_facts_ + task_.num_actions();
+  Exploration x;
+  x.pre_begin = std::move(pre_begin);
+  x.pre = std::move(pre);
+  // An end is triggered by started(a) and its at-end conditions only (see
+  // fact_ops); a group's "some alternative" fact is an over-all one there.
+  auto triggers = [&](int op, std::int32_t f) {
+    if (op % 2 == 0) return true;
+    if (f >= num_facts_) return f < started_end;
+    const auto& at_end = actions[static_cast<std::size_t>(op / 2)].at_end.positive;
+    return std::find(at_end.begin(), at_end.end(), f) != at_end.end();
+  };
+  std::vector<std::int32_t> count(static_cast<std::size_t>(started_end + num_aux_) + 1, 0);
+  x.op_missing_init.assign(static_cast<std::size_t>(num_ops_), 1 << 30);
+  for (int op = 0; op < num_ops_; ++op) {
+    if (!exists[op]) continue;
+    std::int32_t n = 0;
+    for (auto f : CsrRow(x.pre, x.pre_begin, op)) {
+      if (!triggers(op, f)) continue;
+      ++count[f + 1];
+      ++n;
+    }
+    x.op_missing_init[op] = n;
+    if (x.pre_begin[op + 1] == x.pre_begin[op]) x.no_pre_ops.push_back(op);
+  }
+  for (std::size_t i = 1; i < count.size(); ++i) count[i] += count[i - 1];
+  x.fact_ops_begin = count;
+  x.fact_ops.resize(static_cast<std::size_t>(count.back()));
+  std::vector<std::int32_t> fill(count.begin(), count.end() - 1);
+  for (int op = 0; op < num_ops_; ++op) {
+    if (!exists[op]) continue;
+    for (auto f : CsrRow(x.pre, x.pre_begin, op)) {
+      if (triggers(op, f)) x.fact_ops[fill[f]++] = op;
+    }
+  }
+  x.pair_check.assign(static_cast<std::size_t>(num_ops_), PairCheck{});
+  for (int op = 0; op < num_ops_; op += 2) {
+    const int end = op + 1;
+    if (!exists[op] || !actions[static_cast<std::size_t>(op / 2)].is_durative ||
+        has_num_eff_[op] || has_num_eff_[end] || has_num_pre_[end]) {
+      continue;
+    }
+    PairCheck& c = x.pair_check[static_cast<std::size_t>(op)];
+    c.begin = static_cast<std::int32_t>(x.pair_facts.size());
+    c.started = num_facts_ + op / 2;
+    for (int i = add_begin_[op]; i < add_begin_[op + 1]; ++i) {
+      if (add_[i] < num_facts_) x.pair_facts.push_back(add_[i]);
+    }
+    x.pair_facts.insert(x.pair_facts.end(), add_.begin() + add_begin_[end],
+                        add_.begin() + add_begin_[end + 1]);
+    for (int i = x.pre_begin[end]; i < x.pre_begin[end + 1]; ++i) {
+      if (x.pre[i] != c.started) x.pair_facts.push_back(x.pre[i]);
+    }
+    c.end = static_cast<std::int32_t>(x.pair_facts.size());
+  }
+  return x;
+}
+
+namespace {
+
+// splitmix64's finaliser.
+std::uint64_t Mix(std::uint64_t z) {
+  z += 0x9e3779b97f4a7c15ull;
+  z = (z ^ (z >> 30)) * 0xbf58476d1ce4e5b9ull;
+  z = (z ^ (z >> 27)) * 0x94d049bb133111ebull;
+  return z ^ (z >> 31);
+}
+
+// A fact's share of an order-free hash of a set of facts: the sum.
+std::uint64_t FactHash(task::FactId f) { return Mix(static_cast<std::uint32_t>(f)); }
+
+std::uint64_t SetHash(const std::vector<task::FactId>& facts) {
+  std::uint64_t h = 0;
+  for (auto f : facts) h += FactHash(f);
+  return h;
+}
+
+// Appends the sorted facts of `facts` but `skip`, then a separator.
+void AppendSortedWithout(const std::vector<task::FactId>& facts, task::FactId skip,
+                         std::vector<std::int32_t>& key) {
+  const auto from = key.size();
+  for (auto f : facts) {
+    if (f != skip) key.push_back(f);
+  }
+  std::sort(key.begin() + static_cast<std::ptrdiff_t>(from), key.end());
+  key.erase(std::unique(key.begin() + static_cast<std::ptrdiff_t>(from), key.end()), key.end());
+  key.push_back(-1);
+}
+
+bool Contains(const std::vector<task::FactId>& facts, task::FactId f) {
+  return std::find(facts.begin(), facts.end(), f) != facts.end();
+}
+
+// Everything the relaxation reads of `action` but its condition `f`.
+void RelaxedKey(const task::Action& action, task::FactId f, std::vector<std::int32_t>& key) {
+  key.clear();
+  key.push_back(action.is_durative ? 1 : 0);
+  key.push_back((Contains(action.at_start.positive, f) ? 1 : 0) +
+                (Contains(action.over_all.positive, f) ? 2 : 0));
+  AppendSortedWithout(action.at_start.positive, f, key);
+  AppendSortedWithout(action.over_all.positive, f, key);
+  AppendSortedWithout(action.at_end.positive, -1, key);
+  AppendSortedWithout(action.start_effects.add, -1, key);
+  AppendSortedWithout(action.start_effects.del, -1, key);
+  AppendSortedWithout(action.end_effects.add, -1, key);
+  AppendSortedWithout(action.end_effects.del, -1, key);
+}
+
+}  // namespace
+
+void RelaxedPlanHeuristic::GroupOperators() {
+  const auto& actions = task_.task().actions;
+  const int num_actions = task_.num_actions();
+  rep_of_.resize(static_cast<std::size_t>(num_actions));
+  for (int a = 0; a < num_actions; ++a) rep_of_[a] = a;
+  alt_fact_.assign(static_cast<std::size_t>(num_actions), -1);
+  group_of_.assign(static_cast<std::size_t>(num_actions), -1);
+  bool windows = false;
+  for (int a = 0; a < num_actions && !windows; ++a) windows = task_.IsWindowAction(a);
+  auto plain = [&](int a) {
+    const task::Action& action = actions[static_cast<std::size_t>(a)];
+    if (!op_exists_[2 * a] || has_num_pre_[2 * a] || has_num_eff_[2 * a]) return false;
+    if (action.is_durative && (has_num_pre_[2 * a + 1] || has_num_eff_[2 * a + 1])) return false;
+    return action.start_effects.conditional.empty() && action.end_effects.conditional.empty();
+  };
+  // Each action under each of its start and over-all condition facts (not
+  // an at-end one: those trigger ends), hashed by everything the relaxation
+  // reads of it but that fact. Order-free set hashes, so that nothing is
+  // sorted or allocated per candidate; equal hashes are checked below.
+  struct Candidate {
+    std::uint64_t hash;
+    std::int32_t action, fact, key = -1;
+  };
+  std::vector<Candidate> candidates;
+  for (int a = 0; a < num_actions && !windows; ++a) {
+    if (!plain(a)) continue;
+    const task::Action& action = actions[static_cast<std::size_t>(a)];
+    std::uint64_t rest = action.is_durative ? 1 : 2;
+    for (const auto* facts : {&action.at_end.positive, &action.start_effects.add,
+                              &action.start_effects.del, &action.end_effects.add,
+                              &action.end_effects.del}) {
+      rest = Mix(rest ^ SetHash(*facts));
+    }
+    const std::uint64_t start_sum = SetHash(action.at_start.positive);
+    const std::uint64_t over_all_sum = SetHash(action.over_all.positive);
+    for (const auto* facts : {&action.at_start.positive, &action.over_all.positive}) {
+      for (auto it = facts->begin(); it != facts->end(); ++it) {
+        const task::FactId f = *it;
+        const bool at_start = Contains(action.at_start.positive, f);
+        const bool over_all = Contains(action.over_all.positive, f);
+        if (Contains(action.at_end.positive, f) || std::find(facts->begin(), it, f) != it ||
+            (facts == &action.over_all.positive && at_start)) {
+          continue;  // an end's trigger, or seen already
+        }
+        const std::uint64_t hash =
+            Mix(Mix(rest ^ (start_sum - (at_start ? FactHash(f) : 0))) ^
+                (over_all_sum - (over_all ? FactHash(f) : 0))) ^
+            (at_start ? 1 : 0) ^ (over_all ? 2 : 0);
+        candidates.push_back({hash, a, f});
+      }
+    }
+  }
+  // Candidates stay in action order; `by_hash` visits them by hash.
+  std::vector<std::int32_t> by_hash(candidates.size());
+  for (std::size_t i = 0; i < by_hash.size(); ++i) by_hash[i] = static_cast<std::int32_t>(i);
+  std::sort(by_hash.begin(), by_hash.end(), [&](std::int32_t x, std::int32_t y) {
+    return candidates[x].hash != candidates[y].hash ? candidates[x].hash < candidates[y].hash
+                                                    : x < y;
+  });
+  // Within a run of equal hashes, the members whose key equals the first's
+  // share a key id (a candidate that only collided stays alone).
+  std::vector<std::int32_t> key_size;
+  std::vector<std::int32_t> first_key, key;
+  for (std::size_t i = 0; i < by_hash.size();) {
+    const Candidate& first = candidates[by_hash[i]];
+    std::size_t j = i + 1;
+    while (j < by_hash.size() && candidates[by_hash[j]].hash == first.hash) ++j;
+    if (j - i >= 2) {
+      const auto id = static_cast<std::int32_t>(key_size.size());
+      key_size.push_back(0);
+      RelaxedKey(actions[static_cast<std::size_t>(first.action)], first.fact, first_key);
+      for (std::size_t k = i; k < j; ++k) {
+        Candidate& c = candidates[by_hash[k]];
+        if (k > i) {
+          RelaxedKey(actions[static_cast<std::size_t>(c.action)], c.fact, key);
+          if (key != first_key) continue;
+        }
+        c.key = id;
+        ++key_size[static_cast<std::size_t>(id)];
+      }
+    }
+    i = j;
+  }
+  // Each action joins its largest candidate group (the first on ties);
+  // groups left with one member are none.
+  auto size_of = [&](const Candidate& c) {
+    return c.key < 0 ? 0 : key_size[static_cast<std::size_t>(c.key)];
+  };
+  std::vector<Candidate> chosen;
+  for (std::size_t i = 0; i < candidates.size();) {
+    std::size_t best = i, j = i;
+    for (; j < candidates.size() && candidates[j].action == candidates[i].action; ++j) {
+      if (size_of(candidates[j]) > size_of(candidates[best])) best = j;
+    }
+    if (size_of(candidates[best]) >= 2) chosen.push_back(candidates[best]);
+    i = j;
+  }
+  candidates.clear();
+  std::stable_sort(chosen.begin(), chosen.end(),
+                   [](const Candidate& x, const Candidate& y) { return x.key < y.key; });
+  std::map<std::vector<std::int32_t>, std::int32_t> aux_ids;  // alternatives -> aux
+  std::vector<std::int32_t> alternatives;
+  std::vector<std::pair<std::int32_t, std::int32_t>> fact_aux;  // (fact, aux)
+  for (std::size_t i = 0; i < chosen.size();) {
+    std::size_t j = i;
+    while (j < chosen.size() && chosen[j].key == chosen[i].key) ++j;
+    if (j - i >= 2) {
+      const int group = static_cast<int>(group_begin_.size()) - 1;
+      alternatives.clear();
+      for (std::size_t k = i; k < j; ++k) {
+        const int a = chosen[k].action;
+        rep_of_[a] = chosen[i].action;
+        alt_fact_[a] = chosen[k].fact;
+        group_of_[a] = group;
+        group_members_.push_back(a);
+        alternatives.push_back(chosen[k].fact);
+      }
+      group_begin_.push_back(static_cast<std::int32_t>(group_members_.size()));
+      std::sort(alternatives.begin(), alternatives.end());
+      const auto [it, fresh] =
+          aux_ids.try_emplace(alternatives, static_cast<std::int32_t>(aux_ids.size()));
+      if (fresh) {
+        for (auto f : alternatives) fact_aux.emplace_back(f, it->second);
+      }
+      group_aux_.push_back(it->second);  // made a fact id below
+    }
+    i = j;
+  }
+  if (group_aux_.empty()) {
+    grouped_ = exact_;
+    return;
+  }
+  aux_base_ = num_facts_ + num_actions;
+  num_aux_ = static_cast<int>(aux_ids.size());
+  for (auto& aux : group_aux_) aux += aux_base_;
+  std::vector<std::int32_t> aux_count(static_cast<std::size_t>(num_facts_) + 1, 0);
+  for (const auto& [f, aux] : fact_aux) ++aux_count[static_cast<std::size_t>(f) + 1];
+  for (std::size_t i = 1; i < aux_count.size(); ++i) aux_count[i] += aux_count[i - 1];
+  fact_aux_begin_ = aux_count;
+  fact_aux_.resize(fact_aux.size());
+  for (const auto& [f, aux] : fact_aux) fact_aux_[aux_count[f]++] = aux_base_ + aux;
+  // The grouped tables: members but the representative do not exist, and
+  // the representative's alternative reads "some alternative".
+  std::vector<bool> exists = op_exists_;
+  std::vector<std::int32_t> pre_begin{0}, pre;
+  for (int op = 0; op < num_ops_; ++op) {
+    const int a = op / 2;
+    if (rep_of_[a] != a) exists[op] = false;
+    for (auto f : CsrRow(exact_.pre, exact_.pre_begin, op)) {
+      pre.push_back(group_of_[a] >= 0 && f == alt_fact_[a] ? group_aux_[group_of_[a]] : f);
+    }
+    pre_begin.push_back(static_cast<std::int32_t>(pre.size()));
+  }
+  grouped_ = BuildExploration(std::move(pre_begin), std::move(pre), exists);
+  const auto total = static_cast<std::size_t>(aux_base_ + num_aux_);
+  fact_layer_.resize(total);
+  undoes_goal_.resize(total);
+  goal_undone_.resize(total);
+  fact_achiever_.resize(total);
+  fact_marked_.resize(total);
+  goal_fact_.resize(total, 0);
+  aux_source_.resize(static_cast<std::size_t>(num_aux_));
+  started_by_.resize(static_cast<std::size_t>(num_actions));
 }
 
 void RelaxedPlanHeuristic::SetMakespanAware(bool on) {
@@ -438,7 +669,7 @@ void RelaxedPlanHeuristic::ExemptRunningEnds(const StateData& state) {
   // short for them; running actions already fit (the schedule holds them
   // inside their envelopes), so the relaxed plan does not re-achieve it for
   // their ends. The exploration needs no exemption: an end never waits for
-  // its over-all conditions (fact_ops_).
+  // its over-all conditions (Exploration::fact_ops).
   for (const auto& r : state.running) {
     const task::Action& action = task_.task().actions[static_cast<std::size_t>(r.action)];
     for (auto f : action.over_all.positive) {
@@ -462,14 +693,29 @@ bool RelaxedPlanHeuristic::IsExemptEnd(int fact, int op) const {
 int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* preferred,
                                    std::span<const double> window_slack,
                                    std::span<const std::uint8_t> usable, const Timeline* schedule) {
+  const bool grouped = group_operators_ && num_aux_ > 0 && !makespan_aware_;
+  const Exploration& x = grouped ? grouped_ : exact_;
   // All bytes 0xff is -1 in every int: memset, not an element loop.
   std::memset(fact_layer_.data(), 0xff, fact_layer_.size() * sizeof(fact_layer_[0]));
   // op_layer_ is only read for operators that became applicable (plan
   // operators and numeric changers), which set it: no reset needed.
-  std::copy(op_missing_init_.begin(), op_missing_init_.end(), op_missing_.begin());
+  std::copy(x.op_missing_init.begin(), x.op_missing_init.end(), op_missing_.begin());
   if (!usable.empty()) {
     for (int op = 0; op < num_ops_; ++op) {
       if (!usable[op]) op_missing_[op] = 1 << 30;
+    }
+    // A group's operator can happen when one of its members' can.
+    for (int g = 0; grouped && g < num_operator_groups(); ++g) {
+      const int rep = group_members_[group_begin_[g]];
+      for (int snap = 0; snap < 2; ++snap) {
+        const int op = 2 * rep + snap;
+        for (int i = group_begin_[g]; i < group_begin_[g + 1]; ++i) {
+          if (usable[2 * group_members_[i] + snap]) {
+            op_missing_[op] = x.op_missing_init[op];
+            break;
+          }
+        }
+      }
     }
   }
   int goals_left = num_goal_facts_;
@@ -512,6 +758,17 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
     if (makespan_aware_) fact_time_s_[f] = time_s;
     goals_left -= goal_fact_[f];
     new_facts_.push_back(f);
+    if (!grouped || f >= num_facts_) return;
+    // The groups' "some alternative" facts f is one of, in the same layer.
+    for (int i = fact_aux_begin_[f]; i < fact_aux_begin_[f + 1]; ++i) {
+      const int aux = fact_aux_[i];
+      if (fact_layer_[aux] >= 0) continue;
+      fact_layer_[aux] = layer;
+      fact_achiever_[aux] = -1;
+      if (keep_held_goals) undoes_goal_[aux] = undoes_goal;
+      aux_source_[aux - aux_base_] = f;
+      new_facts_.push_back(aux);
+    }
   };
   std::size_t window_index = 0;
   for (const auto& r : state.running) {
@@ -543,7 +800,9 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
   }
   for (const auto& r : state.running) {
     const double started_s = schedule != nullptr ? schedule->StartedAt(r.action) : 0.0;
-    reach(num_facts_ + r.action, 0, -1, started_s + r.min_duration_s);
+    const int a = grouped ? rep_of_[r.action] : r.action;
+    if (grouped && fact_layer_[num_facts_ + a] < 0) started_by_[a] = r.action;
+    reach(num_facts_ + a, 0, -1, started_s + r.min_duration_s);
   }
   // An operator whose conditions hold at `layer` is applied there, or, when
   // it undoes a held goal with delay_undoers, kGoalUndoerDelayLayers later;
@@ -561,7 +820,7 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
     }
   };
   // Operators without fact preconditions are enabled from the start.
-  for (auto op : no_pre_ops_) {
+  for (auto op : x.no_pre_ops) {
     if (!usable.empty() && !usable[op]) continue;
     if (num_pre_[op].empty()) {
       make_applicable(op, 0);
@@ -604,12 +863,12 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
     // Facts new at this layer enable operators. The hottest loop: raw
     // pointers, so that the counter stores do not force reloads.
     {
-      const std::int32_t* const fact_ops = fact_ops_.data();
-      const std::int32_t* const fact_ops_begin = fact_ops_begin_.data();
+      const std::int32_t* const fact_ops = x.fact_ops.data();
+      const std::int32_t* const fact_ops_begin = x.fact_ops_begin.data();
       std::int32_t* const missing = op_missing_.data();
       const std::uint8_t* const has_num_pre = has_num_pre_.data();
-      const PairCheck* const pairs = pair_check_.data();
-      const std::int32_t* const pair_facts = pair_facts_.data();
+      const PairCheck* const pairs = x.pair_check.data();
+      const std::int32_t* const pair_facts = x.pair_facts.data();
       const std::int32_t* const fact_layer = fact_layer_.data();
       for (auto f : new_facts_) {
         const std::int32_t* const end = fact_ops + fact_ops_begin[f + 1];
@@ -655,8 +914,8 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
       const int op = applicable_[processed_applicable];
       double time_s = 0.0, started_s = 0.0;
       if (makespan_aware_) {
-        for (int i = pre_begin_[op]; i < pre_begin_[op + 1]; ++i) {
-          time_s = std::max(time_s, fact_time_s_[pre_[i]]);
+        for (int i = x.pre_begin[op]; i < x.pre_begin[op + 1]; ++i) {
+          time_s = std::max(time_s, fact_time_s_[x.pre[i]]);
         }
         if ((op & 1) == 0) {
           for (auto g : agents_.AgentsOf(op / 2)) {
@@ -670,8 +929,8 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
       bool undoes_goal = false;
       if (keep_held_goals) {
         undoes_goal = DeletesHeldGoal(op);
-        for (int i = pre_begin_[op]; i < pre_begin_[op + 1] && !undoes_goal; ++i) {
-          undoes_goal = undoes_goal_[pre_[i]] != 0;
+        for (int i = x.pre_begin[op]; i < x.pre_begin[op + 1] && !undoes_goal; ++i) {
+          undoes_goal = undoes_goal_[x.pre[i]] != 0;
         }
       }
       for (int i = add_begin_[op]; i < add_begin_[op + 1]; ++i) {
@@ -788,14 +1047,15 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
     while (!stack_.empty()) {
       const int op = stack_.back();
       stack_.pop_back();
-      for (int i = pre_begin_[op]; i < pre_begin_[op + 1]; ++i) {
+      for (int i = x.pre_begin[op]; i < x.pre_begin[op + 1]; ++i) {
+        const int f = x.pre[i];
         // Every exempt fact is suppressed (ExemptRunningEnds): the scan only
         // for those.
-        if (!exempt_ends_.empty() && pre_[i] < num_facts_ && suppressed_[pre_[i]] &&
-            IsExemptEnd(pre_[i], op)) {
+        if (!exempt_ends_.empty() && f < num_facts_ && suppressed_[f] && IsExemptEnd(f, op)) {
           continue;
         }
-        MarkFact(pre_[i], op_layer_[op]);
+        // "Some alternative holds": the alternative that got there first.
+        MarkFact(f >= aux_base_ && num_aux_ > 0 ? aux_source_[f - aux_base_] : f, op_layer_[op]);
       }
       for (const auto* c : num_pre_[op]) {
         if (!ConditionHoldsNumeric(*c, state)) MarkNumeric(*c, op_layer_[op], state, op / 2);
@@ -818,12 +1078,27 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
   int h = static_cast<int>(marked_ops_.size());
   if (keep_held_goals) h += kUndoneGoalCost * CountUndoneGoals(state);
   for (const auto& r : state.running) {
-    if (!op_marked_[2 * r.action + 1]) ++h;
+    if (!op_marked_[2 * (grouped ? rep_of_[r.action] : r.action) + 1]) ++h;
   }
   if (preferred) {
     preferred->clear();
     for (auto op : marked_ops_) {
-      if (op_layer_[op] == 0) preferred->push_back(op);
+      if (op_layer_[op] != 0) continue;
+      const int g = grouped ? group_of_[op / 2] : -1;
+      if (g < 0) {
+        preferred->push_back(op);
+      } else if ((op & 1) != 0) {
+        preferred->push_back(2 * started_by_[op / 2] + 1);  // the running member's end
+      } else {
+        // The member whose alternative the state holds.
+        const int source = aux_source_[group_aux_[g] - aux_base_];
+        for (int i = group_begin_[g]; i < group_begin_[g + 1]; ++i) {
+          if (alt_fact_[group_members_[i]] == source) {
+            preferred->push_back(2 * group_members_[i]);
+            break;
+          }
+        }
+      }
     }
     std::sort(preferred->begin(), preferred->end());
   }

@@ -82,6 +82,20 @@ class RelaxedPlanHeuristic {
   // At least one more action achieves an undone goal again: a start and an
   // end for a durative one (one snap would do for an instantaneous one).
   static constexpr int kUndoneGoalCost = 2;
+  // On by default. Ground actions that differ in one condition fact only
+  // (their "alternative") and have the same effects, without numeric
+  // conditions or effects, are explored as one relaxed action whose
+  // condition is "some alternative holds": driverlog's drive-truck by each
+  // of 14 drivers is one operator per truck and road, not 14. The relaxed
+  // plan's length is the one FF's first achiever gives, up to ties
+  // between the members (which member's alternative was reached first
+  // decides, as it does without groups); a helpful group start is given
+  // as the member whose alternative the state holds. Off in the
+  // makespan-aware mode (the members' agents differ) and in tasks with
+  // window actions.
+  void SetGroupOperators(bool on) { group_operators_ = on; }
+  // Groups of two or more actions found (0: the option changes nothing).
+  int num_operator_groups() const { return static_cast<int>(group_begin_.size()) - 1; }
 
   // Returns the estimate (kDeadEnd when the goal is relaxed-unreachable).
   // `preferred` (may be null) receives the helpful snaps (SnapIds).
@@ -112,7 +126,9 @@ class RelaxedPlanHeuristic {
   int num_relaxed_facts() const { return num_facts_ + task_.num_actions(); }
   int num_relaxed_ops() const { return num_ops_; }
   bool OpExists(int op) const { return op_exists_[static_cast<std::size_t>(op)]; }
-  std::span<const std::int32_t> Preconditions(int op) const { return CsrRow(pre_, pre_begin_, op); }
+  std::span<const std::int32_t> Preconditions(int op) const {
+    return CsrRow(exact_.pre, exact_.pre_begin, op);
+  }
   std::span<const std::int32_t> Adds(int op) const { return CsrRow(add_, add_begin_, op); }
 
  private:
@@ -159,22 +175,11 @@ class RelaxedPlanHeuristic {
   int skipped_pairs_ = 0;
   int num_facts_;  // real facts; started(a) is num_facts_ + a
   int num_ops_;    // 2 * actions
-  // CSR tables.
-  std::vector<std::int32_t> pre_begin_, pre_;
+  // CSR table.
   std::vector<std::int32_t> add_begin_, add_;
-  // fact -> the operators whose "missing" counter it lowers: pre_ but for
-  // an end's over-all conditions. Those are its start's conditions too, so
-  // in the relaxation started(a) implies them; a running action's are in
-  // the state (Transitions keeps running invariants true), or suppressed
-  // and exempt for its end (ExemptRunningEnds). Leaving them out changes no
-  // layer and saves counter updates where over-all conditions are many
-  // (driverlog: every load, board and drive). At-end conditions stay: they
-  // are not start conditions, so started(a) does not imply them.
-  std::vector<std::int32_t> fact_ops_begin_, fact_ops_;
   std::vector<std::vector<const task::NumericCondition*>> num_pre_;
   std::vector<std::vector<const task::NumericEffect*>> num_eff_;
   std::vector<bool> op_exists_;
-  std::vector<std::int32_t> no_pre_ops_;
   std::vector<std::uint8_t> has_num_pre_, has_num_eff_;  // compact copies for the hot loop
   double epsilon_s_;
   std::vector<std::vector<task::FactId>> window_facts_;  // per action: start adds deleted at end
@@ -186,11 +191,8 @@ class RelaxedPlanHeuristic {
   void ExemptRunningEnds(const StateData& state);
   bool IsExemptEnd(int fact, int op) const;
   std::vector<bool> til_fact_;  // scratch: facts added by pending literals
-  // Static per-task tables hoisted out of Evaluate: the initial "missing
-  // triggers" counter of every operator (fact_ops_) (copied in one pass) and a
-  // goal flag per fact, so reaching the goal is a counter, not a scan of
+  // A goal flag per fact, so reaching the goal is a counter, not a scan of
   // the goal per layer.
-  std::vector<std::int32_t> op_missing_init_;
   std::vector<std::uint8_t> goal_fact_;
   int num_goal_facts_ = 0;
   // Redundant start/end pairs (satellite's turn_to from every direction).
@@ -209,8 +211,51 @@ class RelaxedPlanHeuristic {
     std::int32_t begin = -1, end = -1;
     std::int32_t started = 0;  // the fact started(a)
   };
-  std::vector<PairCheck> pair_check_;
-  std::vector<std::int32_t> pair_facts_;
+
+  // What the exploration and the extraction read, per operator (SnapId).
+  struct Exploration {
+    std::vector<std::int32_t> pre_begin, pre;  // CSR: conditions
+    // fact -> the operators whose "missing" counter it lowers: pre but for
+    // an end's over-all conditions. Those are its start's conditions too,
+    // so in the relaxation started(a) implies them; a running action's are
+    // in the state (Transitions keeps running invariants true), or
+    // suppressed and exempt for its end (ExemptRunningEnds). Leaving them
+    // out changes no layer and saves counter updates where over-all
+    // conditions are many (driverlog: every load, board and drive).
+    // At-end conditions stay: they are not start conditions, so started(a)
+    // does not imply them.
+    std::vector<std::int32_t> fact_ops_begin, fact_ops;
+    // Each operator's initial "missing triggers" count (1 << 30: never
+    // applicable), copied in one pass per evaluation.
+    std::vector<std::int32_t> op_missing_init;
+    std::vector<std::int32_t> no_pre_ops;
+    std::vector<PairCheck> pair_check;
+    std::vector<std::int32_t> pair_facts;
+  };
+  // `exists`: per operator, whether the exploration may apply it.
+  Exploration BuildExploration(std::vector<std::int32_t> pre_begin, std::vector<std::int32_t> pre,
+                               const std::vector<bool>& exists) const;
+  // Finds the operator groups (SetGroupOperators) and builds grouped_.
+  void GroupOperators();
+  // exact_: every operator of the task (what Preconditions() gives);
+  // grouped_: a group's members replaced by its representative, the
+  // alternative by the group's "some alternative" fact. The same object
+  // when no group was found.
+  Exploration exact_, grouped_;
+  bool group_operators_ = true;
+  // Relaxed facts past started(a): "some alternative of the set holds",
+  // one per distinct set of alternatives (per truck in driverlog), ids
+  // from aux_base_.
+  int aux_base_ = 0, num_aux_ = 0;
+  std::vector<std::int32_t> rep_of_;     // per action: its group's representative, or itself
+  std::vector<std::int32_t> alt_fact_;   // per grouped action: its alternative
+  std::vector<std::int32_t> group_of_;   // per action: its group, or -1
+  std::vector<std::int32_t> group_aux_;  // per group: its "some alternative" fact
+  std::vector<std::int32_t> group_begin_{0}, group_members_;  // CSR: group -> actions
+  std::vector<std::int32_t> fact_aux_begin_, fact_aux_;       // CSR: real fact -> aux facts
+  // Scratch per evaluation: the alternative that first reached each aux
+  // fact, and per representative the running member (started(rep) at 0).
+  std::vector<std::int32_t> aux_source_, started_by_;
 
   // Makespan-aware extraction (see the class comment); the tables below
   // exist only when the task has at least two agents.

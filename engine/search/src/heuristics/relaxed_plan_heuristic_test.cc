@@ -343,5 +343,74 @@ TEST(RelaxedPlanHeuristicGoalTest, ADelayedGoalUndoerIsStillTakenWhenItIsTheOnly
             std::vector<SnapId>{2 * testing::ActionIdOf(*loaded.task, "(ride home depot)")});
 }
 
+
+// Trucks driven by whichever driver is aboard: each drive exists once per
+// driver, and the copies differ only in (driving ?d ?t), an over-all
+// condition. They form one group per truck and road. (t1 is both driven
+// and empty so that others can board it: the relaxation does not mind.)
+constexpr char kHaulDomain[] = R"((define (domain haul)
+  (:requirements :typing :durative-actions)
+  (:types truck driver place)
+  (:predicates (at ?t - truck ?p - place) (driving ?d - driver ?t - truck)
+    (road ?a ?b - place) (in ?d - driver ?p - place) (empty ?t - truck))
+  (:durative-action drive :parameters (?t - truck ?from ?to - place ?d - driver)
+    :duration (= ?duration 10)
+    :condition (and (at start (at ?t ?from)) (at start (road ?from ?to))
+      (over all (driving ?d ?t)))
+    :effect (and (at start (not (at ?t ?from))) (at end (at ?t ?to))))
+  (:durative-action board :parameters (?d - driver ?t - truck ?p - place)
+    :duration (= ?duration 1)
+    :condition (and (at start (in ?d ?p)) (at start (at ?t ?p)) (at start (empty ?t)))
+    :effect (and (at start (not (in ?d ?p))) (at start (not (empty ?t)))
+      (at end (driving ?d ?t))))))";
+
+constexpr char kHaulProblem[] = R"((define (problem haul-1) (:domain haul)
+  (:objects t1 t2 - truck d1 d2 d3 - driver a b c - place)
+  (:init (at t1 a) (driving d2 t1) (empty t1) (at t2 c) (empty t2) (in d1 c) (in d3 a)
+    (road a b) (road b a) (road b c) (road c b))
+  (:goal (and (at t1 c) (at t2 a)))))";
+
+TEST(RelaxedPlanHeuristicGroupTest, DrivesByEachDriverAreOneOperatorWithTheSamePlan) {
+  const HeuristicOnTask loaded(kHaulDomain, kHaulProblem);
+  ASSERT_NE(loaded.task, nullptr);
+  const task::GroundTask& task = *loaded.task;
+  RelaxedPlanHeuristic& heuristic = *loaded.heuristic;
+  // 2 trucks x 4 roads: t1 by d1, d2 or d3, t2 by d1 or d3 (d2 is in no
+  // place, so he boards nothing).
+  EXPECT_EQ(heuristic.num_operator_groups(), 8);
+  auto id = [&](const char* name) { return testing::ActionIdOf(task, name); };
+  // t1: two drives (4 snaps); t2: d1 boards, then two drives (6 snaps).
+  // Helpful: the drive by the driver aboard t1, and the boarding.
+  const StateData initial = loaded.Initial();
+  std::vector<SnapId> grouped, exact;
+  const int h = heuristic.Evaluate(initial, &grouped);
+  EXPECT_EQ(h, 10);
+  std::vector<SnapId> expected = {2 * id("(drive t1 a b d2)"), 2 * id("(board d1 t2 c)")};
+  std::sort(expected.begin(), expected.end());
+  EXPECT_EQ(grouped, expected);
+  heuristic.SetGroupOperators(false);
+  EXPECT_EQ(heuristic.Evaluate(initial, &exact), h);
+  EXPECT_EQ(exact, grouped);
+
+  // d2's drive from a to b runs: its end is the helpful event, and the
+  // plan is one snap shorter (the start is done).
+  StateData driving = initial;
+  driving.Clear(testing::FactIdOf(task, "(at t1 a)"));
+  const int drive = id("(drive t1 a b d2)");
+  driving.running.push_back(RunningAction{drive, 10.0, 10.0});
+  EXPECT_EQ(heuristic.Evaluate(driving, &exact), 9);
+  heuristic.SetGroupOperators(true);
+  EXPECT_EQ(heuristic.Evaluate(driving, &grouped), 9);
+  EXPECT_EQ(grouped, exact);
+  EXPECT_TRUE(std::find(grouped.begin(), grouped.end(), 2 * drive + 1) != grouped.end());
+
+  // Nobody can drive t1 once d2 is gone and the others are elsewhere with
+  // no truck to reach it: t1's goal is unreachable with or without groups.
+  StateData stranded = initial;
+  stranded.Clear(testing::FactIdOf(task, "(driving d2 t1)"));
+  stranded.Clear(testing::FactIdOf(task, "(in d3 a)"));
+  EXPECT_EQ(heuristic.Evaluate(stranded, &grouped), RelaxedPlanHeuristic::kDeadEnd);
+}
+
 }  // namespace
 }  // namespace seaplan::search
