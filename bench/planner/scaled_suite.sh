@@ -18,7 +18,9 @@
 #          drivers, 3-5 sites), turnandopen (12 of turnandopen-2011's,
 #          2 robots, 9-12 rooms, 20-30 balls), parcprinter (14 of
 #          parcprinter-2011's two printers: 12-20 sheets on the printer of
-#          its p01-p03, 9-14 on the larger one of p04-p05)
+#          its p01-p03, 9-14 on the larger one of p04-p05), driverlog (10
+#          of driverlog-2014's, the sizes its p01-p05 grow by: 10 drivers,
+#          10 trucks, 25 packages to 14, 14, 37)
 #   --quick: the suite's first two instances only, and exit 1 unless both
 #            get a valid plan (the smoke test)
 #   The shared domains are read from $SEAPLAN_SHARED/bench (default
@@ -26,7 +28,7 @@
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 usage() {
-  sed -n '12,25p' "$0" | sed 's/^# \{0,1\}//' >&2
+  sed -n '12,27p' "$0" | sed 's/^# \{0,1\}//' >&2
   exit 2
 }
 [[ $# -ge 2 ]] || usage
@@ -69,6 +71,9 @@ case $suite in
   turnandopen)
     domain=turnandopen-2011
     sets=("2 9 20|1 2 3" "2 10 22|1 2" "2 10 24|1 2" "2 11 26|1 2" "2 11 28|1 2" "2 12 30|1") ;;
+  driverlog)
+    domain=driverlog-2014
+    sets=("10 10 25|1 2" "11 11 28|1 2" "12 12 31|1 2" "13 13 34|1 2" "14 14 37|1 2") ;;
   parcprinter)
     # A domain per printer: the generator's first argument names it.
     domain=parcprinter-2011

@@ -195,8 +195,8 @@ RelaxedPlanHeuristic::Exploration RelaxedPlanHeuristic::BuildExploration(
   x.pair_check.assign(static_cast<std::size_t>(num_ops_), PairCheck{});
   for (int op = 0; op < num_ops_; op += 2) {
     const int end = op + 1;
-    if (!exists[op] || !actions[static_cast<std::size_t>(op / 2)].is_durative ||
-        has_num_eff_[op] || has_num_eff_[end] || has_num_pre_[end]) {
+    if (!exists[op] || !actions[static_cast<std::size_t>(op / 2)].is_durative || has_num_eff_[op] ||
+        has_num_eff_[end] || has_num_pre_[end]) {
       continue;
     }
     PairCheck& c = x.pair_check[static_cast<std::size_t>(op)];
@@ -226,7 +226,9 @@ std::uint64_t Mix(std::uint64_t z) {
 }
 
 // A fact's share of an order-free hash of a set of facts: the sum.
-std::uint64_t FactHash(task::FactId f) { return Mix(static_cast<std::uint32_t>(f)); }
+std::uint64_t FactHash(task::FactId f) {
+  return Mix(static_cast<std::uint32_t>(f));
+}
 
 std::uint64_t SetHash(const std::vector<task::FactId>& facts) {
   std::uint64_t h = 0;
@@ -295,9 +297,9 @@ void RelaxedPlanHeuristic::GroupOperators() {
     if (!plain(a)) continue;
     const task::Action& action = actions[static_cast<std::size_t>(a)];
     std::uint64_t rest = action.is_durative ? 1 : 2;
-    for (const auto* facts : {&action.at_end.positive, &action.start_effects.add,
-                              &action.start_effects.del, &action.end_effects.add,
-                              &action.end_effects.del}) {
+    for (const auto* facts :
+         {&action.at_end.positive, &action.start_effects.add, &action.start_effects.del,
+          &action.end_effects.add, &action.end_effects.del}) {
       rest = Mix(rest ^ SetHash(*facts));
     }
     const std::uint64_t start_sum = SetHash(action.at_start.positive);
@@ -311,10 +313,9 @@ void RelaxedPlanHeuristic::GroupOperators() {
             (facts == &action.over_all.positive && at_start)) {
           continue;  // an end's trigger, or seen already
         }
-        const std::uint64_t hash =
-            Mix(Mix(rest ^ (start_sum - (at_start ? FactHash(f) : 0))) ^
-                (over_all_sum - (over_all ? FactHash(f) : 0))) ^
-            (at_start ? 1 : 0) ^ (over_all ? 2 : 0);
+        const std::uint64_t hash = Mix(Mix(rest ^ (start_sum - (at_start ? FactHash(f) : 0))) ^
+                                       (over_all_sum - (over_all ? FactHash(f) : 0))) ^
+                                   (at_start ? 1 : 0) ^ (over_all ? 2 : 0);
         candidates.push_back({hash, a, f});
       }
     }
@@ -742,6 +743,25 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
   }
   // `time_s`: when the fact holds at the earliest (read only with makespan_aware_).
   const bool keep_held_goals = keep_held_goals_ && !goal_del_.empty() && !makespan_aware_;
+  // A group's "some alternative" fact follows the first alternative
+  // reached, and, keeping held goals, the first of its layer reached
+  // without undoing one, as `reach` does for a fact's achiever.
+  auto reach_alternative = [&](int f, int layer, bool undoes_goal) {
+    for (int i = fact_aux_begin_[f]; i < fact_aux_begin_[f + 1]; ++i) {
+      const int aux = fact_aux_[i];
+      if (fact_layer_[aux] < 0) {
+        fact_layer_[aux] = layer;
+        fact_achiever_[aux] = -1;
+        if (keep_held_goals) undoes_goal_[aux] = undoes_goal;
+        aux_source_[aux - aux_base_] = f;
+        new_facts_.push_back(aux);
+      } else if (keep_held_goals && !undoes_goal && fact_layer_[aux] == layer &&
+                 undoes_goal_[aux]) {
+        undoes_goal_[aux] = 0;
+        aux_source_[aux - aux_base_] = f;
+      }
+    }
+  };
   auto reach = [&](int f, int layer, int achiever, double time_s, bool undoes_goal = false) {
     if (fact_layer_[f] >= 0) {
       // Reached earlier in this layer only through an operator that undoes
@@ -749,6 +769,7 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
       if (keep_held_goals && !undoes_goal && fact_layer_[f] == layer && undoes_goal_[f]) {
         fact_achiever_[f] = achiever;
         undoes_goal_[f] = 0;
+        if (grouped && f < num_facts_) reach_alternative(f, layer, false);
       }
       return;
     }
@@ -758,17 +779,7 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
     if (makespan_aware_) fact_time_s_[f] = time_s;
     goals_left -= goal_fact_[f];
     new_facts_.push_back(f);
-    if (!grouped || f >= num_facts_) return;
-    // The groups' "some alternative" facts f is one of, in the same layer.
-    for (int i = fact_aux_begin_[f]; i < fact_aux_begin_[f + 1]; ++i) {
-      const int aux = fact_aux_[i];
-      if (fact_layer_[aux] >= 0) continue;
-      fact_layer_[aux] = layer;
-      fact_achiever_[aux] = -1;
-      if (keep_held_goals) undoes_goal_[aux] = undoes_goal;
-      aux_source_[aux - aux_base_] = f;
-      new_facts_.push_back(aux);
-    }
+    if (grouped && f < num_facts_) reach_alternative(f, layer, undoes_goal);
   };
   std::size_t window_index = 0;
   for (const auto& r : state.running) {

@@ -343,7 +343,6 @@ TEST(RelaxedPlanHeuristicGoalTest, ADelayedGoalUndoerIsStillTakenWhenItIsTheOnly
             std::vector<SnapId>{2 * testing::ActionIdOf(*loaded.task, "(ride home depot)")});
 }
 
-
 // Trucks driven by whichever driver is aboard: each drive exists once per
 // driver, and the copies differ only in (driving ?d ?t), an over-all
 // condition. They form one group per truck and road. (t1 is both driven
