@@ -2,7 +2,8 @@
 # The generated instances of bench/planner/README.md's sections "Larger
 # generated instances: satellite-tw-til", "Helpful events on time", "A run
 # of goals ordered to the end: floortile", "Stacks from the right end:
-# depots", "driverlogshift past p05" and "Long plans: turnandopen", run
+# depots", "driverlogshift past p05", "Long plans: turnandopen", "Drives
+# by each driver: one operator" and "Larger print jobs: parcprinter", run
 # with one executable: for each, `seaplan plan` (first plan, --no-anytime)
 # as a whole process under a CPU limit, then `seaplan validate` of the same
 # executable on the plan. One line per instance, then how many were solved
@@ -28,7 +29,7 @@
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 usage() {
-  sed -n '12,27p' "$0" | sed 's/^# \{0,1\}//' >&2
+  sed -n '13,28p' "$0" | sed 's/^# \{0,1\}//' >&2
   exit 2
 }
 [[ $# -ge 2 ]] || usage
