@@ -261,6 +261,11 @@ void RelaxedKey(const task::Action& action, task::FactId f, std::vector<std::int
   AppendSortedWithout(action.at_start.positive, f, key);
   AppendSortedWithout(action.over_all.positive, f, key);
   AppendSortedWithout(action.at_end.positive, -1, key);
+  // The relaxation ignores negative conditions, but a member given as
+  // helpful must be as applicable as any other.
+  AppendSortedWithout(action.at_start.negative, -1, key);
+  AppendSortedWithout(action.over_all.negative, -1, key);
+  AppendSortedWithout(action.at_end.negative, -1, key);
   AppendSortedWithout(action.start_effects.add, -1, key);
   AppendSortedWithout(action.start_effects.del, -1, key);
   AppendSortedWithout(action.end_effects.add, -1, key);
@@ -298,7 +303,8 @@ void RelaxedPlanHeuristic::GroupOperators() {
     const task::Action& action = actions[static_cast<std::size_t>(a)];
     std::uint64_t rest = action.is_durative ? 1 : 2;
     for (const auto* facts :
-         {&action.at_end.positive, &action.start_effects.add, &action.start_effects.del,
+         {&action.at_end.positive, &action.at_start.negative, &action.over_all.negative,
+          &action.at_end.negative, &action.start_effects.add, &action.start_effects.del,
           &action.end_effects.add, &action.end_effects.del}) {
       rest = Mix(rest ^ SetHash(*facts));
     }
@@ -396,10 +402,7 @@ void RelaxedPlanHeuristic::GroupOperators() {
     }
     i = j;
   }
-  if (group_aux_.empty()) {
-    grouped_ = exact_;
-    return;
-  }
+  if (group_aux_.empty()) return;  // grouped_ stays empty, and unread
   aux_base_ = num_facts_ + num_actions;
   num_aux_ = static_cast<int>(aux_ids.size());
   for (auto& aux : group_aux_) aux += aux_base_;

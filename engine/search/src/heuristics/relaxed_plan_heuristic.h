@@ -239,8 +239,8 @@ class RelaxedPlanHeuristic {
   void GroupOperators();
   // exact_: every operator of the task (what Preconditions() gives);
   // grouped_: a group's members replaced by its representative, the
-  // alternative by the group's "some alternative" fact. The same object
-  // when no group was found.
+  // alternative by the group's "some alternative" fact; empty when no
+  // group was found.
   Exploration exact_, grouped_;
   bool group_operators_ = true;
   // Relaxed facts past started(a): "some alternative of the set holds",
