@@ -694,10 +694,22 @@ bool RelaxedPlanHeuristic::IsExemptEnd(int fact, int op) const {
   return false;
 }
 
+bool RelaxedPlanHeuristic::AllGroupMembersUsable(std::span<const std::uint8_t> usable) const {
+  if (usable.empty()) return true;
+  for (const auto a : group_members_) {
+    if (!usable[2 * a] ||
+        (task_.task().actions[static_cast<std::size_t>(a)].is_durative && !usable[2 * a + 1])) {
+      return false;
+    }
+  }
+  return true;
+}
+
 int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* preferred,
                                    std::span<const double> window_slack,
                                    std::span<const std::uint8_t> usable, const Timeline* schedule) {
-  const bool grouped = group_operators_ && num_aux_ > 0 && !makespan_aware_;
+  const bool grouped =
+      group_operators_ && num_aux_ > 0 && !makespan_aware_ && AllGroupMembersUsable(usable);
   const Exploration& x = grouped ? grouped_ : exact_;
   // All bytes 0xff is -1 in every int: memset, not an element loop.
   std::memset(fact_layer_.data(), 0xff, fact_layer_.size() * sizeof(fact_layer_[0]));
@@ -707,19 +719,6 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
   if (!usable.empty()) {
     for (int op = 0; op < num_ops_; ++op) {
       if (!usable[op]) op_missing_[op] = 1 << 30;
-    }
-    // A group's operator can happen when one of its members' can.
-    for (int g = 0; grouped && g < num_operator_groups(); ++g) {
-      const int rep = group_members_[group_begin_[g]];
-      for (int snap = 0; snap < 2; ++snap) {
-        const int op = 2 * rep + snap;
-        for (int i = group_begin_[g]; i < group_begin_[g + 1]; ++i) {
-          if (usable[2 * group_members_[i] + snap]) {
-            op_missing_[op] = x.op_missing_init[op];
-            break;
-          }
-        }
-      }
     }
   }
   int goals_left = num_goal_facts_;
@@ -1091,8 +1090,16 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
   extract_needs();
   int h = static_cast<int>(marked_ops_.size());
   if (keep_held_goals) h += kUndoneGoalCost * CountUndoneGoals(state);
-  for (const auto& r : state.running) {
-    if (!op_marked_[2 * (grouped ? rep_of_[r.action] : r.action) + 1]) ++h;
+  // Each running action needs its end. Grouped, one marked end stands for
+  // the group's representative: a second running member of the group
+  // needs one more (the running set is small; a scan back is enough).
+  for (std::size_t i = 0; i < state.running.size(); ++i) {
+    const int a = grouped ? rep_of_[state.running[i].action] : state.running[i].action;
+    bool counted = !op_marked_[2 * a + 1];
+    for (std::size_t j = 0; grouped && !counted && j < i; ++j) {
+      counted = rep_of_[state.running[j].action] == a;
+    }
+    if (counted) ++h;
   }
   if (preferred) {
     preferred->clear();

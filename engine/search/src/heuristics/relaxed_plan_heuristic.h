@@ -5,7 +5,7 @@
 // adds its start effects plus a virtual fact started(a); end(a) needs
 // started(a), a's at-end and over-all conditions and adds its end effects
 // (the exploration waits only for started(a) and the at-end conditions:
-// see fact_ops_).
+// see Exploration::fact_ops).
 // Running actions have started(a) at layer 0, facts of future timed literals
 // are free. Deletes and negative conditions are ignored; numeric variables
 // become intervals that only widen (each applicable operator widens once per
@@ -82,17 +82,19 @@ class RelaxedPlanHeuristic {
   // At least one more action achieves an undone goal again: a start and an
   // end for a durative one (one snap would do for an instantaneous one).
   static constexpr int kUndoneGoalCost = 2;
-  // On by default. Ground actions that differ in one condition fact only
-  // (their "alternative") and have the same effects, without numeric
-  // conditions or effects, are explored as one relaxed action whose
-  // condition is "some alternative holds": driverlog's drive-truck by each
-  // of 14 drivers is one operator per truck and road, not 14. The relaxed
-  // plan's length is the one FF's first achiever gives, up to ties
-  // between the members (which member's alternative was reached first
-  // decides, as it does without groups); a helpful group start is given
-  // as the member whose alternative the state holds. Off in the
-  // makespan-aware mode (the members' agents differ) and in tasks with
-  // window actions.
+  // On by default. Ground actions that differ in one positive condition
+  // fact only (their "alternative"), with the same negative conditions and
+  // the same effects, none conditional or numeric and no numeric
+  // condition, are explored as one relaxed action whose condition is "some
+  // alternative holds": driverlog's drive-truck by each of 14 drivers is
+  // one operator per truck and road, not 14. The relaxed plan's length is
+  // the one FF's first achiever gives, up to ties between the members: the
+  // alternative reached first decides, where without groups the member
+  // first in operator order would; a helpful group start is given as the
+  // member whose alternative the state holds. Not used in the
+  // makespan-aware mode (the members' agents differ), in tasks with window
+  // actions, nor in an evaluation where a member's snap is unusable (its
+  // alternative must not enable the group): the exact tables then.
   void SetGroupOperators(bool on) { group_operators_ = on; }
   // Groups of two or more actions found (0: the option changes nothing).
   int num_operator_groups() const { return static_cast<int>(group_begin_.size()) - 1; }
@@ -115,7 +117,7 @@ class RelaxedPlanHeuristic {
   // After a kDeadEnd: true when the relaxation proves it (false when the
   // numeric fixpoint was cut off after too many widening layers).
   bool last_dead_end_proven() const { return dead_end_proven_; }
-  // Redundant start/end pairs the last evaluation skipped (see pair_check_;
+  // Redundant start/end pairs the last evaluation skipped (see PairCheck;
   // a diagnostic for tests and profiling).
   int last_skipped_pairs() const { return skipped_pairs_; }
 
@@ -137,7 +139,7 @@ class RelaxedPlanHeuristic {
   };
   Interval EvalInterval(const task::NumericExpr& expr, const StateData& state, task::ActionId a);
   bool Satisfiable(const task::NumericCondition& c, const StateData& state, task::ActionId a);
-  // See pair_check_: true when the start `op` can achieve nothing new now.
+  // See PairCheck: true when the start `op` can achieve nothing new now.
   // Takes the raw tables so that the hot loop keeps them in registers.
   struct PairCheck;
   static bool PairRedundant(const PairCheck& c, const std::int32_t* fact_layer,
@@ -197,7 +199,8 @@ class RelaxedPlanHeuristic {
   int num_goal_facts_ = 0;
   // Redundant start/end pairs (satellite's turn_to from every direction).
   // For a durative start whose start and end have no numeric effect and
-  // whose end has no numeric condition, pair_facts_[begin, end) lists the
+  // whose end has no numeric condition, Exploration::pair_facts[begin, end)
+  // lists the
   // real adds of both snaps and the end's conditions other than
   // started(a); begin is -1 for every other operator. When started(a) is
   // not reached yet and all of these are when the start becomes applicable,
@@ -237,6 +240,10 @@ class RelaxedPlanHeuristic {
                                const std::vector<bool>& exists) const;
   // Finds the operator groups (SetGroupOperators) and builds grouped_.
   void GroupOperators();
+  // False when a timed literal made some group member's snap unusable: a
+  // group's "some alternative" fact could then be reached through that
+  // member's alternative, so the evaluation takes the exact tables.
+  bool AllGroupMembersUsable(std::span<const std::uint8_t> usable) const;
   // exact_: every operator of the task (what Preconditions() gives);
   // grouped_: a group's members replaced by its representative, the
   // alternative by the group's "some alternative" fact; empty when no

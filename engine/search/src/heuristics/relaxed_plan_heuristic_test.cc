@@ -409,6 +409,34 @@ TEST(RelaxedPlanHeuristicGroupTest, DrivesByEachDriverAreOneOperatorWithTheSameP
   stranded.Clear(testing::FactIdOf(task, "(driving d2 t1)"));
   stranded.Clear(testing::FactIdOf(task, "(in d3 a)"));
   EXPECT_EQ(heuristic.Evaluate(stranded, &grouped), RelaxedPlanHeuristic::kDeadEnd);
+
+  // Two members of one group running (d1 and d2 both drive t1 from a to
+  // b; the relaxation does not mind d1 being at c too): each needs its
+  // end, as without groups. (Which end is helpful may differ: both reach
+  // (at t1 b) in the same layer.)
+  StateData both = driving;
+  both.Set(testing::FactIdOf(task, "(driving d1 t1)"));
+  both.running.push_back(RunningAction{id("(drive t1 a b d1)"), 10.0, 10.0});
+  const int h_both = heuristic.Evaluate(both, &grouped);
+  EXPECT_NE(h_both, RelaxedPlanHeuristic::kDeadEnd);
+  heuristic.SetGroupOperators(false);
+  EXPECT_EQ(heuristic.Evaluate(both, &exact), h_both);
+
+  // d2's drives cannot happen any more (a deadline passed): t1 needs d3 to
+  // board first. The group must not drive on d2's (driving d2 t1).
+  std::vector<std::uint8_t> usable(static_cast<std::size_t>(heuristic.num_relaxed_ops()), 1);
+  heuristic.SetGroupOperators(true);
+  EXPECT_EQ(heuristic.Evaluate(initial, &grouped, {}, usable), h);
+  heuristic.SetGroupOperators(false);
+  for (const char* name :
+       {"(drive t1 a b d2)", "(drive t1 b a d2)", "(drive t1 b c d2)", "(drive t1 c b d2)"}) {
+    usable[2 * id(name)] = usable[2 * id(name) + 1] = 0;
+  }
+  const int h_exact = heuristic.Evaluate(initial, &exact, {}, usable);
+  heuristic.SetGroupOperators(true);
+  EXPECT_EQ(heuristic.Evaluate(initial, &grouped, {}, usable), h_exact);
+  EXPECT_GT(h_exact, h);
+  EXPECT_EQ(grouped, exact);
 }
 
 }  // namespace
