@@ -10,7 +10,8 @@
 # with a valid plan. To compare two executables like for like, run the
 # script for each at the same time, one per core.
 #
-# usage: scaled_suite.sh SEAPLAN SUITE [--cpu-limit 20] [--quick]
+# usage: scaled_suite.sh SEAPLAN SUITE [--cpu-limit 20] [--quick] [-- PLAN-OPTIONS...]
+#   PLAN-OPTIONS: passed on to each `seaplan plan` (--switch-after 0.01, say)
 #   SUITE: satellite-tw (26 instances of satellite-tw-til's domain),
 #          satellite-tw-large (6, 10-12 satellites), trucks (18 of
 #          trucks-time-til's domain), floortile (22 of floortile-2011's,
@@ -29,15 +30,16 @@
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 usage() {
-  sed -n '13,28p' "$0" | sed 's/^# \{0,1\}//' >&2
+  sed -n '13,29p' "$0" | sed 's/^# \{0,1\}//' >&2
   exit 2
 }
 [[ $# -ge 2 ]] || usage
 seaplan=$1 suite=$2
 shift 2
-cpu=20 quick=0
+cpu=20 quick=0 plan_options=()
 while [[ $# -gt 0 ]]; do
   case $1 in
+    --) shift; plan_options=("$@"); break ;;
     --cpu-limit) cpu=${2:?--cpu-limit needs seconds}; shift 2 ;;
     --quick) quick=1; shift ;;
     *) echo "scaled_suite: unknown argument $1" >&2; usage ;;
@@ -109,7 +111,7 @@ for set in "${sets[@]}"; do
     # shellcheck disable=SC2086
     file=$(domain_file ${set%|*})
     "$seaplan" plan "$file" "$work/p.pddl" --no-anytime --cpu-limit "$cpu" \
-      --memory-limit 2048 -o "$work/plan" >"$work/out" 2>&1 || true
+      --memory-limit 2048 -o "$work/plan" "${plan_options[@]}" >"$work/out" 2>&1 || true
     status=$(sed -n 's/^; status: //p' "$work/out" | head -1)
     first=$(sed -n 's/.*first plan \([0-9.]*\) s.*/\1/p' "$work/out" | head -1)
     valid=-

@@ -93,6 +93,7 @@ TEST(MissionAdapterTest, SpecDefaultsAndErrors) {
   spec.mutable_planner_options()->set_type_based_exploration(false);
   spec.mutable_planner_options()->set_symmetry_reduction(false);
   spec.mutable_planner_options()->set_eager_ends(false);
+  spec.mutable_planner_options()->set_second_greedy_after_share(0.125);
   spec.mutable_planner_options()->mutable_cpu_time_limit()->set_seconds(5);
   spec.mutable_ship()->set_service_speed_mps(9);
   auto given = SpecFromProto(spec);
@@ -106,11 +107,20 @@ TEST(MissionAdapterTest, SpecDefaultsAndErrors) {
   EXPECT_FALSE(given->planner.symmetry_reduction);
   EXPECT_TRUE(defaults.planner.eager_ends);
   EXPECT_FALSE(given->planner.eager_ends);
+  EXPECT_EQ(defaults.planner.second_greedy_after_share, 0.5);
+  EXPECT_EQ(given->planner.second_greedy_after_share, 0.125);
   EXPECT_EQ(given->planner.cpu_time_limit_s, 5);
   EXPECT_EQ(given->planner.time_limit_s, 7);
   EXPECT_EQ(given->planner.max_expansions, 20000u);
   EXPECT_EQ(given->service_speed_mps, 9);
   EXPECT_NE(given->routing_key, s->routing_key);  // the ship differs
+  spec.mutable_planner_options()->set_second_greedy_after_share(1.5);
+  const absl::Status share = SpecFromProto(spec).status();
+  EXPECT_TRUE(absl::IsInvalidArgument(share)) << share;
+  EXPECT_NE(share.message().find("second_greedy_after_share must be in [0, 1], got 1.5"),
+            std::string::npos)
+      << share;
+  spec.mutable_planner_options()->set_second_greedy_after_share(0.125);
   spec.mutable_planner_options()->mutable_time_limit()->set_seconds(-1);
   EXPECT_TRUE(absl::IsInvalidArgument(SpecFromProto(spec).status()));
   spec.mutable_planner_options()->mutable_time_limit()->set_seconds(7);

@@ -210,6 +210,9 @@ absl::StatusOr<search::PlannerOptions> PlannerOptionsToEngine(const v1::PlannerO
   if (o.has_landmarks()) p.landmarks = o.landmarks();
   if (o.has_symmetry_reduction()) p.symmetry_reduction = o.symmetry_reduction();
   if (o.has_eager_ends()) p.eager_ends = o.eager_ends();
+  if (o.has_second_greedy_after_share()) {
+    p.second_greedy_after_share = o.second_greedy_after_share();
+  }
   if (o.random_seed() != 0) p.random_seed = o.random_seed();
   if (o.epsilon_s() != 0) p.epsilon_s = o.epsilon_s();
   p.max_expansions = o.max_expansions();

@@ -140,6 +140,19 @@ TEST(CliInProcessTest, CpuLimitLimitsTheSearch) {
   EXPECT_NE(word.err.find("got ten"), std::string::npos) << word.err;
 }
 
+// --switch-after reaches the planner: with 0 the newest-first search alone
+// solves case A; a share past 1 is a usage error.
+TEST(CliInProcessTest, SwitchAfterIsAShareOfTheBudget) {
+  auto alone = RunSeaplan({"plan", Example("domain.pddl"), Example("case-a.pddl"), "--switch-after",
+                           "0", "--no-anytime"});
+  EXPECT_EQ(alone.exit_code, 0) << alone.out << alone.err;
+  EXPECT_NE(alone.out.find("; makespan:"), std::string::npos) << alone.out;
+  auto bad =
+      RunSeaplan({"plan", Example("domain.pddl"), Example("case-a.pddl"), "--switch-after", "1.5"});
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("--switch-after"), std::string::npos) << bad.err;
+}
+
 // --no-type-based is accepted and plans. Case A's first plan comes before
 // the type-based list's first turn, so the search is the same with it
 // (what the list changes is tested in engine/search's planner_test).

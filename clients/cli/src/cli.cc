@@ -115,6 +115,7 @@ struct PlanArgs {
   double epsilon_s = 0;
   std::uint64_t max_expansions = 0;
   double cpu_limit_s = 0;
+  double switch_after = -1;  // < 0: the planner's default
 };
 
 int RunPlan(const GlobalOptions& options, const PlanArgs& args) {
@@ -134,6 +135,7 @@ int RunPlan(const GlobalOptions& options, const PlanArgs& args) {
   planner->set_landmarks(args.landmarks);
   if (args.no_symmetry) planner->set_symmetry_reduction(false);
   if (args.no_eager_ends) planner->set_eager_ends(false);
+  if (args.switch_after >= 0) planner->set_second_greedy_after_share(args.switch_after);
   planner->set_random_seed(args.seed);
   planner->set_epsilon_s(args.epsilon_s);
   planner->set_max_expansions(args.max_expansions);
@@ -803,6 +805,12 @@ int RunCli(int argc, char** argv, const CliExecutable& executable) {
   plan_cmd->add_flag("--no-eager-ends", plan.no_eager_ends,
                      "Searches also try the orders in which an end that only adds facts "
                      "happens later");
+  plan_cmd
+      ->add_option("--switch-after", plan.switch_after,
+                   "Share of the budget (expansions, CPU or time limit) after which, with no "
+                   "plan yet, the first-plan search by makespan gives way to one that delays "
+                   "actions undoing held goals (default 0.5; 0: the newest-first search alone)")
+      ->check(CLI::Range(0.0, 1.0));
   plan_cmd->add_option("--seed", plan.seed, "Random seed")->capture_default_str();
   plan_cmd->add_option("--epsilon", plan.epsilon_s,
                        "Separation of interfering events (s), default 0.001");
