@@ -200,8 +200,7 @@ class RelaxedPlanHeuristic {
   // Redundant start/end pairs (satellite's turn_to from every direction).
   // For a durative start whose start and end have no numeric effect and
   // whose end has no numeric condition, Exploration::pair_facts[begin, end)
-  // lists the
-  // real adds of both snaps and the end's conditions other than
+  // lists the real adds of both snaps and the end's conditions other than
   // started(a); begin is -1 for every other operator. When started(a) is
   // not reached yet and all of these are when the start becomes applicable,
   // the pair can achieve nothing: the end would only wait for started(a)
