@@ -30,7 +30,7 @@
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 usage() {
-  sed -n '13,29p' "$0" | sed 's/^# \{0,1\}//' >&2
+  sed -n '/^# usage:/,/^set -euo/p' "$0" | sed '$d; s/^# \{0,1\}//' >&2
   exit 2
 }
 [[ $# -ge 2 ]] || usage

@@ -140,8 +140,9 @@ TEST(CliInProcessTest, CpuLimitLimitsTheSearch) {
   EXPECT_NE(word.err.find("got ten"), std::string::npos) << word.err;
 }
 
-// --switch-after reaches the planner: with 0 the newest-first search alone
-// solves case A; a share past 1 is a usage error.
+// --switch-after is accepted (0: the newest-first search alone, which
+// solves case A; that the share reaches the planner's options is checked
+// in server/core's adapter test); a share past 1 is a usage error.
 TEST(CliInProcessTest, SwitchAfterIsAShareOfTheBudget) {
   auto alone = RunSeaplan({"plan", Example("domain.pddl"), Example("case-a.pddl"), "--switch-after",
                            "0", "--no-anytime"});

@@ -697,10 +697,7 @@ bool RelaxedPlanHeuristic::IsExemptEnd(int fact, int op) const {
 bool RelaxedPlanHeuristic::AllGroupMembersUsable(std::span<const std::uint8_t> usable) const {
   if (usable.empty()) return true;
   for (const auto a : group_members_) {
-    if (!usable[2 * a] ||
-        (task_.task().actions[static_cast<std::size_t>(a)].is_durative && !usable[2 * a + 1])) {
-      return false;
-    }
+    if (!usable[2 * a] || (op_exists_[2 * a + 1] && !usable[2 * a + 1])) return false;
   }
   return true;
 }
@@ -1095,11 +1092,11 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
   // needs one more (the running set is small; a scan back is enough).
   for (std::size_t i = 0; i < state.running.size(); ++i) {
     const int a = grouped ? rep_of_[state.running[i].action] : state.running[i].action;
-    bool counted = !op_marked_[2 * a + 1];
-    for (std::size_t j = 0; grouped && !counted && j < i; ++j) {
-      counted = rep_of_[state.running[j].action] == a;
+    bool needs_end = !op_marked_[2 * a + 1];
+    for (std::size_t j = 0; grouped && !needs_end && j < i; ++j) {
+      needs_end = rep_of_[state.running[j].action] == a;
     }
-    if (counted) ++h;
+    if (needs_end) ++h;
   }
   if (preferred) {
     preferred->clear();
