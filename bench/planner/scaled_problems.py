@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Problems larger than the shared benchmark's p01-p05, for nine of its domains.
+"""Problems larger than the shared benchmark's p01-p05, for ten of its domains.
 
 The shared set holds only the first five problems of each domain; the
 larger ones a planner is judged on are not here. This writes random
@@ -30,6 +30,14 @@ instances"):
       images to take and send, and one visibility window per antenna that
       a witness plan meets (its p01-p05: 1-3 satellites, 7-10 directions,
       3-7 images, 1-2 antennas).
+  satellite SATELLITES INSTRUMENTS MODES DIRECTIONS IMAGES SEED
+      satellite-2014's domain (constant durations): up to INSTRUMENTS
+      instruments per satellite, each supporting 1-3 of MODES modes and
+      calibrated at 1-4 of the first third of the directions (ground
+      stations and stars), IMAGES images of the other directions, a
+      pointing goal for about half the satellites (its p01-p05: 5
+      satellites, 12-22 instruments, 5-7 modes, 30-38 directions, 21-33
+      goals).
   depots DEPOTS DISTRIBUTORS TRUCKS PALLETS HOISTS CRATES SEED
       depots-time's domain: a pallet and a hoist at every place and the
       rest at random places, crates stacked on random pallets, a goal
@@ -332,6 +340,49 @@ def satellite_tw(satellites, directions, images, antennas, rng):
     return out
 
 
+def satellite(satellites, instruments, modes_n, directions, images, rng):
+    # satellite-2014's shape: the first third of the directions can be
+    # calibration targets (named GroundStation or Star), the rest are
+    # observed (Star, Planet or Phenomenon); an image is of a direction
+    # and a mode some instrument supports, so every instance is solvable
+    # (any direction can be turned to).
+    kinds = ["thermograph", "image", "spectrograph", "infrared"]
+    mode = [f"{kinds[m % len(kinds)]}{m}" for m in range(modes_n)]
+    targets = max(1, directions // 3)
+    direction = [f"{rng.choice(['GroundStation', 'Star'])}{d}" for d in range(targets)]
+    direction += [f"{rng.choice(['Star', 'Planet', 'Phenomenon'])}{d}"
+                  for d in range(targets, directions)]
+    sat = [f"satellite{s}" for s in range(satellites)]
+    on_board, supports, calibrate = [], {}, {}
+    for s in range(satellites):
+        for _ in range(rng.randint(1, instruments)):
+            i = len(on_board)
+            on_board.append(s)
+            supports[i] = sorted(rng.sample(range(modes_n), rng.randint(1, min(3, modes_n))))
+            calibrate[i] = sorted(rng.sample(range(targets), rng.randint(1, min(4, targets))))
+    for m in range(modes_n):  # every mode on some instrument
+        if not any(m in supports[i] for i in supports):
+            supports[rng.randrange(len(on_board))].append(m)
+    goal = rng.sample([(d, m) for d in range(targets, directions) for m in range(modes_n)], images)
+    out = [f"(define (problem satellite-{satellites}-{instruments}-{modes_n}-{directions}-{images})",
+           "(:domain satellite)", "(:objects"]
+    out += [f" {x} - satellite" for x in sat] + [f" instrument{i} - instrument" for i in supports]
+    out += [f" {x} - mode" for x in mode] + [f" {x} - direction" for x in direction]
+    out += [")", "(:init"]
+    for s, x in enumerate(sat):
+        for i in [i for i in supports if on_board[i] == s]:
+            out += [f" (supports instrument{i} {mode[m]})" for m in sorted(supports[i])]
+            out += [f" (calibration_target instrument{i} {direction[d]})" for d in calibrate[i]]
+            out.append(f" (on_board instrument{i} {x})")
+        out += [f" (power_avail {x})", f" (pointing {x} {direction[rng.randrange(directions)]})"]
+    out += [")", "(:goal (and"]
+    out += [f" (pointing {x} {direction[rng.randrange(directions)]})" for x in sat
+            if rng.random() < 0.5]
+    out += [f" (have_image {direction[d]} {mode[m]})" for d, m in goal]
+    out += ["))", "(:metric minimize (total-time)))"]
+    return out
+
+
 def random_stacks(crates, pallets, rng):
     """Each crate in turn on top of a random pallet's stack: the (crate,
     pallet, what it lies on) triples, and what ends on top of each pallet."""
@@ -474,6 +525,8 @@ def main():
         "driverlog": ("driverlog-2014's domain", ["drivers", "trucks", "packages"]),
         "elevators": ("elevators-2011's domain", ["floors", "passengers"]),
         "trucks": ("trucks-time-til's domain", ["trucks", "locations", "packages", "areas"]),
+        "satellite": ("satellite-2014's domain", ["satellites", "instruments", "modes", "directions",
+                                                  "images"]),
         "satellite-tw": ("satellite-tw-til's domain", ["satellites", "directions", "images", "antennas"]),
         "depots": ("depots-time's domain", ["depots", "distributors", "trucks", "pallets", "hoists",
                                             "crates"]),
@@ -508,6 +561,14 @@ def main():
             parser.error("satellite-tw: satellites, antennas >= 1, directions >= 2 and 1 <= images <= "
                          "3 x the directions that are not ground stations (a quarter are)")
         lines = satellite_tw(args.satellites, args.directions, args.images, args.antennas, rng)
+    elif args.domain == "satellite":
+        observed = args.directions - max(1, args.directions // 3)
+        if min(args.satellites, args.instruments, args.modes) < 1 or observed < 1 or \
+                not 0 <= args.images <= observed * args.modes:
+            parser.error("satellite: satellites, instruments, modes >= 1, directions >= 2 and "
+                         "0 <= images <= modes x the directions past the first third")
+        lines = satellite(args.satellites, args.instruments, args.modes, args.directions,
+                          args.images, rng)
     elif args.domain == "driverlogshift":
         if min(args.drivers, args.trucks, args.packages) < 1 or args.locations < 2:
             parser.error("driverlogshift: drivers, trucks, packages >= 1 and locations >= 2")

@@ -43,6 +43,8 @@ solve driverlog-2014 driverlog 1 1 2 1  # the smallest map: two sites, one road
 solve elevators-2011 elevators 8 3 1
 solve trucks-time-til trucks 2 3 6 2 2
 solve satellite-tw-til satellite-tw 2 6 4 2 1
+solve satellite-2014 satellite 2 2 3 6 5 1
+solve satellite-2014 satellite 1 1 1 2 1 1  # one observed direction, one mode
 solve depots-time depots 1 1 1 2 2 3 1
 solve depots-time depots 1 0 1 2 1 3 1  # no distributor: one place
 solve driverlogshift-upf driverlogshift 2 2 2 2 1
@@ -65,6 +67,9 @@ cmp -s "$work/seed1.pddl" "$work/seed2.pddl" && fail "trucks: seeds 1 and 2 give
 generate "$work/seed1.pddl" satellite-tw 2 6 4 2 1
 generate "$work/seed2.pddl" satellite-tw 2 6 4 2 2
 cmp -s "$work/seed1.pddl" "$work/seed2.pddl" && fail "satellite-tw: seeds 1 and 2 give the same problem"
+generate "$work/seed1.pddl" satellite 2 2 3 6 5 1
+generate "$work/seed2.pddl" satellite 2 2 3 6 5 2
+cmp -s "$work/seed1.pddl" "$work/seed2.pddl" && fail "satellite: seeds 1 and 2 give the same problem"
 generate "$work/seed1.pddl" depots 1 1 1 2 2 3 1
 generate "$work/seed2.pddl" depots 1 1 1 2 2 3 2
 cmp -s "$work/seed1.pddl" "$work/seed2.pddl" && fail "depots: seeds 1 and 2 give the same problem"
@@ -77,7 +82,8 @@ cmp -s "$work/seed1.pddl" "$work/seed2.pddl" && fail "parcprinter: seeds 1 and 2
 for bad in "floortile 0 3 2 1" "floortile 1 1 2 1" "driverlog 3 0 5 1" "elevators 12 3 1" \
   "elevators 16 0 1" "trucks 1 1 3 2 1" "trucks 0 3 3 2 1" \
   "satellite-tw 0 6 4 2 1" "satellite-tw 2 1 4 2 1" "satellite-tw 2 6 4 0 1" \
-  "satellite-tw 2 6 16 2 1" "depots 0 1 1 2 2 3 1" "depots 1 1 1 1 2 3 1" \
+  "satellite-tw 2 6 16 2 1" "satellite 0 2 3 6 5 1" "satellite 2 0 3 6 5 1" \
+  "satellite 2 2 3 2 5 1" "satellite 2 2 1 6 5 1" "depots 0 1 1 2 2 3 1" "depots 1 1 1 1 2 3 1" \
   "depots 1 1 0 2 2 3 1" "depots 1 1 1 2 1 3 1" "driverlogshift 2 2 2 1 1" \
   "driverlogshift 0 2 2 2 1" "turnandopen 0 3 3 1" "parcprinter upp 0 1" "parcprinter ipp 3 1"; do
   # shellcheck disable=SC2086  # the arguments split on purpose

@@ -22,7 +22,10 @@
 #          parcprinter-2011's two printers: 12-20 sheets on the printer of
 #          its p01-p03, 9-14 on the larger one of p04-p05), driverlog (10
 #          of driverlog-2014's, the sizes its p01-p05 grow by: 10 drivers,
-#          10 trucks, 25 packages to 14, 14, 37)
+#          10 trucks, 25 packages to 14, 14, 37), elevators (10 of
+#          elevators-2011's, 24-40 floors, 28-40 passengers), satellite (10
+#          of satellite-2014's, 5-10 satellites, 40-60 directions, 32-50
+#          images)
 #   --quick: the suite's first two instances only, and exit 1 unless both
 #            get a valid plan (the smoke test)
 #   The shared domains are read from $SEAPLAN_SHARED/bench (default
@@ -77,6 +80,13 @@ case $suite in
   driverlog)
     domain=driverlog-2014
     sets=("10 10 25|1 2" "11 11 28|1 2" "12 12 31|1 2" "13 13 34|1 2" "14 14 37|1 2") ;;
+  elevators)
+    domain=elevators-2011
+    sets=("24 28|1 2" "24 32|1 2" "32 32|1 2" "32 40|1 2" "40 40|1 2") ;;
+  satellite)
+    domain=satellite-2014
+    sets=("5 5 7 40 32|1 2" "6 5 8 44 36|1 2" "7 5 8 48 40|1 2" "8 5 9 52 44|1 2"
+      "10 5 10 60 50|1 2") ;;
   parcprinter)
     # A domain per printer: the generator's first argument names it.
     domain=parcprinter-2011

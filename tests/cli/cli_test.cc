@@ -140,6 +140,31 @@ TEST(CliInProcessTest, CpuLimitLimitsTheSearch) {
   EXPECT_NE(word.err.find("got ten"), std::string::npos) << word.err;
 }
 
+// Under an address-space limit (ulimit -v, as benchmark runners set it) an
+// allocation fails before the memory limit's poll sees it coming; the plans
+// found until then are kept: the anytime search on this mission runs out of
+// 200 MB within a few seconds, long after its first plan.
+TEST(CliInProcessTest, AnAddressSpaceLimitKeepsThePlanFoundSoFar) {
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+  GTEST_SKIP() << "the sanitizers reserve more address space than the limit";
+#endif
+  const auto mission = SourceDir() / "engine/search/testdata/fjord-s3-p8-c8-seed8.pddl";
+  const auto plan = ScratchDir() / "address-space.plan";
+  std::string command = "ulimit -v 200000 && exec " + Quote((BinDir() / "seaplan").string()) +
+                        " plan " + Quote(Example("domain.pddl")) + " " + Quote(mission.string()) +
+                        " --time-limit 300 --memory-limit 4096 -o " + Quote(plan.string());
+  const auto out = ScratchDir() / "address-space.out";
+  const int status =
+      std::system(("sh -c " + Quote(command) + " >" + Quote(out.string()) + " 2>&1").c_str());
+  const std::string printed = ReadFile(out);
+  ASSERT_TRUE(WIFEXITED(status)) << printed;
+  EXPECT_EQ(WEXITSTATUS(status), 0) << printed;
+  EXPECT_NE(printed.find("memory ran out (an allocation failed) after"), std::string::npos)
+      << printed;
+  auto valid = RunSeaplan({"validate", Example("domain.pddl"), mission.string(), plan.string()});
+  EXPECT_EQ(valid.exit_code, 0) << valid.out << valid.err;
+}
+
 // --switch-after is accepted (0: the newest-first search alone, which
 // solves case A; that the share reaches the planner's options is checked
 // in server/core's adapter test); a share past 1 is a usage error.

@@ -9,6 +9,7 @@
 #include <cstring>
 #include <filesystem>
 #include <iostream>
+#include <new>
 #include <string>
 
 #include "cli.h"
@@ -42,9 +43,14 @@ int main(int argc, char** argv) {
   CliExecutable executable;
   executable.runs = RunsHere;
   executable.make_backend = [](const std::string&, double, const std::string&,
-                                const seaplan::client::TlsFiles&) {
-    return MakePlanningBackend();
-  };
+                               const seaplan::client::TlsFiles&) { return MakePlanningBackend(); };
   executable.hand_over = HandOver;
-  return RunCli(argc, argv, executable);
+  // The planner returns its plan when an allocation fails in the search
+  // (an address-space limit); grounding a huge task can still run out.
+  try {
+    return RunCli(argc, argv, executable);
+  } catch (const std::bad_alloc&) {
+    std::cerr << "error: memory ran out (an allocation failed) before a plan was found\n";
+    return kExitNoPlan;
+  }
 }

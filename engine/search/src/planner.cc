@@ -7,6 +7,7 @@
 #include <ctime>
 #include <limits>
 #include <memory>
+#include <new>
 #include <optional>
 
 #include "absl/strings/str_cat.h"
@@ -129,8 +130,16 @@ class PlannerRun {
         initial_(InitialState()) {}
 
   PlanResult Run();
+  // After a std::bad_alloc left Run: the plan found so far (status
+  // kSolvedSatisficing) or kMemout, the counters of the last poll. Only
+  // best_ is read: Offer moves a finished plan into it, so it is whole at
+  // any allocation.
+  PlanResult AfterAllocationFailure();
 
  private:
+  // The result: best_ (moved out), counters and time set.
+  PlanResult Finish(const SearchCounters& counters, PlanStatus status_if_no_plan,
+                    std::string message);
   enum class Outcome { kContinue, kStop, kMemout };
   // Polls stop/expansion limit/memory/progress for the searches running
   // now; called once per search step.
@@ -186,6 +195,7 @@ class PlannerRun {
   bool has_plan_ = false;
   std::size_t plan_events_ = 0;
   SearchCounters done_counters_;            // of finished searches
+  SearchCounters polled_counters_;          // of all searches, at the last memory poll
   std::vector<const LazySearch*> running_;  // started, not yet in done_counters_
   // The second first-plan search's own states and schedule (Run): searches
   // in turn on one timeline would each find the other's path built where
@@ -244,6 +254,7 @@ PlannerRun::Outcome PlannerRun::Poll() {
     for (const LazySearch* search : running_) bytes += search->MemoryBytes();
     if (second_registry_) bytes += second_registry_->MemoryBytes();
     if (second_timeline_) bytes += second_timeline_->MemoryBytes();
+    polled_counters_ = TotalCounters();
     const std::size_t mb = bytes >> 20;
     best_.stats.peak_memory_mb = std::max(best_.stats.peak_memory_mb, mb);
     if (mb >= options_.memory_limit_mb) return Outcome::kMemout;
@@ -404,19 +415,40 @@ void PlannerRun::ShortenFirstPlan(std::size_t first_expanded) {
   }
 }
 
+PlanResult PlannerRun::Finish(const SearchCounters& counters, PlanStatus status_if_no_plan,
+                              std::string message) {
+  SetCounters(counters, best_.stats);
+  best_.stats.search_time_s = Seconds(start_);
+  if (!has_plan_) {
+    best_.status = status_if_no_plan;
+    best_.message = std::move(message);
+  } else if (best_.message.empty()) {
+    best_.message =
+        absl::StrCat(best_.stats.plans_found, " plan(s), best makespan ", best_.makespan_s);
+  }
+  return std::move(best_);
+}
+
+PlanResult PlannerRun::AfterAllocationFailure() {
+  // Run's searches went with its frame; running_ points at them.
+  running_.clear();
+  second_registry_.reset();
+  second_timeline_.reset();
+  const SearchCounters& counters =
+      polled_counters_.expanded > done_counters_.expanded ? polled_counters_ : done_counters_;
+  if (has_plan_) {
+    best_.message =
+        absl::StrCat("memory ran out (an allocation failed) after ", best_.stats.plans_found,
+                     " plan(s); best makespan ", best_.makespan_s);
+  }
+  return Finish(counters, PlanStatus::kMemout,
+                "memory ran out (an allocation failed) before a plan was found");
+}
+
 PlanResult PlannerRun::Run() {
   best_.status = PlanStatus::kTimeout;
   auto finish = [&](PlanStatus status_if_no_plan, std::string message) {
-    SetCounters(done_counters_, best_.stats);
-    best_.stats.search_time_s = Seconds(start_);
-    if (!has_plan_) {
-      best_.status = status_if_no_plan;
-      best_.message = std::move(message);
-    } else if (best_.message.empty()) {
-      best_.message =
-          absl::StrCat(best_.stats.plans_found, " plan(s), best makespan ", best_.makespan_s);
-    }
-    return best_;
+    return Finish(done_counters_, status_if_no_plan, std::move(message));
   };
   auto stopped_status = [&]() {
     return stop_.Reason() == StopReason::kCancelled ? PlanStatus::kCancelled : PlanStatus::kTimeout;
@@ -751,8 +783,23 @@ PlanResult SolveTask(const task::GroundTask& task, const PlannerOptions& options
     r.message = std::string(s.message());
     return r;
   }
-  auto run = std::make_unique<PlannerRun>(task, options, stop, observer);
-  return run->Run();
+  // Under an address-space limit (ulimit -v, as benchmark runners set it)
+  // an allocation can fail before the memory limit's poll sees it coming
+  // (a table doubling): the plan found so far is returned, not lost.
+  std::unique_ptr<PlannerRun> run;
+  try {
+    run = std::make_unique<PlannerRun>(task, options, stop, observer);
+  } catch (const std::bad_alloc&) {
+    PlanResult r;
+    r.status = PlanStatus::kMemout;
+    r.message = "memory ran out (an allocation failed) building the search's tables";
+    return r;
+  }
+  try {
+    return run->Run();
+  } catch (const std::bad_alloc&) {
+    return run->AfterAllocationFailure();
+  }
 }
 
 StopToken WithinTimeLimit(const PlannerOptions& options, const StopToken& stop) {

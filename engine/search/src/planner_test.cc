@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <functional>
 #include <limits>
+#include <new>
 #include <thread>
 
 #include "seaplan/task/grounder.h"
@@ -464,6 +465,38 @@ TEST(PlannerTest, ObserverSeesEveryImprovement) {
   ASSERT_FALSE(makespans.empty());
   for (std::size_t i = 1; i < makespans.size(); ++i) EXPECT_LT(makespans[i], makespans[i - 1]);
   EXPECT_DOUBLE_EQ(makespans.back(), r.makespan_s);
+}
+
+// An allocation that fails (an address-space limit) unwinds the search;
+// the observer's callbacks run inside it, so they stand in for one here.
+TEST(PlannerTest, AFailedAllocationKeepsThePlanFoundSoFar) {
+  auto loaded = Load("match-domain.pddl", "match-problem.pddl");
+  ASSERT_TRUE(loaded.task);
+  int plans_seen = 0;
+  PlanObserver observer;
+  observer.on_plan = [&](const PlanResult&) {
+    ++plans_seen;
+    throw std::bad_alloc();
+  };
+  const PlanResult r = SolveTask(*loaded.task, Quick(5), StopToken(), &observer);
+  EXPECT_EQ(plans_seen, 1);
+  ASSERT_EQ(r.status, PlanStatus::kSolvedSatisficing) << r.message;
+  EXPECT_NE(r.message.find("memory ran out"), std::string::npos) << r.message;
+  EXPECT_EQ(r.stats.plans_found, 1);
+  EXPECT_FALSE(r.plan.steps.empty());
+  ExpectValid(*loaded.task, r);
+}
+
+TEST(PlannerTest, AFailedAllocationBeforeAPlanIsAMemout) {
+  auto loaded = Load("toggle-domain.pddl", "toggle-22.pddl");  // no plan within 5 s
+  ASSERT_TRUE(loaded.task);
+  PlanObserver observer;
+  observer.on_progress = [](const SearchStatistics&) { throw std::bad_alloc(); };
+  const PlanResult r = SolveTask(*loaded.task, Quick(5), StopToken(), &observer);
+  EXPECT_EQ(r.status, PlanStatus::kMemout) << r.message;
+  EXPECT_NE(r.message.find("memory ran out"), std::string::npos) << r.message;
+  EXPECT_TRUE(r.plan.steps.empty());
+  EXPECT_GT(r.stats.expanded, 0u);  // the counters of the last poll
 }
 
 TEST(PlannerTest, SolveReportsParseErrors) {

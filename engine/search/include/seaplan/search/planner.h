@@ -90,7 +90,10 @@ struct PlannerOptions {
   // second_greedy_after_share of this budget instead of the wall time.
   double cpu_time_limit_s = 0;
   // Budget for the planner's own data (states, open lists, side tables,
-  // the schedule's network), MB (> 0).
+  // the schedule's network, counted by capacity), MB (> 0). The process
+  // needs more (the task, the heuristic's tables, a table that doubles):
+  // under an address-space limit of the same size an allocation fails
+  // first, which SolveTask also survives.
   std::size_t memory_limit_mb = 2048;
   // Most actions running at once; 0 = unbounded. Smaller values shrink the
   // search space but can make required-concurrency tasks unsolvable.
@@ -186,7 +189,9 @@ struct PlanObserver {
 
 // Plans for a ground task. Polls `stop` (deadline, cancellation) at least
 // every millisecond of work; the result keeps the best plan found so far
-// (status kSolvedSatisficing) when stopped after a plan.
+// (status kSolvedSatisficing) when stopped after a plan, also when an
+// allocation fails (std::bad_alloc, an address-space limit such as
+// `ulimit -v`: the message says memory ran out; kMemout before a plan).
 PlanResult SolveTask(const task::GroundTask& task, const PlannerOptions& options,
                      const StopToken& stop, const PlanObserver* observer = nullptr);
 
