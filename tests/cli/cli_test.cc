@@ -165,6 +165,27 @@ TEST(CliInProcessTest, AnAddressSpaceLimitKeepsThePlanFoundSoFar) {
   EXPECT_EQ(valid.exit_code, 0) << valid.out << valid.err;
 }
 
+// With -o each improved plan is in the file as soon as it is found: a
+// process killed from outside (here SIGKILL after 2 s; the first plan of
+// this mission comes within 0.05 s, the anytime search runs to its limit)
+// leaves a whole, valid plan, and no partial file beside it.
+TEST(CliInProcessTest, AKilledPlannerLeavesItsBestPlanSoFar) {
+  const auto mission = SourceDir() / "engine/search/testdata/fjord-s3-p8-c8-seed8.pddl";
+  const auto plan = ScratchDir() / "killed.plan";
+  fs::remove(plan);
+  const std::string command = "timeout -s KILL 2 " + Quote((BinDir() / "seaplan").string()) +
+                              " plan " + Quote(Example("domain.pddl")) + " " +
+                              Quote(mission.string()) + " --time-limit 300 -o " +
+                              Quote(plan.string()) + " >/dev/null 2>&1";
+  const int status = std::system(command.c_str());
+  ASSERT_TRUE(WIFEXITED(status));
+  EXPECT_EQ(WEXITSTATUS(status), 137) << "not killed: the test needs a longer search";
+  ASSERT_TRUE(fs::exists(plan));
+  EXPECT_FALSE(fs::exists(plan.string() + ".partial"));
+  auto valid = RunSeaplan({"validate", Example("domain.pddl"), mission.string(), plan.string()});
+  EXPECT_EQ(valid.exit_code, 0) << valid.out << valid.err;
+}
+
 // --switch-after is accepted (0: the newest-first search alone, which
 // solves case A; that the share reaches the planner's options is checked
 // in server/core's adapter test); a share past 1 is a usage error.

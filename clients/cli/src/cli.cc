@@ -51,6 +51,22 @@ absl::Status WriteFile(const std::string& path, const std::string& content) {
   return absl::OkStatus();
 }
 
+// Writes `content` beside `path`, then renames it over `path`: a reader
+// (or a process killed meanwhile) sees the old file or the new, whole.
+absl::Status ReplaceFile(const std::string& path, const std::string& content) {
+  const std::string partial = path + ".partial";
+  if (auto s = WriteFile(partial, content); !s.ok()) {
+    return absl::InvalidArgumentError("cannot write file '" + path + "'");
+  }
+  std::error_code error;
+  std::filesystem::rename(partial, path, error);
+  if (error) {
+    std::filesystem::remove(partial, error);
+    return absl::InvalidArgumentError("cannot write file '" + path + "'");
+  }
+  return absl::OkStatus();
+}
+
 // "63.44,10.39" -> LatLon.
 absl::Status ParseLatLon(const std::string& text, v1::LatLon* position) {
   const auto comma = text.find(',');
@@ -148,8 +164,19 @@ int RunPlan(const GlobalOptions& options, const PlanArgs& args) {
   auto backend = MakeBackend(options);
   v1::PlanResponse response;
   absl::Status status;
-  if (args.stream) {
+  // With -o, each improved plan replaces the file as soon as it is found
+  // (written beside it, then renamed): a process killed from outside (an
+  // outer time limit, the OOM killer) leaves its best plan so far there.
+  absl::Status write_status;
+  if (args.stream || !args.output.empty()) {
     status = backend->PlanStream(request, [&](const v1::PlanStreamEvent& event) {
+      if (event.has_improved_plan() && !args.output.empty() && write_status.ok()) {
+        write_status = ReplaceFile(args.output, FormatPlanText(event.improved_plan()));
+      }
+      if (!args.stream) {
+        if (event.has_final_result()) response = event.final_result();
+        return;
+      }
       if (options.json) {
         std::cout << ToJson(event) << "\n" << std::flush;
       } else if (event.has_improved_plan()) {
@@ -165,6 +192,7 @@ int RunPlan(const GlobalOptions& options, const PlanArgs& args) {
     status = backend->Plan(request, &response);
   }
   if (!status.ok()) return ReportError(std::cerr, status);
+  if (!write_status.ok()) return ReportError(std::cerr, write_status);
   if (!args.stream || !options.json) {
     PrintJsonOr(options, response, [&] { PrintPlanResponse(std::cout, response); });
   }
@@ -173,7 +201,7 @@ int RunPlan(const GlobalOptions& options, const PlanArgs& args) {
   const bool solved =
       response.status() == v1::SOLVED_SATISFICING || response.status() == v1::SOLVED_OPTIMALLY;
   if (!args.output.empty() && solved) {
-    if (auto s = WriteFile(args.output, FormatPlanText(response)); !s.ok())
+    if (auto s = ReplaceFile(args.output, FormatPlanText(response)); !s.ok())
       return ReportError(std::cerr, s);
   }
   switch (response.status()) {
@@ -815,7 +843,8 @@ int RunCli(int argc, char** argv, const CliExecutable& executable) {
   plan_cmd->add_option("--epsilon", plan.epsilon_s,
                        "Separation of interfering events (s), default 0.001");
   plan_cmd->add_flag("--stream", plan.stream, "Show progress and each improved plan");
-  plan_cmd->add_option("-o,--output", plan.output, "Write the plan to this file");
+  plan_cmd->add_option("-o,--output", plan.output,
+                       "Write the plan to this file (each improved plan as soon as it is found)");
   plan_cmd->callback(runner("plan", [&] { return RunPlan(options, plan); }));
 
   std::string v_domain, v_problem, v_plan;
