@@ -3,7 +3,8 @@
 # generated instances: satellite-tw-til", "Helpful events on time", "A run
 # of goals ordered to the end: floortile", "Stacks from the right end:
 # depots", "driverlogshift past p05", "Long plans: turnandopen", "Drives
-# by each driver: one operator" and "Larger print jobs: parcprinter", run
+# by each driver: one operator", "Larger print jobs: parcprinter" and
+# "Larger elevators and satellite instances", run
 # with one executable: for each, `seaplan plan` (first plan, --no-anytime)
 # as a whole process under a CPU limit, then `seaplan validate` of the same
 # executable on the plan. One line per instance, then how many were solved
