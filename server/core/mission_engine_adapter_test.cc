@@ -107,7 +107,7 @@ TEST(MissionAdapterTest, SpecDefaultsAndErrors) {
   EXPECT_FALSE(given->planner.symmetry_reduction);
   EXPECT_TRUE(defaults.planner.eager_ends);
   EXPECT_FALSE(given->planner.eager_ends);
-  EXPECT_EQ(defaults.planner.second_greedy_after_share, 0.5);
+  EXPECT_EQ(defaults.planner.second_greedy_after_share, 0.25);
   EXPECT_EQ(given->planner.second_greedy_after_share, 0.125);
   EXPECT_EQ(given->planner.cpu_time_limit_s, 5);
   EXPECT_EQ(given->planner.time_limit_s, 7);

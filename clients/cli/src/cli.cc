@@ -837,7 +837,7 @@ int RunCli(int argc, char** argv, const CliExecutable& executable) {
       ->add_option("--switch-after", plan.switch_after,
                    "Share of the budget (expansions, CPU or time limit) after which, with no "
                    "plan yet, the first-plan search by makespan gives way to one that delays "
-                   "actions undoing held goals (default 0.5; 0: the newest-first search alone)")
+                   "actions undoing held goals (default 0.25; 0: the newest-first search alone)")
       ->check(CLI::Range(0.0, 1.0));
   plan_cmd->add_option("--seed", plan.seed, "Random seed")->capture_default_str();
   plan_cmd->add_option("--epsilon", plan.epsilon_s,
