@@ -620,6 +620,14 @@ TEST(CliRemoteTest, CommandsWorkAgainstARunningServer) {
                           "--time-limit", "5"});
   EXPECT_EQ(plan.exit_code, 0) << plan.err;
   EXPECT_NE(plan.out.find("(refuel-ship ship0 port-e teamf0)"), std::string::npos) << plan.out;
+  // -o takes the plans from the server's stream as they come.
+  const std::string plan_file = (ScratchDir() / "remote.plan").string();
+  auto written = RunSeaplan({"--server", addr, "plan", Example("domain.pddl"),
+                             Example("case-a.pddl"), "--time-limit", "5", "-o", plan_file});
+  EXPECT_EQ(written.exit_code, 0) << written.err;
+  auto written_valid =
+      RunSeaplan({"validate", Example("domain.pddl"), Example("case-a.pddl"), plan_file});
+  EXPECT_EQ(written_valid.exit_code, 0) << written_valid.out << written_valid.err;
 
   auto valid = RunSeaplan({"--server", addr, "validate", Example("domain.pddl"),
                            Example("case-a.pddl"), Example("case-a-repaired.plan")});
