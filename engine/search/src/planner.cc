@@ -19,6 +19,7 @@
 #include "object_symmetry.h"
 #include "plan_builder.h"
 #include "plan_elimination.h"
+#include "process_memory.h"
 #include "seaplan/common/log.h"
 #include "seaplan/task/grounder.h"
 #include "search_engine.h"
@@ -204,6 +205,7 @@ class PlannerRun {
   std::optional<Timeline> second_timeline_;
   std::size_t steps_ = 0;
   bool expansion_limit_reached_ = false;
+  bool memory_limit_reached_ = false;
   bool cpu_limit_reached_ = false;
   // The search's CPU time so far (cpu_time_limit_s), and its last reading in
   // Poll.
@@ -257,7 +259,10 @@ PlannerRun::Outcome PlannerRun::Poll() {
     polled_counters_ = TotalCounters();
     const std::size_t mb = bytes >> 20;
     best_.stats.peak_memory_mb = std::max(best_.stats.peak_memory_mb, mb);
-    if (mb >= options_.memory_limit_mb) return Outcome::kMemout;
+    if (mb >= options_.memory_limit_mb) {
+      memory_limit_reached_ = true;
+      return Outcome::kMemout;
+    }
     if (observer_ && observer_->on_progress &&
         std::chrono::duration<double>(Clock::now() - last_progress_).count() >= 0.5) {
       last_progress_ = Clock::now();
@@ -425,6 +430,9 @@ PlanResult PlannerRun::Finish(const SearchCounters& counters, PlanStatus status_
   } else if (best_.message.empty()) {
     best_.message =
         absl::StrCat(best_.stats.plans_found, " plan(s), best makespan ", best_.makespan_s);
+    if (memory_limit_reached_) {
+      absl::StrAppend(&best_.message, "; memory limit (", options_.memory_limit_mb, " MB) reached");
+    }
   }
   return std::move(best_);
 }
@@ -447,6 +455,13 @@ PlanResult PlannerRun::AfterAllocationFailure() {
 
 PlanResult PlannerRun::Run() {
   best_.status = PlanStatus::kTimeout;
+  // Past the process's own limits an allocation fails or the kernel kills
+  // it (process_memory.h): the memory limit stays under their room.
+  if (const auto room = ProcessMemoryHeadroom(); room && room->mb < options_.memory_limit_mb) {
+    log::Info("planner: memory limit {} MB instead of {} MB: the process's {} leaves no more",
+              std::max<std::size_t>(room->mb, 1), options_.memory_limit_mb, room->limit);
+    options_.memory_limit_mb = std::max<std::size_t>(room->mb, 1);
+  }
   auto finish = [&](PlanStatus status_if_no_plan, std::string message) {
     return Finish(done_counters_, status_if_no_plan, std::move(message));
   };
@@ -675,7 +690,8 @@ PlanResult PlannerRun::Run() {
     if (poll != Outcome::kContinue) {
       end_all();
       if (poll == Outcome::kMemout)
-        return finish(PlanStatus::kMemout, "memory limit reached before a plan");
+        return finish(PlanStatus::kMemout, absl::StrCat("memory limit (", options_.memory_limit_mb,
+                                                        " MB) reached before a plan"));
       if (expansion_limit_reached_) {
         return finish(PlanStatus::kTimeout,
                       absl::StrCat("expansion limit (", options_.max_expansions,

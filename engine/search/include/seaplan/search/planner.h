@@ -91,9 +91,10 @@ struct PlannerOptions {
   double cpu_time_limit_s = 0;
   // Budget for the planner's own data (states, open lists, side tables,
   // the schedule's network, counted by capacity), MB (> 0). The process
-  // needs more (the task, the heuristic's tables, a table that doubles):
-  // under an address-space limit of the same size an allocation fails
-  // first, which SolveTask also survives.
+  // needs more (the task, the heuristic's tables, a table that doubles),
+  // so under a cgroup memory limit the search keeps to the room it leaves
+  // (src/process_memory.h) when that is less; an allocation that fails
+  // (an address-space limit) is survived (SolveTask).
   std::size_t memory_limit_mb = 2048;
   // Most actions running at once; 0 = unbounded. Smaller values shrink the
   // search space but can make required-concurrency tasks unsolvable.

@@ -1,0 +1,52 @@
+#include "process_memory.h"
+
+#include <gtest/gtest.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+namespace seaplan::search {
+namespace {
+
+void Write(const std::filesystem::path& file, const std::string& text) {
+  std::filesystem::create_directories(file.parent_path());
+  std::ofstream(file) << text;
+}
+
+// A cgroup file system of its own: the lowest limit on the way up counts,
+// "max" and v1's "no limit" do not, and the usage is the cgroup's own.
+TEST(ProcessMemoryTest, CgroupLimitsOfTheCgroupAndItsAncestors) {
+  const auto root = std::filesystem::temp_directory_path() /
+                    ("seaplan-cgroup-test-" + std::to_string(::getpid()));
+  std::filesystem::remove_all(root);
+  constexpr std::size_t kMb = std::size_t{1} << 20;
+  // v2: /a/b has no limit of its own, /a has 500 MB; b uses 100 MB.
+  Write(root / "proc-v2", "0::/a/b\n");
+  Write(root / "sys/a/b/memory.max", "max\n");
+  Write(root / "sys/a/b/memory.current", std::to_string(100 * kMb) + "\n");
+  Write(root / "sys/a/memory.max", std::to_string(500 * kMb) + "\n");
+  auto v2 = CgroupHeadroom((root / "proc-v2").string(), (root / "sys").string());
+  ASSERT_TRUE(v2);
+  EXPECT_EQ(v2->mb, 300u);  // (500 - 100) * 3 / 4
+  EXPECT_EQ(v2->limit, "cgroup memory.max 500 MB");
+  // v1 (a hybrid: the v2 line has no limit): /x unlimited, the root 1 GB.
+  Write(root / "proc-v1", "0::/\n4:cpu,memory:/x\n");
+  Write(root / "sys/memory/x/memory.limit_in_bytes", "9223372036854771712\n");
+  Write(root / "sys/memory/x/memory.usage_in_bytes", std::to_string(200 * kMb) + "\n");
+  Write(root / "sys/memory/memory.limit_in_bytes", std::to_string(1024 * kMb) + "\n");
+  auto v1 = CgroupHeadroom((root / "proc-v1").string(), (root / "sys").string());
+  ASSERT_TRUE(v1);
+  EXPECT_EQ(v1->mb, 618u);  // (1024 - 200) * 3 / 4
+  EXPECT_EQ(v1->limit, "cgroup memory.limit_in_bytes 1024 MB");
+  // No limit anywhere: no room to keep under.
+  Write(root / "proc-none", "0::/free\n");
+  Write(root / "sys/free/memory.max", "max\n");
+  Write(root / "sys/free/memory.current", "4096\n");
+  EXPECT_FALSE(CgroupHeadroom((root / "proc-none").string(), (root / "sys").string()));
+  std::filesystem::remove_all(root);
+}
+
+}  // namespace
+}  // namespace seaplan::search
