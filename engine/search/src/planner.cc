@@ -455,8 +455,8 @@ PlanResult PlannerRun::AfterAllocationFailure() {
 
 PlanResult PlannerRun::Run() {
   best_.status = PlanStatus::kTimeout;
-  // Past the process's own limits an allocation fails or the kernel kills
-  // it (process_memory.h): the memory limit stays under their room.
+  // Past a cgroup memory limit the kernel kills the process, plan and all
+  // (process_memory.h): the memory limit stays under the room it leaves.
   if (const auto room = ProcessMemoryHeadroom(); room && room->mb < options_.memory_limit_mb) {
     log::Info("planner: memory limit {} MB instead of {} MB: the process's {} leaves no more",
               std::max<std::size_t>(room->mb, 1), options_.memory_limit_mb, room->limit);
