@@ -2,9 +2,14 @@
 // validate, chart, route and risk run in-process when no --server is given.
 #include "cli.h"
 
+#include <sys/stat.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <cerrno>
 #include <cmath>
 #include <cstdlib>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -51,18 +56,39 @@ absl::Status WriteFile(const std::string& path, const std::string& content) {
   return absl::OkStatus();
 }
 
-// Writes `content` beside `path`, then renames it over `path`: a reader
-// (or a process killed meanwhile) sees the old file or the new, whole.
+// Writes `content` to a new file beside `path`, then renames it over
+// `path`: a reader (or a process killed meanwhile) sees the old file or the
+// new, whole. Anything but a regular file (a symlink, /dev/stdout, a pipe)
+// and a folder this process may not create in are written in place.
 absl::Status ReplaceFile(const std::string& path, const std::string& content) {
-  const std::string partial = path + ".partial";
-  if (auto s = WriteFile(partial, content); !s.ok()) {
-    return absl::InvalidArgumentError("cannot write file '" + path + "'");
-  }
   std::error_code error;
-  std::filesystem::rename(partial, path, error);
-  if (error) {
-    std::filesystem::remove(partial, error);
-    return absl::InvalidArgumentError("cannot write file '" + path + "'");
+  const auto status = std::filesystem::symlink_status(path, error);
+  if (!error && std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
+    return WriteFile(path, content);
+  }
+  error.clear();  // a new file: no status to read
+  std::string temp = path + ".XXXXXX";
+  const int fd = ::mkstemp(temp.data());
+  if (fd < 0) return WriteFile(path, content);
+  const mode_t mask = ::umask(0);  // mkstemp's 0600, as a new file would be made
+  ::umask(mask);
+  int cause = ::fchmod(fd, 0666 & ~mask) == 0 ? 0 : errno;
+  for (std::size_t done = 0; cause == 0 && done < content.size();) {
+    const ssize_t n = ::write(fd, content.data() + done, content.size() - done);
+    if (n > 0) {
+      done += static_cast<std::size_t>(n);
+    } else if (n == 0) {
+      cause = EIO;
+    } else if (errno != EINTR) {
+      cause = errno;
+    }
+  }
+  if (::close(fd) != 0 && cause == 0) cause = errno;
+  if (cause == 0) std::filesystem::rename(temp, path, error);
+  if (cause != 0 || error) {
+    ::unlink(temp.c_str());
+    return absl::InvalidArgumentError(absl::StrCat(
+        "cannot write file '", path, "': ", error ? error.message() : std::strerror(cause)));
   }
   return absl::OkStatus();
 }
@@ -192,10 +218,10 @@ int RunPlan(const GlobalOptions& options, const PlanArgs& args) {
     status = backend->Plan(request, &response);
   }
   if (!status.ok()) return ReportError(std::cerr, status);
-  if (!write_status.ok()) return ReportError(std::cerr, write_status);
   if (!args.stream || !options.json) {
     PrintJsonOr(options, response, [&] { PrintPlanResponse(std::cout, response); });
   }
+  if (!write_status.ok()) return ReportError(std::cerr, write_status);
   // A solved task's plan is written even when empty (its goal holds at the
   // start): an old file left in its place would be taken for it.
   const bool solved =

@@ -9,7 +9,6 @@
 #include <cstring>
 #include <filesystem>
 #include <iostream>
-#include <new>
 #include <string>
 
 #include "cli.h"
@@ -45,12 +44,5 @@ int main(int argc, char** argv) {
   executable.make_backend = [](const std::string&, double, const std::string&,
                                const seaplan::client::TlsFiles&) { return MakePlanningBackend(); };
   executable.hand_over = HandOver;
-  // The planner returns its plan when an allocation fails in the search
-  // (an address-space limit); grounding a huge task can still run out.
-  try {
-    return RunCli(argc, argv, executable);
-  } catch (const std::bad_alloc&) {
-    std::cerr << "error: memory ran out (an allocation failed) before a plan was found\n";
-    return kExitNoPlan;
-  }
+  return RunCli(argc, argv, executable);
 }

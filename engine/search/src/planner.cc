@@ -132,10 +132,12 @@ class PlannerRun {
 
   PlanResult Run();
   // After a std::bad_alloc left Run: the plan found so far (status
-  // kSolvedSatisficing) or kMemout, the counters of the last poll. Only
-  // best_ is read: Offer moves a finished plan into it, so it is whole at
-  // any allocation.
+  // kSolvedSatisficing) or kMemout, the counters of the last poll. Reads
+  // best_ (Offer moves a finished plan into it, so it is whole at any
+  // allocation), the flags and the counters, never the searches.
   PlanResult AfterAllocationFailure();
+  // The same without allocating (no message): when that failed too.
+  PlanResult TakeBest();
 
  private:
   // The result: best_ (moved out), counters and time set.
@@ -451,6 +453,12 @@ PlanResult PlannerRun::AfterAllocationFailure() {
   }
   return Finish(counters, PlanStatus::kMemout,
                 "memory ran out (an allocation failed) before a plan was found");
+}
+
+PlanResult PlannerRun::TakeBest() {
+  best_.message.clear();
+  if (!has_plan_) best_.status = PlanStatus::kMemout;
+  return std::move(best_);
 }
 
 PlanResult PlannerRun::Run() {
@@ -814,7 +822,11 @@ PlanResult SolveTask(const task::GroundTask& task, const PlannerOptions& options
   try {
     return run->Run();
   } catch (const std::bad_alloc&) {
+  }
+  try {
     return run->AfterAllocationFailure();
+  } catch (const std::bad_alloc&) {  // the message could not be allocated
+    return run->TakeBest();
   }
 }
 

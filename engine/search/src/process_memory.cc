@@ -2,6 +2,8 @@
 
 #include <charconv>
 #include <fstream>
+#include <string_view>
+#include <utility>
 
 namespace seaplan::search {
 namespace {
@@ -22,24 +24,54 @@ std::optional<std::size_t> ReadNumber(const std::string& path) {
   return value;
 }
 
-// The lowest limit on the cgroup at `path` (under `root`) and its
-// ancestors, and the cgroup's own usage.
+// The value of `key` in a memory.stat file (0 when absent).
+std::size_t StatValue(const std::string& path, std::string_view key) {
+  std::ifstream in(path);
+  std::string name;
+  std::size_t value = 0;
+  while (in >> name >> value) {
+    if (name == key) return value;
+  }
+  return 0;
+}
+
+struct CgroupFiles {
+  const char* limit;
+  const char* usage;
+  const char* inactive_key;  // in memory.stat: reclaimable page cache
+  const char* name;
+};
+constexpr CgroupFiles kCgroupV2{"memory.max", "memory.current", "inactive_file",
+                                "cgroup memory.max"};
+constexpr CgroupFiles kCgroupV1{"memory.limit_in_bytes", "memory.usage_in_bytes",
+                                "total_inactive_file", "cgroup memory.limit_in_bytes"};
+
+// The least room under the limits of the cgroup at `path` (under `root`)
+// and its ancestors: each limit less what its own cgroup uses (its
+// children's use included) but reclaimable page cache, as kubelet counts
+// a working set.
 std::optional<MemoryHeadroom> CgroupRoom(const std::string& root, std::string path,
-                                         const char* limit_file, const char* usage_file,
-                                         const char* name) {
-  const auto usage = ReadNumber(root + path + "/" + usage_file);
-  if (!usage) return std::nullopt;
-  std::optional<std::size_t> lowest;
+                                         const CgroupFiles& files) {
+  // In a container the process's cgroup is often the mount's root, though
+  // /proc/self/cgroup names its path on the host.
+  if (!ReadNumber(root + path + "/" + files.usage)) path.clear();
+  std::optional<MemoryHeadroom> tightest;
   while (true) {
-    const auto limit = ReadNumber(root + path + "/" + limit_file);
-    if (limit && *limit < kUnlimited && (!lowest || *limit < *lowest)) lowest = limit;
+    const std::string dir = root + path + "/";
+    const auto limit = ReadNumber(dir + files.limit);
+    const auto usage = ReadNumber(dir + files.usage);
+    if (limit && usage && *limit < kUnlimited) {
+      const std::size_t inactive = StatValue(dir + "memory.stat", files.inactive_key);
+      const std::size_t used = *usage > inactive ? *usage - inactive : 0;
+      const std::size_t left = *limit > used ? *limit - used : 0;
+      MemoryHeadroom room{left / 4 * 3 / kMb,
+                          std::string(files.name) + " " + std::to_string(*limit / kMb) + " MB"};
+      if (!tightest || room.mb < tightest->mb) tightest = std::move(room);
+    }
     if (path.empty() || path == "/") break;
     path.resize(path.rfind('/'));
   }
-  if (!lowest) return std::nullopt;
-  const std::size_t left = *lowest > *usage ? *lowest - *usage : 0;
-  return MemoryHeadroom{left / 4 * 3 / kMb,
-                        std::string(name) + " " + std::to_string(*lowest / kMb) + " MB"};
+  return tightest;
 }
 
 }  // namespace
@@ -58,10 +90,9 @@ std::optional<MemoryHeadroom> CgroupHeadroom(const std::string& proc_cgroup,
     const std::string path = line.substr(second + 1);
     std::optional<MemoryHeadroom> room;
     if (controllers == ",,") {
-      room = CgroupRoom(cgroup_root, path, "memory.max", "memory.current", "cgroup memory.max");
+      room = CgroupRoom(cgroup_root, path, kCgroupV2);
     } else if (controllers.find(",memory,") != std::string::npos) {
-      room = CgroupRoom(cgroup_root + "/memory", path, "memory.limit_in_bytes",
-                        "memory.usage_in_bytes", "cgroup memory.limit_in_bytes");
+      room = CgroupRoom(cgroup_root + "/memory", path, kCgroupV1);
     }
     if (room && (!tightest || room->mb < tightest->mb)) tightest = room;
   }

@@ -10,7 +10,8 @@
 // capacity and polls every few steps; a table that doubles holds its old
 // and new storage at once, and the process holds more than the tables (the
 // task, the heuristic's tables, libraries): three quarters of the memory
-// the cgroup has left.
+// the cgroup has left. Planning runs at once (a server's) each see the
+// same room: the limit then bounds each, not their sum.
 #pragma once
 
 #include <cstddef>
@@ -28,9 +29,11 @@ struct MemoryHeadroom {
 // is set (or none can be read: not Linux, no cgroup file system).
 std::optional<MemoryHeadroom> ProcessMemoryHeadroom();
 
-// The same read from other files (tests): the lowest memory limit on the
-// cgroup `proc_cgroup` names (under `cgroup_root`) and its ancestors, less
-// the cgroup's usage, three quarters of it; cgroup v2 and v1.
+// The same read from other files (tests): for the cgroup `proc_cgroup`
+// names (under `cgroup_root`, or the mount's root when that path is not
+// there, as in a container) and each ancestor with a memory limit, the
+// limit less that cgroup's usage but reclaimable page cache (memory.stat's
+// inactive_file), three quarters of the least; cgroup v2 and v1.
 std::optional<MemoryHeadroom> CgroupHeadroom(const std::string& proc_cgroup = "/proc/self/cgroup",
                                              const std::string& cgroup_root = "/sys/fs/cgroup");
 
