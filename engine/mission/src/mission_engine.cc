@@ -1,6 +1,7 @@
 #include "seaplan/mission/mission_engine.h"
 
 #include <algorithm>
+#include <new>
 #include <utility>
 
 #include "absl/strings/str_cat.h"
@@ -25,7 +26,13 @@ class Engine final : public MissionEngine {
   explicit Engine(ChartLoader charts) : routings_(std::move(charts)) {}
 
   Status CheckSpec(const MissionSpec& spec, std::vector<pddl::Diagnostic>* diagnostics) override {
-    task::LoadResult loaded = task::LoadTask(spec.domain, spec.problem);
+    task::LoadResult loaded;
+    try {
+      loaded = task::LoadTask(spec.domain, spec.problem);
+    } catch (const std::bad_alloc&) {
+      return absl::ResourceExhaustedError(
+          "spec: memory ran out (an allocation failed) grounding the task");
+    }
     for (const auto& d : loaded.diagnostics) {
       if (d.severity == pddl::Severity::kError) {
         if (diagnostics) *diagnostics = loaded.diagnostics;
