@@ -1,10 +1,14 @@
 #include "seaplan/search/planner.h"
 
 #include <gtest/gtest.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
 
 #include <chrono>
 #include <ctime>
 #include <filesystem>
+#include <fstream>
 #include <functional>
 #include <limits>
 #include <new>
@@ -497,6 +501,48 @@ TEST(PlannerTest, AFailedAllocationBeforeAPlanIsAMemout) {
   EXPECT_NE(r.message.find("memory ran out"), std::string::npos) << r.message;
   EXPECT_TRUE(r.plan.steps.empty());
   EXPECT_GT(r.stats.expanded, 0u);  // the counters of the last poll
+}
+
+// Solve grounds too: a task whose grounding cannot fit (40^5 ground
+// actions in 300 MB more address space) is MEMOUT, not an abort. In a
+// child process: the limit would bind every later test of this one.
+TEST(PlannerTest, AGroundingThatRunsOutOfMemoryIsAMemout) {
+#if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
+  GTEST_SKIP() << "the sanitizers reserve more address space than the limit";
+#endif
+  const std::string domain = R"((define (domain huge)
+  (:requirements :typing :durative-actions)
+  (:types thing)
+  (:predicates (at ?a - thing) (linked ?a ?b ?c ?d ?e - thing))
+  (:durative-action link
+    :parameters (?a ?b ?c ?d ?e - thing)
+    :duration (= ?duration 1)
+    :condition (at start (at ?a))
+    :effect (at end (linked ?a ?b ?c ?d ?e)))))";
+  std::string objects, init;
+  for (int i = 0; i < 40; ++i) {
+    objects += " o" + std::to_string(i);
+    init += " (at o" + std::to_string(i) + ")";
+  }
+  const std::string problem = "(define (problem huge-40) (:domain huge) (:objects" + objects +
+                              " - thing) (:init" + init + ") (:goal (linked o1 o2 o3 o4 o5)))";
+  const pid_t child = fork();
+  ASSERT_GE(child, 0);
+  if (child == 0) {
+    std::size_t pages = 0;
+    std::ifstream("/proc/self/statm") >> pages;
+    const rlim_t bytes = pages * static_cast<rlim_t>(sysconf(_SC_PAGESIZE)) + (rlim_t{300} << 20);
+    const rlimit limit{bytes, bytes};
+    if (setrlimit(RLIMIT_AS, &limit) != 0) _exit(2);
+    const PlanResult r = Solve(domain, problem, Quick(60), StopToken());
+    const bool memout =
+        r.status == PlanStatus::kMemout && r.message.find("while grounding") != std::string::npos;
+    _exit(memout ? 0 : 3);
+  }
+  int status = 0;
+  ASSERT_EQ(waitpid(child, &status, 0), child);
+  ASSERT_TRUE(WIFEXITED(status)) << "the child did not exit (signal " << WTERMSIG(status) << ")";
+  EXPECT_EQ(WEXITSTATUS(status), 0) << "2: setrlimit failed, 3: not MEMOUT while grounding";
 }
 
 TEST(PlannerTest, SolveReportsParseErrors) {
