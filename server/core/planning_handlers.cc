@@ -3,7 +3,6 @@
 #include <cstdio>
 #include <deque>
 #include <mutex>
-#include <new>
 
 #include "absl/strings/str_cat.h"
 #include "seaplan/search/planner.h"
@@ -141,14 +140,10 @@ struct PlanRun {
 PlanRun RunPlanner(const v1::PlanRequest& request, const search::PlannerOptions& options,
                    const StopToken& stop, const search::PlanObserver* observer) {
   PlanRun run;
-  task::LoadResult loaded;
-  // On a worker thread, where nothing above would catch it: a task too
-  // large for the process's memory is a result, like a search that runs
-  // out (SolveTask catches its own).
-  try {
-    loaded = task::LoadTask(request.domain(), request.problem(), task::GroundingOptions{},
-                            search::WithinTimeLimit(options, stop));
-  } catch (const std::bad_alloc&) {
+  task::LoadResult loaded =
+      task::LoadTask(request.domain(), request.problem(), task::GroundingOptions{},
+                     search::WithinTimeLimit(options, stop));
+  if (loaded.memory_ran_out) {
     run.response.set_status(v1::MEMOUT);
     run.response.set_message("memory ran out (an allocation failed) while grounding");
     return run;

@@ -18,6 +18,7 @@
 #include <vector>
 
 #include "seaplan/testing/child_process.h"
+#include "seaplan/testing/large_pddl.h"
 #include "seaplan/testing/shared_data.h"
 #include "seaplan/testing/test_token.h"
 
@@ -165,30 +166,16 @@ TEST(CliInProcessTest, AnAddressSpaceLimitKeepsThePlanFoundSoFar) {
   EXPECT_EQ(valid.exit_code, 0) << valid.out << valid.err;
 }
 
-// A task whose grounding cannot fit (40^5 ground actions under 400 MB of
+// A task whose grounding cannot fit (200^3 ground actions under 400 MB of
 // address space) is a result, MEMOUT, exit 1, not an abort: grounding runs
 // on the planning worker thread, where nothing else would catch it.
 TEST(CliInProcessTest, AGroundingTooLargeForTheAddressSpaceIsAMemout) {
 #if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
   GTEST_SKIP() << "the sanitizers reserve more address space than the limit";
 #endif
-  const std::string domain = WriteScratch("huge-domain.pddl", R"((define (domain huge)
-  (:requirements :typing :durative-actions)
-  (:types thing)
-  (:predicates (at ?a - thing) (linked ?a ?b ?c ?d ?e - thing))
-  (:durative-action link
-    :parameters (?a ?b ?c ?d ?e - thing)
-    :duration (= ?duration 1)
-    :condition (at start (at ?a))
-    :effect (at end (linked ?a ?b ?c ?d ?e)))))");
-  std::string objects, init;
-  for (int i = 0; i < 40; ++i) {
-    objects += " o" + std::to_string(i);
-    init += " (at o" + std::to_string(i) + ")";
-  }
-  const std::string problem = WriteScratch(
-      "huge-problem.pddl", "(define (problem huge-40) (:domain huge) (:objects" + objects +
-                               " - thing) (:init" + init + ") (:goal (linked o1 o2 o3 o4 o5)))");
+  const PddlTexts task = CubicGroundingTask(200);  // 8 million ground actions
+  const std::string domain = WriteScratch("huge-domain.pddl", task.domain);
+  const std::string problem = WriteScratch("huge-problem.pddl", task.problem);
   const auto out = ScratchDir() / "huge.out";
   const std::string command = "ulimit -v 400000 && exec " + Quote((BinDir() / "seaplan").string()) +
                               " plan " + Quote(domain) + " " + Quote(problem) + " --time-limit 120";

@@ -1,7 +1,6 @@
 #include "seaplan/mission/mission_engine.h"
 
 #include <algorithm>
-#include <new>
 #include <utility>
 
 #include "absl/strings/str_cat.h"
@@ -26,10 +25,8 @@ class Engine final : public MissionEngine {
   explicit Engine(ChartLoader charts) : routings_(std::move(charts)) {}
 
   Status CheckSpec(const MissionSpec& spec, std::vector<pddl::Diagnostic>* diagnostics) override {
-    task::LoadResult loaded;
-    try {
-      loaded = task::LoadTask(spec.domain, spec.problem);
-    } catch (const std::bad_alloc&) {
+    task::LoadResult loaded = task::LoadTask(spec.domain, spec.problem);
+    if (loaded.memory_ran_out) {
       return absl::ResourceExhaustedError(
           "spec: memory ran out (an allocation failed) grounding the task");
     }

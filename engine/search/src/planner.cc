@@ -844,11 +844,9 @@ PlanResult Solve(std::string_view domain_text, std::string_view problem_text,
                  const PlannerOptions& options, const StopToken& stop,
                  const PlanObserver* observer) {
   const auto start = Clock::now();
-  task::LoadResult loaded;
-  try {
-    loaded = task::LoadTask(domain_text, problem_text, task::GroundingOptions{},
-                            WithinTimeLimit(options, stop));
-  } catch (const std::bad_alloc&) {  // as SolveTask's search: a result, not an abort
+  task::LoadResult loaded = task::LoadTask(domain_text, problem_text, task::GroundingOptions{},
+                                           WithinTimeLimit(options, stop));
+  if (loaded.memory_ran_out) {
     PlanResult r;
     r.status = PlanStatus::kMemout;
     r.message = "memory ran out (an allocation failed) while grounding";

@@ -503,29 +503,14 @@ TEST(PlannerTest, AFailedAllocationBeforeAPlanIsAMemout) {
   EXPECT_GT(r.stats.expanded, 0u);  // the counters of the last poll
 }
 
-// Solve grounds too: a task whose grounding cannot fit (40^5 ground
+// Solve grounds too: a task whose grounding cannot fit (200^3 ground
 // actions in 300 MB more address space) is MEMOUT, not an abort. In a
 // child process: the limit would bind every later test of this one.
 TEST(PlannerTest, AGroundingThatRunsOutOfMemoryIsAMemout) {
 #if defined(__SANITIZE_ADDRESS__) || defined(__SANITIZE_THREAD__)
   GTEST_SKIP() << "the sanitizers reserve more address space than the limit";
 #endif
-  const std::string domain = R"((define (domain huge)
-  (:requirements :typing :durative-actions)
-  (:types thing)
-  (:predicates (at ?a - thing) (linked ?a ?b ?c ?d ?e - thing))
-  (:durative-action link
-    :parameters (?a ?b ?c ?d ?e - thing)
-    :duration (= ?duration 1)
-    :condition (at start (at ?a))
-    :effect (at end (linked ?a ?b ?c ?d ?e)))))";
-  std::string objects, init;
-  for (int i = 0; i < 40; ++i) {
-    objects += " o" + std::to_string(i);
-    init += " (at o" + std::to_string(i) + ")";
-  }
-  const std::string problem = "(define (problem huge-40) (:domain huge) (:objects" + objects +
-                              " - thing) (:init" + init + ") (:goal (linked o1 o2 o3 o4 o5)))";
+  const testing::PddlTexts task = testing::CubicGroundingTask(200);  // 8 million ground actions
   const pid_t child = fork();
   ASSERT_GE(child, 0);
   if (child == 0) {
@@ -534,7 +519,7 @@ TEST(PlannerTest, AGroundingThatRunsOutOfMemoryIsAMemout) {
     const rlim_t bytes = pages * static_cast<rlim_t>(sysconf(_SC_PAGESIZE)) + (rlim_t{300} << 20);
     const rlimit limit{bytes, bytes};
     if (setrlimit(RLIMIT_AS, &limit) != 0) _exit(2);
-    const PlanResult r = Solve(domain, problem, Quick(60), StopToken());
+    const PlanResult r = Solve(task.domain, task.problem, Quick(60), StopToken());
     const bool memout =
         r.status == PlanStatus::kMemout && r.message.find("while grounding") != std::string::npos;
     _exit(memout ? 0 : 3);

@@ -20,6 +20,7 @@
 #include <algorithm>
 #include <chrono>
 #include <fstream>
+#include <new>
 #include <optional>
 #include <sstream>
 #include <utility>
@@ -142,9 +143,11 @@ LoadResult LoadTask(std::string_view domain_text, std::string_view problem_text,
   return LoadTask(domain_text, problem_text, options, StopToken(), domain_file, problem_file);
 }
 
-LoadResult LoadTask(std::string_view domain_text, std::string_view problem_text,
-                    const GroundingOptions& options, const StopToken& stop,
-                    std::string_view domain_file, std::string_view problem_file) {
+namespace {
+
+LoadResult ParseAndGround(std::string_view domain_text, std::string_view problem_text,
+                          const GroundingOptions& options, const StopToken& stop,
+                          std::string_view domain_file, std::string_view problem_file) {
   LoadResult result;
   const auto start = std::chrono::steady_clock::now();
   auto parsed_domain = pddl::ParseDomain(domain_text, domain_file);
@@ -171,6 +174,20 @@ LoadResult LoadTask(std::string_view domain_text, std::string_view problem_text,
   result.stats = grounded.stats;
   result.stats.parse_ms = parse_ms;
   return result;
+}
+
+}  // namespace
+
+LoadResult LoadTask(std::string_view domain_text, std::string_view problem_text,
+                    const GroundingOptions& options, const StopToken& stop,
+                    std::string_view domain_file, std::string_view problem_file) {
+  try {
+    return ParseAndGround(domain_text, problem_text, options, stop, domain_file, problem_file);
+  } catch (const std::bad_alloc&) {
+    LoadResult result;
+    result.memory_ran_out = true;
+    return result;
+  }
 }
 
 LoadResult LoadTaskFromFiles(const std::string& domain_path, const std::string& problem_path,

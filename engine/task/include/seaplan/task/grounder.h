@@ -101,6 +101,10 @@ struct LoadResult {
   // kDeadline or kCancelled when the StopToken ended grounding (task null,
   // no error diagnostic: a result, not an input error).
   StopReason stop_reason = StopReason::kNone;
+  // LoadTask only: an allocation failed (an address-space limit) while
+  // parsing or grounding (task null, no diagnostic: a result, as a search
+  // that runs out of memory is).
+  bool memory_ran_out = false;
 
   bool stopped() const { return stop_reason != StopReason::kNone; }
   bool ok() const { return task != nullptr && !pddl::HasErrors(diagnostics); }
@@ -120,6 +124,8 @@ LoadResult LoadTask(std::string_view domain_text, std::string_view problem_text,
                     const GroundingOptions& options = {}, std::string_view domain_file = "domain",
                     std::string_view problem_file = "problem");
 // The same, polling `stop` while grounding (parsing is linear and not polled).
+// A failed allocation is a result (memory_ran_out), not an exception: the
+// callers ground on worker threads, where it would end the process.
 LoadResult LoadTask(std::string_view domain_text, std::string_view problem_text,
                     const GroundingOptions& options, const StopToken& stop,
                     std::string_view domain_file = "domain",
