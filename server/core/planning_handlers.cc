@@ -312,6 +312,11 @@ absl::StatusOr<v1::ValidateResponse> PlanningHandlers::Validate(const v1::Valida
         task::LoadResult loaded =
             task::LoadTask(request.domain(), request.problem(), task::GroundingOptions{}, ctx.stop);
         if (loaded.stopped()) return;  // reported below, as for planning
+        if (loaded.memory_ran_out) {
+          status = absl::ResourceExhaustedError(
+              "memory ran out (an allocation failed) grounding the task to validate against");
+          return;
+        }
         for (const auto& d : loaded.diagnostics) *response.add_diagnostics() = ToProto(d);
         if (HasInputErrors(loaded.diagnostics)) {
           status = MalformedPddl(loaded);
