@@ -3,9 +3,10 @@
 #include <signal.h>
 
 #include <cstdio>
-#include <filesystem>
-#include <fstream>
+#include <string>
 
+#include "absl/strings/str_cat.h"
+#include "seaplan/common/file_replace.h"
 #include "seaplan/common/log.h"
 #include "seaplan/storage/open_store.h"
 #include "server/auth/bootstrap.h"
@@ -62,16 +63,11 @@ int main(int argc, char** argv) {
     return 1;
   }
   if (!config.port_file.empty()) {
-    // Written to a temporary name and renamed: a reader never sees half a file.
-    const std::string tmp = config.port_file + ".tmp";
-    {
-      std::ofstream out(tmp, std::ios::trunc);
-      out << "grpc=" << (*server)->grpc_port() << "\nhttp=" << (*server)->http_port() << "\n";
-    }
-    std::error_code ec;
-    std::filesystem::rename(tmp, config.port_file, ec);
-    if (ec) {
-      log::Error("cannot write port file '{}': {}", config.port_file, ec.message());
+    const absl::Status written = ReplaceFile(
+        config.port_file,
+        absl::StrCat("grpc=", (*server)->grpc_port(), "\nhttp=", (*server)->http_port(), "\n"));
+    if (!written.ok()) {
+      log::Error("cannot write port file: {}", std::string(written.message()));
       return 1;
     }
   }

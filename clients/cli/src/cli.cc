@@ -2,14 +2,9 @@
 // validate, chart, route and risk run in-process when no --server is given.
 #include "cli.h"
 
-#include <sys/stat.h>
-#include <unistd.h>
-
 #include <algorithm>
-#include <cerrno>
 #include <cmath>
 #include <cstdlib>
-#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
@@ -22,6 +17,7 @@
 #include "client_token.h"
 #include "google/protobuf/util/json_util.h"
 #include "output.h"
+#include "seaplan/common/file_replace.h"
 #include "seaplan/common/log.h"
 #include "seaplan/common/status.h"
 
@@ -56,41 +52,18 @@ absl::Status WriteFile(const std::string& path, const std::string& content) {
   return absl::OkStatus();
 }
 
-// Writes `content` to a new file beside `path`, then renames it over
-// `path`: a reader (or a process killed meanwhile) sees the old file or the
-// new, whole. Anything but a regular file (a symlink, /dev/stdout, a pipe)
-// and a folder this process may not create in are written in place.
-absl::Status ReplaceFile(const std::string& path, const std::string& content) {
+// Writes `content` whole (seaplan::ReplaceFile): a reader, or a process
+// killed meanwhile, sees the old file or the new. Anything but a regular file
+// (a symlink, /dev/stdout, a pipe), and a folder this process may not create
+// in, are written in place.
+absl::Status ReplacePlanFile(const std::string& path, const std::string& content) {
   std::error_code error;
   const auto status = std::filesystem::symlink_status(path, error);
   if (!error && std::filesystem::exists(status) && !std::filesystem::is_regular_file(status)) {
     return WriteFile(path, content);
   }
-  error.clear();  // a new file: no status to read
-  std::string temp = path + ".XXXXXX";
-  const int fd = ::mkstemp(temp.data());
-  if (fd < 0) return WriteFile(path, content);
-  const mode_t mask = ::umask(0);  // mkstemp's 0600, as a new file would be made
-  ::umask(mask);
-  int cause = ::fchmod(fd, 0666 & ~mask) == 0 ? 0 : errno;
-  for (std::size_t done = 0; cause == 0 && done < content.size();) {
-    const ssize_t n = ::write(fd, content.data() + done, content.size() - done);
-    if (n > 0) {
-      done += static_cast<std::size_t>(n);
-    } else if (n == 0) {
-      cause = EIO;
-    } else if (errno != EINTR) {
-      cause = errno;
-    }
-  }
-  if (::close(fd) != 0 && cause == 0) cause = errno;
-  if (cause == 0) std::filesystem::rename(temp, path, error);
-  if (cause != 0 || error) {
-    ::unlink(temp.c_str());
-    return absl::InvalidArgumentError(absl::StrCat(
-        "cannot write file '", path, "': ", error ? error.message() : std::strerror(cause)));
-  }
-  return absl::OkStatus();
+  if (ReplaceFile(path, content).ok()) return absl::OkStatus();
+  return WriteFile(path, content);
 }
 
 // "63.44,10.39" -> LatLon.
@@ -197,7 +170,7 @@ int RunPlan(const GlobalOptions& options, const PlanArgs& args) {
   if (args.stream || !args.output.empty()) {
     status = backend->PlanStream(request, [&](const v1::PlanStreamEvent& event) {
       if (event.has_improved_plan() && !args.output.empty() && write_status.ok()) {
-        write_status = ReplaceFile(args.output, FormatPlanText(event.improved_plan()));
+        write_status = ReplacePlanFile(args.output, FormatPlanText(event.improved_plan()));
       }
       if (!args.stream) {
         if (event.has_final_result()) response = event.final_result();
