@@ -205,6 +205,9 @@ class PlannerRun {
   // they left theirs. Freed when the first plan is found.
   std::optional<StateRegistry> second_registry_;
   std::optional<Timeline> second_timeline_;
+  // The schedule of the search that takes the first's place at the switch,
+  // while the first waits on timeline_ (Run). Freed with the second's.
+  std::optional<Timeline> third_timeline_;
   std::size_t steps_ = 0;
   bool expansion_limit_reached_ = false;
   bool memory_limit_reached_ = false;
@@ -258,6 +261,7 @@ PlannerRun::Outcome PlannerRun::Poll() {
     for (const LazySearch* search : running_) bytes += search->MemoryBytes();
     if (second_registry_) bytes += second_registry_->MemoryBytes();
     if (second_timeline_) bytes += second_timeline_->MemoryBytes();
+    if (third_timeline_) bytes += third_timeline_->MemoryBytes();
     polled_counters_ = TotalCounters();
     const std::size_t mb = bytes >> 20;
     best_.stats.peak_memory_mb = std::max(best_.stats.peak_memory_mb, mb);
@@ -640,11 +644,16 @@ PlanResult PlannerRun::Run() {
   for (FirstPlanSearch& s : searches) {
     if (s.share > 0) begin_search(s);
   }
+  // The first search from the switch on: it waits, and goes on pruned by
+  // the plan the others find (below).
+  std::unique_ptr<LazySearch> waiting_first;
   auto end_all = [&]() {
     for (FirstPlanSearch& s : searches) {
       if (s.search) AddCounters(*s.search);
       s.search.reset();
     }
+    if (waiting_first) AddCounters(*waiting_first);
+    waiting_first.reset();
   };
   const FirstPlanSearch* found_by = nullptr;
   while (!has_plan_) {
@@ -676,18 +685,29 @@ PlanResult PlannerRun::Run() {
     // as many steps behind as the second has taken, so that the two
     // alternate (the second goes on, or starts, unless it is out of
     // fallbacks). Each has states and a schedule of its own: with no turn
-    // share the second has been using the first's.
+    // share the second has been using the first's. Otherwise the first
+    // waits with its schedule, and the third gets one of its own.
     if (!switched_at_start && !searches[0].delay_goal_undoers &&
         options_.second_greedy_after_share < 1 && switch_due()) {
-      if (searches[0].search) AddCounters(*searches[0].search);
-      searches[0].search.reset();
+      const bool first_waits = searches[0].search && searches[1].timeline != &timeline_;
+      if (first_waits) {
+        waiting_first = std::move(searches[0].search);
+      } else if (searches[0].search) {
+        AddCounters(*searches[0].search);
+        searches[0].search.reset();
+      }
       searches[0] = FirstPlanSearch{};
       searches[0].newest_first = searches[0].keep_held_goals = true;
       searches[0].delay_goal_undoers = true;
       searches[0].share = searches[1].share = 0.5;
       searches[0].registry = &registry_;
       searches[0].timeline = &timeline_;
-      if (searches[1].registry == &registry_) use_second_states(searches[0]);
+      if (first_waits) {
+        third_timeline_.emplace(snap_, options_.epsilon_s, options_.max_concurrent_actions > 0);
+        searches[0].timeline = &*third_timeline_;
+      } else if (searches[1].registry == &registry_) {
+        use_second_states(searches[0]);
+      }
       searches[0].eager_ends = EagerEnds();
       searches[0].steps = searches[1].steps;
       begin_search(searches[0]);
@@ -744,24 +764,32 @@ PlanResult PlannerRun::Run() {
     begin_search(*next);
   }
   const std::size_t first_plan_expanded = Expanded();
-  // A first plan from the second search (newest first) is often much longer
-  // than the first search's would have been: the first goes on, pruned by
-  // it, until its own plan or twelve times the expansions so far. With six
-  // times, elevators-2011 p03 and p05 kept the second's plans (1,455 and
-  // 1,965 against 388 and 558), for 2 % less time over the shared
-  // benchmark; going on until the switch (the budget the first search had
-  // without the second) took 1.3 times as long as six times
+  // A first plan from the second or third search (newest first) is often
+  // much longer than the first search's would have been: the first goes
+  // on, pruned by it, until its own plan or twelve times the expansions so
+  // far. With six times, elevators-2011 p03 and p05 kept the second's plans
+  // (1,455 and 1,965 against 388 and 558), for 2 % less time over the
+  // shared benchmark; going on until the switch (the budget the first
+  // search had without the second) took 1.3 times as long as six times
   // (bench/planner/README.md, "The two first-plan searches in turn").
+  // After the switch it goes on from where it waited: the third's plans of
+  // larger fjord missions were up to eleven times as long as the first's
+  // (bench/missions/README.md, "The first search goes on after the switch").
+  LazySearch* first = waiting_first.get();
   if (found_by == &searches[1] && searches[0].search && !searches[0].delay_goal_undoers) {
+    first = searches[0].search.get();
+  }
+  if (first != nullptr) {
     constexpr std::size_t kFirstSearchGoesOn = 12;
-    LazySearch& first = *searches[0].search;
     heuristic_.SetKeepHeldGoals(false);
-    first.SetBound(best_.makespan_s);
-    RunBounded(first, first.counters().expanded + kFirstSearchGoesOn * first_plan_expanded, true);
+    heuristic_.SetDelayGoalUndoers(false);
+    first->SetBound(best_.makespan_s);
+    RunBounded(*first, first->counters().expanded + kFirstSearchGoesOn * first_plan_expanded, true);
   }
   end_all();
   second_registry_.reset();
   second_timeline_.reset();
+  third_timeline_.reset();
   heuristic_.SetKeepHeldGoals(false);  // the searches for shorter plans: FF's ties
   heuristic_.SetDelayGoalUndoers(false);
   ShortenFirstPlan(first_plan_expanded);
