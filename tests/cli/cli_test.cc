@@ -102,6 +102,23 @@ TEST(CliInProcessTest, AnEmptyPlanIsWrittenOverAnOldFile) {
   EXPECT_EQ(check.exit_code, 0) << check.out << check.err;
 }
 
+// A plan file that is not a regular file (a symlink here; /dev/stdout, a
+// pipe) is written through, not replaced by a new file renamed over it:
+// renamed over, `-o /dev/null` once turned /dev/null into a regular file.
+TEST(CliInProcessTest, APlanFileThatIsASymlinkIsWrittenThrough) {
+  const auto target = WriteScratch("through-target.plan", "old content\n");
+  const auto link = ScratchDir() / "through-link.plan";
+  std::filesystem::remove(link);
+  std::filesystem::create_symlink(target, link);
+  auto plan = RunSeaplan({"plan", Example("domain.pddl"), Example("case-a.pddl"), "--no-anytime",
+                          "-o", link.string()});
+  ASSERT_EQ(plan.exit_code, 0) << plan.out << plan.err;
+  EXPECT_TRUE(std::filesystem::is_symlink(link));
+  EXPECT_NE(ReadFile(target).find("move-ship"), std::string::npos) << ReadFile(target);
+  auto check = RunSeaplan({"validate", Example("domain.pddl"), Example("case-a.pddl"), target});
+  EXPECT_EQ(check.exit_code, 0) << check.out << check.err;
+}
+
 // --max-expansions reaches the planner: 5 expansions find no plan for case
 // A (the search needs more), and the status names the limit.
 TEST(CliInProcessTest, MaxExpansionsLimitsTheSearch) {

@@ -200,7 +200,7 @@ int RunPlan(const GlobalOptions& options, const PlanArgs& args) {
   const bool solved =
       response.status() == v1::SOLVED_SATISFICING || response.status() == v1::SOLVED_OPTIMALLY;
   if (!args.output.empty() && solved) {
-    if (auto s = ReplaceFile(args.output, FormatPlanText(response)); !s.ok())
+    if (auto s = ReplacePlanFile(args.output, FormatPlanText(response)); !s.ok())
       return ReportError(std::cerr, s);
   }
   switch (response.status()) {
