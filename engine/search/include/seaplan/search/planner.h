@@ -19,17 +19,19 @@
 //     heuristic on the snap actions (numeric fluents as intervals) and
 //     helpful actions in a second, boosted open list; ties by makespan so
 //     far, and, a quarter of the steps in turn with it, a second greedy
-//     search that takes ties newest first (depth first on plateaus), alone
-//     when the first finds nothing in half the time (or half the
-//     expansion limit, when there is one); both
-//     with a type-based exploration list and, optionally
-//     (PlannerOptions::landmarks), LAMA's landmark count; then, in
-//     tasks with two or more agents (ships), a greedy search and then
-//     weighted A* (w = 3) whose relaxed plan spreads the work over them,
-//     bounded (by the first plan's makespan and, together, six times the
-//     first-plan searches' expansions without anytime, twice with it), whose plans
-//     replace the first when shorter; that is the plan returned without
-//     anytime;
+//     search that takes ties newest first (depth first on plateaus); when
+//     the first finds nothing in second_greedy_after_share of the budget,
+//     a third (the second's, delaying operators that undo held goals)
+//     takes its steps while it waits; a plan from the second or third is
+//     followed by the first, pruned by that plan; all with a type-based
+//     exploration list and LAMA's landmark count (PlannerOptions::
+//     landmarks); then, in tasks with two or more agents (ships), a greedy
+//     search and then weighted A* (w = 3) whose relaxed plan spreads the
+//     work over them (one agent: weighted A* alone), bounded (by the first
+//     plan's makespan and, together, six times the first-plan searches'
+//     expansions, at least 10,000, without anytime, twice, at least
+//     1,000, with it), whose plans replace the first when shorter; that is
+//     the plan returned without anytime;
 //   - anytime: restarting weighted A* on makespan, pruned by the incumbent,
 //     until the time limit, the expansion limit or an exhausted space;
 //   - every plan is scheduled at its earliest STN times, printed with
@@ -113,8 +115,9 @@ struct PlannerOptions {
   // operators that undo held goals delayed in its relaxed plans), in turn
   // with the second (plateaus searched newest first instead of by
   // makespan), which goes on from where it is (or starts, with no turn
-  // share), half the steps each; 0: the second alone from the start; 1
-  // never switches. A quarter, not half: the largest generated driverlog
+  // share), half the steps each, while the first waits to go on pruned by
+  // the plan they find; 0: the second alone from the start; 1 never
+  // switches. A quarter, not half: the largest generated driverlog
   // instances are found only after the switch (10 of 10 against 8 of 10
   // at 20 CPU s), with the fjord missions' and the shared set's first
   // plans as often shorter as longer (bench/planner/README.md, "The switch
