@@ -131,6 +131,9 @@ class PlannerRun {
         initial_(InitialState()) {}
 
   PlanResult Run();
+  // "memory limit (N MB) reached", or that all the process's planning runs
+  // reached the room its cgroup leaves them.
+  std::string MemoryLimitText() const;
   // After a std::bad_alloc left Run: the plan found so far (status
   // kSolvedSatisficing) or kMemout, the counters of the last poll. Reads
   // best_ (Offer moves a finished plan into it, so it is whole at any
@@ -211,6 +214,11 @@ class PlannerRun {
   std::size_t steps_ = 0;
   bool expansion_limit_reached_ = false;
   bool memory_limit_reached_ = false;
+  // This run's line in the count of all the process's planning runs, and
+  // the room the cgroup leaves them all (0: no cgroup limit); see
+  // process_memory.h.
+  PlanningMemoryLedger::Entry memory_entry_{PlanningMemoryLedger::OfProcess()};
+  std::size_t room_for_all_mb_ = 0;
   bool cpu_limit_reached_ = false;
   // The search's CPU time so far (cpu_time_limit_s), and its last reading in
   // Poll.
@@ -265,7 +273,9 @@ PlannerRun::Outcome PlannerRun::Poll() {
     polled_counters_ = TotalCounters();
     const std::size_t mb = bytes >> 20;
     best_.stats.peak_memory_mb = std::max(best_.stats.peak_memory_mb, mb);
-    if (mb >= options_.memory_limit_mb) {
+    const std::size_t all_runs_mb = memory_entry_.Update(bytes) >> 20;
+    if (mb >= options_.memory_limit_mb ||
+        (room_for_all_mb_ > 0 && all_runs_mb >= room_for_all_mb_)) {
       memory_limit_reached_ = true;
       return Outcome::kMemout;
     }
@@ -443,9 +453,7 @@ PlanResult PlannerRun::Finish(const SearchCounters& counters, PlanStatus status_
   } else if (best_.message.empty()) {
     best_.message =
         absl::StrCat(best_.stats.plans_found, " plan(s), best makespan ", best_.makespan_s);
-    if (memory_limit_reached_) {
-      absl::StrAppend(&best_.message, "; memory limit (", options_.memory_limit_mb, " MB) reached");
-    }
+    if (memory_limit_reached_) absl::StrAppend(&best_.message, "; ", MemoryLimitText());
   }
   return std::move(best_);
 }
@@ -466,6 +474,14 @@ PlanResult PlannerRun::AfterAllocationFailure() {
                 "memory ran out (an allocation failed) before a plan was found");
 }
 
+std::string PlannerRun::MemoryLimitText() const {
+  if (room_for_all_mb_ > 0 && (memory_entry_.bytes() >> 20) < options_.memory_limit_mb) {
+    return absl::StrCat("memory limit reached (the planning runs at once reached the ",
+                        room_for_all_mb_, " MB the process's cgroup leaves them)");
+  }
+  return absl::StrCat("memory limit (", options_.memory_limit_mb, " MB) reached");
+}
+
 PlanResult PlannerRun::TakeBest() {
   best_.message.clear();
   if (!has_plan_) best_.status = PlanStatus::kMemout;
@@ -476,10 +492,16 @@ PlanResult PlannerRun::Run() {
   best_.status = PlanStatus::kTimeout;
   // Past a cgroup memory limit the kernel kills the process, plan and all
   // (process_memory.h): the memory limit stays under the room it leaves.
-  if (const auto room = ProcessMemoryHeadroom(); room && room->mb < options_.memory_limit_mb) {
-    log::Info("planner: memory limit {} MB instead of {} MB: the process's {} leaves no more",
-              std::max<std::size_t>(room->mb, 1), options_.memory_limit_mb, room->limit);
-    options_.memory_limit_mb = std::max<std::size_t>(room->mb, 1);
+  // Other planning runs of the process share that room.
+  if (const auto room = ProcessMemoryHeadroom()) {
+    room_for_all_mb_ = std::max<std::size_t>(
+        1, PlanningMemoryLedger::RoomForAllMb(
+               room->mb, PlanningMemoryLedger::OfProcess().total_bytes() - memory_entry_.bytes()));
+    if (room->mb < options_.memory_limit_mb) {
+      log::Info("planner: memory limit {} MB instead of {} MB: the process's {} leaves no more",
+                std::max<std::size_t>(room->mb, 1), options_.memory_limit_mb, room->limit);
+      options_.memory_limit_mb = std::max<std::size_t>(room->mb, 1);
+    }
   }
   auto finish = [&](PlanStatus status_if_no_plan, std::string message) {
     return Finish(done_counters_, status_if_no_plan, std::move(message));
@@ -725,8 +747,7 @@ PlanResult PlannerRun::Run() {
     if (poll != Outcome::kContinue) {
       end_all();
       if (poll == Outcome::kMemout)
-        return finish(PlanStatus::kMemout, absl::StrCat("memory limit (", options_.memory_limit_mb,
-                                                        " MB) reached before a plan"));
+        return finish(PlanStatus::kMemout, absl::StrCat(MemoryLimitText(), " before a plan"));
       if (expansion_limit_reached_) {
         return finish(PlanStatus::kTimeout,
                       absl::StrCat("expansion limit (", options_.max_expansions,

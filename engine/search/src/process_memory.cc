@@ -103,4 +103,9 @@ std::optional<MemoryHeadroom> ProcessMemoryHeadroom() {
   return CgroupHeadroom();
 }
 
+PlanningMemoryLedger& PlanningMemoryLedger::OfProcess() {
+  static PlanningMemoryLedger ledger;
+  return ledger;
+}
+
 }  // namespace seaplan::search

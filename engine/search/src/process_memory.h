@@ -10,10 +10,12 @@
 // capacity and polls every few steps; a table that doubles holds its old
 // and new storage at once, and the process holds more than the tables (the
 // task, the heuristic's tables, libraries): three quarters of the memory
-// the cgroup has left. Planning runs at once (a server's) each see the
-// same room: the limit then bounds each, not their sum.
+// the cgroup has left. Planning runs at once (a server's) would each see
+// the same room, so they also keep a count together (PlanningMemoryLedger)
+// that must stay under it.
 #pragma once
 
+#include <atomic>
 #include <cstddef>
 #include <optional>
 #include <string>
@@ -36,5 +38,51 @@ std::optional<MemoryHeadroom> ProcessMemoryHeadroom();
 // inactive_file), three quarters of the least; cgroup v2 and v1.
 std::optional<MemoryHeadroom> CgroupHeadroom(const std::string& proc_cgroup = "/proc/self/cgroup",
                                              const std::string& cgroup_root = "/sys/fs/cgroup");
+
+// The memory the planning runs of one process count at once (each its
+// tables, as it last polled). A run's room under a cgroup limit
+// (ProcessMemoryHeadroom) is measured at its start, when the usage already
+// holds the other runs' tables; the room for all of them is that plus the
+// part of it their count takes (RoomForAllMb), and the runs stop, with the
+// plan found so far, once their total reaches it. Without it two runs
+// started at once would each count on all of the room.
+class PlanningMemoryLedger {
+ public:
+  // One run's line; its count leaves the total when it is destroyed.
+  class Entry {
+   public:
+    explicit Entry(PlanningMemoryLedger& ledger) : ledger_(ledger) {}
+    Entry(const Entry&) = delete;
+    Entry& operator=(const Entry&) = delete;
+    ~Entry() { ledger_.total_bytes_.fetch_sub(bytes_); }
+    // Sets this run's count and returns the total of all runs.
+    std::size_t Update(std::size_t bytes) {
+      const std::size_t before = ledger_.total_bytes_.fetch_add(bytes - bytes_);
+      const std::size_t total = before + bytes - bytes_;
+      bytes_ = bytes;
+      return total;
+    }
+    std::size_t bytes() const { return bytes_; }
+
+   private:
+    PlanningMemoryLedger& ledger_;
+    std::size_t bytes_ = 0;
+  };
+
+  // The ledger of this process's runs.
+  static PlanningMemoryLedger& OfProcess();
+
+  std::size_t total_bytes() const { return total_bytes_.load(); }
+  // The room for all runs' tables, given the room one run saw at its start
+  // (`room_mb`, already discounted to three quarters) and, at that moment,
+  // the other runs' total (`others_bytes`, inside the usage that room was
+  // measured against).
+  static std::size_t RoomForAllMb(std::size_t room_mb, std::size_t others_bytes) {
+    return room_mb + (others_bytes >> 20) * 3 / 4;
+  }
+
+ private:
+  std::atomic<std::size_t> total_bytes_{0};  // unsigned wrap-around cancels in the sum
+};
 
 }  // namespace seaplan::search

@@ -61,5 +61,28 @@ TEST(ProcessMemoryTest, CgroupLimitsOfTheCgroupAndItsAncestors) {
   std::filesystem::remove_all(root);
 }
 
+// Planning runs at once keep one count: each sets its own, the total
+// follows (also when a count shrinks), and a finished run's leaves it.
+TEST(ProcessMemoryTest, ThePlanningRunsOfAProcessCountTogether) {
+  constexpr std::size_t kMb = std::size_t{1} << 20;
+  PlanningMemoryLedger ledger;
+  {
+    PlanningMemoryLedger::Entry first(ledger);
+    EXPECT_EQ(first.Update(100 * kMb), 100 * kMb);
+    {
+      PlanningMemoryLedger::Entry second(ledger);
+      EXPECT_EQ(second.Update(50 * kMb), 150 * kMb);
+      EXPECT_EQ(first.Update(20 * kMb), 70 * kMb);
+      EXPECT_EQ(ledger.total_bytes(), 70 * kMb);
+    }
+    EXPECT_EQ(ledger.total_bytes(), 20 * kMb);
+  }
+  EXPECT_EQ(ledger.total_bytes(), 0u);
+  // 300 MB of room seen while the others held 400 MB, three quarters of
+  // which the room had already lost to them.
+  EXPECT_EQ(PlanningMemoryLedger::RoomForAllMb(300, 400 * kMb), 600u);
+  EXPECT_EQ(PlanningMemoryLedger::RoomForAllMb(300, 0), 300u);
+}
+
 }  // namespace
 }  // namespace seaplan::search
