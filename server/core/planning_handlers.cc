@@ -143,20 +143,18 @@ PlanRun RunPlanner(const v1::PlanRequest& request, const search::PlannerOptions&
   task::LoadResult loaded =
       task::LoadTask(request.domain(), request.problem(), task::GroundingOptions{},
                      search::WithinTimeLimit(options, stop));
-  if (loaded.memory_ran_out) {
-    run.response.set_status(v1::MEMOUT);
-    run.response.set_message("memory ran out (an allocation failed) while grounding");
-    return run;
+  // Memory, the limit or the caller ended grounding: a result, not an error.
+  const std::optional<search::PlanResult> unfinished = search::UnfinishedLoadResult(loaded);
+  if (unfinished) {
+    run.response.set_status(StatusToProto(unfinished->status));
+    run.response.set_message(unfinished->message);
+    if (loaded.memory_ran_out) return run;  // nothing was counted
   }
   v1::SearchStatistics* stats = run.response.mutable_statistics();
   GroundingStatsToProto(loaded.stats, stats);
   for (const auto& d : loaded.diagnostics) *run.response.add_diagnostics() = ToProto(d);
-  if (loaded.stopped()) {  // a result: the limit (or the caller) ended grounding
-    const bool cancelled = loaded.stop_reason == StopReason::kCancelled;
+  if (unfinished) {
     StatsToProto(search::SearchStatistics{}, stats);  // no search: no plan times
-    run.response.set_status(cancelled ? v1::CANCELLED : v1::TIMEOUT);
-    run.response.set_message(cancelled ? "cancelled while grounding"
-                                       : "time limit reached while grounding");
     return run;
   }
   if (HasInputErrors(loaded.diagnostics)) {

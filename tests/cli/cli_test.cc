@@ -46,15 +46,20 @@ std::string Quote(const std::string& arg) {
 }
 
 // Runs `binary` (default build/bin/seaplan) with `args`; stdout and stderr
-// captured separately.
+// captured separately. `address_space_kb` > 0: under `ulimit -v` (as
+// benchmark runners limit a planner).
 CommandResult RunSeaplan(const std::vector<std::string>& args,
-                         const fs::path& binary = BinDir() / "seaplan") {
+                         const fs::path& binary = BinDir() / "seaplan", int address_space_kb = 0) {
   static int counter = 0;
   const auto dir = ScratchDir();
   const auto out = dir / ("out" + std::to_string(counter));
   const auto err = dir / ("err" + std::to_string(counter++));
   std::string command = Quote(binary.string());
   for (const auto& arg : args) command += " " + Quote(arg);
+  if (address_space_kb > 0) {
+    command =
+        "sh -c " + Quote("ulimit -v " + std::to_string(address_space_kb) + " && exec " + command);
+  }
   command += " >" + Quote(out.string()) + " 2>" + Quote(err.string());
   const int status = std::system(command.c_str());
   CommandResult result;
@@ -168,15 +173,13 @@ TEST(CliInProcessTest, AnAddressSpaceLimitKeepsThePlanFoundSoFar) {
 #endif
   const auto mission = SourceDir() / "engine/search/testdata/fjord-s3-p8-c8-seed8.pddl";
   const auto plan = ScratchDir() / "address-space.plan";
-  std::string command = "ulimit -v 200000 && exec " + Quote((BinDir() / "seaplan").string()) +
-                        " plan " + Quote(Example("domain.pddl")) + " " + Quote(mission.string()) +
-                        " --time-limit 300 --memory-limit 4096 -o " + Quote(plan.string());
-  const auto out = ScratchDir() / "address-space.out";
-  const int status =
-      std::system(("sh -c " + Quote(command) + " >" + Quote(out.string()) + " 2>&1").c_str());
-  const std::string printed = ReadFile(out);
-  ASSERT_TRUE(WIFEXITED(status)) << printed;
-  EXPECT_EQ(WEXITSTATUS(status), 0) << printed;
+  const CommandResult run =
+      RunSeaplan({"plan", Example("domain.pddl"), mission.string(), "--time-limit", "300",
+                  "--memory-limit", "4096", "-o", plan.string()},
+                 BinDir() / "seaplan", 200000);
+  const std::string printed = run.out + run.err;
+  ASSERT_NE(run.exit_code, -1) << printed;  // exited, not killed
+  EXPECT_EQ(run.exit_code, 0) << printed;
   EXPECT_NE(printed.find("memory ran out (an allocation failed) after"), std::string::npos)
       << printed;
   auto valid = RunSeaplan({"validate", Example("domain.pddl"), mission.string(), plan.string()});
@@ -193,14 +196,11 @@ TEST(CliInProcessTest, AGroundingTooLargeForTheAddressSpaceIsAMemout) {
   const PddlTexts task = CubicGroundingTask(200);  // 8 million ground actions
   const std::string domain = WriteScratch("huge-domain.pddl", task.domain);
   const std::string problem = WriteScratch("huge-problem.pddl", task.problem);
-  const auto out = ScratchDir() / "huge.out";
-  const std::string command = "ulimit -v 400000 && exec " + Quote((BinDir() / "seaplan").string()) +
-                              " plan " + Quote(domain) + " " + Quote(problem) + " --time-limit 120";
-  const int status =
-      std::system(("sh -c " + Quote(command) + " >" + Quote(out.string()) + " 2>&1").c_str());
-  const std::string printed = ReadFile(out);
-  ASSERT_TRUE(WIFEXITED(status)) << printed;
-  EXPECT_EQ(WEXITSTATUS(status), 1) << printed;
+  const CommandResult run =
+      RunSeaplan({"plan", domain, problem, "--time-limit", "120"}, BinDir() / "seaplan", 400000);
+  const std::string printed = run.out + run.err;
+  ASSERT_NE(run.exit_code, -1) << printed;  // exited, not killed
+  EXPECT_EQ(run.exit_code, 1) << printed;
   EXPECT_NE(printed.find("; status: MEMOUT"), std::string::npos) << printed;
   EXPECT_NE(printed.find("memory ran out (an allocation failed) while grounding"),
             std::string::npos)

@@ -730,13 +730,11 @@ PlanResult PlannerRun::Run() {
       searches[0].delay_goal_undoers = true;
       searches[0].share = searches[1].share = 0.5;
       searches[0].registry = &registry_;
-      searches[0].timeline = &timeline_;
-      if (first_waits) {
-        third_timeline_.emplace(snap_, options_.epsilon_s, options_.max_concurrent_actions > 0);
-        searches[0].timeline = &*third_timeline_;
-      } else if (searches[1].registry == &registry_) {
-        use_second_states(searches[0]);
-      }
+      searches[0].timeline = first_waits
+                                 ? &third_timeline_.emplace(snap_, options_.epsilon_s,
+                                                            options_.max_concurrent_actions > 0)
+                                 : &timeline_;
+      if (!first_waits && searches[1].registry == &registry_) use_second_states(searches[0]);
       searches[0].eager_ends = EagerEnds();
       searches[0].steps = searches[1].steps;
       begin_search(searches[0]);
@@ -896,27 +894,30 @@ StopToken WithinTimeLimit(const PlannerOptions& options, const StopToken& stop) 
                                        std::chrono::duration<double>(limit_s)));
 }
 
+std::optional<PlanResult> UnfinishedLoadResult(const task::LoadResult& loaded) {
+  if (!loaded.memory_ran_out && !loaded.stopped()) return std::nullopt;
+  PlanResult r;
+  r.grounding = loaded.stats;
+  if (loaded.memory_ran_out) {
+    r.status = PlanStatus::kMemout;
+    r.message = "memory ran out (an allocation failed) while grounding";
+    return r;
+  }
+  const bool cancelled = loaded.stop_reason == StopReason::kCancelled;
+  r.status = cancelled ? PlanStatus::kCancelled : PlanStatus::kTimeout;
+  r.message = cancelled ? "cancelled while grounding" : "time limit reached while grounding";
+  return r;
+}
+
 PlanResult Solve(std::string_view domain_text, std::string_view problem_text,
                  const PlannerOptions& options, const StopToken& stop,
                  const PlanObserver* observer) {
   const auto start = Clock::now();
   task::LoadResult loaded = task::LoadTask(domain_text, problem_text, task::GroundingOptions{},
                                            WithinTimeLimit(options, stop));
-  if (loaded.memory_ran_out) {
-    PlanResult r;
-    r.status = PlanStatus::kMemout;
-    r.message = "memory ran out (an allocation failed) while grounding";
-    r.stats.search_time_s = Seconds(start);
-    return r;
-  }
-  if (loaded.stopped()) {
-    PlanResult r;
-    const bool cancelled = loaded.stop_reason == StopReason::kCancelled;
-    r.status = cancelled ? PlanStatus::kCancelled : PlanStatus::kTimeout;
-    r.message = cancelled ? "cancelled while grounding" : "time limit reached while grounding";
-    r.grounding = loaded.stats;
-    r.stats.search_time_s = Seconds(start);
-    return r;
+  if (std::optional<PlanResult> r = UnfinishedLoadResult(loaded)) {
+    r->stats.search_time_s = Seconds(start);
+    return *std::move(r);
   }
   if (!loaded.ok()) {
     PlanResult r;

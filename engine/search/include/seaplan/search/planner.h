@@ -208,6 +208,13 @@ PlanResult SolveTask(const task::GroundTask& task, const PlannerOptions& options
 // before SolveTask (a huge task must not ground for minutes under a 1 s limit).
 StopToken WithinTimeLimit(const PlannerOptions& options, const StopToken& stop);
 
+// The result of a load that ended without a task for a reason other than
+// its input (callers that ground themselves, as Solve does): kMemout when an
+// allocation failed, kTimeout or kCancelled when `stop` ended grounding
+// (grounding statistics kept); nullopt when the load finished, well or
+// with diagnostics.
+std::optional<PlanResult> UnfinishedLoadResult(const task::LoadResult& loaded);
+
 // Parses and grounds (task::LoadTask), then SolveTask. Parse or grounding
 // errors give kError, unsupported PDDL gives kUnsupported, with the
 // diagnostics in `message`. options.time_limit_s and `stop` bound grounding
