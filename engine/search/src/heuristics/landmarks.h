@@ -1,5 +1,6 @@
-// Fact landmarks of the delete relaxation of the snap task and LAMA's
-// landmark count (Richter and Westphal 2010).
+// Fact landmarks of the delete relaxation of the snap task, disjunctive
+// ones found backwards from them, and LAMA's landmark count (Richter and
+// Westphal 2010).
 //
 // Generation (LandmarkGraph, once per task): Zhu and Givan's label
 // propagation over the relaxed operators of RelaxedPlanHeuristic (a start
@@ -7,16 +8,24 @@
 // started(a), its at-end and over-all facts). A fact's label is the fact
 // itself plus the intersection, over its achievers, of the union of their
 // preconditions' labels, to a fixed point; the goal facts' labels are the
-// landmarks. Facts true initially or added by a timed literal are their own
+// fact landmarks. Facts true initially or added by a timed literal are their own
 // label. Numeric conditions and negative ones are ignored (more achievers,
-// so fewer landmarks: still sound). Greedy-necessary orderings p -> l: p is
-// a precondition of every first achiever of l, i.e. of every achiever whose
-// own label does not contain l (one that could add l before l is true).
-// Reasonable orderings into goals, from mutex groups, are added after
-// construction (AddReasonableOrderings).
+// so fewer landmarks: still sound). Then, backwards from each landmark, as
+// LAMA's RHW method does: its first achievers are those whose
+// preconditions' labels hold none of its facts (they could add it while it
+// is false); the preconditions they all share are ordered greedy-necessary
+// before it (p -> l: p holds right before l is first added); of the others,
+// facts of one predicate (started(a): of one schema, and only below a goal
+// or a disjunction) of which every first achiever needs at least one form a
+// disjunctive landmark of 2 to kMaxDisjunctionSize facts, none true at the
+// start, ordered the same way and searched backwards in turn ("some ship
+// holds container c" before "c unloaded at its port": whichever ship it is,
+// one must load it, which no fact landmark says). Reasonable orderings into goals, from mutex
+// groups, are added after construction (AddReasonableOrderings).
 //
 // Counting (LandmarkCounter): the landmarks accepted on a path are the
-// parent's accepted ones plus those true in the state whose ordering parents
+// parent's accepted ones plus those true in the state (a disjunctive one:
+// any of its facts) whose ordering parents
 // the parent had all accepted; h = landmarks not accepted + accepted ones
 // required again (a goal false now, or false with a greedy-necessary child
 // not accepted yet). Path-dependent, so the search stores one bitset per
@@ -39,6 +48,12 @@ class LandmarkGraph {
  public:
   // AddReasonableOrderings stops after about this many mutex lookups.
   static constexpr std::size_t kMaxReasonableChecks = 5'000'000;
+  // Disjunctions of more facts are not kept: each costs a test per fact in
+  // every state and says little (LAMA keeps at most 4; 8 keeps "some ship
+  // holds c" for fleets of up to 8 and "some hoist lifts c" in depots).
+  static constexpr std::size_t kMaxDisjunctionSize = 8;
+  // At most this many disjunctive landmarks are kept beside the fact ones.
+  static constexpr std::size_t kMaxDisjunctiveLandmarks = 20'000;
 
   // `stop` (may be null) is polled during the propagation; stopped, the
   // graph is empty.
@@ -57,11 +72,14 @@ class LandmarkGraph {
   int AddReasonableOrderings(const RelaxedPlanHeuristic& relaxed, const MutexGroups& mutex,
                              const StopToken* stop = nullptr);
 
-  int size() const { return static_cast<int>(facts_.size()); }
+  int size() const { return static_cast<int>(is_goal_.size()); }
   int num_orderings() const { return static_cast<int>(parents_.size()); }
-  // Relaxed fact id of landmark i: a fact, or num_facts + a for started(a).
-  std::int32_t fact(int i) const { return facts_[static_cast<std::size_t>(i)]; }
-  // Landmark index of a relaxed fact id, -1 when it is none.
+  int num_disjunctive() const;
+  // Relaxed fact ids of landmark i (a fact, or num_facts + a for
+  // started(a)), sorted: one for a fact landmark, more for a disjunctive
+  // one (true when any is).
+  std::span<const std::int32_t> members(int i) const { return CsrRow(members_, member_begin_, i); }
+  // Fact landmark index of a relaxed fact id, -1 when it is none.
   int IndexOf(std::int32_t relaxed_fact) const {
     return index_of_[static_cast<std::size_t>(relaxed_fact)];
   }
@@ -74,12 +92,13 @@ class LandmarkGraph {
   std::span<const std::int32_t> added_by(SnapId snap) const {
     return CsrRow(added_by_, added_by_begin_, snap);
   }
-  // True when landmark i holds in `state` (a fact, or its action running).
+  // True when landmark i holds in `state` (a fact, or its action running;
+  // a disjunctive one: any of its members).
   bool Holds(int i, const StateData& state) const;
 
  private:
   int num_facts_;
-  std::vector<std::int32_t> facts_, index_of_;
+  std::vector<std::int32_t> member_begin_, members_, index_of_;
   std::vector<std::uint8_t> is_goal_;
   std::vector<std::int32_t> parent_begin_, parents_, child_begin_, children_;
   std::vector<std::int32_t> added_by_begin_, added_by_;

@@ -253,5 +253,137 @@ TEST(LandmarksTest, ReasonableOrderingsCloseNoCycle) {
   EXPECT_NE(has_parent(a_on_b, b_on_a), has_parent(b_on_a, a_on_b));
 }
 
+// One package, two trucks: t1 where the package is, t2 elsewhere. No fact
+// but the package's own is a landmark: either truck can carry it. What
+// every plan does all the same, whichever truck, is disjunctive: some
+// truck holds the package, some unload of it at b starts, some truck is at
+// b, some load of it starts.
+constexpr char kHaulDomain[] = R"(
+(define (domain haul)
+  (:requirements :typing :durative-actions)
+  (:types truck package place)
+  (:predicates (at ?t - truck ?l - place) (pkg-at ?p - package ?l - place)
+               (in ?p - package ?t - truck) (road ?a ?b - place))
+  (:durative-action drive :parameters (?t - truck ?a ?b - place) :duration (= ?duration 2)
+    :condition (and (at start (at ?t ?a)) (at start (road ?a ?b)))
+    :effect (and (at start (not (at ?t ?a))) (at end (at ?t ?b))))
+  (:durative-action load :parameters (?t - truck ?p - package ?l - place) :duration (= ?duration 1)
+    :condition (and (at start (pkg-at ?p ?l)) (over all (at ?t ?l)))
+    :effect (and (at start (not (pkg-at ?p ?l))) (at end (in ?p ?t))))
+  (:durative-action unload :parameters (?t - truck ?p - package ?l - place)
+    :duration (= ?duration 1)
+    :condition (and (at start (in ?p ?t)) (over all (at ?t ?l)))
+    :effect (and (at start (not (in ?p ?t))) (at end (pkg-at ?p ?l)))))
+)";
+
+constexpr char kHaulProblem[] = R"(
+(define (problem one) (:domain haul)
+  (:objects t1 t2 - truck p - package a b c - place)
+  (:init (at t1 a) (at t2 c) (pkg-at p a)
+         (road a b) (road b a) (road a c) (road c a) (road c b) (road b c))
+  (:goal (pkg-at p b)))
+)";
+
+TEST(LandmarksTest, FindsDisjunctiveLandmarksWhereAnyOfSeveralAgentsWill) {
+  auto task = testing::LoadTaskOrFail(kHaulDomain, kHaulProblem);
+  ASSERT_NE(task, nullptr);
+  const SnapTask snap(*task);
+  const RelaxedPlanHeuristic relaxed(snap, 0.001);
+  const LandmarkGraph graph(snap, relaxed);
+  const auto fact = [&](const char* name) { return testing::FactIdOf(*task, name); };
+  const auto started = [&](const char* name) {
+    return snap.num_facts() + testing::ActionIdOf(*task, name);
+  };
+  // The landmark whose members are exactly `facts`, -1 when none is.
+  const auto find = [&](std::vector<std::int32_t> facts) {
+    std::sort(facts.begin(), facts.end());
+    for (int i = 0; i < graph.size(); ++i) {
+      const auto m = graph.members(i);
+      if (std::equal(m.begin(), m.end(), facts.begin(), facts.end())) return i;
+    }
+    return -1;
+  };
+  const int goal = graph.IndexOf(fact("(pkg-at p b)"));
+  const int held = find({fact("(in p t1)"), fact("(in p t2)")});
+  const int unloading = find({started("(unload t1 p b)"), started("(unload t2 p b)")});
+  const int truck_at_b = find({fact("(at t1 b)"), fact("(at t2 b)")});
+  ASSERT_GE(goal, 0);
+  ASSERT_GE(held, 0);
+  ASSERT_GE(unloading, 0);
+  ASSERT_GE(truck_at_b, 0);
+  EXPECT_EQ(graph.num_disjunctive(), graph.size() - 2);  // besides (pkg-at p b), (pkg-at p a)
+  // A truck at a does not make one: t1 is there from the start.
+  EXPECT_EQ(find({fact("(at t1 a)"), fact("(at t2 a)")}), -1);
+  const auto parents = [&](int i) {
+    std::vector<int> p(graph.parents(i).begin(), graph.parents(i).end());
+    std::sort(p.begin(), p.end());
+    return p;
+  };
+  std::vector<int> goal_parents{unloading, truck_at_b};
+  std::sort(goal_parents.begin(), goal_parents.end());
+  EXPECT_EQ(parents(goal), goal_parents);
+  const auto unloading_parents = parents(unloading);
+  EXPECT_TRUE(std::binary_search(unloading_parents.begin(), unloading_parents.end(), held));
+  EXPECT_EQ(graph.added_by(2 * testing::ActionIdOf(*task, "(unload t2 p b)")).size(), 1u);
+
+  // Holding in either truck: the landmark holds, and loading is progress
+  // the count sees (with fact landmarks alone it saw none).
+  StateData state = testing::InitialState(*task, snap);
+  EXPECT_FALSE(graph.Holds(held, state));
+  LandmarkCounter counter(graph);
+  std::vector<std::uint64_t> at_start(counter.words()), loading(counter.words()),
+      loaded(counter.words());
+  const int h0 = counter.Update({}, state, at_start);
+  state.Clear(fact("(pkg-at p a)"));
+  state.running.push_back({testing::ActionIdOf(*task, "(load t1 p a)"), 1.0, 1.0});
+  const int h1 = counter.Update(at_start, state, loading);
+  state.running.clear();
+  state.Set(fact("(in p t1)"));
+  EXPECT_TRUE(graph.Holds(held, state));
+  const int h2 = counter.Update(loading, state, loaded);
+  EXPECT_LT(h1, h0);
+  EXPECT_LT(h2, h1);
+  EXPECT_TRUE((loaded[static_cast<std::size_t>(held) >> 6] >> (held & 63)) & 1u);
+}
+
+// A match from either drawer lights the lamp. "Some fetch of a match
+// starts" is a disjunctive landmark of the goal (have-match), but not of
+// (have-match) below the goal (lit): it would only say again that the
+// fact landmark is on its way.
+TEST(LandmarksTest, RunningActionsAreDisjunctiveLandmarksOnlyBelowGoalsAndDisjunctions) {
+  const std::string domain = R"(
+(define (domain lamp)
+  (:requirements :typing :durative-actions)
+  (:types drawer)
+  (:predicates (in ?d - drawer) (have-match) (lit))
+  (:durative-action fetch :parameters (?d - drawer) :duration (= ?duration 1)
+    :condition (at start (in ?d)) :effect (at end (have-match)))
+  (:durative-action light :parameters () :duration (= ?duration 1)
+    :condition (at start (have-match)) :effect (at end (lit))))
+)";
+  const auto problem = [](const char* goal) {
+    return std::string(R"((define (problem p) (:domain lamp) (:objects d1 d2 - drawer)
+      (:init (in d1) (in d2)) (:goal )") +
+           goal + "))";
+  };
+  for (const bool match_is_goal : {true, false}) {
+    auto task = testing::LoadTaskOrFail(domain, problem(match_is_goal ? "(have-match)" : "(lit)"));
+    ASSERT_NE(task, nullptr);
+    const SnapTask snap(*task);
+    const RelaxedPlanHeuristic relaxed(snap, 0.001);
+    const LandmarkGraph graph(snap, relaxed);
+    EXPECT_GE(graph.IndexOf(testing::FactIdOf(*task, "(have-match)")), 0);
+    std::vector<std::int32_t> fetches{snap.num_facts() + testing::ActionIdOf(*task, "(fetch d1)"),
+                                      snap.num_facts() + testing::ActionIdOf(*task, "(fetch d2)")};
+    std::sort(fetches.begin(), fetches.end());
+    bool found = false;
+    for (int i = 0; i < graph.size(); ++i) {
+      const auto m = graph.members(i);
+      found = found || std::equal(m.begin(), m.end(), fetches.begin(), fetches.end());
+    }
+    EXPECT_EQ(found, match_is_goal) << (match_is_goal ? "goal (have-match)" : "goal (lit)");
+  }
+}
+
 }  // namespace
 }  // namespace seaplan::search
