@@ -524,7 +524,7 @@ PlanResult PlannerRun::Run() {
     best_.stats.landmark_time_s = Seconds(landmarks_start);
     best_.stats.landmarks = landmarks_->size();
     best_.stats.landmark_orderings = landmarks_->num_orderings();
-    log::Debug("planner: {} landmarks ({} disjunctive), {} orderings in {:.3f} s",
+    log::Debug("planner: {} landmarks, {} of them disjunctive, {} orderings in {:.3f} s",
                landmarks_->size(), landmarks_->num_disjunctive(), landmarks_->num_orderings(),
                best_.stats.landmark_time_s);
   }

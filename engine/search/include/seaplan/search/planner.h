@@ -135,8 +135,9 @@ struct PlannerOptions {
   // escapes plateaus where every successor of the best states is worse.
   bool type_based_exploration = true;
   // The first-plan searches also alternate LAMA's landmark count (Richter
-  // and Westphal 2010): fact landmarks of the delete relaxation with
-  // greedy-necessary orderings, found once per task, counted per path, with
+  // and Westphal 2010): fact landmarks of the delete relaxation and
+  // disjunctive ones ("some ship holds container c") with greedy-necessary
+  // orderings, found once per task, counted per path, with
   // their own open lists beside the relaxed plan's (popped half as often).
   // On by default: more problems solved and shorter first plans on the
   // benchmark set, every fjord mission of bench/missions solved
