@@ -8,10 +8,10 @@
 // started(a), its at-end and over-all facts). A fact's label is the fact
 // itself plus the intersection, over its achievers, of the union of their
 // preconditions' labels, to a fixed point; the goal facts' labels are the
-// fact landmarks. Facts true initially or added by a timed literal are their own
-// label. Numeric conditions and negative ones are ignored (more achievers,
-// so fewer landmarks: still sound). Then, backwards from each landmark, as
-// LAMA's RHW method does: its first achievers are those whose
+// fact landmarks. Facts true initially or added by a timed literal are
+// their own label. Numeric conditions and negative ones are ignored (more
+// achievers, so fewer landmarks: still sound). Then, backwards from each
+// landmark, as LAMA's RHW method does: its first achievers are those whose
 // preconditions' labels hold none of its facts (they could add it while it
 // is false); the preconditions they all share are ordered greedy-necessary
 // before it (p -> l: p holds right before l is first added); of the others,
@@ -20,16 +20,16 @@
 // disjunctive landmark of 2 to kMaxDisjunctionSize facts, none true at the
 // start, ordered the same way and searched backwards in turn ("some ship
 // holds container c" before "c unloaded at its port": whichever ship it is,
-// one must load it, which no fact landmark says). Reasonable orderings into goals, from mutex
-// groups, are added after construction (AddReasonableOrderings).
+// one must load it, which no fact landmark says). Reasonable orderings into
+// goals, from mutex groups, are added after construction
+// (AddReasonableOrderings).
 //
 // Counting (LandmarkCounter): the landmarks accepted on a path are the
 // parent's accepted ones plus those true in the state (a disjunctive one:
-// any of its facts) whose ordering parents
-// the parent had all accepted; h = landmarks not accepted + accepted ones
-// required again (a goal false now, or false with a greedy-necessary child
-// not accepted yet). Path-dependent, so the search stores one bitset per
-// state.
+// any of its facts) whose ordering parents the parent had all accepted;
+// h = landmarks not accepted + accepted ones required again (a goal false
+// now, or false with a greedy-necessary child not accepted yet).
+// Path-dependent, so the search stores one bitset per state.
 #pragma once
 
 #include <cstdint>
@@ -50,7 +50,7 @@ class LandmarkGraph {
   static constexpr std::size_t kMaxReasonableChecks = 5'000'000;
   // Disjunctions of more facts are not kept: each costs a test per fact in
   // every state and says little (LAMA keeps at most 4; 8 keeps "some ship
-  // holds c" for fleets of up to 8 and "some hoist lifts c" in depots).
+  // holds c" for fleets of up to 8, "some truck holds crate c" in depots).
   static constexpr std::size_t kMaxDisjunctionSize = 8;
   // At most this many disjunctive landmarks are kept beside the fact ones.
   static constexpr std::size_t kMaxDisjunctiveLandmarks = 20'000;
