@@ -43,23 +43,36 @@ constexpr char kProblem[] = R"(
 (define (problem p) (:domain house) (:init (home)) (:goal (inside)))
 )";
 
-struct House {
+// A task's snap task, relaxed operators and landmark graph, with lookups
+// by name.
+struct Landmarks {
   std::shared_ptr<const task::GroundTask> task;
   std::unique_ptr<SnapTask> snap;
   std::unique_ptr<RelaxedPlanHeuristic> relaxed;
   std::unique_ptr<LandmarkGraph> graph;
 
-  House() {
-    task = testing::LoadTaskOrFail(kDomain, kProblem);
+  Landmarks(std::string_view domain, std::string_view problem) {
+    task = testing::LoadTaskOrFail(domain, problem);
     if (!task) return;
     snap = std::make_unique<SnapTask>(*task);
     relaxed = std::make_unique<RelaxedPlanHeuristic>(*snap, 0.001);
     graph = std::make_unique<LandmarkGraph>(*snap, *relaxed);
   }
-  int Fact(const std::string& name) const { return graph->IndexOf(testing::FactIdOf(*task, name)); }
+  std::int32_t FactId(const std::string& name) const { return testing::FactIdOf(*task, name); }
   // started(a) as a relaxed fact.
-  int Started(const std::string& action) const {
-    return graph->IndexOf(snap->num_facts() + testing::ActionIdOf(*task, action));
+  std::int32_t StartedId(const std::string& action) const {
+    return snap->num_facts() + testing::ActionIdOf(*task, action);
+  }
+  int Fact(const std::string& name) const { return graph->IndexOf(FactId(name)); }
+  int Started(const std::string& action) const { return graph->IndexOf(StartedId(action)); }
+  // The landmark whose members are exactly `relaxed_facts`, -1 when none is.
+  int Find(std::vector<std::int32_t> relaxed_facts) const {
+    std::sort(relaxed_facts.begin(), relaxed_facts.end());
+    for (int i = 0; i < graph->size(); ++i) {
+      const auto m = graph->members(i);
+      if (std::equal(m.begin(), m.end(), relaxed_facts.begin(), relaxed_facts.end())) return i;
+    }
+    return -1;
   }
   SnapId Start(const std::string& action) const { return 2 * testing::ActionIdOf(*task, action); }
   SnapId End(const std::string& action) const { return Start(action) + 1; }
@@ -71,7 +84,7 @@ struct House {
 };
 
 TEST(LandmarksTest, FindsTheFactsEveryRelaxedPlanNeedsAndTheirGreedyNecessaryOrderings) {
-  House h;
+  const Landmarks h(kDomain, kProblem);
   ASSERT_TRUE(h.graph);
   const int inside = h.Fact("(inside)"), open = h.Fact("(open)"), key = h.Fact("(key)");
   const int home = h.Fact("(home)"), unlocking = h.Started("(unlock)");
@@ -103,7 +116,7 @@ TEST(LandmarksTest, FindsTheFactsEveryRelaxedPlanNeedsAndTheirGreedyNecessaryOrd
 }
 
 TEST(LandmarksTest, CountsLandmarksNotAcceptedAndThoseRequiredAgain) {
-  House h;
+  const Landmarks h(kDomain, kProblem);
   ASSERT_TRUE(h.graph);
   LandmarkCounter counter(*h.graph);
   ASSERT_EQ(counter.words(), 1u);
@@ -285,60 +298,40 @@ constexpr char kHaulProblem[] = R"(
 )";
 
 TEST(LandmarksTest, FindsDisjunctiveLandmarksWhereAnyOfSeveralAgentsWill) {
-  auto task = testing::LoadTaskOrFail(kHaulDomain, kHaulProblem);
-  ASSERT_NE(task, nullptr);
-  const SnapTask snap(*task);
-  const RelaxedPlanHeuristic relaxed(snap, 0.001);
-  const LandmarkGraph graph(snap, relaxed);
-  const auto fact = [&](const char* name) { return testing::FactIdOf(*task, name); };
-  const auto started = [&](const char* name) {
-    return snap.num_facts() + testing::ActionIdOf(*task, name);
-  };
-  // The landmark whose members are exactly `facts`, -1 when none is.
-  const auto find = [&](std::vector<std::int32_t> facts) {
-    std::sort(facts.begin(), facts.end());
-    for (int i = 0; i < graph.size(); ++i) {
-      const auto m = graph.members(i);
-      if (std::equal(m.begin(), m.end(), facts.begin(), facts.end())) return i;
-    }
-    return -1;
-  };
-  const int goal = graph.IndexOf(fact("(pkg-at p b)"));
-  const int held = find({fact("(in p t1)"), fact("(in p t2)")});
-  const int unloading = find({started("(unload t1 p b)"), started("(unload t2 p b)")});
-  const int truck_at_b = find({fact("(at t1 b)"), fact("(at t2 b)")});
+  const Landmarks h(kHaulDomain, kHaulProblem);
+  ASSERT_TRUE(h.graph);
+  const LandmarkGraph& graph = *h.graph;
+  const int goal = h.Fact("(pkg-at p b)");
+  const int held = h.Find({h.FactId("(in p t1)"), h.FactId("(in p t2)")});
+  const int unloading = h.Find({h.StartedId("(unload t1 p b)"), h.StartedId("(unload t2 p b)")});
+  const int truck_at_b = h.Find({h.FactId("(at t1 b)"), h.FactId("(at t2 b)")});
   ASSERT_GE(goal, 0);
   ASSERT_GE(held, 0);
   ASSERT_GE(unloading, 0);
   ASSERT_GE(truck_at_b, 0);
   EXPECT_EQ(graph.num_disjunctive(), graph.size() - 2);  // besides (pkg-at p b), (pkg-at p a)
   // A truck at a does not make one: t1 is there from the start.
-  EXPECT_EQ(find({fact("(at t1 a)"), fact("(at t2 a)")}), -1);
-  const auto parents = [&](int i) {
-    std::vector<int> p(graph.parents(i).begin(), graph.parents(i).end());
-    std::sort(p.begin(), p.end());
-    return p;
-  };
+  EXPECT_EQ(h.Find({h.FactId("(at t1 a)"), h.FactId("(at t2 a)")}), -1);
   std::vector<int> goal_parents{unloading, truck_at_b};
   std::sort(goal_parents.begin(), goal_parents.end());
-  EXPECT_EQ(parents(goal), goal_parents);
-  const auto unloading_parents = parents(unloading);
+  EXPECT_EQ(h.Parents(goal), goal_parents);
+  const auto unloading_parents = h.Parents(unloading);
   EXPECT_TRUE(std::binary_search(unloading_parents.begin(), unloading_parents.end(), held));
-  EXPECT_EQ(graph.added_by(2 * testing::ActionIdOf(*task, "(unload t2 p b)")).size(), 1u);
+  EXPECT_EQ(graph.added_by(h.Start("(unload t2 p b)")).size(), 1u);
 
   // Holding in either truck: the landmark holds, and loading is progress
   // the count sees (with fact landmarks alone it saw none).
-  StateData state = testing::InitialState(*task, snap);
+  StateData state = testing::InitialState(*h.task, *h.snap);
   EXPECT_FALSE(graph.Holds(held, state));
   LandmarkCounter counter(graph);
   std::vector<std::uint64_t> at_start(counter.words()), loading(counter.words()),
       loaded(counter.words());
   const int h0 = counter.Update({}, state, at_start);
-  state.Clear(fact("(pkg-at p a)"));
-  state.running.push_back({testing::ActionIdOf(*task, "(load t1 p a)"), 1.0, 1.0});
+  state.Clear(h.FactId("(pkg-at p a)"));
+  state.running.push_back({testing::ActionIdOf(*h.task, "(load t1 p a)"), 1.0, 1.0});
   const int h1 = counter.Update(at_start, state, loading);
   state.running.clear();
-  state.Set(fact("(in p t1)"));
+  state.Set(h.FactId("(in p t1)"));
   EXPECT_TRUE(graph.Holds(held, state));
   const int h2 = counter.Update(loading, state, loaded);
   EXPECT_LT(h1, h0);
@@ -367,21 +360,11 @@ TEST(LandmarksTest, RunningActionsAreDisjunctiveLandmarksOnlyBelowGoalsAndDisjun
            goal + "))";
   };
   for (const bool match_is_goal : {true, false}) {
-    auto task = testing::LoadTaskOrFail(domain, problem(match_is_goal ? "(have-match)" : "(lit)"));
-    ASSERT_NE(task, nullptr);
-    const SnapTask snap(*task);
-    const RelaxedPlanHeuristic relaxed(snap, 0.001);
-    const LandmarkGraph graph(snap, relaxed);
-    EXPECT_GE(graph.IndexOf(testing::FactIdOf(*task, "(have-match)")), 0);
-    std::vector<std::int32_t> fetches{snap.num_facts() + testing::ActionIdOf(*task, "(fetch d1)"),
-                                      snap.num_facts() + testing::ActionIdOf(*task, "(fetch d2)")};
-    std::sort(fetches.begin(), fetches.end());
-    bool found = false;
-    for (int i = 0; i < graph.size(); ++i) {
-      const auto m = graph.members(i);
-      found = found || std::equal(m.begin(), m.end(), fetches.begin(), fetches.end());
-    }
-    EXPECT_EQ(found, match_is_goal) << (match_is_goal ? "goal (have-match)" : "goal (lit)");
+    const Landmarks h(domain, problem(match_is_goal ? "(have-match)" : "(lit)"));
+    ASSERT_TRUE(h.graph);
+    EXPECT_GE(h.Fact("(have-match)"), 0);
+    const int fetching = h.Find({h.StartedId("(fetch d1)"), h.StartedId("(fetch d2)")});
+    EXPECT_EQ(fetching >= 0, match_is_goal) << (match_is_goal ? "goal (have-match)" : "goal (lit)");
   }
 }
 
