@@ -151,6 +151,10 @@ LandmarkGraph::LandmarkGraph(const SnapTask& task, const RelaxedPlanHeuristic& r
     sets.push_back({f});
   }
   const std::size_t num_fact_landmarks = sets.size();
+  // Goals are fact landmarks; the disjunctive ones appended below are none.
+  is_goal_.assign(num_fact_landmarks, 0);
+  for (auto g : goal)
+    is_goal_[static_cast<std::size_t>(index_of_[static_cast<std::size_t>(g)])] = 1;
 
   // Relaxed fact -> reachable operators adding it.
   std::vector<std::int32_t> adders_begin, adders;
@@ -192,13 +196,11 @@ LandmarkGraph::LandmarkGraph(const SnapTask& task, const RelaxedPlanHeuristic& r
   std::vector<std::int32_t> stamp(static_cast<std::size_t>(num_ops), -1), first_achievers, shared;
   std::vector<std::tuple<std::int32_t, std::int32_t, std::int32_t>>
       grouped;  // (group, achiever, fact)
-  std::vector<std::int32_t> group;
-  std::vector<std::uint8_t> is_goal_fact(static_cast<std::size_t>(total), 0);
-  for (auto g : goal) is_goal_fact[static_cast<std::size_t>(g)] = 1;
+  std::vector<std::int32_t> group, set;
   for (std::size_t li = 0; li < sets.size(); ++li) {
     if (stop != nullptr && (li & 63) == 0 && stop->StopRequested()) break;  // the search ends too
     const auto i = static_cast<std::int32_t>(li);
-    const std::vector<std::int32_t> set = sets[li];  // a copy: `sets` grows below
+    set.assign(sets[li].begin(), sets[li].end());  // a copy: `sets` grows below
     if (set.size() == 1 && fixed[static_cast<std::size_t>(set[0])]) continue;
     first_achievers.clear();
     for (auto m : set) {
@@ -261,9 +263,7 @@ LandmarkGraph::LandmarkGraph(const SnapTask& task, const RelaxedPlanHeuristic& r
       // fact landmark they would say "it is being achieved" twice over
       // (satellite-tw-til p02: "some turn to d starts" before "pointing to
       // d" took the first plan from 0.01 to 2.3 s).
-      if (group[0] >= num_facts_ && set.size() == 1 &&
-          !is_goal_fact[static_cast<std::size_t>(set[0])])
-        continue;
+      if (group[0] >= num_facts_ && li < num_fact_landmarks && !is_goal_[li]) continue;
       const auto [it, inserted] =
           disjunction_index.try_emplace(group, static_cast<std::int32_t>(sets.size()));
       if (inserted) sets.push_back(group);
@@ -276,9 +276,8 @@ LandmarkGraph::LandmarkGraph(const SnapTask& task, const RelaxedPlanHeuristic& r
     members_.insert(members_.end(), s.begin(), s.end());
     member_begin_.push_back(static_cast<std::int32_t>(members_.size()));
   }
-  is_goal_.assign(sets.size(), 0);
-  for (auto g : goal)
-    is_goal_[static_cast<std::size_t>(index_of_[static_cast<std::size_t>(g)])] = 1;
+  is_goal_.resize(sets.size(), 0);
+  num_disjunctive_ = static_cast<int>(sets.size() - num_fact_landmarks);
 
   // Achievers of each landmark (of any member), and the landmarks each snap adds.
   std::vector<std::pair<std::int32_t, std::int32_t>> adds;  // (landmark, op)
@@ -387,23 +386,9 @@ int LandmarkGraph::AddReasonableOrderings(const RelaxedPlanHeuristic& relaxed,
   return added;
 }
 
-int LandmarkGraph::num_disjunctive() const {
-  int n = 0;
-  for (int i = 0; i < size(); ++i) n += members(i).size() > 1 ? 1 : 0;
-  return n;
-}
-
 bool LandmarkGraph::Holds(int i, const StateData& state) const {
   for (const std::int32_t f : members(i)) {
-    if (f < num_facts_) {
-      if (state.Holds(f)) return true;
-      continue;
-    }
-    const task::ActionId a = f - num_facts_;
-    const auto it =
-        std::lower_bound(state.running.begin(), state.running.end(), a,
-                         [](const RunningAction& r, task::ActionId x) { return r.action < x; });
-    if (it != state.running.end() && it->action == a) return true;
+    if (f < num_facts_ ? state.Holds(f) : state.IsRunning(f - num_facts_)) return true;
   }
   return false;
 }

@@ -74,7 +74,7 @@ class LandmarkGraph {
 
   int size() const { return static_cast<int>(is_goal_.size()); }
   int num_orderings() const { return static_cast<int>(parents_.size()); }
-  int num_disjunctive() const;
+  int num_disjunctive() const { return num_disjunctive_; }
   // Relaxed fact ids of landmark i (a fact, or num_facts + a for
   // started(a)), sorted: one for a fact landmark, more for a disjunctive
   // one (true when any is).
@@ -98,6 +98,7 @@ class LandmarkGraph {
 
  private:
   int num_facts_;
+  int num_disjunctive_ = 0;  // the last ones, after the fact landmarks
   std::vector<std::int32_t> member_begin_, members_, index_of_;
   std::vector<std::uint8_t> is_goal_;
   std::vector<std::int32_t> parent_begin_, parents_, child_begin_, children_;
