@@ -30,8 +30,10 @@
 //     work over them (one agent: weighted A* alone), bounded (by the first
 //     plan's makespan and, together, six times the first-plan searches'
 //     expansions, at least 10,000, without anytime, twice, at least
-//     1,000, with it), whose plans replace the first when shorter; that is
-//     the plan returned without anytime;
+//     1,000, with it), and without anytime weighted A* (w = 3) with FF's
+//     relaxed plan as well (the first searches' expansions, at least
+//     20,000), whose plans replace the first when shorter; that is the plan
+//     returned without anytime;
 //   - anytime: restarting weighted A* on makespan, pruned by the incumbent,
 //     until the time limit, the expansion limit or an exhausted space;
 //   - every plan is scheduled at its earliest STN times, printed with
