@@ -94,6 +94,7 @@ void StatsToProto(const search::SearchStatistics& s, v1::SearchStatistics* out) 
   out->set_symmetry_classes(static_cast<std::uint32_t>(s.symmetry_classes));
   out->set_symmetric_drops(s.symmetric_drops);
   out->set_eager_ends(s.eager_ends);
+  out->set_first_plan_restarts(static_cast<std::uint32_t>(s.first_plan_restarts));
 }
 
 void FillPlan(const search::PlanResult& r, v1::PlanResponse* out) {

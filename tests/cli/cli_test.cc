@@ -334,6 +334,20 @@ TEST(CliInProcessTest, NoEagerEndsFlagTurnsOffEagerEnds) {
   EXPECT_EQ(without.out.find("; eager ends:"), std::string::npos) << without.out;
 }
 
+// Under a deadline the output says how often the first-plan searches began
+// again with another seed (the toggle task has no plan: the run ends at
+// its expansion limit, the first search past its 5,000 steps).
+TEST(CliInProcessTest, PlanOutputCountsRestartsUnderDeadlines) {
+  const auto testdata = SourceDir() / "engine/search/testdata";
+  const auto result = RunSeaplan({"plan", (testdata / "toggle-deadline-domain.pddl").string(),
+                                  (testdata / "toggle-deadline-22.pddl").string(), "--no-anytime",
+                                  "--max-expansions", "8000", "--switch-after", "1"});
+  EXPECT_NE(result.out.find("; restarts: the first-plan searches began again 1 time with "
+                            "another seed (deadlines)"),
+            std::string::npos)
+      << result.out << result.err;
+}
+
 TEST(CliInProcessTest, InvalidPlanExitsOneAndNamesTheFailure) {
   auto result = RunSeaplan(
       {"validate", Example("domain.pddl"), Example("case-a.pddl"), Example("case-a-paper.plan")});

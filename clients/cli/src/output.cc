@@ -81,6 +81,11 @@ void PrintPlanResponse(std::ostream& out, const v1::PlanResponse& response) {
     out << "; eager ends: " << stats.eager_ends()
         << " states with an end that only adds facts took it as their only successor\n";
   }
+  if (stats.first_plan_restarts() > 0) {
+    out << "; restarts: the first-plan searches began again " << stats.first_plan_restarts()
+        << (stats.first_plan_restarts() == 1 ? " time" : " times")
+        << " with another seed (deadlines)\n";
+  }
   for (const auto& d : response.diagnostics()) {
     out << "; " << d.file() << ":" << d.line() << ":" << d.column() << ": " << d.message() << "\n";
   }

@@ -430,6 +430,28 @@ TEST(PlannerTest, ExpansionLimitEndsTheSearch) {
   EXPECT_LT(r.stats.search_time_s, 60);
 }
 
+// With a deadline, a first-plan search that has found nothing after 5,000
+// steps begins again with the next seed, then after 10,000 more, and so on;
+// without timed literals it never does. Both toggle tasks have no plan, so
+// the search (the first alone: no turns, no switch) runs to the limit.
+TEST(PlannerTest, FirstPlanSearchesBeginAgainOnlyUnderDeadlines) {
+  PlannerOptions o = Quick(60);
+  o.max_expansions = 8'000;
+  o.second_greedy_turn_share = 0;
+  o.second_greedy_after_share = 1;
+  auto deadline = Load("toggle-deadline-domain.pddl", "toggle-deadline-22.pddl");
+  ASSERT_TRUE(deadline.task);
+  const PlanResult with = SolveTask(*deadline.task, o, StopToken());
+  EXPECT_EQ(with.status, PlanStatus::kTimeout) << with.message;
+  EXPECT_EQ(with.stats.first_plan_restarts, 1);
+
+  auto plain = Load("toggle-domain.pddl", "toggle-22.pddl");
+  ASSERT_TRUE(plain.task);
+  const PlanResult without = SolveTask(*plain.task, o, StopToken());
+  EXPECT_EQ(without.status, PlanStatus::kTimeout) << without.message;
+  EXPECT_EQ(without.stats.first_plan_restarts, 0);
+}
+
 // The CPU budget ends the search whatever the wall limit: a thread that
 // runs 0.3 s of CPU time stops long before its 60 s, with kTimeout naming
 // the CPU limit, and has used that CPU time (not much more: the clock is

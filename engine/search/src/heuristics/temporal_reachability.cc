@@ -170,6 +170,18 @@ TemporalReachability::TemporalReachability(const SnapTask& task)
   op_pairs_begin_.assign(static_cast<std::size_t>(num_ops_) + 1, 0);
   IndexConditions(pair_base_);
   windows_.resize(static_cast<std::size_t>(num_facts_));
+  fact_times_.resize(static_cast<std::size_t>(num_facts_));
+  schedule_begin_.assign(1, 0);
+  for (int op = 0; op < num_ops_; ++op) {
+    const SnapAction& snap = task_.snap(op);
+    for (auto f : snap.reads) schedule_facts_.push_back(2 * f);
+    for (auto f : snap.writes) schedule_facts_.push_back(2 * f + 1);
+    if (!snap.is_end) {
+      for (auto f : snap.inv_reads) schedule_facts_.push_back(2 * f);
+    }
+    schedule_begin_.push_back(static_cast<std::int32_t>(schedule_facts_.size()));
+  }
+  fact_times_stamp_.assign(static_cast<std::size_t>(num_facts_), 0);
   open_since_.assign(static_cast<std::size_t>(num_facts_), kInfinity);
   op_marked_.assign(static_cast<std::size_t>(num_ops_), 0);
   missing_.resize(static_cast<std::size_t>(num_ops_));
@@ -455,13 +467,23 @@ double TemporalReachability::OpTime(int op, double t0) const {
   return t;
 }
 
-double TemporalReachability::ScheduleBound(int op, const Timeline& timeline) const {
-  const SnapAction& snap = task_.snap(op);
+const TemporalReachability::FactTimes& TemporalReachability::ScheduleTimes(
+    task::FactId f, const Timeline& timeline) {
+  FactTimes& times = fact_times_[static_cast<std::size_t>(f)];
+  std::uint32_t& stamp = fact_times_stamp_[static_cast<std::size_t>(f)];
+  if (stamp != evaluation_) {
+    stamp = evaluation_;
+    times = {timeline.FactWrittenAt(f), timeline.FactReadUntil(f)};
+  }
+  return times;
+}
+
+double TemporalReachability::ScheduleBound(int op, const Timeline& timeline) {
   double t = 0.0;
-  for (auto f : snap.reads) t = std::max(t, timeline.FactWrittenAt(f));
-  for (auto f : snap.writes) t = std::max(t, timeline.FactReadUntil(f));
-  if (!snap.is_end) {
-    for (auto f : snap.inv_reads) t = std::max(t, timeline.FactWrittenAt(f));
+  for (int i = schedule_begin_[op]; i < schedule_begin_[op + 1]; ++i) {
+    const std::int32_t entry = schedule_facts_[static_cast<std::size_t>(i)];
+    const FactTimes& times = ScheduleTimes(entry >> 1, timeline);
+    t = std::max(t, (entry & 1) != 0 ? times.read_until_s : times.written_s);
   }
   return t;
 }
@@ -479,11 +501,8 @@ void TemporalReachability::Reach(int fact, double time_s, int achiever) {
   achiever_[fact] = achiever;
   if (time_s <= now_s_) {
     now_.push_back({time_s, fact});  // a snap at the time being popped
-  } else if (now_s_ == -kInfinity) {
-    initial_.push_back({time_s, fact});  // sorted once the state is in
   } else {
-    heap_.push_back({time_s, fact});
-    std::push_heap(heap_.begin(), heap_.end(), Later());
+    later_.Push(time_s, fact);
   }
 }
 
@@ -494,21 +513,17 @@ bool TemporalReachability::PopEarliest(Entry* next) {
   }
   now_.clear();
   next_now_ = 0;
-  const bool initial_left = next_initial_ < initial_.size();
-  if (!heap_.empty() && (!initial_left || heap_.front().time_s < initial_[next_initial_].time_s)) {
-    std::pop_heap(heap_.begin(), heap_.end(), Later());
-    *next = heap_.back();
-    heap_.pop_back();
-  } else if (initial_left) {
-    *next = initial_[next_initial_++];
-  } else {
-    return false;
-  }
+  if (later_.empty()) return false;
+  *next = later_.Pop();
   now_s_ = next->time_s;
   return true;
 }
 
 bool TemporalReachability::Evaluate(const StateData& state, const Timeline& timeline) {
+  if (++evaluation_ == 0) {  // wrapped: no stamp may look current
+    std::fill(fact_times_stamp_.begin(), fact_times_stamp_.end(), 0);
+    evaluation_ = 1;
+  }
   // Windows of the window facts from the state and the pending literals.
   for (auto f : window_facts_) {
     windows_[f].clear();
@@ -533,11 +548,10 @@ bool TemporalReachability::Evaluate(const StateData& state, const Timeline& time
   std::fill(earliest_.begin(), earliest_.end(), kInfinity);
   std::copy(missing_init_.begin(), missing_init_.end(), missing_.begin());
   std::fill(usable_.begin(), usable_.end(), 0);
-  heap_.clear();
-  initial_.clear();
+  later_.Clear();
   now_.clear();
-  next_initial_ = next_now_ = 0;
-  now_s_ = -kInfinity;  // Reach collects the state's facts in initial_
+  next_now_ = 0;
+  now_s_ = -kInfinity;  // the state's facts all go to later_
   for (std::size_t w = 0; w < state.facts.size(); ++w) {
     std::uint64_t bits = state.facts[w];
     while (bits) {
@@ -567,12 +581,10 @@ bool TemporalReachability::Evaluate(const StateData& state, const Timeline& time
     }
   };
   for (auto op : no_pre_ops_) fire(op, 0.0);
-  std::sort(initial_.begin(), initial_.end(),
-            [](const Entry& x, const Entry& y) { return x.time_s < y.time_s; });
   Entry next;
   while (PopEarliest(&next)) {
     const double t = next.time_s;
-    const int f = next.fact;
+    const int f = next.id;
     if (t > earliest_[f]) continue;  // stale entry
     for (int i = fact_ops_begin_[f]; i < fact_ops_begin_[f + 1]; ++i) {
       const int op = fact_ops_[i];

@@ -178,6 +178,10 @@ struct SearchStatistics {
   std::size_t symmetric_drops = 0;
   // States whose only successor was an eager end (PlannerOptions::eager_ends).
   std::size_t eager_ends = 0;
+  // Times a first-plan search began again with the next seed: with timed
+  // literals that close deadlines, after 5,000 of its steps, then twice as
+  // many each time.
+  int first_plan_restarts = 0;
 };
 
 struct PlanResult {
