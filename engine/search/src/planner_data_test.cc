@@ -27,6 +27,14 @@ void SolveToValidPlan(const std::filesystem::path& domain, const std::filesystem
   EXPECT_TRUE(v.valid) << v.ToString();
 }
 
+// What `seaplan plan --no-anytime` returns: the first plan, shortened by the
+// bounded searches after it (60 s at most), validated.
+void SolveFirstPlan(const std::filesystem::path& dir, const char* problem, PlanResult* r) {
+  PlannerOptions o;
+  o.anytime = false;
+  SolveToValidPlan(dir / "domain.pddl", dir / problem, 60, r, o);
+}
+
 TEST(PlannerDataTest, FjordCaseA) {
   const auto dir = testing::SourceDir() / "examples/fjord";
   if (!std::filesystem::exists(dir / "case-a.pddl"))
@@ -89,10 +97,8 @@ TEST(PlannerDataTest, SharedParcprinterP04SecondSearchInTurnKeepsHeldGoals) {
 // detour out (OPTIC's first plan: 129.59 s).
 TEST(PlannerDataTest, SharedSatelliteTimeP01FirstPlanLosesItsDetour) {
   SEAPLAN_REQUIRE_SHARED(dir, "bench/satellite-time");
-  PlannerOptions o;
-  o.anytime = false;
   PlanResult r;
-  ASSERT_NO_FATAL_FAILURE(SolveToValidPlan(dir / "domain.pddl", dir / "p01.pddl", 60, &r, o));
+  ASSERT_NO_FATAL_FAILURE(SolveFirstPlan(dir, "p01.pddl", &r));
   EXPECT_LT(r.makespan_s, 150.0);
 }
 
@@ -101,10 +107,8 @@ TEST(PlannerDataTest, SharedSatelliteTimeP01FirstPlanLosesItsDetour) {
 // makespan-aware passes alone returned 3,703.7, with it 2,672.7.
 TEST(PlannerDataTest, SharedTrucksTimeTilP04FirstPlanAlsoTriesFFsEstimate) {
   SEAPLAN_REQUIRE_SHARED(dir, "bench/trucks-time-til");
-  PlannerOptions o;
-  o.anytime = false;
   PlanResult r;
-  ASSERT_NO_FATAL_FAILURE(SolveToValidPlan(dir / "domain.pddl", dir / "p04.pddl", 60, &r, o));
+  ASSERT_NO_FATAL_FAILURE(SolveFirstPlan(dir, "p04.pddl", &r));
   EXPECT_LT(r.makespan_s, 3000.0);
 }
 
