@@ -644,10 +644,10 @@ PlanResult PlannerRun::Run() {
     std::unique_ptr<LazySearch> search;  // null: not run, or out of fallbacks
     bool out_of_fallbacks = false;       // exhausted without a proof, every way
     std::size_t steps = 0;
-    // With deadlines: steps since it began, and how often it began again
-    // with another seed (below).
-    std::size_t steps_since_begin = 0;
+    // With deadlines: how often it began again with another seed, and at
+    // how many steps it begins again next (below).
     int restarts = 0;
+    std::size_t restart_at_steps = 0;
   };
   // With timed literals closing deadlines, a greedy search either finds a
   // plan soon or, after an early commitment that misses a deadline much
@@ -691,7 +691,7 @@ PlanResult PlannerRun::Run() {
     if (symmetry_) params.symmetry = &*symmetry_;
     if (goal_order_) params.goal_order = &*goal_order_;
     params.eager_ends = s.eager_ends;
-    s.steps_since_begin = 0;
+    s.restart_at_steps = s.steps + (kFirstRestartSteps << std::min(s.restarts, 40));
     if (s.many_variants) {
       params.max_variants = 64;
       params.bound_dominance = false;
@@ -796,7 +796,6 @@ PlanResult PlannerRun::Run() {
     heuristic_.SetDelayGoalUndoers(next->delay_goal_undoers);
     LazySearch& search = *next->search;
     ++next->steps;
-    ++next->steps_since_begin;
     const LazySearch::Status status = search.Step();
     if (status == LazySearch::Status::kSolved) {
       // An invalid plan is logged, and the search goes on.
@@ -804,14 +803,13 @@ PlanResult PlannerRun::Run() {
       continue;
     }
     if (status == LazySearch::Status::kInProgress && restart_under_deadlines &&
-        next->steps_since_begin >= kFirstRestartSteps << std::min(next->restarts, 40)) {
+        next->steps >= next->restart_at_steps) {
       AddCounters(search);
       next->search.reset();
       ++next->restarts;
       ++best_.stats.first_plan_restarts;
-      log::Debug("planner: first-plan search begins again with seed {} after {} steps",
-                 options_.random_seed + static_cast<std::uint64_t>(next->restarts),
-                 next->steps_since_begin);
+      log::Debug("planner: first-plan search begins again with seed {} at its step {}",
+                 options_.random_seed + static_cast<std::uint64_t>(next->restarts), next->steps);
       begin_search(*next);
       continue;
     }
