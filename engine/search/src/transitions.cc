@@ -38,7 +38,6 @@ bool ConditionHolds(const task::Condition& condition, const StateData& state, do
 
 Transitions::Transitions(const SnapTask& task, int max_concurrent_actions, double epsilon_s)
     : task_(task), max_concurrent_(max_concurrent_actions), epsilon_s_(epsilon_s) {
-  by_first_fact_.resize(static_cast<std::size_t>(task.num_facts()));
   // Facts that must already hold for a start to apply: its at-start
   // conditions and the over-all ones its start effects do not add.
   auto key_candidates = [&](task::ActionId a, std::vector<task::FactId>* out) {
@@ -60,18 +59,46 @@ Transitions::Transitions(const SnapTask& task, int max_concurrent_actions, doubl
     key_candidates(a, &keys);
     for (auto f : keys) ++needed_by[f];
   }
+  // (key, second, action) of every start with a key, sorted into groups.
+  struct Entry {
+    task::FactId key, second;
+    task::ActionId action;
+  };
+  std::vector<Entry> entries;
   for (int a = 0; a < task.num_actions(); ++a) {
     if (task.Pruned(a)) continue;  // no plan needs it
     key_candidates(a, &keys);
-    task::FactId key = -1;
+    task::FactId key = -1, second = -1;
     for (auto f : keys) {
       if (key < 0 || needed_by[f] < needed_by[key]) key = f;
+    }
+    for (auto f : keys) {
+      if (f != key && (second < 0 || needed_by[f] < needed_by[second])) second = f;
     }
     if (key < 0) {
       without_fact_pre_.push_back(a);
     } else {
-      by_first_fact_[key].push_back(a);
+      entries.push_back({key, second, a});
     }
+  }
+  std::sort(entries.begin(), entries.end(), [](const Entry& x, const Entry& y) {
+    if (x.key != y.key) return x.key < y.key;
+    if (x.second != y.second) return x.second < y.second;
+    return x.action < y.action;
+  });
+  key_group_begin_.assign(static_cast<std::size_t>(task.num_facts()) + 1, 0);
+  for (std::size_t i = 0; i < entries.size(); ++i) {
+    const Entry& e = entries[i];
+    if (i == 0 || e.key != entries[i - 1].key || e.second != entries[i - 1].second) {
+      ++key_group_begin_[static_cast<std::size_t>(e.key) + 1];
+      const auto at = static_cast<std::int32_t>(group_actions_.size());
+      key_groups_.push_back({e.second, at, at});
+    }
+    group_actions_.push_back(e.action);
+    ++key_groups_.back().end;
+  }
+  for (std::size_t f = 0; f + 1 < key_group_begin_.size(); ++f) {
+    key_group_begin_[f + 1] += key_group_begin_[f];
   }
 }
 
@@ -95,8 +122,23 @@ void Transitions::Candidates(const StateData& state, std::vector<Event>* out) co
       while (bits) {
         const int b = std::countr_zero(bits);
         bits &= bits - 1;
-        const auto f = static_cast<task::FactId>(w * 64 + static_cast<std::size_t>(b));
-        for (auto a : by_first_fact_[f]) consider(a);
+        const auto f = static_cast<std::size_t>(w * 64 + static_cast<std::size_t>(b));
+        const std::size_t first = out->size();
+        const int groups_end = key_group_begin_[f + 1];
+        for (int g = key_group_begin_[f]; g < groups_end; ++g) {
+          const StartGroup& group = key_groups_[static_cast<std::size_t>(g)];
+          if (group.second >= 0 && !state.Holds(group.second)) continue;
+          for (int i = group.begin; i < group.end; ++i) {
+            consider(group_actions_[static_cast<std::size_t>(i)]);
+          }
+        }
+        // In action order within a key, whatever the groups: the search
+        // shuffles candidates with a seeded generator, so their order is
+        // part of what it finds.
+        if (out->size() - first > 1 && key_group_begin_[f + 1] - key_group_begin_[f] > 1) {
+          std::sort(out->begin() + static_cast<std::ptrdiff_t>(first), out->end(),
+                    [](const Event& x, const Event& y) { return x.snap < y.snap; });
+        }
       }
     }
     for (auto a : without_fact_pre_) consider(a);

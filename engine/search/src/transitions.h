@@ -18,6 +18,7 @@
 // are apart, so the two ends cannot happen at one instant).
 #pragma once
 
+#include <cstdint>
 #include <vector>
 
 #include "snap_task.h"
@@ -51,7 +52,21 @@ class Transitions {
   const SnapTask& task_;
   int max_concurrent_;
   double epsilon_s_;
-  std::vector<std::vector<task::ActionId>> by_first_fact_;
+  // Starts indexed by the facts that must hold before them: under the most
+  // selective one (the key: the fewest starts need it), then in groups by
+  // a second such fact, so that a state skips a group whose second fact is
+  // false with one test (driverlog: a truck's drives by each of 14 drivers
+  // are 14 groups under the truck's place, of which one has its driver
+  // aboard). Groups of key f: key_groups_[key_group_begin_[f] ..
+  // key_group_begin_[f + 1]); a group's starts: group_actions_[begin ..
+  // end), ascending.
+  struct StartGroup {
+    task::FactId second;  // -1: none (the key is the start's only such fact)
+    std::int32_t begin, end;
+  };
+  std::vector<std::int32_t> key_group_begin_;
+  std::vector<StartGroup> key_groups_;
+  std::vector<task::ActionId> group_actions_;
   std::vector<task::ActionId> without_fact_pre_;
   mutable std::vector<double> scratch_values_;
 };

@@ -108,6 +108,7 @@ RelaxedPlanHeuristic::RelaxedPlanHeuristic(const SnapTask& task, double epsilon_
   fact_marked_.resize(static_cast<std::size_t>(total_facts));
   op_layer_.resize(static_cast<std::size_t>(num_ops_));
   op_missing_.resize(static_cast<std::size_t>(num_ops_));
+  op_undoes_.resize(static_cast<std::size_t>(num_ops_));
   op_marked_.resize(static_cast<std::size_t>(num_ops_));
   interval_.resize(static_cast<std::size_t>(task.num_vars()));
   next_interval_.resize(static_cast<std::size_t>(task.num_vars()));
@@ -728,6 +729,8 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
   applicable_.clear();
   numeric_waiting_.clear();
   new_facts_.clear();
+  for (auto op : undoing_ops_) op_undoes_[op] = 0;  // the previous evaluation's
+  undoing_ops_.clear();
   // Previous evaluation's suppressed facts (cleared here, not at its end:
   // one place for both).
   for (auto f : suppressed_list_) suppressed_[f] = 0;
@@ -882,6 +885,16 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
       const std::int32_t* const fact_layer = fact_layer_.data();
       for (auto f : new_facts_) {
         const std::int32_t* const end = fact_ops + fact_ops_begin[f + 1];
+        // Its flag is final: facts change it only in the layer that
+        // reaches them, before they are counted here.
+        if (keep_held_goals && undoes_goal_[f]) {
+          for (const std::int32_t* it = fact_ops + fact_ops_begin[f]; it != end; ++it) {
+            if (op_undoes_[*it] == 0) {
+              op_undoes_[*it] = 1;
+              undoing_ops_.push_back(*it);
+            }
+          }
+        }
         for (const std::int32_t* it = fact_ops + fact_ops_begin[f]; it != end; ++it) {
           const int op = *it;
           if (--missing[op] != 0) continue;
@@ -936,13 +949,9 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
         op_stamp_[op] = stamp_;
         started_s = time_s + agents_.DurationOf(op / 2);
       }
-      bool undoes_goal = false;
-      if (keep_held_goals) {
-        undoes_goal = DeletesHeldGoal(op);
-        for (int i = x.pre_begin[op]; i < x.pre_begin[op + 1] && !undoes_goal; ++i) {
-          undoes_goal = undoes_goal_[x.pre[i]] != 0;
-        }
-      }
+      // An end's over-all conditions do not count it down (Exploration::
+      // fact_ops), but they are its start's: started(a) carries their flag.
+      const bool undoes_goal = keep_held_goals && (op_undoes_[op] != 0 || DeletesHeldGoal(op));
       for (int i = add_begin_[op]; i < add_begin_[op + 1]; ++i) {
         reach(add_[i], layer + 1, op, add_[i] < num_facts_ ? time_s : started_s, undoes_goal);
       }

@@ -285,6 +285,12 @@ class RelaxedPlanHeuristic {
   // deletes a goal fact the state holds (set only when some operator
   // deletes a goal fact and not in the makespan-aware mode).
   std::vector<std::uint8_t> undoes_goal_;
+  // Keeping held goals: per operator, whether a condition reached so far
+  // was reached only by undoing a held goal (set as each fact's operators
+  // are counted down, so an applied operator need not scan its
+  // conditions); the operators set, to clear them after the evaluation.
+  std::vector<std::uint8_t> op_undoes_;
+  std::vector<std::int32_t> undoing_ops_;
   // Scratch of CountUndoneGoals: a flag per fact (all 0 between calls) and
   // the goals flagged.
   std::vector<std::uint8_t> goal_undone_;
