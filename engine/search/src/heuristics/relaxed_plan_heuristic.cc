@@ -108,7 +108,7 @@ RelaxedPlanHeuristic::RelaxedPlanHeuristic(const SnapTask& task, double epsilon_
   fact_marked_.resize(static_cast<std::size_t>(total_facts));
   op_layer_.resize(static_cast<std::size_t>(num_ops_));
   op_missing_.resize(static_cast<std::size_t>(num_ops_));
-  op_undoes_.resize(static_cast<std::size_t>(num_ops_));
+  op_undo_stamp_.resize(static_cast<std::size_t>(num_ops_));
   op_marked_.resize(static_cast<std::size_t>(num_ops_));
   interval_.resize(static_cast<std::size_t>(task.num_vars()));
   next_interval_.resize(static_cast<std::size_t>(task.num_vars()));
@@ -729,8 +729,10 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
   applicable_.clear();
   numeric_waiting_.clear();
   new_facts_.clear();
-  for (auto op : undoing_ops_) op_undoes_[op] = 0;  // the previous evaluation's
-  undoing_ops_.clear();
+  if (++undo_stamp_ == 0) {  // wrapped: forget every old stamp
+    std::fill(op_undo_stamp_.begin(), op_undo_stamp_.end(), 0);
+    undo_stamp_ = 1;
+  }
   // Previous evaluation's suppressed facts (cleared here, not at its end:
   // one place for both).
   for (auto f : suppressed_list_) suppressed_[f] = 0;
@@ -889,10 +891,7 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
         // reaches them, before they are counted here.
         if (keep_held_goals && undoes_goal_[f]) {
           for (const std::int32_t* it = fact_ops + fact_ops_begin[f]; it != end; ++it) {
-            if (op_undoes_[*it] == 0) {
-              op_undoes_[*it] = 1;
-              undoing_ops_.push_back(*it);
-            }
+            op_undo_stamp_[*it] = undo_stamp_;
           }
         }
         for (const std::int32_t* it = fact_ops + fact_ops_begin[f]; it != end; ++it) {
@@ -951,7 +950,8 @@ int RelaxedPlanHeuristic::Evaluate(const StateData& state, std::vector<SnapId>* 
       }
       // An end's over-all conditions do not count it down (Exploration::
       // fact_ops), but they are its start's: started(a) carries their flag.
-      const bool undoes_goal = keep_held_goals && (op_undoes_[op] != 0 || DeletesHeldGoal(op));
+      const bool undoes_goal =
+          keep_held_goals && (op_undo_stamp_[op] == undo_stamp_ || DeletesHeldGoal(op));
       for (int i = add_begin_[op]; i < add_begin_[op + 1]; ++i) {
         reach(add_[i], layer + 1, op, add_[i] < num_facts_ ? time_s : started_s, undoes_goal);
       }

@@ -285,12 +285,12 @@ class RelaxedPlanHeuristic {
   // deletes a goal fact the state holds (set only when some operator
   // deletes a goal fact and not in the makespan-aware mode).
   std::vector<std::uint8_t> undoes_goal_;
-  // Keeping held goals: per operator, whether a condition reached so far
-  // was reached only by undoing a held goal (set as each fact's operators
-  // are counted down, so an applied operator need not scan its
-  // conditions); the operators set, to clear them after the evaluation.
-  std::vector<std::uint8_t> op_undoes_;
-  std::vector<std::int32_t> undoing_ops_;
+  // Keeping held goals: per operator, the evaluation (undo_stamp_) in
+  // which a condition of it was reached only by undoing a held goal, set
+  // as each fact's operators are counted down, so that an applied operator
+  // need not scan its conditions. A stamp, not a flag: nothing to clear.
+  std::vector<std::uint32_t> op_undo_stamp_;
+  std::uint32_t undo_stamp_ = 0;
   // Scratch of CountUndoneGoals: a flag per fact (all 0 between calls) and
   // the goals flagged.
   std::vector<std::uint8_t> goal_undone_;
