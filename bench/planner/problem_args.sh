@@ -1,4 +1,4 @@
-# Sourced by state_memory.sh, run_problems.sh and anytime_vs_peers.sh: reads the options they
+# Sourced by state_memory.sh, state_speed.sh, run_problems.sh and anytime_vs_peers.sh: reads the options they
 # take (--time-limit S, --memory-limit MB, --bench DIR, --cpu-limit S;
 # defaults set by the caller in time_s, memory_mb, bench, cpu_s) and the
 # problems (domain/pNN) into `problems`, and makes the scratch folder `work`
@@ -42,4 +42,9 @@ plan_validity() {
   else
     echo NO
   fi
+}
+
+# The median of the numbers on standard input, one a line (nothing for none).
+median() {
+  sort -g | awk '{ v[NR] = $1 } END { if (NR) print (NR % 2 ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2) }'
 }

@@ -50,5 +50,8 @@ for p in "${problems[@]}"; do
   printf '%-22s %-14s %9d %6d %6d %8d | %-14s %9d %6d %6d %8d | %s\n' "$p" "$s1" "$g1" $((k1 / 1024)) \
     "$b1" "$r1" "$s2" "$g2" $((k2 / 1024)) "$b2" "$r2" "$ratio"
 done
-printf '%s\n' "${ratios[@]}" | grep -v -- - | sort -g |
-  awk '{ r[NR] = $1 } END { if (NR) printf "median ratio after/before (bytes per generated state): %.3f over %d problems\n", (NR % 2 ? r[(NR + 1) / 2] : (r[NR / 2] + r[NR / 2 + 1]) / 2), NR }'
+known=$(printf '%s\n' "${ratios[@]}" | grep -cv -- - || true)
+if [[ $known -gt 0 ]]; then
+  printf 'median ratio after/before (bytes per generated state): %.3f over %d problems\n' \
+    "$(printf '%s\n' "${ratios[@]}" | grep -v -- - | median)" "$known"
+fi

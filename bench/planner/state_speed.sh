@@ -2,16 +2,16 @@
 # CPU time per expanded state of two `seaplan` executables doing the same
 # search: whole processes, one at a time, alternating BEFORE and AFTER
 # --runs times per problem, each `seaplan plan --no-anytime --max-expansions
-# N` (an expansion limit, not a time limit, so that both do the same work
-# whatever the machine's load; the time limit is the most `seaplan plan`
-# takes, 600 s, since the switch to the third first-plan search comes
-# after a quarter of it and would make the work depend on the clock: keep
-# each run below 150 s). The script checks that
-# they did: the same
-# status, states expanded and generated and plan makespan in every run, or
-# the row says "DIFFERENT WORK" and gives no ratio. Per problem: each
-# executable's median CPU seconds (user + system) and expansions per CPU
-# second, and the ratio of the medians, AFTER / BEFORE (below 1: faster).
+# N --time-limit 600`. An expansion limit, not a time limit, so that both do
+# the same work whatever the machine's load; the time limit is the most
+# `seaplan plan` takes, since the switch to the third first-plan search
+# comes after a quarter of it and would make the work depend on the clock
+# (keep each run below 150 s). The script checks that they did the same
+# work: the same status, states expanded and generated and plan makespan
+# in every run, or the row says "DIFFERENT WORK" and gives no ratio. Per
+# problem: each executable's median CPU seconds (user + system) and
+# expansions per CPU second, and the ratio of the medians, AFTER / BEFORE
+# (below 1: faster).
 #
 # usage: state_speed.sh BEFORE_SEAPLAN AFTER_SEAPLAN [--runs 5] [--max-expansions 5000]
 #            [--bench DIR] PROBLEM...
@@ -51,7 +51,6 @@ run_one() {
   makespan=$(sed -n 's/^; makespan: \([0-9.e+-]*\) s.*/\1/p' "$work/out" | head -1)
   echo "${status:-none},${counts:-0,0},${makespan:--} $(awk '{ print $1 + $2 }' "$work/time" | tail -1)"
 }
-median() { sort -g | awk '{ v[NR] = $1 } END { print (NR % 2 ? v[(NR + 1) / 2] : (v[NR / 2] + v[NR / 2 + 1]) / 2) }'; }
 
 printf '%-34s %9s %8s %9s | %8s %9s | %s\n' problem expanded cpu_s exp/cpu_s cpu_s exp/cpu_s \
   'after/before'
