@@ -94,6 +94,7 @@ TEST(MissionAdapterTest, SpecDefaultsAndErrors) {
   spec.mutable_planner_options()->set_symmetry_reduction(false);
   spec.mutable_planner_options()->set_eager_ends(false);
   spec.mutable_planner_options()->set_second_greedy_after_share(0.125);
+  spec.mutable_planner_options()->set_seed_rounds_share(2.5);
   spec.mutable_planner_options()->mutable_cpu_time_limit()->set_seconds(5);
   spec.mutable_ship()->set_service_speed_mps(9);
   auto given = SpecFromProto(spec);
@@ -109,6 +110,8 @@ TEST(MissionAdapterTest, SpecDefaultsAndErrors) {
   EXPECT_FALSE(given->planner.eager_ends);
   EXPECT_EQ(defaults.planner.second_greedy_after_share, 0.25);
   EXPECT_EQ(given->planner.second_greedy_after_share, 0.125);
+  EXPECT_EQ(defaults.planner.seed_rounds_share, 1);
+  EXPECT_EQ(given->planner.seed_rounds_share, 2.5);
   EXPECT_EQ(given->planner.cpu_time_limit_s, 5);
   EXPECT_EQ(given->planner.time_limit_s, 7);
   EXPECT_EQ(given->planner.max_expansions, 20000u);
@@ -121,6 +124,13 @@ TEST(MissionAdapterTest, SpecDefaultsAndErrors) {
             std::string::npos)
       << share;
   spec.mutable_planner_options()->set_second_greedy_after_share(0.125);
+  spec.mutable_planner_options()->set_seed_rounds_share(-1);
+  const absl::Status rounds = SpecFromProto(spec).status();
+  EXPECT_TRUE(absl::IsInvalidArgument(rounds)) << rounds;
+  EXPECT_NE(rounds.message().find("seed_rounds_share must be a finite number >= 0"),
+            std::string::npos)
+      << rounds;
+  spec.mutable_planner_options()->set_seed_rounds_share(2.5);
   spec.mutable_planner_options()->mutable_time_limit()->set_seconds(-1);
   EXPECT_TRUE(absl::IsInvalidArgument(SpecFromProto(spec).status()));
   spec.mutable_planner_options()->mutable_time_limit()->set_seconds(7);

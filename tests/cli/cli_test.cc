@@ -241,6 +241,25 @@ TEST(CliInProcessTest, SwitchAfterIsAShareOfTheBudget) {
   EXPECT_NE(bad.err.find("--switch-after"), std::string::npos) << bad.err;
 }
 
+// --seed-rounds reaches the planner: with 0 no round runs and none is
+// reported; by default the rounds run and the plan's statistics say how
+// many; a negative share is a usage error.
+TEST(CliInProcessTest, SeedRoundsAreReportedAndCanBeTurnedOff) {
+  auto rounds =
+      RunSeaplan({"plan", Example("domain.pddl"), Example("case-a.pddl"), "--no-anytime"});
+  EXPECT_EQ(rounds.exit_code, 0) << rounds.out << rounds.err;
+  EXPECT_NE(rounds.out.find("; rounds with other seeds: "), std::string::npos) << rounds.out;
+  auto none = RunSeaplan({"plan", Example("domain.pddl"), Example("case-a.pddl"), "--no-anytime",
+                          "--seed-rounds", "0"});
+  EXPECT_EQ(none.exit_code, 0) << none.out << none.err;
+  EXPECT_NE(none.out.find("; makespan:"), std::string::npos) << none.out;
+  EXPECT_EQ(none.out.find("; rounds with other seeds"), std::string::npos) << none.out;
+  auto bad =
+      RunSeaplan({"plan", Example("domain.pddl"), Example("case-a.pddl"), "--seed-rounds", "-1"});
+  EXPECT_EQ(bad.exit_code, 2);
+  EXPECT_NE(bad.err.find("--seed-rounds"), std::string::npos) << bad.err;
+}
+
 // --no-type-based is accepted and plans. Case A's first plan comes before
 // the type-based list's first turn, so the search is the same with it
 // (what the list changes is tested in engine/search's planner_test).

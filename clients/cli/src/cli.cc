@@ -131,6 +131,7 @@ struct PlanArgs {
   std::uint64_t max_expansions = 0;
   double cpu_limit_s = 0;
   double switch_after = -1;  // < 0: the planner's default
+  double seed_rounds = -1;   // < 0: the planner's default
 };
 
 int RunPlan(const GlobalOptions& options, const PlanArgs& args) {
@@ -151,6 +152,7 @@ int RunPlan(const GlobalOptions& options, const PlanArgs& args) {
   if (args.no_symmetry) planner->set_symmetry_reduction(false);
   if (args.no_eager_ends) planner->set_eager_ends(false);
   if (args.switch_after >= 0) planner->set_second_greedy_after_share(args.switch_after);
+  if (args.seed_rounds >= 0) planner->set_seed_rounds_share(args.seed_rounds);
   planner->set_random_seed(args.seed);
   planner->set_epsilon_s(args.epsilon_s);
   planner->set_max_expansions(args.max_expansions);
@@ -838,6 +840,12 @@ int RunCli(int argc, char** argv, const CliExecutable& executable) {
                    "plan yet, the first-plan search by makespan gives way to one that delays "
                    "actions undoing held goals (default 0.25; 0: the newest-first search alone)")
       ->check(CLI::Range(0.0, 1.0));
+  plan_cmd
+      ->add_option("--seed-rounds", plan.seed_rounds,
+                   "After the first plan and the searches that shorten it, rounds of the same "
+                   "with other seeds, begun while they have expanded fewer than this multiple of "
+                   "the states expanded before them (default 1; 0: none)")
+      ->check(CLI::NonNegativeNumber);
   plan_cmd->add_option("--seed", plan.seed, "Random seed")->capture_default_str();
   plan_cmd->add_option("--epsilon", plan.epsilon_s,
                        "Separation of interfering events (s), default 0.001");

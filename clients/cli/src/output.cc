@@ -86,6 +86,11 @@ void PrintPlanResponse(std::ostream& out, const v1::PlanResponse& response) {
         << (stats.first_plan_restarts() == 1 ? " time" : " times")
         << " with another seed (deadlines)\n";
   }
+  if (stats.seed_rounds() > 0) {
+    out << "; rounds with other seeds: " << stats.seed_rounds() << ", " << stats.seed_round_plans()
+        << (stats.seed_round_plans() == 1 ? " plan" : " plans")
+        << " shorter than the best before\n";
+  }
   for (const auto& d : response.diagnostics()) {
     out << "; " << d.file() << ":" << d.line() << ":" << d.column() << ": " << d.message() << "\n";
   }

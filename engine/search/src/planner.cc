@@ -75,6 +75,10 @@ absl::Status PlannerOptions::Validate() const {
     return absl::InvalidArgumentError(
         absl::StrCat("second_greedy_turn_share must be in [0, 1), got ", second_greedy_turn_share));
   }
+  if (!(seed_rounds_share >= 0) || !std::isfinite(seed_rounds_share)) {
+    return absl::InvalidArgumentError(absl::StrCat(
+        "seed_rounds_share must be a finite number >= 0 (0 = no rounds), got ", seed_rounds_share));
+  }
   if (!(epsilon_s > 0) || !(epsilon_s < 1)) {
     return absl::InvalidArgumentError(
         absl::StrCat("epsilon_s must be in (0, 1) seconds, got ", epsilon_s));
@@ -155,7 +159,8 @@ class PlannerRun {
   std::size_t Expanded() const { return TotalCounters().expanded; }
   // A search ends: its counters join done_counters_ (Start began it).
   void AddCounters(const LazySearch& search);
-  // Builds and validates; true when it is a new incumbent.
+  // Builds and validates; true when it is shorter than the round's plans
+  // (round_), and then the incumbent too when shorter than it.
   bool Offer(const LazySearch& search);
   // The task's initial state (built once, for initial_).
   StateData InitialState() const;
@@ -163,9 +168,19 @@ class PlannerRun {
   // plan (agents' work spread, relaxed_plan_heuristic.h); with fewer than
   // two agents, weighted A* alone with FF's. Their budgets are multiples of
   // `first_expanded`, the first-plan searches' expansions together.
-  void ShortenFirstPlan(std::size_t first_expanded);
-  // A search pruned by the incumbent (weight < 0: greedy, else weighted A*
-  // with the incumbent's seconds per event as the heuristic's unit).
+  // `quick`: the budgets the anytime phases follow (smaller, no pass with
+  // FF's relaxed plan). True when Poll stopped it.
+  bool ShortenFirstPlan(std::size_t first_expanded, bool quick);
+  // After ShortenFirstPlan, with or without anytime phases: rounds of the
+  // same with other seeds (a greedy first search, then its passes, each
+  // round bounded by its own plans), begun while their expansions stay
+  // within `budget`.
+  void ShortenWithOtherSeeds(std::size_t budget);
+  // The first-plan searches' greedy search (with its exploration lists and
+  // pruning), unbounded.
+  SearchParams GreedyParams(std::uint64_t seed, bool eager_ends) const;
+  // A search pruned by the round's plan (round_; weight < 0: greedy, else
+  // weighted A* with that plan's seconds per event as the heuristic's unit).
   SearchParams BoundedParams(double weight) const;
   // PlannerOptions::eager_ends, unless the schedule bounds concurrency.
   bool EagerEnds() const { return options_.eager_ends && options_.max_concurrent_actions == 0; }
@@ -199,7 +214,18 @@ class PlannerRun {
   const StateData initial_;
   PlanResult best_;
   bool has_plan_ = false;
-  std::size_t plan_events_ = 0;
+  // The shortest plan of this round of searches (Offer), which bounds them:
+  // the first plan and the passes that shorten it, or a round begun again
+  // with another seed (ShortenWithOtherSeeds). The same as best_ outside
+  // those rounds.
+  struct RoundBest {
+    bool found = false;
+    double makespan_s = 0;
+    std::size_t events = 0;
+  };
+  RoundBest round_;
+  std::size_t best_events_ = 0;  // best_'s events, for round_ after the rounds
+  std::uint64_t round_seed_ = options_.random_seed;
   SearchCounters done_counters_;            // of finished searches
   SearchCounters polled_counters_;          // of all searches, at the last memory poll
   std::vector<const LazySearch*> running_;  // started, not yet in done_counters_
@@ -315,10 +341,15 @@ bool PlannerRun::Offer(const LazySearch& search) {
       built = std::move(shorter);
     }
   }
-  if (has_plan_ && built->makespan_s >= best_.makespan_s - options_.epsilon_s / 2) return false;
+  if (round_.found && built->makespan_s >= round_.makespan_s - options_.epsilon_s / 2) return false;
+  round_ = {true, built->makespan_s, search.plan().size()};
+  // Shorter than this round's plans, not than the incumbent: the round goes
+  // on under its own bound.
+  if (has_plan_ && built->makespan_s >= best_.makespan_s - options_.epsilon_s / 2) return true;
   const double now = Seconds(start_);
+  if (round_seed_ != options_.random_seed) ++best_.stats.seed_round_plans;
   has_plan_ = true;
-  plan_events_ = search.plan().size();
+  best_events_ = round_.events;
   best_.status = PlanStatus::kSolvedSatisficing;
   best_.plan = std::move(built->plan);
   best_.makespan_s = built->makespan_s;
@@ -336,13 +367,26 @@ bool PlannerRun::Offer(const LazySearch& search) {
   return true;
 }
 
+SearchParams PlannerRun::GreedyParams(std::uint64_t seed, bool eager_ends) const {
+  SearchParams params;
+  params.weight = -1;
+  params.epsilon_s = options_.epsilon_s;
+  params.seed = seed;
+  params.type_based_exploration = options_.type_based_exploration;
+  if (landmarks_) params.landmarks = &*landmarks_;
+  if (symmetry_) params.symmetry = &*symmetry_;
+  if (goal_order_) params.goal_order = &*goal_order_;
+  params.eager_ends = eager_ends;
+  return params;
+}
+
 SearchParams PlannerRun::BoundedParams(double weight) const {
   SearchParams params;
   params.weight = weight;
-  params.scale_s = best_.makespan_s / std::max<double>(1.0, static_cast<double>(plan_events_));
-  params.bound_s = best_.makespan_s;
+  params.scale_s = round_.makespan_s / std::max<double>(1.0, static_cast<double>(round_.events));
+  params.bound_s = round_.makespan_s;
   params.epsilon_s = options_.epsilon_s;
-  params.seed = options_.random_seed;
+  params.seed = round_seed_;
   // No symmetry reduction here: these searches look for a shorter makespan,
   // and a symmetric state is dropped on its makespan bound alone, not its
   // schedule (fjord 3x12x12 seed 1 returned 15,073.8 s with it, 12,988.7 s
@@ -366,7 +410,7 @@ bool PlannerRun::RunBounded(LazySearch& search, std::size_t max_expanded, bool s
     if (status == LazySearch::Status::kSolved) {
       const bool improved = Offer(search);
       if (stop_at_plan) break;
-      if (improved) search.SetBound(best_.makespan_s);
+      if (improved) search.SetBound(round_.makespan_s);
       continue;
     }
     if (status == LazySearch::Status::kExhausted) break;
@@ -374,19 +418,22 @@ bool PlannerRun::RunBounded(LazySearch& search, std::size_t max_expanded, bool s
   return false;
 }
 
-void PlannerRun::ShortenFirstPlan(std::size_t first_expanded) {
+bool PlannerRun::ShortenFirstPlan(std::size_t first_expanded, bool quick) {
   heuristic_.SetMakespanAware(true);
-  if (!has_plan_) return;
+  if (!round_.found) return false;
   // With fewer than two agents there is no work to spread, but the greedy
   // plan's detours are there all the same (satellite-time p01: a turn to a
   // target before the turn to calibrate): weighted A* alone, with FF's
   // relaxed plan.
   const bool spread = heuristic_.makespan_aware();
-  // Pruned by the incumbent and given, in all, at most six times the first
-  // search's expansions without anytime phases (their plan is the one
-  // returned: with twice, the budget of the anytime case, both passes were
-  // cut short on generated fjord missions), twice with them (which improve
-  // it further and should not wait): the first plan stays the fallback, so
+  // Pruned by the round's plan and given, in all, at most six times the
+  // first search's expansions for the plan returned without anytime phases
+  // (with twice, both passes were cut short on generated fjord missions),
+  // twice when `quick` (the anytime phases follow, which improve it further
+  // and should not wait; or a round with another seed, where more rounds
+  // found shorter plans than longer passes did: fjord-fuel 3x12x12 seed 3,
+  // 10,353 s against 11,123 s in the same number of expansions, and seed 5
+  // no worse): the first plan stays the fallback, so
   // neither coverage nor the first plan's makespan can get worse, and the
   // cost is bounded where spreading misleads the search (floortile,
   // depots). A greedy pass (large missions: another ship assignment; it
@@ -407,20 +454,20 @@ void PlannerRun::ShortenFirstPlan(std::size_t first_expanded) {
   // as they do without it (the registry's state ids, which break ties, and
   // their bound): placed first, its plan's bound sent them elsewhere (seed
   // 2: 19,712 s returned instead of 15,752 s).
-  const std::size_t budget_factor = options_.anytime ? 2 : 6;
+  const std::size_t budget_factor = quick ? 2 : 6;
   // With one agent, once the first search's expansions: the pass costs
   // more per state where schedules branch (matchcellar p05: 3.5 s more with
   // six times, for no shorter plan).
-  // At least kMinExpansions (without anytime phases, ten times as many: a
+  // At least kMinExpansions (unless `quick`, ten times as many: a
   // first plan found after a few hundred expansions left the pass too
   // little to take a greedy plan's detours out; case C numeric returned
   // 4,610 s where 10,000 expansions reach 3,419 s).
   constexpr std::size_t kMinExpansions = 1000;
-  const std::size_t min_expansions = options_.anytime ? kMinExpansions : 10 * kMinExpansions;
+  const std::size_t min_expansions = quick ? kMinExpansions : 10 * kMinExpansions;
   std::size_t left =
       std::max<std::size_t>(min_expansions, (spread ? budget_factor : 1) * first_expanded);
   std::size_t landmark_left = std::max<std::size_t>(kMinExpansions, 2 * first_expanded);
-  // Without anytime phases, a fourth pass: weighted A* (w = 3) with FF's
+  // Unless `quick`, a fourth pass: weighted A* (w = 3) with FF's
   // relaxed plan, as the anytime phases' first search, on a budget of its
   // own (the first search's expansions, at least 20,000). Which estimate
   // leads to the shorter plan depends on the mission: on some the
@@ -430,7 +477,7 @@ void PlannerRun::ShortenFirstPlan(std::size_t first_expanded) {
   // seed 2: 13,067 s, 12,204 s). Last, so the passes before it run as they
   // did; with anytime phases the next phase is this search anyway.
   std::size_t ff_left =
-      options_.anytime || !spread ? 0 : std::max<std::size_t>(2 * min_expansions, first_expanded);
+      quick || !spread ? 0 : std::max<std::size_t>(2 * min_expansions, first_expanded);
   struct Pass {
     double weight;
     bool landmarks;
@@ -453,8 +500,30 @@ void PlannerRun::ShortenFirstPlan(std::size_t first_expanded) {
     const bool stop = RunBounded(search, budget, pass.weight < 0);
     AddCounters(search);
     budget -= std::min(budget, search.counters().expanded);
-    if (stop) return;
+    if (stop) return true;
   }
+  return false;
+}
+
+void PlannerRun::ShortenWithOtherSeeds(std::size_t budget) {
+  const std::size_t start_expanded = Expanded();
+  for (std::uint64_t round = 1; Expanded() - start_expanded < budget; ++round) {
+    ++best_.stats.seed_rounds;
+    round_ = {};
+    round_seed_ = options_.random_seed + round;
+    heuristic_.SetMakespanAware(false);
+    LazySearch search(snap_, registry_, heuristic_, transitions_, timeline_,
+                      GreedyParams(round_seed_, EagerEnds()));
+    Start(search);
+    const std::size_t left = budget - (Expanded() - start_expanded);
+    const bool stop = RunBounded(search, left, true);
+    const std::size_t first_expanded = search.counters().expanded;
+    AddCounters(search);
+    if (stop) break;
+    if (round_.found && ShortenFirstPlan(first_expanded, true)) break;
+  }
+  round_ = {has_plan_, best_.makespan_s, best_events_};
+  round_seed_ = options_.random_seed;
 }
 
 PlanResult PlannerRun::Finish(const SearchCounters& counters, PlanStatus status_if_no_plan,
@@ -682,15 +751,8 @@ PlanResult PlannerRun::Run() {
   };
   if (searches[0].share > 0 && searches[1].share > 0) use_second_states(searches[1]);
   auto begin_search = [&](FirstPlanSearch& s) {
-    SearchParams params;
-    params.weight = -1;
-    params.epsilon_s = options_.epsilon_s;
-    params.seed = options_.random_seed + static_cast<std::uint64_t>(s.restarts);
-    params.type_based_exploration = options_.type_based_exploration;
-    if (landmarks_) params.landmarks = &*landmarks_;
-    if (symmetry_) params.symmetry = &*symmetry_;
-    if (goal_order_) params.goal_order = &*goal_order_;
-    params.eager_ends = s.eager_ends;
+    SearchParams params =
+        GreedyParams(options_.random_seed + static_cast<std::uint64_t>(s.restarts), s.eager_ends);
     s.restart_at_steps = s.steps + (kFirstRestartSteps << std::min(s.restarts, 40));
     if (s.many_variants) {
       params.max_variants = 64;
@@ -861,9 +923,11 @@ PlanResult PlannerRun::Run() {
   third_timeline_.reset();
   heuristic_.SetKeepHeldGoals(false);  // the searches for shorter plans: FF's ties
   heuristic_.SetDelayGoalUndoers(false);
-  ShortenFirstPlan(first_plan_expanded);
-  heuristic_.SetMakespanAware(false);  // the anytime phases: FF's (see below)
+  ShortenFirstPlan(first_plan_expanded, options_.anytime);
+  ShortenWithOtherSeeds(
+      static_cast<std::size_t>(options_.seed_rounds_share * static_cast<double>(Expanded())));
   if (!options_.anytime) return finish(PlanStatus::kSolvedSatisficing, "");
+  heuristic_.SetMakespanAware(false);  // the anytime phases: FF's (see below)
 
   // Phase 2: restarting weighted A* on makespan, pruned by the incumbent,
   // with FF's relaxed plan: with the makespan-aware one it missed the
