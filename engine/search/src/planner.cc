@@ -923,9 +923,10 @@ PlanResult PlannerRun::Run() {
   third_timeline_.reset();
   heuristic_.SetKeepHeldGoals(false);  // the searches for shorter plans: FF's ties
   heuristic_.SetDelayGoalUndoers(false);
-  ShortenFirstPlan(first_plan_expanded, options_.anytime);
-  ShortenWithOtherSeeds(
-      static_cast<std::size_t>(options_.seed_rounds_share * static_cast<double>(Expanded())));
+  if (!ShortenFirstPlan(first_plan_expanded, options_.anytime)) {
+    ShortenWithOtherSeeds(
+        static_cast<std::size_t>(options_.seed_rounds_share * static_cast<double>(Expanded())));
+  }
   if (!options_.anytime) return finish(PlanStatus::kSolvedSatisficing, "");
   heuristic_.SetMakespanAware(false);  // the anytime phases: FF's (see below)
 
