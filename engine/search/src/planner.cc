@@ -168,8 +168,8 @@ class PlannerRun {
   // plan (agents' work spread, relaxed_plan_heuristic.h); with fewer than
   // two agents, weighted A* alone with FF's. Their budgets are multiples of
   // `first_expanded`, the first-plan searches' expansions together.
-  // `quick`: the budgets the anytime phases follow (smaller, no pass with
-  // FF's relaxed plan). True when Poll stopped it.
+  // `quick`: the budgets of a round with another seed (smaller, no pass
+  // with FF's relaxed plan). True when Poll stopped it.
   bool ShortenFirstPlan(std::size_t first_expanded, bool quick);
   // After ShortenFirstPlan, with or without anytime phases: rounds of the
   // same with other seeds (a greedy first search, then its passes, each
@@ -427,13 +427,15 @@ bool PlannerRun::ShortenFirstPlan(std::size_t first_expanded, bool quick) {
   // relaxed plan.
   const bool spread = heuristic_.makespan_aware();
   // Pruned by the round's plan and given, in all, at most six times the
-  // first search's expansions for the plan returned without anytime phases
-  // (with twice, both passes were cut short on generated fjord missions),
-  // twice when `quick` (the anytime phases follow, which improve it further
-  // and should not wait; or a round with another seed, where more rounds
-  // found shorter plans than longer passes did: fjord-fuel 3x12x12 seed 3,
-  // 10,353 s against 11,123 s in the same number of expansions, and seed 5
-  // no worse): the first plan stays the fallback, so
+  // first search's expansions (with twice, both passes were cut short on
+  // generated fjord missions), with or without anytime phases (with twice
+  // before them, a minute of anytime search returned longer plans than
+  // `--no-anytime` on 8 of 20 fjord 4x16x16 missions; with six times it
+  // starts from that plan, and its plan after 1 s on the shared benchmark
+  // was as good), twice when `quick` (in a round with another seed more
+  // rounds found shorter plans than longer passes did: fjord-fuel 3x12x12
+  // seed 3, 10,353 s against 11,123 s for the same share, and seed 5 no
+  // worse): the first plan stays the fallback, so
   // neither coverage nor the first plan's makespan can get worse, and the
   // cost is bounded where spreading misleads the search (floortile,
   // depots). A greedy pass (large missions: another ship assignment; it
@@ -468,14 +470,14 @@ bool PlannerRun::ShortenFirstPlan(std::size_t first_expanded, bool quick) {
       std::max<std::size_t>(min_expansions, (spread ? budget_factor : 1) * first_expanded);
   std::size_t landmark_left = std::max<std::size_t>(kMinExpansions, 2 * first_expanded);
   // Unless `quick`, a fourth pass: weighted A* (w = 3) with FF's
-  // relaxed plan, as the anytime phases' first search, on a budget of its
+  // relaxed plan, like the anytime phases' first search, on a budget of its
   // own (the first search's expansions, at least 20,000). Which estimate
   // leads to the shorter plan depends on the mission: on some the
   // makespan-aware passes keep a plan whose ships relay containers, and
   // FF's finds a shorter one within that budget (fjord-fuel 4x16x16 seed 2:
   // 22,847 s returned without this pass, 16,122 s with it; fjord 3x12x12
   // seed 2: 13,067 s, 12,204 s). Last, so the passes before it run as they
-  // did; with anytime phases the next phase is this search anyway.
+  // did.
   std::size_t ff_left =
       quick || !spread ? 0 : std::max<std::size_t>(2 * min_expansions, first_expanded);
   struct Pass {
@@ -923,7 +925,9 @@ PlanResult PlannerRun::Run() {
   third_timeline_.reset();
   heuristic_.SetKeepHeldGoals(false);  // the searches for shorter plans: FF's ties
   heuristic_.SetDelayGoalUndoers(false);
-  if (!ShortenFirstPlan(first_plan_expanded, options_.anytime)) {
+  // The same passes and rounds with or without anytime phases, so that
+  // those start from the plan `--no-anytime` returns.
+  if (!ShortenFirstPlan(first_plan_expanded, /*quick=*/false)) {
     ShortenWithOtherSeeds(
         static_cast<std::size_t>(options_.seed_rounds_share * static_cast<double>(Expanded())));
   }

@@ -29,12 +29,12 @@
 //     search and then weighted A* (w = 3) whose relaxed plan spreads the
 //     work over them (one agent: weighted A* alone), bounded (by the first
 //     plan's makespan and, together, six times the first-plan searches'
-//     expansions, at least 10,000, without anytime, twice, at least
-//     1,000, with it), and without anytime weighted A* (w = 3) with FF's
+//     expansions, at least 10,000), and weighted A* (w = 3) with FF's
 //     relaxed plan as well (the first searches' expansions, at least
 //     20,000), whose plans replace the first when shorter; then rounds of
 //     the same with other seeds (PlannerOptions::seed_rounds_share); that
-//     is the plan returned without anytime;
+//     is the plan returned without anytime, and the one the anytime phases
+//     start from;
 //   - anytime: restarting weighted A* on makespan, pruned by the incumbent,
 //     until the time limit, the expansion limit or an exhausted space;
 //   - every plan is scheduled at its earliest STN times, printed with
@@ -105,8 +105,9 @@ struct PlannerOptions {
   // search space but can make required-concurrency tasks unsolvable.
   int max_concurrent_actions = 0;
   // Keep improving the makespan after the first plan (until the limit).
-  // Off: the plan after the first greedy search and its bounded
-  // work-spreading searches (above).
+  // Off: the plan after the first greedy search, its bounded
+  // work-spreading searches and the rounds with other seeds (above); on,
+  // the anytime phases start from that plan.
   bool anytime = true;
   // Tie-breaking among equally good successors; same seed, same plan.
   std::uint64_t random_seed = 1;
