@@ -161,8 +161,8 @@ struct PlannerOptions {
   // max_concurrent_actions, whose schedule orders every start after the
   // ends before it.
   bool eager_ends = true;
-  // Without anytime: after the first plan and the passes that shorten it,
-  // rounds of the same with the next seeds (a greedy search from the
+  // After the first plan and the passes that shorten it (and before any
+  // anytime phases), rounds of the same with the next seeds (a greedy search from the
   // initial state, then its passes, each round bounded by its own plans,
   // not the incumbent), begun while the rounds have expanded fewer than
   // this multiple of the states expanded before them (>= 0; 0: none). The
@@ -170,7 +170,7 @@ struct PlannerOptions {
   // passes seldom undo that: with 1, 29 of the shared benchmark's plans
   // without anytime got shorter and none longer, for 1.6 times the wall
   // time over the set (bench/planner/README.md, "Rounds with other
-  // seeds"). With anytime phases the rounds run before them.
+  // seeds").
   double seed_rounds_share = 1;
 
   absl::Status Validate() const;
