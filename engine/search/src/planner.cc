@@ -213,18 +213,24 @@ class PlannerRun {
   PlanValidator validator_;
   const StateData initial_;
   PlanResult best_;
-  bool has_plan_ = false;
-  // The shortest plan of this round of searches (Offer), which bounds them:
-  // the first plan and the passes that shorten it, or a round begun again
-  // with another seed (ShortenWithOtherSeeds). The same as best_ outside
-  // those rounds.
-  struct RoundBest {
+  // A plan's makespan and events, as the bound of the searches after it.
+  struct PlanBound {
     bool found = false;
     double makespan_s = 0;
     std::size_t events = 0;
+    // `makespan_s` is shorter than this plan's by more than half the
+    // separation of events (every makespan when none is found).
+    bool ShorterBy(double makespan, double epsilon_s) const {
+      return !found || makespan < makespan_s - epsilon_s / 2;
+    }
   };
-  RoundBest round_;
-  std::size_t best_events_ = 0;  // best_'s events, for round_ after the rounds
+  PlanBound incumbent_;  // best_'s (found: best_ holds a plan)
+  bool has_plan() const { return incumbent_.found; }
+  // The shortest plan of this round of searches (Offer), which bounds them:
+  // the first plan and the passes that shorten it, or a round begun again
+  // with another seed (ShortenWithOtherSeeds). The incumbent outside those
+  // rounds.
+  PlanBound round_;
   std::uint64_t round_seed_ = options_.random_seed;
   SearchCounters done_counters_;            // of finished searches
   SearchCounters polled_counters_;          // of all searches, at the last memory poll
@@ -341,15 +347,14 @@ bool PlannerRun::Offer(const LazySearch& search) {
       built = std::move(shorter);
     }
   }
-  if (round_.found && built->makespan_s >= round_.makespan_s - options_.epsilon_s / 2) return false;
+  if (!round_.ShorterBy(built->makespan_s, options_.epsilon_s)) return false;
   round_ = {true, built->makespan_s, search.plan().size()};
   // Shorter than this round's plans, not than the incumbent: the round goes
   // on under its own bound.
-  if (has_plan_ && built->makespan_s >= best_.makespan_s - options_.epsilon_s / 2) return true;
+  if (!incumbent_.ShorterBy(built->makespan_s, options_.epsilon_s)) return true;
   const double now = Seconds(start_);
   if (round_seed_ != options_.random_seed) ++best_.stats.seed_round_plans;
-  has_plan_ = true;
-  best_events_ = round_.events;
+  incumbent_ = round_;
   best_.status = PlanStatus::kSolvedSatisficing;
   best_.plan = std::move(built->plan);
   best_.makespan_s = built->makespan_s;
@@ -524,7 +529,7 @@ void PlannerRun::ShortenWithOtherSeeds(std::size_t budget) {
     if (stop) break;
     if (round_.found && ShortenFirstPlan(first_expanded, true)) break;
   }
-  round_ = {has_plan_, best_.makespan_s, best_events_};
+  round_ = incumbent_;
   round_seed_ = options_.random_seed;
 }
 
@@ -532,7 +537,7 @@ PlanResult PlannerRun::Finish(const SearchCounters& counters, PlanStatus status_
                               std::string message) {
   SetCounters(counters, best_.stats);
   best_.stats.search_time_s = Seconds(start_);
-  if (!has_plan_) {
+  if (!has_plan()) {
     best_.status = status_if_no_plan;
     best_.message = std::move(message);
   } else if (best_.message.empty()) {
@@ -550,7 +555,7 @@ PlanResult PlannerRun::AfterAllocationFailure() {
   second_timeline_.reset();
   const SearchCounters& counters =
       polled_counters_.expanded > done_counters_.expanded ? polled_counters_ : done_counters_;
-  if (has_plan_) {
+  if (has_plan()) {
     best_.message =
         absl::StrCat("memory ran out (an allocation failed) after ", best_.stats.plans_found,
                      " plan(s); best makespan ", best_.makespan_s);
@@ -569,7 +574,7 @@ std::string PlannerRun::MemoryLimitText() const {
 
 PlanResult PlannerRun::TakeBest() {
   best_.message.clear();
-  if (!has_plan_) best_.status = PlanStatus::kMemout;
+  if (!has_plan()) best_.status = PlanStatus::kMemout;
   return std::move(best_);
 }
 
@@ -781,7 +786,7 @@ PlanResult PlannerRun::Run() {
     waiting_first.reset();
   };
   const FirstPlanSearch* found_by = nullptr;
-  while (!has_plan_) {
+  while (!has_plan()) {
     // The search furthest behind its share of the steps.
     FirstPlanSearch* next = nullptr;
     for (FirstPlanSearch& s : searches) {

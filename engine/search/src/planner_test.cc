@@ -42,11 +42,11 @@ Loaded Load(const std::string& domain, const std::string& problem) {
   return {loaded.task};
 }
 
-// A generated mission (`seaplan-mission-gen --domain fjord --ships 3 --ports
-// 8 --containers 8 --seed 8`) with the fjord domain.
-Loaded LoadGeneratedMission() {
-  auto loaded = task::LoadTask(FjordExample("domain.pddl"),
-                               testing::ReadFile(TestData("fjord-s3-p8-c8-seed8.pddl")));
+// A generated mission (by default `seaplan-mission-gen --domain fjord
+// --ships 3 --ports 8 --containers 8 --seed 8`) with a fjord example's domain.
+Loaded LoadGeneratedMission(const std::string& domain = "domain.pddl",
+                            const std::string& problem = "fjord-s3-p8-c8-seed8.pddl") {
+  auto loaded = task::LoadTask(FjordExample(domain), testing::ReadFile(TestData(problem)));
   EXPECT_TRUE(loaded.ok()) << loaded.ErrorText();
   return {loaded.task};
 }
@@ -382,9 +382,8 @@ TEST(PlannerTest, ThePassAfterTheFirstPlanGoesOnWithAMinimumBudget) {
 // finds a shorter plan, and the longer ones they find must not replace the
 // incumbent.
 TEST(PlannerTest, RoundsWithOtherSeedsShortenTheFirstPlan) {
-  auto loaded = task::LoadTask(FjordExample("domain-fuel.pddl"),
-                               testing::ReadFile(TestData("fjord-fuel-s3-p8-c8-seed2.pddl")));
-  ASSERT_TRUE(loaded.ok()) << loaded.ErrorText();
+  const Loaded loaded = LoadGeneratedMission("domain-fuel.pddl", "fjord-fuel-s3-p8-c8-seed2.pddl");
+  ASSERT_TRUE(loaded.task);
   PlannerOptions o = Quick(120);
   o.anytime = false;
   o.seed_rounds_share = 0;
