@@ -95,6 +95,7 @@ TEST(MissionAdapterTest, SpecDefaultsAndErrors) {
   spec.mutable_planner_options()->set_eager_ends(false);
   spec.mutable_planner_options()->set_second_greedy_after_share(0.125);
   spec.mutable_planner_options()->set_seed_rounds_share(2.5);
+  spec.mutable_planner_options()->set_suffix_search_share(0.5);
   spec.mutable_planner_options()->mutable_cpu_time_limit()->set_seconds(5);
   spec.mutable_ship()->set_service_speed_mps(9);
   auto given = SpecFromProto(spec);
@@ -112,6 +113,8 @@ TEST(MissionAdapterTest, SpecDefaultsAndErrors) {
   EXPECT_EQ(given->planner.second_greedy_after_share, 0.125);
   EXPECT_EQ(defaults.planner.seed_rounds_share, 1);
   EXPECT_EQ(given->planner.seed_rounds_share, 2.5);
+  EXPECT_EQ(defaults.planner.suffix_search_share, 1);
+  EXPECT_EQ(given->planner.suffix_search_share, 0.5);
   EXPECT_EQ(given->planner.cpu_time_limit_s, 5);
   EXPECT_EQ(given->planner.time_limit_s, 7);
   EXPECT_EQ(given->planner.max_expansions, 20000u);
@@ -131,6 +134,13 @@ TEST(MissionAdapterTest, SpecDefaultsAndErrors) {
             std::string::npos)
       << rounds;
   spec.mutable_planner_options()->set_seed_rounds_share(2.5);
+  spec.mutable_planner_options()->set_suffix_search_share(-1);
+  const absl::Status suffix = SpecFromProto(spec).status();
+  EXPECT_TRUE(absl::IsInvalidArgument(suffix)) << suffix;
+  EXPECT_NE(suffix.message().find("suffix_search_share must be a finite number >= 0"),
+            std::string::npos)
+      << suffix;
+  spec.mutable_planner_options()->set_suffix_search_share(0.5);
   spec.mutable_planner_options()->mutable_time_limit()->set_seconds(-1);
   EXPECT_TRUE(absl::IsInvalidArgument(SpecFromProto(spec).status()));
   spec.mutable_planner_options()->mutable_time_limit()->set_seconds(7);

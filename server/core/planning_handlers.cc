@@ -97,6 +97,8 @@ void StatsToProto(const search::SearchStatistics& s, v1::SearchStatistics* out) 
   out->set_first_plan_restarts(static_cast<std::uint32_t>(s.first_plan_restarts));
   out->set_seed_rounds(static_cast<std::uint32_t>(s.seed_rounds));
   out->set_seed_round_plans(static_cast<std::uint32_t>(s.seed_round_plans));
+  out->set_suffix_searches(static_cast<std::uint32_t>(s.suffix_searches));
+  out->set_suffix_plans(static_cast<std::uint32_t>(s.suffix_plans));
 }
 
 void FillPlan(const search::PlanResult& r, v1::PlanResponse* out) {
@@ -220,6 +222,7 @@ absl::StatusOr<search::PlannerOptions> PlannerOptionsToEngine(const v1::PlannerO
     p.second_greedy_after_share = o.second_greedy_after_share();
   }
   if (o.has_seed_rounds_share()) p.seed_rounds_share = o.seed_rounds_share();
+  if (o.has_suffix_search_share()) p.suffix_search_share = o.suffix_search_share();
   if (o.random_seed() != 0) p.random_seed = o.random_seed();
   if (o.epsilon_s() != 0) p.epsilon_s = o.epsilon_s();
   p.max_expansions = o.max_expansions();

@@ -241,23 +241,25 @@ TEST(CliInProcessTest, SwitchAfterIsAShareOfTheBudget) {
   EXPECT_NE(bad.err.find("--switch-after"), std::string::npos) << bad.err;
 }
 
-// --seed-rounds reaches the planner: with 0 no round runs and none is
-// reported; by default the rounds run and the plan's statistics say how
-// many; a negative share is a usage error.
-TEST(CliInProcessTest, SeedRoundsAreReportedAndCanBeTurnedOff) {
-  auto rounds =
-      RunSeaplan({"plan", Example("domain.pddl"), Example("case-a.pddl"), "--no-anytime"});
-  EXPECT_EQ(rounds.exit_code, 0) << rounds.out << rounds.err;
-  EXPECT_NE(rounds.out.find("; rounds with other seeds: "), std::string::npos) << rounds.out;
-  auto none = RunSeaplan({"plan", Example("domain.pddl"), Example("case-a.pddl"), "--no-anytime",
-                          "--seed-rounds", "0"});
-  EXPECT_EQ(none.exit_code, 0) << none.out << none.err;
-  EXPECT_NE(none.out.find("; makespan:"), std::string::npos) << none.out;
-  EXPECT_EQ(none.out.find("; rounds with other seeds"), std::string::npos) << none.out;
-  auto bad =
-      RunSeaplan({"plan", Example("domain.pddl"), Example("case-a.pddl"), "--seed-rounds", "-1"});
-  EXPECT_EQ(bad.exit_code, 2);
-  EXPECT_NE(bad.err.find("--seed-rounds"), std::string::npos) << bad.err;
+// --seed-rounds and --suffix-searches reach the planner: with 0 none runs
+// and none is reported; by default they run and the plan's statistics say
+// how many; a negative share is a usage error.
+TEST(CliInProcessTest, SeedRoundsAndSuffixSearchesAreReportedAndCanBeTurnedOff) {
+  auto both = RunSeaplan({"plan", Example("domain.pddl"), Example("case-a.pddl"), "--no-anytime"});
+  EXPECT_EQ(both.exit_code, 0) << both.out << both.err;
+  for (const auto& [flag, line] : {std::pair{"--seed-rounds", "; rounds with other seeds"},
+                                   std::pair{"--suffix-searches", "; suffix searches"}}) {
+    SCOPED_TRACE(flag);
+    EXPECT_NE(both.out.find(std::string(line) + ": "), std::string::npos) << both.out;
+    auto none = RunSeaplan(
+        {"plan", Example("domain.pddl"), Example("case-a.pddl"), "--no-anytime", flag, "0"});
+    EXPECT_EQ(none.exit_code, 0) << none.out << none.err;
+    EXPECT_NE(none.out.find("; makespan:"), std::string::npos) << none.out;
+    EXPECT_EQ(none.out.find(line), std::string::npos) << none.out;
+    auto bad = RunSeaplan({"plan", Example("domain.pddl"), Example("case-a.pddl"), flag, "-1"});
+    EXPECT_EQ(bad.exit_code, 2);
+    EXPECT_NE(bad.err.find(flag), std::string::npos) << bad.err;
+  }
 }
 
 // --no-type-based is accepted and plans. Case A's first plan comes before

@@ -130,8 +130,9 @@ struct PlanArgs {
   double epsilon_s = 0;
   std::uint64_t max_expansions = 0;
   double cpu_limit_s = 0;
-  double switch_after = -1;  // < 0: the planner's default
-  double seed_rounds = -1;   // < 0: the planner's default
+  double switch_after = -1;     // < 0: the planner's default
+  double seed_rounds = -1;      // < 0: the planner's default
+  double suffix_searches = -1;  // < 0: the planner's default
 };
 
 int RunPlan(const GlobalOptions& options, const PlanArgs& args) {
@@ -153,6 +154,7 @@ int RunPlan(const GlobalOptions& options, const PlanArgs& args) {
   if (args.no_eager_ends) planner->set_eager_ends(false);
   if (args.switch_after >= 0) planner->set_second_greedy_after_share(args.switch_after);
   if (args.seed_rounds >= 0) planner->set_seed_rounds_share(args.seed_rounds);
+  if (args.suffix_searches >= 0) planner->set_suffix_search_share(args.suffix_searches);
   planner->set_random_seed(args.seed);
   planner->set_epsilon_s(args.epsilon_s);
   planner->set_max_expansions(args.max_expansions);
@@ -845,6 +847,12 @@ int RunCli(int argc, char** argv, const CliExecutable& executable) {
                    "After the first plan and the searches that shorten it, rounds of the same "
                    "with other seeds, begun while they have expanded fewer than this multiple of "
                    "the states expanded before them (default 1; 0: none)")
+      ->check(CLI::NonNegativeNumber);
+  plan_cmd
+      ->add_option("--suffix-searches", plan.suffix_searches,
+                   "After the rounds, the best plan's last sixths searched again with the rest "
+                   "kept, on at most this multiple of the states expanded before them (default "
+                   "1; 0: none)")
       ->check(CLI::NonNegativeNumber);
   plan_cmd->add_option("--seed", plan.seed, "Random seed")->capture_default_str();
   plan_cmd->add_option("--epsilon", plan.epsilon_s,

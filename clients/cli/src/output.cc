@@ -91,6 +91,10 @@ void PrintPlanResponse(std::ostream& out, const v1::PlanResponse& response) {
         << (stats.seed_round_plans() == 1 ? " plan" : " plans")
         << " shorter than the best before\n";
   }
+  if (stats.suffix_searches() > 0) {
+    out << "; suffix searches: " << stats.suffix_searches() << ", " << stats.suffix_plans()
+        << (stats.suffix_plans() == 1 ? " plan" : " plans") << " shorter than the best before\n";
+  }
   for (const auto& d : response.diagnostics()) {
     out << "; " << d.file() << ":" << d.line() << ":" << d.column() << ": " << d.message() << "\n";
   }

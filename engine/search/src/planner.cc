@@ -10,6 +10,7 @@
 #include <new>
 #include <optional>
 
+#include "absl/cleanup/cleanup.h"
 #include "absl/strings/str_cat.h"
 #include "goal_order.h"
 #include "heuristics/landmarks.h"
@@ -78,6 +79,11 @@ absl::Status PlannerOptions::Validate() const {
   if (!(seed_rounds_share >= 0) || !std::isfinite(seed_rounds_share)) {
     return absl::InvalidArgumentError(absl::StrCat(
         "seed_rounds_share must be a finite number >= 0 (0 = no rounds), got ", seed_rounds_share));
+  }
+  if (!(suffix_search_share >= 0) || !std::isfinite(suffix_search_share)) {
+    return absl::InvalidArgumentError(absl::StrCat(
+        "suffix_search_share must be a finite number >= 0 (0 = no suffix searches), got ",
+        suffix_search_share));
   }
   if (!(epsilon_s > 0) || !(epsilon_s < 1)) {
     return absl::InvalidArgumentError(
@@ -174,8 +180,16 @@ class PlannerRun {
   // After ShortenFirstPlan, with or without anytime phases: rounds of the
   // same with other seeds (a greedy first search, then its passes, each
   // round bounded by its own plans), begun while their expansions stay
-  // within `budget`.
-  void ShortenWithOtherSeeds(std::size_t budget);
+  // within `budget`. True when Poll stopped it.
+  bool ShortenWithOtherSeeds(std::size_t budget);
+  // After the rounds: the incumbent's first cut/6 events kept, for cut =
+  // 5 down to 1, and the rest searched again by weighted A* (w = 3) with
+  // the makespan-aware relaxed plan, bounded by the incumbent, each on a
+  // fifth of `budget`; again while one of them found a shorter plan and
+  // the budget lasts. True when Poll stopped it.
+  bool ShortenSuffixes(std::size_t budget);
+  static constexpr std::size_t kSuffixCuts = 5;
+  static constexpr double kSuffixWeight = 3;
   // The first-plan searches' greedy search (with its exploration lists and
   // pruning), unbounded.
   SearchParams GreedyParams(std::uint64_t seed, bool eager_ends) const;
@@ -231,6 +245,11 @@ class PlannerRun {
   // with another seed (ShortenWithOtherSeeds). The incumbent outside those
   // rounds.
   PlanBound round_;
+  // The events of round_'s and incumbent_'s plans, in the order the search
+  // took them (without redundant steps when Offer dropped them): what a
+  // suffix search keeps the first part of.
+  std::vector<Event> round_events_, incumbent_events_;
+  bool in_suffix_search_ = false;  // counts their plans (suffix_plans)
   std::uint64_t round_seed_ = options_.random_seed;
   SearchCounters done_counters_;            // of finished searches
   SearchCounters polled_counters_;          // of all searches, at the last memory poll
@@ -334,6 +353,7 @@ bool PlannerRun::Offer(const LazySearch& search) {
   // validates and is not longer.
   const Clock::time_point eliminate_start = Clock::now();
   const std::vector<Event> needed = EliminateRedundantSteps(transitions_, initial_, search.plan());
+  const std::vector<Event>* events_used = &search.plan();
   log::Debug("planner: redundant steps looked for in {:.3f} s", Seconds(eliminate_start));
   if (needed.size() < search.plan().size()) {
     std::string needed_error;
@@ -341,6 +361,7 @@ bool PlannerRun::Offer(const LazySearch& search) {
     if (!shorter) {
       log::Debug("planner: plan without redundant steps rejected: {}", needed_error);
     } else if (shorter->makespan_s <= built->makespan_s) {
+      events_used = &needed;
       log::Debug("planner: {} of {} events redundant, makespan {} -> {}",
                  search.plan().size() - needed.size(), search.plan().size(), built->makespan_s,
                  shorter->makespan_s);
@@ -349,12 +370,15 @@ bool PlannerRun::Offer(const LazySearch& search) {
   }
   if (!round_.ShorterBy(built->makespan_s, options_.epsilon_s)) return false;
   round_ = {true, built->makespan_s, search.plan().size()};
+  round_events_ = *events_used;
   // Shorter than this round's plans, not than the incumbent: the round goes
   // on under its own bound.
   if (!incumbent_.ShorterBy(built->makespan_s, options_.epsilon_s)) return true;
   const double now = Seconds(start_);
   if (round_seed_ != options_.random_seed) ++best_.stats.seed_round_plans;
+  if (in_suffix_search_) ++best_.stats.suffix_plans;
   incumbent_ = round_;
+  incumbent_events_ = round_events_;
   best_.status = PlanStatus::kSolvedSatisficing;
   best_.plan = std::move(built->plan);
   best_.makespan_s = built->makespan_s;
@@ -512,9 +536,10 @@ bool PlannerRun::ShortenFirstPlan(std::size_t first_expanded, bool quick) {
   return false;
 }
 
-void PlannerRun::ShortenWithOtherSeeds(std::size_t budget) {
+bool PlannerRun::ShortenWithOtherSeeds(std::size_t budget) {
   const std::size_t start_expanded = Expanded();
-  for (std::uint64_t round = 1; Expanded() - start_expanded < budget; ++round) {
+  bool stopped = false;
+  for (std::uint64_t round = 1; !stopped && Expanded() - start_expanded < budget; ++round) {
     ++best_.stats.seed_rounds;
     round_ = {};
     round_seed_ = options_.random_seed + round;
@@ -523,14 +548,56 @@ void PlannerRun::ShortenWithOtherSeeds(std::size_t budget) {
                       GreedyParams(round_seed_, EagerEnds()));
     Start(search);
     const std::size_t left = budget - (Expanded() - start_expanded);
-    const bool stop = RunBounded(search, left, true);
+    stopped = RunBounded(search, left, true);
     const std::size_t first_expanded = search.counters().expanded;
     AddCounters(search);
-    if (stop) break;
-    if (round_.found && ShortenFirstPlan(first_expanded, true)) break;
+    if (!stopped && round_.found) stopped = ShortenFirstPlan(first_expanded, true);
   }
   round_ = incumbent_;
+  round_events_ = incumbent_events_;
   round_seed_ = options_.random_seed;
+  return stopped;
+}
+
+bool PlannerRun::ShortenSuffixes(std::size_t budget) {
+  if (!round_.found || budget == 0) return false;
+  heuristic_.SetMakespanAware(true);
+  in_suffix_search_ = true;
+  absl::Cleanup done = [this] { in_suffix_search_ = false; };
+  // The kept part is a prefix in the search's order, so the searches need
+  // nothing but their start (SearchParams::prefix): its schedule is built
+  // as any path's. The shortest suffixes first: their spaces are the
+  // smallest, and on generated fjord-fuel missions the last one often
+  // holds the mistake (one ship carrying the last containers one after
+  // another while the others wait), where the greedy searches and the
+  // rounds, all from the initial state, keep making it. Weighted A* on
+  // makespan, not greedy: it compares the ways the other ships could take
+  // over. Five cuts: nine on about the same budget (a ninth each) gave
+  // shorter plans on two of ten fjord-fuel 3x12x12 missions and longer
+  // ones on two others, and fewer searches each get more states.
+  const std::size_t per_search = std::max<std::size_t>(1, budget / kSuffixCuts);
+  const std::size_t start_expanded = Expanded();
+  for (bool improved = true; improved;) {
+    improved = false;
+    for (std::size_t cut = kSuffixCuts; cut >= 1; --cut) {
+      const std::size_t spent = Expanded() - start_expanded;
+      if (spent >= budget) return false;
+      const std::size_t kept = round_events_.size() * cut / (kSuffixCuts + 1);
+      const std::vector<Event> prefix(round_events_.begin(),
+                                      round_events_.begin() + static_cast<std::ptrdiff_t>(kept));
+      SearchParams params = BoundedParams(kSuffixWeight);
+      params.prefix = prefix;
+      LazySearch search(snap_, registry_, heuristic_, transitions_, timeline_, params);
+      Start(search);
+      ++best_.stats.suffix_searches;
+      const double before_s = round_.makespan_s;
+      const bool stop = RunBounded(search, std::min(per_search, budget - spent), false);
+      AddCounters(search);
+      if (stop) return true;
+      if (round_.makespan_s < before_s) improved = true;
+    }
+  }
+  return false;
 }
 
 PlanResult PlannerRun::Finish(const SearchCounters& counters, PlanStatus status_if_no_plan,
@@ -932,9 +999,11 @@ PlanResult PlannerRun::Run() {
   heuristic_.SetDelayGoalUndoers(false);
   // The same passes and rounds with or without anytime phases, so that
   // those start from the plan `--no-anytime` returns.
-  if (!ShortenFirstPlan(first_plan_expanded, /*quick=*/false)) {
-    ShortenWithOtherSeeds(
-        static_cast<std::size_t>(options_.seed_rounds_share * static_cast<double>(Expanded())));
+  if (!ShortenFirstPlan(first_plan_expanded, /*quick=*/false) &&
+      !ShortenWithOtherSeeds(
+          static_cast<std::size_t>(options_.seed_rounds_share * static_cast<double>(Expanded())))) {
+    ShortenSuffixes(
+        static_cast<std::size_t>(options_.suffix_search_share * static_cast<double>(Expanded())));
   }
   if (!options_.anytime) return finish(PlanStatus::kSolvedSatisficing, "");
   heuristic_.SetMakespanAware(false);  // the anytime phases: FF's (see below)

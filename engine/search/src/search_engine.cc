@@ -97,6 +97,8 @@ void LazySearch::Initialize(const StateData& initial) {
   // The initial state is a pending record without a parent.
   pending_.push_back(Pending{-1, 0, 0.0});
   open_all_.Insert(0, 0, 0);
+  prefix_pending_ = params_.prefix.empty() ? -1 : 0;
+  prefix_taken_ = 0;
 }
 
 void LazySearch::ExtractPath(std::int32_t state, std::vector<Event>* out) const {
@@ -419,6 +421,9 @@ LazySearch::Status LazySearch::Step() {
   if (!Pop(&pending_index)) return Status::kExhausted;
   const std::int32_t s = Materialize(pending_index);
   if (s < 0) return Status::kInProgress;
+  // On the prefix: its next event is the only successor.
+  const bool on_prefix = pending_index == prefix_pending_;
+  if (on_prefix) prefix_pending_ = -1;
   if (transitions_.IsGoal(current_)) {
     ExtractPath(s, &plan_);
     plan_makespan_s_ = info_[static_cast<std::size_t>(s)].g_s;
@@ -442,8 +447,12 @@ LazySearch::Status LazySearch::Step() {
   const std::int32_t parent = info_[static_cast<std::size_t>(s)].parent;
   // A state whose only successor is an eager end is not evaluated: its
   // successor goes on with the parent's h, as this state did.
-  const bool eager =
-      params_.eager_ends && parent >= 0 && candidates_.size() > 1 && TakeEagerEnd(ActiveTimeline());
+  if (on_prefix) {
+    const SnapId due = params_.prefix[prefix_taken_].snap;
+    std::erase_if(candidates_, [due](const Event& e) { return e.snap != due; });
+  }
+  const bool eager = !on_prefix && params_.eager_ends && parent >= 0 && candidates_.size() > 1 &&
+                     TakeEagerEnd(ActiveTimeline());
   int h = 0;
   if (eager) {
     h = info_[static_cast<std::size_t>(parent)].h;
@@ -547,6 +556,10 @@ LazySearch::Status LazySearch::Step() {
   const bool greedy = params_.weight < 0;
   const double parent_g_s = info_[static_cast<std::size_t>(s)].g_s;
   const double parent_lb_s = info_[static_cast<std::size_t>(s)].lb_s;
+  if (on_prefix && !candidates_.empty() && prefix_taken_ + 1 < params_.prefix.size()) {
+    prefix_pending_ = static_cast<std::int32_t>(pending_.size());
+    ++prefix_taken_;
+  }
   for (std::size_t i = 0; i < candidates_.size(); ++i) {
     Event ev = candidates_[i];
     if (stop_ != nullptr && (++tried & 255) == 0 && stop_->StopRequested())

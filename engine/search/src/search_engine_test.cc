@@ -2,6 +2,7 @@
 
 #include <gtest/gtest.h>
 
+#include <span>
 #include <vector>
 
 #include "seaplan/testing/shared_data.h"
@@ -83,6 +84,70 @@ TEST(LazySearchTest, ExtraSchedulePathsChangeNothingButTheRebuilding) {
   const Trace four = RunGreedy(domain, problem, 4, 100000);
   ExpectSameSearch(one, four);
   EXPECT_LE(four.rebuilt, two.rebuilt);
+}
+
+// SearchParams::prefix: the search takes the prefix's events first, one
+// after another, and searches only the completions of that prefix; a prefix
+// event that cannot happen where it is due leaves it without states.
+TEST(LazySearchTest, APrefixIsTakenFirst) {
+  auto task = testing::LoadTaskOrFail(
+      seaplan::testing::ReadFile(seaplan::testing::SourceDir() / "examples/fjord/domain.pddl"),
+      seaplan::testing::ReadFile(seaplan::testing::SourceDir() /
+                                 "engine/search/testdata/fjord-s2-p8-c8-seed1.pddl"));
+  ASSERT_TRUE(task);
+  // Weighted A* counts a relaxed plan's event as the greedy plan's seconds
+  // per event, as the planner's bounded searches do.
+  double scale_s = 1;
+  const auto solve = [&](std::span<const Event> prefix, double weight, LazySearch::Status* status,
+                         std::size_t* expanded) {
+    testing::SearchParts parts(*task);
+    SearchParams params;
+    params.weight = weight;
+    params.scale_s = scale_s;
+    params.epsilon_s = parts.kEpsilonS;
+    params.prefix = prefix;
+    LazySearch search(parts.snap, parts.registry, parts.heuristic, parts.transitions,
+                      parts.timeline, params);
+    search.Initialize(testing::InitialState(*task, parts.snap));
+    *status = LazySearch::Status::kInProgress;
+    for (int i = 0; i < 200000 && *status == LazySearch::Status::kInProgress; ++i) {
+      *status = search.Step();
+    }
+    *expanded = search.counters().expanded;
+    if (*status == LazySearch::Status::kSolved && weight < 0) {
+      scale_s = search.plan_makespan_s() / static_cast<double>(search.plan().size());
+    }
+    return search.plan();
+  };
+  LazySearch::Status status;
+  std::size_t expanded = 0;
+  const std::vector<Event> plan = solve({}, -1, &status, &expanded);
+  ASSERT_EQ(status, LazySearch::Status::kSolved);
+  ASSERT_GE(plan.size(), 8u);
+
+  // The plan's second half, searched again by weighted A*, is another one,
+  // after the same first half. The first event a plain weighted A* search
+  // takes is not the greedy plan's.
+  const std::span<const Event> half(plan.data(), plan.size() / 2);
+  const std::vector<Event> completed = solve(half, 3, &status, &expanded);
+  ASSERT_EQ(status, LazySearch::Status::kSolved);
+  ASSERT_GT(completed.size(), half.size());
+  for (std::size_t i = 0; i < half.size(); ++i) EXPECT_EQ(completed[i].snap, half[i].snap) << i;
+  const std::vector<Event> unforced = solve({}, 3, &status, &expanded);
+  ASSERT_EQ(status, LazySearch::Status::kSolved);
+  bool differs = false;
+  for (std::size_t i = 0; i < half.size() && i < unforced.size(); ++i) {
+    differs = differs || unforced[i].snap != half[i].snap;
+  }
+  EXPECT_TRUE(differs) << "the prefix changed nothing to test";
+
+  // The end of the first plan's first start cannot happen in the initial
+  // state: nothing runs there.
+  ASSERT_EQ(plan[0].snap % 2, 0) << "the plan begins with a start";
+  const Event end_first{plan[0].snap + 1};
+  solve(std::span<const Event>(&end_first, 1), 3, &status, &expanded);
+  EXPECT_EQ(status, LazySearch::Status::kExhausted);
+  EXPECT_EQ(expanded, 1u);
 }
 
 }  // namespace

@@ -32,9 +32,10 @@
 //     expansions, at least 10,000), and weighted A* (w = 3) with FF's
 //     relaxed plan as well (the first searches' expansions, at least
 //     20,000), whose plans replace the first when shorter; then rounds of
-//     the same with other seeds (PlannerOptions::seed_rounds_share); that
-//     is the plan returned without anytime, and the one the anytime phases
-//     start from;
+//     the same with other seeds (PlannerOptions::seed_rounds_share); then
+//     suffix searches, the incumbent's last sixths searched again with the
+//     rest kept (PlannerOptions::suffix_search_share); that is the plan
+//     returned without anytime, and the one the anytime phases start from;
 //   - anytime: restarting weighted A* on makespan, pruned by the incumbent,
 //     until the time limit, the expansion limit or an exhausted space;
 //   - every plan is scheduled at its earliest STN times, printed with
@@ -172,6 +173,18 @@ struct PlannerOptions {
   // time over the set (bench/planner/README.md, "Rounds with other
   // seeds").
   double seed_rounds_share = 1;
+  // After the rounds (and before any anytime phases), suffix searches: the
+  // incumbent's first 5/6, 4/6, ... 1/6 of events kept (in the order the
+  // search took them, so the kept part has its own schedule) and the rest
+  // searched again by weighted A* (w = 3) with the makespan-aware relaxed
+  // plan, bounded by the incumbent; again from the first cut while one of
+  // them found a shorter plan, on at most this multiple of the states
+  // expanded before them, in all (>= 0; 0: none). A first plan whose last
+  // containers one ship carries one after another while the others wait is
+  // mended where its tail is searched again, which neither the rounds nor
+  // the passes before them reach (bench/missions/README.md, "Suffix
+  // searches").
+  double suffix_search_share = 1;
 
   absl::Status Validate() const;
 };
@@ -198,6 +211,9 @@ struct SearchStatistics {
   // Rounds with other seeds begun (PlannerOptions::seed_rounds_share), and
   // the plans they found shorter than the incumbent.
   int seed_rounds = 0, seed_round_plans = 0;
+  // Suffix searches run (PlannerOptions::suffix_search_share), and the
+  // plans they found shorter than the incumbent.
+  int suffix_searches = 0, suffix_plans = 0;
 };
 
 struct PlanResult {
