@@ -445,12 +445,12 @@ LazySearch::Status LazySearch::Step() {
   candidates_.clear();
   transitions_.Candidates(current_, &candidates_);
   const std::int32_t parent = info_[static_cast<std::size_t>(s)].parent;
-  // A state whose only successor is an eager end is not evaluated: its
-  // successor goes on with the parent's h, as this state did.
   if (on_prefix) {
     const SnapId due = params_.prefix[prefix_taken_].snap;
     std::erase_if(candidates_, [due](const Event& e) { return e.snap != due; });
   }
+  // A state whose only successor is an eager end is not evaluated: its
+  // successor goes on with the parent's h, as this state did.
   const bool eager = !on_prefix && params_.eager_ends && parent >= 0 && candidates_.size() > 1 &&
                      TakeEagerEnd(ActiveTimeline());
   int h = 0;
@@ -556,6 +556,8 @@ LazySearch::Status LazySearch::Step() {
   const bool greedy = params_.weight < 0;
   const double parent_g_s = info_[static_cast<std::size_t>(s)].g_s;
   const double parent_lb_s = info_[static_cast<std::size_t>(s)].lb_s;
+  // The due event's record is the next one pushed (if it applies, fits the
+  // schedule and the bound; else the search runs out of states).
   if (on_prefix && !candidates_.empty() && prefix_taken_ + 1 < params_.prefix.size()) {
     prefix_pending_ = static_cast<std::int32_t>(pending_.size());
     ++prefix_taken_;

@@ -108,7 +108,7 @@ struct SearchParams {
   bool eager_ends = false;
   // May be empty (borrowed): events the search takes first, one after
   // another from the initial state, as the only successor of each state
-  // on the way (by SnapId; TILs as they come), so that it searches the
+  // on the way (matched by SnapId, a timed literal's too), so that it searches the
   // completions of that prefix with the prefix's schedule. A prefix event
   // that does not apply where it is due leaves the search without states.
   std::span<const Event> prefix;
@@ -289,8 +289,8 @@ class LazySearch {
   std::vector<double> slack_pool_;
   std::vector<Pending> pending_;
   std::int32_t initial_ = 0;
-  // SearchParams::prefix: the pending record of its next state (-1 once
-  // the prefix is behind), and how many of its events that state has had.
+  // SearchParams::prefix: the pending record of the next state on it (-1
+  // once the prefix is behind), and the index of the event due there.
   std::int32_t prefix_pending_ = -1;
   std::size_t prefix_taken_ = 0;
   // Schedules of search paths kept built. paths_[0] is on the borrowed
