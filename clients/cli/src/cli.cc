@@ -24,6 +24,20 @@
 namespace seaplan::cli {
 namespace {
 
+// A finite number >= 0 ("expected <what> >= 0, got -2"); CLI11's
+// NonNegativeNumber names the whole range of a double instead.
+CLI::Validator NonNegative(const std::string& what, const std::string& type_name) {
+  return CLI::Validator(
+      [what](std::string& v) {
+        char* end = nullptr;
+        const double x = std::strtod(v.c_str(), &end);
+        return !v.empty() && end == v.c_str() + v.size() && std::isfinite(x) && x >= 0
+                   ? std::string()
+                   : "expected " + what + " >= 0, got " + v;
+      },
+      type_name);
+}
+
 struct GlobalOptions {
   std::string server;  // empty: in-process
   // The API token (--token, else --token-file, SEAPLAN_TOKEN or
@@ -812,16 +826,7 @@ int RunCli(int argc, char** argv, const CliExecutable& executable) {
   plan_cmd
       ->add_option("--cpu-limit", plan.cpu_limit_s,
                    "CPU time limit of the search (s), the same work under any load (0: none)")
-      ->check(CLI::Validator(
-          [](std::string& v) {
-            char* end = nullptr;
-            const double seconds = std::strtod(v.c_str(), &end);
-            return !v.empty() && end == v.c_str() + v.size() && std::isfinite(seconds) &&
-                           seconds >= 0
-                       ? std::string()
-                       : "expected a number of seconds >= 0, got " + v;
-          },
-          "SECONDS"));
+      ->check(NonNegative("a number of seconds", "SECONDS"));
   plan_cmd->add_flag(
       "--no-anytime", plan.no_anytime,
       "No anytime phases: stop after the first plan and the bounded searches that shorten it");
@@ -847,13 +852,13 @@ int RunCli(int argc, char** argv, const CliExecutable& executable) {
                    "After the first plan and the searches that shorten it, rounds of the same "
                    "with other seeds, begun while they have expanded fewer than this multiple of "
                    "the states expanded before them (default 1; 0: none)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(NonNegative("a number", "MULTIPLE"));
   plan_cmd
       ->add_option("--suffix-searches", plan.suffix_searches,
                    "After the rounds, the best plan's last sixths searched again with the rest "
                    "kept, on at most this multiple of the states expanded before them (default "
                    "1; 0: none)")
-      ->check(CLI::NonNegativeNumber);
+      ->check(NonNegative("a number", "MULTIPLE"));
   plan_cmd->add_option("--seed", plan.seed, "Random seed")->capture_default_str();
   plan_cmd->add_option("--epsilon", plan.epsilon_s,
                        "Separation of interfering events (s), default 0.001");
