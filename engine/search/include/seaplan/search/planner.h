@@ -179,11 +179,11 @@ struct PlannerOptions {
   // searched again by weighted A* (w = 3) with the makespan-aware relaxed
   // plan, bounded by the incumbent; again from the first cut while one of
   // them found a shorter plan, on at most this multiple of the states
-  // expanded before them, in all (>= 0; 0: none). A first plan whose last
-  // containers one ship carries one after another while the others wait is
-  // mended where its tail is searched again, which neither the rounds nor
-  // the passes before them reach (bench/missions/README.md, "Suffix
-  // searches").
+  // expanded before them, in all (>= 0; 0: none). A plan that leaves its
+  // last jobs to one agent while the others wait (one ship carrying the
+  // last containers of a fjord-fuel mission) is mended where its tail is
+  // searched again; the rounds and passes, all from the initial state,
+  // keep making that choice (bench/missions/README.md, "Suffix searches").
   double suffix_search_share = 1;
 
   absl::Status Validate() const;
