@@ -10,7 +10,6 @@
 #include <new>
 #include <optional>
 
-#include "absl/cleanup/cleanup.h"
 #include "absl/strings/str_cat.h"
 #include "goal_order.h"
 #include "heuristics/landmarks.h"
@@ -186,8 +185,8 @@ class PlannerRun {
   // 5 down to 1, and the rest searched again by weighted A* (w = 3) with
   // the makespan-aware relaxed plan, bounded by the incumbent, each on a
   // fifth of `budget`; again while one of them found a shorter plan and
-  // the budget lasts. True when Poll stopped it.
-  bool ShortenSuffixes(std::size_t budget);
+  // the budget lasts, or until Poll stops it.
+  void ShortenSuffixes(std::size_t budget);
   static constexpr std::size_t kSuffixCuts = 5;
   static constexpr double kSuffixWeight = 3;
   // The first-plan searches' greedy search (with its exploration lists and
@@ -231,7 +230,11 @@ class PlannerRun {
   struct PlanBound {
     bool found = false;
     double makespan_s = 0;
-    std::size_t events = 0;
+    std::size_t events = 0;  // of the search's path (BoundedParams' scale)
+    // The events in the order the search took them, without redundant
+    // steps when Offer dropped them: what a suffix search keeps the first
+    // part of.
+    std::vector<Event> path;
     // `makespan_s` is shorter than this plan's by more than half the
     // separation of events (every makespan when none is found).
     bool ShorterBy(double makespan, double epsilon_s) const {
@@ -245,11 +248,6 @@ class PlannerRun {
   // with another seed (ShortenWithOtherSeeds). The incumbent outside those
   // rounds.
   PlanBound round_;
-  // The events of round_'s and incumbent_'s plans, in the order the search
-  // took them (without redundant steps when Offer dropped them): what a
-  // suffix search keeps the first part of.
-  std::vector<Event> round_events_, incumbent_events_;
-  bool in_suffix_search_ = false;  // counts their plans (suffix_plans)
   std::uint64_t round_seed_ = options_.random_seed;
   SearchCounters done_counters_;            // of finished searches
   SearchCounters polled_counters_;          // of all searches, at the last memory poll
@@ -369,16 +367,12 @@ bool PlannerRun::Offer(const LazySearch& search) {
     }
   }
   if (!round_.ShorterBy(built->makespan_s, options_.epsilon_s)) return false;
-  round_ = {true, built->makespan_s, search.plan().size()};
-  round_events_ = *events_used;
+  round_ = {true, built->makespan_s, search.plan().size(), *events_used};
   // Shorter than this round's plans, not than the incumbent: the round goes
   // on under its own bound.
   if (!incumbent_.ShorterBy(built->makespan_s, options_.epsilon_s)) return true;
   const double now = Seconds(start_);
-  if (round_seed_ != options_.random_seed) ++best_.stats.seed_round_plans;
-  if (in_suffix_search_) ++best_.stats.suffix_plans;
   incumbent_ = round_;
-  incumbent_events_ = round_events_;
   best_.status = PlanStatus::kSolvedSatisficing;
   best_.plan = std::move(built->plan);
   best_.makespan_s = built->makespan_s;
@@ -538,6 +532,7 @@ bool PlannerRun::ShortenFirstPlan(std::size_t first_expanded, bool quick) {
 
 bool PlannerRun::ShortenWithOtherSeeds(std::size_t budget) {
   const std::size_t start_expanded = Expanded();
+  const int plans_before = best_.stats.plans_found;
   bool stopped = false;
   for (std::uint64_t round = 1; !stopped && Expanded() - start_expanded < budget; ++round) {
     ++best_.stats.seed_rounds;
@@ -554,16 +549,14 @@ bool PlannerRun::ShortenWithOtherSeeds(std::size_t budget) {
     if (!stopped && round_.found) stopped = ShortenFirstPlan(first_expanded, true);
   }
   round_ = incumbent_;
-  round_events_ = incumbent_events_;
   round_seed_ = options_.random_seed;
+  best_.stats.seed_round_plans += best_.stats.plans_found - plans_before;
   return stopped;
 }
 
-bool PlannerRun::ShortenSuffixes(std::size_t budget) {
-  if (!round_.found || budget == 0) return false;
+void PlannerRun::ShortenSuffixes(std::size_t budget) {
+  if (!round_.found || budget == 0) return;
   heuristic_.SetMakespanAware(true);
-  in_suffix_search_ = true;
-  absl::Cleanup done = [this] { in_suffix_search_ = false; };
   // The kept part is a prefix in the search's order, so the searches need
   // nothing but their start (SearchParams::prefix): its schedule is built
   // as any path's. The shortest suffixes first: their spaces are the
@@ -581,23 +574,26 @@ bool PlannerRun::ShortenSuffixes(std::size_t budget) {
     improved = false;
     for (std::size_t cut = kSuffixCuts; cut >= 1; --cut) {
       const std::size_t spent = Expanded() - start_expanded;
-      if (spent >= budget) return false;
-      const std::size_t kept = round_events_.size() * cut / (kSuffixCuts + 1);
-      const std::vector<Event> prefix(round_events_.begin(),
-                                      round_events_.begin() + static_cast<std::ptrdiff_t>(kept));
+      if (spent >= budget) return;
+      const std::size_t kept = round_.path.size() * cut / (kSuffixCuts + 1);
+      // A copy: Offer replaces round_.path while the search runs.
+      const std::vector<Event> prefix(round_.path.begin(),
+                                      round_.path.begin() + static_cast<std::ptrdiff_t>(kept));
       SearchParams params = BoundedParams(kSuffixWeight);
       params.prefix = prefix;
       LazySearch search(snap_, registry_, heuristic_, transitions_, timeline_, params);
       Start(search);
       ++best_.stats.suffix_searches;
-      const double before_s = round_.makespan_s;
+      const int plans_before = best_.stats.plans_found;
       const bool stop = RunBounded(search, std::min(per_search, budget - spent), false);
       AddCounters(search);
-      if (stop) return true;
-      if (round_.makespan_s < before_s) improved = true;
+      // round_ is the incumbent here: its plans are the incumbent's.
+      const int found = best_.stats.plans_found - plans_before;
+      best_.stats.suffix_plans += found;
+      if (stop) return;
+      improved = improved || found > 0;
     }
   }
-  return false;
 }
 
 PlanResult PlannerRun::Finish(const SearchCounters& counters, PlanStatus status_if_no_plan,
